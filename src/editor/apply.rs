@@ -1,0 +1,208 @@
+//! The one system that changes meshes: it applies [`EditRequest`]s in order and reports each.
+//!
+//! It is exclusive (`&mut World`): every request sees the result of the one before, and the
+//! operations it calls are the same plain functions the command line and the tests use.
+
+use bevy::ecs::message::{MessageCursor, Messages};
+use bevy::prelude::{Local, World};
+use std::path::{Path, PathBuf};
+
+use crate::io;
+use crate::mesh::ids::{EdgeId, ElementId, MeshId};
+use crate::mesh::{
+    InMesh, MeshInfo, PolygonSoup, Position, build_mesh, despawn_mesh, shapes, to_soup,
+};
+use crate::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
+use crate::ops::triangulate::triangulate;
+
+use super::requests::{EditOutcome, EditRequest, OutcomeLog};
+use super::selection::{ActiveMesh, MeshDirty, Selection, navigate};
+use crate::mesh::topology::MeshRef;
+
+/// Applies every request written since the last run, in order (the `Apply` set).
+pub fn apply_requests(world: &mut World, mut cursor: Local<MessageCursor<EditRequest>>) {
+    let requests: Vec<EditRequest> = cursor
+        .read(world.resource::<Messages<EditRequest>>())
+        .cloned()
+        .collect();
+    for request in requests {
+        let result = apply(world, &request);
+        let outcome = EditOutcome {
+            request: request.label(),
+            result,
+        };
+        match &outcome.result {
+            Ok(summary) => bevy::log::info!("{}: {summary}", outcome.request),
+            Err(reason) => bevy::log::info!("{}: refused: {reason}", outcome.request),
+        }
+        world.write_message(outcome.clone());
+        world.resource_mut::<OutcomeLog>().push(outcome);
+    }
+}
+
+/// Applies one request. `Ok` carries a summary, `Err` the reason it was refused (the world is
+/// then unchanged).
+pub fn apply(world: &mut World, request: &EditRequest) -> Result<String, String> {
+    match request {
+        EditRequest::Flip(e) => {
+            let mesh = mesh_of(world, e.0)?;
+            let flipped = flip_edge(world, *e).map_err(|r| r.to_string())?;
+            edited(world, mesh, Some(ElementId::Edge(flipped)));
+            Ok(format!("flipped to {flipped}"))
+        }
+        EditRequest::Split(e) => {
+            let mesh = mesh_of(world, e.0)?;
+            let v = split_edge(world, *e, 0.5).map_err(|r| r.to_string())?;
+            edited(world, mesh, Some(ElementId::Vertex(v)));
+            Ok(format!("new vertex {v}"))
+        }
+        EditRequest::Collapse(e) => {
+            let mesh = mesh_of(world, e.0)?;
+            let result =
+                collapse_edge(world, *e, CollapseOptions::default()).map_err(|r| r.to_string())?;
+            edited(world, mesh, Some(ElementId::Vertex(result.kept)));
+            Ok(format!("kept {}, removed {}", result.kept, result.removed))
+        }
+        EditRequest::Triangulate(mesh) => {
+            if world.get::<MeshInfo>(mesh.0).is_none() {
+                return Err(format!("{mesh} does not exist"));
+            }
+            let s = triangulate(world, *mesh);
+            let selection = world.resource::<Selection>().element;
+            edited(world, *mesh, selection);
+            Ok(format!(
+                "{} polygon(s) cut into triangles, {} face(s) added",
+                s.polygons, s.added_faces
+            ))
+        }
+        EditRequest::MoveVertex(v, p) => {
+            if !p.is_finite() {
+                return Err(format!("{p} is not a finite position"));
+            }
+            let mesh = mesh_of(world, v.0)?;
+            let Some(mut position) = world.get_mut::<Position>(v.0) else {
+                return Err(format!("{v} is not a vertex"));
+            };
+            position.0 = *p;
+            let selection = world.resource::<Selection>().element;
+            edited(world, mesh, selection);
+            Ok(format!("{v} at {p}"))
+        }
+        EditRequest::Select(element) => {
+            if let Some(x) = element
+                && !super::selection::exists(&MeshRef::new(world), *x)
+            {
+                return Err(format!("{x} does not exist"));
+            }
+            world.resource_mut::<Selection>().element = *element;
+            Ok(element.map_or("nothing selected".into(), |x| format!("{x} selected")))
+        }
+        EditRequest::Navigate(relation) => {
+            let Some(from) = world.resource::<Selection>().element else {
+                return Err("nothing is selected".into());
+            };
+            let to = navigate(&MeshRef::new(world), from, *relation).ok_or_else(|| {
+                format!("{from} has no {} (a boundary halfedge has no face)", relation.name())
+            })?;
+            world.resource_mut::<Selection>().element = Some(to);
+            Ok(format!("{to}"))
+        }
+        EditRequest::Open(path) => open(world, path),
+        EditRequest::Save(path) => save(world, path.as_deref()),
+        EditRequest::DeleteMesh => {
+            let Some(mesh) = world.resource::<ActiveMesh>().0 else {
+                return Err("there is no mesh to delete".into());
+            };
+            let count = despawn_mesh(world, mesh);
+            world.resource_mut::<ActiveMesh>().0 = None;
+            world.resource_mut::<Selection>().element = None;
+            Ok(format!("{mesh} deleted ({count} entities)"))
+        }
+    }
+}
+
+fn mesh_of(world: &World, e: bevy::prelude::Entity) -> Result<MeshId, String> {
+    world
+        .get::<InMesh>(e)
+        .map(|m| m.0)
+        .ok_or_else(|| format!("{e} does not exist (stale id)"))
+}
+
+/// After an edit: the mesh is re-rendered and the selection moves to what the edit made.
+fn edited(world: &mut World, mesh: MeshId, select: Option<ElementId>) {
+    world.entity_mut(mesh.0).insert(MeshDirty);
+    world.resource_mut::<Selection>().element = select;
+}
+
+/// Reads a mesh file (or `shape:NAME`) into a soup and the mesh's name.
+pub fn read_mesh_source(path: &Path) -> Result<(PolygonSoup, MeshInfo), String> {
+    let text = path.to_string_lossy();
+    if let Some(name) = text.strip_prefix("shape:") {
+        let soup = shapes::by_name(name).ok_or_else(|| format!("unknown shape `{name}`"))?;
+        let info = MeshInfo {
+            name: name.to_string(),
+            path: None,
+        };
+        return Ok((soup, info));
+    }
+    let soup = io::read(path).map_err(|e| e.to_string())?;
+    let name = path
+        .file_name()
+        .map_or_else(|| text.to_string(), |n| n.to_string_lossy().into_owned());
+    Ok((
+        soup,
+        MeshInfo {
+            name,
+            path: Some(path.to_path_buf()),
+        },
+    ))
+}
+
+/// Opens a mesh, replacing the active one only once the new one has been read and built.
+fn open(world: &mut World, path: &PathBuf) -> Result<String, String> {
+    let (soup, info) = read_mesh_source(path)?;
+    let built = build_mesh(world, &soup, info).map_err(|e| format!("{}: {e}", path.display()))?;
+    if let Some(old) = world.resource::<ActiveMesh>().0 {
+        despawn_mesh(world, old);
+    }
+    world.resource_mut::<ActiveMesh>().0 = Some(built.mesh);
+    world.resource_mut::<Selection>().element = None;
+    world.entity_mut(built.mesh.0).insert(MeshDirty);
+    let stats = crate::mesh::mesh_stats(world, built.mesh);
+    Ok(format!(
+        "{}: {} vertices, {} faces; {}",
+        path.display(),
+        stats.vertices,
+        stats.faces,
+        built.report
+    ))
+}
+
+fn save(world: &mut World, path: Option<&Path>) -> Result<String, String> {
+    let Some(mesh) = world.resource::<ActiveMesh>().0 else {
+        return Err("there is no mesh to save".into());
+    };
+    let target = match path {
+        Some(p) => p.to_path_buf(),
+        None => world
+            .get::<MeshInfo>(mesh.0)
+            .and_then(|i| i.path.clone())
+            .ok_or("this mesh has no file yet: use Save as")?,
+    };
+    let soup = to_soup(world, mesh);
+    io::write(&target, &soup).map_err(|e| e.to_string())?;
+    if let Some(mut info) = world.get_mut::<MeshInfo>(mesh.0) {
+        info.path = Some(target.clone());
+    }
+    Ok(format!("saved {}", target.display()))
+}
+
+/// The edge under a selection, for operations on edges: the edge itself, or a halfedge's edge.
+pub fn selected_edge(world: &World) -> Option<EdgeId> {
+    let m = MeshRef::new(world);
+    match world.resource::<Selection>().element? {
+        ElementId::Edge(e) => m.try_edge(e).map(|_| e),
+        ElementId::Halfedge(h) => m.try_halfedge(h).map(|x| x.edge),
+        _ => None,
+    }
+}

@@ -1,0 +1,214 @@
+//! Scripted runs of the real editor, for screenshots and the windowed test.
+//!
+//! `PAPPUS_SCRIPT` holds steps separated by `;`, run one after another, each once the previous
+//! is done:
+//!
+//! | step | meaning |
+//! |---|---|
+//! | `wait:N` | let N frames pass |
+//! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:Digit2`, `key:Period`) |
+//! | `select-edge:A,B` | select the edge between the input file's vertices A and B (0-based) |
+//! | `select:ID` | select an element by id (`f12v0`) |
+//! | `shot:PATH` | save a screenshot of the window to PATH (PNG) and wait until it is written |
+//! | `exit` | quit |
+//!
+//! Example: `PAPPUS_SCRIPT='wait:5;select-edge:0,1;shot:before.png;key:R;wait:3;shot:after.png;exit'`.
+
+use bevy::input::ButtonState;
+use bevy::input::keyboard::{Key, KeyboardInput};
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, save_to_disk};
+use bevy::window::PrimaryWindow;
+use std::path::PathBuf;
+
+use crate::mesh::ids::{ElementId, parse_element};
+use crate::mesh::topology::MeshRef;
+
+use super::requests::EditRequest;
+use super::selection::ActiveMesh;
+
+/// One scripted step (see the module doc).
+#[derive(Clone, Debug, PartialEq)]
+pub enum ScriptStep {
+    /// Let frames pass.
+    Wait(u32),
+    /// Press and release a key.
+    Key(KeyCode),
+    /// Select the edge between two input vertices.
+    SelectEdge(u32, u32),
+    /// Select an element by id.
+    Select(ElementId),
+    /// Save a screenshot.
+    Shot(PathBuf),
+    /// Quit.
+    Exit,
+}
+
+/// The steps still to run.
+#[derive(Resource, Debug, Default)]
+pub struct Script {
+    steps: std::collections::VecDeque<ScriptStep>,
+    waiting: u32,
+    shots_pending: usize,
+}
+
+/// Screenshots requested by the script that are not yet on disk.
+#[derive(Resource, Debug, Default, Clone)]
+pub struct PendingShots(pub std::sync::Arc<std::sync::atomic::AtomicUsize>);
+
+impl Script {
+    /// Parses a script (see the module doc).
+    ///
+    /// # Errors
+    /// The step that could not be read.
+    pub fn parse(text: &str) -> Result<Script, String> {
+        let mut steps = std::collections::VecDeque::new();
+        for raw in text.split(';').map(str::trim).filter(|s| !s.is_empty()) {
+            let (name, arg) = raw.split_once(':').unwrap_or((raw, ""));
+            let bad = || format!("bad script step `{raw}`");
+            steps.push_back(match name {
+                "wait" => ScriptStep::Wait(arg.parse().map_err(|_| bad())?),
+                "key" => ScriptStep::Key(key_code(arg).ok_or_else(bad)?),
+                "select-edge" => {
+                    let (a, b) = arg.split_once(',').ok_or_else(bad)?;
+                    ScriptStep::SelectEdge(
+                        a.trim().parse().map_err(|_| bad())?,
+                        b.trim().parse().map_err(|_| bad())?,
+                    )
+                }
+                "select" => ScriptStep::Select(parse_element(arg).ok_or_else(bad)?),
+                "shot" => ScriptStep::Shot(PathBuf::from(arg)),
+                "exit" => ScriptStep::Exit,
+                _ => return Err(bad()),
+            });
+        }
+        Ok(Script {
+            steps,
+            waiting: 0,
+            shots_pending: 0,
+        })
+    }
+}
+
+fn key_code(name: &str) -> Option<KeyCode> {
+    let single = |c: char| -> Option<KeyCode> {
+        Some(match c.to_ascii_uppercase() {
+            'A' => KeyCode::KeyA,
+            'C' => KeyCode::KeyC,
+            'E' => KeyCode::KeyE,
+            'F' => KeyCode::KeyF,
+            'H' => KeyCode::KeyH,
+            'N' => KeyCode::KeyN,
+            'P' => KeyCode::KeyP,
+            'R' => KeyCode::KeyR,
+            'S' => KeyCode::KeyS,
+            'T' => KeyCode::KeyT,
+            'V' => KeyCode::KeyV,
+            'W' => KeyCode::KeyW,
+            'Z' => KeyCode::KeyZ,
+            '1' => KeyCode::Digit1,
+            '2' => KeyCode::Digit2,
+            '3' => KeyCode::Digit3,
+            '4' => KeyCode::Digit4,
+            '.' => KeyCode::Period,
+            _ => return None,
+        })
+    };
+    match name {
+        "Period" => Some(KeyCode::Period),
+        "Escape" => Some(KeyCode::Escape),
+        "F1" => Some(KeyCode::F1),
+        "Delete" => Some(KeyCode::Delete),
+        _ if name.chars().count() == 1 => single(name.chars().next()?),
+        _ => None,
+    }
+}
+
+/// Runs the script a step at a time (in the `Input` set, so pressed keys are seen this frame).
+pub fn run_script(world: &mut World) {
+    let Some(mut script) = world.remove_resource::<Script>() else {
+        return;
+    };
+    let pending = world.resource::<PendingShots>().0.clone();
+    loop {
+        if script.waiting > 0 {
+            script.waiting -= 1;
+            break;
+        }
+        if script.shots_pending > 0 && pending.load(std::sync::atomic::Ordering::SeqCst) > 0 {
+            break;
+        }
+        script.shots_pending = 0;
+        let Some(step) = script.steps.pop_front() else {
+            break;
+        };
+        match step {
+            ScriptStep::Wait(n) => script.waiting = n,
+            ScriptStep::Key(key) => {
+                let window = world
+                    .query_filtered::<Entity, With<PrimaryWindow>>()
+                    .iter(world)
+                    .next()
+                    .unwrap_or(Entity::PLACEHOLDER);
+                for state in [ButtonState::Pressed, ButtonState::Released] {
+                    world.write_message(KeyboardInput {
+                        key_code: key,
+                        logical_key: Key::Unidentified(bevy::input::keyboard::NativeKey::Unidentified),
+                        state,
+                        text: None,
+                        repeat: false,
+                        window,
+                    });
+                }
+                // Let the press reach `ButtonInput` before the next step.
+                script.waiting = 2;
+            }
+            ScriptStep::SelectEdge(a, b) => {
+                let edge = input_edge(world, a, b);
+                match edge {
+                    Some(e) => {
+                        world.write_message(EditRequest::Select(Some(e)));
+                    }
+                    None => bevy::log::warn!("script: no edge between input vertices {a} and {b}"),
+                }
+                script.waiting = 1;
+            }
+            ScriptStep::Select(id) => {
+                world.write_message(EditRequest::Select(Some(id)));
+                script.waiting = 1;
+            }
+            ScriptStep::Shot(path) => {
+                pending.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                let counter = pending.clone();
+                let mut save = save_to_disk(path);
+                world.spawn(Screenshot::primary_window()).observe(
+                    move |captured: On<bevy::render::view::screenshot::ScreenshotCaptured>| {
+                        save(captured);
+                        counter.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
+                    },
+                );
+                script.shots_pending = 1;
+                break;
+            }
+            ScriptStep::Exit => {
+                world.write_message(AppExit::Success);
+                break;
+            }
+        }
+    }
+    world.insert_resource(script);
+}
+
+/// The edge between two vertices named by their index in the input file: vertices are listed
+/// in file order by a freshly built mesh, so the index is the position in that list.
+fn input_edge(world: &World, a: u32, b: u32) -> Option<ElementId> {
+    let mesh = world.resource::<ActiveMesh>().0?;
+    let vertices = crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(
+        world,
+        mesh,
+        crate::mesh::VertexId,
+    );
+    let (va, vb) = (*vertices.get(a as usize)?, *vertices.get(b as usize)?);
+    let m = MeshRef::new(world);
+    m.find_halfedge(va, vb).map(|h| ElementId::Edge(m.edge(h)))
+}

@@ -1,0 +1,200 @@
+//! The Bevy application: one plugin per concern, stages as named system sets.
+//!
+//! ```text
+//!  Input ──► Request ──► Apply ──► Sync ──► Ui
+//!  keys      picks →     the one   render    egui panel,
+//!  → requests requests   system    copies,   status line
+//!                        that      overlay
+//!                        edits
+//! ```
+//!
+//! [`EditorLogicPlugin`] holds everything that runs without a window (the headless tests use it
+//! with `MinimalPlugins`); [`EditorWindowPlugin`] adds the camera, picking observers, gizmos and
+//! the egui panels. [`run`] starts the whole editor.
+
+pub mod apply;
+pub mod automation;
+pub mod input;
+pub mod overlay;
+pub mod picking;
+pub mod render_sync;
+pub mod requests;
+pub mod scene;
+pub mod selection;
+pub mod ui;
+
+use bevy::prelude::*;
+use std::path::PathBuf;
+
+use requests::{EditOutcome, EditRequest, OutcomeLog};
+use selection::{ActiveMesh, Hover, SelectMode, Selection};
+
+/// The editor's stages, in order, in `Update`.
+#[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
+pub enum EditorSystems {
+    /// Keys become requests.
+    Input,
+    /// Picks become requests.
+    Request,
+    /// Requests are applied, outcomes written.
+    Apply,
+    /// Render copies and the overlay follow the meshes.
+    Sync,
+    /// The panels read the result.
+    Ui,
+}
+
+/// The model file the editor opens when none is given.
+pub const DEFAULT_MODEL: &str = "assets/torus.obj";
+
+/// Everything that needs no window: messages, resources, and the systems from keys to render
+/// data. `Assets<Mesh>` must exist (add `AssetPlugin` and `bevy::mesh::MeshPlugin`).
+pub struct EditorLogicPlugin;
+
+impl Plugin for EditorLogicPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_message::<EditRequest>()
+            .add_message::<EditOutcome>()
+            .add_message::<picking::PickRequest>()
+            .init_resource::<Selection>()
+            .init_resource::<Hover>()
+            .init_resource::<SelectMode>()
+            .init_resource::<ActiveMesh>()
+            .init_resource::<OutcomeLog>()
+            .init_resource::<render_sync::ViewSettings>()
+            .init_resource::<render_sync::RenderStats>()
+            .init_resource::<overlay::Overlay>()
+            .init_resource::<input::KeyboardCaptured>()
+            .init_resource::<input::UiState>()
+            .configure_sets(
+                Update,
+                (
+                    EditorSystems::Input,
+                    EditorSystems::Request,
+                    EditorSystems::Apply,
+                    EditorSystems::Sync,
+                    EditorSystems::Ui,
+                )
+                    .chain(),
+            )
+            .add_systems(
+                Update,
+                (
+                    input::keyboard_shortcuts.in_set(EditorSystems::Input),
+                    picking::resolve_picks.in_set(EditorSystems::Request),
+                    apply::apply_requests.in_set(EditorSystems::Apply),
+                    (render_sync::sync_render_meshes, overlay::gather_overlay)
+                        .chain()
+                        .in_set(EditorSystems::Sync),
+                ),
+            );
+    }
+}
+
+/// The windowed part: scene, camera controls, picking observers, gizmos, file drops, panels.
+pub struct EditorWindowPlugin {
+    /// The file to open at start-up.
+    pub open: Option<PathBuf>,
+}
+
+impl Plugin for EditorWindowPlugin {
+    fn build(&self, app: &mut App) {
+        let open = self.open.clone();
+        app.init_gizmo_group::<overlay::HighlightGizmos>()
+            .add_systems(Startup, (scene::setup_scene, overlay::configure_gizmos))
+            .add_systems(
+                Startup,
+                move |mut requests: MessageWriter<EditRequest>| {
+                    if let Some(path) = open.clone() {
+                        requests.write(EditRequest::Open(path));
+                    }
+                },
+            )
+            .add_systems(
+                Update,
+                (
+                    (scene::orbit_controls, open_dropped_files)
+                        .run_if(|k: Res<input::KeyboardCaptured>| !k.0)
+                        .in_set(EditorSystems::Input),
+                    frame_new_meshes.after(EditorSystems::Apply).before(EditorSystems::Sync),
+                    overlay::draw_overlay.after(EditorSystems::Sync),
+                ),
+            )
+            .init_resource::<automation::PendingShots>()
+            .add_systems(Update, automation::run_script.in_set(EditorSystems::Input).before(input::keyboard_shortcuts))
+            .add_observer(picking::on_click)
+            .add_observer(picking::on_move)
+            .add_observer(picking::on_out)
+            .add_plugins(ui::UiPlugin);
+    }
+}
+
+/// Opens files dropped on the window.
+fn open_dropped_files(
+    mut drops: MessageReader<bevy::window::FileDragAndDrop>,
+    mut requests: MessageWriter<EditRequest>,
+) {
+    for drop in drops.read() {
+        if let bevy::window::FileDragAndDrop::DroppedFile { path_buf, .. } = drop {
+            requests.write(EditRequest::Open(path_buf.clone()));
+        }
+    }
+}
+
+/// Frames a mesh the first time it becomes the active one.
+fn frame_new_meshes(world: &mut World, mut last: Local<Option<crate::mesh::MeshId>>) {
+    let active = world.resource::<ActiveMesh>().0;
+    if active != *last {
+        *last = active;
+        if active.is_some() {
+            scene::frame_selection(world);
+        }
+    }
+}
+
+/// Runs the editor until its window closes; returns the process exit code. Opens `path`, or
+/// the default model.
+pub fn run(path: Option<PathBuf>) -> i32 {
+    let open = path.or_else(|| {
+        let default = PathBuf::from(DEFAULT_MODEL);
+        Some(if default.exists() {
+            default
+        } else {
+            PathBuf::from("shape:torus")
+        })
+    });
+    let script = match std::env::var("PAPPUS_SCRIPT") {
+        Ok(text) => match automation::Script::parse(&text) {
+            Ok(script) => Some(script),
+            Err(e) => {
+                eprintln!("pappus: PAPPUS_SCRIPT: {e}");
+                return 2;
+            }
+        },
+        Err(_) => None,
+    };
+    let mut app = App::new();
+    app
+        .add_plugins(DefaultPlugins.set(WindowPlugin {
+            primary_window: Some(Window {
+                title: "Pappus".into(),
+                resolution: (1280u32, 800u32).into(),
+                ..default()
+            }),
+            ..default()
+        }))
+        .add_plugins((
+            MeshPickingPlugin,
+            bevy_egui::EguiPlugin::default(),
+            EditorLogicPlugin,
+            EditorWindowPlugin { open },
+        ));
+    if let Some(script) = script {
+        app.insert_resource(script);
+    }
+    let exit = app.run();
+    match exit {
+        AppExit::Success => 0,
+        AppExit::Error(code) => i32::from(code.get()),
+    }
+}

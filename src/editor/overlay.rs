@@ -1,0 +1,215 @@
+//! What is drawn over the surface each frame: the selection, the hover highlight, vertex dots
+//! and halfedge arrows (offset into their face, as Dandelion and Scotty3D draw them).
+//!
+//! An exclusive system gathers the shapes from the mesh ([`gather_overlay`]); a plain system
+//! draws them with gizmos ([`draw_overlay`]). Arrows and dots cover the whole mesh only while it
+//! is small (see [`SMALL_MESH_FACES`]); on a large mesh they are drawn around the selection.
+
+use bevy::color::Color;
+use bevy::gizmos::config::GizmoConfigGroup;
+use bevy::math::{Isometry3d, Vec3};
+use bevy::prelude::*;
+
+use crate::mesh::ids::{ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::members::{MeshMembers, of_kind};
+use crate::mesh::topology::MeshRef;
+use crate::mesh::{Face, MeshInfo};
+
+use super::render_sync::ViewSettings;
+use super::selection::{ActiveMesh, Hover, Selection};
+
+/// Meshes with at most this many faces get arrows and dots everywhere.
+pub const SMALL_MESH_FACES: usize = 3000;
+
+/// Colour of the selection.
+pub const SELECTED: Color = Color::srgb(1.0, 0.62, 0.0);
+/// Colour of the hover highlight.
+pub const HOVERED: Color = Color::srgb(0.35, 0.8, 1.0);
+/// Colour of halfedge arrows.
+pub const ARROW: Color = Color::srgb(0.2, 0.25, 0.55);
+/// Colour of vertex dots.
+pub const DOT: Color = Color::srgb(0.05, 0.05, 0.05);
+
+/// Thick lines drawn on top of everything (selection and hover).
+#[derive(Default, Reflect, GizmoConfigGroup)]
+pub struct HighlightGizmos;
+
+/// One shape to draw.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// A thin line.
+    Line(Vec3, Vec3, Color),
+    /// A thick line over everything.
+    Highlight(Vec3, Vec3, Color),
+    /// A thick arrow over everything.
+    HighlightArrow(Vec3, Vec3, Color),
+    /// A thin arrow.
+    Arrow(Vec3, Vec3, Color),
+    /// A dot of the given world radius.
+    Dot(Vec3, f32, Color),
+    /// A large dot over everything.
+    HighlightDot(Vec3, f32, Color),
+}
+
+/// The shapes of this frame.
+#[derive(Resource, Default, Debug, Clone)]
+pub struct Overlay {
+    /// Everything to draw.
+    pub shapes: Vec<Shape>,
+}
+
+/// The arrow of halfedge `h`: its segment pulled towards the centre of its face (away from the
+/// other face on the boundary) and shortened, so the two halfedges of an edge sit side by side.
+pub fn halfedge_arrow(m: &MeshRef<'_>, h: HalfedgeId) -> (Vec3, Vec3) {
+    let (a, b) = (m.position(m.from_vertex(h)), m.position(m.to_vertex(h)));
+    let inside = match m.face(h) {
+        Some(f) => m.face_centroid(f),
+        None => {
+            let other = m.face(m.twin(h)).map_or((a + b) / 2.0, |f| m.face_centroid(f));
+            (a + b) - other
+        }
+    };
+    let pull = |p: Vec3| p + (inside - p) * 0.12;
+    let (pa, pb) = (pull(a), pull(b));
+    (pa.lerp(pb, 0.12), pa.lerp(pb, 0.88))
+}
+
+fn mean_edge_near(m: &MeshRef<'_>, v: VertexId) -> f32 {
+    let p = m.position(v);
+    let (sum, n) = m
+        .vertex_neighbors(v)
+        .fold((0.0, 0), |(s, n), w| (s + m.position(w).distance(p), n + 1));
+    if n == 0 { 0.01 } else { sum / n as f32 }
+}
+
+fn element_shapes(m: &MeshRef<'_>, x: ElementId, color: Color, out: &mut Vec<Shape>) {
+    if !super::selection::exists(m, x) {
+        return;
+    }
+    match x {
+        ElementId::Vertex(v) => {
+            let r = mean_edge_near(m, v) * 0.12;
+            out.push(Shape::HighlightDot(m.position(v), r, color));
+        }
+        ElementId::Edge(e) => {
+            let (a, b) = m.edge_vertices(e);
+            out.push(Shape::Highlight(m.position(a), m.position(b), color));
+        }
+        ElementId::Halfedge(h) => {
+            let (a, b) = halfedge_arrow(m, h);
+            out.push(Shape::HighlightArrow(a, b, color));
+        }
+        ElementId::Face(f) => face_outline(m, f, color, out),
+        ElementId::Mesh(_) => {}
+    }
+}
+
+fn face_outline(m: &MeshRef<'_>, f: FaceId, color: Color, out: &mut Vec<Shape>) {
+    let c = m.face_centroid(f);
+    for h in m.face_halfedges(f) {
+        let (a, b) = (m.position(m.from_vertex(h)), m.position(m.to_vertex(h)));
+        out.push(Shape::Highlight(a, b, color));
+        // Hatch the face towards its centre so a selected face reads as filled.
+        out.push(Shape::Highlight(a.lerp(c, 0.15), b.lerp(c, 0.15), color));
+    }
+}
+
+/// Gathers this frame's overlay shapes (the `Sync` set).
+pub fn gather_overlay(world: &mut World) {
+    let mut shapes = Vec::new();
+    let settings = world.get_resource::<ViewSettings>().copied().unwrap_or_default();
+    if let Some(mesh) = world.resource::<ActiveMesh>().0
+        && world.get::<MeshInfo>(mesh.0).is_some()
+    {
+        let m = MeshRef::new(world);
+        let faces = of_kind::<Face, _>(world, mesh, FaceId);
+        if faces.len() <= SMALL_MESH_FACES {
+            let members = MeshMembers::collect(world, mesh);
+            for &v in &members.vertices {
+                shapes.push(Shape::Dot(m.position(v), mean_edge_near(&m, v) * 0.04, DOT));
+            }
+            if settings.halfedges {
+                for &h in &members.halfedges {
+                    let (a, b) = halfedge_arrow(&m, h);
+                    shapes.push(Shape::Arrow(a, b, ARROW));
+                }
+            }
+        } else if settings.halfedges {
+            // Around the selection only.
+            let near: Vec<HalfedgeId> = match world.resource::<Selection>().element {
+                Some(ElementId::Face(f)) if m.try_face(f).is_some() => m.face_halfedges(f).collect(),
+                Some(ElementId::Vertex(v)) if m.try_vertex(v).is_some() => m
+                    .vertex_outgoing(v)
+                    .flat_map(|h| [h, m.twin(h)])
+                    .collect(),
+                Some(ElementId::Halfedge(h)) if m.try_halfedge(h).is_some() => {
+                    m.loop_from(h).chain(m.loop_from(m.twin(h))).collect()
+                }
+                Some(ElementId::Edge(e)) if m.try_edge(e).is_some() => {
+                    let h = m.edge_halfedge(e);
+                    m.loop_from(h).chain(m.loop_from(m.twin(h))).collect()
+                }
+                _ => Vec::new(),
+            };
+            for h in near {
+                let (a, b) = halfedge_arrow(&m, h);
+                shapes.push(Shape::Arrow(a, b, ARROW));
+            }
+        }
+        if let Some(x) = world.resource::<Hover>().element
+            && Some(x) != world.resource::<Selection>().element
+        {
+            element_shapes(&m, x, HOVERED, &mut shapes);
+        }
+        if let Some(x) = world.resource::<Selection>().element {
+            element_shapes(&m, x, SELECTED, &mut shapes);
+        }
+    }
+    world.resource_mut::<Overlay>().shapes = shapes;
+}
+
+/// Draws the gathered shapes.
+pub fn draw_overlay(
+    overlay: Res<Overlay>,
+    mut thin: Gizmos,
+    mut thick: Gizmos<HighlightGizmos>,
+    cameras: Query<&GlobalTransform, With<Camera3d>>,
+) {
+    let facing = cameras
+        .iter()
+        .next()
+        .map_or(Quat::IDENTITY, |t| t.compute_transform().rotation);
+    for shape in &overlay.shapes {
+        match *shape {
+            Shape::Line(a, b, c) => {
+                thin.line(a, b, c);
+            }
+            Shape::Highlight(a, b, c) => {
+                thick.line(a, b, c);
+            }
+            Shape::Arrow(a, b, c) => {
+                thin.arrow(a, b, c).with_tip_length(a.distance(b) * 0.2);
+            }
+            Shape::HighlightArrow(a, b, c) => {
+                thick.arrow(a, b, c).with_tip_length(a.distance(b) * 0.25);
+            }
+            Shape::Dot(p, r, c) => {
+                thin.circle(Isometry3d::new(p, facing), r, c).resolution(6);
+            }
+            Shape::HighlightDot(p, r, c) => {
+                thick.circle(Isometry3d::new(p, facing), r, c).resolution(12);
+                thick.circle(Isometry3d::new(p, facing), r * 0.5, c).resolution(8);
+            }
+        }
+    }
+}
+
+/// Makes highlight lines thick and drawn over the surface.
+pub fn configure_gizmos(mut store: ResMut<GizmoConfigStore>) {
+    let (config, _) = store.config_mut::<HighlightGizmos>();
+    config.line.width = 4.0;
+    config.depth_bias = -0.9;
+    let (config, _) = store.config_mut::<DefaultGizmoConfigGroup>();
+    config.line.width = 1.5;
+    config.depth_bias = -0.001;
+}

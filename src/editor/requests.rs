@@ -1,0 +1,139 @@
+//! The messages that drive the editor: requests in, outcomes out.
+//!
+//! Every way of asking for an edit — a key, a panel button, a test — writes the same
+//! [`EditRequest`]. One exclusive system ([`super::apply`]) applies them in order, in the
+//! `Apply` set, and writes one [`EditOutcome`] per request, which the status line, the log and
+//! (later) the history read. Nothing but that system changes a mesh.
+
+use bevy::math::Vec3;
+use bevy::prelude::{Message, Resource};
+use std::path::PathBuf;
+
+use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
+
+/// A step along a halfedge relation, from the selected element.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Relation {
+    /// The halfedge's twin.
+    Twin,
+    /// The next halfedge around the face.
+    Next,
+    /// The previous halfedge around the face.
+    Prev,
+    /// The vertex (a halfedge's tip; an element's representative vertex).
+    Vertex,
+    /// The edge of a halfedge.
+    Edge,
+    /// The face of a halfedge (none on the boundary).
+    Face,
+    /// The element's halfedge (a vertex's outgoing, an edge's, a face's).
+    Halfedge,
+}
+
+impl Relation {
+    /// Every relation, in the order the inspector lists them.
+    pub const ALL: [Relation; 7] = [
+        Relation::Halfedge,
+        Relation::Twin,
+        Relation::Next,
+        Relation::Prev,
+        Relation::Vertex,
+        Relation::Edge,
+        Relation::Face,
+    ];
+
+    /// Its name as shown to the user.
+    pub fn name(self) -> &'static str {
+        match self {
+            Relation::Twin => "twin",
+            Relation::Next => "next",
+            Relation::Prev => "prev",
+            Relation::Vertex => "vertex",
+            Relation::Edge => "edge",
+            Relation::Face => "face",
+            Relation::Halfedge => "halfedge",
+        }
+    }
+}
+
+/// An edit or navigation the user asked for.
+#[derive(Message, Clone, Debug, PartialEq)]
+pub enum EditRequest {
+    /// Flip an edge.
+    Flip(EdgeId),
+    /// Split an edge at its midpoint.
+    Split(EdgeId),
+    /// Collapse an edge to its midpoint.
+    Collapse(EdgeId),
+    /// Triangulate every polygon of a mesh.
+    Triangulate(MeshId),
+    /// Move a vertex.
+    MoveVertex(VertexId, Vec3),
+    /// Select an element (or nothing).
+    Select(Option<ElementId>),
+    /// Move the selection along a relation.
+    Navigate(Relation),
+    /// Open a mesh file (or `shape:NAME`), replacing the current mesh.
+    Open(PathBuf),
+    /// Save the current mesh (to its own file, or to the given path).
+    Save(Option<PathBuf>),
+    /// Delete the current mesh.
+    DeleteMesh,
+}
+
+impl EditRequest {
+    /// A short label for logs.
+    pub fn label(&self) -> String {
+        match self {
+            EditRequest::Flip(e) => format!("flip {e}"),
+            EditRequest::Split(e) => format!("split {e}"),
+            EditRequest::Collapse(e) => format!("collapse {e}"),
+            EditRequest::Triangulate(m) => format!("triangulate {m}"),
+            EditRequest::MoveVertex(v, _) => format!("move {v}"),
+            EditRequest::Select(Some(x)) => format!("select {x}"),
+            EditRequest::Select(None) => "select nothing".into(),
+            EditRequest::Navigate(r) => format!("go to {}", r.name()),
+            EditRequest::Open(p) => format!("open {}", p.display()),
+            EditRequest::Save(Some(p)) => format!("save as {}", p.display()),
+            EditRequest::Save(None) => "save".into(),
+            EditRequest::DeleteMesh => "delete mesh".into(),
+        }
+    }
+
+    /// Whether the request changes a mesh (and so marks it for re-rendering).
+    pub fn edits(&self) -> bool {
+        !matches!(
+            self,
+            EditRequest::Select(_) | EditRequest::Navigate(_) | EditRequest::Save(_)
+        )
+    }
+}
+
+/// What became of one [`EditRequest`].
+#[derive(Message, Clone, Debug, PartialEq)]
+pub struct EditOutcome {
+    /// The request's label.
+    pub request: String,
+    /// `Ok(summary)` if applied, `Err(reason)` if refused (the mesh is then unchanged).
+    pub result: Result<String, String>,
+}
+
+/// The last outcomes, newest last, for the status line and the log panel.
+#[derive(Resource, Default, Debug)]
+pub struct OutcomeLog {
+    /// Up to [`OutcomeLog::CAPACITY`] entries.
+    pub entries: Vec<EditOutcome>,
+}
+
+impl OutcomeLog {
+    /// How many outcomes are kept.
+    pub const CAPACITY: usize = 200;
+
+    /// Appends an outcome, dropping the oldest past the capacity.
+    pub fn push(&mut self, outcome: EditOutcome) {
+        if self.entries.len() == Self::CAPACITY {
+            self.entries.remove(0);
+        }
+        self.entries.push(outcome);
+    }
+}

@@ -1,0 +1,175 @@
+//! The 3D scene around the meshes: an orbit camera, lights, the surface material.
+//!
+//! Camera controls follow Blender: middle- or right-drag orbits, Shift + drag pans, the wheel
+//! zooms, `.` or Home frames the selection (or the whole mesh). Nothing moves while egui has
+//! the pointer.
+
+use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseButton};
+use bevy::math::{EulerRot, Quat, Vec3};
+use bevy::prelude::*;
+
+use crate::mesh::ids::ElementId;
+use crate::mesh::topology::MeshRef;
+
+use super::selection::{ActiveMesh, Selection};
+
+/// The orbit camera's state: it looks at `focus` from `radius` away, turned by `yaw`/`pitch`.
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub struct OrbitCamera {
+    /// The point looked at.
+    pub focus: Vec3,
+    /// Distance from the focus.
+    pub radius: f32,
+    /// Turn around the vertical axis, radians.
+    pub yaw: f32,
+    /// Turn up or down, radians (kept within ±89°).
+    pub pitch: f32,
+}
+
+impl Default for OrbitCamera {
+    fn default() -> Self {
+        Self {
+            focus: Vec3::ZERO,
+            radius: 4.0,
+            yaw: 0.6,
+            pitch: -0.35,
+        }
+    }
+}
+
+impl OrbitCamera {
+    /// The camera transform this state gives.
+    pub fn transform(&self) -> Transform {
+        let rotation = Quat::from_euler(EulerRot::YXZ, self.yaw, self.pitch, 0.0);
+        Transform::from_translation(self.focus + rotation * Vec3::new(0.0, 0.0, self.radius))
+            .looking_at(self.focus, Vec3::Y)
+    }
+}
+
+/// Materials shared by every mesh.
+#[derive(Resource, Debug, Clone)]
+pub struct SceneMaterials {
+    /// The surface of meshes.
+    pub surface: Handle<StandardMaterial>,
+}
+
+/// Spawns the camera and lights, and makes the materials.
+pub fn setup_scene(
+    mut commands: Commands,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
+    let orbit = OrbitCamera::default();
+    commands.spawn((Camera3d::default(), orbit.transform(), orbit, Msaa::Off));
+    commands.spawn((
+        DirectionalLight {
+            illuminance: 6000.0,
+            ..default()
+        },
+        Transform::from_xyz(2.0, 4.0, 3.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    commands.spawn((
+        DirectionalLight {
+            illuminance: 2000.0,
+            ..default()
+        },
+        Transform::from_xyz(-3.0, -1.0, -2.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    commands.insert_resource(GlobalAmbientLight {
+        brightness: 400.0,
+        ..default()
+    });
+    commands.insert_resource(ClearColor(Color::srgb(0.32, 0.34, 0.38)));
+    commands.insert_resource(SceneMaterials {
+        surface: materials.add(StandardMaterial {
+            base_color: Color::srgb(0.78, 0.74, 0.66),
+            perceptual_roughness: 0.8,
+            double_sided: true,
+            cull_mode: None,
+            ..default()
+        }),
+    });
+}
+
+/// Mouse orbit, pan and zoom (skipped while egui has the pointer).
+pub fn orbit_controls(
+    buttons: Res<ButtonInput<MouseButton>>,
+    keys: Res<ButtonInput<KeyCode>>,
+    motion: Res<AccumulatedMouseMotion>,
+    scroll: Res<AccumulatedMouseScroll>,
+    mut cameras: Query<(&mut OrbitCamera, &mut Transform)>,
+) {
+    let dragging = buttons.pressed(MouseButton::Middle) || buttons.pressed(MouseButton::Right);
+    for (mut orbit, mut transform) in &mut cameras {
+        let before = *orbit;
+        if dragging && motion.delta != Vec2::ZERO {
+            if keys.pressed(KeyCode::ShiftLeft) || keys.pressed(KeyCode::ShiftRight) {
+                let scale = orbit.radius * 0.0015;
+                let right = transform.right();
+                let up = transform.up();
+                orbit.focus += (-motion.delta.x * *right + motion.delta.y * *up) * scale;
+            } else {
+                orbit.yaw -= motion.delta.x * 0.006;
+                orbit.pitch = (orbit.pitch - motion.delta.y * 0.006).clamp(-1.55, 1.55);
+            }
+        }
+        if scroll.delta.y != 0.0 {
+            orbit.radius = (orbit.radius * (1.0 - 0.1 * scroll.delta.y.clamp(-3.0, 3.0))).max(1e-3);
+        }
+        if *orbit != before {
+            *transform = orbit.transform();
+        }
+    }
+}
+
+/// Frames the selection, or the whole active mesh when nothing is selected.
+pub fn frame_selection(world: &mut World) {
+    let Some(mesh) = world.resource::<ActiveMesh>().0 else {
+        return;
+    };
+    if world.get_entity(mesh.0).is_err() {
+        return;
+    }
+    let m = MeshRef::new(world);
+    let points: Vec<Vec3> = match world.resource::<Selection>().element {
+        Some(ElementId::Vertex(v)) if m.try_vertex(v).is_some() => {
+            let p = m.position(v);
+            let mut pts = vec![p];
+            pts.extend(m.vertex_neighbors(v).map(|n| m.position(n)));
+            pts
+        }
+        Some(ElementId::Edge(e)) if m.try_edge(e).is_some() => {
+            let (a, b) = m.edge_vertices(e);
+            vec![m.position(a), m.position(b)]
+        }
+        Some(ElementId::Halfedge(h)) if m.try_halfedge(h).is_some() => {
+            vec![m.position(m.from_vertex(h)), m.position(m.to_vertex(h))]
+        }
+        Some(ElementId::Face(f)) if m.try_face(f).is_some() => {
+            m.face_vertices(f).map(|v| m.position(v)).collect()
+        }
+        _ => crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(
+            world,
+            mesh,
+            crate::mesh::VertexId,
+        )
+        .into_iter()
+        .map(|v| m.position(v))
+        .collect(),
+    };
+    if points.is_empty() {
+        return;
+    }
+    let (lo, hi) = points
+        .iter()
+        .fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        });
+    let focus = (lo + hi) / 2.0;
+    let radius = ((hi - lo).length() * 1.4).max(0.05);
+    let mut cameras = world.query::<(&mut OrbitCamera, &mut Transform)>();
+    for (mut orbit, mut transform) in cameras.iter_mut(world) {
+        orbit.focus = focus;
+        orbit.radius = radius;
+        *transform = orbit.transform();
+    }
+}

@@ -1,0 +1,137 @@
+//! What is selected, what is under the pointer, and walking the halfedge relations.
+
+use bevy::prelude::{Component, Resource};
+
+use crate::mesh::ids::{ElementId, MeshId};
+use crate::mesh::topology::MeshRef;
+
+use super::requests::Relation;
+
+/// The selected element, if any.
+#[derive(Resource, Default, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Selection {
+    /// The element.
+    pub element: Option<ElementId>,
+}
+
+/// The element under the pointer, if any.
+#[derive(Resource, Default, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Hover {
+    /// The element.
+    pub element: Option<ElementId>,
+}
+
+/// Which kind of element a click picks (keys 1–4 and the backquote, as in Blender).
+#[derive(Resource, Default, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SelectMode {
+    /// Whatever is nearest: a vertex if the click is near one, else an edge if near one, else
+    /// the face.
+    #[default]
+    Auto,
+    /// Vertices only.
+    Vertex,
+    /// Edges only.
+    Edge,
+    /// Faces only.
+    Face,
+    /// Halfedges only (the side of the edge the click is on).
+    Halfedge,
+}
+
+impl SelectMode {
+    /// Its name as shown to the user.
+    pub fn name(self) -> &'static str {
+        match self {
+            SelectMode::Auto => "auto",
+            SelectMode::Vertex => "vertex",
+            SelectMode::Edge => "edge",
+            SelectMode::Face => "face",
+            SelectMode::Halfedge => "halfedge",
+        }
+    }
+}
+
+/// The mesh being edited.
+#[derive(Resource, Default, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ActiveMesh(pub Option<MeshId>);
+
+/// Marks a mesh whose render copy must be rebuilt (set by every edit, cleared by render sync).
+#[derive(Component, Default, Debug, Clone, Copy)]
+#[component(storage = "SparseSet")]
+pub struct MeshDirty;
+
+/// Whether `element` is alive in the world behind `m`.
+pub fn exists(m: &MeshRef<'_>, element: ElementId) -> bool {
+    match element {
+        ElementId::Vertex(v) => m.try_vertex(v).is_some(),
+        ElementId::Halfedge(h) => m.try_halfedge(h).is_some(),
+        ElementId::Edge(e) => m.try_edge(e).is_some(),
+        ElementId::Face(f) => m.try_face(f).is_some(),
+        ElementId::Mesh(x) => m.world().get_entity(x.0).is_ok(),
+    }
+}
+
+/// The element reached from `from` along `relation`, or `None` where the relation leads nowhere
+/// (the face of a boundary halfedge) or `from` no longer exists.
+///
+/// Halfedges have every relation. Other elements first step to their halfedge (a vertex's
+/// outgoing one, an edge's, a face's) and follow the relation from there, so `vertex` of a face
+/// is the tip of its halfedge and `next` of a vertex is the halfedge after its outgoing one.
+pub fn navigate(m: &MeshRef<'_>, from: ElementId, relation: Relation) -> Option<ElementId> {
+    if !exists(m, from) {
+        return None;
+    }
+    let h = match from {
+        ElementId::Halfedge(h) => h,
+        ElementId::Vertex(v) => m.vertex_halfedge(v),
+        ElementId::Edge(e) => m.edge_halfedge(e),
+        ElementId::Face(f) => m.face_halfedge(f),
+        ElementId::Mesh(_) => return None,
+    };
+    let is_halfedge = matches!(from, ElementId::Halfedge(_));
+    Some(match relation {
+        Relation::Halfedge => ElementId::Halfedge(h),
+        Relation::Twin => ElementId::Halfedge(m.twin(h)),
+        Relation::Next => ElementId::Halfedge(m.next(h)),
+        Relation::Prev => ElementId::Halfedge(m.prev(h)),
+        // A vertex's "vertex" is the neighbour its outgoing halfedge points to.
+        Relation::Vertex => ElementId::Vertex(m.to_vertex(h)),
+        Relation::Edge => ElementId::Edge(m.edge(h)),
+        Relation::Face => {
+            let face = m.face(h).or_else(|| (!is_halfedge).then(|| m.face(m.twin(h))).flatten());
+            ElementId::Face(face?)
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{MeshInfo, build_mesh, shapes};
+    use bevy::prelude::World;
+
+    #[test]
+    fn relations_follow_the_halfedge_links() {
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &shapes::grid(2, 2), MeshInfo::default()).unwrap();
+        let m = MeshRef::new(&world);
+        let corner = built.input_vertices[0].unwrap();
+        let h = m.vertex_halfedge(corner);
+        assert!(m.is_boundary(h));
+        let go = |x, r| navigate(&m, x, r);
+        let hx = ElementId::Halfedge(h);
+        assert_eq!(go(ElementId::Vertex(corner), Relation::Halfedge), Some(hx));
+        assert_eq!(go(hx, Relation::Twin), Some(ElementId::Halfedge(m.twin(h))));
+        assert_eq!(go(hx, Relation::Next), Some(ElementId::Halfedge(m.next(h))));
+        assert_eq!(go(hx, Relation::Prev), Some(ElementId::Halfedge(m.prev(h))));
+        assert_eq!(go(hx, Relation::Edge), Some(ElementId::Edge(m.edge(h))));
+        assert_eq!(go(hx, Relation::Face), None, "a boundary halfedge has no face");
+        let inner = m.twin(h);
+        assert_eq!(
+            go(ElementId::Halfedge(inner), Relation::Face),
+            m.face(inner).map(ElementId::Face)
+        );
+        // An edge on the boundary still reaches its one face.
+        assert!(go(ElementId::Edge(m.edge(h)), Relation::Face).is_some());
+    }
+}

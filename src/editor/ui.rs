@@ -1,0 +1,472 @@
+//! The egui panels: the inspector, mesh statistics, operation buttons, the log, the status line
+//! and the help overlay.
+//!
+//! The UI only reads and asks. An exclusive system ([`snapshot`]) copies what the panels show
+//! into [`InspectorView`] in the `Ui` set; the egui system ([`panels`]) draws that copy and
+//! answers clicks by writing [`EditRequest`]s, exactly as the keyboard does. Statistics and
+//! validation (O(mesh)) are recomputed only when a mesh was rebuilt, not every frame.
+
+use bevy::math::Vec3;
+use bevy::prelude::*;
+use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
+use std::path::PathBuf;
+
+use crate::mesh::ids::{ElementId, parse_element};
+use crate::mesh::topology::MeshRef;
+use crate::mesh::{MeshInfo, MeshStats, mesh_stats, validate};
+
+use super::EditorSystems;
+use super::input::{Action, KeyboardCaptured, PathPurpose, SHORTCUTS, UiState, perform};
+use super::render_sync::{RenderStats, ViewSettings};
+use super::requests::{EditRequest, OutcomeLog, Relation};
+use super::selection::{ActiveMesh, SelectMode, Selection, navigate};
+
+/// The panels' plugin.
+pub struct UiPlugin;
+
+impl Plugin for UiPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<InspectorView>()
+            .init_resource::<UiFields>()
+            .init_resource::<PendingActions>()
+            .add_systems(
+                Update,
+                (run_pending_actions.in_set(EditorSystems::Input), snapshot.in_set(EditorSystems::Ui)),
+            )
+            .add_systems(EguiPrimaryContextPass, panels);
+    }
+}
+
+/// Everything the panels show, copied out of the world once a frame.
+#[derive(Resource, Default, Debug, Clone)]
+pub struct InspectorView {
+    /// The active mesh, if any.
+    pub mesh: Option<MeshView>,
+    /// The selected element, if any.
+    pub selected: Option<SelectedView>,
+    /// Rebuild count at the last statistics refresh.
+    pub stats_generation: usize,
+}
+
+/// The active mesh as shown.
+#[derive(Debug, Clone)]
+pub struct MeshView {
+    /// Its name.
+    pub name: String,
+    /// Its file.
+    pub path: Option<PathBuf>,
+    /// Its statistics.
+    pub stats: MeshStats,
+    /// `Ok` or the first broken invariant.
+    pub validation: Result<(), String>,
+}
+
+/// The selected element as shown.
+#[derive(Debug, Clone)]
+pub struct SelectedView {
+    /// Its id.
+    pub id: ElementId,
+    /// Each relation and where it leads.
+    pub relations: Vec<(Relation, Option<ElementId>)>,
+    /// Its position (vertices).
+    pub position: Option<Vec3>,
+    /// Facts: valence, degree, boundary.
+    pub facts: Vec<(String, String)>,
+}
+
+/// Text fields that keep their contents between frames.
+#[derive(Resource, Default, Debug)]
+pub struct UiFields {
+    /// The path field (open / save as).
+    pub path: String,
+    /// The "go to id" field.
+    pub jump: String,
+}
+
+/// Actions chosen in the panel that need the world (run in the next `Input` set).
+#[derive(Resource, Default, Debug)]
+pub struct PendingActions(pub Vec<Action>);
+
+fn run_pending_actions(world: &mut World) {
+    let actions = std::mem::take(&mut world.resource_mut::<PendingActions>().0);
+    for action in actions {
+        perform(world, action);
+    }
+}
+
+/// Copies what the panels show out of the world.
+pub fn snapshot(world: &mut World) {
+    let generation = world.resource::<RenderStats>().rebuilds;
+    let active = world.resource::<ActiveMesh>().0;
+    let mut view = std::mem::take(&mut *world.resource_mut::<InspectorView>());
+    match active.filter(|m| world.get::<MeshInfo>(m.0).is_some()) {
+        None => view.mesh = None,
+        Some(mesh) => {
+            if view.mesh.is_none() || view.stats_generation != generation {
+                let info = world.get::<MeshInfo>(mesh.0).cloned().unwrap_or_default();
+                view.mesh = Some(MeshView {
+                    name: info.name,
+                    path: info.path,
+                    stats: mesh_stats(world, mesh),
+                    validation: validate(world, mesh).map_err(|e| e.to_string()),
+                });
+                view.stats_generation = generation;
+            }
+        }
+    }
+    let m = MeshRef::new(world);
+    view.selected = world
+        .resource::<Selection>()
+        .element
+        .filter(|&x| super::selection::exists(&m, x))
+        .map(|id| describe(&m, id));
+    *world.resource_mut::<InspectorView>() = view;
+}
+
+fn describe(m: &MeshRef<'_>, id: ElementId) -> SelectedView {
+    let relations = Relation::ALL
+        .iter()
+        .filter(|&&r| matches!(id, ElementId::Halfedge(_)) || r != Relation::Twin)
+        .map(|&r| (r, navigate(m, id, r)))
+        .collect();
+    let yes_no = |b: bool| if b { "yes" } else { "no" }.to_string();
+    let (position, facts) = match id {
+        ElementId::Vertex(v) => (
+            Some(m.position(v)),
+            vec![
+                ("valence".into(), m.valence(v).to_string()),
+                ("boundary".into(), yes_no(m.is_boundary_vertex(v))),
+            ],
+        ),
+        ElementId::Halfedge(h) => (
+            None,
+            vec![
+                ("from".into(), m.from_vertex(h).to_string()),
+                ("to".into(), m.to_vertex(h).to_string()),
+                ("boundary".into(), yes_no(m.is_boundary(h))),
+            ],
+        ),
+        ElementId::Edge(e) => {
+            let (a, b) = m.edge_vertices(e);
+            let length = m.position(a).distance(m.position(b));
+            (
+                None,
+                vec![
+                    ("vertices".into(), format!("{a} – {b}")),
+                    ("length".into(), format!("{length:.5}")),
+                    ("boundary".into(), yes_no(m.is_boundary_edge(e))),
+                ],
+            )
+        }
+        ElementId::Face(f) => {
+            let boundary = m.face_halfedges(f).any(|h| m.is_boundary(m.twin(h)));
+            (
+                None,
+                vec![
+                    ("degree".into(), m.face_degree(f).to_string()),
+                    ("area".into(), format!("{:.5}", m.face_area_vector(f).length() / 2.0)),
+                    ("on boundary".into(), yes_no(boundary)),
+                ],
+            )
+        }
+        ElementId::Mesh(_) => (None, Vec::new()),
+    };
+    SelectedView {
+        id,
+        relations,
+        position,
+        facts,
+    }
+}
+
+fn shortcut_label(action: Action) -> &'static str {
+    SHORTCUTS
+        .iter()
+        .find(|s| s.action == action)
+        .map_or("", |s| s.keys)
+}
+
+/// Draws the panels and turns clicks into requests.
+#[allow(clippy::too_many_arguments, reason = "a UI system reads many small resources")]
+pub fn panels(
+    mut contexts: EguiContexts,
+    view: Res<InspectorView>,
+    log: Res<OutcomeLog>,
+    mut fields: ResMut<UiFields>,
+    mut ui_state: ResMut<UiState>,
+    mut mode: ResMut<SelectMode>,
+    settings: Res<ViewSettings>,
+    mut captured: ResMut<KeyboardCaptured>,
+    mut pending: ResMut<PendingActions>,
+    mut requests: MessageWriter<EditRequest>,
+) -> Result {
+    let ctx = contexts.ctx_mut()?.clone();
+    let mut root = egui::Ui::new(
+        ctx.clone(),
+        "root".into(),
+        egui::UiBuilder::new()
+            .layer_id(egui::LayerId::background())
+            .max_rect(ctx.viewport_rect()),
+    );
+
+    egui::Panel::bottom("status").show(&mut root, |ui| {
+        ui.horizontal(|ui| {
+            match log.entries.last() {
+                Some(last) => match &last.result {
+                    Ok(s) => ui.label(format!("✔ {}: {s}", last.request)),
+                    Err(r) => ui.colored_label(egui::Color32::from_rgb(230, 120, 90), format!("✘ {}: {r}", last.request)),
+                },
+                None => ui.label("Ready. Press F1 or ? for help."),
+            };
+        });
+    });
+
+    egui::Panel::left("inspector")
+        .resizable(true)
+        .default_size(300.0)
+        .show(&mut root, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                ui.heading("Pappus");
+                file_section(ui, &mut fields, &mut ui_state, &mut requests);
+                ui.separator();
+                mesh_section(ui, &view);
+                ui.separator();
+                selection_section(ui, &view, &mut fields, &mut requests);
+                ui.separator();
+                operations_section(ui, &mut mode, &settings, &mut pending);
+                ui.separator();
+                ui.label(egui::RichText::new("Log").strong());
+                for entry in log.entries.iter().rev().take(30) {
+                    let text = match &entry.result {
+                        Ok(s) => format!("✔ {}: {s}", entry.request),
+                        Err(r) => format!("✘ {}: {r}", entry.request),
+                    };
+                    ui.label(egui::RichText::new(text).small());
+                }
+            });
+        });
+
+    if ui_state.show_help {
+        let mut open = true;
+        egui::Window::new("Shortcuts")
+            .open(&mut open)
+            .collapsible(false)
+            .show(&ctx, |ui| {
+                egui::Grid::new("help").striped(true).show(ui, |ui| {
+                    for s in SHORTCUTS {
+                        ui.monospace(s.keys);
+                        ui.label(s.description);
+                        ui.end_row();
+                    }
+                    for (keys, what) in [
+                        ("left click", "select (mode: 1 2 3 4 `)"),
+                        ("middle / right drag", "orbit"),
+                        ("Shift + drag", "pan"),
+                        ("wheel", "zoom"),
+                        ("drop a file", "open it"),
+                    ] {
+                        ui.monospace(keys);
+                        ui.label(what);
+                        ui.end_row();
+                    }
+                });
+            });
+        ui_state.show_help = open;
+    }
+
+    captured.0 = ctx.egui_wants_keyboard_input();
+    Ok(())
+}
+
+fn file_section(
+    ui: &mut egui::Ui,
+    fields: &mut UiFields,
+    ui_state: &mut UiState,
+    requests: &mut MessageWriter<EditRequest>,
+) {
+    ui.horizontal(|ui| {
+        let field = ui.add(
+            egui::TextEdit::singleline(&mut fields.path)
+                .hint_text("file path or shape:NAME")
+                .desired_width(170.0),
+        );
+        if let Some(purpose) = ui_state.focus_path.take() {
+            field.request_focus();
+            ui_state.focus_path = None;
+            let _ = purpose;
+        }
+        let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+        if ui.button("Open").clicked() || entered {
+            if !fields.path.trim().is_empty() {
+                requests.write(EditRequest::Open(PathBuf::from(fields.path.trim())));
+            }
+        }
+    });
+    ui.horizontal(|ui| {
+        if ui.button(format!("Save ({})", shortcut_label(Action::Save))).clicked() {
+            requests.write(EditRequest::Save(None));
+        }
+        if ui.button("Save as (path above)").clicked() && !fields.path.trim().is_empty() {
+            requests.write(EditRequest::Save(Some(PathBuf::from(fields.path.trim()))));
+        }
+    });
+    let _ = PathPurpose::Open;
+}
+
+fn mesh_section(ui: &mut egui::Ui, view: &InspectorView) {
+    let Some(mesh) = &view.mesh else {
+        ui.label("No mesh. Open a file or drop one on the window.");
+        return;
+    };
+    ui.label(egui::RichText::new(&mesh.name).strong());
+    if let Some(p) = &mesh.path {
+        ui.label(egui::RichText::new(p.display().to_string()).small());
+    }
+    let s = &mesh.stats;
+    egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
+        let sizes: Vec<String> = s.face_sizes.iter().map(|(k, n)| format!("{k}: {n}")).collect();
+        for (k, v) in [
+            ("V / E / F", format!("{} / {} / {}", s.vertices, s.edges, s.faces)),
+            ("halfedges", s.halfedges.to_string()),
+            ("χ / genus", format!("{} / {}", s.euler_characteristic, s.genus)),
+            ("components", s.components.to_string()),
+            ("boundary loops", s.boundary_loops.to_string()),
+            ("face sizes", sizes.join(", ")),
+            ("min angle", format!("{:.2}°", s.min_angle_deg)),
+            ("angles < 30°", format!("{:.2} % of triangles", s.pct_min_angle_below_30)),
+        ] {
+            ui.label(k);
+            ui.label(v);
+            ui.end_row();
+        }
+    });
+    match &mesh.validation {
+        Ok(()) => ui.colored_label(egui::Color32::from_rgb(120, 200, 120), "valid"),
+        Err(e) => ui.colored_label(egui::Color32::from_rgb(230, 120, 90), format!("INVALID: {e}")),
+    };
+}
+
+fn selection_section(
+    ui: &mut egui::Ui,
+    view: &InspectorView,
+    fields: &mut UiFields,
+    requests: &mut MessageWriter<EditRequest>,
+) {
+    ui.horizontal(|ui| {
+        let field = ui.add(
+            egui::TextEdit::singleline(&mut fields.jump)
+                .hint_text("go to id: v12v0, h7, e3, f5")
+                .desired_width(170.0),
+        );
+        let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+        if ui.button("Go").clicked() || entered {
+            match parse_element(&fields.jump) {
+                Some(id) => {
+                    requests.write(EditRequest::Select(Some(id)));
+                }
+                None => {
+                    fields.jump = format!("not an id: {}", fields.jump);
+                }
+            }
+        }
+    });
+    let Some(sel) = &view.selected else {
+        ui.label("Nothing selected: click the mesh.");
+        return;
+    };
+    let kind = match sel.id {
+        ElementId::Vertex(_) => "vertex",
+        ElementId::Halfedge(_) => "halfedge",
+        ElementId::Edge(_) => "edge",
+        ElementId::Face(_) => "face",
+        ElementId::Mesh(_) => "mesh",
+    };
+    ui.label(egui::RichText::new(format!("{kind} {}", sel.id)).strong().monospace());
+    egui::Grid::new("relations").num_columns(2).show(ui, |ui| {
+        for (relation, target) in &sel.relations {
+            let key = SHORTCUTS
+                .iter()
+                .find(|s| s.action == Action::Navigate(*relation))
+                .map_or("", |s| s.keys);
+            ui.label(format!("{} ({key})", relation.name()));
+            match target {
+                Some(t) => {
+                    if ui.link(egui::RichText::new(t.to_string()).monospace()).clicked() {
+                        requests.write(EditRequest::Select(Some(*t)));
+                    }
+                }
+                None => {
+                    ui.label("— (boundary)");
+                }
+            }
+            ui.end_row();
+        }
+        for (k, v) in &sel.facts {
+            ui.label(k);
+            ui.monospace(v);
+            ui.end_row();
+        }
+    });
+    if let (Some(p), ElementId::Vertex(v)) = (sel.position, sel.id) {
+        let mut q = p;
+        ui.horizontal(|ui| {
+            ui.label("position");
+            let speed = 0.002;
+            let changed = ui.add(egui::DragValue::new(&mut q.x).speed(speed).prefix("x ")).changed()
+                | ui.add(egui::DragValue::new(&mut q.y).speed(speed).prefix("y ")).changed()
+                | ui.add(egui::DragValue::new(&mut q.z).speed(speed).prefix("z ")).changed();
+            if changed && q != p {
+                requests.write(EditRequest::MoveVertex(v, q));
+            }
+        });
+    }
+}
+
+fn operations_section(
+    ui: &mut egui::Ui,
+    mode: &mut SelectMode,
+    settings: &ViewSettings,
+    pending: &mut PendingActions,
+) {
+    ui.label(egui::RichText::new("Operations").strong());
+    ui.horizontal_wrapped(|ui| {
+        for (action, name) in [
+            (Action::Flip, "Flip"),
+            (Action::Split, "Split"),
+            (Action::Collapse, "Collapse"),
+            (Action::Triangulate, "Triangulate"),
+            (Action::Frame, "Frame"),
+            (Action::DeleteMesh, "Delete mesh"),
+        ] {
+            if ui.button(format!("{name} ({})", shortcut_label(action))).clicked() {
+                pending.0.push(action);
+            }
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.label("click selects");
+        for m in [
+            SelectMode::Auto,
+            SelectMode::Vertex,
+            SelectMode::Edge,
+            SelectMode::Face,
+            SelectMode::Halfedge,
+        ] {
+            ui.selectable_value(mode, m, m.name());
+        }
+    });
+    ui.horizontal_wrapped(|ui| {
+        for (action, name, on) in [
+            (Action::ToggleSmooth, "smooth", settings.smooth),
+            (Action::ToggleWireframe, "wireframe", settings.wireframe),
+            (Action::ToggleHalfedges, "halfedges", settings.halfedges),
+        ] {
+            if ui
+                .selectable_label(on, format!("{name} ({})", shortcut_label(action)))
+                .clicked()
+            {
+                pending.0.push(action);
+            }
+        }
+    });
+}

@@ -1,0 +1,17 @@
+//! Pappus: an interactive halfedge mesh editor on Bevy.
+//!
+//! The crate is layered so that every arrow points down:
+//!
+//! - [`mesh`]: the data model. Every vertex, halfedge, edge and face is an ECS entity; relations are
+//!   typed ids inside components. Building from a polygon soup (with repairs), validation,
+//!   statistics, procedural shapes. No rendering, no UI, no file formats.
+//! - [`ops`]: operations on the entity mesh (plan, then apply; a refusal is a value).
+//! - [`io`]: file formats (OBJ, OFF, PLY, STL), all to and from a [`mesh::soup::PolygonSoup`].
+//! - [`cli`]: the batch command line (`info`, `convert`, `process`), no window needed.
+//! - [`editor`]: the Bevy application.
+
+pub mod cli;
+pub mod editor;
+pub mod io;
+pub mod mesh;
+pub mod ops;

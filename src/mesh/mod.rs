@@ -1,0 +1,40 @@
+//! The data model: a halfedge mesh whose every element is an ECS entity.
+//!
+//! # Glossary and conventions
+//! - A **halfedge** points from one vertex to another (its tip is [`Halfedge::vertex`], PMP's
+//!   `to_vertex`); its **twin** points back. An **edge** is the pair. A **face** is the `next`
+//!   cycle of its halfedges, counter-clockwise seen from outside.
+//! - **Boundary**: a halfedge with `face: None`. The `next` cycles of boundary halfedges are the
+//!   boundary loops; there are no fake boundary faces. A boundary vertex's [`Vertex::halfedge`]
+//!   is its outgoing boundary halfedge, so `is_boundary` is O(1) for halfedges, edges and
+//!   vertices.
+//! - Every element carries [`InMesh`]: several meshes can share a world.
+//!
+//! # Invariants
+//! Every mesh built by [`build::build_mesh`] and left by an operation passes
+//! [`validate::validate`]: links are mutual, faces and vertex fans close, every vertex is
+//! manifold (one fan), no two edges join the same vertices, faces have ≥ 3 sides.
+//!
+//! This module knows nothing of operations, files or rendering.
+
+pub mod build;
+pub mod connectivity;
+pub mod elements;
+pub mod ids;
+pub mod members;
+pub mod repair;
+pub mod shapes;
+pub mod soup;
+pub mod stats;
+pub mod topology;
+pub mod validate;
+
+pub use build::{BuildError, BuiltMesh, build_mesh, despawn_mesh, to_soup};
+pub use elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
+pub use ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
+pub use members::MeshMembers;
+pub use repair::RepairReport;
+pub use soup::PolygonSoup;
+pub use stats::{MeshStats, mesh_stats};
+pub use topology::MeshRef;
+pub use validate::{Invalid, Rule, validate};

@@ -1,0 +1,315 @@
+//! Procedural shapes: the fixtures of the tests and benchmarks, and the editor's starter meshes.
+//!
+//! Each returns a [`PolygonSoup`] with outward, counter-clockwise faces, so it goes through the
+//! same builder as a file. Their Euler characteristics are known exactly:
+//!
+//! | shape | V | E | F | χ | genus | boundary loops |
+//! |---|---|---|---|---|---|---|
+//! | [`tetrahedron`] | 4 | 6 | 4 | 2 | 0 | 0 |
+//! | [`cube`] (quads) | 8 | 12 | 6 | 2 | 0 | 0 |
+//! | [`icosphere`]`(n)` | 10·4ⁿ+2 | 30·4ⁿ | 20·4ⁿ | 2 | 0 | 0 |
+//! | [`torus`]`(r, s)` (quads) | r·s | 2·r·s | r·s | 0 | 1 | 0 |
+//! | [`grid`]`(nx, ny)` (triangles) | (nx+1)(ny+1) | | 2·nx·ny | 1 | 0 | 1 |
+//! | [`slab_with_holes`]`(k)` | | | | 2−2k | k | 0 |
+
+use bevy::math::Vec3;
+use bevy::platform::collections::HashMap;
+
+use super::soup::PolygonSoup;
+
+/// A regular tetrahedron inscribed in the unit sphere.
+pub fn tetrahedron() -> PolygonSoup {
+    let s = 1.0 / 3f32.sqrt();
+    PolygonSoup::from_faces(
+        vec![
+            Vec3::new(s, s, s),
+            Vec3::new(s, -s, -s),
+            Vec3::new(-s, s, -s),
+            Vec3::new(-s, -s, s),
+        ],
+        &[[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]],
+    )
+}
+
+/// The cube `[-1, 1]³` as six quads.
+pub fn cube() -> PolygonSoup {
+    let p = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
+    PolygonSoup::from_faces(
+        vec![
+            p(-1.0, -1.0, -1.0),
+            p(1.0, -1.0, -1.0),
+            p(1.0, 1.0, -1.0),
+            p(-1.0, 1.0, -1.0),
+            p(-1.0, -1.0, 1.0),
+            p(1.0, -1.0, 1.0),
+            p(1.0, 1.0, 1.0),
+            p(-1.0, 1.0, 1.0),
+        ],
+        &[
+            [0, 3, 2, 1], // -z
+            [4, 5, 6, 7], // +z
+            [0, 1, 5, 4], // -y
+            [2, 3, 7, 6], // +y
+            [0, 4, 7, 3], // -x
+            [1, 2, 6, 5], // +x
+        ],
+    )
+}
+
+/// The regular icosahedron inscribed in the unit sphere.
+pub fn icosahedron() -> PolygonSoup {
+    let t = (1.0 + 5f32.sqrt()) / 2.0;
+    let positions = [
+        [-1.0, t, 0.0],
+        [1.0, t, 0.0],
+        [-1.0, -t, 0.0],
+        [1.0, -t, 0.0],
+        [0.0, -1.0, t],
+        [0.0, 1.0, t],
+        [0.0, -1.0, -t],
+        [0.0, 1.0, -t],
+        [t, 0.0, -1.0],
+        [t, 0.0, 1.0],
+        [-t, 0.0, -1.0],
+        [-t, 0.0, 1.0],
+    ]
+    .map(|p| Vec3::from_array(p).normalize())
+    .to_vec();
+    PolygonSoup::from_faces(
+        positions,
+        &[
+            [0, 11, 5],
+            [0, 5, 1],
+            [0, 1, 7],
+            [0, 7, 10],
+            [0, 10, 11],
+            [1, 5, 9],
+            [5, 11, 4],
+            [11, 10, 2],
+            [10, 7, 6],
+            [7, 1, 8],
+            [3, 9, 4],
+            [3, 4, 2],
+            [3, 2, 6],
+            [3, 6, 8],
+            [3, 8, 9],
+            [4, 9, 5],
+            [2, 4, 11],
+            [6, 2, 10],
+            [8, 6, 7],
+            [9, 8, 1],
+        ],
+    )
+}
+
+/// An icosahedron whose triangles are split `levels` times into four, projected onto the unit
+/// sphere: `20·4ⁿ` triangles.
+pub fn icosphere(levels: u32) -> PolygonSoup {
+    let mut soup = icosahedron();
+    for _ in 0..levels {
+        let mut midpoints: HashMap<(u32, u32), u32> = HashMap::default();
+        let mut positions = soup.positions.clone();
+        let mut faces = Vec::with_capacity(soup.face_count() * 4);
+        let mut midpoint = |a: u32, b: u32, positions: &mut Vec<Vec3>| {
+            *midpoints.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                let p = (positions[a as usize] + positions[b as usize]).normalize();
+                positions.push(p);
+                (positions.len() - 1) as u32
+            })
+        };
+        for f in soup.faces() {
+            let [a, b, c] = [f[0], f[1], f[2]];
+            let ab = midpoint(a, b, &mut positions);
+            let bc = midpoint(b, c, &mut positions);
+            let ca = midpoint(c, a, &mut positions);
+            faces.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        soup = PolygonSoup::from_faces(positions, &faces);
+    }
+    soup
+}
+
+/// A torus around the z axis (major radius 1, minor radius 0.35) as `rings × sides` quads.
+/// Needs `rings, sides >= 3`.
+pub fn torus(rings: u32, sides: u32) -> PolygonSoup {
+    let (rings, sides) = (rings.max(3), sides.max(3));
+    let mut positions = Vec::with_capacity((rings * sides) as usize);
+    for i in 0..rings {
+        let u = i as f32 / rings as f32 * std::f32::consts::TAU;
+        for j in 0..sides {
+            let v = j as f32 / sides as f32 * std::f32::consts::TAU;
+            let r = 1.0 + 0.35 * v.cos();
+            positions.push(Vec3::new(r * u.cos(), r * u.sin(), 0.35 * v.sin()));
+        }
+    }
+    let at = |i: u32, j: u32| (i % rings) * sides + (j % sides);
+    let mut faces = Vec::with_capacity((rings * sides) as usize);
+    for i in 0..rings {
+        for j in 0..sides {
+            faces.push([at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    PolygonSoup::from_faces(positions, &faces)
+}
+
+/// An open `nx × ny` grid on the unit square in the z = 0 plane, each cell split into two
+/// triangles along its rising diagonal: one boundary loop, χ = 1.
+pub fn grid(nx: u32, ny: u32) -> PolygonSoup {
+    let quads = quad_grid(nx, ny);
+    triangulate_fans(&quads)
+}
+
+/// An open `nx × ny` grid of quads on the unit square in the z = 0 plane.
+pub fn quad_grid(nx: u32, ny: u32) -> PolygonSoup {
+    let (nx, ny) = (nx.max(1), ny.max(1));
+    let mut positions = Vec::with_capacity(((nx + 1) * (ny + 1)) as usize);
+    for j in 0..=ny {
+        for i in 0..=nx {
+            positions.push(Vec3::new(i as f32 / nx as f32, j as f32 / ny as f32, 0.0));
+        }
+    }
+    let at = |i: u32, j: u32| j * (nx + 1) + i;
+    let mut faces = Vec::with_capacity((nx * ny) as usize);
+    for j in 0..ny {
+        for i in 0..nx {
+            faces.push([at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    PolygonSoup::from_faces(positions, &faces)
+}
+
+/// A `(2k + 1) × 3` quad grid with `k` single-cell holes in its middle row (at odd columns):
+/// an open surface with `k + 1` boundary loops, χ = 1 − k.
+pub fn grid_with_holes(holes: u32) -> PolygonSoup {
+    let (nx, ny) = (2 * holes + 1, 3);
+    let mut soup = PolygonSoup::with_capacity(0, 0, 0);
+    let mut positions = Vec::new();
+    for j in 0..=ny {
+        for i in 0..=nx {
+            positions.push(Vec3::new(i as f32, j as f32, 0.0));
+        }
+    }
+    soup.positions = positions;
+    for (i, j) in slab_cells(holes) {
+        let at = |i: u32, j: u32| j * (nx + 1) + i;
+        soup.push_face(&[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+    }
+    soup
+}
+
+fn slab_cells(holes: u32) -> impl Iterator<Item = (u32, u32)> {
+    let nx = 2 * holes + 1;
+    (0..3u32)
+        .flat_map(move |j| (0..nx).map(move |i| (i, j)))
+        .filter(|&(i, j)| !(j == 1 && i % 2 == 1))
+}
+
+/// The closed surface of a slab (a thickened [`grid_with_holes`]) with `k` holes through it:
+/// a closed surface of genus `k` made of quads (k = 2 is a double torus).
+pub fn slab_with_holes(holes: u32) -> PolygonSoup {
+    let (nx, ny) = (2 * holes + 1, 3u32);
+    let layer = (nx + 1) * (ny + 1);
+    let mut positions = Vec::with_capacity(2 * layer as usize);
+    for z in [0.0, 1.0] {
+        for j in 0..=ny {
+            for i in 0..=nx {
+                positions.push(Vec3::new(i as f32, j as f32, z));
+            }
+        }
+    }
+    let bottom = |i: u32, j: u32| j * (nx + 1) + i;
+    let top = |i: u32, j: u32| layer + j * (nx + 1) + i;
+    let present = |i: i64, j: i64| {
+        (0..nx as i64).contains(&i) && (0..ny as i64).contains(&j) && !(j == 1 && i % 2 == 1)
+    };
+    let mut faces: Vec<[u32; 4]> = Vec::new();
+    for (i, j) in slab_cells(holes) {
+        faces.push([top(i, j), top(i + 1, j), top(i + 1, j + 1), top(i, j + 1)]);
+        faces.push([bottom(i, j), bottom(i, j + 1), bottom(i + 1, j + 1), bottom(i + 1, j)]);
+        // Walls where the neighbour across a side is missing. Each side a→b runs the way the
+        // top face runs it; the wall runs b→a on top.
+        let (ii, jj) = (i64::from(i), i64::from(j));
+        let sides = [
+            ((i, j), (i + 1, j), present(ii, jj - 1)),
+            ((i + 1, j), (i + 1, j + 1), present(ii + 1, jj)),
+            ((i + 1, j + 1), (i, j + 1), present(ii, jj + 1)),
+            ((i, j + 1), (i, j), present(ii - 1, jj)),
+        ];
+        for (a, b, neighbour) in sides {
+            if !neighbour {
+                faces.push([top(b.0, b.1), top(a.0, a.1), bottom(a.0, a.1), bottom(b.0, b.1)]);
+            }
+        }
+    }
+    PolygonSoup::from_faces(positions, &faces)
+}
+
+/// Two triangles sharing one edge (the "diamond" of local-operation tests).
+pub fn diamond() -> PolygonSoup {
+    PolygonSoup::from_faces(
+        vec![
+            Vec3::new(0.0, -1.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(-1.0, 0.0, 0.0),
+        ],
+        &[[0, 1, 2], [0, 2, 3]],
+    )
+}
+
+/// `n` triangles around a centre vertex (index 0), closing into a disc when `closed`.
+pub fn triangle_fan(n: u32, closed: bool) -> PolygonSoup {
+    let n = n.max(3);
+    let mut positions = vec![Vec3::ZERO];
+    let rim = if closed { n } else { n + 1 };
+    for i in 0..rim {
+        let a = i as f32 / n as f32 * std::f32::consts::TAU * if closed { 1.0 } else { 0.75 };
+        positions.push(Vec3::new(a.cos(), a.sin(), 0.0));
+    }
+    let faces: Vec<[u32; 3]> = (0..n)
+        .map(|i| [0, 1 + i, 1 + (i + 1) % rim])
+        .collect();
+    PolygonSoup::from_faces(positions, &faces)
+}
+
+/// Splits every polygon of `soup` into a fan of triangles from its first corner.
+pub fn triangulate_fans(soup: &PolygonSoup) -> PolygonSoup {
+    let mut out = PolygonSoup::with_capacity(soup.positions.len(), soup.face_count() * 2, 0);
+    out.positions = soup.positions.clone();
+    for f in soup.faces() {
+        for i in 1..f.len().saturating_sub(1) {
+            out.push_face(&[f[0], f[i], f[i + 1]]);
+        }
+    }
+    out
+}
+
+/// A shape by name, for the command line and the editor's menu: `tetrahedron`, `cube`,
+/// `icosahedron`, `icosphere`, `torus`, `grid`, `quad-grid`, `grid-with-holes`, `double-torus`.
+pub fn by_name(name: &str) -> Option<PolygonSoup> {
+    Some(match name {
+        "tetrahedron" => tetrahedron(),
+        "cube" => cube(),
+        "icosahedron" => icosahedron(),
+        "icosphere" => icosphere(3),
+        "torus" => torus(24, 12),
+        "grid" => grid(10, 10),
+        "quad-grid" => quad_grid(10, 10),
+        "grid-with-holes" => grid_with_holes(2),
+        "double-torus" => slab_with_holes(2),
+        _ => return None,
+    })
+}
+
+/// The names [`by_name`] knows.
+pub const SHAPE_NAMES: [&str; 9] = [
+    "tetrahedron",
+    "cube",
+    "icosahedron",
+    "icosphere",
+    "torus",
+    "grid",
+    "quad-grid",
+    "grid-with-holes",
+    "double-torus",
+];

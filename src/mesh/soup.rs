@@ -1,0 +1,92 @@
+//! A polygon soup: positions plus faces as lists of vertex indices.
+//!
+//! This is the neutral exchange form between file formats and the entity mesh: every reader in
+//! `io` produces one, [`crate::mesh::build`] turns one into entities (repairing what it must), and
+//! [`crate::mesh::build::to_soup`] turns a mesh back into one for the writers.
+//!
+//! Faces are stored flat (CSR): `indices` holds every face's vertex indices one after another and
+//! `face_starts[i]..face_starts[i + 1]` is face `i`. A soup makes no promise about its contents:
+//! indices may be out of range, faces may repeat vertices, positions may be NaN. The builder is
+//! what checks and repairs.
+
+use bevy::math::Vec3;
+
+/// Positions and polygonal faces, unchecked.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PolygonSoup {
+    /// Vertex positions, indexed by the face indices.
+    pub positions: Vec<Vec3>,
+    /// Every face's vertex indices, concatenated.
+    pub indices: Vec<u32>,
+    /// Start of each face in `indices`, plus one final entry equal to `indices.len()`.
+    /// Always holds `face_count() + 1` entries (a default soup starts with `[0]` once a face is
+    /// pushed; an empty soup may hold `[]` or `[0]`).
+    pub face_starts: Vec<u32>,
+}
+
+impl PolygonSoup {
+    /// An empty soup with room for `vertices` positions and `faces` faces of `corners` indices in all.
+    pub fn with_capacity(vertices: usize, faces: usize, corners: usize) -> Self {
+        let mut face_starts = Vec::with_capacity(faces + 1);
+        face_starts.push(0);
+        Self {
+            positions: Vec::with_capacity(vertices),
+            indices: Vec::with_capacity(corners),
+            face_starts,
+        }
+    }
+
+    /// Builds a soup from positions and a list of faces (convenient in tests and fixtures).
+    pub fn from_faces<F: AsRef<[u32]>>(positions: Vec<Vec3>, faces: &[F]) -> Self {
+        let corners = faces.iter().map(|f| f.as_ref().len()).sum();
+        let mut soup = Self::with_capacity(positions.len(), faces.len(), corners);
+        soup.positions = positions;
+        for face in faces {
+            soup.push_face(face.as_ref());
+        }
+        soup
+    }
+
+    /// Appends one face (no checks: the builder validates).
+    pub fn push_face(&mut self, face: &[u32]) {
+        if self.face_starts.is_empty() {
+            self.face_starts.push(0);
+        }
+        self.indices.extend_from_slice(face);
+        self.face_starts.push(self.indices.len() as u32);
+    }
+
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.face_starts.len().saturating_sub(1)
+    }
+
+    /// The vertex indices of face `i`.
+    ///
+    /// # Panics
+    /// If `i >= self.face_count()`.
+    pub fn face(&self, i: usize) -> &[u32] {
+        let (a, b) = (self.face_starts[i] as usize, self.face_starts[i + 1] as usize);
+        &self.indices[a..b]
+    }
+
+    /// Every face in order.
+    pub fn faces(&self) -> impl ExactSizeIterator<Item = &[u32]> + '_ {
+        (0..self.face_count()).map(|i| self.face(i))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn faces_round_trip_through_flat_storage() {
+        let soup = PolygonSoup::from_faces(vec![Vec3::ZERO; 5], &[vec![0, 1, 2], vec![1, 3, 4, 2]]);
+        assert_eq!(soup.face_count(), 2);
+        assert_eq!(soup.face(0), &[0, 1, 2]);
+        assert_eq!(soup.face(1), &[1, 3, 4, 2]);
+        assert_eq!(soup.faces().count(), 2);
+        assert_eq!(PolygonSoup::default().face_count(), 0);
+    }
+}

@@ -1,0 +1,32 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use bevy::prelude::World;
+use pappus::mesh::{BuiltMesh, MeshInfo, PolygonSoup, build_mesh, validate};
+use std::path::PathBuf;
+
+/// Builds `soup` into a fresh world and checks that the result validates.
+pub fn build(soup: &PolygonSoup) -> (World, BuiltMesh) {
+    let mut world = World::new();
+    let built = build_mesh(&mut world, soup, MeshInfo::default()).expect("builds");
+    if let Err(e) = validate(&world, built.mesh) {
+        panic!("freshly built mesh is invalid: {e}");
+    }
+    (world, built)
+}
+
+/// The shared test models folder (`../shared/models` beside the repository), if present.
+pub fn models_dir() -> Option<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/models");
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        println!("NOTICE: ../shared/models is absent; skipping the tests on the shared models");
+        None
+    }
+}
+
+/// The path of one shared model, if the folder is present.
+pub fn model(name: &str) -> Option<PathBuf> {
+    models_dir().map(|d| d.join(name))
+}

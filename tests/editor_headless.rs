@@ -1,0 +1,321 @@
+//! The editor's logic without a window: shortcuts become requests, requests are applied (or
+//! refused with a reason), navigation walks the relations, and a change rebuilds the render
+//! copy exactly once. Picking is checked from a ray cast at a known triangle.
+
+use bevy::input::ButtonState;
+use bevy::input::InputPlugin;
+use bevy::input::keyboard::{Key, KeyboardInput, NativeKey};
+use bevy::prelude::*;
+use pappus::editor::EditorLogicPlugin;
+use pappus::editor::picking::pick_in_face;
+use pappus::editor::render_sync::{RenderOf, RenderStats, TriangleFaces};
+use pappus::editor::requests::{EditOutcome, EditRequest, OutcomeLog};
+use pappus::editor::selection::{ActiveMesh, SelectMode, Selection};
+use pappus::mesh::ids::ElementId;
+use pappus::mesh::{MeshRef, validate};
+
+fn app() -> App {
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        InputPlugin,
+        AssetPlugin::default(),
+        bevy::mesh::MeshPlugin,
+        EditorLogicPlugin,
+    ));
+    app.update();
+    app
+}
+
+fn open(app: &mut App, source: &str) {
+    app.world_mut()
+        .write_message(EditRequest::Open(source.into()));
+    app.update();
+    let log = app.world().resource::<OutcomeLog>();
+    assert!(log.entries.last().unwrap().result.is_ok(), "{:?}", log.entries.last());
+}
+
+fn press(app: &mut App, key: KeyCode) {
+    for state in [ButtonState::Pressed, ButtonState::Released] {
+        app.world_mut().write_message(KeyboardInput {
+            key_code: key,
+            logical_key: Key::Unidentified(NativeKey::Unidentified),
+            state,
+            text: None,
+            repeat: false,
+            window: Entity::PLACEHOLDER,
+        });
+        app.update();
+    }
+}
+
+fn last_outcome(app: &App) -> EditOutcome {
+    app.world().resource::<OutcomeLog>().entries.last().unwrap().clone()
+}
+
+fn selection(app: &App) -> Option<ElementId> {
+    app.world().resource::<Selection>().element
+}
+
+fn mesh(app: &App) -> pappus::mesh::MeshId {
+    app.world().resource::<ActiveMesh>().0.unwrap()
+}
+
+/// An interior edge of the active mesh.
+fn some_interior_edge(app: &App) -> pappus::mesh::EdgeId {
+    let world = app.world();
+    let m = MeshRef::new(world);
+    let members = pappus::mesh::MeshMembers::collect(world, mesh(app));
+    members
+        .edges
+        .into_iter()
+        .find(|&e| !m.is_boundary_edge(e))
+        .unwrap()
+}
+
+#[test]
+fn opening_a_shape_builds_and_renders_it_once() {
+    let mut app = app();
+    open(&mut app, "shape:icosphere");
+    validate(app.world(), mesh(&app)).unwrap();
+    assert_eq!(app.world().resource::<RenderStats>().rebuilds, 1);
+    // Frames without changes rebuild nothing.
+    app.update();
+    app.update();
+    assert_eq!(app.world().resource::<RenderStats>().rebuilds, 1);
+    let faces = app
+        .world_mut()
+        .query::<&TriangleFaces>()
+        .single(app.world())
+        .unwrap()
+        .0
+        .len();
+    assert_eq!(faces, 1280);
+}
+
+#[test]
+fn a_change_triggers_exactly_one_rebuild() {
+    let mut app = app();
+    open(&mut app, "shape:cube");
+    let m = mesh(&app);
+    let before = app.world().resource::<RenderStats>().rebuilds;
+    app.world_mut().write_message(EditRequest::Triangulate(m));
+    app.update();
+    assert!(last_outcome(&app).result.is_ok());
+    assert_eq!(app.world().resource::<RenderStats>().rebuilds, before + 1);
+    app.update();
+    assert_eq!(app.world().resource::<RenderStats>().rebuilds, before + 1);
+    let tris = app.world().resource::<RenderStats>().last_triangles;
+    assert_eq!(tris, 12);
+}
+
+#[test]
+fn navigation_keys_walk_the_relations() {
+    let mut app = app();
+    open(&mut app, "shape:torus");
+    let e = some_interior_edge(&app);
+    app.world_mut()
+        .write_message(EditRequest::Select(Some(ElementId::Edge(e))));
+    app.update();
+    press(&mut app, KeyCode::KeyH);
+    let Some(ElementId::Halfedge(h)) = selection(&app) else {
+        panic!("H selects the edge's halfedge, got {:?}", selection(&app));
+    };
+    let (twin, next, prev, tip, face) = {
+        let m = MeshRef::new(app.world());
+        (m.twin(h), m.next(h), m.prev(h), m.to_vertex(h), m.face(h).unwrap())
+    };
+    press(&mut app, KeyCode::KeyT);
+    assert_eq!(selection(&app), Some(ElementId::Halfedge(twin)));
+    press(&mut app, KeyCode::KeyT);
+    press(&mut app, KeyCode::KeyN);
+    assert_eq!(selection(&app), Some(ElementId::Halfedge(next)));
+    press(&mut app, KeyCode::KeyP);
+    press(&mut app, KeyCode::KeyP);
+    assert_eq!(selection(&app), Some(ElementId::Halfedge(prev)));
+    press(&mut app, KeyCode::KeyN);
+    press(&mut app, KeyCode::KeyF);
+    assert_eq!(selection(&app), Some(ElementId::Face(face)));
+    app.world_mut()
+        .write_message(EditRequest::Select(Some(ElementId::Halfedge(h))));
+    app.update();
+    press(&mut app, KeyCode::KeyV);
+    assert_eq!(selection(&app), Some(ElementId::Vertex(tip)));
+    press(&mut app, KeyCode::KeyE);
+    assert!(matches!(selection(&app), Some(ElementId::Edge(_))));
+    press(&mut app, KeyCode::Escape);
+    assert_eq!(selection(&app), None);
+}
+
+#[test]
+fn mode_keys_change_what_a_click_selects() {
+    let mut app = app();
+    for (key, mode) in [
+        (KeyCode::Digit1, SelectMode::Vertex),
+        (KeyCode::Digit2, SelectMode::Edge),
+        (KeyCode::Digit3, SelectMode::Face),
+        (KeyCode::Digit4, SelectMode::Halfedge),
+        (KeyCode::Backquote, SelectMode::Auto),
+    ] {
+        press(&mut app, key);
+        assert_eq!(*app.world().resource::<SelectMode>(), mode);
+    }
+}
+
+#[test]
+fn operation_keys_without_an_edge_are_refused_with_a_reason() {
+    let mut app = app();
+    open(&mut app, "shape:torus");
+    for key in [KeyCode::KeyR, KeyCode::KeyS, KeyCode::KeyC] {
+        press(&mut app, key);
+        let outcome = last_outcome(&app);
+        assert_eq!(outcome.result, Err("select an edge (or halfedge) first".into()));
+    }
+}
+
+#[test]
+fn operation_keys_write_requests_for_the_selected_edge() {
+    let mut app = app();
+    open(&mut app, "shape:icosphere");
+    for (key, verb) in [(KeyCode::KeyR, "flip"), (KeyCode::KeyS, "split"), (KeyCode::KeyC, "collapse")] {
+        let e = some_interior_edge(&app);
+        app.world_mut()
+            .write_message(EditRequest::Select(Some(ElementId::Edge(e))));
+        app.update();
+        press(&mut app, key);
+        let outcome = last_outcome(&app);
+        assert_eq!(outcome.request, format!("{verb} {}", ElementId::Edge(e)));
+        validate(app.world(), mesh(&app)).unwrap();
+    }
+}
+
+#[test]
+fn triangulate_key_needs_ctrl_and_applies() {
+    let mut app = app();
+    open(&mut app, "shape:cube");
+    app.world_mut()
+        .resource_mut::<ButtonInput<KeyCode>>()
+        .press(KeyCode::ControlLeft);
+    app.world_mut().write_message(KeyboardInput {
+        key_code: KeyCode::ControlLeft,
+        logical_key: Key::Control,
+        state: ButtonState::Pressed,
+        text: None,
+        repeat: false,
+        window: Entity::PLACEHOLDER,
+    });
+    press(&mut app, KeyCode::KeyT);
+    let outcome = last_outcome(&app);
+    assert!(outcome.request.starts_with("triangulate"), "{outcome:?}");
+    let s = pappus::mesh::mesh_stats(app.world(), mesh(&app));
+    assert_eq!((s.faces, s.face_sizes.get(&3).copied()), (12, Some(12)));
+}
+
+#[test]
+fn stale_and_bad_requests_are_refused_and_change_nothing() {
+    let mut app = app();
+    open(&mut app, "shape:cube");
+    let stale = ElementId::Vertex(pappus::mesh::VertexId(Entity::from_raw_u32(999_999).unwrap()));
+    app.world_mut().write_message(EditRequest::Select(Some(stale)));
+    app.update();
+    assert!(last_outcome(&app).result.is_err());
+    assert_eq!(selection(&app), None);
+    app.world_mut()
+        .write_message(EditRequest::Open("/nonexistent/mesh.obj".into()));
+    app.update();
+    assert!(last_outcome(&app).result.is_err());
+    // The cube is still there.
+    assert_eq!(pappus::mesh::mesh_stats(app.world(), mesh(&app)).faces, 6);
+}
+
+#[test]
+fn picking_maps_a_triangle_hit_to_the_right_element() {
+    let mut app = app();
+    open(&mut app, "shape:quad-grid");
+    let world = app.world_mut();
+    let (render, faces) = world
+        .query::<(&RenderOf, &TriangleFaces)>()
+        .single(world)
+        .map(|(r, t)| (*r, t.0.clone()))
+        .unwrap();
+    let _ = render;
+    // Quads are fanned into two triangles; both map back to the same quad.
+    assert_eq!(faces.len(), 200);
+    assert_eq!(faces[0], faces[1]);
+    let face = faces[0];
+    let m = MeshRef::new(app.world());
+    // A top-down orthographic view: x, y scaled to pixels.
+    let to_screen = |p: Vec3| Some(Vec2::new(p.x * 1000.0, p.y * 1000.0));
+    let corners: Vec<_> = m.face_vertices(face).collect();
+    let p0 = m.position(corners[0]);
+    let centre = m.face_centroid(face);
+    let screen = |p: Vec3| Vec2::new(p.x * 1000.0, p.y * 1000.0);
+    // Near a corner: that vertex.
+    let near_corner = screen(p0.lerp(centre, 0.05));
+    assert_eq!(
+        pick_in_face(&m, face, near_corner, SelectMode::Auto, to_screen),
+        ElementId::Vertex(corners[0])
+    );
+    // Near the middle of a side: that edge.
+    let side_mid = (m.position(corners[0]) + m.position(corners[1])) / 2.0;
+    let picked = pick_in_face(&m, face, screen(side_mid.lerp(centre, 0.05)), SelectMode::Auto, to_screen);
+    let expected = m.edge(m.find_halfedge(corners[0], corners[1]).unwrap());
+    assert_eq!(picked, ElementId::Edge(expected));
+    // Near the fan diagonal, in the middle of the quad: the quad, not a phantom edge.
+    let diagonal_mid = (m.position(corners[0]) + m.position(corners[2])) / 2.0;
+    assert_eq!(
+        pick_in_face(&m, face, screen(diagonal_mid), SelectMode::Auto, to_screen),
+        ElementId::Face(face)
+    );
+    // Modes force the kind.
+    assert_eq!(
+        pick_in_face(&m, face, screen(diagonal_mid), SelectMode::Face, to_screen),
+        ElementId::Face(face)
+    );
+    assert!(matches!(
+        pick_in_face(&m, face, screen(diagonal_mid), SelectMode::Vertex, to_screen),
+        ElementId::Vertex(_)
+    ));
+    assert!(matches!(
+        pick_in_face(&m, face, screen(centre), SelectMode::Halfedge, to_screen),
+        ElementId::Halfedge(h) if m.face(h) == Some(face)
+    ));
+}
+
+#[test]
+fn a_ray_cast_at_a_known_triangle_finds_its_face() {
+    use bevy::ecs::system::RunSystemOnce;
+    use bevy::picking::mesh_picking::ray_cast::{MeshRayCast, MeshRayCastSettings, RayCastVisibility};
+    let mut app = app();
+    app.add_plugins(TransformPlugin);
+    app.update();
+    open(&mut app, "shape:quad-grid");
+    // Bounds are normally computed by the camera plugin; add them for the headless cast.
+    let render = app
+        .world_mut()
+        .query_filtered::<Entity, With<RenderOf>>()
+        .single(app.world())
+        .unwrap();
+    let handle = app.world().get::<Mesh3d>(render).unwrap().0.clone();
+    let aabb = {
+        use bevy::camera::primitives::MeshAabb;
+        app.world().resource::<Assets<Mesh>>().get(&handle).unwrap().compute_aabb().unwrap()
+    };
+    app.world_mut().entity_mut(render).insert(aabb);
+    app.update();
+    // Straight down onto the point (0.25, 0.35): grid cell (2, 3) of the 10×10 grid.
+    let hit = app
+        .world_mut()
+        .run_system_once(|mut ray_cast: MeshRayCast| {
+            let ray = Ray3d::new(Vec3::new(0.25, 0.35, 5.0), Dir3::NEG_Z);
+            let settings = MeshRayCastSettings::default().with_visibility(RayCastVisibility::Any);
+            ray_cast.cast_ray(ray, &settings).first().map(|(e, h)| (*e, h.triangle_index))
+        })
+        .unwrap();
+    let (entity, triangle) = hit.expect("the ray hits the grid");
+    assert_eq!(entity, render);
+    let face = app.world().get::<TriangleFaces>(render).unwrap().0[triangle.unwrap()];
+    let m = MeshRef::new(app.world());
+    let c = m.face_centroid(face);
+    assert!((c.x - 0.25).abs() < 1e-5 && (c.y - 0.35).abs() < 1e-5, "centroid {c}");
+}
