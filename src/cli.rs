@@ -19,9 +19,12 @@ use std::time::Instant;
 
 use crate::io;
 use crate::mesh::{
-    BuiltMesh, MeshId, MeshInfo, PolygonSoup, RepairReport, VertexId, build_mesh, mesh_stats,
-    shapes, to_soup, validate,
+    BuiltMesh, MeshId, RepairReport, VertexId, build_mesh, mesh_stats, to_soup, validate,
 };
+use crate::mesh::ids::{EdgeId, ElementId};
+use crate::mesh::topology::MeshRef;
+use crate::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
+use crate::ops::subdivide::{SubdivisionSummary, catmull_clark, loop_subdivide};
 use crate::ops::{Refusal, triangulate};
 
 /// What `main` should do with the arguments.
@@ -72,8 +75,8 @@ usage:
 
 FILE: .obj .off .ply .stl, or shape:NAME (tetrahedron cube icosahedron icosphere torus grid
       quad-grid grid-with-holes double-torus)
-STEP: validate | triangulate
-      vertex numbers are 0-based indices of the input file's vertices
+STEP: validate | triangulate | flip:A,B | split:A,B | collapse:A,B | loop[:N] | catmull-clark[:N]
+      A, B: 0-based indices of the input file's vertices (the edge between them)
 ";
 
 /// One step of `pappus process`.
@@ -83,6 +86,16 @@ pub enum Step {
     Validate,
     /// Triangulate every polygon.
     Triangulate,
+    /// Flip the edge between two input vertices.
+    Flip(u32, u32),
+    /// Split the edge between two input vertices at its midpoint.
+    Split(u32, u32),
+    /// Collapse the edge between two input vertices to its midpoint.
+    Collapse(u32, u32),
+    /// Loop subdivision, N levels.
+    Loop(u32),
+    /// Catmull–Clark subdivision, N levels.
+    CatmullClark(u32),
 }
 
 impl Step {
@@ -91,10 +104,32 @@ impl Step {
     /// # Errors
     /// A message naming the step when it is unknown or its arguments are malformed.
     pub fn parse(text: &str) -> Result<Step, String> {
-        let (name, _args) = text.split_once(':').unwrap_or((text, ""));
+        let (name, args) = text.split_once(':').unwrap_or((text, ""));
+        let pair = || -> Result<(u32, u32), String> {
+            let bad = || format!("step `{text}`: expected two vertex numbers, as in `{name}:3,17`");
+            let (a, b) = args.split_once(',').ok_or_else(bad)?;
+            Ok((
+                a.trim().parse().map_err(|_| bad())?,
+                b.trim().parse().map_err(|_| bad())?,
+            ))
+        };
+        let levels = || -> Result<u32, String> {
+            if args.is_empty() {
+                return Ok(1);
+            }
+            match args.parse::<u32>() {
+                Ok(n) if (1..=8).contains(&n) => Ok(n),
+                _ => Err(format!("step `{text}`: levels must be a number from 1 to 8")),
+            }
+        };
         match name {
             "validate" => Ok(Step::Validate),
+            "loop" => levels().map(Step::Loop),
+            "catmull-clark" => levels().map(Step::CatmullClark),
             "triangulate" => Ok(Step::Triangulate),
+            "flip" => pair().map(|(a, b)| Step::Flip(a, b)),
+            "split" => pair().map(|(a, b)| Step::Split(a, b)),
+            "collapse" => pair().map(|(a, b)| Step::Collapse(a, b)),
             _ => Err(format!("unknown step `{text}` (see `pappus --help`)")),
         }
     }
@@ -105,6 +140,11 @@ impl std::fmt::Display for Step {
         match self {
             Step::Validate => write!(f, "validate"),
             Step::Triangulate => write!(f, "triangulate"),
+            Step::Flip(a, b) => write!(f, "flip:{a},{b}"),
+            Step::Split(a, b) => write!(f, "split:{a},{b}"),
+            Step::Collapse(a, b) => write!(f, "collapse:{a},{b}"),
+            Step::Loop(n) => write!(f, "loop:{n}"),
+            Step::CatmullClark(n) => write!(f, "catmull-clark:{n}"),
         }
     }
 }
@@ -191,7 +231,7 @@ pub struct Loaded {
 /// A message naming the file and what is wrong with it.
 pub fn load(input: &str) -> Result<Loaded, String> {
     let start = Instant::now();
-    let (soup, info) = read_input(input)?;
+    let (soup, info) = crate::source::read_source(Path::new(input))?;
     let read_ms = ms_since(start);
     let start = Instant::now();
     let mut world = World::new();
@@ -202,36 +242,6 @@ pub fn load(input: &str) -> Result<Loaded, String> {
         read_ms,
         build_ms: ms_since(start),
     })
-}
-
-fn read_input(input: &str) -> Result<(PolygonSoup, MeshInfo), String> {
-    if let Some(name) = input.strip_prefix("shape:") {
-        let soup = shapes::by_name(name).ok_or_else(|| {
-            format!(
-                "unknown shape `{name}`; known: {}",
-                shapes::SHAPE_NAMES.join(", ")
-            )
-        })?;
-        return Ok((
-            soup,
-            MeshInfo {
-                name: name.to_string(),
-                path: None,
-            },
-        ));
-    }
-    let path = Path::new(input);
-    let soup = io::read(path).map_err(|e| e.to_string())?;
-    let name = path
-        .file_name()
-        .map_or_else(|| input.to_string(), |n| n.to_string_lossy().into_owned());
-    Ok((
-        soup,
-        MeshInfo {
-            name,
-            path: Some(path.to_path_buf()),
-        },
-    ))
 }
 
 fn ms_since(start: Instant) -> f64 {
@@ -335,9 +345,10 @@ pub enum StepOutcome {
 pub fn run_step(
     world: &mut World,
     mesh: MeshId,
-    _input_vertices: &[Option<VertexId>],
+    input_vertices: &[Option<VertexId>],
     step: &Step,
 ) -> StepOutcome {
+    let edge = |a: u32, b: u32| input_edge(world, input_vertices, a, b);
     match step {
         Step::Validate => match validate(world, mesh) {
             Ok(()) => StepOutcome::Applied("valid".into()),
@@ -350,7 +361,58 @@ pub fn run_step(
                 s.polygons, s.added_faces
             ))
         }
+        Step::Flip(a, b) => match edge(*a, *b).and_then(|e| flip_edge(world, e)) {
+            Ok(e) => StepOutcome::Applied(format!("new edge {e}")),
+            Err(r) => StepOutcome::Refused(r),
+        },
+        Step::Split(a, b) => match edge(*a, *b).and_then(|e| split_edge(world, e, 0.5)) {
+            Ok(v) => StepOutcome::Applied(format!("new vertex {v}")),
+            Err(r) => StepOutcome::Refused(r),
+        },
+        Step::Loop(n) => subdivided(loop_subdivide(world, mesh, *n)),
+        Step::CatmullClark(n) => subdivided(catmull_clark(world, mesh, *n)),
+        Step::Collapse(a, b) => {
+            match edge(*a, *b).and_then(|e| collapse_edge(world, e, CollapseOptions::default())) {
+                Ok(r) => StepOutcome::Applied(format!("kept {}, removed {}", r.kept, r.removed)),
+                Err(r) => StepOutcome::Refused(r),
+            }
+        }
     }
+}
+
+fn subdivided(result: Result<SubdivisionSummary, Refusal>) -> StepOutcome {
+    match result {
+        Ok(s) => StepOutcome::Applied(format!(
+            "{} level(s): {} vertices, {} faces",
+            s.levels, s.vertices, s.faces
+        )),
+        Err(r) => StepOutcome::Refused(r),
+    }
+}
+
+/// The edge between the input file's vertices `a` and `b`.
+fn input_edge(
+    world: &World,
+    input_vertices: &[Option<VertexId>],
+    a: u32,
+    b: u32,
+) -> Result<EdgeId, Refusal> {
+    let vertex = |i: u32| -> Result<VertexId, Refusal> {
+        let v = input_vertices
+            .get(i as usize)
+            .copied()
+            .flatten()
+            .ok_or_else(|| Refusal::Unsuitable(format!("the input has no vertex {i}")))?;
+        let m = MeshRef::new(world);
+        m.try_vertex(v)
+            .map(|_| v)
+            .ok_or(Refusal::Stale(ElementId::Vertex(v)))
+    };
+    let (va, vb) = (vertex(a)?, vertex(b)?);
+    let m = MeshRef::new(world);
+    m.find_halfedge(va, vb)
+        .map(|h| m.edge(h))
+        .ok_or_else(|| Refusal::Unsuitable(format!("input vertices {a} and {b} share no edge")))
 }
 
 /// Runs a command and returns the process exit code. Output goes to stdout, errors to stderr.

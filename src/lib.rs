@@ -15,3 +15,4 @@ pub mod editor;
 pub mod io;
 pub mod mesh;
 pub mod ops;
+pub mod source;

@@ -7,12 +7,12 @@ use bevy::ecs::message::{MessageCursor, Messages};
 use bevy::prelude::{Local, World};
 use std::path::{Path, PathBuf};
 
+
 use crate::io;
 use crate::mesh::ids::{EdgeId, ElementId, MeshId};
-use crate::mesh::{
-    InMesh, MeshInfo, PolygonSoup, Position, build_mesh, despawn_mesh, shapes, to_soup,
-};
+use crate::mesh::{InMesh, MeshInfo, Position, build_mesh, despawn_mesh, to_soup};
 use crate::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
+use crate::ops::subdivide::{catmull_clark, loop_subdivide};
 use crate::ops::triangulate::triangulate;
 
 use super::requests::{EditOutcome, EditRequest, OutcomeLog};
@@ -75,6 +75,18 @@ pub fn apply(world: &mut World, request: &EditRequest) -> Result<String, String>
                 s.polygons, s.added_faces
             ))
         }
+        EditRequest::LoopSubdivide(mesh) | EditRequest::CatmullClark(mesh) => {
+            let result = if matches!(request, EditRequest::LoopSubdivide(_)) {
+                loop_subdivide(world, *mesh, 1)
+            } else {
+                catmull_clark(world, *mesh, 1)
+            };
+            let s = result.map_err(|r| r.to_string())?;
+            let selection = world.resource::<Selection>().element;
+            let keep = selection.filter(|x| matches!(x, ElementId::Vertex(_)));
+            edited(world, *mesh, keep);
+            Ok(format!("{} vertices, {} faces", s.vertices, s.faces))
+        }
         EditRequest::MoveVertex(v, p) => {
             if !p.is_finite() {
                 return Err(format!("{p} is not a finite position"));
@@ -134,33 +146,9 @@ fn edited(world: &mut World, mesh: MeshId, select: Option<ElementId>) {
     world.resource_mut::<Selection>().element = select;
 }
 
-/// Reads a mesh file (or `shape:NAME`) into a soup and the mesh's name.
-pub fn read_mesh_source(path: &Path) -> Result<(PolygonSoup, MeshInfo), String> {
-    let text = path.to_string_lossy();
-    if let Some(name) = text.strip_prefix("shape:") {
-        let soup = shapes::by_name(name).ok_or_else(|| format!("unknown shape `{name}`"))?;
-        let info = MeshInfo {
-            name: name.to_string(),
-            path: None,
-        };
-        return Ok((soup, info));
-    }
-    let soup = io::read(path).map_err(|e| e.to_string())?;
-    let name = path
-        .file_name()
-        .map_or_else(|| text.to_string(), |n| n.to_string_lossy().into_owned());
-    Ok((
-        soup,
-        MeshInfo {
-            name,
-            path: Some(path.to_path_buf()),
-        },
-    ))
-}
-
 /// Opens a mesh, replacing the active one only once the new one has been read and built.
 fn open(world: &mut World, path: &PathBuf) -> Result<String, String> {
-    let (soup, info) = read_mesh_source(path)?;
+    let (soup, info) = crate::source::read_source(path)?;
     let built = build_mesh(world, &soup, info).map_err(|e| format!("{}: {e}", path.display()))?;
     if let Some(old) = world.resource::<ActiveMesh>().0 {
         despawn_mesh(world, old);

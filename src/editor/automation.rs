@@ -98,6 +98,8 @@ fn key_code(name: &str) -> Option<KeyCode> {
             'E' => KeyCode::KeyE,
             'F' => KeyCode::KeyF,
             'H' => KeyCode::KeyH,
+            'L' => KeyCode::KeyL,
+            'Q' => KeyCode::KeyQ,
             'N' => KeyCode::KeyN,
             'P' => KeyCode::KeyP,
             'R' => KeyCode::KeyR,

@@ -24,6 +24,10 @@ pub enum Action {
     Collapse,
     /// Triangulate the active mesh.
     Triangulate,
+    /// Loop-subdivide the active mesh once.
+    LoopSubdivide,
+    /// Catmull–Clark-subdivide the active mesh once.
+    CatmullClark,
     /// Move the selection along a relation.
     Navigate(Relation),
     /// Change what a click selects.
@@ -95,6 +99,8 @@ pub const SHORTCUTS: &[Shortcut] = &[
     key(KeyCode::KeyS, "S", Action::Split, "split the selected edge at its midpoint"),
     key(KeyCode::KeyC, "C", Action::Collapse, "collapse the selected edge to its midpoint"),
     ctrl(KeyCode::KeyT, false, "Ctrl+T", Action::Triangulate, "triangulate every polygon"),
+    key(KeyCode::KeyL, "L", Action::LoopSubdivide, "Loop subdivision (triangles)"),
+    key(KeyCode::KeyQ, "Q", Action::CatmullClark, "Catmull-Clark subdivision (to quads)"),
     key(KeyCode::KeyH, "H", Action::Navigate(Relation::Halfedge), "go to the element's halfedge"),
     key(KeyCode::KeyT, "T", Action::Navigate(Relation::Twin), "go to twin"),
     key(KeyCode::KeyN, "N", Action::Navigate(Relation::Next), "go to next"),
@@ -187,12 +193,16 @@ pub fn perform(world: &mut World, action: Action) {
                 _ => EditRequest::Collapse(edge),
             }
         }
-        Action::Triangulate => {
+        Action::Triangulate | Action::LoopSubdivide | Action::CatmullClark => {
             let Some(mesh) = world.resource::<ActiveMesh>().0 else {
                 refuse(world, action, "there is no mesh");
                 return;
             };
-            EditRequest::Triangulate(mesh)
+            match action {
+                Action::Triangulate => EditRequest::Triangulate(mesh),
+                Action::LoopSubdivide => EditRequest::LoopSubdivide(mesh),
+                _ => EditRequest::CatmullClark(mesh),
+            }
         }
         Action::Navigate(relation) => EditRequest::Navigate(relation),
         Action::ClearSelection => EditRequest::Select(None),

@@ -14,6 +14,7 @@
 
 pub mod apply;
 pub mod automation;
+pub mod drag;
 pub mod input;
 pub mod overlay;
 pub mod picking;
@@ -121,6 +122,11 @@ impl Plugin for EditorWindowPlugin {
                 ),
             )
             .init_resource::<automation::PendingShots>()
+            .init_resource::<drag::VertexDrag>()
+            .init_resource::<scene::PanelInsets>()
+            .add_systems(Update, scene::fit_camera_viewport.in_set(EditorSystems::Ui))
+            .init_resource::<drag::PointerCaptured>()
+            .add_systems(Update, drag::drive_vertex_drag.in_set(EditorSystems::Input))
             .add_systems(Update, automation::run_script.in_set(EditorSystems::Input).before(input::keyboard_shortcuts))
             .add_observer(picking::on_click)
             .add_observer(picking::on_move)

@@ -67,6 +67,10 @@ pub enum EditRequest {
     Collapse(EdgeId),
     /// Triangulate every polygon of a mesh.
     Triangulate(MeshId),
+    /// One level of Loop subdivision.
+    LoopSubdivide(MeshId),
+    /// One level of Catmull–Clark subdivision.
+    CatmullClark(MeshId),
     /// Move a vertex.
     MoveVertex(VertexId, Vec3),
     /// Select an element (or nothing).
@@ -89,6 +93,8 @@ impl EditRequest {
             EditRequest::Split(e) => format!("split {e}"),
             EditRequest::Collapse(e) => format!("collapse {e}"),
             EditRequest::Triangulate(m) => format!("triangulate {m}"),
+            EditRequest::LoopSubdivide(m) => format!("Loop subdivision {m}"),
+            EditRequest::CatmullClark(m) => format!("Catmull-Clark subdivision {m}"),
             EditRequest::MoveVertex(v, _) => format!("move {v}"),
             EditRequest::Select(Some(x)) => format!("select {x}"),
             EditRequest::Select(None) => "select nothing".into(),
@@ -129,8 +135,17 @@ impl OutcomeLog {
     /// How many outcomes are kept.
     pub const CAPACITY: usize = 200;
 
-    /// Appends an outcome, dropping the oldest past the capacity.
+    /// Appends an outcome, dropping the oldest past the capacity. A repeat of the last request
+    /// (each frame of a vertex drag) replaces it rather than filling the log.
     pub fn push(&mut self, outcome: EditOutcome) {
+        if let Some(last) = self.entries.last_mut()
+            && last.request == outcome.request
+            && last.result.is_ok()
+            && outcome.result.is_ok()
+        {
+            *last = outcome;
+            return;
+        }
         if self.entries.len() == Self::CAPACITY {
             self.entries.remove(0);
         }

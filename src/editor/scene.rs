@@ -173,3 +173,41 @@ pub fn frame_selection(world: &mut World) {
         *transform = orbit.transform();
     }
 }
+
+/// How much of the window the panels cover, in logical pixels (set by the UI).
+#[derive(Resource, Default, Debug, Clone, Copy, PartialEq)]
+pub struct PanelInsets {
+    /// Width of the left panel.
+    pub left: f32,
+    /// Height of the bottom status line.
+    pub bottom: f32,
+}
+
+/// Renders the 3D view only where the panels are not, so the mesh is centred in what is seen.
+pub fn fit_camera_viewport(
+    insets: Res<PanelInsets>,
+    windows: Query<&Window, With<bevy::window::PrimaryWindow>>,
+    mut cameras: Query<&mut Camera, With<OrbitCamera>>,
+) {
+    let Some(window) = windows.iter().next() else {
+        return;
+    };
+    let scale = window.scale_factor();
+    let (w, h) = (window.physical_width(), window.physical_height());
+    let left = ((insets.left * scale) as u32).min(w.saturating_sub(1));
+    let bottom = ((insets.bottom * scale) as u32).min(h.saturating_sub(1));
+    let viewport = bevy::camera::Viewport {
+        physical_position: UVec2::new(left, 0),
+        physical_size: UVec2::new((w - left).max(1), (h - bottom).max(1)),
+        ..default()
+    };
+    for mut camera in &mut cameras {
+        let same = camera.viewport.as_ref().is_some_and(|v| {
+            v.physical_position == viewport.physical_position
+                && v.physical_size == viewport.physical_size
+        });
+        if !same {
+            camera.viewport = Some(viewport.clone());
+        }
+    }
+}

@@ -26,6 +26,15 @@ pub struct UiPlugin;
 
 impl Plugin for UiPlugin {
     fn build(&self, app: &mut App) {
+        // egui gets a camera of its own covering the whole window, so the 3D camera can render
+        // only beside the panels (see `scene::fit_camera_viewport`).
+        if let Some(mut settings) = app
+            .world_mut()
+            .get_resource_mut::<bevy_egui::EguiGlobalSettings>()
+        {
+            settings.auto_create_primary_context = false;
+        }
+        app.add_systems(Startup, spawn_ui_camera);
         app.init_resource::<InspectorView>()
             .init_resource::<UiFields>()
             .init_resource::<PendingActions>()
@@ -35,6 +44,21 @@ impl Plugin for UiPlugin {
             )
             .add_systems(EguiPrimaryContextPass, panels);
     }
+}
+
+/// The camera egui draws with: after the 3D view, clearing nothing, seeing no mesh (its own
+/// render layer).
+fn spawn_ui_camera(mut commands: Commands) {
+    commands.spawn((
+        Camera3d::default(),
+        Camera {
+            order: 1,
+            clear_color: ClearColorConfig::None,
+            ..default()
+        },
+        bevy::camera::visibility::RenderLayers::layer(31),
+        bevy_egui::PrimaryEguiContext,
+    ));
 }
 
 /// Everything the panels show, copied out of the world once a frame.
@@ -197,6 +221,8 @@ pub fn panels(
     mut mode: ResMut<SelectMode>,
     settings: Res<ViewSettings>,
     mut captured: ResMut<KeyboardCaptured>,
+    mut pointer: ResMut<super::drag::PointerCaptured>,
+    mut insets: ResMut<super::scene::PanelInsets>,
     mut pending: ResMut<PendingActions>,
     mut requests: MessageWriter<EditRequest>,
 ) -> Result {
@@ -209,7 +235,7 @@ pub fn panels(
             .max_rect(ctx.viewport_rect()),
     );
 
-    egui::Panel::bottom("status").show(&mut root, |ui| {
+    let status = egui::Panel::bottom("status").show(&mut root, |ui| {
         ui.horizontal(|ui| {
             match log.entries.last() {
                 Some(last) => match &last.result {
@@ -221,7 +247,7 @@ pub fn panels(
         });
     });
 
-    egui::Panel::left("inspector")
+    let inspector = egui::Panel::left("inspector")
         .resizable(true)
         .default_size(300.0)
         .show(&mut root, |ui| {
@@ -245,6 +271,14 @@ pub fn panels(
                 }
             });
         });
+
+    let new_insets = super::scene::PanelInsets {
+        left: inspector.response.rect.width(),
+        bottom: status.response.rect.height(),
+    };
+    if *insets != new_insets {
+        *insets = new_insets;
+    }
 
     if ui_state.show_help {
         let mut open = true;
@@ -275,6 +309,7 @@ pub fn panels(
     }
 
     captured.0 = ctx.egui_wants_keyboard_input();
+    pointer.0 = ctx.egui_wants_pointer_input() || ctx.is_pointer_over_egui();
     Ok(())
 }
 
@@ -328,7 +363,7 @@ fn mesh_section(ui: &mut egui::Ui, view: &InspectorView) {
         for (k, v) in [
             ("V / E / F", format!("{} / {} / {}", s.vertices, s.edges, s.faces)),
             ("halfedges", s.halfedges.to_string()),
-            ("χ / genus", format!("{} / {}", s.euler_characteristic, s.genus)),
+            ("Euler char. / genus", format!("{} / {}", s.euler_characteristic, s.genus)),
             ("components", s.components.to_string()),
             ("boundary loops", s.boundary_loops.to_string()),
             ("face sizes", sizes.join(", ")),
@@ -435,6 +470,8 @@ fn operations_section(
             (Action::Split, "Split"),
             (Action::Collapse, "Collapse"),
             (Action::Triangulate, "Triangulate"),
+            (Action::LoopSubdivide, "Loop"),
+            (Action::CatmullClark, "Catmull-Clark"),
             (Action::Frame, "Frame"),
             (Action::DeleteMesh, "Delete mesh"),
         ] {

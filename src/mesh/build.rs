@@ -89,7 +89,7 @@ pub fn spawn_connectivity(
 ) -> (MeshId, Vec<VertexId>) {
     let mesh = MeshId(world.spawn(info).id());
     let ids = allocate(world, c);
-    spawn_into(world, c, &ids, mesh);
+    spawn_into(world, c, &ids, mesh, 0);
     (mesh, ids.vertices)
 }
 
@@ -118,11 +118,18 @@ pub(crate) fn allocate(world: &World, c: &Connectivity) -> AllocatedIds {
     }
 }
 
-/// Spawns every element of `c` at its allocated id.
-pub(crate) fn spawn_into(world: &mut World, c: &Connectivity, ids: &AllocatedIds, mesh: MeshId) {
+/// Spawns every element of `c` at its allocated id, except the first `existing_vertices`
+/// vertices, which already exist.
+pub(crate) fn spawn_into(
+    world: &mut World,
+    c: &Connectivity,
+    ids: &AllocatedIds,
+    mesh: MeshId,
+    existing_vertices: usize,
+) {
     let member = InMesh(mesh);
     let h = |i: u32| ids.halfedges[i as usize];
-    for (i, &v) in ids.vertices.iter().enumerate() {
+    for (i, &v) in ids.vertices.iter().enumerate().skip(existing_vertices) {
         let bundle = (
             Vertex {
                 halfedge: h(c.vertex_halfedge[i]),

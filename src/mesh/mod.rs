@@ -17,6 +17,7 @@
 //!
 //! This module knows nothing of operations, files or rendering.
 
+pub mod arrays;
 pub mod build;
 pub mod connectivity;
 pub mod elements;

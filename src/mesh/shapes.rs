@@ -286,17 +286,27 @@ pub fn triangulate_fans(soup: &PolygonSoup) -> PolygonSoup {
 
 /// A shape by name, for the command line and the editor's menu: `tetrahedron`, `cube`,
 /// `icosahedron`, `icosphere`, `torus`, `grid`, `quad-grid`, `grid-with-holes`, `double-torus`.
+/// Sizes can follow after colons: `icosphere:6` (levels), `torus:64:32` (rings, sides),
+/// `grid:100` or `grid:100:50`, `quad-grid:…`, `grid-with-holes:3`, `slab:3` (genus 3).
 pub fn by_name(name: &str) -> Option<PolygonSoup> {
-    Some(match name {
+    let mut parts = name.split(':');
+    let shape = parts.next()?;
+    let args: Vec<u32> = parts.map(|p| p.parse().ok()).collect::<Option<_>>()?;
+    let arg = |i: usize, default: u32| args.get(i).copied().unwrap_or(default);
+    if args.iter().any(|&a| a > 100_000) || (shape == "icosphere" && arg(0, 3) > 9) {
+        return None;
+    }
+    Some(match shape {
         "tetrahedron" => tetrahedron(),
         "cube" => cube(),
         "icosahedron" => icosahedron(),
-        "icosphere" => icosphere(3),
-        "torus" => torus(24, 12),
-        "grid" => grid(10, 10),
-        "quad-grid" => quad_grid(10, 10),
-        "grid-with-holes" => grid_with_holes(2),
+        "icosphere" => icosphere(arg(0, 3)),
+        "torus" => torus(arg(0, 24), arg(1, 12)),
+        "grid" => grid(arg(0, 10), arg(1, arg(0, 10))),
+        "quad-grid" => quad_grid(arg(0, 10), arg(1, arg(0, 10))),
+        "grid-with-holes" => grid_with_holes(arg(0, 2)),
         "double-torus" => slab_with_holes(2),
+        "slab" => slab_with_holes(arg(0, 2)),
         _ => return None,
     })
 }

@@ -1,0 +1,199 @@
+//! The command line as scripts use it: exit codes, JSON keys, steps, errors on stderr.
+
+mod common;
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn pappus(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_pappus"))
+        .args(args)
+        .output()
+        .expect("runs pappus")
+}
+
+fn json(output: &Output) -> Value {
+    assert!(
+        output.status.success(),
+        "failed: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    serde_json::from_slice(&output.stdout).expect("stdout is one JSON object")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+const INFO_KEYS: [&str; 18] = [
+    "vertices",
+    "edges",
+    "faces",
+    "halfedges",
+    "boundary_loops",
+    "components",
+    "euler_characteristic",
+    "genus",
+    "manifold",
+    "closed",
+    "face_sizes",
+    "valid",
+    "repairs",
+    "min_angle_deg",
+    "pct_min_angle_below_30",
+    "bbox_diag",
+    "load_ms",
+    "mean_edge_length",
+];
+
+#[test]
+fn info_json_has_every_key_and_exact_figures() {
+    let v = json(&pappus(&["info", "shape:double-torus", "--json"]));
+    for key in INFO_KEYS {
+        assert!(v.get(key).is_some(), "missing key {key}: {v}");
+    }
+    assert_eq!(v["euler_characteristic"], -2);
+    assert_eq!(v["genus"], 2);
+    assert_eq!(v["closed"], true);
+    assert_eq!(v["valid"], true);
+    assert_eq!(v["manifold"], true);
+    assert_eq!(v["face_sizes"]["4"], 50);
+    assert_eq!(v["repairs"]["unreferenced_vertices"], 0);
+    let v = json(&pappus(&["info", "shape:grid", "--json"]));
+    assert_eq!((v["vertices"].as_u64(), v["faces"].as_u64()), (Some(121), Some(200)));
+    assert_eq!(v["boundary_loops"], 1);
+    assert_eq!(v["euler_characteristic"], 1);
+}
+
+#[test]
+fn info_text_is_readable() {
+    let out = pappus(&["info", "shape:cube"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("V 8  E 12  F 6"), "{text}");
+    assert!(text.contains("valid"), "{text}");
+}
+
+#[test]
+fn errors_go_to_stderr_with_a_nonzero_exit() {
+    let out = pappus(&["info", "/no/such/file.obj"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("/no/such/file.obj"));
+    assert!(out.stdout.is_empty());
+    let out = pappus(&["info", "shape:klein-bottle"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unknown shape"));
+    let out = pappus(&["process", "shape:cube", "-o", "x.obj", "frobnicate"]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = pappus(&["info", "notes.txt"]);
+    assert_eq!(out.status.code(), Some(1));
+}
+
+#[test]
+fn broken_files_are_reported_not_panicked_on() {
+    for (name, bytes) in [
+        ("garbage.obj", &b"v 1 2\nf 1 2 3 4 5\n\x00\xff"[..]),
+        ("truncated.ply", &b"ply\nformat binary_little_endian 1.0\nelement vertex 100\nproperty float x\n"[..]),
+        ("empty.off", &b""[..]),
+        ("short.stl", &b"\x00\x01"[..]),
+    ] {
+        let path = tmp(name);
+        std::fs::write(&path, bytes).unwrap();
+        let out = pappus(&["info", path.to_str().unwrap()]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{name}: {stderr}");
+        assert!(stderr.contains(name), "{name}: the message names the file: {stderr}");
+        assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+    }
+}
+
+#[test]
+fn process_runs_steps_in_order_and_reports_json() {
+    let out_path = tmp("cube-tri.off");
+    let v = json(&pappus(&[
+        "process",
+        "shape:cube",
+        "-o",
+        out_path.to_str().unwrap(),
+        "--json",
+        "validate",
+        "triangulate",
+        "validate",
+    ]));
+    let steps = v["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 3);
+    assert_eq!(steps[1]["step"], "triangulate");
+    assert!(steps.iter().all(|s| s["outcome"] == "applied" && s["ms"].is_number()));
+    assert_eq!(v["result"]["faces"], 12);
+    assert_eq!(v["result"]["face_sizes"]["3"], 12);
+    // The written file reads back as the same mesh.
+    let back = json(&pappus(&["info", out_path.to_str().unwrap(), "--json"]));
+    assert_eq!(back["faces"], 12);
+    assert_eq!(back["euler_characteristic"], 2);
+}
+
+#[test]
+fn a_refused_step_is_reported_and_the_run_goes_on() {
+    let out_path = tmp("tet.obj");
+    // Every edge of a tetrahedron refuses a flip (the new edge exists already).
+    let v = json(&pappus(&[
+        "process",
+        "shape:tetrahedron",
+        "-o",
+        out_path.to_str().unwrap(),
+        "--json",
+        "flip:0,1",
+        "flip:0,9",
+        "validate",
+    ]));
+    let steps = v["steps"].as_array().unwrap();
+    assert_eq!(steps[0]["outcome"], "refused");
+    assert!(steps[0]["reason"].as_str().unwrap().len() > 5);
+    assert_eq!(steps[1]["outcome"], "refused");
+    assert!(steps[1]["reason"].as_str().unwrap().contains("no vertex 9"));
+    assert_eq!(steps[2]["outcome"], "applied");
+    assert_eq!(v["result"]["faces"], 4);
+}
+
+#[test]
+fn local_steps_name_edges_by_input_vertices() {
+    let out_path = tmp("ico.ply");
+    let v = json(&pappus(&[
+        "process",
+        "shape:icosahedron",
+        "-o",
+        out_path.to_str().unwrap(),
+        "--json",
+        "split:0,11",
+        "flip:0,5",
+        "collapse:1,5",
+        "validate",
+    ]));
+    let steps = v["steps"].as_array().unwrap();
+    for s in steps {
+        assert_eq!(s["outcome"], "applied", "{s}");
+    }
+    // split: V+1 F+2; flip: same; collapse: V-1 F-2.
+    assert_eq!(v["result"]["vertices"], 12);
+    assert_eq!(v["result"]["faces"], 20);
+    assert_eq!(v["result"]["euler_characteristic"], 2);
+}
+
+#[test]
+fn convert_round_trips_between_formats() {
+    let mut previous = None;
+    for ext in ["obj", "off", "ply", "stl"] {
+        let path = tmp(&format!("torus.{ext}"));
+        let out = pappus(&["convert", "shape:icosphere", path.to_str().unwrap()]);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let v = json(&pappus(&["info", path.to_str().unwrap(), "--json"]));
+        let figures = (v["vertices"].clone(), v["faces"].clone(), v["euler_characteristic"].clone());
+        if let Some(p) = &previous {
+            assert_eq!(&figures, p, "{ext}");
+        }
+        previous = Some(figures);
+    }
+}
