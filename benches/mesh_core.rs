@@ -41,7 +41,9 @@ fn bench(c: &mut Criterion) {
         );
     });
     let mut world = World::new();
-    let mesh = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap().mesh;
+    let mesh = build_mesh(&mut world, &soup, MeshInfo::default())
+        .unwrap()
+        .mesh;
     let vertices = MeshMembers::collect(&world, mesh).vertices;
     c.bench_function(&format!("circulate every one-ring of {name}"), |b| {
         b.iter(|| {

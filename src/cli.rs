@@ -18,11 +18,11 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use crate::io;
+use crate::mesh::ids::{EdgeId, ElementId};
+use crate::mesh::topology::MeshRef;
 use crate::mesh::{
     BuiltMesh, MeshId, RepairReport, VertexId, build_mesh, mesh_stats, to_soup, validate,
 };
-use crate::mesh::ids::{EdgeId, ElementId};
-use crate::mesh::topology::MeshRef;
 use crate::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
 use crate::ops::subdivide::{SubdivisionSummary, catmull_clark, loop_subdivide};
 use crate::ops::{Refusal, triangulate};
@@ -119,7 +119,9 @@ impl Step {
             }
             match args.parse::<u32>() {
                 Ok(n) if (1..=8).contains(&n) => Ok(n),
-                _ => Err(format!("step `{text}`: levels must be a number from 1 to 8")),
+                _ => Err(format!(
+                    "step `{text}`: levels must be a number from 1 to 8"
+                )),
             }
         };
         match name {
@@ -282,7 +284,10 @@ pub fn info_json(world: &World, mesh: MeshId, report: &RepairReport) -> Map<Stri
         ("valid", json!(validation.is_ok())),
         ("repairs", Value::Object(repairs)),
         ("min_angle_deg", json!(round(s.min_angle_deg, 4))),
-        ("pct_min_angle_below_30", json!(round(s.pct_min_angle_below_30, 4))),
+        (
+            "pct_min_angle_below_30",
+            json!(round(s.pct_min_angle_below_30, 4)),
+        ),
         ("bbox_diag", json!(round(s.bbox_diag, 6))),
         ("mean_edge_length", json!(round(s.mean_edge_length, 6))),
     ] {
@@ -471,12 +476,7 @@ fn execute(command: Command) -> Result<(), String> {
             let mut records = Vec::new();
             for step in &steps {
                 let start = Instant::now();
-                let outcome = run_step(
-                    &mut loaded.world,
-                    mesh,
-                    &loaded.built.input_vertices,
-                    step,
-                );
+                let outcome = run_step(&mut loaded.world, mesh, &loaded.built.input_vertices, step);
                 let ms = round(ms_since(start), 3);
                 let mut record = Map::new();
                 record.insert("step".into(), json!(step.to_string()));
@@ -503,9 +503,15 @@ fn execute(command: Command) -> Result<(), String> {
             io::write(&output, &soup).map_err(|e| e.to_string())?;
             let result = info_json(&loaded.world, mesh, &loaded.built.report);
             if json {
-                println!("{}", json!({ "steps": records, "result": Value::Object(result) }));
+                println!(
+                    "{}",
+                    json!({ "steps": records, "result": Value::Object(result) })
+                );
             } else {
-                print!("{}", info_text(&output.display().to_string(), &result, &loaded.built.report));
+                print!(
+                    "{}",
+                    info_text(&output.display().to_string(), &result, &loaded.built.report)
+                );
             }
         }
     }

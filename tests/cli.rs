@@ -63,7 +63,10 @@ fn info_json_has_every_key_and_exact_figures() {
     assert_eq!(v["face_sizes"]["4"], 50);
     assert_eq!(v["repairs"]["unreferenced_vertices"], 0);
     let v = json(&pappus(&["info", "shape:grid", "--json"]));
-    assert_eq!((v["vertices"].as_u64(), v["faces"].as_u64()), (Some(121), Some(200)));
+    assert_eq!(
+        (v["vertices"].as_u64(), v["faces"].as_u64()),
+        (Some(121), Some(200))
+    );
     assert_eq!(v["boundary_loops"], 1);
     assert_eq!(v["euler_characteristic"], 1);
 }
@@ -96,7 +99,10 @@ fn errors_go_to_stderr_with_a_nonzero_exit() {
 fn broken_files_are_reported_not_panicked_on() {
     for (name, bytes) in [
         ("garbage.obj", &b"v 1 2\nf 1 2 3 4 5\n\x00\xff"[..]),
-        ("truncated.ply", &b"ply\nformat binary_little_endian 1.0\nelement vertex 100\nproperty float x\n"[..]),
+        (
+            "truncated.ply",
+            &b"ply\nformat binary_little_endian 1.0\nelement vertex 100\nproperty float x\n"[..],
+        ),
         ("empty.off", &b""[..]),
         ("short.stl", &b"\x00\x01"[..]),
     ] {
@@ -105,7 +111,10 @@ fn broken_files_are_reported_not_panicked_on() {
         let out = pappus(&["info", path.to_str().unwrap()]);
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "{name}: {stderr}");
-        assert!(stderr.contains(name), "{name}: the message names the file: {stderr}");
+        assert!(
+            stderr.contains(name),
+            "{name}: the message names the file: {stderr}"
+        );
         assert!(!stderr.contains("panicked"), "{name}: {stderr}");
     }
 }
@@ -126,7 +135,11 @@ fn process_runs_steps_in_order_and_reports_json() {
     let steps = v["steps"].as_array().unwrap();
     assert_eq!(steps.len(), 3);
     assert_eq!(steps[1]["step"], "triangulate");
-    assert!(steps.iter().all(|s| s["outcome"] == "applied" && s["ms"].is_number()));
+    assert!(
+        steps
+            .iter()
+            .all(|s| s["outcome"] == "applied" && s["ms"].is_number())
+    );
     assert_eq!(v["result"]["faces"], 12);
     assert_eq!(v["result"]["face_sizes"]["3"], 12);
     // The written file reads back as the same mesh.
@@ -188,9 +201,17 @@ fn convert_round_trips_between_formats() {
     for ext in ["obj", "off", "ply", "stl"] {
         let path = tmp(&format!("torus.{ext}"));
         let out = pappus(&["convert", "shape:icosphere", path.to_str().unwrap()]);
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         let v = json(&pappus(&["info", path.to_str().unwrap(), "--json"]));
-        let figures = (v["vertices"].clone(), v["faces"].clone(), v["euler_characteristic"].clone());
+        let figures = (
+            v["vertices"].clone(),
+            v["faces"].clone(),
+            v["euler_characteristic"].clone(),
+        );
         if let Some(p) = &previous {
             assert_eq!(&figures, p, "{ext}");
         }

@@ -32,7 +32,11 @@ fn open(app: &mut App, source: &str) {
         .write_message(EditRequest::Open(source.into()));
     app.update();
     let log = app.world().resource::<OutcomeLog>();
-    assert!(log.entries.last().unwrap().result.is_ok(), "{:?}", log.entries.last());
+    assert!(
+        log.entries.last().unwrap().result.is_ok(),
+        "{:?}",
+        log.entries.last()
+    );
 }
 
 fn press(app: &mut App, key: KeyCode) {
@@ -50,7 +54,12 @@ fn press(app: &mut App, key: KeyCode) {
 }
 
 fn last_outcome(app: &App) -> EditOutcome {
-    app.world().resource::<OutcomeLog>().entries.last().unwrap().clone()
+    app.world()
+        .resource::<OutcomeLog>()
+        .entries
+        .last()
+        .unwrap()
+        .clone()
 }
 
 fn selection(app: &App) -> Option<ElementId> {
@@ -123,7 +132,13 @@ fn navigation_keys_walk_the_relations() {
     };
     let (twin, next, prev, tip, face) = {
         let m = MeshRef::new(app.world());
-        (m.twin(h), m.next(h), m.prev(h), m.to_vertex(h), m.face(h).unwrap())
+        (
+            m.twin(h),
+            m.next(h),
+            m.prev(h),
+            m.to_vertex(h),
+            m.face(h).unwrap(),
+        )
     };
     press(&mut app, KeyCode::KeyT);
     assert_eq!(selection(&app), Some(ElementId::Halfedge(twin)));
@@ -169,7 +184,10 @@ fn operation_keys_without_an_edge_are_refused_with_a_reason() {
     for key in [KeyCode::KeyR, KeyCode::KeyS, KeyCode::KeyC] {
         press(&mut app, key);
         let outcome = last_outcome(&app);
-        assert_eq!(outcome.result, Err("select an edge (or halfedge) first".into()));
+        assert_eq!(
+            outcome.result,
+            Err("select an edge (or halfedge) first".into())
+        );
     }
 }
 
@@ -177,7 +195,11 @@ fn operation_keys_without_an_edge_are_refused_with_a_reason() {
 fn operation_keys_write_requests_for_the_selected_edge() {
     let mut app = app();
     open(&mut app, "shape:icosphere");
-    for (key, verb) in [(KeyCode::KeyR, "flip"), (KeyCode::KeyS, "split"), (KeyCode::KeyC, "collapse")] {
+    for (key, verb) in [
+        (KeyCode::KeyR, "flip"),
+        (KeyCode::KeyS, "split"),
+        (KeyCode::KeyC, "collapse"),
+    ] {
         let e = some_interior_edge(&app);
         app.world_mut()
             .write_message(EditRequest::Select(Some(ElementId::Edge(e))));
@@ -215,8 +237,11 @@ fn triangulate_key_needs_ctrl_and_applies() {
 fn stale_and_bad_requests_are_refused_and_change_nothing() {
     let mut app = app();
     open(&mut app, "shape:cube");
-    let stale = ElementId::Vertex(pappus::mesh::VertexId(Entity::from_raw_u32(999_999).unwrap()));
-    app.world_mut().write_message(EditRequest::Select(Some(stale)));
+    let stale = ElementId::Vertex(pappus::mesh::VertexId(
+        Entity::from_raw_u32(999_999).unwrap(),
+    ));
+    app.world_mut()
+        .write_message(EditRequest::Select(Some(stale)));
     app.update();
     assert!(last_outcome(&app).result.is_err());
     assert_eq!(selection(&app), None);
@@ -258,7 +283,13 @@ fn picking_maps_a_triangle_hit_to_the_right_element() {
     );
     // Near the middle of a side: that edge.
     let side_mid = (m.position(corners[0]) + m.position(corners[1])) / 2.0;
-    let picked = pick_in_face(&m, face, screen(side_mid.lerp(centre, 0.05)), SelectMode::Auto, to_screen);
+    let picked = pick_in_face(
+        &m,
+        face,
+        screen(side_mid.lerp(centre, 0.05)),
+        SelectMode::Auto,
+        to_screen,
+    );
     let expected = m.edge(m.find_halfedge(corners[0], corners[1]).unwrap());
     assert_eq!(picked, ElementId::Edge(expected));
     // Near the fan diagonal, in the middle of the quad: the quad, not a phantom edge.
@@ -273,7 +304,13 @@ fn picking_maps_a_triangle_hit_to_the_right_element() {
         ElementId::Face(face)
     );
     assert!(matches!(
-        pick_in_face(&m, face, screen(diagonal_mid), SelectMode::Vertex, to_screen),
+        pick_in_face(
+            &m,
+            face,
+            screen(diagonal_mid),
+            SelectMode::Vertex,
+            to_screen
+        ),
         ElementId::Vertex(_)
     ));
     assert!(matches!(
@@ -285,7 +322,9 @@ fn picking_maps_a_triangle_hit_to_the_right_element() {
 #[test]
 fn a_ray_cast_at_a_known_triangle_finds_its_face() {
     use bevy::ecs::system::RunSystemOnce;
-    use bevy::picking::mesh_picking::ray_cast::{MeshRayCast, MeshRayCastSettings, RayCastVisibility};
+    use bevy::picking::mesh_picking::ray_cast::{
+        MeshRayCast, MeshRayCastSettings, RayCastVisibility,
+    };
     let mut app = app();
     app.add_plugins(TransformPlugin);
     app.update();
@@ -299,7 +338,12 @@ fn a_ray_cast_at_a_known_triangle_finds_its_face() {
     let handle = app.world().get::<Mesh3d>(render).unwrap().0.clone();
     let aabb = {
         use bevy::camera::primitives::MeshAabb;
-        app.world().resource::<Assets<Mesh>>().get(&handle).unwrap().compute_aabb().unwrap()
+        app.world()
+            .resource::<Assets<Mesh>>()
+            .get(&handle)
+            .unwrap()
+            .compute_aabb()
+            .unwrap()
     };
     app.world_mut().entity_mut(render).insert(aabb);
     app.update();
@@ -309,7 +353,10 @@ fn a_ray_cast_at_a_known_triangle_finds_its_face() {
         .run_system_once(|mut ray_cast: MeshRayCast| {
             let ray = Ray3d::new(Vec3::new(0.25, 0.35, 5.0), Dir3::NEG_Z);
             let settings = MeshRayCastSettings::default().with_visibility(RayCastVisibility::Any);
-            ray_cast.cast_ray(ray, &settings).first().map(|(e, h)| (*e, h.triangle_index))
+            ray_cast
+                .cast_ray(ray, &settings)
+                .first()
+                .map(|(e, h)| (*e, h.triangle_index))
         })
         .unwrap();
     let (entity, triangle) = hit.expect("the ray hits the grid");
@@ -317,5 +364,8 @@ fn a_ray_cast_at_a_known_triangle_finds_its_face() {
     let face = app.world().get::<TriangleFaces>(render).unwrap().0[triangle.unwrap()];
     let m = MeshRef::new(app.world());
     let c = m.face_centroid(face);
-    assert!((c.x - 0.25).abs() < 1e-5 && (c.y - 0.35).abs() < 1e-5, "centroid {c}");
+    assert!(
+        (c.x - 0.25).abs() < 1e-5 && (c.y - 0.35).abs() < 1e-5,
+        "centroid {c}"
+    );
 }

@@ -37,12 +37,34 @@ fn check(soup: PolygonSoup, x: Expect) {
 
 #[test]
 fn tetrahedron_is_a_sphere() {
-    check(shapes::tetrahedron(), Expect { v: 4, e: 6, f: 4, chi: 2, genus: 0, loops: 0, components: 1 });
+    check(
+        shapes::tetrahedron(),
+        Expect {
+            v: 4,
+            e: 6,
+            f: 4,
+            chi: 2,
+            genus: 0,
+            loops: 0,
+            components: 1,
+        },
+    );
 }
 
 #[test]
 fn cube_is_a_sphere_of_quads() {
-    check(shapes::cube(), Expect { v: 8, e: 12, f: 6, chi: 2, genus: 0, loops: 0, components: 1 });
+    check(
+        shapes::cube(),
+        Expect {
+            v: 8,
+            e: 12,
+            f: 6,
+            chi: 2,
+            genus: 0,
+            loops: 0,
+            components: 1,
+        },
+    );
     let (world, built) = build(&shapes::cube());
     let s = mesh_stats(&world, built.mesh);
     assert_eq!(s.face_sizes.get(&4), Some(&6));
@@ -56,14 +78,33 @@ fn icospheres_have_exact_counts() {
         let p = 4usize.pow(n);
         check(
             shapes::icosphere(n),
-            Expect { v: 10 * p + 2, e: 30 * p, f: 20 * p, chi: 2, genus: 0, loops: 0, components: 1 },
+            Expect {
+                v: 10 * p + 2,
+                e: 30 * p,
+                f: 20 * p,
+                chi: 2,
+                genus: 0,
+                loops: 0,
+                components: 1,
+            },
         );
     }
 }
 
 #[test]
 fn torus_has_genus_one() {
-    check(shapes::torus(12, 8), Expect { v: 96, e: 192, f: 96, chi: 0, genus: 1, loops: 0, components: 1 });
+    check(
+        shapes::torus(12, 8),
+        Expect {
+            v: 96,
+            e: 192,
+            f: 96,
+            chi: 0,
+            genus: 1,
+            loops: 0,
+            components: 1,
+        },
+    );
 }
 
 #[test]
@@ -81,11 +122,22 @@ fn double_torus_has_genus_two() {
 fn open_grid_is_a_disc() {
     check(
         shapes::grid(4, 3),
-        Expect { v: 20, e: 4 * 4 + 5 * 3 + 12, f: 24, chi: 1, genus: 0, loops: 1, components: 1 },
+        Expect {
+            v: 20,
+            e: 4 * 4 + 5 * 3 + 12,
+            f: 24,
+            chi: 1,
+            genus: 0,
+            loops: 1,
+            components: 1,
+        },
     );
     let (world, built) = build(&shapes::grid_with_holes(2));
     let s = mesh_stats(&world, built.mesh);
-    assert_eq!((s.euler_characteristic, s.boundary_loops, s.genus), (-1, 3, 0));
+    assert_eq!(
+        (s.euler_characteristic, s.boundary_loops, s.genus),
+        (-1, 3, 0)
+    );
 }
 
 #[test]
@@ -94,7 +146,11 @@ fn every_named_shape_builds_and_validates() {
         let soup = shapes::by_name(name).unwrap();
         let (world, built) = build(&soup);
         assert!(built.report.is_clean(), "{name}: {}", built.report);
-        assert_eq!(mesh_stats(&world, built.mesh).faces, soup.face_count(), "{name}");
+        assert_eq!(
+            mesh_stats(&world, built.mesh).faces,
+            soup.face_count(),
+            "{name}"
+        );
     }
 }
 
@@ -164,7 +220,14 @@ fn bow_tie_becomes_two_valid_components() {
 #[test]
 fn two_cones_touching_at_the_tip_are_split() {
     // Two closed-fan tips at vertex 0 would be a double cone; open fans here keep it small.
-    let faces: &[&[u32]] = &[&[0, 1, 2], &[0, 2, 3], &[0, 3, 1], &[0, 4, 5], &[0, 5, 6], &[0, 6, 4]];
+    let faces: &[&[u32]] = &[
+        &[0, 1, 2],
+        &[0, 2, 3],
+        &[0, 3, 1],
+        &[0, 4, 5],
+        &[0, 5, 6],
+        &[0, 6, 4],
+    ];
     let (world, built) = build(&soup(7, faces));
     assert_eq!(built.report.non_manifold_vertices, 1);
     assert_eq!(mesh_stats(&world, built.mesh).components, 2);
@@ -190,12 +253,20 @@ fn flipped_face_is_reoriented() {
 
 #[test]
 fn bad_faces_and_unreferenced_vertices_are_counted() {
-    let mut s = soup(8, &[&[0, 1, 2], &[2, 1], &[0, 1, 42], &[3, 3, 4], &[5, 6, 4]]);
+    let mut s = soup(
+        8,
+        &[&[0, 1, 2], &[2, 1], &[0, 1, 42], &[3, 3, 4], &[5, 6, 4]],
+    );
     s.positions[6] = Vec3::new(f32::INFINITY, 0.0, 0.0);
     let (world, built) = build(&s);
     let r = &built.report;
     assert_eq!(
-        (r.too_few_corners, r.out_of_range_faces, r.repeated_vertex_faces, r.non_finite_faces),
+        (
+            r.too_few_corners,
+            r.out_of_range_faces,
+            r.repeated_vertex_faces,
+            r.non_finite_faces
+        ),
         (1, 1, 1, 1)
     );
     assert_eq!(r.unreferenced_vertices, 5);
@@ -219,10 +290,15 @@ fn broken(edit: impl FnOnce(&mut World, &pappus::mesh::MeshMembers)) -> Rule {
     let (mut world, built) = build(&shapes::icosphere(1));
     let members = pappus::mesh::MeshMembers::collect(&world, built.mesh);
     edit(&mut world, &members);
-    validate(&world, built.mesh).expect_err("the edit must break the mesh").rule
+    validate(&world, built.mesh)
+        .expect_err("the edit must break the mesh")
+        .rule
 }
 
-fn halfedge_mut<'a>(world: &'a mut World, h: pappus::mesh::HalfedgeId) -> bevy::prelude::Mut<'a, Halfedge> {
+fn halfedge_mut<'a>(
+    world: &'a mut World,
+    h: pappus::mesh::HalfedgeId,
+) -> bevy::prelude::Mut<'a, Halfedge> {
     world.get_mut::<Halfedge>(h.0).unwrap()
 }
 
@@ -279,13 +355,23 @@ fn validate_catches_bad_positions_and_vertex_halfedges() {
 fn validate_catches_edge_and_face_bookkeeping() {
     let rule = broken(|w, m| {
         let e = m.edges[0];
-        let other = m.halfedges.iter().copied().find(|&h| MeshRef::new(w).edge(h) != e).unwrap();
+        let other = m
+            .halfedges
+            .iter()
+            .copied()
+            .find(|&h| MeshRef::new(w).edge(h) != e)
+            .unwrap();
         w.get_mut::<pappus::mesh::Edge>(e.0).unwrap().halfedge = other;
     });
     assert_eq!(rule, Rule::EdgeHalfedgeElsewhere);
     let rule = broken(|w, m| {
         let f = m.faces[0];
-        let other = m.halfedges.iter().copied().find(|&h| MeshRef::new(w).face(h) != Some(f)).unwrap();
+        let other = m
+            .halfedges
+            .iter()
+            .copied()
+            .find(|&h| MeshRef::new(w).face(h) != Some(f))
+            .unwrap();
         w.get_mut::<pappus::mesh::Face>(f.0).unwrap().halfedge = other;
     });
     assert_eq!(rule, Rule::FaceHalfedgeElsewhere);
@@ -298,7 +384,10 @@ fn validate_catches_a_boundary_vertex_pointing_inside() {
     let m = MeshRef::new(&world);
     let inner = m.vertex_outgoing(v).find(|&h| !m.is_boundary(h)).unwrap();
     world.get_mut::<Vertex>(v.0).unwrap().halfedge = inner;
-    assert_eq!(validate(&world, built.mesh).unwrap_err().rule, Rule::BoundaryVertexHalfedge);
+    assert_eq!(
+        validate(&world, built.mesh).unwrap_err().rule,
+        Rule::BoundaryVertexHalfedge
+    );
 }
 
 #[test]

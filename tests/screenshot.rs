@@ -6,13 +6,18 @@ use std::process::Command;
 
 fn decode(path: &Path) -> (u32, u32, Vec<u8>) {
     let file = std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut reader = png::Decoder::new(std::io::BufReader::new(file)).read_info().unwrap();
+    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .unwrap();
     let mut buf = vec![0; reader.output_buffer_size().unwrap()];
     let info = reader.next_frame(&mut buf).unwrap();
     buf.truncate(info.buffer_size());
     let channels = info.color_type.samples();
     // Keep RGB only.
-    let rgb = buf.chunks(channels).flat_map(|p| [p[0], p[1], p[2]]).collect();
+    let rgb = buf
+        .chunks(channels)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
     (info.width, info.height, rgb)
 }
 
@@ -49,8 +54,14 @@ fn flip_through_its_shortcut_changes_the_picture() {
         .expect("runs the editor");
     let log = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "editor failed: {log}");
-    assert!(log.contains("flip e"), "the shortcut reached the editor: {log}");
-    assert!(log.contains(": flipped to e"), "the flip was applied: {log}");
+    assert!(
+        log.contains("flip e"),
+        "the shortcut reached the editor: {log}"
+    );
+    assert!(
+        log.contains(": flipped to e"),
+        "the flip was applied: {log}"
+    );
     let (w, h, a) = decode(&before);
     let (w2, h2, b) = decode(&after);
     assert_eq!((w, h), (w2, h2));
@@ -62,5 +73,8 @@ fn flip_through_its_shortcut_changes_the_picture() {
         .flat_map(|y| (360..w as usize).map(move |x| (y * w as usize + x) * 3))
         .filter(|&i| a[i..i + 3] != b[i..i + 3])
         .count();
-    assert!(changed > 100, "the flip changed only {changed} viewport pixels");
+    assert!(
+        changed > 100,
+        "the flip changed only {changed} viewport pixels"
+    );
 }

@@ -42,7 +42,10 @@ fn loop_on_a_tetrahedron_follows_the_formulas() {
     assert_eq!((s.vertices, s.faces), (10, 16));
     validate(&world, built.mesh).unwrap();
     let st = mesh_stats(&world, built.mesh);
-    assert_eq!((st.vertices, st.edges, st.faces, st.euler_characteristic), (10, 24, 16, 2));
+    assert_eq!(
+        (st.vertices, st.edges, st.faces, st.euler_characteristic),
+        (10, 24, 16, 2)
+    );
     let m = MeshRef::new(&world);
     let n = neighbours(&soup);
     for (i, v) in built.input_vertices.iter().enumerate() {
@@ -59,7 +62,8 @@ fn loop_on_a_tetrahedron_follows_the_formulas() {
                 .filter(|&x| x != a && x != b)
                 .map(|x| soup.positions[x as usize])
                 .sum();
-            let e = 0.375 * (soup.positions[a as usize] + soup.positions[b as usize]) + 0.125 * others;
+            let e =
+                0.375 * (soup.positions[a as usize] + soup.positions[b as usize]) + 0.125 * others;
             assert!(contains_point(&out, e), "edge point {a}-{b}");
         }
     }
@@ -91,22 +95,39 @@ fn loop_on_an_open_grid_uses_the_boundary_rules() {
     loop_subdivide(&mut world, built.mesh, 1).unwrap();
     validate(&world, built.mesh).unwrap();
     let s = mesh_stats(&world, built.mesh);
-    assert_eq!((s.vertices, s.faces, s.boundary_loops, s.euler_characteristic), (v + e, 4 * f, 1, 1));
+    assert_eq!(
+        (
+            s.vertices,
+            s.faces,
+            s.boundary_loops,
+            s.euler_characteristic
+        ),
+        (v + e, 4 * f, 1, 1)
+    );
     let m = MeshRef::new(&world);
     let at = |x: u32, y: u32| (y * 4 + x) as usize;
     let p = |i: usize| soup.positions[i];
     // The corner (3, 0) has two edges: it stays put.
-    assert!(close(m.position(built.input_vertices[at(3, 0)].unwrap()), p(at(3, 0))));
+    assert!(close(
+        m.position(built.input_vertices[at(3, 0)].unwrap()),
+        p(at(3, 0))
+    ));
     // A boundary vertex: 3/4 v + 1/8 (a + b) along the boundary.
     let b = at(1, 0);
     let expected = 0.75 * p(b) + 0.125 * (p(at(0, 0)) + p(at(2, 0)));
-    assert!(close(m.position(built.input_vertices[b].unwrap()), expected));
+    assert!(close(
+        m.position(built.input_vertices[b].unwrap()),
+        expected
+    ));
     // An interior vertex of valence 6: u = 3/48.
     let c = at(1, 1);
     assert_eq!(n[c].len(), 6);
     let sum: Vec3 = n[c].iter().map(|&j| p(j as usize)).sum();
     let expected = (1.0 - 6.0 / 16.0) * p(c) + sum / 16.0;
-    assert!(close(m.position(built.input_vertices[c].unwrap()), expected));
+    assert!(close(
+        m.position(built.input_vertices[c].unwrap()),
+        expected
+    ));
     // A boundary edge point is the midpoint.
     let out = to_soup(&world, built.mesh).positions;
     assert!(contains_point(&out, (p(at(0, 0)) + p(at(1, 0))) / 2.0));
@@ -163,7 +184,12 @@ fn catmull_clark_on_a_single_quad_keeps_corners_and_halves_edges() {
 #[test]
 fn catmull_clark_takes_polygons_and_gives_quads() {
     // Triangles, quads and a boundary: the result is all quads, valid, same χ.
-    for soup in [shapes::tetrahedron(), shapes::grid_with_holes(2), shapes::torus(6, 5), shapes::slab_with_holes(2)] {
+    for soup in [
+        shapes::tetrahedron(),
+        shapes::grid_with_holes(2),
+        shapes::torus(6, 5),
+        shapes::slab_with_holes(2),
+    ] {
         let (mut world, built) = build(&soup);
         let before = mesh_stats(&world, built.mesh);
         catmull_clark(&mut world, built.mesh, 2).unwrap();

@@ -5,8 +5,7 @@
 
 use bevy::ecs::message::{MessageCursor, Messages};
 use bevy::prelude::{Local, World};
-use std::path::{Path, PathBuf};
-
+use std::path::Path;
 
 use crate::io;
 use crate::mesh::ids::{EdgeId, ElementId, MeshId};
@@ -114,7 +113,10 @@ pub fn apply(world: &mut World, request: &EditRequest) -> Result<String, String>
                 return Err("nothing is selected".into());
             };
             let to = navigate(&MeshRef::new(world), from, *relation).ok_or_else(|| {
-                format!("{from} has no {} (a boundary halfedge has no face)", relation.name())
+                format!(
+                    "{from} has no {} (a boundary halfedge has no face)",
+                    relation.name()
+                )
             })?;
             world.resource_mut::<Selection>().element = Some(to);
             Ok(format!("{to}"))
@@ -147,7 +149,7 @@ fn edited(world: &mut World, mesh: MeshId, select: Option<ElementId>) {
 }
 
 /// Opens a mesh, replacing the active one only once the new one has been read and built.
-fn open(world: &mut World, path: &PathBuf) -> Result<String, String> {
+fn open(world: &mut World, path: &Path) -> Result<String, String> {
     let (soup, info) = crate::source::read_source(path)?;
     let built = build_mesh(world, &soup, info).map_err(|e| format!("{}: {e}", path.display()))?;
     if let Some(old) = world.resource::<ActiveMesh>().0 {

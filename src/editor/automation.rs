@@ -10,6 +10,7 @@
 //! | `select-edge:A,B` | select the edge between the input file's vertices A and B (0-based) |
 //! | `select:ID` | select an element by id (`f12v0`) |
 //! | `shot:PATH` | save a screenshot of the window to PATH (PNG) and wait until it is written |
+//! | `measure:N` | let N frames pass and log their mean frame time |
 //! | `exit` | quit |
 //!
 //! Example: `PAPPUS_SCRIPT='wait:5;select-edge:0,1;shot:before.png;key:R;wait:3;shot:after.png;exit'`.
@@ -40,6 +41,8 @@ pub enum ScriptStep {
     Select(ElementId),
     /// Save a screenshot.
     Shot(PathBuf),
+    /// Measure the mean frame time over N frames.
+    Measure(u32),
     /// Quit.
     Exit,
 }
@@ -50,6 +53,7 @@ pub struct Script {
     steps: std::collections::VecDeque<ScriptStep>,
     waiting: u32,
     shots_pending: usize,
+    measuring: Option<(u32, std::time::Instant)>,
 }
 
 /// Screenshots requested by the script that are not yet on disk.
@@ -68,6 +72,7 @@ impl Script {
             let bad = || format!("bad script step `{raw}`");
             steps.push_back(match name {
                 "wait" => ScriptStep::Wait(arg.parse().map_err(|_| bad())?),
+                "measure" => ScriptStep::Measure(arg.parse().map_err(|_| bad())?),
                 "key" => ScriptStep::Key(key_code(arg).ok_or_else(bad)?),
                 "select-edge" => {
                     let (a, b) = arg.split_once(',').ok_or_else(bad)?;
@@ -86,6 +91,7 @@ impl Script {
             steps,
             waiting: 0,
             shots_pending: 0,
+            measuring: None,
         })
     }
 }
@@ -137,6 +143,10 @@ pub fn run_script(world: &mut World) {
             script.waiting -= 1;
             break;
         }
+        if let Some((frames, start)) = script.measuring.take() {
+            let ms = start.elapsed().as_secs_f64() * 1000.0 / f64::from(frames.max(1));
+            bevy::log::info!("measure: mean frame time {ms:.1} ms over {frames} frames");
+        }
         if script.shots_pending > 0 && pending.load(std::sync::atomic::Ordering::SeqCst) > 0 {
             break;
         }
@@ -146,6 +156,10 @@ pub fn run_script(world: &mut World) {
         };
         match step {
             ScriptStep::Wait(n) => script.waiting = n,
+            ScriptStep::Measure(n) => {
+                script.waiting = n;
+                script.measuring = Some((n, std::time::Instant::now()));
+            }
             ScriptStep::Key(key) => {
                 let window = world
                     .query_filtered::<Entity, With<PrimaryWindow>>()
@@ -155,7 +169,9 @@ pub fn run_script(world: &mut World) {
                 for state in [ButtonState::Pressed, ButtonState::Released] {
                     world.write_message(KeyboardInput {
                         key_code: key,
-                        logical_key: Key::Unidentified(bevy::input::keyboard::NativeKey::Unidentified),
+                        logical_key: Key::Unidentified(
+                            bevy::input::keyboard::NativeKey::Unidentified,
+                        ),
                         state,
                         text: None,
                         repeat: false,
@@ -205,11 +221,8 @@ pub fn run_script(world: &mut World) {
 /// in file order by a freshly built mesh, so the index is the position in that list.
 fn input_edge(world: &World, a: u32, b: u32) -> Option<ElementId> {
     let mesh = world.resource::<ActiveMesh>().0?;
-    let vertices = crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(
-        world,
-        mesh,
-        crate::mesh::VertexId,
-    );
+    let vertices =
+        crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(world, mesh, crate::mesh::VertexId);
     let (va, vb) = (*vertices.get(a as usize)?, *vertices.get(b as usize)?);
     let m = MeshRef::new(world);
     m.find_halfedge(va, vb).map(|h| ElementId::Edge(m.edge(h)))

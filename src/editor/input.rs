@@ -71,7 +71,12 @@ pub struct Shortcut {
     pub description: &'static str,
 }
 
-const fn key(key: KeyCode, keys: &'static str, action: Action, description: &'static str) -> Shortcut {
+const fn key(
+    key: KeyCode,
+    keys: &'static str,
+    action: Action,
+    description: &'static str,
+) -> Shortcut {
     Shortcut {
         key,
         ctrl: false,
@@ -82,7 +87,13 @@ const fn key(key: KeyCode, keys: &'static str, action: Action, description: &'st
     }
 }
 
-const fn ctrl(key: KeyCode, shift: bool, keys: &'static str, action: Action, description: &'static str) -> Shortcut {
+const fn ctrl(
+    key: KeyCode,
+    shift: bool,
+    keys: &'static str,
+    action: Action,
+    description: &'static str,
+) -> Shortcut {
     Shortcut {
         key,
         ctrl: true,
@@ -95,34 +106,172 @@ const fn ctrl(key: KeyCode, shift: bool, keys: &'static str, action: Action, des
 
 /// Every shortcut of the editor.
 pub const SHORTCUTS: &[Shortcut] = &[
-    key(KeyCode::KeyR, "R", Action::Flip, "flip (rotate) the selected edge"),
-    key(KeyCode::KeyS, "S", Action::Split, "split the selected edge at its midpoint"),
-    key(KeyCode::KeyC, "C", Action::Collapse, "collapse the selected edge to its midpoint"),
-    ctrl(KeyCode::KeyT, false, "Ctrl+T", Action::Triangulate, "triangulate every polygon"),
-    key(KeyCode::KeyL, "L", Action::LoopSubdivide, "Loop subdivision (triangles)"),
-    key(KeyCode::KeyQ, "Q", Action::CatmullClark, "Catmull-Clark subdivision (to quads)"),
-    key(KeyCode::KeyH, "H", Action::Navigate(Relation::Halfedge), "go to the element's halfedge"),
-    key(KeyCode::KeyT, "T", Action::Navigate(Relation::Twin), "go to twin"),
-    key(KeyCode::KeyN, "N", Action::Navigate(Relation::Next), "go to next"),
-    key(KeyCode::KeyP, "P", Action::Navigate(Relation::Prev), "go to prev"),
-    key(KeyCode::KeyV, "V", Action::Navigate(Relation::Vertex), "go to vertex (tip)"),
-    key(KeyCode::KeyE, "E", Action::Navigate(Relation::Edge), "go to edge"),
-    key(KeyCode::KeyF, "F", Action::Navigate(Relation::Face), "go to face"),
-    key(KeyCode::Digit1, "1", Action::Mode(SelectMode::Vertex), "click selects vertices"),
-    key(KeyCode::Digit2, "2", Action::Mode(SelectMode::Edge), "click selects edges"),
-    key(KeyCode::Digit3, "3", Action::Mode(SelectMode::Face), "click selects faces"),
-    key(KeyCode::Digit4, "4", Action::Mode(SelectMode::Halfedge), "click selects halfedges"),
-    key(KeyCode::Backquote, "`", Action::Mode(SelectMode::Auto), "click selects the nearest element"),
-    key(KeyCode::Escape, "Esc", Action::ClearSelection, "select nothing"),
-    key(KeyCode::Period, ".", Action::Frame, "frame the selection (or the mesh)"),
-    key(KeyCode::Home, "Home", Action::Frame, "frame the selection (or the mesh)"),
-    key(KeyCode::KeyZ, "Z", Action::ToggleSmooth, "flat / smooth shading"),
-    key(KeyCode::KeyW, "W", Action::ToggleWireframe, "wireframe on / off"),
-    key(KeyCode::KeyA, "A", Action::ToggleHalfedges, "halfedge arrows on / off"),
-    key(KeyCode::Delete, "Delete", Action::DeleteMesh, "delete the mesh"),
-    ctrl(KeyCode::KeyO, false, "Ctrl+O", Action::Open, "open a file (or drop one on the window)"),
+    key(
+        KeyCode::KeyR,
+        "R",
+        Action::Flip,
+        "flip (rotate) the selected edge",
+    ),
+    key(
+        KeyCode::KeyS,
+        "S",
+        Action::Split,
+        "split the selected edge at its midpoint",
+    ),
+    key(
+        KeyCode::KeyC,
+        "C",
+        Action::Collapse,
+        "collapse the selected edge to its midpoint",
+    ),
+    ctrl(
+        KeyCode::KeyT,
+        false,
+        "Ctrl+T",
+        Action::Triangulate,
+        "triangulate every polygon",
+    ),
+    key(
+        KeyCode::KeyL,
+        "L",
+        Action::LoopSubdivide,
+        "Loop subdivision (triangles)",
+    ),
+    key(
+        KeyCode::KeyQ,
+        "Q",
+        Action::CatmullClark,
+        "Catmull-Clark subdivision (to quads)",
+    ),
+    key(
+        KeyCode::KeyH,
+        "H",
+        Action::Navigate(Relation::Halfedge),
+        "go to the element's halfedge",
+    ),
+    key(
+        KeyCode::KeyT,
+        "T",
+        Action::Navigate(Relation::Twin),
+        "go to twin",
+    ),
+    key(
+        KeyCode::KeyN,
+        "N",
+        Action::Navigate(Relation::Next),
+        "go to next",
+    ),
+    key(
+        KeyCode::KeyP,
+        "P",
+        Action::Navigate(Relation::Prev),
+        "go to prev",
+    ),
+    key(
+        KeyCode::KeyV,
+        "V",
+        Action::Navigate(Relation::Vertex),
+        "go to vertex (tip)",
+    ),
+    key(
+        KeyCode::KeyE,
+        "E",
+        Action::Navigate(Relation::Edge),
+        "go to edge",
+    ),
+    key(
+        KeyCode::KeyF,
+        "F",
+        Action::Navigate(Relation::Face),
+        "go to face",
+    ),
+    key(
+        KeyCode::Digit1,
+        "1",
+        Action::Mode(SelectMode::Vertex),
+        "click selects vertices",
+    ),
+    key(
+        KeyCode::Digit2,
+        "2",
+        Action::Mode(SelectMode::Edge),
+        "click selects edges",
+    ),
+    key(
+        KeyCode::Digit3,
+        "3",
+        Action::Mode(SelectMode::Face),
+        "click selects faces",
+    ),
+    key(
+        KeyCode::Digit4,
+        "4",
+        Action::Mode(SelectMode::Halfedge),
+        "click selects halfedges",
+    ),
+    key(
+        KeyCode::Backquote,
+        "`",
+        Action::Mode(SelectMode::Auto),
+        "click selects the nearest element",
+    ),
+    key(
+        KeyCode::Escape,
+        "Esc",
+        Action::ClearSelection,
+        "select nothing",
+    ),
+    key(
+        KeyCode::Period,
+        ".",
+        Action::Frame,
+        "frame the selection (or the mesh)",
+    ),
+    key(
+        KeyCode::Home,
+        "Home",
+        Action::Frame,
+        "frame the selection (or the mesh)",
+    ),
+    key(
+        KeyCode::KeyZ,
+        "Z",
+        Action::ToggleSmooth,
+        "flat / smooth shading",
+    ),
+    key(
+        KeyCode::KeyW,
+        "W",
+        Action::ToggleWireframe,
+        "wireframe on / off",
+    ),
+    key(
+        KeyCode::KeyA,
+        "A",
+        Action::ToggleHalfedges,
+        "halfedge arrows on / off",
+    ),
+    key(
+        KeyCode::Delete,
+        "Delete",
+        Action::DeleteMesh,
+        "delete the mesh",
+    ),
+    ctrl(
+        KeyCode::KeyO,
+        false,
+        "Ctrl+O",
+        Action::Open,
+        "open a file (or drop one on the window)",
+    ),
     ctrl(KeyCode::KeyS, false, "Ctrl+S", Action::Save, "save"),
-    ctrl(KeyCode::KeyS, true, "Ctrl+Shift+S", Action::SaveAs, "save as"),
+    ctrl(
+        KeyCode::KeyS,
+        true,
+        "Ctrl+Shift+S",
+        Action::SaveAs,
+        "save as",
+    ),
     key(KeyCode::F1, "F1", Action::Help, "show / hide this help"),
     Shortcut {
         key: KeyCode::Slash,
@@ -165,7 +314,10 @@ pub fn shortcut_for(key: KeyCode, ctrl: bool, shift: bool) -> Option<&'static Sh
 
 /// Reads key presses and performs their actions (the `Input` set).
 pub fn keyboard_shortcuts(world: &mut World) {
-    if world.get_resource::<KeyboardCaptured>().is_some_and(|k| k.0) {
+    if world
+        .get_resource::<KeyboardCaptured>()
+        .is_some_and(|k| k.0)
+    {
         return;
     }
     let keys = world.resource::<ButtonInput<KeyCode>>();

@@ -103,21 +103,20 @@ impl Plugin for EditorWindowPlugin {
         let open = self.open.clone();
         app.init_gizmo_group::<overlay::HighlightGizmos>()
             .add_systems(Startup, (scene::setup_scene, overlay::configure_gizmos))
-            .add_systems(
-                Startup,
-                move |mut requests: MessageWriter<EditRequest>| {
-                    if let Some(path) = open.clone() {
-                        requests.write(EditRequest::Open(path));
-                    }
-                },
-            )
+            .add_systems(Startup, move |mut requests: MessageWriter<EditRequest>| {
+                if let Some(path) = open.clone() {
+                    requests.write(EditRequest::Open(path));
+                }
+            })
             .add_systems(
                 Update,
                 (
                     (scene::orbit_controls, open_dropped_files)
                         .run_if(|k: Res<input::KeyboardCaptured>| !k.0)
                         .in_set(EditorSystems::Input),
-                    frame_new_meshes.after(EditorSystems::Apply).before(EditorSystems::Sync),
+                    frame_new_meshes
+                        .after(EditorSystems::Apply)
+                        .before(EditorSystems::Sync),
                     overlay::draw_overlay.after(EditorSystems::Sync),
                 ),
             )
@@ -127,7 +126,12 @@ impl Plugin for EditorWindowPlugin {
             .add_systems(Update, scene::fit_camera_viewport.in_set(EditorSystems::Ui))
             .init_resource::<drag::PointerCaptured>()
             .add_systems(Update, drag::drive_vertex_drag.in_set(EditorSystems::Input))
-            .add_systems(Update, automation::run_script.in_set(EditorSystems::Input).before(input::keyboard_shortcuts))
+            .add_systems(
+                Update,
+                automation::run_script
+                    .in_set(EditorSystems::Input)
+                    .before(input::keyboard_shortcuts),
+            )
             .add_observer(picking::on_click)
             .add_observer(picking::on_move)
             .add_observer(picking::on_out)
@@ -180,21 +184,20 @@ pub fn run(path: Option<PathBuf>) -> i32 {
         Err(_) => None,
     };
     let mut app = App::new();
-    app
-        .add_plugins(DefaultPlugins.set(WindowPlugin {
-            primary_window: Some(Window {
-                title: "Pappus".into(),
-                resolution: (1280u32, 800u32).into(),
-                ..default()
-            }),
+    app.add_plugins(DefaultPlugins.set(WindowPlugin {
+        primary_window: Some(Window {
+            title: "Pappus".into(),
+            resolution: (1280u32, 800u32).into(),
             ..default()
-        }))
-        .add_plugins((
-            MeshPickingPlugin,
-            bevy_egui::EguiPlugin::default(),
-            EditorLogicPlugin,
-            EditorWindowPlugin { open },
-        ));
+        }),
+        ..default()
+    }))
+    .add_plugins((
+        MeshPickingPlugin,
+        bevy_egui::EguiPlugin::default(),
+        EditorLogicPlugin,
+        EditorWindowPlugin { open },
+    ));
     if let Some(script) = script {
         app.insert_resource(script);
     }

@@ -10,7 +10,7 @@ use bevy::gizmos::config::GizmoConfigGroup;
 use bevy::math::{Isometry3d, Vec3};
 use bevy::prelude::*;
 
-use crate::mesh::ids::{ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::ids::{ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::{MeshMembers, of_kind};
 use crate::mesh::topology::MeshRef;
 use crate::mesh::{Face, MeshInfo};
@@ -56,6 +56,9 @@ pub enum Shape {
 pub struct Overlay {
     /// Everything to draw.
     pub shapes: Vec<Shape>,
+    /// Face count of the active mesh, and the render rebuild it was counted at (counting is
+    /// O(mesh), so it is redone only after a rebuild).
+    face_count: Option<(MeshId, usize, usize)>,
 }
 
 /// The arrow of halfedge `h`: its segment pulled towards the centre of its face (away from the
@@ -65,7 +68,9 @@ pub fn halfedge_arrow(m: &MeshRef<'_>, h: HalfedgeId) -> (Vec3, Vec3) {
     let inside = match m.face(h) {
         Some(f) => m.face_centroid(f),
         None => {
-            let other = m.face(m.twin(h)).map_or((a + b) / 2.0, |f| m.face_centroid(f));
+            let other = m
+                .face(m.twin(h))
+                .map_or((a + b) / 2.0, |f| m.face_centroid(f));
             (a + b) - other
         }
     };
@@ -117,13 +122,25 @@ fn face_outline(m: &MeshRef<'_>, f: FaceId, color: Color, out: &mut Vec<Shape>) 
 /// Gathers this frame's overlay shapes (the `Sync` set).
 pub fn gather_overlay(world: &mut World) {
     let mut shapes = Vec::new();
-    let settings = world.get_resource::<ViewSettings>().copied().unwrap_or_default();
+    let settings = world
+        .get_resource::<ViewSettings>()
+        .copied()
+        .unwrap_or_default();
     if let Some(mesh) = world.resource::<ActiveMesh>().0
         && world.get::<MeshInfo>(mesh.0).is_some()
     {
+        let generation = world.resource::<super::render_sync::RenderStats>().rebuilds;
+        let cached = world.resource::<Overlay>().face_count;
+        let faces = match cached {
+            Some((m, g, n)) if m == mesh && g == generation => n,
+            _ => {
+                let n = of_kind::<Face, _>(world, mesh, FaceId).len();
+                world.resource_mut::<Overlay>().face_count = Some((mesh, generation, n));
+                n
+            }
+        };
         let m = MeshRef::new(world);
-        let faces = of_kind::<Face, _>(world, mesh, FaceId);
-        if faces.len() <= SMALL_MESH_FACES {
+        if faces <= SMALL_MESH_FACES {
             let members = MeshMembers::collect(world, mesh);
             for &v in &members.vertices {
                 shapes.push(Shape::Dot(m.position(v), mean_edge_near(&m, v) * 0.04, DOT));
@@ -137,11 +154,12 @@ pub fn gather_overlay(world: &mut World) {
         } else if settings.halfedges {
             // Around the selection only.
             let near: Vec<HalfedgeId> = match world.resource::<Selection>().element {
-                Some(ElementId::Face(f)) if m.try_face(f).is_some() => m.face_halfedges(f).collect(),
-                Some(ElementId::Vertex(v)) if m.try_vertex(v).is_some() => m
-                    .vertex_outgoing(v)
-                    .flat_map(|h| [h, m.twin(h)])
-                    .collect(),
+                Some(ElementId::Face(f)) if m.try_face(f).is_some() => {
+                    m.face_halfedges(f).collect()
+                }
+                Some(ElementId::Vertex(v)) if m.try_vertex(v).is_some() => {
+                    m.vertex_outgoing(v).flat_map(|h| [h, m.twin(h)]).collect()
+                }
                 Some(ElementId::Halfedge(h)) if m.try_halfedge(h).is_some() => {
                     m.loop_from(h).chain(m.loop_from(m.twin(h))).collect()
                 }
@@ -197,8 +215,12 @@ pub fn draw_overlay(
                 thin.circle(Isometry3d::new(p, facing), r, c).resolution(6);
             }
             Shape::HighlightDot(p, r, c) => {
-                thick.circle(Isometry3d::new(p, facing), r, c).resolution(12);
-                thick.circle(Isometry3d::new(p, facing), r * 0.5, c).resolution(8);
+                thick
+                    .circle(Isometry3d::new(p, facing), r, c)
+                    .resolution(12);
+                thick
+                    .circle(Isometry3d::new(p, facing), r * 0.5, c)
+                    .resolution(8);
             }
         }
     }

@@ -57,7 +57,13 @@ pub fn on_click(
         return;
     }
     let cursor = click.pointer_location.position;
-    match cast(&cameras, &mut ray_cast, click.event.hit.camera, target, cursor) {
+    match cast(
+        &cameras,
+        &mut ray_cast,
+        click.event.hit.camera,
+        target,
+        cursor,
+    ) {
         Some(triangle) => {
             picks.write(PickRequest {
                 render: target,
@@ -86,8 +92,13 @@ pub fn on_move(
         return;
     }
     let cursor = moved.pointer_location.position;
-    if let Some(triangle) = cast(&cameras, &mut ray_cast, moved.event.hit.camera, target, cursor)
-    {
+    if let Some(triangle) = cast(
+        &cameras,
+        &mut ray_cast,
+        moved.event.hit.camera,
+        target,
+        cursor,
+    ) {
         picks.write(PickRequest {
             render: target,
             triangle,
@@ -145,7 +156,10 @@ pub fn resolve_picks(
 }
 
 fn resolve(world: &mut World, pick: &PickRequest, mode: SelectMode) -> Option<ElementId> {
-    let face = *world.get::<TriangleFaces>(pick.render)?.0.get(pick.triangle)?;
+    let face = *world
+        .get::<TriangleFaces>(pick.render)?
+        .0
+        .get(pick.triangle)?;
     let (camera, transform) = world
         .query::<(&Camera, &GlobalTransform)>()
         .get(world, pick.camera)

@@ -65,6 +65,10 @@ pub struct RenderStats {
     pub last_triangles: usize,
 }
 
+/// Meshes with more edges than this get no full wireframe (at that density it is a black
+/// blob and costs seconds per frame under software rendering); the selection is still drawn.
+pub const WIREFRAME_MAX_EDGES: usize = 400_000;
+
 /// Colour of interior edges in the wireframe.
 pub const EDGE_COLOR: Color = Color::srgb(0.08, 0.08, 0.1);
 /// Colour of boundary edges in the wireframe.
@@ -234,7 +238,10 @@ fn upload_wireframe(world: &mut World, mesh: MeshId) {
     if !world.contains_resource::<Assets<bevy::gizmos::GizmoAsset>>() {
         return;
     }
-    let lines = edge_lines(world, mesh);
+    let mut lines = edge_lines(world, mesh);
+    if lines.len() > WIREFRAME_MAX_EDGES {
+        lines.clear();
+    }
     let mut asset = bevy::gizmos::GizmoAsset::default();
     for (a, b, color) in lines {
         asset.line(a, b, color);

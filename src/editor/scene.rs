@@ -54,10 +54,7 @@ pub struct SceneMaterials {
 }
 
 /// Spawns the camera and lights, and makes the materials.
-pub fn setup_scene(
-    mut commands: Commands,
-    mut materials: ResMut<Assets<StandardMaterial>>,
-) {
+pub fn setup_scene(mut commands: Commands, mut materials: ResMut<Assets<StandardMaterial>>) {
     let orbit = OrbitCamera::default();
     commands.spawn((Camera3d::default(), orbit.transform(), orbit, Msaa::Off));
     commands.spawn((
@@ -159,11 +156,10 @@ pub fn frame_selection(world: &mut World) {
     if points.is_empty() {
         return;
     }
-    let (lo, hi) = points
-        .iter()
-        .fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), &p| {
-            (lo.min(p), hi.max(p))
-        });
+    let (lo, hi) = points.iter().fold(
+        (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    );
     let focus = (lo + hi) / 2.0;
     let radius = ((hi - lo).length() * 1.4).max(0.05);
     let mut cameras = world.query::<(&mut OrbitCamera, &mut Transform)>();

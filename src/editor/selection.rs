@@ -98,7 +98,9 @@ pub fn navigate(m: &MeshRef<'_>, from: ElementId, relation: Relation) -> Option<
         Relation::Vertex => ElementId::Vertex(m.to_vertex(h)),
         Relation::Edge => ElementId::Edge(m.edge(h)),
         Relation::Face => {
-            let face = m.face(h).or_else(|| (!is_halfedge).then(|| m.face(m.twin(h))).flatten());
+            let face = m
+                .face(h)
+                .or_else(|| (!is_halfedge).then(|| m.face(m.twin(h))).flatten());
             ElementId::Face(face?)
         }
     })
@@ -125,7 +127,11 @@ mod tests {
         assert_eq!(go(hx, Relation::Next), Some(ElementId::Halfedge(m.next(h))));
         assert_eq!(go(hx, Relation::Prev), Some(ElementId::Halfedge(m.prev(h))));
         assert_eq!(go(hx, Relation::Edge), Some(ElementId::Edge(m.edge(h))));
-        assert_eq!(go(hx, Relation::Face), None, "a boundary halfedge has no face");
+        assert_eq!(
+            go(hx, Relation::Face),
+            None,
+            "a boundary halfedge has no face"
+        );
         let inner = m.twin(h);
         assert_eq!(
             go(ElementId::Halfedge(inner), Relation::Face),

@@ -40,7 +40,10 @@ impl Plugin for UiPlugin {
             .init_resource::<PendingActions>()
             .add_systems(
                 Update,
-                (run_pending_actions.in_set(EditorSystems::Input), snapshot.in_set(EditorSystems::Ui)),
+                (
+                    run_pending_actions.in_set(EditorSystems::Input),
+                    snapshot.in_set(EditorSystems::Ui),
+                ),
             )
             .add_systems(EguiPrimaryContextPass, panels);
     }
@@ -188,7 +191,10 @@ fn describe(m: &MeshRef<'_>, id: ElementId) -> SelectedView {
                 None,
                 vec![
                     ("degree".into(), m.face_degree(f).to_string()),
-                    ("area".into(), format!("{:.5}", m.face_area_vector(f).length() / 2.0)),
+                    (
+                        "area".into(),
+                        format!("{:.5}", m.face_area_vector(f).length() / 2.0),
+                    ),
                     ("on boundary".into(), yes_no(boundary)),
                 ],
             )
@@ -211,7 +217,10 @@ fn shortcut_label(action: Action) -> &'static str {
 }
 
 /// Draws the panels and turns clicks into requests.
-#[allow(clippy::too_many_arguments, reason = "a UI system reads many small resources")]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "a UI system reads many small resources"
+)]
 pub fn panels(
     mut contexts: EguiContexts,
     view: Res<InspectorView>,
@@ -240,7 +249,10 @@ pub fn panels(
             match log.entries.last() {
                 Some(last) => match &last.result {
                     Ok(s) => ui.label(format!("✔ {}: {s}", last.request)),
-                    Err(r) => ui.colored_label(egui::Color32::from_rgb(230, 120, 90), format!("✘ {}: {r}", last.request)),
+                    Err(r) => ui.colored_label(
+                        egui::Color32::from_rgb(230, 120, 90),
+                        format!("✘ {}: {r}", last.request),
+                    ),
                 },
                 None => ui.label("Ready. Press F1 or ? for help."),
             };
@@ -331,14 +343,15 @@ fn file_section(
             let _ = purpose;
         }
         let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-        if ui.button("Open").clicked() || entered {
-            if !fields.path.trim().is_empty() {
-                requests.write(EditRequest::Open(PathBuf::from(fields.path.trim())));
-            }
+        if (ui.button("Open").clicked() || entered) && !fields.path.trim().is_empty() {
+            requests.write(EditRequest::Open(PathBuf::from(fields.path.trim())));
         }
     });
     ui.horizontal(|ui| {
-        if ui.button(format!("Save ({})", shortcut_label(Action::Save))).clicked() {
+        if ui
+            .button(format!("Save ({})", shortcut_label(Action::Save)))
+            .clicked()
+        {
             requests.write(EditRequest::Save(None));
         }
         if ui.button("Save as (path above)").clicked() && !fields.path.trim().is_empty() {
@@ -359,16 +372,29 @@ fn mesh_section(ui: &mut egui::Ui, view: &InspectorView) {
     }
     let s = &mesh.stats;
     egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
-        let sizes: Vec<String> = s.face_sizes.iter().map(|(k, n)| format!("{k}: {n}")).collect();
+        let sizes: Vec<String> = s
+            .face_sizes
+            .iter()
+            .map(|(k, n)| format!("{k}: {n}"))
+            .collect();
         for (k, v) in [
-            ("V / E / F", format!("{} / {} / {}", s.vertices, s.edges, s.faces)),
+            (
+                "V / E / F",
+                format!("{} / {} / {}", s.vertices, s.edges, s.faces),
+            ),
             ("halfedges", s.halfedges.to_string()),
-            ("Euler char. / genus", format!("{} / {}", s.euler_characteristic, s.genus)),
+            (
+                "Euler char. / genus",
+                format!("{} / {}", s.euler_characteristic, s.genus),
+            ),
             ("components", s.components.to_string()),
             ("boundary loops", s.boundary_loops.to_string()),
             ("face sizes", sizes.join(", ")),
             ("min angle", format!("{:.2}°", s.min_angle_deg)),
-            ("angles < 30°", format!("{:.2} % of triangles", s.pct_min_angle_below_30)),
+            (
+                "angles < 30°",
+                format!("{:.2} % of triangles", s.pct_min_angle_below_30),
+            ),
         ] {
             ui.label(k);
             ui.label(v);
@@ -377,7 +403,10 @@ fn mesh_section(ui: &mut egui::Ui, view: &InspectorView) {
     });
     match &mesh.validation {
         Ok(()) => ui.colored_label(egui::Color32::from_rgb(120, 200, 120), "valid"),
-        Err(e) => ui.colored_label(egui::Color32::from_rgb(230, 120, 90), format!("INVALID: {e}")),
+        Err(e) => ui.colored_label(
+            egui::Color32::from_rgb(230, 120, 90),
+            format!("INVALID: {e}"),
+        ),
     };
 }
 
@@ -416,7 +445,11 @@ fn selection_section(
         ElementId::Face(_) => "face",
         ElementId::Mesh(_) => "mesh",
     };
-    ui.label(egui::RichText::new(format!("{kind} {}", sel.id)).strong().monospace());
+    ui.label(
+        egui::RichText::new(format!("{kind} {}", sel.id))
+            .strong()
+            .monospace(),
+    );
     egui::Grid::new("relations").num_columns(2).show(ui, |ui| {
         for (relation, target) in &sel.relations {
             let key = SHORTCUTS
@@ -426,7 +459,10 @@ fn selection_section(
             ui.label(format!("{} ({key})", relation.name()));
             match target {
                 Some(t) => {
-                    if ui.link(egui::RichText::new(t.to_string()).monospace()).clicked() {
+                    if ui
+                        .link(egui::RichText::new(t.to_string()).monospace())
+                        .clicked()
+                    {
                         requests.write(EditRequest::Select(Some(*t)));
                     }
                 }
@@ -447,9 +483,13 @@ fn selection_section(
         ui.horizontal(|ui| {
             ui.label("position");
             let speed = 0.002;
-            let changed = ui.add(egui::DragValue::new(&mut q.x).speed(speed).prefix("x ")).changed()
-                | ui.add(egui::DragValue::new(&mut q.y).speed(speed).prefix("y ")).changed()
-                | ui.add(egui::DragValue::new(&mut q.z).speed(speed).prefix("z ")).changed();
+            let changed = ui
+                .add(egui::DragValue::new(&mut q.x).speed(speed).prefix("x "))
+                .changed()
+                | ui.add(egui::DragValue::new(&mut q.y).speed(speed).prefix("y "))
+                    .changed()
+                | ui.add(egui::DragValue::new(&mut q.z).speed(speed).prefix("z "))
+                    .changed();
             if changed && q != p {
                 requests.write(EditRequest::MoveVertex(v, q));
             }
@@ -475,7 +515,10 @@ fn operations_section(
             (Action::Frame, "Frame"),
             (Action::DeleteMesh, "Delete mesh"),
         ] {
-            if ui.button(format!("{name} ({})", shortcut_label(action))).clicked() {
+            if ui
+                .button(format!("{name} ({})", shortcut_label(action)))
+                .clicked()
+            {
                 pending.0.push(action);
             }
         }

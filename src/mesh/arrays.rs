@@ -33,7 +33,11 @@ struct DenseIndex {
 
 impl DenseIndex {
     fn new(members: &MeshMembers) -> Self {
-        let size = members.entities().map(|e| e.index_u32() as usize + 1).max().unwrap_or(0);
+        let size = members
+            .entities()
+            .map(|e| e.index_u32() as usize + 1)
+            .max()
+            .unwrap_or(0);
         let mut slots = vec![NONE; size];
         let mut fill = |list: &mut dyn Iterator<Item = Entity>| {
             for (i, e) in list.enumerate() {
@@ -110,11 +114,19 @@ pub fn replace_contents(world: &mut World, mesh: MeshId, old: &MeshMembers, tabl
     for &v in &old.vertices[kept..] {
         world.despawn(v.0);
     }
-    let alloc = |n: usize| -> Vec<Entity> { world.entity_allocator().alloc_many(n as u32).collect() };
+    let alloc =
+        |n: usize| -> Vec<Entity> { world.entity_allocator().alloc_many(n as u32).collect() };
     let mut vertices: Vec<VertexId> = old.vertices[..kept].to_vec();
-    vertices.extend(alloc(tables.vertex_count() - kept).into_iter().map(VertexId));
+    vertices.extend(
+        alloc(tables.vertex_count() - kept)
+            .into_iter()
+            .map(VertexId),
+    );
     let ids = AllocatedIds {
-        halfedges: alloc(tables.halfedge_count()).into_iter().map(HalfedgeId).collect(),
+        halfedges: alloc(tables.halfedge_count())
+            .into_iter()
+            .map(HalfedgeId)
+            .collect(),
         edges: alloc(tables.edge_count()).into_iter().map(EdgeId).collect(),
         faces: alloc(tables.face_count()).into_iter().map(FaceId).collect(),
         vertices,

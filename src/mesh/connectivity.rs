@@ -62,7 +62,10 @@ impl Connectivity {
         };
 
         for f in 0..nf {
-            let (s, e) = (faces.face_starts[f] as usize, faces.face_starts[f + 1] as usize);
+            let (s, e) = (
+                faces.face_starts[f] as usize,
+                faces.face_starts[f + 1] as usize,
+            );
             c.face_halfedge.push(s as u32);
             for h in s..e {
                 let n = if h + 1 == e { s } else { h + 1 };

@@ -135,7 +135,13 @@ macro_rules! element_from {
         }
     )*};
 }
-element_from!(Vertex(VertexId), Halfedge(HalfedgeId), Edge(EdgeId), Face(FaceId), Mesh(MeshId));
+element_from!(
+    Vertex(VertexId),
+    Halfedge(HalfedgeId),
+    Edge(EdgeId),
+    Face(FaceId),
+    Mesh(MeshId)
+);
 
 /// Parses an entity written as `{index}v{generation}` (Bevy's display form), e.g. `12v0`.
 /// A bare index (`12`) means generation 0. Returns `None` for anything else.

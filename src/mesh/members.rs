@@ -63,8 +63,8 @@ pub fn of_kind<K: bevy::prelude::Component, T>(
 
 /// Every mesh entity in the world.
 pub fn meshes(world: &World) -> Vec<MeshId> {
-    let Some(mut query) = world
-        .try_query_filtered::<Entity, bevy::prelude::With<super::elements::MeshInfo>>()
+    let Some(mut query) =
+        world.try_query_filtered::<Entity, bevy::prelude::With<super::elements::MeshInfo>>()
     else {
         return Vec::new();
     };

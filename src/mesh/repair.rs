@@ -276,9 +276,7 @@ fn pair_corners_keeping_manifold_edges(
     // Greedy in file order: a face joins only if every one of its edges has room.
     let mut used = vec![0u8; group_start.len() - 1];
     for f in 0..faces.count() {
-        let fits = faces
-            .corners(f)
-            .all(|c| used[corner_group[c] as usize] < 2);
+        let fits = faces.corners(f).all(|c| used[corner_group[c] as usize] < 2);
         if fits {
             for c in faces.corners(f) {
                 used[corner_group[c] as usize] += 1;
@@ -364,8 +362,8 @@ fn orient_consistently(
     // Reversing v0..v(k-1) turns the edge of corner i into the edge of corner k-2-i (mod k).
     let corners = faces.indices.len();
     let mut moved: Vec<u32> = (0..corners as u32).collect();
-    for f in 0..count {
-        if flip[f] != 1 || faces.detached[f] {
+    for (f, &flipped) in flip.iter().enumerate() {
+        if flipped != 1 || faces.detached[f] {
             continue;
         }
         report.reoriented_faces += 1;
@@ -525,7 +523,9 @@ mod tests {
     use super::*;
 
     fn soup(n: usize, faces: &[&[u32]]) -> PolygonSoup {
-        let positions = (0..n).map(|i| Vec3::new(i as f32, (i * i) as f32, 0.0)).collect();
+        let positions = (0..n)
+            .map(|i| Vec3::new(i as f32, (i * i) as f32, 0.0))
+            .collect();
         PolygonSoup::from_faces(positions, faces)
     }
 
@@ -542,7 +542,11 @@ mod tests {
                 let next = if c + 1 == e { s } else { c + 1 };
                 let tf = r.face_starts.partition_point(|&x| x <= t) - 1;
                 let (ts, te) = (r.face_starts[tf] as usize, r.face_starts[tf + 1] as usize);
-                let tnext = if t as usize + 1 == te { ts } else { t as usize + 1 };
+                let tnext = if t as usize + 1 == te {
+                    ts
+                } else {
+                    t as usize + 1
+                };
                 assert_eq!(r.indices[t as usize], r.indices[next]);
                 assert_eq!(r.indices[tnext], r.indices[c]);
             }
@@ -562,7 +566,10 @@ mod tests {
 
     #[test]
     fn bad_faces_are_dropped_and_counted() {
-        let mut s = soup(5, &[&[0, 1, 2], &[0, 1], &[0, 1, 9], &[0, 1, 1], &[2, 3, 4]]);
+        let mut s = soup(
+            5,
+            &[&[0, 1, 2], &[0, 1], &[0, 1, 9], &[0, 1, 1], &[2, 3, 4]],
+        );
         s.positions[4] = Vec3::NAN;
         let (r, report) = repair(&s);
         assert_eq!(report.too_few_corners, 1);
@@ -582,7 +589,10 @@ mod tests {
         let (r, report) = repair(&s);
         assert_eq!(report.unreferenced_vertices, 3);
         assert_eq!(r.indices, vec![0, 1, 2]);
-        assert_eq!(r.positions, vec![s.positions[1], s.positions[3], s.positions[5]]);
+        assert_eq!(
+            r.positions,
+            vec![s.positions[1], s.positions[3], s.positions[5]]
+        );
         assert_eq!(r.input_vertex, vec![NONE, 0, NONE, 1, NONE, 2]);
     }
 
@@ -617,7 +627,10 @@ mod tests {
     #[test]
     fn mobius_band_detaches_one_face() {
         // The minimal Möbius band: five triangles of consecutive vertices around a 5-cycle.
-        let s = soup(5, &[&[0, 1, 2], &[1, 2, 3], &[2, 3, 4], &[3, 4, 0], &[4, 0, 1]]);
+        let s = soup(
+            5,
+            &[&[0, 1, 2], &[1, 2, 3], &[2, 3, 4], &[3, 4, 0], &[4, 0, 1]],
+        );
         let (r, report) = repair(&s);
         assert!(report.non_orientable_faces >= 1, "{report}");
         assert_eq!(r.face_count(), 5);

@@ -225,7 +225,12 @@ pub fn slab_with_holes(holes: u32) -> PolygonSoup {
     let mut faces: Vec<[u32; 4]> = Vec::new();
     for (i, j) in slab_cells(holes) {
         faces.push([top(i, j), top(i + 1, j), top(i + 1, j + 1), top(i, j + 1)]);
-        faces.push([bottom(i, j), bottom(i, j + 1), bottom(i + 1, j + 1), bottom(i + 1, j)]);
+        faces.push([
+            bottom(i, j),
+            bottom(i, j + 1),
+            bottom(i + 1, j + 1),
+            bottom(i + 1, j),
+        ]);
         // Walls where the neighbour across a side is missing. Each side a→b runs the way the
         // top face runs it; the wall runs b→a on top.
         let (ii, jj) = (i64::from(i), i64::from(j));
@@ -237,7 +242,12 @@ pub fn slab_with_holes(holes: u32) -> PolygonSoup {
         ];
         for (a, b, neighbour) in sides {
             if !neighbour {
-                faces.push([top(b.0, b.1), top(a.0, a.1), bottom(a.0, a.1), bottom(b.0, b.1)]);
+                faces.push([
+                    top(b.0, b.1),
+                    top(a.0, a.1),
+                    bottom(a.0, a.1),
+                    bottom(b.0, b.1),
+                ]);
             }
         }
     }
@@ -266,9 +276,7 @@ pub fn triangle_fan(n: u32, closed: bool) -> PolygonSoup {
         let a = i as f32 / n as f32 * std::f32::consts::TAU * if closed { 1.0 } else { 0.75 };
         positions.push(Vec3::new(a.cos(), a.sin(), 0.0));
     }
-    let faces: Vec<[u32; 3]> = (0..n)
-        .map(|i| [0, 1 + i, 1 + (i + 1) % rim])
-        .collect();
+    let faces: Vec<[u32; 3]> = (0..n).map(|i| [0, 1 + i, 1 + (i + 1) % rim]).collect();
     PolygonSoup::from_faces(positions, &faces)
 }
 

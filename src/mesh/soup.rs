@@ -66,7 +66,10 @@ impl PolygonSoup {
     /// # Panics
     /// If `i >= self.face_count()`.
     pub fn face(&self, i: usize) -> &[u32] {
-        let (a, b) = (self.face_starts[i] as usize, self.face_starts[i + 1] as usize);
+        let (a, b) = (
+            self.face_starts[i] as usize,
+            self.face_starts[i + 1] as usize,
+        );
         &self.indices[a..b]
     }
 

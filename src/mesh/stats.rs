@@ -107,7 +107,11 @@ pub fn mesh_stats(world: &World, mesh: MeshId) -> MeshStats {
         genus: (2 * components as i64 - boundary_loops as i64 - euler_characteristic) / 2,
         closed: boundary_loops == 0,
         face_sizes,
-        min_angle_deg: if min_angle.is_finite() { min_angle } else { 0.0 },
+        min_angle_deg: if min_angle.is_finite() {
+            min_angle
+        } else {
+            0.0
+        },
         pct_min_angle_below_30: if triangles == 0 {
             0.0
         } else {
@@ -171,7 +175,10 @@ fn count_components(m: &MeshRef<'_>, members: &MeshMembers) -> usize {
     let mut components = members.vertices.len();
     for &e in &members.edges {
         let (a, b) = m.edge_vertices(e);
-        let (ra, rb) = (find(&mut parent, index[&a.0]), find(&mut parent, index[&b.0]));
+        let (ra, rb) = (
+            find(&mut parent, index[&a.0]),
+            find(&mut parent, index[&b.0]),
+        );
         if ra != rb {
             parent[ra.max(rb) as usize] = ra.min(rb);
             components -= 1;

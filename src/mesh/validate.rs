@@ -92,10 +92,14 @@ impl fmt::Display for Rule {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let text = match self {
             Self::NonFinitePosition => "position is missing, NaN or infinite",
-            Self::DanglingLink(link) => return write!(f, "link `{link}` names no live element of this mesh"),
+            Self::DanglingLink(link) => {
+                return write!(f, "link `{link}` names no live element of this mesh");
+            }
             Self::TwinNotMutual => "twin is not mutual (twin(twin(h)) != h, or twin(h) == h)",
             Self::TwinEdgeDiffers => "halfedge and twin are on different edges",
-            Self::NextPrevDisagree => "next and prev disagree (next(prev(h)) != h or prev(next(h)) != h)",
+            Self::NextPrevDisagree => {
+                "next and prev disagree (next(prev(h)) != h or prev(next(h)) != h)"
+            }
             Self::NextLeavesFace => "next(h) is in a different face",
             Self::PrevEndsElsewhere => "prev(h) does not end where h starts",
             Self::EdgeHalfedgeElsewhere => "the edge's halfedge is not on this edge",
@@ -110,7 +114,9 @@ impl fmt::Display for Rule {
             Self::VertexFanOpen => "rotation around the vertex does not close",
             Self::NonManifoldVertex => "non-manifold vertex: its faces form more than one fan",
             Self::PinchedBoundary => "more than one boundary halfedge leaves the vertex",
-            Self::BoundaryVertexHalfedge => "boundary vertex's halfedge is not its boundary halfedge",
+            Self::BoundaryVertexHalfedge => {
+                "boundary vertex's halfedge is not its boundary halfedge"
+            }
             Self::DuplicateEdge => "two edges join the same two vertices",
             Self::BoundaryLoopBroken => "boundary loop does not close or has fewer than 3 sides",
             Self::Empty => "mesh has no faces",
@@ -167,7 +173,9 @@ impl Checker<'_> {
     }
 
     fn in_mesh(&self, e: Entity) -> bool {
-        self.world.get::<InMesh>(e).is_some_and(|m| m.0 == self.mesh)
+        self.world
+            .get::<InMesh>(e)
+            .is_some_and(|m| m.0 == self.mesh)
     }
 
     fn check_links(&self, h: HalfedgeId) -> Result<(), Invalid> {

@@ -42,7 +42,9 @@ pub enum Refusal {
     #[error("the mesh is a tetrahedron: any collapse would make it degenerate")]
     TooSmall,
     /// A collapse would join two boundary vertices through the interior (pinching the surface).
-    #[error("both endpoints are on the boundary but the edge is not: the collapse would pinch the surface")]
+    #[error(
+        "both endpoints are on the boundary but the edge is not: the collapse would pinch the surface"
+    )]
     BoundaryPinch,
     /// A face's normal would turn over (more than the allowed angle).
     #[error("{0} would flip over")]

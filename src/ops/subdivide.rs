@@ -175,14 +175,23 @@ pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, usize> {
         positions.push(if t.face[h0 as usize] == NONE {
             if n <= 2 { p } else { boundary_vertex(t, v) }
         } else {
-            let u = if n == 3 { 3.0 / 16.0 } else { 3.0 / (8.0 * n as f32) };
-            let sum: Vec3 = outgoing(t, v).map(|h| t.positions[t.to_vertex[h as usize] as usize]).sum();
+            let u = if n == 3 {
+                3.0 / 16.0
+            } else {
+                3.0 / (8.0 * n as f32)
+            };
+            let sum: Vec3 = outgoing(t, v)
+                .map(|h| t.positions[t.to_vertex[h as usize] as usize])
+                .sum();
             (1.0 - n as f32 * u) * p + u * sum
         });
     }
     for e in 0..ne {
         let h = t.edge_halfedge[e];
-        let (a, b) = (t.positions[from_vertex(t, h) as usize], t.positions[t.to_vertex[h as usize] as usize]);
+        let (a, b) = (
+            t.positions[from_vertex(t, h) as usize],
+            t.positions[t.to_vertex[h as usize] as usize],
+        );
         positions.push(if is_boundary_edge(t, h) {
             (a + b) * 0.5
         } else {
@@ -234,7 +243,10 @@ pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
     let face_points: Vec<Vec3> = (0..nf)
         .map(|f| {
             let hs = rings.face(f);
-            hs.iter().map(|&h| t.positions[t.to_vertex[h as usize] as usize]).sum::<Vec3>() / hs.len() as f32
+            hs.iter()
+                .map(|&h| t.positions[t.to_vertex[h as usize] as usize])
+                .sum::<Vec3>()
+                / hs.len() as f32
         })
         .collect();
     let mut positions = Vec::with_capacity(nv + ne + nf);
@@ -242,7 +254,9 @@ pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
         let p = t.positions[v as usize];
         let h0 = t.vertex_halfedge[v as usize];
         if t.face[h0 as usize] == NONE {
-            let faces = outgoing(t, v).filter(|&h| t.face[h as usize] != NONE).count();
+            let faces = outgoing(t, v)
+                .filter(|&h| t.face[h as usize] != NONE)
+                .count();
             positions.push(if faces <= 1 { p } else { boundary_vertex(t, v) });
             continue;
         }
@@ -256,7 +270,10 @@ pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
     }
     for e in 0..ne {
         let h = t.edge_halfedge[e];
-        let (a, b) = (t.positions[from_vertex(t, h) as usize], t.positions[t.to_vertex[h as usize] as usize]);
+        let (a, b) = (
+            t.positions[from_vertex(t, h) as usize],
+            t.positions[t.to_vertex[h as usize] as usize],
+        );
         positions.push(if is_boundary_edge(t, h) {
             (a + b) * 0.5
         } else {
@@ -283,11 +300,15 @@ pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
             (g != NONE).then(|| {
                 let g = g as usize;
                 let kg = (rings.starts[g + 1] - rings.starts[g]) as usize;
-                (rings.starts[g] as usize, rings.slot[o as usize] as usize, kg)
+                (
+                    rings.starts[g] as usize,
+                    rings.slot[o as usize] as usize,
+                    kg,
+                )
             })
         };
-        for i in 0..k {
-            let v = from_vertex(t, hs[i]);
+        for (i, &h) in hs.iter().enumerate() {
+            let v = from_vertex(t, h);
             indices.extend([v, e(i), fp, e(i + k - 1)]);
             twin.push(across(i).map_or(NONE, |(gb, j, kg)| quad(gb + (j + 1) % kg, 3)));
             twin.push(quad(base + (i + 1) % k, 2));

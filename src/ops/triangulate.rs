@@ -101,7 +101,9 @@ pub fn triangulate_face(world: &mut World, mesh: MeshId, f: FaceId) -> usize {
             let (h, next, prev) = (hs[s], hs[(s + 1) % 3], hs[(s + 2) % 3]);
             let (i, j) = corners[s];
             if j == (i + 1) % k {
-                let mut x = world.get_mut::<Halfedge>(h.0).expect("ring halfedge exists");
+                let mut x = world
+                    .get_mut::<Halfedge>(h.0)
+                    .expect("ring halfedge exists");
                 x.next = next;
                 x.prev = prev;
                 x.face = Some(face);
@@ -153,7 +155,10 @@ pub fn ear_clip(points: &[Vec3]) -> Vec<[usize; 3]> {
     };
     let u = n.any_orthonormal_vector();
     let v = n.cross(u);
-    let flat: Vec<Vec2> = points.iter().map(|&p| Vec2::new(p.dot(u), p.dot(v))).collect();
+    let flat: Vec<Vec2> = points
+        .iter()
+        .map(|&p| Vec2::new(p.dot(u), p.dot(v)))
+        .collect();
 
     let mut left: Vec<usize> = (0..k).collect();
     let mut out = Vec::with_capacity(k - 2);
@@ -233,7 +238,10 @@ mod tests {
         ];
         let t = ear_clip(&p);
         assert_eq!(t.len(), 2);
-        assert!(t.iter().all(|tri| tri.contains(&1) && tri.contains(&3)), "{t:?}");
+        assert!(
+            t.iter().all(|tri| tri.contains(&1) && tri.contains(&3)),
+            "{t:?}"
+        );
     }
 
     #[test]
@@ -245,7 +253,10 @@ mod tests {
             Vec3::new(2.0, 1.0, 0.0),
         ];
         let t = ear_clip(&p);
-        assert!(t.iter().all(|tri| tri.contains(&0) && tri.contains(&2)), "{t:?}");
+        assert!(
+            t.iter().all(|tri| tri.contains(&0) && tri.contains(&2)),
+            "{t:?}"
+        );
     }
 
     #[test]

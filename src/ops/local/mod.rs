@@ -24,8 +24,18 @@ fn todo(e: EdgeId) -> Refusal {
     Refusal::Unsuitable(format!("{}: not implemented yet", ElementId::Edge(e)))
 }
 /// Flip (placeholder).
-pub fn flip_edge(_w: &mut World, e: EdgeId) -> Result<EdgeId, Refusal> { Err(todo(e)) }
+pub fn flip_edge(_w: &mut World, e: EdgeId) -> Result<EdgeId, Refusal> {
+    Err(todo(e))
+}
 /// Split (placeholder).
-pub fn split_edge(_w: &mut World, e: EdgeId, _t: f32) -> Result<VertexId, Refusal> { Err(todo(e)) }
+pub fn split_edge(_w: &mut World, e: EdgeId, _t: f32) -> Result<VertexId, Refusal> {
+    Err(todo(e))
+}
 /// Collapse (placeholder).
-pub fn collapse_edge(_w: &mut World, e: EdgeId, _o: CollapseOptions) -> Result<CollapseResult, Refusal> { Err(todo(e)) }
+pub fn collapse_edge(
+    _w: &mut World,
+    e: EdgeId,
+    _o: CollapseOptions,
+) -> Result<CollapseResult, Refusal> {
+    Err(todo(e))
+}
