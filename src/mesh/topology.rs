@@ -245,6 +245,11 @@ impl<'w> MeshRef<'w> {
         LoopIter::new(*self, self.vertex_halfedge(v), Step::CcwRotate)
     }
 
+    /// The outgoing halfedges of `from_vertex(h)`, rotating counter-clockwise from `h`.
+    pub fn vertex_outgoing_from(&self, h: HalfedgeId) -> LoopIter<'w> {
+        LoopIter::new(*self, h, Step::CcwRotate)
+    }
+
     /// The vertices joined to `v` by an edge.
     pub fn vertex_neighbors(&self, v: VertexId) -> impl Iterator<Item = VertexId> + 'w {
         let m = *self;

@@ -49,6 +49,9 @@ pub enum Refusal {
     /// A face's normal would turn over (more than the allowed angle).
     #[error("{0} would flip over")]
     NormalFlip(ElementId),
+    /// Removing a triangle would leave an edge with no face on either side.
+    #[error("collapsing would leave an edge of {0} with no face on either side")]
+    DanglingEdge(ElementId),
     /// The operation needs triangles.
     #[error("{0} is not a triangle (triangulate first)")]
     NotTriangle(ElementId),

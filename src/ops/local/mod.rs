@@ -1,41 +1,54 @@
-//! Local operations (placeholder while being written; every call refuses).
-use crate::mesh::ids::{EdgeId, ElementId, VertexId};
-use crate::ops::Refusal;
-use bevy::math::Vec3;
+//! Local operations: edge flip, edge split, edge collapse.
+//!
+//! The contract, stated once: **if the result of an operation would not be a valid mesh, the
+//! operation changes nothing and returns a [`Refusal`] that says why.** Each operation is a
+//! read-only `plan_*` (`&World`) that checks the ids, checks every refusal and collects every id
+//! it will touch, and an `apply_*` (`&mut World`) that carries out a fresh plan and cannot fail.
+//! `flip_edge`, `split_edge` and `collapse_edge` do both.
+//!
+//! All three work on triangles and on polygons, and on boundary edges where the operation makes
+//! sense. Entities are reused wherever an element survives, so ids the user is looking at stay
+//! valid when they can.
+
+mod collapse;
+mod flip;
+mod split;
+
+pub use collapse::{
+    CollapseOptions, CollapsePlan, CollapseResult, apply_collapse, collapse_edge, plan_collapse,
+};
+pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
+pub use split::{SplitPlan, apply_split, plan_split, split_edge};
+
 use bevy::prelude::World;
 
-/// Options of a collapse (placeholder).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct CollapseOptions {
-    /// Where the kept vertex goes (midpoint if `None`).
-    pub position: Option<Vec3>,
-    /// Refuse a collapse turning a face normal by more than this.
-    pub max_normal_change_deg: Option<f32>,
+use crate::mesh::elements::Halfedge;
+use crate::mesh::ids::{EdgeId, ElementId, HalfedgeId};
+use crate::mesh::topology::MeshRef;
+
+use super::Refusal;
+
+/// The edge's first halfedge, or a refusal if `e` is not a live edge.
+pub(crate) fn live_edge(m: &MeshRef<'_>, e: EdgeId) -> Result<HalfedgeId, Refusal> {
+    let h = m
+        .try_edge(e)
+        .ok_or(Refusal::Stale(ElementId::Edge(e)))?
+        .halfedge;
+    m.try_halfedge(h)
+        .ok_or(Refusal::Stale(ElementId::Edge(e)))?;
+    Ok(h)
 }
-/// What a collapse did (placeholder).
-#[derive(Clone, Copy, Debug)]
-pub struct CollapseResult {
-    /// The surviving vertex.
-    pub kept: VertexId,
-    /// The removed vertex.
-    pub removed: VertexId,
+
+/// Mutable access to one halfedge's links.
+pub(crate) fn he(world: &mut World, h: HalfedgeId) -> bevy::prelude::Mut<'_, Halfedge> {
+    match world.get_mut::<Halfedge>(h.0) {
+        Some(x) => x,
+        None => unreachable!("{h} was checked by the plan"),
+    }
 }
-fn todo(e: EdgeId) -> Refusal {
-    Refusal::Unsuitable(format!("{}: not implemented yet", ElementId::Edge(e)))
-}
-/// Flip (placeholder).
-pub fn flip_edge(_w: &mut World, e: EdgeId) -> Result<EdgeId, Refusal> {
-    Err(todo(e))
-}
-/// Split (placeholder).
-pub fn split_edge(_w: &mut World, e: EdgeId, _t: f32) -> Result<VertexId, Refusal> {
-    Err(todo(e))
-}
-/// Collapse (placeholder).
-pub fn collapse_edge(
-    _w: &mut World,
-    e: EdgeId,
-    _o: CollapseOptions,
-) -> Result<CollapseResult, Refusal> {
-    Err(todo(e))
+
+/// Links `a.next = b` and `b.prev = a`.
+pub(crate) fn link(world: &mut World, a: HalfedgeId, b: HalfedgeId) {
+    he(world, a).next = b;
+    he(world, b).prev = a;
 }

@@ -1,0 +1,429 @@
+//! Edge collapse: the edge's two vertices become one.
+//!
+//! ```text
+//!         c                     c
+//!        / \                    |
+//!       /   \                   |
+//!      a --h-> b     →          a'        a' at the midpoint (or a given position)
+//!       \  t  /                 |
+//!        \   /                  |
+//!         d                     d
+//! ```
+//!
+//! `a` survives (its entity is kept) and `b` is removed. A triangle on either side disappears
+//! and its two other edges become one (the edge `c a` is kept, `c b` removed); a polygon side
+//! just loses `b`'s corner. A boundary edge has one real side: the boundary loop loses a side.
+//!
+//! Refusals, each leaving the mesh untouched:
+//! - the **link condition** (Dey et al.; Hoppe 1996): the vertices joined to both `a` and `b`
+//!   must be exactly the opposite vertices of the triangles on the edge, and if both opposite
+//!   vertices `c`, `d` are joined, the triangles `a c d` and `b c d` must not both exist — this
+//!   second, edge part is what refuses every edge of a tetrahedron, which PMP's vertex-only
+//!   test lets through;
+//! - a closed mesh of 4 vertices (`TooSmall`);
+//! - an interior edge whose endpoints are both on the boundary (it would pinch the surface);
+//! - an opposite vertex that would be left with too few edges (fewer than 3, or 2 on the
+//!   boundary);
+//! - a face that would be left with fewer than 3 sides or would visit a vertex twice;
+//! - a triangle whose other two sides are on the boundary (its collapse leaves an edge with no
+//!   face), and a boundary loop of 3 sides (it would close into a 2-gon);
+//! - optionally, a surviving face whose normal would turn by more than a given angle.
+
+use bevy::math::Vec3;
+use bevy::prelude::World;
+
+use crate::mesh::elements::{Edge, Face, Position, Vertex};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::topology::MeshRef;
+
+use super::{Refusal, he, link, live_edge};
+
+/// How to collapse.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CollapseOptions {
+    /// Where the surviving vertex goes; `None`: the edge's midpoint.
+    pub position: Option<Vec3>,
+    /// Refuse when a surviving face's normal would turn by more than this many degrees
+    /// (`None`: no check). The simplifier uses it.
+    pub max_normal_change_deg: Option<f32>,
+}
+
+/// What a collapse did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CollapseResult {
+    /// The surviving vertex.
+    pub kept: VertexId,
+    /// The removed vertex (its id is now stale).
+    pub removed: VertexId,
+}
+
+/// One side of the collapsing edge.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Side {
+    /// No face: `x` is a boundary halfedge.
+    Boundary {
+        x: HalfedgeId,
+        next: HalfedgeId,
+        prev: HalfedgeId,
+    },
+    /// A triangle that disappears: its halfedges `x`, `next`, `prev`, and the twins of the two
+    /// other sides, which become twins of each other.
+    Triangle {
+        face: FaceId,
+        x: HalfedgeId,
+        next: HalfedgeId,
+        prev: HalfedgeId,
+        opposite: VertexId,
+    },
+    /// A polygon that loses a corner.
+    Polygon {
+        face: FaceId,
+        x: HalfedgeId,
+        next: HalfedgeId,
+        prev: HalfedgeId,
+    },
+}
+
+/// Everything a collapse touches, collected by [`plan_collapse`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct CollapsePlan {
+    edge: EdgeId,
+    a: VertexId,
+    b: VertexId,
+    position: Vec3,
+    sides: [Side; 2],
+    /// Halfedges pointing at `b` (they will point at `a`).
+    into_b: Vec<HalfedgeId>,
+}
+
+fn side(m: &MeshRef<'_>, x: HalfedgeId) -> Side {
+    let (next, prev) = (m.next(x), m.prev(x));
+    match m.face(x) {
+        None => Side::Boundary { x, next, prev },
+        Some(face) if m.next(next) == prev => Side::Triangle {
+            face,
+            x,
+            next,
+            prev,
+            opposite: m.to_vertex(next),
+        },
+        Some(face) => Side::Polygon {
+            face,
+            x,
+            next,
+            prev,
+        },
+    }
+}
+
+/// Checks that `e` can be collapsed and collects what the collapse touches.
+///
+/// # Refusals
+/// See the module doc.
+pub fn plan_collapse(
+    world: &World,
+    e: EdgeId,
+    options: CollapseOptions,
+) -> Result<CollapsePlan, Refusal> {
+    let m = MeshRef::new(world);
+    let h = live_edge(&m, e)?;
+    let t = m.twin(h);
+    let (a, b) = (m.from_vertex(h), m.to_vertex(h));
+    let sides = [side(&m, h), side(&m, t)];
+    let vx = |v: VertexId| ElementId::Vertex(v);
+
+    let boundary_edge = m.is_boundary(h) || m.is_boundary(t);
+    if !boundary_edge && m.is_boundary_vertex(a) && m.is_boundary_vertex(b) {
+        return Err(Refusal::BoundaryPinch);
+    }
+    let opposite: Vec<VertexId> = sides
+        .iter()
+        .filter_map(|s| match s {
+            Side::Triangle { opposite, .. } => Some(*opposite),
+            _ => None,
+        })
+        .collect();
+    // Link condition, vertex part.
+    let around_a: Vec<VertexId> = m.vertex_neighbors(a).collect();
+    for n in m.vertex_neighbors(b) {
+        if n != a && around_a.contains(&n) && !opposite.contains(&n) {
+            return Err(Refusal::LinkCondition(vx(n)));
+        }
+    }
+    // Link condition, edge part (the tetrahedron).
+    if let [c, d] = opposite[..]
+        && m.find_halfedge(c, d).is_some()
+    {
+        let has_triangle = |v: VertexId| {
+            m.vertex_faces(v).any(|f| {
+                m.face_degree(f) == 3
+                    && m.face_vertices(f).filter(|&x| x == c || x == d).count() == 2
+            })
+        };
+        if has_triangle(a) && has_triangle(b) {
+            let closed_tiny = !boundary_edge && count_vertices(&m, a) <= 4;
+            return Err(if closed_tiny {
+                Refusal::TooSmall
+            } else {
+                Refusal::LinkCondition(vx(c))
+            });
+        }
+    }
+    for s in &sides {
+        match *s {
+            Side::Triangle {
+                face,
+                next,
+                prev,
+                opposite,
+                ..
+            } => {
+                if m.is_boundary(m.twin(next)) && m.is_boundary(m.twin(prev)) {
+                    return Err(Refusal::DanglingEdge(ElementId::Face(face)));
+                }
+                let minimum = if m.is_boundary_vertex(opposite) { 2 } else { 3 };
+                if m.valence(opposite) <= minimum {
+                    return Err(Refusal::ValenceTooLow(vx(opposite), minimum));
+                }
+            }
+            Side::Polygon { face, .. } => {
+                if m.face_degree(face) <= 3 {
+                    return Err(Refusal::DegenerateFace(ElementId::Face(face)));
+                }
+            }
+            Side::Boundary { x, .. } => {
+                if m.loop_from(x).count() <= 3 {
+                    return Err(Refusal::DegenerateFace(ElementId::Edge(e)));
+                }
+            }
+        }
+    }
+    // No other face may hold both a and b (it would visit the merged vertex twice).
+    let own_faces: Vec<FaceId> = sides
+        .iter()
+        .filter_map(|s| match s {
+            Side::Triangle { face, .. } | Side::Polygon { face, .. } => Some(*face),
+            Side::Boundary { .. } => None,
+        })
+        .collect();
+    for f in m.vertex_faces(b) {
+        if !own_faces.contains(&f) && m.face_vertices(f).any(|v| v == a) {
+            return Err(Refusal::DegenerateFace(ElementId::Face(f)));
+        }
+    }
+    let position = options
+        .position
+        .unwrap_or_else(|| (m.position(a) + m.position(b)) / 2.0);
+    if !position.is_finite() {
+        return Err(Refusal::Unsuitable(format!(
+            "{position} is not a finite position"
+        )));
+    }
+    if let Some(max) = options.max_normal_change_deg {
+        check_normals(&m, a, b, position, &own_faces, max)?;
+    }
+    let into_b = m.vertex_outgoing(b).map(|x| m.twin(x)).collect();
+    Ok(CollapsePlan {
+        edge: e,
+        a,
+        b,
+        position,
+        sides,
+        into_b,
+    })
+}
+
+fn count_vertices(m: &MeshRef<'_>, v: VertexId) -> usize {
+    // Only called to tell a tetrahedron from a larger mesh: stop early.
+    let mut seen = vec![v];
+    let mut i = 0;
+    while i < seen.len() && seen.len() <= 5 {
+        for n in m.vertex_neighbors(seen[i]) {
+            if !seen.contains(&n) {
+                seen.push(n);
+            }
+        }
+        i += 1;
+    }
+    seen.len()
+}
+
+fn check_normals(
+    m: &MeshRef<'_>,
+    a: VertexId,
+    b: VertexId,
+    position: Vec3,
+    own: &[FaceId],
+    max_deg: f32,
+) -> Result<(), Refusal> {
+    let limit = max_deg.to_radians().cos();
+    for v in [a, b] {
+        for f in m.vertex_faces(v) {
+            if own.contains(&f) {
+                continue;
+            }
+            let before: Vec<Vec3> = m.face_vertices(f).map(|x| m.position(x)).collect();
+            let after: Vec<Vec3> = m
+                .face_vertices(f)
+                .map(|x| {
+                    if x == a || x == b {
+                        position
+                    } else {
+                        m.position(x)
+                    }
+                })
+                .collect();
+            let (n0, n1) = (
+                crate::mesh::topology::newell_area_vector(&before),
+                crate::mesh::topology::newell_area_vector(&after),
+            );
+            let (Some(n0), Some(n1)) = (n0.try_normalize(), n1.try_normalize()) else {
+                return Err(Refusal::NormalFlip(ElementId::Face(f)));
+            };
+            if n0.dot(n1) < limit {
+                return Err(Refusal::NormalFlip(ElementId::Face(f)));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Carries out a collapse planned by [`plan_collapse`] on the unchanged world.
+pub fn apply_collapse(world: &mut World, p: CollapsePlan) -> CollapseResult {
+    let m = MeshRef::new(world);
+    // Work out the relinking first (reads), then write.
+    let mut removed_halfedges = Vec::new();
+    let mut removed_edges = vec![p.edge];
+    let mut removed_faces = Vec::new();
+    let mut glue = Vec::new(); // (twin of next, twin of prev, the edge they share)
+    let mut candidates: Vec<HalfedgeId> = p.into_b.clone();
+    let mut unlink = Vec::new(); // (prev, next, face to re-point)
+    let mut fix_vertex = vec![p.a];
+    for s in &p.sides {
+        match *s {
+            Side::Triangle {
+                face,
+                x,
+                next,
+                prev,
+                opposite,
+            } => {
+                // Sides: next runs b → c (or a → d), prev runs c → a (or d → b).
+                let (on, op) = (m.twin(next), m.twin(prev));
+                let (en, ep) = (m.edge(next), m.edge(prev));
+                removed_halfedges.extend([x, next, prev]);
+                removed_faces.push(face);
+                // Keep the edge that does not touch b.
+                let (keep, drop) = if m.to_vertex(next) == opposite && m.from_vertex(next) == p.b {
+                    (ep, en)
+                } else {
+                    (en, ep)
+                };
+                removed_edges.push(drop);
+                glue.push((on, op, keep));
+                candidates.extend([on, op]);
+                fix_vertex.push(opposite);
+            }
+            Side::Polygon {
+                face,
+                x,
+                next,
+                prev,
+            } => {
+                removed_halfedges.push(x);
+                unlink.push((prev, next, Some(face)));
+            }
+            Side::Boundary { x, next, prev } => {
+                removed_halfedges.push(x);
+                unlink.push((prev, next, None));
+            }
+        }
+    }
+    for &x in &p.into_b {
+        if !removed_halfedges.contains(&x) {
+            he(world, x).vertex = p.a;
+        }
+    }
+    for (prev, next, face) in unlink {
+        link(world, prev, next);
+        if let Some(f) = face {
+            world.get_mut::<Face>(f.0).expect("planned").halfedge = next;
+        }
+    }
+    for (on, op, keep) in glue {
+        {
+            let mut x = he(world, on);
+            x.twin = op;
+            x.edge = keep;
+        }
+        {
+            let mut x = he(world, op);
+            x.twin = on;
+            x.edge = keep;
+        }
+        let interior = if MeshRef::new(world).is_boundary(on) {
+            op
+        } else {
+            on
+        };
+        world.get_mut::<Edge>(keep.0).expect("planned").halfedge = interior;
+    }
+    for x in removed_halfedges {
+        world.despawn(x.0);
+    }
+    for e in removed_edges {
+        world.despawn(e.0);
+    }
+    for f in removed_faces {
+        world.despawn(f.0);
+    }
+    world.despawn(p.b.0);
+    world.get_mut::<Position>(p.a.0).expect("planned").0 = p.position;
+    // Every vertex whose outgoing halfedge may be gone, or whose boundary halfedge may have
+    // changed, gets a fresh one: the boundary one if it has one.
+    let twins: Vec<HalfedgeId> = candidates
+        .iter()
+        .filter(|&&h| world.get_entity(h.0).is_ok())
+        .map(|&h| MeshRef::new(world).twin(h))
+        .collect();
+    candidates.extend(twins);
+    for v in fix_vertex {
+        repoint(world, v, &candidates);
+    }
+    CollapseResult {
+        kept: p.a,
+        removed: p.b,
+    }
+}
+
+/// Points `v` at a live outgoing halfedge, its boundary one if it has one. `candidates` are
+/// halfedges that may now leave `v`.
+fn repoint(world: &mut World, v: VertexId, candidates: &[HalfedgeId]) {
+    let m = MeshRef::new(world);
+    let current = m.try_vertex(v).map(|x| x.halfedge);
+    let leaves_v = |h: HalfedgeId| m.try_halfedge(h).is_some() && m.from_vertex(h) == v;
+    let start = current
+        .filter(|&h| leaves_v(h))
+        .or_else(|| candidates.iter().copied().find(|&h| leaves_v(h)));
+    let Some(start) = start else {
+        unreachable!("{v} keeps at least one edge after a planned collapse");
+    };
+    let best = m
+        .vertex_outgoing_from(start)
+        .find(|&h| m.is_boundary(h))
+        .unwrap_or(start);
+    world.get_mut::<Vertex>(v.0).expect("planned").halfedge = best;
+}
+
+/// Collapses `e` (see the module doc): plan, then apply.
+///
+/// # Refusals
+/// See the module doc; the world is then unchanged.
+pub fn collapse_edge(
+    world: &mut World,
+    e: EdgeId,
+    options: CollapseOptions,
+) -> Result<CollapseResult, Refusal> {
+    let plan = plan_collapse(world, e, options)?;
+    Ok(apply_collapse(world, plan))
+}

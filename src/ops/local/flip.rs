@@ -1,0 +1,143 @@
+//! Edge flip: the edge turns one step counter-clockwise inside the two faces it separates.
+//!
+//! ```text
+//!         c                     c
+//!        / \                   /|\
+//!       /   \                 / | \
+//!      a --h-> b     →       a  h  b        h: a→b becomes h: d→c
+//!       \  t  /                 \ | /
+//!        \   /                   \|/
+//!         d                       d
+//! ```
+//!
+//! For polygons the same rule: each endpoint gives up the edge, which now joins the vertex after
+//! `b` in `h`'s face to the vertex after `a` in `t`'s face; each face keeps its number of sides.
+//!
+//! Refusals: a boundary edge; an endpoint that would be left with fewer than 3 edges (2 on the
+//! boundary); a new edge that already exists (every edge of a tetrahedron); a face that would
+//! visit a vertex twice.
+
+use bevy::prelude::World;
+
+use crate::mesh::elements::{Face, Vertex};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::topology::MeshRef;
+
+use super::{Refusal, he, link, live_edge};
+
+/// Everything a flip touches, collected by [`plan_flip`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FlipPlan {
+    edge: EdgeId,
+    h: HalfedgeId,
+    t: HalfedgeId,
+    hn: HalfedgeId,
+    hp: HalfedgeId,
+    tn: HalfedgeId,
+    tp: HalfedgeId,
+    f: FaceId,
+    g: FaceId,
+    a: VertexId,
+    b: VertexId,
+    c: VertexId,
+    d: VertexId,
+}
+
+/// Checks that `e` can be flipped and collects what the flip touches.
+///
+/// # Refusals
+/// See the module doc.
+pub fn plan_flip(world: &World, e: EdgeId) -> Result<FlipPlan, Refusal> {
+    let m = MeshRef::new(world);
+    let h = live_edge(&m, e)?;
+    let t = m.twin(h);
+    let (Some(f), Some(g)) = (m.face(h), m.face(t)) else {
+        return Err(Refusal::BoundaryEdge(ElementId::Edge(e)));
+    };
+    let (hn, hp, tn, tp) = (m.next(h), m.prev(h), m.next(t), m.prev(t));
+    let (a, b) = (m.from_vertex(h), m.to_vertex(h));
+    let (c, d) = (m.to_vertex(hn), m.to_vertex(tn));
+    for v in [a, b] {
+        let minimum = if m.is_boundary_vertex(v) { 2 } else { 3 };
+        if m.valence(v) <= minimum {
+            return Err(Refusal::ValenceTooLow(ElementId::Vertex(v), minimum));
+        }
+    }
+    if c == d {
+        return Err(Refusal::DegenerateFace(ElementId::Face(f)));
+    }
+    if m.find_halfedge(c, d).is_some() {
+        return Err(Refusal::WouldDuplicateEdge(
+            ElementId::Vertex(c),
+            ElementId::Vertex(d),
+        ));
+    }
+    // The new faces: f gains d, g gains c; neither may already hold it.
+    if m.face_vertices(f).any(|v| v == d) {
+        return Err(Refusal::DegenerateFace(ElementId::Face(f)));
+    }
+    if m.face_vertices(g).any(|v| v == c) {
+        return Err(Refusal::DegenerateFace(ElementId::Face(g)));
+    }
+    Ok(FlipPlan {
+        edge: e,
+        h,
+        t,
+        hn,
+        hp,
+        tn,
+        tp,
+        f,
+        g,
+        a,
+        b,
+        c,
+        d,
+    })
+}
+
+/// Carries out a flip planned by [`plan_flip`] on the unchanged world. Returns the edge (the
+/// same entity, now joining the other two vertices).
+pub fn apply_flip(world: &mut World, p: FlipPlan) -> EdgeId {
+    debug_assert_eq!(plan_flip(world, p.edge), Ok(p), "stale flip plan");
+    let hnn = MeshRef::new(world).next(p.hn);
+    let tnn = MeshRef::new(world).next(p.tn);
+    // h: d → c in f; t: c → d in g. hn moves to g, tn moves to f.
+    {
+        let mut h = he(world, p.h);
+        h.vertex = p.c;
+    }
+    {
+        let mut t = he(world, p.t);
+        t.vertex = p.d;
+    }
+    // f: h, hnn … hp, tn.
+    link(world, p.h, hnn);
+    link(world, p.hp, p.tn);
+    link(world, p.tn, p.h);
+    he(world, p.tn).face = Some(p.f);
+    // g: t, tnn … tp, hn.
+    link(world, p.t, tnn);
+    link(world, p.tp, p.hn);
+    link(world, p.hn, p.t);
+    he(world, p.hn).face = Some(p.g);
+    world.get_mut::<Face>(p.f.0).expect("planned").halfedge = p.h;
+    world.get_mut::<Face>(p.g.0).expect("planned").halfedge = p.t;
+    // a and b no longer start h / t.
+    for (v, lost, replacement) in [(p.a, p.h, p.tn), (p.b, p.t, p.hn)] {
+        let mut x = world.get_mut::<Vertex>(v.0).expect("planned");
+        if x.halfedge == lost {
+            x.halfedge = replacement;
+        }
+    }
+    p.edge
+}
+
+/// Flips `e` (see the module doc): plan, then apply.
+///
+/// # Refusals
+/// See the module doc; the world is then unchanged.
+pub fn flip_edge(world: &mut World, e: EdgeId) -> Result<EdgeId, Refusal> {
+    let plan = plan_flip(world, e)?;
+    Ok(apply_flip(world, plan))
+}

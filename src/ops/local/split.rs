@@ -1,0 +1,255 @@
+//! Edge split: a new vertex on the edge, joined to the vertex after the edge in each face.
+//!
+//! ```text
+//!         c                     c
+//!        / \                   /|\
+//!       /   \                 / | \
+//!      a --h-> b     →       a--m--b        m at a + t (b − a)
+//!       \  t  /               \ | /
+//!        \   /                 \|/
+//!         d                     d
+//! ```
+//!
+//! On each side that has a face, `m` is joined to the vertex that follows the edge in that
+//! face: for a triangle that is the opposite vertex (two triangles become four); a polygon of
+//! `k` sides becomes a triangle and a polygon of `k` sides (a quad: a triangle and a quad). The
+//! boundary side of a boundary edge only gains `m` in its loop. If both faces would join `m` to
+//! the same vertex (they share another edge there), only the first is cut, so no edge is made
+//! twice; the other face keeps `m` as an extra corner. Counts: an interior edge adds
+//! 1 vertex, 3 edges, 2 faces; a boundary edge 1 vertex, 2 edges, 1 face.
+//!
+//! Refusals: a stale edge; `t` outside the open interval (0, 1).
+
+use bevy::math::Vec3;
+use bevy::prelude::{Entity, World};
+
+use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::topology::MeshRef;
+
+use super::{Refusal, he, link, live_edge};
+
+/// Everything a split touches, collected by [`plan_split`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SplitPlan {
+    edge: EdgeId,
+    h: HalfedgeId,
+    t: HalfedgeId,
+    position: Vec3,
+    mesh: crate::mesh::ids::MeshId,
+}
+
+/// Checks that `e` can be split at parameter `t` (from the edge's halfedge's start).
+///
+/// # Refusals
+/// See the module doc.
+pub fn plan_split(world: &World, e: EdgeId, t: f32) -> Result<SplitPlan, Refusal> {
+    let m = MeshRef::new(world);
+    let h = live_edge(&m, e)?;
+    if !(t > 0.0 && t < 1.0) {
+        return Err(Refusal::Unsuitable(format!(
+            "split parameter {t} is not strictly between 0 and 1"
+        )));
+    }
+    let (a, b) = (m.position(m.from_vertex(h)), m.position(m.to_vertex(h)));
+    let mesh = world
+        .get::<InMesh>(e.0)
+        .ok_or(Refusal::Stale(ElementId::Edge(e)))?
+        .0;
+    Ok(SplitPlan {
+        edge: e,
+        h,
+        t: m.twin(h),
+        position: a.lerp(b, t),
+        mesh,
+    })
+}
+
+fn spawn_at<B: bevy::prelude::Bundle>(world: &mut World, e: Entity, bundle: B) {
+    if let Err(error) = world.spawn_at(e, bundle) {
+        unreachable!("spawning freshly allocated {e} failed: {error}");
+    }
+}
+
+/// Carries out a split planned by [`plan_split`]. Returns the new vertex.
+pub fn apply_split(world: &mut World, p: SplitPlan) -> VertexId {
+    let m = MeshRef::new(world);
+    let (h, t) = (p.h, p.t);
+    let (hn, tn) = (m.next(h), m.next(t));
+    let (f, g) = (m.face(h), m.face(t));
+    let (a, b) = (m.from_vertex(h), m.to_vertex(h));
+    let member = InMesh(p.mesh);
+    let alloc = world.entity_allocator();
+    let (mid, h2, t2, e2) = (
+        VertexId(alloc.alloc()),
+        HalfedgeId(alloc.alloc()),
+        HalfedgeId(alloc.alloc()),
+        EdgeId(alloc.alloc()),
+    );
+    // h: a → m, h2: m → b (same face as h); t: b → m, t2: m → a (same face as t).
+    // Twins: (h, t2) on the old edge, (h2, t) on the new one.
+    he(world, h).vertex = mid;
+    he(world, h).twin = t2;
+    he(world, t).vertex = mid;
+    he(world, t).twin = h2;
+    he(world, t).edge = e2;
+    spawn_at(
+        world,
+        h2.0,
+        (
+            Halfedge {
+                twin: t,
+                next: hn,
+                prev: h,
+                vertex: b,
+                edge: e2,
+                face: f,
+            },
+            member,
+        ),
+    );
+    spawn_at(
+        world,
+        t2.0,
+        (
+            Halfedge {
+                twin: h,
+                next: tn,
+                prev: t,
+                vertex: a,
+                edge: p.edge,
+                face: g,
+            },
+            member,
+        ),
+    );
+    link(world, h, h2);
+    link(world, h2, hn);
+    link(world, t, t2);
+    link(world, t2, tn);
+    let boundary_out = if f.is_none() {
+        h2
+    } else if g.is_none() {
+        t2
+    } else {
+        h2
+    };
+    spawn_at(
+        world,
+        mid.0,
+        (
+            Vertex {
+                halfedge: boundary_out,
+            },
+            Position(p.position),
+            member,
+        ),
+    );
+    // Each edge names an interior halfedge where it has one.
+    world.get_mut::<Edge>(p.edge.0).expect("planned").halfedge = if f.is_some() { h } else { t2 };
+    spawn_at(
+        world,
+        e2.0,
+        (
+            Edge {
+                halfedge: if f.is_some() { h2 } else { t },
+            },
+            member,
+        ),
+    );
+    // b's outgoing halfedge may have been t (b → a), which is now b → m: still outgoing.
+    // Cut each real face from m to the vertex after the edge.
+    if let Some(f) = f {
+        cut(world, p.mesh, f, h, hn);
+    }
+    if let Some(g) = g {
+        // When both faces would send m to the same vertex (two faces that also share the edge
+        // after the split one), a second cut would duplicate that edge: g keeps m as a corner.
+        let m = MeshRef::new(world);
+        let target_f = f.map(|_| m.to_vertex(m.next(h2)));
+        if target_f != Some(m.to_vertex(tn)) {
+            cut(world, p.mesh, g, t, tn);
+        }
+    }
+    mid
+}
+
+/// Splits face `f` with a new edge from `to(p)` to `to(q)` (two halfedges of `f`, `q` after
+/// `p`, not adjacent): `f` keeps `p`'s side, a new face takes the halfedges after `p` up to `q`.
+fn cut(world: &mut World, mesh: crate::mesh::ids::MeshId, f: FaceId, p: HalfedgeId, q: HalfedgeId) {
+    let m = MeshRef::new(world);
+    let (pn, qn) = (m.next(p), m.next(q));
+    let (vp, vq) = (m.to_vertex(p), m.to_vertex(q));
+    if pn == q || qn == p {
+        return;
+    }
+    let moved: Vec<HalfedgeId> = {
+        let mut list = Vec::new();
+        let mut x = pn;
+        loop {
+            list.push(x);
+            if x == q {
+                break;
+            }
+            x = m.next(x);
+        }
+        list
+    };
+    let alloc = world.entity_allocator();
+    let (n1, n2, edge, f2) = (
+        HalfedgeId(alloc.alloc()),
+        HalfedgeId(alloc.alloc()),
+        EdgeId(alloc.alloc()),
+        FaceId(alloc.alloc()),
+    );
+    let member = InMesh(mesh);
+    spawn_at(
+        world,
+        n1.0,
+        (
+            Halfedge {
+                twin: n2,
+                next: qn,
+                prev: p,
+                vertex: vq,
+                edge,
+                face: Some(f),
+            },
+            member,
+        ),
+    );
+    spawn_at(
+        world,
+        n2.0,
+        (
+            Halfedge {
+                twin: n1,
+                next: pn,
+                prev: q,
+                vertex: vp,
+                edge,
+                face: Some(f2),
+            },
+            member,
+        ),
+    );
+    link(world, p, n1);
+    link(world, n1, qn);
+    link(world, q, n2);
+    link(world, n2, pn);
+    for x in moved {
+        he(world, x).face = Some(f2);
+    }
+    spawn_at(world, edge.0, (Edge { halfedge: n1 }, member));
+    spawn_at(world, f2.0, (Face { halfedge: n2 }, member));
+    world.get_mut::<Face>(f.0).expect("planned").halfedge = n1;
+}
+
+/// Splits `e` at parameter `t` along its halfedge (0.5: the midpoint). Returns the new vertex.
+///
+/// # Refusals
+/// See the module doc; the world is then unchanged.
+pub fn split_edge(world: &mut World, e: EdgeId, t: f32) -> Result<VertexId, Refusal> {
+    let plan = plan_split(world, e, t)?;
+    Ok(apply_split(world, plan))
+}

@@ -1,0 +1,65 @@
+//! Random sequences of flips, splits and collapses on random shapes: the mesh validates after
+//! every step, χ never changes (all three preserve it), and a refused operation changes
+//! nothing. 256 cases × 400 operations = 102 400 operations per run.
+
+mod common;
+
+use bevy::prelude::World;
+use pappus::mesh::{MeshId, MeshMembers, PolygonSoup, mesh_stats, shapes, validate};
+use pappus::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
+use proptest::prelude::*;
+
+fn shape(i: u8) -> PolygonSoup {
+    match i % 6 {
+        0 => shapes::icosphere(1),
+        1 => shapes::torus(6, 5),
+        2 => shapes::grid(4, 3),
+        3 => shapes::quad_grid(4, 4),
+        4 => shapes::tetrahedron(),
+        _ => shapes::grid_with_holes(2),
+    }
+}
+
+fn counts(world: &World, mesh: MeshId) -> (usize, usize, usize) {
+    let m = MeshMembers::collect(world, mesh);
+    (m.vertices.len(), m.edges.len(), m.faces.len())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_local_edits_keep_the_mesh_valid(
+        which in 0u8..6,
+        ops in proptest::collection::vec((0u8..3, any::<u32>(), 0.05f32..0.95), 400),
+    ) {
+        let (mut world, built) = common::build(&shape(which));
+        let mesh = built.mesh;
+        let chi = mesh_stats(&world, mesh).euler_characteristic;
+        let mut edges = MeshMembers::collect(&world, mesh).edges;
+        for (kind, pick, t) in ops {
+            if edges.is_empty() {
+                break;
+            }
+            let e = edges[pick as usize % edges.len()];
+            let before = counts(&world, mesh);
+            let applied = match kind {
+                0 => flip_edge(&mut world, e).is_ok(),
+                1 => split_edge(&mut world, e, t).is_ok(),
+                _ => collapse_edge(&mut world, e, CollapseOptions::default()).is_ok(),
+            };
+            if let Err(invalid) = validate(&world, mesh) {
+                prop_assert!(false, "op {kind} on {e} broke the mesh: {invalid}");
+            }
+            if applied {
+                let (v, ed, f) = counts(&world, mesh);
+                prop_assert_eq!(v as i64 - ed as i64 + f as i64, chi);
+                if kind != 0 {
+                    edges = MeshMembers::collect(&world, mesh).edges;
+                }
+            } else {
+                prop_assert_eq!(counts(&world, mesh), before);
+            }
+        }
+    }
+}
