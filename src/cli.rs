@@ -27,6 +27,23 @@ use crate::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
 use crate::ops::subdivide::{SubdivisionSummary, catmull_clark, loop_subdivide};
 use crate::ops::{Refusal, triangulate};
 
+/// Writes to stdout; a reader that has gone away (`pappus info … | head`) ends the output
+/// quietly instead of panicking.
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stdout(), $($arg)*);
+    }};
+}
+
+/// [`out!`] with a newline.
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
 /// What `main` should do with the arguments.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Command {
@@ -433,8 +450,8 @@ pub fn run(command: Command) -> i32 {
 
 fn execute(command: Command) -> Result<(), String> {
     match command {
-        Command::Help => print!("{USAGE}"),
-        Command::Version => println!("pappus {}", env!("CARGO_PKG_VERSION")),
+        Command::Help => out!("{USAGE}"),
+        Command::Version => outln!("pappus {}", env!("CARGO_PKG_VERSION")),
         Command::Editor(_) => return Err("the editor is started by main".into()),
         Command::Info { input, json } => {
             let loaded = load(&input)?;
@@ -446,10 +463,10 @@ fn execute(command: Command) -> Result<(), String> {
                 json!(round(loaded.read_ms + loaded.build_ms, 3)),
             );
             if json {
-                println!("{}", Value::Object(object));
+                outln!("{}", Value::Object(object));
             } else {
-                print!("{}", info_text(&input, &object, &loaded.built.report));
-                println!(
+                out!("{}", info_text(&input, &object, &loaded.built.report));
+                outln!(
                     "  loaded in {:.1} ms (read {:.1} ms, build {:.1} ms)",
                     loaded.read_ms + loaded.build_ms,
                     loaded.read_ms,
@@ -485,14 +502,14 @@ fn execute(command: Command) -> Result<(), String> {
                         record.insert("outcome".into(), json!("applied"));
                         record.insert("summary".into(), json!(summary));
                         if !json {
-                            println!("{step}: applied ({summary}) in {ms} ms");
+                            outln!("{step}: applied ({summary}) in {ms} ms");
                         }
                     }
                     StepOutcome::Refused(reason) => {
                         record.insert("outcome".into(), json!("refused"));
                         record.insert("reason".into(), json!(reason.to_string()));
                         if !json {
-                            println!("{step}: refused: {reason}");
+                            outln!("{step}: refused: {reason}");
                         }
                     }
                 }
@@ -503,12 +520,12 @@ fn execute(command: Command) -> Result<(), String> {
             io::write(&output, &soup).map_err(|e| e.to_string())?;
             let result = info_json(&loaded.world, mesh, &loaded.built.report);
             if json {
-                println!(
+                outln!(
                     "{}",
                     json!({ "steps": records, "result": Value::Object(result) })
                 );
             } else {
-                print!(
+                out!(
                     "{}",
                     info_text(&output.display().to_string(), &result, &loaded.built.report)
                 );

@@ -483,3 +483,91 @@ fn link_condition_refuses_a_shared_neighbour() {
     assert!(s.vertices >= 4);
     assert!(refused_link > 0);
 }
+
+// ---- mixed meshes and grid corners -------------------------------------------------------------
+
+/// A quad with a triangle on each of two sides: 0 1 2 3 the quad, 4 below, 5 right.
+fn mixed() -> PolygonSoup {
+    PolygonSoup::from_faces(
+        vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(0.5, -0.8, 0.0),
+            Vec3::new(1.8, 0.5, 0.0),
+        ],
+        &[vec![0u32, 1, 2, 3], vec![0, 4, 1], vec![1, 5, 2]],
+    )
+}
+
+#[test]
+fn operations_on_a_mixed_quad_and_triangle_mesh() {
+    // Flip the quad-triangle edge 0-1: it turns one step counter-clockwise in both faces and
+    // becomes 4-2; the quad stays a quad (0 4 2 3), the triangle a triangle (4 1 2).
+    let soup = mixed();
+    let (mut world, built) = build(&soup);
+    let e = edge(&world, &built, 0, 1);
+    flip_edge(&mut world, e).unwrap();
+    let expected = PolygonSoup::from_faces(
+        soup.positions.clone(),
+        &[vec![0u32, 4, 2, 3], vec![4, 1, 2], vec![1, 5, 2]],
+    );
+    assert_same_mesh(&world, built.mesh, &expected);
+
+    // Split 1-2 (quad | triangle): the quad gives a triangle and a quad, the triangle two.
+    let (mut world, built) = build(&soup);
+    let e = edge(&world, &built, 1, 2);
+    let v = split_edge(&mut world, e, 0.5).unwrap();
+    let mut expected = soup.clone();
+    expected.positions.push(Vec3::new(1.0, 0.5, 0.0)); // 6
+    expected.indices.clear();
+    expected.face_starts = vec![0];
+    for f in [vec![0u32, 1, 6, 3], vec![6, 2, 3], vec![0, 4, 1], vec![1, 5, 6], vec![6, 5, 2]] {
+        expected.push_face(&f);
+    }
+    assert_same_mesh(&world, built.mesh, &expected);
+    assert_eq!(MeshRef::new(&world).valence(v), 4);
+
+    // Collapse: 1-2 is interior with both ends on the boundary (refused); the boundary edge 1-5
+    // collapses, its triangle goes and the quad keeps four sides.
+    let (mut world, built) = build(&soup);
+    let e = edge(&world, &built, 1, 2);
+    let r = collapse_edge(&mut world, e, CollapseOptions::default());
+    assert!(matches!(r, Err(Refusal::BoundaryPinch)), "{r:?}");
+    let e = edge(&world, &built, 1, 5);
+    collapse_edge(&mut world, e, CollapseOptions::default()).unwrap();
+    let mut expected = soup.clone();
+    let k = (soup.positions[1] + soup.positions[5]) / 2.0;
+    expected.positions = vec![soup.positions[0], k, soup.positions[2], soup.positions[3], soup.positions[4]];
+    expected.indices.clear();
+    expected.face_starts = vec![0];
+    for f in [vec![0u32, 1, 2, 3], vec![0, 4, 1]] {
+        expected.push_face(&f);
+    }
+    assert_same_mesh(&world, built.mesh, &expected);
+    assert_eq!(counts(&world, built.mesh), (5, 6, 2, 1));
+}
+
+#[test]
+fn grid_corner_edges() {
+    // The corner (3, 0) of a 3×3 triangle grid (vertex 3) has two boundary edges, to 2 and to
+    // 7, and one triangle 2-3-7. Its edges cannot be flipped; the diagonal 2-7 joins two
+    // boundary vertices through the interior (refused); the boundary edge 3-7 collapses.
+    let soup = shapes::grid(3, 3);
+    let r = refused(soup.clone(), 3, 2, flip);
+    assert!(matches!(r, Refusal::BoundaryEdge(_)), "{r}");
+    let r = refused(soup.clone(), 2, 7, collapse);
+    assert!(matches!(r, Refusal::BoundaryPinch), "{r}");
+    let (mut world, built) = build(&soup);
+    let e = edge(&world, &built, 3, 7);
+    collapse_edge(&mut world, e, CollapseOptions::default()).unwrap();
+    validate(&world, built.mesh).unwrap();
+    assert_eq!(counts(&world, built.mesh), (15, 31, 17, 1));
+    // The corner (0, 0) has the diagonal: its boundary edge 0-1 collapses too.
+    let (mut world, built) = build(&soup);
+    let e = edge(&world, &built, 0, 1);
+    collapse_edge(&mut world, e, CollapseOptions::default()).unwrap();
+    validate(&world, built.mesh).unwrap();
+    assert_eq!(counts(&world, built.mesh), (15, 31, 17, 1));
+}

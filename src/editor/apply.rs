@@ -25,13 +25,15 @@ pub fn apply_requests(world: &mut World, mut cursor: Local<MessageCursor<EditReq
         .cloned()
         .collect();
     for request in requests {
+        let start = std::time::Instant::now();
         let result = apply(world, &request);
+        let ms = start.elapsed().as_secs_f64() * 1000.0;
         let outcome = EditOutcome {
             request: request.label(),
             result,
         };
         match &outcome.result {
-            Ok(summary) => bevy::log::info!("{}: {summary}", outcome.request),
+            Ok(summary) => bevy::log::info!("{}: {summary} ({ms:.2} ms)", outcome.request),
             Err(reason) => bevy::log::info!("{}: refused: {reason}", outcome.request),
         }
         world.write_message(outcome.clone());

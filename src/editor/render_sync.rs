@@ -193,6 +193,10 @@ pub fn sync_render_meshes(world: &mut World) {
         stats.rebuilds += 1;
         stats.last_triangles = triangles;
         stats.last_rebuild_ms = start.elapsed().as_secs_f64() * 1000.0;
+        bevy::log::info!(
+            "render sync {mesh}: {triangles} triangles in {:.1} ms",
+            stats.last_rebuild_ms
+        );
     }
 }
 
