@@ -523,7 +523,13 @@ fn operations_on_a_mixed_quad_and_triangle_mesh() {
     expected.positions.push(Vec3::new(1.0, 0.5, 0.0)); // 6
     expected.indices.clear();
     expected.face_starts = vec![0];
-    for f in [vec![0u32, 1, 6, 3], vec![6, 2, 3], vec![0, 4, 1], vec![1, 5, 6], vec![6, 5, 2]] {
+    for f in [
+        vec![0u32, 1, 6, 3],
+        vec![6, 2, 3],
+        vec![0, 4, 1],
+        vec![1, 5, 6],
+        vec![6, 5, 2],
+    ] {
         expected.push_face(&f);
     }
     assert_same_mesh(&world, built.mesh, &expected);
@@ -539,7 +545,13 @@ fn operations_on_a_mixed_quad_and_triangle_mesh() {
     collapse_edge(&mut world, e, CollapseOptions::default()).unwrap();
     let mut expected = soup.clone();
     let k = (soup.positions[1] + soup.positions[5]) / 2.0;
-    expected.positions = vec![soup.positions[0], k, soup.positions[2], soup.positions[3], soup.positions[4]];
+    expected.positions = vec![
+        soup.positions[0],
+        k,
+        soup.positions[2],
+        soup.positions[3],
+        soup.positions[4],
+    ];
     expected.indices.clear();
     expected.face_starts = vec![0];
     for f in [vec![0u32, 1, 2, 3], vec![0, 4, 1]] {
