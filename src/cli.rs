@@ -23,7 +23,9 @@ use crate::mesh::topology::MeshRef;
 use crate::mesh::{
     BuiltMesh, MeshId, RepairReport, VertexId, build_mesh, mesh_stats, to_soup, validate,
 };
-use crate::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
+use crate::ops::local::{
+    CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
+};
 use crate::ops::subdivide::{SubdivisionSummary, catmull_clark, loop_subdivide};
 use crate::ops::{Refusal, triangulate};
 
@@ -92,7 +94,8 @@ usage:
 
 FILE: .obj .off .ply .stl, or shape:NAME (tetrahedron cube icosahedron icosphere torus grid
       quad-grid grid-with-holes double-torus)
-STEP: validate | triangulate | flip:A,B | split:A,B | collapse:A,B | loop[:N] | catmull-clark[:N]
+STEP: validate | triangulate | flip:A,B | split:A,B | collapse:A,B | dissolve:A,B |
+      split-face:A,B | loop[:N] | catmull-clark[:N]
       A, B: 0-based indices of the input file's vertices (the edge between them)
 ";
 
@@ -109,6 +112,10 @@ pub enum Step {
     Split(u32, u32),
     /// Collapse the edge between two input vertices to its midpoint.
     Collapse(u32, u32),
+    /// Merge the two faces of the edge between two input vertices.
+    Dissolve(u32, u32),
+    /// Join two input vertices across the face they share.
+    SplitFace(u32, u32),
     /// Loop subdivision, N levels.
     Loop(u32),
     /// Catmull–Clark subdivision, N levels.
@@ -149,6 +156,8 @@ impl Step {
             "flip" => pair().map(|(a, b)| Step::Flip(a, b)),
             "split" => pair().map(|(a, b)| Step::Split(a, b)),
             "collapse" => pair().map(|(a, b)| Step::Collapse(a, b)),
+            "dissolve" => pair().map(|(a, b)| Step::Dissolve(a, b)),
+            "split-face" => pair().map(|(a, b)| Step::SplitFace(a, b)),
             _ => Err(format!("unknown step `{text}` (see `pappus --help`)")),
         }
     }
@@ -162,6 +171,8 @@ impl std::fmt::Display for Step {
             Step::Flip(a, b) => write!(f, "flip:{a},{b}"),
             Step::Split(a, b) => write!(f, "split:{a},{b}"),
             Step::Collapse(a, b) => write!(f, "collapse:{a},{b}"),
+            Step::Dissolve(a, b) => write!(f, "dissolve:{a},{b}"),
+            Step::SplitFace(a, b) => write!(f, "split-face:{a},{b}"),
             Step::Loop(n) => write!(f, "loop:{n}"),
             Step::CatmullClark(n) => write!(f, "catmull-clark:{n}"),
         }
@@ -391,6 +402,14 @@ pub fn run_step(
             Ok(v) => StepOutcome::Applied(format!("new vertex {v}")),
             Err(r) => StepOutcome::Refused(r),
         },
+        Step::Dissolve(a, b) => match edge(*a, *b).and_then(|e| dissolve_edge(world, e)) {
+            Ok(f) => StepOutcome::Applied(format!("merged into {f}")),
+            Err(r) => StepOutcome::Refused(r),
+        },
+        Step::SplitFace(a, b) => match split_common_face(world, input_vertices, *a, *b) {
+            Ok(e) => StepOutcome::Applied(format!("new edge {e}")),
+            Err(r) => StepOutcome::Refused(r),
+        },
         Step::Loop(n) => subdivided(loop_subdivide(world, mesh, *n)),
         Step::CatmullClark(n) => subdivided(catmull_clark(world, mesh, *n)),
         Step::Collapse(a, b) => {
@@ -412,6 +431,42 @@ fn subdivided(result: Result<SubdivisionSummary, Refusal>) -> StepOutcome {
     }
 }
 
+/// Splits the face that the input file's vertices `a` and `b` share, between them.
+fn split_common_face(
+    world: &mut World,
+    input_vertices: &[Option<VertexId>],
+    a: u32,
+    b: u32,
+) -> Result<EdgeId, Refusal> {
+    let (va, vb) = (
+        input_vertex(world, input_vertices, a)?,
+        input_vertex(world, input_vertices, b)?,
+    );
+    let m = MeshRef::new(world);
+    let face = m
+        .vertex_faces(va)
+        .find(|&f| m.face_vertices(f).any(|v| v == vb))
+        .ok_or_else(|| Refusal::Unsuitable(format!("input vertices {a} and {b} share no face")))?;
+    split_face(world, face, va, vb)
+}
+
+/// The live vertex the input file's vertex `i` became.
+fn input_vertex(
+    world: &World,
+    input_vertices: &[Option<VertexId>],
+    i: u32,
+) -> Result<VertexId, Refusal> {
+    let v = input_vertices
+        .get(i as usize)
+        .copied()
+        .flatten()
+        .ok_or_else(|| Refusal::Unsuitable(format!("the input has no vertex {i}")))?;
+    MeshRef::new(world)
+        .try_vertex(v)
+        .map(|_| v)
+        .ok_or(Refusal::Stale(ElementId::Vertex(v)))
+}
+
 /// The edge between the input file's vertices `a` and `b`.
 fn input_edge(
     world: &World,
@@ -419,18 +474,10 @@ fn input_edge(
     a: u32,
     b: u32,
 ) -> Result<EdgeId, Refusal> {
-    let vertex = |i: u32| -> Result<VertexId, Refusal> {
-        let v = input_vertices
-            .get(i as usize)
-            .copied()
-            .flatten()
-            .ok_or_else(|| Refusal::Unsuitable(format!("the input has no vertex {i}")))?;
-        let m = MeshRef::new(world);
-        m.try_vertex(v)
-            .map(|_| v)
-            .ok_or(Refusal::Stale(ElementId::Vertex(v)))
-    };
-    let (va, vb) = (vertex(a)?, vertex(b)?);
+    let (va, vb) = (
+        input_vertex(world, input_vertices, a)?,
+        input_vertex(world, input_vertices, b)?,
+    );
     let m = MeshRef::new(world);
     m.find_halfedge(va, vb)
         .map(|h| m.edge(h))

@@ -583,3 +583,80 @@ fn grid_corner_edges() {
     validate(&world, built.mesh).unwrap();
     assert_eq!(counts(&world, built.mesh), (15, 31, 17, 1));
 }
+
+// ---- the polygon toolkit: dissolve an edge, split a face ---------------------------------------
+
+#[test]
+fn dissolve_and_split_face_are_inverse_on_a_quad_grid() {
+    use pappus::ops::local::{dissolve_edge, split_face};
+    // 2×1 quads over 0 1 2 / 3 4 5: dissolving 1-4 gives one hexagon.
+    let soup = shapes::quad_grid(2, 1);
+    let (mut world, built) = build(&soup);
+    let e = edge(&world, &built, 1, 4);
+    let f = dissolve_edge(&mut world, e).unwrap();
+    let hexagon = PolygonSoup::from_faces(soup.positions.clone(), &[[0u32, 1, 2, 5, 4, 3]]);
+    assert_same_mesh(&world, built.mesh, &hexagon);
+    assert_eq!(counts(&world, built.mesh), (6, 6, 1, 1));
+    // Splitting the hexagon between 1 and 4 gives the two quads back.
+    let (v1, v4) = (
+        built.input_vertices[1].unwrap(),
+        built.input_vertices[4].unwrap(),
+    );
+    split_face(&mut world, f, v1, v4).unwrap();
+    assert_same_mesh(&world, built.mesh, &soup);
+    // On a 2×2 grid, a quad split across its diagonal gives two triangles.
+    let soup = shapes::quad_grid(2, 2);
+    let (mut world, built) = build(&soup);
+    let m = MeshRef::new(&world);
+    let (v0, v4) = (
+        built.input_vertices[0].unwrap(),
+        built.input_vertices[4].unwrap(),
+    );
+    let quad = m.vertex_faces(v0).next().unwrap();
+    split_face(&mut world, quad, v0, v4).unwrap();
+    validate(&world, built.mesh).unwrap();
+    let s = mesh_stats(&world, built.mesh);
+    assert_eq!(
+        (s.face_sizes.get(&3), s.face_sizes.get(&4)),
+        (Some(&2), Some(&3))
+    );
+}
+
+#[test]
+fn dissolve_and_split_face_refusals_leave_the_mesh_untouched() {
+    use pappus::ops::local::{dissolve_edge, split_face};
+    let r = refused(shapes::quad_grid(2, 1), 0, 1, |w, e| {
+        dissolve_edge(w, e).map(|_| ())
+    });
+    assert!(matches!(r, Refusal::BoundaryEdge(_)), "{r}");
+    // The two triangles of a quad-split share the diagonal only: fine. Two faces that share a
+    // corner besides the edge's ends: a strip of two quads folded so that they touch.
+    let soup = shapes::quad_grid(2, 1);
+    let (mut world, built) = build(&soup);
+    let m = MeshRef::new(&world);
+    let (v0, v1, v4) = (
+        built.input_vertices[0].unwrap(),
+        built.input_vertices[1].unwrap(),
+        built.input_vertices[4].unwrap(),
+    );
+    let quad = m.vertex_faces(v0).next().unwrap();
+    let before = snapshot(&world, built.mesh);
+    // Neighbouring corners: their edge exists.
+    assert!(matches!(
+        split_face(&mut world, quad, v0, v1),
+        Err(Refusal::WouldDuplicateEdge(..))
+    ));
+    // A vertex that is not a corner of the face.
+    let v2 = built.input_vertices[2].unwrap();
+    assert!(matches!(
+        split_face(&mut world, quad, v0, v2),
+        Err(Refusal::Unsuitable(_))
+    ));
+    // Corners already joined elsewhere: 1-4 is the shared edge, so splitting the quad 0 1 4 3
+    // between 1 and 4 would duplicate it.
+    assert!(matches!(
+        split_face(&mut world, quad, v1, v4),
+        Err(Refusal::WouldDuplicateEdge(..))
+    ));
+    assert_eq!(snapshot(&world, built.mesh), before);
+}

@@ -1,12 +1,15 @@
-//! Random sequences of flips, splits and collapses on random shapes: the mesh validates after
-//! every step, χ never changes (all three preserve it), and a refused operation changes
-//! nothing. 256 cases × 400 operations = 102 400 operations per run.
+//! Random sequences of flips, splits, collapses, dissolves and face splits on random shapes:
+//! the mesh validates after every step, χ never changes (every one of them preserves it), and a
+//! refused operation changes nothing. 256 cases × 400 operations = 102 400 operations per run.
 
 mod common;
 
 use bevy::prelude::World;
+use pappus::mesh::MeshRef;
 use pappus::mesh::{MeshId, MeshMembers, PolygonSoup, mesh_stats, shapes, validate};
-use pappus::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
+use pappus::ops::local::{
+    CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
+};
 use proptest::prelude::*;
 
 fn shape(i: u8) -> PolygonSoup {
@@ -31,7 +34,7 @@ proptest! {
     #[test]
     fn random_local_edits_keep_the_mesh_valid(
         which in 0u8..6,
-        ops in proptest::collection::vec((0u8..3, any::<u32>(), 0.05f32..0.95), 400),
+        ops in proptest::collection::vec((0u8..5, any::<u32>(), 0.05f32..0.95), 400),
     ) {
         let (mut world, built) = common::build(&shape(which));
         let mesh = built.mesh;
@@ -46,7 +49,20 @@ proptest! {
             let applied = match kind {
                 0 => flip_edge(&mut world, e).is_ok(),
                 1 => split_edge(&mut world, e, t).is_ok(),
-                _ => collapse_edge(&mut world, e, CollapseOptions::default()).is_ok(),
+                2 => collapse_edge(&mut world, e, CollapseOptions::default()).is_ok(),
+                3 => dissolve_edge(&mut world, e).is_ok(),
+                _ => {
+                    // Join the corners two apart in the face of the edge's halfedge.
+                    let m = MeshRef::new(&world);
+                    let h = m.edge_halfedge(e);
+                    match m.face(h) {
+                        Some(f) => {
+                            let (a, b) = (m.to_vertex(h), m.to_vertex(m.next(m.next(h))));
+                            split_face(&mut world, f, a, b).is_ok()
+                        }
+                        None => false,
+                    }
+                }
             };
             if let Err(invalid) = validate(&world, mesh) {
                 prop_assert!(false, "op {kind} on {e} broke the mesh: {invalid}");

@@ -10,7 +10,9 @@ use std::path::Path;
 use crate::io;
 use crate::mesh::ids::{EdgeId, ElementId, MeshId};
 use crate::mesh::{InMesh, MeshInfo, Position, build_mesh, despawn_mesh, to_soup};
-use crate::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
+use crate::ops::local::{
+    CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
+};
 use crate::ops::subdivide::{catmull_clark, loop_subdivide};
 use crate::ops::triangulate::triangulate;
 
@@ -63,6 +65,18 @@ pub fn apply(world: &mut World, request: &EditRequest) -> Result<String, String>
                 collapse_edge(world, *e, CollapseOptions::default()).map_err(|r| r.to_string())?;
             edited(world, mesh, Some(ElementId::Vertex(result.kept)));
             Ok(format!("kept {}, removed {}", result.kept, result.removed))
+        }
+        EditRequest::Dissolve(e) => {
+            let mesh = mesh_of(world, e.0)?;
+            let f = dissolve_edge(world, *e).map_err(|r| r.to_string())?;
+            edited(world, mesh, Some(ElementId::Face(f)));
+            Ok(format!("merged into {f}"))
+        }
+        EditRequest::SplitFace(f, a, b) => {
+            let mesh = mesh_of(world, f.0)?;
+            let e = split_face(world, *f, *a, *b).map_err(|r| r.to_string())?;
+            edited(world, mesh, Some(ElementId::Edge(e)));
+            Ok(format!("new edge {e}"))
         }
         EditRequest::Triangulate(mesh) => {
             if world.get::<MeshInfo>(mesh.0).is_none() {

@@ -101,9 +101,11 @@ fn key_code(name: &str) -> Option<KeyCode> {
         Some(match c.to_ascii_uppercase() {
             'A' => KeyCode::KeyA,
             'C' => KeyCode::KeyC,
+            'D' => KeyCode::KeyD,
             'E' => KeyCode::KeyE,
             'F' => KeyCode::KeyF,
             'H' => KeyCode::KeyH,
+            'J' => KeyCode::KeyJ,
             'L' => KeyCode::KeyL,
             'Q' => KeyCode::KeyQ,
             'N' => KeyCode::KeyN,

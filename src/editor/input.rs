@@ -22,6 +22,11 @@ pub enum Action {
     Split,
     /// Collapse the selected edge to its midpoint.
     Collapse,
+    /// Merge the two faces of the selected edge.
+    Dissolve,
+    /// Cut a corner off the selected halfedge's face: join its tip to the vertex two corners
+    /// ahead.
+    CutCorner,
     /// Triangulate the active mesh.
     Triangulate,
     /// Loop-subdivide the active mesh once.
@@ -334,7 +339,21 @@ pub fn keyboard_shortcuts(world: &mut World) {
 /// Performs an action: writes the request it stands for, or changes a setting.
 pub fn perform(world: &mut World, action: Action) {
     let request = match action {
-        Action::Flip | Action::Split | Action::Collapse => {
+        Action::CutCorner => {
+            let m = crate::mesh::MeshRef::new(world);
+            let target = match world.resource::<Selection>().element {
+                Some(ElementId::Halfedge(h)) if m.try_halfedge(h).is_some() => m
+                    .face(h)
+                    .map(|f| (f, m.to_vertex(h), m.to_vertex(m.next(m.next(h))))),
+                _ => None,
+            };
+            let Some((f, a, b)) = target else {
+                refuse(world, action, "select a halfedge of a face first (mode 4)");
+                return;
+            };
+            EditRequest::SplitFace(f, a, b)
+        }
+        Action::Flip | Action::Split | Action::Collapse | Action::Dissolve => {
             let Some(edge) = selected_edge(world) else {
                 refuse(world, action, "select an edge (or halfedge) first");
                 return;
@@ -342,6 +361,7 @@ pub fn perform(world: &mut World, action: Action) {
             match action {
                 Action::Flip => EditRequest::Flip(edge),
                 Action::Split => EditRequest::Split(edge),
+                Action::Dissolve => EditRequest::Dissolve(edge),
                 _ => EditRequest::Collapse(edge),
             }
         }

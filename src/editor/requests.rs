@@ -9,7 +9,7 @@ use bevy::math::Vec3;
 use bevy::prelude::{Message, Resource};
 use std::path::PathBuf;
 
-use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 
 /// A step along a halfedge relation, from the selected element.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -65,6 +65,10 @@ pub enum EditRequest {
     Split(EdgeId),
     /// Collapse an edge to its midpoint.
     Collapse(EdgeId),
+    /// Merge the two faces of an edge.
+    Dissolve(EdgeId),
+    /// Split a face between two of its corners.
+    SplitFace(FaceId, VertexId, VertexId),
     /// Triangulate every polygon of a mesh.
     Triangulate(MeshId),
     /// One level of Loop subdivision.
@@ -92,6 +96,8 @@ impl EditRequest {
             EditRequest::Flip(e) => format!("flip {e}"),
             EditRequest::Split(e) => format!("split {e}"),
             EditRequest::Collapse(e) => format!("collapse {e}"),
+            EditRequest::Dissolve(e) => format!("dissolve {e}"),
+            EditRequest::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
             EditRequest::Triangulate(m) => format!("triangulate {m}"),
             EditRequest::LoopSubdivide(m) => format!("Loop subdivision {m}"),
             EditRequest::CatmullClark(m) => format!("Catmull-Clark subdivision {m}"),

@@ -509,6 +509,8 @@ fn operations_section(
             (Action::Flip, "Flip"),
             (Action::Split, "Split"),
             (Action::Collapse, "Collapse"),
+            (Action::Dissolve, "Dissolve"),
+            (Action::CutCorner, "Split face"),
             (Action::Triangulate, "Triangulate"),
             (Action::LoopSubdivide, "Loop"),
             (Action::CatmullClark, "Catmull-Clark"),

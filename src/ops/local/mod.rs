@@ -11,19 +11,23 @@
 //! valid when they can.
 
 mod collapse;
+mod dissolve;
 mod flip;
 mod split;
+mod split_face;
 
 pub use collapse::{
     CollapseOptions, CollapsePlan, CollapseResult, apply_collapse, collapse_edge, plan_collapse,
 };
+pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};
 pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
 pub use split::{SplitPlan, apply_split, plan_split, split_edge};
+pub use split_face::{SplitFacePlan, apply_split_face, plan_split_face, split_face};
 
-use bevy::prelude::World;
+use bevy::prelude::{Entity, World};
 
-use crate::mesh::elements::Halfedge;
-use crate::mesh::ids::{EdgeId, ElementId, HalfedgeId};
+use crate::mesh::elements::{Edge, Face, Halfedge, InMesh};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId};
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
@@ -51,4 +55,90 @@ pub(crate) fn he(world: &mut World, h: HalfedgeId) -> bevy::prelude::Mut<'_, Hal
 pub(crate) fn link(world: &mut World, a: HalfedgeId, b: HalfedgeId) {
     he(world, a).next = b;
     he(world, b).prev = a;
+}
+
+/// Spawns a freshly allocated entity.
+pub(crate) fn spawn_at<B: bevy::prelude::Bundle>(world: &mut World, e: Entity, bundle: B) {
+    if let Err(error) = world.spawn_at(e, bundle) {
+        unreachable!("spawning freshly allocated {e} failed: {error}");
+    }
+}
+
+/// Splits face `f` with a new edge from `to(p)` to `to(q)` (two halfedges of `f`, `q` after
+/// `p`, not adjacent): `f` keeps `p`'s side, a new face takes the halfedges after `p` up to `q`.
+/// Returns the new edge, or `None` (nothing done) when `p` and `q` are adjacent.
+pub(crate) fn cut(
+    world: &mut World,
+    mesh: MeshId,
+    f: FaceId,
+    p: HalfedgeId,
+    q: HalfedgeId,
+) -> Option<EdgeId> {
+    let m = MeshRef::new(world);
+    let (pn, qn) = (m.next(p), m.next(q));
+    let (vp, vq) = (m.to_vertex(p), m.to_vertex(q));
+    if pn == q || qn == p {
+        return None;
+    }
+    let moved: Vec<HalfedgeId> = {
+        let mut list = Vec::new();
+        let mut x = pn;
+        loop {
+            list.push(x);
+            if x == q {
+                break;
+            }
+            x = m.next(x);
+        }
+        list
+    };
+    let alloc = world.entity_allocator();
+    let (n1, n2, edge, f2) = (
+        HalfedgeId(alloc.alloc()),
+        HalfedgeId(alloc.alloc()),
+        EdgeId(alloc.alloc()),
+        FaceId(alloc.alloc()),
+    );
+    let member = InMesh(mesh);
+    spawn_at(
+        world,
+        n1.0,
+        (
+            Halfedge {
+                twin: n2,
+                next: qn,
+                prev: p,
+                vertex: vq,
+                edge,
+                face: Some(f),
+            },
+            member,
+        ),
+    );
+    spawn_at(
+        world,
+        n2.0,
+        (
+            Halfedge {
+                twin: n1,
+                next: pn,
+                prev: q,
+                vertex: vp,
+                edge,
+                face: Some(f2),
+            },
+            member,
+        ),
+    );
+    link(world, p, n1);
+    link(world, n1, qn);
+    link(world, q, n2);
+    link(world, n2, pn);
+    for x in moved {
+        he(world, x).face = Some(f2);
+    }
+    spawn_at(world, edge.0, (Edge { halfedge: n1 }, member));
+    spawn_at(world, f2.0, (Face { halfedge: n2 }, member));
+    world.get_mut::<Face>(f.0).expect("planned").halfedge = n1;
+    Some(edge)
 }

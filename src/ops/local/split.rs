@@ -21,13 +21,13 @@
 //! Refusals: a stale edge; `t` outside the open interval (0, 1).
 
 use bevy::math::Vec3;
-use bevy::prelude::{Entity, World};
+use bevy::prelude::World;
 
-use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::elements::{Edge, Halfedge, InMesh, Position, Vertex};
+use crate::mesh::ids::{EdgeId, ElementId, HalfedgeId, VertexId};
 use crate::mesh::topology::MeshRef;
 
-use super::{Refusal, he, link, live_edge};
+use super::{Refusal, cut, he, link, live_edge, spawn_at};
 
 /// Everything a split touches, collected by [`plan_split`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -63,12 +63,6 @@ pub fn plan_split(world: &World, e: EdgeId, t: f32) -> Result<SplitPlan, Refusal
         position: a.lerp(b, t),
         mesh,
     })
-}
-
-fn spawn_at<B: bevy::prelude::Bundle>(world: &mut World, e: Entity, bundle: B) {
-    if let Err(error) = world.spawn_at(e, bundle) {
-        unreachable!("spawning freshly allocated {e} failed: {error}");
-    }
 }
 
 /// Carries out a split planned by [`plan_split`]. Returns the new vertex.
@@ -160,7 +154,7 @@ pub fn apply_split(world: &mut World, p: SplitPlan) -> VertexId {
     // b's outgoing halfedge may have been t (b → a), which is now b → m: still outgoing.
     // Cut each real face from m to the vertex after the edge.
     if let Some(f) = f {
-        cut(world, p.mesh, f, h, hn);
+        let _ = cut(world, p.mesh, f, h, hn);
     }
     if let Some(g) = g {
         // When both faces would send m to the same vertex (two faces that also share the edge
@@ -168,81 +162,10 @@ pub fn apply_split(world: &mut World, p: SplitPlan) -> VertexId {
         let m = MeshRef::new(world);
         let target_f = f.map(|_| m.to_vertex(m.next(h2)));
         if target_f != Some(m.to_vertex(tn)) {
-            cut(world, p.mesh, g, t, tn);
+            let _ = cut(world, p.mesh, g, t, tn);
         }
     }
     mid
-}
-
-/// Splits face `f` with a new edge from `to(p)` to `to(q)` (two halfedges of `f`, `q` after
-/// `p`, not adjacent): `f` keeps `p`'s side, a new face takes the halfedges after `p` up to `q`.
-fn cut(world: &mut World, mesh: crate::mesh::ids::MeshId, f: FaceId, p: HalfedgeId, q: HalfedgeId) {
-    let m = MeshRef::new(world);
-    let (pn, qn) = (m.next(p), m.next(q));
-    let (vp, vq) = (m.to_vertex(p), m.to_vertex(q));
-    if pn == q || qn == p {
-        return;
-    }
-    let moved: Vec<HalfedgeId> = {
-        let mut list = Vec::new();
-        let mut x = pn;
-        loop {
-            list.push(x);
-            if x == q {
-                break;
-            }
-            x = m.next(x);
-        }
-        list
-    };
-    let alloc = world.entity_allocator();
-    let (n1, n2, edge, f2) = (
-        HalfedgeId(alloc.alloc()),
-        HalfedgeId(alloc.alloc()),
-        EdgeId(alloc.alloc()),
-        FaceId(alloc.alloc()),
-    );
-    let member = InMesh(mesh);
-    spawn_at(
-        world,
-        n1.0,
-        (
-            Halfedge {
-                twin: n2,
-                next: qn,
-                prev: p,
-                vertex: vq,
-                edge,
-                face: Some(f),
-            },
-            member,
-        ),
-    );
-    spawn_at(
-        world,
-        n2.0,
-        (
-            Halfedge {
-                twin: n1,
-                next: pn,
-                prev: q,
-                vertex: vp,
-                edge,
-                face: Some(f2),
-            },
-            member,
-        ),
-    );
-    link(world, p, n1);
-    link(world, n1, qn);
-    link(world, q, n2);
-    link(world, n2, pn);
-    for x in moved {
-        he(world, x).face = Some(f2);
-    }
-    spawn_at(world, edge.0, (Edge { halfedge: n1 }, member));
-    spawn_at(world, f2.0, (Face { halfedge: n2 }, member));
-    world.get_mut::<Face>(f.0).expect("planned").halfedge = n1;
 }
 
 /// Splits `e` at parameter `t` along its halfedge (0.5: the midpoint). Returns the new vertex.
