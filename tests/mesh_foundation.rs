@@ -402,3 +402,62 @@ fn validate_catches_a_face_hole() {
     });
     assert_eq!(rule, Rule::FaceHalfedgeElsewhere);
 }
+
+#[test]
+fn validate_catches_twin_edge_and_face_mismatches() {
+    let rule = broken(|w, m| {
+        let mesh = MeshRef::new(w);
+        let h = m.halfedges[0];
+        let other = m
+            .edges
+            .iter()
+            .copied()
+            .find(|&e| e != mesh.edge(h))
+            .unwrap();
+        halfedge_mut(w, h).edge = other;
+    });
+    assert_eq!(rule, Rule::TwinEdgeDiffers);
+    let rule = broken(|w, m| {
+        let mesh = MeshRef::new(w);
+        let h = m.halfedges[0];
+        let other = m
+            .faces
+            .iter()
+            .copied()
+            .find(|&f| Some(f) != mesh.face(h))
+            .unwrap();
+        halfedge_mut(w, h).face = Some(other);
+    });
+    assert_eq!(rule, Rule::NextLeavesFace);
+}
+
+#[test]
+fn validate_catches_a_non_manifold_vertex_and_an_empty_mesh() {
+    // The bow tie is repaired into two components; gluing the split vertex back by hand makes
+    // one vertex with two fans.
+    let positions = (0..5)
+        .map(|i| Vec3::new(i as f32, (i * i) as f32, 0.0))
+        .collect();
+    let (mut world, built) = build(&PolygonSoup::from_faces(
+        positions,
+        &[[0u32, 1, 2], [0, 3, 4]],
+    ));
+    let members = pappus::mesh::MeshMembers::collect(&world, built.mesh);
+    let keep = built.input_vertices[0].unwrap();
+    let copy = *members.vertices.last().unwrap();
+    assert_ne!(keep, copy);
+    for &h in &members.halfedges {
+        if MeshRef::new(&world).to_vertex(h) == copy {
+            halfedge_mut(&mut world, h).vertex = keep;
+        }
+    }
+    world.despawn(copy.0);
+    assert_eq!(
+        validate(&world, built.mesh).unwrap_err().rule,
+        Rule::NonManifoldVertex
+    );
+
+    let mut world = World::new();
+    let empty = pappus::mesh::MeshId(world.spawn(pappus::mesh::MeshInfo::default()).id());
+    assert_eq!(validate(&world, empty).unwrap_err().rule, Rule::Empty);
+}
