@@ -438,16 +438,26 @@ fn split_common_face(
     a: u32,
     b: u32,
 ) -> Result<EdgeId, Refusal> {
-    let (va, vb) = (
-        input_vertex(world, input_vertices, a)?,
-        input_vertex(world, input_vertices, b)?,
-    );
+    let (va, vb) = input_pair(world, input_vertices, a, b)?;
     let m = MeshRef::new(world);
     let face = m
         .vertex_faces(va)
         .find(|&f| m.face_vertices(f).any(|v| v == vb))
         .ok_or_else(|| Refusal::Unsuitable(format!("input vertices {a} and {b} share no face")))?;
     split_face(world, face, va, vb)
+}
+
+/// The live vertices the input file's vertices `a` and `b` became.
+fn input_pair(
+    world: &World,
+    input_vertices: &[Option<VertexId>],
+    a: u32,
+    b: u32,
+) -> Result<(VertexId, VertexId), Refusal> {
+    Ok((
+        input_vertex(world, input_vertices, a)?,
+        input_vertex(world, input_vertices, b)?,
+    ))
 }
 
 /// The live vertex the input file's vertex `i` became.
@@ -474,10 +484,7 @@ fn input_edge(
     a: u32,
     b: u32,
 ) -> Result<EdgeId, Refusal> {
-    let (va, vb) = (
-        input_vertex(world, input_vertices, a)?,
-        input_vertex(world, input_vertices, b)?,
-    );
+    let (va, vb) = input_pair(world, input_vertices, a, b)?;
     let m = MeshRef::new(world);
     m.find_halfedge(va, vb)
         .map(|h| m.edge(h))

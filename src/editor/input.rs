@@ -129,6 +129,18 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::Collapse,
         "collapse the selected edge to its midpoint",
     ),
+    key(
+        KeyCode::KeyD,
+        "D",
+        Action::Dissolve,
+        "dissolve the selected edge (merge its two faces)",
+    ),
+    key(
+        KeyCode::KeyJ,
+        "J",
+        Action::CutCorner,
+        "split the selected halfedge's face: join its tip to the corner two ahead",
+    ),
     ctrl(
         KeyCode::KeyT,
         false,

@@ -102,12 +102,27 @@ pub struct SelectedView {
 }
 
 /// Text fields that keep their contents between frames.
-#[derive(Resource, Default, Debug)]
+#[derive(Resource, Debug)]
 pub struct UiFields {
     /// The path field (open / save as).
     pub path: String,
     /// The "go to id" field.
     pub jump: String,
+    /// What Enter in the path field does.
+    pub enter_means: PathPurpose,
+    /// The path field takes the keyboard next frame.
+    pub focus: bool,
+}
+
+impl Default for UiFields {
+    fn default() -> Self {
+        Self {
+            path: String::new(),
+            jump: String::new(),
+            enter_means: PathPurpose::Open,
+            focus: false,
+        }
+    }
 }
 
 /// Actions chosen in the panel that need the world (run in the next `Input` set).
@@ -331,20 +346,36 @@ fn file_section(
     ui_state: &mut UiState,
     requests: &mut MessageWriter<EditRequest>,
 ) {
+    // Ctrl+O / Ctrl+Shift+S focus the field; Enter then opens or saves, as the key asked.
+    if let Some(purpose) = ui_state.focus_path.take() {
+        fields.enter_means = purpose;
+        fields.focus = true;
+    }
+    let path = PathBuf::from(fields.path.trim());
+    let has_path = !fields.path.trim().is_empty();
     ui.horizontal(|ui| {
+        let hint = match fields.enter_means {
+            PathPurpose::Open => "file path or shape:NAME, Enter opens",
+            PathPurpose::SaveAs => "file path, Enter saves",
+        };
         let field = ui.add(
             egui::TextEdit::singleline(&mut fields.path)
-                .hint_text("file path or shape:NAME")
+                .hint_text(hint)
                 .desired_width(170.0),
         );
-        if let Some(purpose) = ui_state.focus_path.take() {
+        if std::mem::take(&mut fields.focus) {
             field.request_focus();
-            ui_state.focus_path = None;
-            let _ = purpose;
         }
         let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-        if (ui.button("Open").clicked() || entered) && !fields.path.trim().is_empty() {
-            requests.write(EditRequest::Open(PathBuf::from(fields.path.trim())));
+        if entered && has_path {
+            requests.write(match fields.enter_means {
+                PathPurpose::Open => EditRequest::Open(path.clone()),
+                PathPurpose::SaveAs => EditRequest::Save(Some(path.clone())),
+            });
+            fields.enter_means = PathPurpose::Open;
+        }
+        if ui.button("Open").clicked() && has_path {
+            requests.write(EditRequest::Open(path.clone()));
         }
     });
     ui.horizontal(|ui| {
@@ -354,11 +385,11 @@ fn file_section(
         {
             requests.write(EditRequest::Save(None));
         }
-        if ui.button("Save as (path above)").clicked() && !fields.path.trim().is_empty() {
-            requests.write(EditRequest::Save(Some(PathBuf::from(fields.path.trim()))));
+        let save_as = format!("Save as ({})", shortcut_label(Action::SaveAs));
+        if ui.button(save_as).clicked() && has_path {
+            requests.write(EditRequest::Save(Some(path.clone())));
         }
     });
-    let _ = PathPurpose::Open;
 }
 
 fn mesh_section(ui: &mut egui::Ui, view: &InspectorView) {

@@ -88,6 +88,14 @@ fn from_vertex(t: &Connectivity, h: u32) -> u32 {
     t.to_vertex[t.twin[h as usize] as usize]
 }
 
+/// The positions at the start and the tip of halfedge `h`.
+fn ends(t: &Connectivity, h: u32) -> (Vec3, Vec3) {
+    (
+        t.positions[from_vertex(t, h) as usize],
+        t.positions[t.to_vertex[h as usize] as usize],
+    )
+}
+
 fn is_boundary_edge(t: &Connectivity, h: u32) -> bool {
     t.face[h as usize] == NONE || t.face[t.twin[h as usize] as usize] == NONE
 }
@@ -188,10 +196,7 @@ pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, usize> {
     }
     for e in 0..ne {
         let h = t.edge_halfedge[e];
-        let (a, b) = (
-            t.positions[from_vertex(t, h) as usize],
-            t.positions[t.to_vertex[h as usize] as usize],
-        );
+        let (a, b) = ends(t, h);
         positions.push(if is_boundary_edge(t, h) {
             (a + b) * 0.5
         } else {
@@ -270,10 +275,7 @@ pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
     }
     for e in 0..ne {
         let h = t.edge_halfedge[e];
-        let (a, b) = (
-            t.positions[from_vertex(t, h) as usize],
-            t.positions[t.to_vertex[h as usize] as usize],
-        );
+        let (a, b) = ends(t, h);
         positions.push(if is_boundary_edge(t, h) {
             (a + b) * 0.5
         } else {
