@@ -184,9 +184,19 @@ pub fn sync_render_meshes(world: &mut World) {
         let start = Instant::now();
         let data = render_data(world, mesh, settings.smooth);
         let triangles = data.triangle_faces.len();
+        // Σ face degrees = triangles + 2 × faces (a k-gon is fanned into k − 2 triangles), and
+        // each edge is at most two of those sides: half of it bounds the edge count from below
+        // without walking the edges.
+        let faces = data
+            .triangle_faces
+            .iter()
+            .enumerate()
+            .filter(|&(i, f)| i == 0 || data.triangle_faces[i - 1] != *f)
+            .count();
+        let corners = data.triangle_faces.len() + 2 * faces;
         upload(world, mesh, data);
         if settings.wireframe {
-            upload_wireframe(world, mesh);
+            upload_wireframe(world, mesh, corners / 2 <= WIREFRAME_MAX_EDGES);
         }
         world.entity_mut(entity).remove::<MeshDirty>();
         let mut stats = world.resource_mut::<RenderStats>();
@@ -238,11 +248,15 @@ fn upload(world: &mut World, mesh: MeshId, data: RenderData) {
     }
 }
 
-fn upload_wireframe(world: &mut World, mesh: MeshId) {
+fn upload_wireframe(world: &mut World, mesh: MeshId, small_enough: bool) {
     if !world.contains_resource::<Assets<bevy::gizmos::GizmoAsset>>() {
         return;
     }
-    let mut lines = edge_lines(world, mesh);
+    let mut lines = if small_enough {
+        edge_lines(world, mesh)
+    } else {
+        Vec::new()
+    };
     if lines.len() > WIREFRAME_MAX_EDGES {
         lines.clear();
     }
