@@ -369,3 +369,60 @@ fn a_ray_cast_at_a_known_triangle_finds_its_face() {
         "centroid {c}"
     );
 }
+
+/// Every live face is drawn by exactly one chunk, once per triangle it fans into.
+fn assert_every_face_drawn_once(app: &mut App) {
+    let drawn: Vec<pappus::mesh::FaceId> = app
+        .world_mut()
+        .query::<&TriangleFaces>()
+        .iter(app.world())
+        .flat_map(|t| t.0.iter().copied())
+        .collect();
+    let members = pappus::mesh::MeshMembers::collect(app.world(), mesh(app));
+    let m = MeshRef::new(app.world());
+    let expected: usize = members.faces.iter().map(|&f| m.face_degree(f) - 2).sum();
+    assert_eq!(drawn.len(), expected);
+    let mut distinct = drawn.clone();
+    distinct.sort();
+    distinct.dedup();
+    assert_eq!(distinct.len(), members.faces.len());
+}
+
+#[test]
+fn local_edits_redraw_only_the_chunks_they_touch() {
+    use pappus::editor::render_sync::CHUNK_FACES;
+    let mut app = app();
+    open(&mut app, "shape:icosphere:6");
+    let chunks = app
+        .world_mut()
+        .query::<&TriangleFaces>()
+        .iter(app.world())
+        .count();
+    assert_eq!(chunks, 81920usize.div_ceil(CHUNK_FACES));
+    assert_every_face_drawn_once(&mut app);
+    for request in [
+        EditRequest::Flip as fn(pappus::mesh::EdgeId) -> EditRequest,
+        EditRequest::Split,
+        EditRequest::Collapse,
+        EditRequest::Dissolve,
+    ] {
+        let e = some_interior_edge(&app);
+        let before = app.world().resource::<RenderStats>().rebuilds;
+        app.world_mut().write_message(request(e));
+        app.update();
+        assert!(
+            last_outcome(&app).result.is_ok(),
+            "{:?}",
+            last_outcome(&app)
+        );
+        let stats = app.world().resource::<RenderStats>();
+        assert_eq!(stats.rebuilds, before + 1);
+        // At most the chunks of a few neighbouring faces were redrawn, never the whole sphere.
+        assert!(
+            stats.last_triangles <= 2 * 2 * CHUNK_FACES,
+            "{}",
+            stats.last_triangles
+        );
+        assert_every_face_drawn_once(&mut app);
+    }
+}

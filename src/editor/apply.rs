@@ -8,7 +8,7 @@ use bevy::prelude::{Local, World};
 use std::path::Path;
 
 use crate::io;
-use crate::mesh::ids::{EdgeId, ElementId, MeshId};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::{InMesh, MeshInfo, Position, build_mesh, despawn_mesh, to_soup};
 use crate::ops::local::{
     CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
@@ -16,6 +16,7 @@ use crate::ops::local::{
 use crate::ops::subdivide::{catmull_clark, loop_subdivide};
 use crate::ops::triangulate::triangulate;
 
+use super::render_sync::DirtyFaces;
 use super::requests::{EditOutcome, EditRequest, OutcomeLog};
 use super::selection::{ActiveMesh, MeshDirty, Selection, navigate};
 use crate::mesh::topology::MeshRef;
@@ -49,33 +50,42 @@ pub fn apply(world: &mut World, request: &EditRequest) -> Result<String, String>
     match request {
         EditRequest::Flip(e) => {
             let mesh = mesh_of(world, e.0)?;
+            let near = edge_ends(world, *e);
+            let before = faces_near(world, &near);
             let flipped = flip_edge(world, *e).map_err(|r| r.to_string())?;
-            edited(world, mesh, Some(ElementId::Edge(flipped)));
+            let after = edge_ends(world, flipped);
+            edited_locally(world, mesh, before, &after, Some(ElementId::Edge(flipped)));
             Ok(format!("flipped to {flipped}"))
         }
         EditRequest::Split(e) => {
             let mesh = mesh_of(world, e.0)?;
+            let before = faces_near(world, &edge_ends(world, *e));
             let v = split_edge(world, *e, 0.5).map_err(|r| r.to_string())?;
-            edited(world, mesh, Some(ElementId::Vertex(v)));
+            edited_locally(world, mesh, before, &[v], Some(ElementId::Vertex(v)));
             Ok(format!("new vertex {v}"))
         }
         EditRequest::Collapse(e) => {
             let mesh = mesh_of(world, e.0)?;
+            let before = faces_near(world, &edge_ends(world, *e));
             let result =
                 collapse_edge(world, *e, CollapseOptions::default()).map_err(|r| r.to_string())?;
-            edited(world, mesh, Some(ElementId::Vertex(result.kept)));
+            let kept = result.kept;
+            edited_locally(world, mesh, before, &[kept], Some(ElementId::Vertex(kept)));
             Ok(format!("kept {}, removed {}", result.kept, result.removed))
         }
         EditRequest::Dissolve(e) => {
             let mesh = mesh_of(world, e.0)?;
+            let ends = edge_ends(world, *e);
+            let before = faces_near(world, &ends);
             let f = dissolve_edge(world, *e).map_err(|r| r.to_string())?;
-            edited(world, mesh, Some(ElementId::Face(f)));
+            edited_locally(world, mesh, before, &ends, Some(ElementId::Face(f)));
             Ok(format!("merged into {f}"))
         }
         EditRequest::SplitFace(f, a, b) => {
             let mesh = mesh_of(world, f.0)?;
+            let before = faces_near(world, &[*a, *b]);
             let e = split_face(world, *f, *a, *b).map_err(|r| r.to_string())?;
-            edited(world, mesh, Some(ElementId::Edge(e)));
+            edited_locally(world, mesh, before, &[*a, *b], Some(ElementId::Edge(e)));
             Ok(format!("new edge {e}"))
         }
         EditRequest::Triangulate(mesh) => {
@@ -111,8 +121,12 @@ pub fn apply(world: &mut World, request: &EditRequest) -> Result<String, String>
                 return Err(format!("{v} is not a vertex"));
             };
             position.0 = *p;
+            // Smooth normals of the neighbours change too: their faces are redrawn as well.
+            let m = MeshRef::new(world);
+            let mut ring: Vec<VertexId> = m.vertex_neighbors(*v).collect();
+            ring.push(*v);
             let selection = world.resource::<Selection>().element;
-            edited(world, mesh, selection);
+            edited_locally(world, mesh, Vec::new(), &ring, selection);
             Ok(format!("{v} at {p}"))
         }
         EditRequest::Select(element) => {
@@ -156,6 +170,48 @@ fn mesh_of(world: &World, e: bevy::prelude::Entity) -> Result<MeshId, String> {
         .get::<InMesh>(e)
         .map(|m| m.0)
         .ok_or_else(|| format!("{e} does not exist (stale id)"))
+}
+
+/// The two ends of an edge (none if it is gone).
+fn edge_ends(world: &World, e: EdgeId) -> Vec<VertexId> {
+    let m = MeshRef::new(world);
+    if m.try_edge(e).is_none() {
+        return Vec::new();
+    }
+    let (a, b) = m.edge_vertices(e);
+    vec![a, b]
+}
+
+/// The faces around some vertices (dead vertices skipped).
+fn faces_near(world: &World, vertices: &[VertexId]) -> Vec<FaceId> {
+    let m = MeshRef::new(world);
+    let mut faces = Vec::new();
+    for &v in vertices {
+        if m.try_vertex(v).is_some() {
+            faces.extend(m.vertex_faces(v));
+        }
+    }
+    faces
+}
+
+/// After a local edit: the faces it touched (those around the edit before, which may now be
+/// gone, and around `after`) are redrawn, and the selection moves to what the edit made.
+fn edited_locally(
+    world: &mut World,
+    mesh: MeshId,
+    mut faces: Vec<FaceId>,
+    after: &[VertexId],
+    select: Option<ElementId>,
+) {
+    faces.extend(faces_near(world, after));
+    let mut entity = world.entity_mut(mesh.0);
+    match entity.get_mut::<DirtyFaces>() {
+        Some(mut dirty) => dirty.0.extend(faces),
+        None => {
+            entity.insert(DirtyFaces(faces));
+        }
+    }
+    world.resource_mut::<Selection>().element = select;
 }
 
 /// After an edit: the mesh is re-rendered and the selection moves to what the edit made.

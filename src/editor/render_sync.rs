@@ -1,10 +1,15 @@
-//! Keeps each mesh's render copy in step with its entities, rebuilding only meshes that changed.
+//! Keeps each mesh's render copy in step with its entities, redrawing only what changed.
 //!
-//! A mesh marked [`MeshDirty`] gets, in the `Sync` set: a Bevy [`Mesh`] with every polygon
-//! fan-triangulated (flat shading: one normal per face, Newell's; smooth: area-weighted vertex
-//! normals), a [`TriangleFaces`] table mapping each GPU triangle back to its face for picking,
-//! and a retained wireframe of the *real* edges (a quad shows 4 edges, not 5), boundary edges in
-//! red. Meshes that did not change cost nothing per frame.
+//! A mesh is drawn by chunks of [`CHUNK_FACES`] faces, each a render entity with a Bevy
+//! [`Mesh`] (every polygon fan-triangulated; flat shading: one Newell normal per face; smooth:
+//! area-weighted vertex normals over *all* the vertex's faces, so chunk borders show no seam), a
+//! [`TriangleFaces`] table mapping each GPU triangle back to its face for picking, and a retained
+//! wireframe of the *real* edges (a quad shows 4 edges, not 5; boundary edges red).
+//!
+//! In the `Sync` set, a mesh marked [`MeshDirty`] (opened, globally edited) is redrawn whole; a
+//! mesh carrying [`DirtyFaces`] (a local edit) has only the chunks holding those faces redrawn,
+//! new faces joining the last chunk. A 1M-face mesh thus re-renders an edit in milliseconds,
+//! and meshes that did not change cost nothing per frame.
 
 use bevy::asset::RenderAssetUsages;
 use bevy::color::Color;
@@ -14,10 +19,9 @@ use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology};
 use bevy::prelude::{Assets, Component, Entity, Resource, Transform, Visibility, With, World};
 use std::time::Instant;
 
+use crate::mesh::MeshInfo;
 use crate::mesh::ids::{FaceId, MeshId};
-use crate::mesh::members::MeshMembers;
 use crate::mesh::topology::MeshRef;
-use crate::mesh::{Edge, MeshInfo};
 
 use super::selection::MeshDirty;
 
@@ -74,7 +78,11 @@ pub const EDGE_COLOR: Color = Color::srgb(0.08, 0.08, 0.1);
 /// Colour of boundary edges in the wireframe.
 pub const BOUNDARY_COLOR: Color = Color::srgb(0.9, 0.15, 0.1);
 
-/// Triangles, normals and the triangle → face table for one mesh.
+/// Faces per render chunk. Each chunk is one render entity with its own GPU mesh, so an edit
+/// re-uploads only the chunks it touched.
+pub const CHUNK_FACES: usize = 16_384;
+
+/// Triangles, normals and the triangle → face table for a list of faces.
 #[derive(Debug, Clone, Default)]
 pub struct RenderData {
     /// Vertex positions of the render mesh.
@@ -87,39 +95,54 @@ pub struct RenderData {
     pub triangle_faces: Vec<FaceId>,
 }
 
-/// Builds the render data of `mesh`: each face fanned from its first corner.
-pub fn render_data(world: &World, mesh: MeshId, smooth: bool) -> RenderData {
-    let members = MeshMembers::collect(world, mesh);
+/// The render chunks of a mesh (a component of the mesh entity).
+#[derive(Component, Debug, Default)]
+pub struct RenderChunks {
+    /// Chunk entities, in order.
+    pub chunks: Vec<Entity>,
+    /// The wireframe entity of each chunk.
+    pub wires: Vec<Entity>,
+    /// Which chunk each face is drawn by.
+    pub face_chunk: EntityHashMap<u32>,
+    /// Whether the mesh is small enough for a full wireframe.
+    pub wireframe: bool,
+}
+
+/// The faces a chunk draws.
+#[derive(Component, Debug, Clone, Default)]
+pub struct ChunkFaces(pub Vec<FaceId>);
+
+/// Faces whose drawing must be redone (set by local edits; the render sync rebuilds only the
+/// chunks holding them). Dead faces are dropped from their chunks.
+#[derive(Component, Debug, Clone, Default)]
+#[component(storage = "SparseSet")]
+pub struct DirtyFaces(pub Vec<FaceId>);
+
+/// Builds the render data of `faces`: each face fanned from its first corner.
+pub fn render_data(world: &World, faces: &[FaceId], smooth: bool) -> RenderData {
     let m = MeshRef::new(world);
     let mut out = RenderData::default();
     let mut corners = Vec::new();
     if smooth {
+        // Vertex normals from every face around the vertex, so chunk borders show no seam.
         let mut index: EntityHashMap<u32> = EntityHashMap::default();
-        index.reserve(members.vertices.len());
-        for (i, &v) in members.vertices.iter().enumerate() {
-            index.insert(v.0, i as u32);
-            out.positions.push(m.position(v).to_array());
-        }
-        let mut normals = vec![Vec3::ZERO; members.vertices.len()];
-        for &f in &members.faces {
+        for &f in faces {
             corners.clear();
-            corners.extend(m.face_vertices(f).map(|v| index[&v.0]));
-            let points: Vec<Vec3> = corners
-                .iter()
-                .map(|&i| Vec3::from_array(out.positions[i as usize]))
-                .collect();
-            let area = crate::mesh::topology::newell_area_vector(&points);
-            for &i in &corners {
-                normals[i as usize] += area;
+            for v in m.face_vertices(f) {
+                let next = index.len() as u32;
+                let i = *index.entry(v.0).or_insert_with(|| {
+                    out.positions.push(m.position(v).to_array());
+                    let n: Vec3 = m.vertex_faces(v).map(|g| m.face_area_vector(g)).sum();
+                    out.normals
+                        .push(n.try_normalize().unwrap_or(Vec3::Z).to_array());
+                    next
+                });
+                corners.push(i);
             }
             fan(&mut out, &corners, f);
         }
-        out.normals = normals
-            .into_iter()
-            .map(|n| n.try_normalize().unwrap_or(Vec3::Z).to_array())
-            .collect();
     } else {
-        for &f in &members.faces {
+        for &f in faces {
             let base = out.positions.len() as u32;
             let start = out.positions.len();
             out.positions
@@ -149,68 +172,183 @@ fn fan(out: &mut RenderData, corners: &[u32], f: FaceId) {
     }
 }
 
-/// The edges of a mesh as line segments with colours (boundary edges red).
-pub fn edge_lines(world: &World, mesh: MeshId) -> Vec<(Vec3, Vec3, Color)> {
+/// The edges drawn by a chunk: each edge belongs to the face of its halfedge (its twin's on
+/// the boundary), so every edge is drawn once. Boundary edges are red.
+pub fn edge_lines(world: &World, faces: &[FaceId]) -> Vec<(Vec3, Vec3, Color)> {
     let m = MeshRef::new(world);
-    let Some(mut edges) = world.try_query::<(&Edge, &crate::mesh::InMesh)>() else {
-        return Vec::new();
-    };
-    edges
-        .iter(world)
-        .filter(|(_, of)| of.0 == mesh)
-        .map(|(e, _)| {
-            let h = e.halfedge;
+    let mut out = Vec::new();
+    for &f in faces {
+        for h in m.face_halfedges(f) {
+            let e = m.edge(h);
+            let owner_side = m.edge_halfedge(e);
+            let owner = m.face(owner_side).or_else(|| m.face(m.twin(owner_side)));
+            if owner != Some(f) {
+                continue;
+            }
             let (a, b) = (m.position(m.from_vertex(h)), m.position(m.to_vertex(h)));
-            let boundary = m.is_boundary(h) || m.is_boundary(m.twin(h));
-            (a, b, if boundary { BOUNDARY_COLOR } else { EDGE_COLOR })
-        })
-        .collect()
+            let boundary = m.is_boundary(m.twin(h));
+            out.push((a, b, if boundary { BOUNDARY_COLOR } else { EDGE_COLOR }));
+        }
+    }
+    out
 }
 
-/// Rebuilds the render copy of every dirty mesh and removes render copies of meshes that are
-/// gone (the `Sync` set).
+/// Rebuilds render copies (the `Sync` set): every chunk of a mesh marked [`MeshDirty`], and
+/// only the chunks holding [`DirtyFaces`] otherwise. Render copies of meshes that are gone are
+/// removed.
 pub fn sync_render_meshes(world: &mut World) {
     remove_orphans(world);
-    let dirty: Vec<Entity> = world
-        .query_filtered::<Entity, (With<MeshInfo>, With<MeshDirty>)>()
-        .iter(world)
-        .collect();
     let settings = world
         .get_resource::<ViewSettings>()
         .copied()
         .unwrap_or_default();
+    let dirty: Vec<Entity> = world
+        .query_filtered::<Entity, (With<MeshInfo>, With<MeshDirty>)>()
+        .iter(world)
+        .collect();
     for entity in dirty {
-        let mesh = MeshId(entity);
         let start = Instant::now();
-        let data = render_data(world, mesh, settings.smooth);
-        let triangles = data.triangle_faces.len();
-        // Σ face degrees = triangles + 2 × faces (a k-gon is fanned into k − 2 triangles), and
-        // each edge is at most two of those sides: half of it bounds the edge count from below
-        // without walking the edges.
-        let faces = data
-            .triangle_faces
-            .iter()
-            .enumerate()
-            .filter(|&(i, f)| i == 0 || data.triangle_faces[i - 1] != *f)
-            .count();
-        let corners = data.triangle_faces.len() + 2 * faces;
-        upload(world, mesh, data);
-        if settings.wireframe {
-            upload_wireframe(world, mesh, corners / 2 <= WIREFRAME_MAX_EDGES);
-        }
-        world.entity_mut(entity).remove::<MeshDirty>();
-        let mut stats = world.resource_mut::<RenderStats>();
-        stats.rebuilds += 1;
-        stats.last_triangles = triangles;
-        stats.last_rebuild_ms = start.elapsed().as_secs_f64() * 1000.0;
-        bevy::log::info!(
-            "render sync {mesh}: {triangles} triangles in {:.1} ms",
-            stats.last_rebuild_ms
-        );
+        let triangles = rebuild_all(world, MeshId(entity), settings);
+        world.entity_mut(entity).remove::<(MeshDirty, DirtyFaces)>();
+        record(world, MeshId(entity), triangles, start);
+    }
+    let partial: Vec<Entity> = world
+        .query_filtered::<Entity, (With<MeshInfo>, With<DirtyFaces>)>()
+        .iter(world)
+        .collect();
+    for entity in partial {
+        let start = Instant::now();
+        let faces = world
+            .entity_mut(entity)
+            .take::<DirtyFaces>()
+            .unwrap_or_default();
+        let triangles = rebuild_some(world, MeshId(entity), &faces.0, settings);
+        record(world, MeshId(entity), triangles, start);
     }
 }
 
-fn upload(world: &mut World, mesh: MeshId, data: RenderData) {
+fn record(world: &mut World, mesh: MeshId, triangles: usize, start: Instant) {
+    let mut stats = world.resource_mut::<RenderStats>();
+    stats.rebuilds += 1;
+    stats.last_triangles = triangles;
+    stats.last_rebuild_ms = start.elapsed().as_secs_f64() * 1000.0;
+    bevy::log::info!(
+        "render sync {mesh}: {triangles} triangles in {:.1} ms",
+        stats.last_rebuild_ms
+    );
+}
+
+/// Drops every chunk of `mesh` and draws it anew. Returns the triangles drawn.
+fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize {
+    if let Some(old) = world.entity_mut(mesh.0).take::<RenderChunks>() {
+        for e in old.chunks.into_iter().chain(old.wires) {
+            world.despawn(e);
+        }
+    }
+    let faces = crate::mesh::members::of_kind::<crate::mesh::Face, _>(world, mesh, FaceId);
+    let m = MeshRef::new(world);
+    // Σ face degrees = 2 × interior edges + boundary edges: half of it bounds the edge count
+    // from below without walking the edges.
+    let sides: usize = faces.iter().map(|&f| m.face_degree(f)).sum();
+    let mut chunks = RenderChunks {
+        wireframe: sides / 2 <= WIREFRAME_MAX_EDGES,
+        ..Default::default()
+    };
+    let mut triangles = 0;
+    for (i, group) in faces.chunks(CHUNK_FACES).enumerate() {
+        for &f in group {
+            chunks.face_chunk.insert(f.0, i as u32);
+        }
+        let chunk = world
+            .spawn((RenderOf(mesh), ChunkFaces(group.to_vec())))
+            .id();
+        let wire = world.spawn(WireframeOf(mesh)).id();
+        chunks.chunks.push(chunk);
+        chunks.wires.push(wire);
+        triangles += draw_chunk(world, chunk, wire, chunks.wireframe, settings);
+    }
+    world.entity_mut(mesh.0).insert(chunks);
+    triangles
+}
+
+/// Redraws the chunks holding `faces` (new faces join the last chunk). Returns the triangles
+/// drawn.
+fn rebuild_some(
+    world: &mut World,
+    mesh: MeshId,
+    faces: &[FaceId],
+    settings: ViewSettings,
+) -> usize {
+    let Some(mut chunks) = world.entity_mut(mesh.0).take::<RenderChunks>() else {
+        return rebuild_all(world, mesh, settings);
+    };
+    let mut touched: Vec<u32> = Vec::new();
+    for &f in faces {
+        let alive = world.get::<crate::mesh::Face>(f.0).is_some();
+        match (chunks.face_chunk.get(&f.0).copied(), alive) {
+            (Some(c), true) => touched.push(c),
+            (Some(c), false) => {
+                chunks.face_chunk.remove(&f.0);
+                touched.push(c);
+            }
+            (None, true) => {
+                let last = chunks.chunks.len() - 1;
+                let full = world
+                    .get::<ChunkFaces>(chunks.chunks[last])
+                    .is_some_and(|c| c.0.len() >= 2 * CHUNK_FACES);
+                let c = if full {
+                    chunks
+                        .chunks
+                        .push(world.spawn((RenderOf(mesh), ChunkFaces::default())).id());
+                    chunks.wires.push(world.spawn(WireframeOf(mesh)).id());
+                    chunks.chunks.len() - 1
+                } else {
+                    last
+                };
+                if let Some(mut list) = world.get_mut::<ChunkFaces>(chunks.chunks[c]) {
+                    list.0.push(f);
+                }
+                chunks.face_chunk.insert(f.0, c as u32);
+                touched.push(c as u32);
+            }
+            (None, false) => {}
+        }
+    }
+    touched.sort_unstable();
+    touched.dedup();
+    let mut triangles = 0;
+    for c in touched {
+        let (chunk, wire) = (chunks.chunks[c as usize], chunks.wires[c as usize]);
+        let alive: Vec<FaceId> = world
+            .get::<ChunkFaces>(chunk)
+            .map(|l| {
+                l.0.iter()
+                    .copied()
+                    .filter(|f| world.get::<crate::mesh::Face>(f.0).is_some())
+                    .collect()
+            })
+            .unwrap_or_default();
+        world.entity_mut(chunk).insert(ChunkFaces(alive));
+        triangles += draw_chunk(world, chunk, wire, chunks.wireframe, settings);
+    }
+    world.entity_mut(mesh.0).insert(chunks);
+    triangles
+}
+
+/// Builds and uploads one chunk's surface and wireframe. Returns its triangle count.
+fn draw_chunk(
+    world: &mut World,
+    chunk: Entity,
+    wire: Entity,
+    wireframe: bool,
+    settings: ViewSettings,
+) -> usize {
+    let faces = world
+        .get::<ChunkFaces>(chunk)
+        .map(|c| c.0.clone())
+        .unwrap_or_default();
+    let data = render_data(world, &faces, settings.smooth);
+    let triangles = data.triangle_faces.len();
     let mut render = Mesh::new(
         PrimitiveTopology::TriangleList,
         // Picking casts rays against the main-world copy: keep it.
@@ -219,75 +357,45 @@ fn upload(world: &mut World, mesh: MeshId, data: RenderData) {
     render.insert_attribute(Mesh::ATTRIBUTE_POSITION, data.positions);
     render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, data.normals);
     render.insert_indices(Indices::U32(data.indices));
-    let existing = world
-        .query::<(Entity, &RenderOf)>()
-        .iter(world)
-        .find(|(_, r)| r.0 == mesh)
-        .map(|(e, _)| e);
     let handle = world.resource_mut::<Assets<Mesh>>().add(render);
-    let faces = TriangleFaces(data.triangle_faces);
-    match existing {
-        Some(e) => {
-            world.entity_mut(e).insert((Mesh3d(handle), faces));
+    let material = world
+        .get_resource::<super::scene::SceneMaterials>()
+        .map(|m| m.surface.clone());
+    let mut e = world.entity_mut(chunk);
+    e.insert((
+        Mesh3d(handle),
+        TriangleFaces(data.triangle_faces),
+        Transform::default(),
+        Visibility::default(),
+    ));
+    if let Some(material) = material {
+        e.insert(bevy::pbr::MeshMaterial3d(material));
+    }
+    if settings.wireframe && world.contains_resource::<Assets<bevy::gizmos::GizmoAsset>>() {
+        let lines = if wireframe {
+            edge_lines(world, &faces)
+        } else {
+            Vec::new()
+        };
+        let mut asset = bevy::gizmos::GizmoAsset::default();
+        for (a, b, color) in lines {
+            asset.line(a, b, color);
         }
-        None => {
-            let material = world
-                .get_resource::<super::scene::SceneMaterials>()
-                .map(|m| m.surface.clone());
-            let mut e = world.spawn((
-                RenderOf(mesh),
-                Mesh3d(handle),
-                faces,
-                Transform::default(),
-                Visibility::default(),
-            ));
-            if let Some(material) = material {
-                e.insert(bevy::pbr::MeshMaterial3d(material));
-            }
-        }
+        let handle = world
+            .resource_mut::<Assets<bevy::gizmos::GizmoAsset>>()
+            .add(asset);
+        world
+            .entity_mut(wire)
+            .insert(bevy::gizmos::retained::Gizmo {
+                handle,
+                line_config: bevy::gizmos::config::GizmoLineConfig {
+                    width: 1.0,
+                    ..Default::default()
+                },
+                depth_bias: -0.0005,
+            });
     }
-}
-
-fn upload_wireframe(world: &mut World, mesh: MeshId, small_enough: bool) {
-    if !world.contains_resource::<Assets<bevy::gizmos::GizmoAsset>>() {
-        return;
-    }
-    let mut lines = if small_enough {
-        edge_lines(world, mesh)
-    } else {
-        Vec::new()
-    };
-    if lines.len() > WIREFRAME_MAX_EDGES {
-        lines.clear();
-    }
-    let mut asset = bevy::gizmos::GizmoAsset::default();
-    for (a, b, color) in lines {
-        asset.line(a, b, color);
-    }
-    let handle = world
-        .resource_mut::<Assets<bevy::gizmos::GizmoAsset>>()
-        .add(asset);
-    let existing = world
-        .query::<(Entity, &WireframeOf)>()
-        .iter(world)
-        .find(|(_, w)| w.0 == mesh)
-        .map(|(e, _)| e);
-    let gizmo = bevy::gizmos::retained::Gizmo {
-        handle,
-        line_config: bevy::gizmos::config::GizmoLineConfig {
-            width: 1.0,
-            ..Default::default()
-        },
-        depth_bias: -0.0005,
-    };
-    match existing {
-        Some(e) => {
-            world.entity_mut(e).insert(gizmo);
-        }
-        None => {
-            world.spawn((WireframeOf(mesh), gizmo));
-        }
-    }
+    triangles
 }
 
 /// Hides or shows every wireframe (the wireframe toggle), rebuilding them when shown.
