@@ -279,7 +279,7 @@ pub const SHORTCUTS: &[Shortcut] = &[
         false,
         "Ctrl+O",
         Action::Open,
-        "open a file (or drop one on the window)",
+        "open a file: a dialog, the path field, or drop one on the window",
     ),
     ctrl(KeyCode::KeyS, false, "Ctrl+S", Action::Save, "save"),
     ctrl(
@@ -427,6 +427,16 @@ pub fn perform(world: &mut World, action: Action) {
                 Action::Open => ui.focus_path = Some(PathPurpose::Open),
                 Action::SaveAs => ui.focus_path = Some(PathPurpose::SaveAs),
                 _ => ui.show_help = !ui.show_help,
+            }
+            let purpose = match action {
+                Action::Open => Some(PathPurpose::Open),
+                Action::SaveAs => Some(PathPurpose::SaveAs),
+                _ => None,
+            };
+            if let Some(purpose) = purpose
+                && world.contains_resource::<super::dialog::OpenDialog>()
+            {
+                super::dialog::show(world, purpose);
             }
             return;
         }

@@ -14,6 +14,7 @@
 
 pub mod apply;
 pub mod automation;
+pub mod dialog;
 pub mod drag;
 pub mod input;
 pub mod overlay;
@@ -121,6 +122,8 @@ impl Plugin for EditorWindowPlugin {
                 ),
             )
             .init_resource::<automation::PendingShots>()
+            .init_resource::<dialog::OpenDialog>()
+            .add_systems(Update, dialog::receive.in_set(EditorSystems::Input))
             .init_resource::<drag::VertexDrag>()
             .init_resource::<scene::PanelInsets>()
             .add_systems(Update, scene::fit_camera_viewport.in_set(EditorSystems::Ui))
