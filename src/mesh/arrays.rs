@@ -8,10 +8,9 @@
 
 use bevy::prelude::{Entity, World};
 
-use super::build::{AllocatedIds, spawn_into};
+use super::build::write_tables;
 use super::connectivity::Connectivity;
-use super::elements::{Position, Vertex};
-use super::ids::{EdgeId, FaceId, HalfedgeId, MeshId, VertexId};
+use super::ids::{HalfedgeId, MeshId};
 use super::members::MeshMembers;
 use super::repair::NONE;
 use super::topology::MeshRef;
@@ -97,50 +96,9 @@ pub fn extract(world: &World, mesh: MeshId) -> Extracted {
     Extracted { tables: t, members }
 }
 
-/// Replaces the contents of `mesh` with `tables`. The first `old.vertices.len()` table vertices
-/// reuse the old vertex entities (their positions and halfedges are overwritten); every old
-/// halfedge, edge and face is despawned, and the rest is spawned.
+/// Replaces the contents of `mesh` with `tables`, reusing the old entities row for row (the
+/// first `old.vertices.len()` table vertices keep their vertex entities, so a selected vertex
+/// stays selected) and spawning or despawning the difference.
 pub fn replace_contents(world: &mut World, mesh: MeshId, old: &MeshMembers, tables: &Connectivity) {
-    for &x in &old.halfedges {
-        world.despawn(x.0);
-    }
-    for &x in &old.edges {
-        world.despawn(x.0);
-    }
-    for &x in &old.faces {
-        world.despawn(x.0);
-    }
-    let kept = old.vertices.len().min(tables.vertex_count());
-    for &v in &old.vertices[kept..] {
-        world.despawn(v.0);
-    }
-    let alloc =
-        |n: usize| -> Vec<Entity> { world.entity_allocator().alloc_many(n as u32).collect() };
-    let mut vertices: Vec<VertexId> = old.vertices[..kept].to_vec();
-    vertices.extend(
-        alloc(tables.vertex_count() - kept)
-            .into_iter()
-            .map(VertexId),
-    );
-    let ids = AllocatedIds {
-        halfedges: alloc(tables.halfedge_count())
-            .into_iter()
-            .map(HalfedgeId)
-            .collect(),
-        edges: alloc(tables.edge_count()).into_iter().map(EdgeId).collect(),
-        faces: alloc(tables.face_count()).into_iter().map(FaceId).collect(),
-        vertices,
-    };
-    // Reused vertices get their new records in place; the new ones are spawned with the rest.
-    for i in 0..kept {
-        let v = ids.vertices[i];
-        let mut e = world.entity_mut(v.0);
-        e.insert((
-            Vertex {
-                halfedge: ids.halfedges[tables.vertex_halfedge[i] as usize],
-            },
-            Position(tables.positions[i]),
-        ));
-    }
-    spawn_into(world, tables, &ids, mesh, kept);
+    write_tables(world, tables, mesh, Some(old));
 }

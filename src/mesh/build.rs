@@ -88,97 +88,114 @@ pub fn spawn_connectivity(
     info: MeshInfo,
 ) -> (MeshId, Vec<VertexId>) {
     let mesh = MeshId(world.spawn(info).id());
-    let ids = allocate(world, c);
-    spawn_into(world, c, &ids, mesh, 0);
-    (mesh, ids.vertices)
+    let vertices = write_tables(world, c, mesh, None);
+    (mesh, vertices)
 }
 
-/// Entities for every element of a [`Connectivity`], allocated before any is spawned so that
-/// elements can name each other.
-pub(crate) struct AllocatedIds {
-    pub vertices: Vec<VertexId>,
-    pub halfedges: Vec<HalfedgeId>,
-    pub edges: Vec<EdgeId>,
-    pub faces: Vec<FaceId>,
-}
-
-pub(crate) fn allocate(world: &World, c: &Connectivity) -> AllocatedIds {
-    fn take<T>(world: &World, n: usize, wrap: fn(Entity) -> T) -> Vec<T> {
-        world
-            .entity_allocator()
-            .alloc_many(n as u32)
-            .map(wrap)
-            .collect()
-    }
-    AllocatedIds {
-        vertices: take(world, c.vertex_count(), VertexId),
-        halfedges: take(world, c.halfedge_count(), HalfedgeId),
-        edges: take(world, c.edge_count(), EdgeId),
-        faces: take(world, c.face_count(), FaceId),
-    }
-}
-
-/// Spawns every element of `c` at its allocated id, except the first `existing_vertices`
-/// vertices, which already exist.
-pub(crate) fn spawn_into(
+/// Makes the elements of `mesh` be exactly the tables `c`, reusing the entities of `old` (the
+/// mesh's current elements) row for row where it can, despawning the old ones left over and
+/// batch-spawning the missing ones. Returns the vertex entities in table order.
+///
+/// Two passes: every entity is first made to exist (reused, or spawned in one batch per kind
+/// with placeholder links — batch spawning measured 52–56 ns an entity against 71–85 ns for
+/// spawning at allocated ids), then every link is written in place (2–5 ns an entity).
+pub(crate) fn write_tables(
     world: &mut World,
     c: &Connectivity,
-    ids: &AllocatedIds,
     mesh: MeshId,
-    existing_vertices: usize,
-) {
+    old: Option<&MeshMembers>,
+) -> Vec<VertexId> {
     let member = InMesh(mesh);
-    let h = |i: u32| ids.halfedges[i as usize];
-    for (i, &v) in ids.vertices.iter().enumerate().skip(existing_vertices) {
-        let bundle = (
-            Vertex {
-                halfedge: h(c.vertex_halfedge[i]),
-            },
-            Position(c.positions[i]),
+    let none = HalfedgeId(Entity::PLACEHOLDER);
+    let old_of = |f: fn(&MeshMembers) -> Vec<Entity>| old.map(f).unwrap_or_default();
+    let vertices = entities_for(
+        world,
+        c.vertex_count(),
+        old_of(|o| o.vertices.iter().map(|v| v.0).collect()),
+        (
+            Vertex { halfedge: none },
+            Position(bevy::math::Vec3::ZERO),
             member,
-        );
-        spawn(world, v.0, bundle);
+        ),
+    );
+    let placeholder = Halfedge {
+        twin: none,
+        next: none,
+        prev: none,
+        vertex: VertexId(Entity::PLACEHOLDER),
+        edge: EdgeId(Entity::PLACEHOLDER),
+        face: None,
+    };
+    let halfedges = entities_for(
+        world,
+        c.halfedge_count(),
+        old_of(|o| o.halfedges.iter().map(|h| h.0).collect()),
+        (placeholder, member),
+    );
+    let edges = entities_for(
+        world,
+        c.edge_count(),
+        old_of(|o| o.edges.iter().map(|e| e.0).collect()),
+        (Edge { halfedge: none }, member),
+    );
+    let faces = entities_for(
+        world,
+        c.face_count(),
+        old_of(|o| o.faces.iter().map(|f| f.0).collect()),
+        (Face { halfedge: none }, member),
+    );
+
+    let h = |i: u32| HalfedgeId(halfedges[i as usize]);
+    let mut q = world.query::<(&mut Vertex, &mut Position)>();
+    for (i, &e) in vertices.iter().enumerate() {
+        if let Ok((mut v, mut p)) = q.get_mut(world, e) {
+            v.halfedge = h(c.vertex_halfedge[i]);
+            p.0 = c.positions[i];
+        }
     }
-    for (i, &id) in ids.halfedges.iter().enumerate() {
-        let face = c.face[i];
-        let bundle = (
-            Halfedge {
+    let mut q = world.query::<&mut Halfedge>();
+    for (i, &e) in halfedges.iter().enumerate() {
+        if let Ok(mut x) = q.get_mut(world, e) {
+            let face = c.face[i];
+            *x = Halfedge {
                 twin: h(c.twin[i]),
                 next: h(c.next[i]),
                 prev: h(c.prev[i]),
-                vertex: ids.vertices[c.to_vertex[i] as usize],
-                edge: ids.edges[c.edge[i] as usize],
-                face: (face != NONE).then(|| ids.faces[face as usize]),
-            },
-            member,
-        );
-        spawn(world, id.0, bundle);
+                vertex: VertexId(vertices[c.to_vertex[i] as usize]),
+                edge: EdgeId(edges[c.edge[i] as usize]),
+                face: (face != NONE).then(|| FaceId(faces[face as usize])),
+            };
+        }
     }
-    for (i, &e) in ids.edges.iter().enumerate() {
-        let bundle = (
-            Edge {
-                halfedge: h(c.edge_halfedge[i]),
-            },
-            member,
-        );
-        spawn(world, e.0, bundle);
+    let mut q = world.query::<&mut Edge>();
+    for (i, &e) in edges.iter().enumerate() {
+        if let Ok(mut x) = q.get_mut(world, e) {
+            x.halfedge = h(c.edge_halfedge[i]);
+        }
     }
-    for (i, &f) in ids.faces.iter().enumerate() {
-        let bundle = (
-            Face {
-                halfedge: h(c.face_halfedge[i]),
-            },
-            member,
-        );
-        spawn(world, f.0, bundle);
+    let mut q = world.query::<&mut Face>();
+    for (i, &e) in faces.iter().enumerate() {
+        if let Ok(mut x) = q.get_mut(world, e) {
+            x.halfedge = h(c.face_halfedge[i]);
+        }
     }
+    vertices.into_iter().map(VertexId).collect()
 }
 
-fn spawn<B: bevy::prelude::Bundle>(world: &mut World, entity: Entity, bundle: B) {
-    if let Err(error) = world.spawn_at(entity, bundle) {
-        // The ids came from this world's allocator a moment ago: failing here is a bug.
-        unreachable!("spawning a freshly allocated element {entity} failed: {error}");
+/// `n` entities of one kind: the first of `old`, then new ones spawned in one batch with
+/// `placeholder`; the rest of `old` is despawned.
+fn entities_for<B>(world: &mut World, n: usize, old: Vec<Entity>, placeholder: B) -> Vec<Entity>
+where
+    B: bevy::prelude::Bundle<Effect: bevy::ecs::bundle::NoBundleEffect> + Clone,
+{
+    let keep = old.len().min(n);
+    for &e in &old[keep..] {
+        world.despawn(e);
     }
+    let mut ids = old;
+    ids.truncate(keep);
+    ids.extend(world.spawn_batch(std::iter::repeat_n(placeholder, n - keep)));
+    ids
 }
 
 /// The mesh as a polygon soup: vertices in table order, faces as vertex cycles. The inverse of
