@@ -426,3 +426,86 @@ fn local_edits_redraw_only_the_chunks_they_touch() {
         assert_every_face_drawn_once(&mut app);
     }
 }
+
+#[test]
+fn dragging_the_selected_vertex_moves_it_in_the_view_plane() {
+    use bevy::input::mouse::{MouseButton, MouseButtonInput};
+    use bevy::window::PrimaryWindow;
+    use pappus::editor::EditorSystems;
+    use pappus::editor::drag::{VertexDrag, drive_vertex_drag};
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        InputPlugin,
+        WindowPlugin::default(),
+        AssetPlugin::default(),
+        bevy::image::ImagePlugin::default(),
+        bevy::mesh::MeshPlugin,
+        bevy::camera::CameraPlugin,
+        bevy::render::camera::CameraPlugin,
+        TransformPlugin,
+        EditorLogicPlugin,
+    ));
+    app.init_resource::<bevy::render::texture::ManualTextureViews>();
+    app.init_resource::<VertexDrag>();
+    app.add_systems(Update, drive_vertex_drag.in_set(EditorSystems::Input));
+    // Looking straight down -z at the unit quad grid in the z = 0 plane.
+    app.world_mut().spawn((
+        Camera3d::default(),
+        Transform::from_xyz(0.5, 0.5, 2.0).looking_at(Vec3::new(0.5, 0.5, 0.0), Vec3::Y),
+    ));
+    app.update();
+    app.update();
+    open(&mut app, "shape:quad-grid");
+    let vertices = pappus::mesh::MeshMembers::collect(app.world(), mesh(&app)).vertices;
+    let v = vertices[5 * 11 + 5]; // (0.5, 0.5)
+    app.world_mut()
+        .write_message(EditRequest::Select(Some(ElementId::Vertex(v))));
+    app.update();
+    let start = MeshRef::new(app.world()).position(v);
+    let (camera, transform) = app
+        .world_mut()
+        .query::<(&Camera, &GlobalTransform)>()
+        .single(app.world())
+        .map(|(c, t)| (c.clone(), *t))
+        .unwrap();
+    let on_screen = camera.world_to_viewport(&transform, start).unwrap();
+    let window = app
+        .world_mut()
+        .query_filtered::<Entity, With<PrimaryWindow>>()
+        .single(app.world())
+        .unwrap();
+    let cursor = |app: &mut App, p: Vec2| {
+        app.world_mut()
+            .get_mut::<Window>(window)
+            .unwrap()
+            .set_cursor_position(Some(p));
+    };
+    cursor(&mut app, on_screen);
+    app.world_mut().write_message(MouseButtonInput {
+        button: MouseButton::Left,
+        state: ButtonState::Pressed,
+        window,
+    });
+    app.update();
+    cursor(&mut app, on_screen + Vec2::new(40.0, 0.0));
+    app.update();
+    app.update();
+    app.world_mut().write_message(MouseButtonInput {
+        button: MouseButton::Left,
+        state: ButtonState::Released,
+        window,
+    });
+    app.update();
+    let end = MeshRef::new(app.world()).position(v);
+    assert!(end.x > start.x + 0.01, "{start} → {end}");
+    assert!(
+        (end.y - start.y).abs() < 1e-4 && end.z.abs() < 1e-4,
+        "{start} → {end}"
+    );
+    validate(app.world(), mesh(&app)).unwrap();
+    // Moving the pointer after the release moves nothing.
+    cursor(&mut app, on_screen + Vec2::new(80.0, 0.0));
+    app.update();
+    assert_eq!(MeshRef::new(app.world()).position(v), end);
+}
