@@ -26,6 +26,7 @@ use crate::mesh::{
 use crate::ops::local::{
     CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
 };
+use crate::ops::simplify::{SimplifyParams, simplify};
 use crate::ops::subdivide::{SubdivisionSummary, catmull_clark, loop_subdivide};
 use crate::ops::{Refusal, triangulate};
 
@@ -95,7 +96,7 @@ usage:
 FILE: .obj .off .ply .stl, or shape:NAME (tetrahedron cube icosahedron icosphere torus grid
       quad-grid grid-with-holes double-torus)
 STEP: validate | triangulate | flip:A,B | split:A,B | collapse:A,B | dissolve:A,B |
-      split-face:A,B | loop[:N] | catmull-clark[:N]
+      split-face:A,B | loop[:N] | catmull-clark[:N] | simplify:RATIO | simplify-faces:N
       A, B: 0-based indices of the input file's vertices (the edge between them)
 ";
 
@@ -116,6 +117,10 @@ pub enum Step {
     Dissolve(u32, u32),
     /// Join two input vertices across the face they share.
     SplitFace(u32, u32),
+    /// QEM simplification to a ratio of the faces.
+    Simplify(f64),
+    /// QEM simplification to a face count.
+    SimplifyFaces(usize),
     /// Loop subdivision, N levels.
     Loop(u32),
     /// Catmull–Clark subdivision, N levels.
@@ -151,6 +156,15 @@ impl Step {
         match name {
             "validate" => Ok(Step::Validate),
             "loop" => levels().map(Step::Loop),
+            "simplify" => match args.parse::<f64>() {
+                Ok(r) if r > 0.0 && r <= 1.0 => Ok(Step::Simplify(r)),
+                _ => Err(format!(
+                    "step `{text}`: the ratio must be in (0, 1], as in `simplify:0.25`"
+                )),
+            },
+            "simplify-faces" => args.parse::<usize>().map(Step::SimplifyFaces).map_err(|_| {
+                format!("step `{text}`: expected a face count, as in `simplify-faces:1000`")
+            }),
             "catmull-clark" => levels().map(Step::CatmullClark),
             "triangulate" => Ok(Step::Triangulate),
             "flip" => pair().map(|(a, b)| Step::Flip(a, b)),
@@ -173,6 +187,8 @@ impl std::fmt::Display for Step {
             Step::Collapse(a, b) => write!(f, "collapse:{a},{b}"),
             Step::Dissolve(a, b) => write!(f, "dissolve:{a},{b}"),
             Step::SplitFace(a, b) => write!(f, "split-face:{a},{b}"),
+            Step::Simplify(r) => write!(f, "simplify:{r}"),
+            Step::SimplifyFaces(n) => write!(f, "simplify-faces:{n}"),
             Step::Loop(n) => write!(f, "loop:{n}"),
             Step::CatmullClark(n) => write!(f, "catmull-clark:{n}"),
         }
@@ -410,6 +426,28 @@ pub fn run_step(
             Ok(e) => StepOutcome::Applied(format!("new edge {e}")),
             Err(r) => StepOutcome::Refused(r),
         },
+        Step::Simplify(_) | Step::SimplifyFaces(_) => {
+            let faces = crate::mesh::MeshMembers::collect(world, mesh).faces.len();
+            let params = match step {
+                Step::Simplify(r) => SimplifyParams::ratio(faces, *r),
+                Step::SimplifyFaces(n) => SimplifyParams::faces(*n),
+                _ => unreachable!("matched above"),
+            };
+            match simplify(world, mesh, &params) {
+                Ok(s) => StepOutcome::Applied(format!(
+                    "{} → {} faces in {} collapses{}",
+                    s.faces_before,
+                    s.faces_after,
+                    s.collapses,
+                    if s.reached_target {
+                        ""
+                    } else {
+                        " (no legal collapse left before the target)"
+                    }
+                )),
+                Err(r) => StepOutcome::Refused(r),
+            }
+        }
         Step::Loop(n) => subdivided(loop_subdivide(world, mesh, *n)),
         Step::CatmullClark(n) => subdivided(catmull_clark(world, mesh, *n)),
         Step::Collapse(a, b) => {

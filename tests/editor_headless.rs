@@ -509,3 +509,23 @@ fn dragging_the_selected_vertex_moves_it_in_the_view_plane() {
     app.update();
     assert_eq!(MeshRef::new(app.world()).position(v), end);
 }
+
+#[test]
+fn shift_s_simplifies_to_the_panel_ratio() {
+    let mut app = app();
+    open(&mut app, "shape:icosphere");
+    app.world_mut().write_message(KeyboardInput {
+        key_code: KeyCode::ShiftLeft,
+        logical_key: Key::Shift,
+        state: ButtonState::Pressed,
+        text: None,
+        repeat: false,
+        window: Entity::PLACEHOLDER,
+    });
+    app.update();
+    press(&mut app, KeyCode::KeyS);
+    let outcome = last_outcome(&app);
+    assert!(outcome.request.starts_with("simplify"), "{outcome:?}");
+    assert_eq!(outcome.result, Ok("1280 → 640 faces".into()));
+    validate(app.world(), mesh(&app)).unwrap();
+}

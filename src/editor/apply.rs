@@ -13,6 +13,7 @@ use crate::mesh::{InMesh, MeshInfo, Position, build_mesh, despawn_mesh, to_soup}
 use crate::ops::local::{
     CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
 };
+use crate::ops::simplify::{SimplifyParams, simplify};
 use crate::ops::subdivide::{catmull_clark, loop_subdivide};
 use crate::ops::triangulate::triangulate;
 
@@ -98,6 +99,29 @@ pub fn apply(world: &mut World, request: &EditRequest) -> Result<String, String>
             Ok(format!(
                 "{} polygon(s) cut into triangles, {} face(s) added",
                 s.polygons, s.added_faces
+            ))
+        }
+        EditRequest::Simplify(mesh, ratio) => {
+            if world.get::<MeshInfo>(mesh.0).is_none() {
+                return Err(format!("{mesh} does not exist"));
+            }
+            let faces = crate::mesh::MeshMembers::collect(world, *mesh).faces.len();
+            let params = SimplifyParams::ratio(faces, f64::from(*ratio));
+            let s = simplify(world, *mesh, &params).map_err(|r| r.to_string())?;
+            let selection = world
+                .resource::<Selection>()
+                .element
+                .filter(|&x| super::selection::exists(&MeshRef::new(world), x));
+            edited(world, *mesh, selection);
+            Ok(format!(
+                "{} → {} faces{}",
+                s.faces_before,
+                s.faces_after,
+                if s.reached_target {
+                    ""
+                } else {
+                    " (no legal collapse left before the target)"
+                }
             ))
         }
         EditRequest::LoopSubdivide(mesh) | EditRequest::CatmullClark(mesh) => {

@@ -29,6 +29,8 @@ pub enum Action {
     CutCorner,
     /// Triangulate the active mesh.
     Triangulate,
+    /// Simplify the active mesh (QEM) to the panel's ratio.
+    Simplify,
     /// Loop-subdivide the active mesh once.
     LoopSubdivide,
     /// Catmull–Clark-subdivide the active mesh once.
@@ -148,6 +150,14 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::Triangulate,
         "triangulate every polygon",
     ),
+    Shortcut {
+        key: KeyCode::KeyS,
+        ctrl: false,
+        shift: true,
+        action: Action::Simplify,
+        keys: "Shift+S",
+        description: "simplify (QEM) to the ratio set in the panel",
+    },
     key(
         KeyCode::KeyL,
         "L",
@@ -305,12 +315,24 @@ pub const SHORTCUTS: &[Shortcut] = &[
 pub struct KeyboardCaptured(pub bool);
 
 /// UI state that shortcuts can change.
-#[derive(Resource, Default, Debug, Clone)]
+#[derive(Resource, Debug, Clone)]
 pub struct UiState {
     /// The help overlay is open.
     pub show_help: bool,
     /// The path field should take the keyboard focus (for Open / Save as).
     pub focus_path: Option<PathPurpose>,
+    /// The fraction of faces Simplify keeps (0.01–1, default one half).
+    pub simplify_ratio: f32,
+}
+
+impl Default for UiState {
+    fn default() -> Self {
+        Self {
+            show_help: false,
+            focus_path: None,
+            simplify_ratio: 0.5,
+        }
+    }
 }
 
 /// What the path field is being focused for.
@@ -377,7 +399,7 @@ pub fn perform(world: &mut World, action: Action) {
                 _ => EditRequest::Collapse(edge),
             }
         }
-        Action::Triangulate | Action::LoopSubdivide | Action::CatmullClark => {
+        Action::Triangulate | Action::LoopSubdivide | Action::CatmullClark | Action::Simplify => {
             let Some(mesh) = world.resource::<ActiveMesh>().0 else {
                 refuse(world, action, "there is no mesh");
                 return;
@@ -385,6 +407,9 @@ pub fn perform(world: &mut World, action: Action) {
             match action {
                 Action::Triangulate => EditRequest::Triangulate(mesh),
                 Action::LoopSubdivide => EditRequest::LoopSubdivide(mesh),
+                Action::Simplify => {
+                    EditRequest::Simplify(mesh, world.resource::<UiState>().simplify_ratio)
+                }
                 _ => EditRequest::CatmullClark(mesh),
             }
         }

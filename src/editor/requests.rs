@@ -71,6 +71,8 @@ pub enum EditRequest {
     SplitFace(FaceId, VertexId, VertexId),
     /// Triangulate every polygon of a mesh.
     Triangulate(MeshId),
+    /// QEM simplification to a ratio of the faces.
+    Simplify(MeshId, f32),
     /// One level of Loop subdivision.
     LoopSubdivide(MeshId),
     /// One level of Catmull–Clark subdivision.
@@ -99,6 +101,7 @@ impl EditRequest {
             EditRequest::Dissolve(e) => format!("dissolve {e}"),
             EditRequest::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
             EditRequest::Triangulate(m) => format!("triangulate {m}"),
+            EditRequest::Simplify(m, r) => format!("simplify {m} to {:.0} %", r * 100.0),
             EditRequest::LoopSubdivide(m) => format!("Loop subdivision {m}"),
             EditRequest::CatmullClark(m) => format!("Catmull-Clark subdivision {m}"),
             EditRequest::MoveVertex(v, _) => format!("move {v}"),

@@ -286,7 +286,7 @@ pub fn panels(
                 ui.separator();
                 selection_section(ui, &view, &mut fields, &mut requests);
                 ui.separator();
-                operations_section(ui, &mut mode, &settings, &mut pending);
+                operations_section(ui, &mut mode, &settings, &mut pending, &mut ui_state);
                 ui.separator();
                 ui.label(egui::RichText::new("Log").strong());
                 for entry in log.entries.iter().rev().take(30) {
@@ -533,6 +533,7 @@ fn operations_section(
     mode: &mut SelectMode,
     settings: &ViewSettings,
     pending: &mut PendingActions,
+    ui_state: &mut UiState,
 ) {
     ui.label(egui::RichText::new("Operations").strong());
     ui.horizontal_wrapped(|ui| {
@@ -554,6 +555,19 @@ fn operations_section(
             {
                 pending.0.push(action);
             }
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::Slider::new(&mut ui_state.simplify_ratio, 0.01..=1.0)
+                .text("of the faces")
+                .custom_formatter(|v, _| format!("{:.0} %", v * 100.0)),
+        );
+        if ui
+            .button(format!("Simplify ({})", shortcut_label(Action::Simplify)))
+            .clicked()
+        {
+            pending.0.push(Action::Simplify);
         }
     });
     ui.horizontal(|ui| {

@@ -1,0 +1,62 @@
+#!/usr/bin/env python3
+"""QEM simplification, Pappus against MeshLab (pymeshlab), side by side in one run.
+
+For each ratio, runs `pappus process MESH -o OUT simplify:RATIO --json` (release build) and
+pymeshlab's `meshing_decimation_quadric_edge_collapse` (boundary preserved) on the same input,
+and prints times, face counts and the symmetric Hausdorff distance of each result to the input
+(pymeshlab's `get_hausdorff_distance` both ways, max), as a percentage of the bounding-box
+diagonal.
+
+Usage: python3 benches/qem_vs_meshlab.py [MESH] (default: ../shared/models/stanford-bunny.obj)
+Needs: pip install pymeshlab; cargo build --release.
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import pymeshlab
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+MESH = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "../shared/models/stanford-bunny.obj")
+PAPPUS = os.path.join(ROOT, "target/release/pappus")
+
+
+def hausdorff_pct(original, simplified):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(original)
+    ms.meshing_remove_unreferenced_vertices()
+    ms.load_new_mesh(simplified)
+    diag = ms.mesh(0).bounding_box().diagonal()
+    there = ms.get_hausdorff_distance(sampledmesh=0, targetmesh=1, samplevert=True, sampleface=True)
+    back = ms.get_hausdorff_distance(sampledmesh=1, targetmesh=0, samplevert=True, sampleface=True)
+    return 100 * max(there["max"], back["max"]) / diag
+
+
+def main():
+    with tempfile.TemporaryDirectory() as tmp:
+        for ratio in (0.5, 0.25, 0.1):
+            ours = os.path.join(tmp, f"pappus-{ratio}.ply")
+            report = json.loads(subprocess.run(
+                [PAPPUS, "process", MESH, "-o", ours, "--json", f"simplify:{ratio}"],
+                check=True, capture_output=True, text=True).stdout)
+            ms = pymeshlab.MeshSet()
+            ms.load_new_mesh(MESH)
+            ms.meshing_remove_unreferenced_vertices()
+            faces = ms.current_mesh().face_number()
+            start = time.perf_counter()
+            ms.meshing_decimation_quadric_edge_collapse(targetfacenum=round(faces * ratio),
+                                                        preserveboundary=True, preservenormal=True)
+            meshlab_ms = (time.perf_counter() - start) * 1000
+            theirs = os.path.join(tmp, f"meshlab-{ratio}.ply")
+            ms.save_current_mesh(theirs)
+            print(f"ratio {ratio}: Pappus {report['result']['faces']} faces in "
+                  f"{report['steps'][0]['ms']:.0f} ms, Hausdorff {hausdorff_pct(MESH, ours):.3f} % | "
+                  f"MeshLab {ms.current_mesh().face_number()} faces in {meshlab_ms:.0f} ms, "
+                  f"Hausdorff {hausdorff_pct(MESH, theirs):.3f} %")
+
+
+if __name__ == "__main__":
+    main()

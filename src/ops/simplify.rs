@@ -1,0 +1,353 @@
+//! Quadric error simplification (Garland & Heckbert 1997).
+//!
+//! Every face contributes the quadric `K = p pᵀ` of its plane `p = (n, −n·x)` (area-weighted);
+//! a vertex's quadric is the sum over its faces, plus, on the boundary, quadrics of planes
+//! through each boundary edge perpendicular to its face (weighted by [`SimplifyParams::
+//! boundary_weight`]) so that borders keep their shape and holes do not close. The cost of
+//! collapsing an edge is `vᵀ (Q_a + Q_b) v` at the optimal `v` (the solution of the 3×3 system;
+//! when it is near singular, the best of the two ends and the midpoint).
+//!
+//! Edges wait in a binary heap with lazy invalidation: an entry remembers the version of both
+//! end vertices and is skipped when either has changed since. Equal costs are ordered by the
+//! edge's entity bits, so a run is deterministic. Every collapse goes through
+//! [`crate::ops::local::plan_collapse`] — link condition, degenerate faces and a bound on how
+//! far a face normal may turn — and a refused edge is simply dropped until a neighbouring
+//! collapse gives it a new chance.
+
+use bevy::math::{DVec3, Vec3};
+use bevy::prelude::World;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
+use crate::mesh::members::MeshMembers;
+use crate::mesh::topology::MeshRef;
+
+use super::Refusal;
+use super::local::{CollapseOptions, apply_collapse, plan_collapse};
+
+/// How to simplify. The same struct serves the command line, the editor and the tests.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SimplifyParams {
+    /// Stop when the mesh has at most this many faces.
+    pub target_faces: usize,
+    /// Refuse collapses that turn a surviving face's normal by more than this (degrees).
+    /// Default 60°.
+    pub max_normal_change_deg: f32,
+    /// Weight of the boundary-preserving planes relative to the face planes. Default 100.
+    pub boundary_weight: f64,
+}
+
+impl SimplifyParams {
+    /// Simplify to `ratio` (0–1] of the current face count, with the default limits.
+    pub fn ratio(faces: usize, ratio: f64) -> Self {
+        Self::faces((faces as f64 * ratio.clamp(0.0, 1.0)).round() as usize)
+    }
+
+    /// Simplify to `target` faces, with the default limits.
+    pub fn faces(target: usize) -> Self {
+        Self {
+            target_faces: target,
+            max_normal_change_deg: 60.0,
+            boundary_weight: 100.0,
+        }
+    }
+}
+
+/// What a simplification did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SimplifySummary {
+    /// Faces before.
+    pub faces_before: usize,
+    /// Faces after.
+    pub faces_after: usize,
+    /// Collapses carried out.
+    pub collapses: usize,
+    /// Whether the target was reached (otherwise no legal collapse was left).
+    pub reached_target: bool,
+}
+
+/// A symmetric 4×4 quadric, stored as its upper triangle.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Quadric([f64; 10]);
+
+impl Quadric {
+    /// The quadric of the plane `n·x + d = 0`, times `weight`.
+    pub fn plane(n: DVec3, d: f64, weight: f64) -> Self {
+        let p = [n.x, n.y, n.z, d];
+        let mut q = [0.0; 10];
+        let mut k = 0;
+        for i in 0..4 {
+            for j in i..4 {
+                q[k] = weight * p[i] * p[j];
+                k += 1;
+            }
+        }
+        Self(q)
+    }
+
+    /// `vᵀ Q v` for the point `v`.
+    pub fn error(&self, v: DVec3) -> f64 {
+        let q = &self.0;
+        let (x, y, z) = (v.x, v.y, v.z);
+        q[0] * x * x
+            + 2.0 * q[1] * x * y
+            + 2.0 * q[2] * x * z
+            + 2.0 * q[3] * x
+            + q[4] * y * y
+            + 2.0 * q[5] * y * z
+            + 2.0 * q[6] * y
+            + q[7] * z * z
+            + 2.0 * q[8] * z
+            + q[9]
+    }
+
+    /// The point minimising the error, if the 3×3 system is well conditioned.
+    pub fn optimum(&self) -> Option<DVec3> {
+        let q = &self.0;
+        let a = bevy::math::DMat3::from_cols(
+            DVec3::new(q[0], q[1], q[2]),
+            DVec3::new(q[1], q[4], q[5]),
+            DVec3::new(q[2], q[5], q[7]),
+        );
+        let det = a.determinant();
+        let scale = q[0].abs() + q[4].abs() + q[7].abs();
+        if det.abs() <= 1e-12 * scale.powi(3).max(f64::MIN_POSITIVE) {
+            return None;
+        }
+        let v = a.inverse() * -DVec3::new(q[3], q[6], q[8]);
+        v.is_finite().then_some(v)
+    }
+}
+
+impl std::ops::Add for Quadric {
+    type Output = Quadric;
+    fn add(mut self, other: Quadric) -> Quadric {
+        for (a, b) in self.0.iter_mut().zip(other.0) {
+            *a += b;
+        }
+        self
+    }
+}
+
+/// A heap entry: lowest cost first, ties by edge.
+struct Candidate {
+    cost: f64,
+    edge: EdgeId,
+    position: Vec3,
+    versions: (u32, u32),
+    ends: (VertexId, VertexId),
+}
+
+impl PartialEq for Candidate {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+impl Eq for Candidate {}
+impl PartialOrd for Candidate {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Candidate {
+    fn cmp(&self, other: &Self) -> Ordering {
+        // BinaryHeap is a max-heap: reverse for lowest cost first.
+        other
+            .cost
+            .total_cmp(&self.cost)
+            .then_with(|| other.edge.0.to_bits().cmp(&self.edge.0.to_bits()))
+    }
+}
+
+/// Per-vertex data, indexed by entity index.
+struct VertexTable {
+    quadric: Vec<Quadric>,
+    version: Vec<u32>,
+}
+
+impl VertexTable {
+    fn slot(v: VertexId) -> usize {
+        v.0.index_u32() as usize
+    }
+}
+
+/// Simplifies `mesh` (triangles only) until it has at most `params.target_faces` faces or no
+/// legal collapse remains.
+///
+/// # Refusals
+/// [`Refusal::NotTriangle`] if a face is not a triangle (the mesh is unchanged); a stale mesh.
+pub fn simplify(
+    world: &mut World,
+    mesh: MeshId,
+    params: &SimplifyParams,
+) -> Result<SimplifySummary, Refusal> {
+    simplify_with_progress(world, mesh, params, |_| true)
+}
+
+/// [`simplify`], calling `progress(fraction done)` every few hundred collapses; returning
+/// `false` stops early (the mesh is then valid but less simplified).
+///
+/// # Refusals
+/// As [`simplify`].
+pub fn simplify_with_progress(
+    world: &mut World,
+    mesh: MeshId,
+    params: &SimplifyParams,
+    mut progress: impl FnMut(f32) -> bool,
+) -> Result<SimplifySummary, Refusal> {
+    if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
+        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
+    }
+    let members = MeshMembers::collect(world, mesh);
+    {
+        let m = MeshRef::new(world);
+        if let Some(&f) = members.faces.iter().find(|&&f| m.face_degree(f) != 3) {
+            return Err(Refusal::NotTriangle(ElementId::Face(f)));
+        }
+    }
+    let faces_before = members.faces.len();
+    let mut table = initial_quadrics(world, &members, params.boundary_weight);
+    let mut heap = BinaryHeap::with_capacity(members.edges.len());
+    for &e in &members.edges {
+        if let Some(c) = candidate(world, &table, e) {
+            heap.push(c);
+        }
+    }
+    let options = CollapseOptions {
+        position: None,
+        max_normal_change_deg: Some(params.max_normal_change_deg),
+    };
+    let mut faces = faces_before;
+    let mut collapses = 0;
+    let to_remove = faces_before.saturating_sub(params.target_faces).max(1);
+    while faces > params.target_faces {
+        let Some(c) = heap.pop() else { break };
+        let (a, b) = c.ends;
+        if world.get_entity(c.edge.0).is_err()
+            || table.version[VertexTable::slot(a)] != c.versions.0
+            || table.version[VertexTable::slot(b)] != c.versions.1
+        {
+            continue;
+        }
+        let Ok(plan) = plan_collapse(
+            world,
+            c.edge,
+            CollapseOptions {
+                position: Some(c.position),
+                ..options
+            },
+        ) else {
+            continue;
+        };
+        let m = MeshRef::new(world);
+        let h = m.edge_halfedge(c.edge);
+        // A collapse removes the triangles on the edge: two inside, one on the boundary.
+        let before = usize::from(m.face(h).is_some()) + usize::from(m.face(m.twin(h)).is_some());
+        let result = apply_collapse(world, plan);
+        faces -= before;
+        collapses += 1;
+        let merged = table.quadric[VertexTable::slot(a)] + table.quadric[VertexTable::slot(b)];
+        let kept = VertexTable::slot(result.kept);
+        table.quadric[kept] = merged;
+        table.version[kept] += 1;
+        table.version[VertexTable::slot(result.removed)] += 1;
+        let around: Vec<EdgeId> = {
+            let m = MeshRef::new(world);
+            m.vertex_outgoing(result.kept).map(|h| m.edge(h)).collect()
+        };
+        for e in around {
+            if let Some(c) = candidate(world, &table, e) {
+                heap.push(c);
+            }
+        }
+        if collapses % 512 == 0 {
+            let done = (faces_before - faces) as f32 / to_remove as f32;
+            if !progress(done.min(1.0)) {
+                break;
+            }
+        }
+    }
+    Ok(SimplifySummary {
+        faces_before,
+        faces_after: faces,
+        collapses,
+        reached_target: faces <= params.target_faces,
+    })
+}
+
+fn initial_quadrics(world: &World, members: &MeshMembers, boundary_weight: f64) -> VertexTable {
+    let m = MeshRef::new(world);
+    let size = members
+        .vertices
+        .iter()
+        .map(|v| v.0.index_u32() as usize + 1)
+        .max()
+        .unwrap_or(0);
+    let mut table = VertexTable {
+        quadric: vec![Quadric::default(); size],
+        version: vec![0; size],
+    };
+    for &f in &members.faces {
+        let corners: Vec<VertexId> = m.face_vertices(f).collect();
+        let p: Vec<DVec3> = corners.iter().map(|&v| m.position(v).as_dvec3()).collect();
+        let cross = (p[1] - p[0]).cross(p[2] - p[0]);
+        let area = cross.length() / 2.0;
+        let Some(n) = cross.try_normalize() else {
+            continue;
+        };
+        let q = Quadric::plane(n, -n.dot(p[0]), area);
+        for v in corners {
+            let slot = VertexTable::slot(v);
+            table.quadric[slot] = table.quadric[slot] + q;
+        }
+    }
+    // Boundary edges: a plane through the edge, perpendicular to its face.
+    for &h in &members.halfedges {
+        if !m.is_boundary(h) {
+            continue;
+        }
+        let inner = m.twin(h);
+        let Some(f) = m.face(inner) else { continue };
+        let (a, b) = (
+            m.position(m.from_vertex(h)).as_dvec3(),
+            m.position(m.to_vertex(h)).as_dvec3(),
+        );
+        let normal = m.face_area_vector(f).as_dvec3();
+        let Some(n) = (b - a).cross(normal).try_normalize() else {
+            continue;
+        };
+        let weight = boundary_weight * (b - a).length_squared();
+        let q = Quadric::plane(n, -n.dot(a), weight);
+        for v in [m.from_vertex(h), m.to_vertex(h)] {
+            let slot = VertexTable::slot(v);
+            table.quadric[slot] = table.quadric[slot] + q;
+        }
+    }
+    table
+}
+
+fn candidate(world: &World, table: &VertexTable, e: EdgeId) -> Option<Candidate> {
+    let m = MeshRef::new(world);
+    m.try_edge(e)?;
+    let h = m.edge_halfedge(e);
+    let (a, b) = (m.from_vertex(h), m.to_vertex(h));
+    let q = table.quadric[VertexTable::slot(a)] + table.quadric[VertexTable::slot(b)];
+    let (pa, pb) = (m.position(a).as_dvec3(), m.position(b).as_dvec3());
+    let position = q.optimum().unwrap_or_else(|| {
+        [pa, pb, (pa + pb) / 2.0]
+            .into_iter()
+            .min_by(|x, y| q.error(*x).total_cmp(&q.error(*y)))
+            .unwrap_or(pa)
+    });
+    Some(Candidate {
+        cost: q.error(position).max(0.0),
+        edge: e,
+        position: position.as_vec3(),
+        versions: (
+            table.version[VertexTable::slot(a)],
+            table.version[VertexTable::slot(b)],
+        ),
+        ends: (a, b),
+    })
+}
