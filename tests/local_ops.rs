@@ -8,7 +8,7 @@ use bevy::prelude::World;
 use common::build;
 use pappus::mesh::{
     Edge, EdgeId, Face, Halfedge, MeshId, MeshMembers, MeshRef, PolygonSoup, Position, Vertex,
-    mesh_stats, shapes, to_soup, validate,
+    VertexId, mesh_stats, shapes, to_soup, validate,
 };
 use pappus::ops::Refusal;
 use pappus::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
@@ -657,6 +657,85 @@ fn dissolve_and_split_face_refusals_leave_the_mesh_untouched() {
     assert!(matches!(
         split_face(&mut world, quad, v1, v4),
         Err(Refusal::WouldDuplicateEdge(..))
+    ));
+    assert_eq!(snapshot(&world, built.mesh), before);
+}
+
+// ---- vertex split: the exact inverse of collapse -------------------------------------------
+
+#[test]
+fn split_undoes_every_collapse_exactly() {
+    use pappus::ops::local::vertex_split;
+    let cases = [
+        ("icosphere", shapes::icosphere(1)),
+        ("grid", shapes::grid(4, 4)),
+        ("torus", shapes::triangulate_fans(&shapes::torus(6, 5))),
+        (
+            "holes",
+            shapes::triangulate_fans(&shapes::grid_with_holes(2)),
+        ),
+        ("fan", shapes::triangle_fan(5, false)),
+    ];
+    for (name, soup) in cases {
+        let edge_count = build(&soup).1;
+        let edges = MeshMembers::collect(&build(&soup).0, edge_count.mesh)
+            .edges
+            .len();
+        let (mut undone, mut boundary) = (0, 0);
+        for i in 0..edges {
+            let (mut world, built) = build(&soup);
+            let original = canonical(&to_soup(&world, built.mesh));
+            let before = counts(&world, built.mesh);
+            let e = MeshMembers::collect(&world, built.mesh).edges[i];
+            let on_boundary = MeshRef::new(&world).is_boundary_edge(e);
+            let Ok(result) = collapse_edge(&mut world, e, CollapseOptions::default()) else {
+                continue;
+            };
+            vertex_split(&mut world, &result.record)
+                .unwrap_or_else(|r| panic!("{name} edge {i}: {r}"));
+            validate(&world, built.mesh).unwrap_or_else(|x| panic!("{name} edge {i}: {x}"));
+            assert_eq!(
+                canonical(&to_soup(&world, built.mesh)),
+                original,
+                "{name} edge {i}"
+            );
+            assert_eq!(counts(&world, built.mesh), before);
+            undone += 1;
+            boundary += usize::from(on_boundary);
+        }
+        assert!(
+            undone > edges / 3,
+            "{name}: only {undone} of {edges} edges collapsed"
+        );
+        if name != "icosphere" && name != "torus" {
+            assert!(boundary > 0, "{name}: no boundary edge was tried");
+        }
+    }
+}
+
+#[test]
+fn split_refuses_a_stale_or_polygon_record() {
+    use pappus::ops::local::vertex_split;
+    let (mut world, built) = build(&shapes::quad_grid(2, 2));
+    let e = edge(&world, &built, 1, 4);
+    let result = collapse_edge(&mut world, e, CollapseOptions::default()).unwrap();
+    assert!(!result.record.invertible);
+    let before = snapshot(&world, built.mesh);
+    assert!(matches!(
+        vertex_split(&mut world, &result.record),
+        Err(Refusal::Unsuitable(_))
+    ));
+    assert_eq!(snapshot(&world, built.mesh), before);
+    let (mut world, built) = build(&shapes::icosphere(1));
+    let e = edge(&world, &built, 0, 12);
+    let mut record = collapse_edge(&mut world, e, CollapseOptions::default())
+        .unwrap()
+        .record;
+    record.kept = VertexId(bevy::prelude::Entity::from_raw_u32(999_999).unwrap());
+    let before = snapshot(&world, built.mesh);
+    assert!(matches!(
+        vertex_split(&mut world, &record),
+        Err(Refusal::Stale(_))
     ));
     assert_eq!(snapshot(&world, built.mesh), before);
 }

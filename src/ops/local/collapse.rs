@@ -49,12 +49,34 @@ pub struct CollapseOptions {
 }
 
 /// What a collapse did.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CollapseResult {
     /// The surviving vertex.
     pub kept: VertexId,
     /// The removed vertex (its id is now stale).
     pub removed: VertexId,
+    /// What [`super::vertex_split`] needs to undo the collapse exactly.
+    pub record: CollapseRecord,
+}
+
+/// What undoing a collapse needs (Hoppe 1996): the surviving vertex, both positions before the
+/// collapse, and the opposite vertices ("wings") of the triangles that disappeared — on the
+/// side of the halfedge from the kept to the removed vertex (`left`) and on the other (`right`);
+/// `None` where that side was the boundary.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CollapseRecord {
+    /// The vertex that survived.
+    pub kept: VertexId,
+    /// Its position before the collapse.
+    pub kept_position: Vec3,
+    /// The removed vertex's position before the collapse.
+    pub removed_position: Vec3,
+    /// The wing on the kept → removed halfedge's side.
+    pub left: Option<VertexId>,
+    /// The wing on the other side.
+    pub right: Option<VertexId>,
+    /// Whether both sides were triangles or boundary, so that a split restores the mesh.
+    pub invertible: bool,
 }
 
 /// One side of the collapsing edge.
@@ -291,6 +313,20 @@ fn check_normals(
 /// Carries out a collapse planned by [`plan_collapse`] on the unchanged world.
 pub fn apply_collapse(world: &mut World, p: CollapsePlan) -> CollapseResult {
     let m = MeshRef::new(world);
+    let wing = |s: &Side| match *s {
+        Side::Triangle { opposite, .. } => (Some(opposite), true),
+        Side::Boundary { .. } => (None, true),
+        Side::Polygon { .. } => (None, false),
+    };
+    let ((left, left_ok), (right, right_ok)) = (wing(&p.sides[0]), wing(&p.sides[1]));
+    let record = CollapseRecord {
+        kept: p.a,
+        kept_position: m.position(p.a),
+        removed_position: m.position(p.b),
+        left,
+        right,
+        invertible: left_ok && right_ok && (left.is_some() || right.is_some()),
+    };
     // Work out the relinking first (reads), then write.
     let mut removed_halfedges = Vec::new();
     let mut removed_edges = vec![p.edge];
@@ -393,6 +429,7 @@ pub fn apply_collapse(world: &mut World, p: CollapsePlan) -> CollapseResult {
     CollapseResult {
         kept: p.a,
         removed: p.b,
+        record,
     }
 }
 

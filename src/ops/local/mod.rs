@@ -15,14 +15,17 @@ mod dissolve;
 mod flip;
 mod split;
 mod split_face;
+mod vertex_split;
 
 pub use collapse::{
-    CollapseOptions, CollapsePlan, CollapseResult, apply_collapse, collapse_edge, plan_collapse,
+    CollapseOptions, CollapsePlan, CollapseRecord, CollapseResult, apply_collapse, collapse_edge,
+    plan_collapse,
 };
 pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};
 pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
 pub use split::{SplitPlan, apply_split, plan_split, split_edge};
 pub use split_face::{SplitFacePlan, apply_split_face, plan_split_face, split_face};
+pub use vertex_split::vertex_split;
 
 use bevy::prelude::{Entity, World};
 
