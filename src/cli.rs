@@ -26,7 +26,8 @@ use crate::mesh::{
 use crate::ops::local::{
     CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
 };
-use crate::ops::simplify::{SimplifyParams, simplify};
+use crate::ops::progressive::ProgressiveMesh;
+use crate::ops::simplify::SimplifyParams;
 use crate::ops::subdivide::{SubdivisionSummary, catmull_clark, loop_subdivide};
 use crate::ops::{Refusal, triangulate};
 
@@ -96,7 +97,8 @@ usage:
 FILE: .obj .off .ply .stl, or shape:NAME (tetrahedron cube icosahedron icosphere torus grid
       quad-grid grid-with-holes double-torus)
 STEP: validate | triangulate | flip:A,B | split:A,B | collapse:A,B | dissolve:A,B |
-      split-face:A,B | loop[:N] | catmull-clark[:N] | simplify:RATIO | simplify-faces:N
+      split-face:A,B | loop[:N] | catmull-clark[:N] | simplify:RATIO | simplify-faces:N |
+      refine[:FACES]   (split simplify's collapses back, up to FACES faces or all)
       A, B: 0-based indices of the input file's vertices (the edge between them)
 ";
 
@@ -121,6 +123,8 @@ pub enum Step {
     Simplify(f64),
     /// QEM simplification to a face count.
     SimplifyFaces(usize),
+    /// Split the last simplification's collapses back, up to a face count (all if `None`).
+    Refine(Option<usize>),
     /// Loop subdivision, N levels.
     Loop(u32),
     /// Catmull–Clark subdivision, N levels.
@@ -162,6 +166,11 @@ impl Step {
                     "step `{text}`: the ratio must be in (0, 1], as in `simplify:0.25`"
                 )),
             },
+            "refine" if args.is_empty() => Ok(Step::Refine(None)),
+            "refine" => args
+                .parse::<usize>()
+                .map(|n| Step::Refine(Some(n)))
+                .map_err(|_| format!("step `{text}`: expected a face count, as in `refine:5000`")),
             "simplify-faces" => args.parse::<usize>().map(Step::SimplifyFaces).map_err(|_| {
                 format!("step `{text}`: expected a face count, as in `simplify-faces:1000`")
             }),
@@ -189,6 +198,8 @@ impl std::fmt::Display for Step {
             Step::SplitFace(a, b) => write!(f, "split-face:{a},{b}"),
             Step::Simplify(r) => write!(f, "simplify:{r}"),
             Step::SimplifyFaces(n) => write!(f, "simplify-faces:{n}"),
+            Step::Refine(None) => write!(f, "refine"),
+            Step::Refine(Some(n)) => write!(f, "refine:{n}"),
             Step::Loop(n) => write!(f, "loop:{n}"),
             Step::CatmullClark(n) => write!(f, "catmull-clark:{n}"),
         }
@@ -395,6 +406,7 @@ pub fn run_step(
     world: &mut World,
     mesh: MeshId,
     input_vertices: &[Option<VertexId>],
+    history: &mut Option<ProgressiveMesh>,
     step: &Step,
 ) -> StepOutcome {
     let edge = |a: u32, b: u32| input_edge(world, input_vertices, a, b);
@@ -433,18 +445,32 @@ pub fn run_step(
                 Step::SimplifyFaces(n) => SimplifyParams::faces(*n),
                 _ => unreachable!("matched above"),
             };
-            match simplify(world, mesh, &params) {
-                Ok(s) => StepOutcome::Applied(format!(
-                    "{} → {} faces in {} collapses{}",
-                    s.faces_before,
-                    s.faces_after,
-                    s.collapses,
-                    if s.reached_target {
-                        ""
-                    } else {
-                        " (no legal collapse left before the target)"
-                    }
-                )),
+            match ProgressiveMesh::simplify(world, mesh, &params) {
+                Ok((pm, s)) => {
+                    *history = Some(pm);
+                    StepOutcome::Applied(format!(
+                        "{} → {} faces in {} collapses{}",
+                        s.faces_before,
+                        s.faces_after,
+                        s.collapses,
+                        if s.reached_target {
+                            ""
+                        } else {
+                            " (no legal collapse left before the target)"
+                        }
+                    ))
+                }
+                Err(r) => StepOutcome::Refused(r),
+            }
+        }
+        Step::Refine(target) => {
+            let Some(pm) = history.as_mut() else {
+                return StepOutcome::Refused(Refusal::Unsuitable(
+                    "nothing to refine: no simplify step before this one".into(),
+                ));
+            };
+            match pm.go_to_faces(world, target.unwrap_or(usize::MAX)) {
+                Ok(n) => StepOutcome::Applied(format!("{n} vertex splits, {} faces", pm.faces())),
                 Err(r) => StepOutcome::Refused(r),
             }
         }
@@ -583,9 +609,16 @@ fn execute(command: Command) -> Result<(), String> {
             let mut loaded = load(&input)?;
             let mesh = loaded.built.mesh;
             let mut records = Vec::new();
+            let mut history = None;
             for step in &steps {
                 let start = Instant::now();
-                let outcome = run_step(&mut loaded.world, mesh, &loaded.built.input_vertices, step);
+                let outcome = run_step(
+                    &mut loaded.world,
+                    mesh,
+                    &loaded.built.input_vertices,
+                    &mut history,
+                    step,
+                );
                 let ms = round(ms_since(start), 3);
                 let mut record = Map::new();
                 record.insert("step".into(), json!(step.to_string()));

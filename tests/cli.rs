@@ -218,3 +218,34 @@ fn convert_round_trips_between_formats() {
         previous = Some(figures);
     }
 }
+
+#[test]
+fn simplify_then_refine_gives_back_the_input() {
+    let out_path = tmp("refined.ply");
+    let v = json(&pappus(&[
+        "process",
+        "shape:icosphere:3",
+        "-o",
+        out_path.to_str().unwrap(),
+        "--json",
+        "refine",
+        "simplify:0.1",
+        "refine:640",
+        "refine",
+        "validate",
+    ]));
+    let steps = v["steps"].as_array().unwrap();
+    assert_eq!(
+        steps[0]["outcome"], "refused",
+        "no history yet: {}",
+        steps[0]
+    );
+    assert!(steps[1..].iter().all(|s| s["outcome"] == "applied"), "{v}");
+    assert!(
+        steps[2]["summary"].as_str().unwrap().ends_with("640 faces"),
+        "{}",
+        steps[2]
+    );
+    assert_eq!(v["result"]["faces"], 1280);
+    assert_eq!(v["result"]["euler_characteristic"], 2);
+}

@@ -10,6 +10,7 @@
 //! command line and the editor alike; the editor's systems are thin adapters around them.
 
 pub mod local;
+pub mod progressive;
 pub mod simplify;
 pub mod subdivide;
 pub mod triangulate;

@@ -194,7 +194,31 @@ pub fn simplify_with_progress(
     world: &mut World,
     mesh: MeshId,
     params: &SimplifyParams,
+    progress: impl FnMut(f32) -> bool,
+) -> Result<SimplifySummary, Refusal> {
+    simplify_inner(world, mesh, params, progress, |_| {})
+}
+
+/// [`simplify`], handing every collapse it makes to `record` in order (what
+/// [`crate::ops::progressive`] keeps to split them back).
+///
+/// # Refusals
+/// As [`simplify`].
+pub fn simplify_recorded(
+    world: &mut World,
+    mesh: MeshId,
+    params: &SimplifyParams,
+    record: impl FnMut(&super::local::CollapseResult),
+) -> Result<SimplifySummary, Refusal> {
+    simplify_inner(world, mesh, params, |_| true, record)
+}
+
+fn simplify_inner(
+    world: &mut World,
+    mesh: MeshId,
+    params: &SimplifyParams,
     mut progress: impl FnMut(f32) -> bool,
+    mut record: impl FnMut(&super::local::CollapseResult),
 ) -> Result<SimplifySummary, Refusal> {
     if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
         return Err(Refusal::Stale(ElementId::Mesh(mesh)));
@@ -245,6 +269,7 @@ pub fn simplify_with_progress(
         // A collapse removes the triangles on the edge: two inside, one on the boundary.
         let before = usize::from(m.face(h).is_some()) + usize::from(m.face(m.twin(h)).is_some());
         let result = apply_collapse(world, plan);
+        record(&result);
         faces -= before;
         collapses += 1;
         let merged = table.quadric[VertexTable::slot(a)] + table.quadric[VertexTable::slot(b)];

@@ -147,8 +147,24 @@ pub fn plan_collapse(
     e: EdgeId,
     options: CollapseOptions,
 ) -> Result<CollapsePlan, Refusal> {
+    let h = live_edge(&MeshRef::new(world), e)?;
+    plan_collapse_halfedge(world, h, options)
+}
+
+/// [`plan_collapse`] for the edge of `h`, keeping `h`'s start and removing its tip.
+///
+/// # Refusals
+/// See the module doc.
+pub fn plan_collapse_halfedge(
+    world: &World,
+    h: HalfedgeId,
+    options: CollapseOptions,
+) -> Result<CollapsePlan, Refusal> {
     let m = MeshRef::new(world);
-    let h = live_edge(&m, e)?;
+    let e = m
+        .try_halfedge(h)
+        .ok_or(Refusal::Stale(ElementId::Halfedge(h)))?
+        .edge;
     let t = m.twin(h);
     let (a, b) = (m.from_vertex(h), m.to_vertex(h));
     let sides = [side(&m, h), side(&m, t)];

@@ -19,7 +19,7 @@ mod vertex_split;
 
 pub use collapse::{
     CollapseOptions, CollapsePlan, CollapseRecord, CollapseResult, apply_collapse, collapse_edge,
-    plan_collapse,
+    plan_collapse, plan_collapse_halfedge,
 };
 pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};
 pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};

@@ -1,0 +1,209 @@
+//! Progressive meshes (Hoppe 1996): a simplification recorded collapse by collapse, so that
+//! the mesh can move between its coarsest and its full level, both ways, exactly.
+//!
+//! Entity ids cannot name vertices across levels: a vertex split makes a *new* entity for the
+//! vertex it brings back, and later records would go stale. So the history names vertices by
+//! *slot*, a number that stays with a vertex for the life of the history; a table maps each
+//! slot to the entity that currently holds it. Splitting record `i` back needs every vertex that
+//! existed when collapse `i` was made; refining in reverse order guarantees it, and records
+//! nest naturally (a vertex made by a split can be the kept vertex or a wing of an earlier one).
+//!
+//! Moving down again replays the recorded collapse of the same pair of vertices to the same
+//! position, so coarsen and refine can be interleaved freely.
+
+use bevy::ecs::entity::EntityHashMap;
+use bevy::math::Vec3;
+use bevy::prelude::World;
+
+use crate::mesh::ids::{ElementId, MeshId, VertexId};
+use crate::mesh::members::MeshMembers;
+use crate::mesh::topology::MeshRef;
+
+use super::Refusal;
+use super::local::{
+    CollapseOptions, CollapseRecord, CollapseResult, apply_collapse, plan_collapse_halfedge,
+    vertex_split,
+};
+use super::simplify::{SimplifyParams, SimplifySummary, simplify_recorded};
+
+/// One recorded collapse, by slot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SlotRecord {
+    /// The surviving vertex.
+    pub kept: u32,
+    /// The removed vertex.
+    pub removed: u32,
+    /// Where the surviving vertex went.
+    pub merged_position: Vec3,
+    /// Positions before the collapse.
+    pub kept_position: Vec3,
+    /// The removed vertex's position before the collapse.
+    pub removed_position: Vec3,
+    /// Wing on the kept → removed side.
+    pub left: Option<u32>,
+    /// Wing on the other side.
+    pub right: Option<u32>,
+    /// Faces removed by the collapse (2 inside, 1 on the boundary).
+    pub faces: usize,
+}
+
+/// A mesh's simplification history and where along it the mesh is now.
+#[derive(Clone, Debug)]
+pub struct ProgressiveMesh {
+    /// The mesh the history belongs to.
+    pub mesh: MeshId,
+    /// Collapses in the order they were made.
+    pub records: Vec<SlotRecord>,
+    /// How many of them are applied now (`records.len()`: the coarsest level).
+    pub applied: usize,
+    /// Faces at the full level.
+    pub full_faces: usize,
+    slots: Vec<Option<VertexId>>,
+}
+
+impl ProgressiveMesh {
+    /// Simplifies `mesh` as [`crate::ops::simplify::simplify`] does and records every collapse.
+    ///
+    /// # Refusals
+    /// As [`crate::ops::simplify::simplify`].
+    pub fn simplify(
+        world: &mut World,
+        mesh: MeshId,
+        params: &SimplifyParams,
+    ) -> Result<(ProgressiveMesh, SimplifySummary), Refusal> {
+        let vertices = MeshMembers::collect(world, mesh).vertices;
+        let mut slot_of: EntityHashMap<u32> = EntityHashMap::default();
+        let mut slots = Vec::with_capacity(vertices.len());
+        for v in vertices {
+            slot_of.insert(v.0, slots.len() as u32);
+            slots.push(Some(v));
+        }
+        let mut records = Vec::new();
+        let summary = simplify_recorded(world, mesh, params, |r: &CollapseResult| {
+            let slot = |v: VertexId| slot_of[&v.0];
+            let rec = &r.record;
+            records.push(SlotRecord {
+                kept: slot(r.kept),
+                removed: slot(r.removed),
+                merged_position: Vec3::NAN,
+                kept_position: rec.kept_position,
+                removed_position: rec.removed_position,
+                left: rec.left.map(slot),
+                right: rec.right.map(slot),
+                faces: usize::from(rec.left.is_some()) + usize::from(rec.right.is_some()),
+            });
+        })?;
+        let mut pm = ProgressiveMesh {
+            mesh,
+            applied: records.len(),
+            full_faces: summary.faces_before,
+            records,
+            slots,
+        };
+        for r in &pm.records {
+            pm.slots[r.removed as usize] = None;
+        }
+        // The merged positions are the kept vertices' positions right after each collapse: the
+        // final position of a kept vertex unless a later collapse moved it again. Recover them
+        // by walking back: at the coarsest level every live vertex is where its last collapse
+        // put it, and each split restores the earlier position.
+        let m = MeshRef::new(world);
+        let mut current: Vec<Vec3> = pm
+            .slots
+            .iter()
+            .map(|s| s.map_or(Vec3::NAN, |v| m.position(v)))
+            .collect();
+        for r in pm.records.iter_mut().rev() {
+            r.merged_position = current[r.kept as usize];
+            current[r.kept as usize] = r.kept_position;
+            current[r.removed as usize] = r.removed_position;
+        }
+        Ok((pm, summary))
+    }
+
+    /// Faces at the current level.
+    pub fn faces(&self) -> usize {
+        self.full_faces
+            - self.records[..self.applied]
+                .iter()
+                .map(|r| r.faces)
+                .sum::<usize>()
+    }
+
+    fn vertex(&self, slot: u32) -> Result<VertexId, Refusal> {
+        self.slots[slot as usize]
+            .ok_or_else(|| Refusal::Unsuitable(format!("history slot {slot} has no vertex now")))
+    }
+
+    /// Splits the last applied collapse back. Returns `false` at the full level.
+    ///
+    /// # Refusals
+    /// When the mesh was edited outside the history so that the split no longer fits.
+    pub fn refine_one(&mut self, world: &mut World) -> Result<bool, Refusal> {
+        let Some(i) = self.applied.checked_sub(1) else {
+            return Ok(false);
+        };
+        let r = self.records[i];
+        let record = CollapseRecord {
+            kept: self.vertex(r.kept)?,
+            kept_position: r.kept_position,
+            removed_position: r.removed_position,
+            left: r.left.map(|s| self.vertex(s)).transpose()?,
+            right: r.right.map(|s| self.vertex(s)).transpose()?,
+            invertible: true,
+        };
+        let b = vertex_split(world, &record)?;
+        self.slots[r.removed as usize] = Some(b);
+        self.applied = i;
+        Ok(true)
+    }
+
+    /// Collapses the next recorded edge again. Returns `false` at the coarsest level.
+    ///
+    /// # Refusals
+    /// When the mesh was edited outside the history so that the collapse no longer fits.
+    pub fn coarsen_one(&mut self, world: &mut World) -> Result<bool, Refusal> {
+        let Some(&r) = self.records.get(self.applied) else {
+            return Ok(false);
+        };
+        let (a, b) = (self.vertex(r.kept)?, self.vertex(r.removed)?);
+        let h = MeshRef::new(world).find_halfedge(a, b).ok_or_else(|| {
+            Refusal::Unsuitable(format!("{a} and {b} are no longer joined by an edge"))
+        })?;
+        let plan = plan_collapse_halfedge(
+            world,
+            h,
+            CollapseOptions {
+                position: Some(r.merged_position),
+                max_normal_change_deg: None,
+            },
+        )?;
+        apply_collapse(world, plan);
+        self.slots[r.removed as usize] = None;
+        self.applied += 1;
+        Ok(true)
+    }
+
+    /// Moves to the level closest to `faces` faces (refining or coarsening as needed). Returns
+    /// how many splits or collapses it made.
+    ///
+    /// # Refusals
+    /// As [`Self::refine_one`] and [`Self::coarsen_one`]; the mesh is then valid, at the level
+    /// reached so far.
+    pub fn go_to_faces(&mut self, world: &mut World, faces: usize) -> Result<usize, Refusal> {
+        if world.get::<crate::mesh::MeshInfo>(self.mesh.0).is_none() {
+            return Err(Refusal::Stale(ElementId::Mesh(self.mesh)));
+        }
+        let mut steps = 0;
+        let mut now = self.faces();
+        while now < faces && self.refine_one(world)? {
+            now += self.records[self.applied].faces;
+            steps += 1;
+        }
+        while now > faces && self.coarsen_one(world)? {
+            now -= self.records[self.applied - 1].faces;
+            steps += 1;
+        }
+        Ok(steps)
+    }
+}
