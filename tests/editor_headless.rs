@@ -526,6 +526,63 @@ fn shift_s_simplifies_to_the_panel_ratio() {
     press(&mut app, KeyCode::KeyS);
     let outcome = last_outcome(&app);
     assert!(outcome.request.starts_with("simplify"), "{outcome:?}");
-    assert_eq!(outcome.result, Ok("1280 → 640 faces".into()));
+    assert_eq!(outcome.result, Ok("1280 -> 640 faces".into()));
     validate(app.world(), mesh(&app)).unwrap();
+}
+
+#[test]
+fn level_of_detail_and_vertex_split_follow_the_simplification() {
+    use pappus::editor::apply::History;
+    let mut app = app();
+    open(&mut app, "shape:icosphere");
+    let m = mesh(&app);
+    app.world_mut()
+        .write_message(EditRequest::Simplify(m, 0.25));
+    app.update();
+    assert_eq!(last_outcome(&app).result, Ok("1280 -> 320 faces".into()));
+    // The slider's request: half way up.
+    app.world_mut()
+        .write_message(EditRequest::LevelOfDetail(640));
+    app.update();
+    assert!(
+        last_outcome(&app)
+            .result
+            .as_ref()
+            .unwrap()
+            .ends_with("640 faces")
+    );
+    assert_eq!(pappus::mesh::mesh_stats(app.world(), m).faces, 640);
+    // Splitting a vertex back: only the one the last applied collapse kept.
+    let next = {
+        let pm = app.world().resource::<History>().pm.as_ref().unwrap();
+        pm.next_split_vertex().unwrap()
+    };
+    let other = pappus::mesh::MeshMembers::collect(app.world(), m)
+        .vertices
+        .into_iter()
+        .find(|&v| v != next)
+        .unwrap();
+    app.world_mut()
+        .write_message(EditRequest::SplitVertex(other));
+    app.update();
+    let refusal = last_outcome(&app).result.unwrap_err();
+    assert!(refusal.contains(&next.to_string()), "{refusal}");
+    app.world_mut()
+        .write_message(EditRequest::SplitVertex(next));
+    app.update();
+    assert!(
+        last_outcome(&app).result.is_ok(),
+        "{:?}",
+        last_outcome(&app)
+    );
+    assert_eq!(pappus::mesh::mesh_stats(app.world(), m).faces, 642);
+    validate(app.world(), m).unwrap();
+    // Any other edit ends the history.
+    let e = some_interior_edge(&app);
+    app.world_mut().write_message(EditRequest::Flip(e));
+    app.update();
+    app.world_mut()
+        .write_message(EditRequest::LevelOfDetail(1280));
+    app.update();
+    assert!(last_outcome(&app).result.is_err());
 }

@@ -13,7 +13,8 @@ use crate::mesh::{InMesh, MeshInfo, Position, build_mesh, despawn_mesh, to_soup}
 use crate::ops::local::{
     CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
 };
-use crate::ops::simplify::{SimplifyParams, simplify};
+use crate::ops::progressive::ProgressiveMesh;
+use crate::ops::simplify::SimplifyParams;
 use crate::ops::subdivide::{catmull_clark, loop_subdivide};
 use crate::ops::triangulate::triangulate;
 
@@ -45,10 +46,61 @@ pub fn apply_requests(world: &mut World, mut cursor: Local<MessageCursor<EditReq
     }
 }
 
+/// The last simplification's history: the level-of-detail slider and vertex splits move along
+/// it. Any other edit of the mesh ends it (the history would no longer describe the mesh).
+#[derive(bevy::prelude::Resource, Default)]
+pub struct History {
+    /// The progressive mesh, while it still matches the mesh.
+    pub pm: Option<ProgressiveMesh>,
+}
+
 /// Applies one request. `Ok` carries a summary, `Err` the reason it was refused (the world is
 /// then unchanged).
 pub fn apply(world: &mut World, request: &EditRequest) -> Result<String, String> {
+    let keeps_history = matches!(
+        request,
+        EditRequest::Select(_)
+            | EditRequest::Navigate(_)
+            | EditRequest::Save(_)
+            | EditRequest::LevelOfDetail(_)
+            | EditRequest::SplitVertex(_)
+            | EditRequest::Simplify(..)
+    );
+    let result = apply_request(world, request);
+    if result.is_ok() && !keeps_history {
+        world.resource_mut::<History>().pm = None;
+    }
+    result
+}
+
+fn apply_request(world: &mut World, request: &EditRequest) -> Result<String, String> {
     match request {
+        EditRequest::LevelOfDetail(faces) => {
+            let Some(mut pm) = world.resource_mut::<History>().pm.take() else {
+                return Err("no simplification to move along: simplify first (Shift+S)".into());
+            };
+            let result = pm.go_to_faces(world, *faces);
+            let (mesh, now) = (pm.mesh, pm.faces());
+            world.resource_mut::<History>().pm = Some(pm);
+            let steps = result.map_err(|r| r.to_string())?;
+            let selection = world
+                .resource::<Selection>()
+                .element
+                .filter(|&x| super::selection::exists(&MeshRef::new(world), x));
+            edited(world, mesh, selection);
+            Ok(format!("{steps} step(s), {now} faces"))
+        }
+        EditRequest::SplitVertex(v) => {
+            let Some(mut pm) = world.resource_mut::<History>().pm.take() else {
+                return Err("this vertex has no history: simplify first (Shift+S)".into());
+            };
+            let result = pm.refine_vertex(world, *v);
+            let mesh = pm.mesh;
+            world.resource_mut::<History>().pm = Some(pm);
+            let b = result.map_err(|r| r.to_string())?;
+            edited(world, mesh, Some(ElementId::Vertex(*v)));
+            Ok(format!("split back {b}"))
+        }
         EditRequest::Flip(e) => {
             let mesh = mesh_of(world, e.0)?;
             let near = edge_ends(world, *e);
@@ -107,14 +159,16 @@ pub fn apply(world: &mut World, request: &EditRequest) -> Result<String, String>
             }
             let faces = crate::mesh::MeshMembers::collect(world, *mesh).faces.len();
             let params = SimplifyParams::ratio(faces, f64::from(*ratio));
-            let s = simplify(world, *mesh, &params).map_err(|r| r.to_string())?;
+            let (pm, s) =
+                ProgressiveMesh::simplify(world, *mesh, &params).map_err(|r| r.to_string())?;
+            world.resource_mut::<History>().pm = Some(pm);
             let selection = world
                 .resource::<Selection>()
                 .element
                 .filter(|&x| super::selection::exists(&MeshRef::new(world), x));
             edited(world, *mesh, selection);
             Ok(format!(
-                "{} → {} faces{}",
+                "{} -> {} faces{}",
                 s.faces_before,
                 s.faces_after,
                 if s.reached_target {

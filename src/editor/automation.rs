@@ -6,7 +6,7 @@
 //! | step | meaning |
 //! |---|---|
 //! | `wait:N` | let N frames pass |
-//! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:Digit2`, `key:Period`) |
+//! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:Period`); `key:Shift+S`, `key:Ctrl+T` hold a modifier |
 //! | `select-edge:A,B` | select the edge between the input file's vertices A and B (0-based) |
 //! | `select:ID` | select an element by id (`f12v0`) |
 //! | `shot:PATH` | save a screenshot of the window to PATH (PNG) and wait until it is written |
@@ -33,8 +33,8 @@ use super::selection::ActiveMesh;
 pub enum ScriptStep {
     /// Let frames pass.
     Wait(u32),
-    /// Press and release a key.
-    Key(KeyCode),
+    /// Press and release a key, holding a modifier (Shift or Control) if given.
+    Key(Option<KeyCode>, KeyCode),
     /// Select the edge between two input vertices.
     SelectEdge(u32, u32),
     /// Select an element by id.
@@ -54,6 +54,8 @@ pub struct Script {
     waiting: u32,
     shots_pending: usize,
     measuring: Option<(u32, std::time::Instant)>,
+    /// Keys to release at the next step (so a held modifier is seen with its key).
+    release: Vec<KeyCode>,
 }
 
 /// Screenshots requested by the script that are not yet on disk.
@@ -73,7 +75,17 @@ impl Script {
             steps.push_back(match name {
                 "wait" => ScriptStep::Wait(arg.parse().map_err(|_| bad())?),
                 "measure" => ScriptStep::Measure(arg.parse().map_err(|_| bad())?),
-                "key" => ScriptStep::Key(key_code(arg).ok_or_else(bad)?),
+                "key" => match arg.split_once('+') {
+                    Some((modifier, k)) => {
+                        let modifier = match modifier {
+                            "Shift" => KeyCode::ShiftLeft,
+                            "Ctrl" => KeyCode::ControlLeft,
+                            _ => return Err(bad()),
+                        };
+                        ScriptStep::Key(Some(modifier), key_code(k).ok_or_else(bad)?)
+                    }
+                    None => ScriptStep::Key(None, key_code(arg).ok_or_else(bad)?),
+                },
                 "select-edge" => {
                     let (a, b) = arg.split_once(',').ok_or_else(bad)?;
                     ScriptStep::SelectEdge(
@@ -92,6 +104,7 @@ impl Script {
             waiting: 0,
             shots_pending: 0,
             measuring: None,
+            release: Vec::new(),
         })
     }
 }
@@ -113,6 +126,7 @@ fn key_code(name: &str) -> Option<KeyCode> {
             'R' => KeyCode::KeyR,
             'S' => KeyCode::KeyS,
             'T' => KeyCode::KeyT,
+            'U' => KeyCode::KeyU,
             'V' => KeyCode::KeyV,
             'W' => KeyCode::KeyW,
             'Z' => KeyCode::KeyZ,
@@ -140,6 +154,9 @@ pub fn run_script(world: &mut World) {
         return;
     };
     let pending = world.resource::<PendingShots>().0.clone();
+    for key in std::mem::take(&mut script.release) {
+        send_key(world, key, ButtonState::Released);
+    }
     loop {
         if script.waiting > 0 {
             script.waiting -= 1;
@@ -162,25 +179,12 @@ pub fn run_script(world: &mut World) {
                 script.waiting = n;
                 script.measuring = Some((n, std::time::Instant::now()));
             }
-            ScriptStep::Key(key) => {
-                let window = world
-                    .query_filtered::<Entity, With<PrimaryWindow>>()
-                    .iter(world)
-                    .next()
-                    .unwrap_or(Entity::PLACEHOLDER);
-                for state in [ButtonState::Pressed, ButtonState::Released] {
-                    world.write_message(KeyboardInput {
-                        key_code: key,
-                        logical_key: Key::Unidentified(
-                            bevy::input::keyboard::NativeKey::Unidentified,
-                        ),
-                        state,
-                        text: None,
-                        repeat: false,
-                        window,
-                    });
+            ScriptStep::Key(modifier, key) => {
+                // This frame: the modifier and the key go down; next step: both come up.
+                for k in modifier.into_iter().chain([key]) {
+                    send_key(world, k, ButtonState::Pressed);
                 }
-                // Let the press reach `ButtonInput` before the next step.
+                script.release = modifier.into_iter().chain([key]).collect();
                 script.waiting = 2;
             }
             ScriptStep::SelectEdge(a, b) => {
@@ -217,6 +221,22 @@ pub fn run_script(world: &mut World) {
         }
     }
     world.insert_resource(script);
+}
+
+fn send_key(world: &mut World, key: KeyCode, state: ButtonState) {
+    let window = world
+        .query_filtered::<Entity, With<PrimaryWindow>>()
+        .iter(world)
+        .next()
+        .unwrap_or(Entity::PLACEHOLDER);
+    world.write_message(KeyboardInput {
+        key_code: key,
+        logical_key: Key::Unidentified(bevy::input::keyboard::NativeKey::Unidentified),
+        state,
+        text: None,
+        repeat: false,
+        window,
+    });
 }
 
 /// The edge between two vertices named by their index in the input file: vertices are listed

@@ -31,6 +31,8 @@ pub enum Action {
     Triangulate,
     /// Simplify the active mesh (QEM) to the panel's ratio.
     Simplify,
+    /// Split the selected vertex back (undo its last collapse from the simplification).
+    SplitVertex,
     /// Loop-subdivide the active mesh once.
     LoopSubdivide,
     /// Catmull–Clark-subdivide the active mesh once.
@@ -149,6 +151,12 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "Ctrl+T",
         Action::Triangulate,
         "triangulate every polygon",
+    ),
+    key(
+        KeyCode::KeyU,
+        "U",
+        Action::SplitVertex,
+        "split the selected vertex back (after Shift+S: undoes its collapse)",
     ),
     Shortcut {
         key: KeyCode::KeyS,
@@ -373,6 +381,13 @@ pub fn keyboard_shortcuts(world: &mut World) {
 /// Performs an action: writes the request it stands for, or changes a setting.
 pub fn perform(world: &mut World, action: Action) {
     let request = match action {
+        Action::SplitVertex => {
+            let Some(ElementId::Vertex(v)) = world.resource::<Selection>().element else {
+                refuse(world, action, "select a vertex first");
+                return;
+            };
+            EditRequest::SplitVertex(v)
+        }
         Action::CutCorner => {
             let m = crate::mesh::MeshRef::new(world);
             let target = match world.resource::<Selection>().element {

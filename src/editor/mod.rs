@@ -63,6 +63,7 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<SelectMode>()
             .init_resource::<ActiveMesh>()
             .init_resource::<OutcomeLog>()
+            .init_resource::<apply::History>()
             .init_resource::<render_sync::ViewSettings>()
             .init_resource::<render_sync::RenderStats>()
             .init_resource::<overlay::Overlay>()

@@ -71,8 +71,12 @@ pub enum EditRequest {
     SplitFace(FaceId, VertexId, VertexId),
     /// Triangulate every polygon of a mesh.
     Triangulate(MeshId),
-    /// QEM simplification to a ratio of the faces.
+    /// QEM simplification to a ratio of the faces (recording its history).
     Simplify(MeshId, f32),
+    /// Move along the last simplification's history to about this many faces.
+    LevelOfDetail(usize),
+    /// Split back the last collapse of the simplification history, if it kept this vertex.
+    SplitVertex(VertexId),
     /// One level of Loop subdivision.
     LoopSubdivide(MeshId),
     /// One level of Catmull–Clark subdivision.
@@ -102,6 +106,8 @@ impl EditRequest {
             EditRequest::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
             EditRequest::Triangulate(m) => format!("triangulate {m}"),
             EditRequest::Simplify(m, r) => format!("simplify {m} to {:.0} %", r * 100.0),
+            EditRequest::LevelOfDetail(n) => format!("level of detail {n} faces"),
+            EditRequest::SplitVertex(v) => format!("split {v} back"),
             EditRequest::LoopSubdivide(m) => format!("Loop subdivision {m}"),
             EditRequest::CatmullClark(m) => format!("Catmull-Clark subdivision {m}"),
             EditRequest::MoveVertex(v, _) => format!("move {v}"),

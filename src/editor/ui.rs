@@ -73,6 +73,8 @@ pub struct InspectorView {
     pub selected: Option<SelectedView>,
     /// Rebuild count at the last statistics refresh.
     pub stats_generation: usize,
+    /// The simplification history: (coarsest, current, full) face counts.
+    pub lod: Option<(usize, usize, usize)>,
 }
 
 /// The active mesh as shown.
@@ -156,6 +158,14 @@ pub fn snapshot(world: &mut World) {
             }
         }
     }
+    view.lod = world
+        .resource::<super::apply::History>()
+        .pm
+        .as_ref()
+        .map(|pm| {
+            let coarsest = pm.full_faces - pm.records.iter().map(|r| r.faces).sum::<usize>();
+            (coarsest, pm.faces(), pm.full_faces)
+        });
     let m = MeshRef::new(world);
     view.selected = world
         .resource::<Selection>()
@@ -287,6 +297,14 @@ pub fn panels(
                 selection_section(ui, &view, &mut fields, &mut requests);
                 ui.separator();
                 operations_section(ui, &mut mode, &settings, &mut pending, &mut ui_state);
+                if let Some((coarsest, now, full)) = view.lod {
+                    let mut faces = now;
+                    let slider = egui::Slider::new(&mut faces, coarsest..=full)
+                        .text("faces (level of detail)");
+                    if ui.add(slider).changed() && faces != now {
+                        requests.write(EditRequest::LevelOfDetail(faces));
+                    }
+                }
                 ui.separator();
                 ui.label(egui::RichText::new("Log").strong());
                 for entry in log.entries.iter().rev().take(30) {
@@ -543,6 +561,7 @@ fn operations_section(
             (Action::Collapse, "Collapse"),
             (Action::Dissolve, "Dissolve"),
             (Action::CutCorner, "Split face"),
+            (Action::SplitVertex, "Split vertex back"),
             (Action::Triangulate, "Triangulate"),
             (Action::LoopSubdivide, "Loop"),
             (Action::CatmullClark, "Catmull-Clark"),

@@ -184,6 +184,33 @@ impl ProgressiveMesh {
         Ok(true)
     }
 
+    /// The vertex whose split comes next (the one the last applied collapse kept), if any.
+    pub fn next_split_vertex(&self) -> Option<VertexId> {
+        let r = self.records.get(self.applied.checked_sub(1)?)?;
+        self.slots[r.kept as usize]
+    }
+
+    /// Splits back the last collapse if `v` is the vertex it kept — the one split a vertex can
+    /// take without undoing other collapses first. Returns the vertex made again.
+    ///
+    /// # Refusals
+    /// When `v` is not the vertex kept by the last applied collapse (the message says which
+    /// vertex is), or as [`Self::refine_one`].
+    pub fn refine_vertex(&mut self, world: &mut World, v: VertexId) -> Result<VertexId, Refusal> {
+        let Some(i) = self.applied.checked_sub(1) else {
+            return Err(Refusal::Unsuitable("the mesh is at its full level".into()));
+        };
+        let r = self.records[i];
+        let kept = self.vertex(r.kept)?;
+        if kept != v {
+            return Err(Refusal::Unsuitable(format!(
+                "{v} is not the next vertex to split (that is {kept}); use the level slider"
+            )));
+        }
+        self.refine_one(world)?;
+        self.vertex(r.removed)
+    }
+
     /// Moves to the level closest to `faces` faces (refining or coarsening as needed). Returns
     /// how many splits or collapses it made.
     ///
