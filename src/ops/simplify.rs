@@ -16,7 +16,6 @@
 
 use bevy::math::{DVec3, Vec3};
 use bevy::prelude::World;
-use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
@@ -130,40 +129,26 @@ impl std::ops::Add for Quadric {
     }
 }
 
-/// A heap entry: lowest cost first, ties by edge.
-struct Candidate {
-    cost: f64,
-    edge: EdgeId,
-    position: Vec3,
-    versions: (u32, u32),
-    ends: (VertexId, VertexId),
+/// A heap entry, 16 bytes: the cost as order-preserving bits, the edge, and the edge's stamp
+/// when it was pushed. Lowest cost first, ties by edge; an entry whose stamp is old is stale.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct Entry {
+    cost: std::cmp::Reverse<u32>,
+    edge: std::cmp::Reverse<u64>,
+    stamp: u32,
 }
 
-impl PartialEq for Candidate {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Candidate {}
-impl PartialOrd for Candidate {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Candidate {
-    fn cmp(&self, other: &Self) -> Ordering {
-        // BinaryHeap is a max-heap: reverse for lowest cost first.
-        other
-            .cost
-            .total_cmp(&self.cost)
-            .then_with(|| other.edge.0.to_bits().cmp(&self.edge.0.to_bits()))
-    }
+/// Where an edge should collapse to and what it costs.
+struct Candidate {
+    cost: f64,
+    position: Vec3,
 }
 
 /// Per-vertex data, indexed by entity index.
 struct VertexTable {
     quadric: Vec<Quadric>,
-    version: Vec<u32>,
+    /// Each edge's stamp (by edge entity index): bumped whenever its cost is pushed again.
+    stamp: Vec<u32>,
 }
 
 impl VertexTable {
@@ -232,11 +217,16 @@ fn simplify_inner(
     }
     let faces_before = members.faces.len();
     let mut table = initial_quadrics(world, &members, params.boundary_weight);
-    let mut heap = BinaryHeap::with_capacity(members.edges.len());
+    let edge_slots = members
+        .edges
+        .iter()
+        .map(|e| e.0.index_u32() as usize + 1)
+        .max()
+        .unwrap_or(0);
+    table.stamp = vec![0; edge_slots];
+    let mut heap = BinaryHeap::with_capacity(members.edges.len() * 2);
     for &e in &members.edges {
-        if let Some(c) = candidate(world, &table, e) {
-            heap.push(c);
-        }
+        push(world, &mut table, &mut heap, e);
     }
     let options = CollapseOptions {
         position: None,
@@ -246,17 +236,19 @@ fn simplify_inner(
     let mut collapses = 0;
     let to_remove = faces_before.saturating_sub(params.target_faces).max(1);
     while faces > params.target_faces {
-        let Some(c) = heap.pop() else { break };
-        let (a, b) = c.ends;
-        if world.get_entity(c.edge.0).is_err()
-            || table.version[VertexTable::slot(a)] != c.versions.0
-            || table.version[VertexTable::slot(b)] != c.versions.1
+        let Some(entry) = heap.pop() else { break };
+        let edge = EdgeId(bevy::prelude::Entity::from_bits(entry.edge.0));
+        if world.get::<crate::mesh::Edge>(edge.0).is_none()
+            || table.stamp[edge.0.index_u32() as usize] != entry.stamp
         {
             continue;
         }
+        let Some(c) = candidate(world, &table, edge) else {
+            continue;
+        };
         let Ok(plan) = plan_collapse(
             world,
-            c.edge,
+            edge,
             CollapseOptions {
                 position: Some(c.position),
                 ..options
@@ -265,7 +257,8 @@ fn simplify_inner(
             continue;
         };
         let m = MeshRef::new(world);
-        let h = m.edge_halfedge(c.edge);
+        let h = m.edge_halfedge(edge);
+        let (a, b) = (m.from_vertex(h), m.to_vertex(h));
         // A collapse removes the triangles on the edge: two inside, one on the boundary.
         let before = usize::from(m.face(h).is_some()) + usize::from(m.face(m.twin(h)).is_some());
         let result = apply_collapse(world, plan);
@@ -273,18 +266,13 @@ fn simplify_inner(
         faces -= before;
         collapses += 1;
         let merged = table.quadric[VertexTable::slot(a)] + table.quadric[VertexTable::slot(b)];
-        let kept = VertexTable::slot(result.kept);
-        table.quadric[kept] = merged;
-        table.version[kept] += 1;
-        table.version[VertexTable::slot(result.removed)] += 1;
+        table.quadric[VertexTable::slot(result.kept)] = merged;
         let around: Vec<EdgeId> = {
             let m = MeshRef::new(world);
             m.vertex_outgoing(result.kept).map(|h| m.edge(h)).collect()
         };
         for e in around {
-            if let Some(c) = candidate(world, &table, e) {
-                heap.push(c);
-            }
+            push(world, &mut table, &mut heap, e);
         }
         if collapses % 512 == 0 {
             let done = (faces_before - faces) as f32 / to_remove as f32;
@@ -311,7 +299,7 @@ fn initial_quadrics(world: &World, members: &MeshMembers, boundary_weight: f64) 
         .unwrap_or(0);
     let mut table = VertexTable {
         quadric: vec![Quadric::default(); size],
-        version: vec![0; size],
+        stamp: Vec::new(),
     };
     for &f in &members.faces {
         let corners: Vec<VertexId> = m.face_vertices(f).collect();
@@ -352,6 +340,22 @@ fn initial_quadrics(world: &World, members: &MeshMembers, boundary_weight: f64) 
     table
 }
 
+/// Pushes `e` with its current cost, making any older entry for it stale.
+fn push(world: &World, table: &mut VertexTable, heap: &mut BinaryHeap<Entry>, e: EdgeId) {
+    let Some(c) = candidate(world, table, e) else {
+        return;
+    };
+    let slot = e.0.index_u32() as usize;
+    table.stamp[slot] = table.stamp[slot].wrapping_add(1);
+    // Non-negative f32s order like their bits.
+    let cost = (c.cost.max(0.0) as f32).to_bits();
+    heap.push(Entry {
+        cost: std::cmp::Reverse(cost),
+        edge: std::cmp::Reverse(e.0.to_bits()),
+        stamp: table.stamp[slot],
+    });
+}
+
 fn candidate(world: &World, table: &VertexTable, e: EdgeId) -> Option<Candidate> {
     let m = MeshRef::new(world);
     m.try_edge(e)?;
@@ -367,12 +371,6 @@ fn candidate(world: &World, table: &VertexTable, e: EdgeId) -> Option<Candidate>
     });
     Some(Candidate {
         cost: q.error(position).max(0.0),
-        edge: e,
         position: position.as_vec3(),
-        versions: (
-            table.version[VertexTable::slot(a)],
-            table.version[VertexTable::slot(b)],
-        ),
-        ends: (a, b),
     })
 }

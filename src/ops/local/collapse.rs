@@ -230,7 +230,8 @@ pub fn plan_collapse_halfedge(
                 }
             }
             Side::Boundary { x, .. } => {
-                if m.loop_from(x).count() <= 3 {
+                // Only whether the loop has more than three sides matters: stop counting at four.
+                if m.loop_from(x).take(4).count() <= 3 {
                     return Err(Refusal::DegenerateFace(ElementId::Edge(e)));
                 }
             }
@@ -244,8 +245,12 @@ pub fn plan_collapse_halfedge(
             Side::Boundary { .. } => None,
         })
         .collect();
-    for f in m.vertex_faces(b) {
-        if !own_faces.contains(&f) && m.face_vertices(f).any(|v| v == a) {
+    // A triangle holding both would hold the edge a b, so it is one of the edge's own faces:
+    // only polygons need looking at.
+    for h in m.vertex_outgoing(b) {
+        let Some(f) = m.face(h) else { continue };
+        let triangle = m.next(m.next(m.next(h))) == h;
+        if !triangle && !own_faces.contains(&f) && m.face_vertices(f).any(|v| v == a) {
             return Err(Refusal::DegenerateFace(ElementId::Face(f)));
         }
     }
@@ -300,21 +305,26 @@ fn check_normals(
             if own.contains(&f) {
                 continue;
             }
-            let before: Vec<Vec3> = m.face_vertices(f).map(|x| m.position(x)).collect();
-            let after: Vec<Vec3> = m
-                .face_vertices(f)
-                .map(|x| {
-                    if x == a || x == b {
-                        position
-                    } else {
-                        m.position(x)
+            // Newell normals before and after, accumulated without collecting the corners.
+            let (mut n0, mut n1) = (Vec3::ZERO, Vec3::ZERO);
+            let mut first: Option<(Vec3, Vec3)> = None;
+            let mut last = (Vec3::ZERO, Vec3::ZERO);
+            for x in m.face_vertices(f) {
+                let p = m.position(x);
+                let q = if x == a || x == b { position } else { p };
+                match first {
+                    None => first = Some((p, q)),
+                    Some(_) => {
+                        n0 += last.0.cross(p);
+                        n1 += last.1.cross(q);
                     }
-                })
-                .collect();
-            let (n0, n1) = (
-                crate::mesh::topology::newell_area_vector(&before),
-                crate::mesh::topology::newell_area_vector(&after),
-            );
+                }
+                last = (p, q);
+            }
+            if let Some((p, q)) = first {
+                n0 += last.0.cross(p);
+                n1 += last.1.cross(q);
+            }
             let (Some(n0), Some(n1)) = (n0.try_normalize(), n1.try_normalize()) else {
                 return Err(Refusal::NormalFlip(ElementId::Face(f)));
             };
