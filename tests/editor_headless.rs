@@ -586,3 +586,55 @@ fn level_of_detail_and_vertex_split_follow_the_simplification() {
     app.update();
     assert!(last_outcome(&app).result.is_err());
 }
+
+#[test]
+fn unsaved_changes_are_not_lost_to_an_open() {
+    let mut app = app();
+    open(&mut app, "shape:torus");
+    // Unchanged: another file opens straight away.
+    open(&mut app, "shape:icosphere");
+    let e = some_interior_edge(&app);
+    app.world_mut().write_message(EditRequest::Flip(e));
+    app.update();
+    assert!(last_outcome(&app).result.is_ok());
+    let edited = mesh(&app);
+    // Changed: opening asks first and leaves the mesh alone.
+    app.world_mut()
+        .write_message(EditRequest::Open("shape:cube".into()));
+    app.update();
+    assert!(
+        last_outcome(&app)
+            .result
+            .unwrap_err()
+            .contains("unsaved changes")
+    );
+    assert_eq!(mesh(&app), edited);
+    // "Cancel" keeps it; asking again and "Discard" opens the cube.
+    app.world_mut()
+        .write_message(EditRequest::ConfirmDiscard(false));
+    app.update();
+    assert_eq!(mesh(&app), edited);
+    app.world_mut()
+        .write_message(EditRequest::Open("shape:cube".into()));
+    app.world_mut()
+        .write_message(EditRequest::ConfirmDiscard(true));
+    app.update();
+    assert_eq!(pappus::mesh::mesh_stats(app.world(), mesh(&app)).faces, 6);
+    // Saving clears the mark: edit, save, open without a question.
+    let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("saved-cube.off");
+    let cube = mesh(&app);
+    app.world_mut()
+        .write_message(EditRequest::Triangulate(cube));
+    app.world_mut()
+        .write_message(EditRequest::Save(Some(path.clone())));
+    app.world_mut()
+        .write_message(EditRequest::Open("shape:tetrahedron".into()));
+    app.update();
+    assert!(
+        last_outcome(&app).result.is_ok(),
+        "{:?}",
+        last_outcome(&app)
+    );
+    assert_eq!(pappus::mesh::mesh_stats(app.world(), mesh(&app)).faces, 4);
+    assert!(path.exists());
+}

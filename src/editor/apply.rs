@@ -19,7 +19,7 @@ use crate::ops::subdivide::{catmull_clark, loop_subdivide};
 use crate::ops::triangulate::triangulate;
 
 use super::render_sync::DirtyFaces;
-use super::requests::{EditOutcome, EditRequest, OutcomeLog};
+use super::requests::{ConfirmDiscard, EditOutcome, EditRequest, OutcomeLog, PendingDiscard};
 use super::selection::{ActiveMesh, MeshDirty, Selection, navigate};
 use crate::mesh::topology::MeshRef;
 
@@ -46,6 +46,35 @@ pub fn apply_requests(world: &mut World, mut cursor: Local<MessageCursor<EditReq
     }
 }
 
+/// Marks a mesh changed since it was opened or saved.
+#[derive(bevy::prelude::Component, Debug, Default, Clone, Copy)]
+#[component(storage = "SparseSet")]
+pub struct Modified;
+
+/// Asks before closing the window over unsaved changes (the window's close button only
+/// requests; this decides).
+pub fn close_requested(
+    world: &mut World,
+    mut cursor: Local<MessageCursor<bevy::window::WindowCloseRequested>>,
+) {
+    let requested = cursor
+        .read(world.resource::<Messages<bevy::window::WindowCloseRequested>>())
+        .count()
+        > 0;
+    if !requested {
+        return;
+    }
+    let modified = world
+        .resource::<ActiveMesh>()
+        .0
+        .is_some_and(|m| world.get::<Modified>(m.0).is_some());
+    if modified {
+        world.resource_mut::<ConfirmDiscard>().0 = Some(PendingDiscard::Quit);
+    } else {
+        world.write_message(bevy::app::AppExit::Success);
+    }
+}
+
 /// The last simplification's history: the level-of-detail slider and vertex splits move along
 /// it. Any other edit of the mesh ends it (the history would no longer describe the mesh).
 #[derive(bevy::prelude::Resource, Default)]
@@ -69,6 +98,18 @@ pub fn apply(world: &mut World, request: &EditRequest) -> Result<String, String>
     let result = apply_request(world, request);
     if result.is_ok() && !keeps_history {
         world.resource_mut::<History>().pm = None;
+    }
+    // The mesh now differs from its file (or is new since it was saved).
+    if result.is_ok()
+        && request.edits()
+        && !matches!(
+            request,
+            EditRequest::Open(_) | EditRequest::DeleteMesh | EditRequest::ConfirmDiscard(_)
+        )
+        && let Some(mesh) = world.resource::<ActiveMesh>().0
+        && world.get_entity(mesh.0).is_ok()
+    {
+        world.entity_mut(mesh.0).insert(Modified);
     }
     result
 }
@@ -229,7 +270,32 @@ fn apply_request(world: &mut World, request: &EditRequest) -> Result<String, Str
             world.resource_mut::<Selection>().element = Some(to);
             Ok(format!("{to}"))
         }
-        EditRequest::Open(path) => open(world, path),
+        EditRequest::Open(path) => {
+            if let Some(mesh) = world.resource::<ActiveMesh>().0
+                && world.get::<Modified>(mesh.0).is_some()
+            {
+                world.resource_mut::<ConfirmDiscard>().0 = Some(PendingDiscard::Open(path.clone()));
+                return Err(
+                    "the mesh has unsaved changes: save it (Ctrl+S) or discard them first".into(),
+                );
+            }
+            open(world, path)
+        }
+        EditRequest::ConfirmDiscard(discard) => {
+            let Some(pending) = world.resource_mut::<ConfirmDiscard>().0.take() else {
+                return Err("nothing is waiting for an answer".into());
+            };
+            if !discard {
+                return Ok("changes kept".into());
+            }
+            match pending {
+                PendingDiscard::Open(path) => open(world, &path),
+                PendingDiscard::Quit => {
+                    world.write_message(bevy::app::AppExit::Success);
+                    Ok("changes discarded, quitting".into())
+                }
+            }
+        }
         EditRequest::Save(path) => save(world, path.as_deref()),
         EditRequest::DeleteMesh => {
             let Some(mesh) = world.resource::<ActiveMesh>().0 else {
@@ -334,6 +400,7 @@ fn save(world: &mut World, path: Option<&Path>) -> Result<String, String> {
     if let Some(mut info) = world.get_mut::<MeshInfo>(mesh.0) {
         info.path = Some(target.clone());
     }
+    world.entity_mut(mesh.0).remove::<Modified>();
     Ok(format!("saved {}", target.display()))
 }
 

@@ -9,6 +9,7 @@
 //! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:Period`); `key:Shift+S`, `key:Ctrl+T` hold a modifier |
 //! | `select-edge:A,B` | select the edge between the input file's vertices A and B (0-based) |
 //! | `select:ID` | select an element by id (`f12v0`) |
+//! | `open:PATH` | open a file (or `shape:NAME`) as Ctrl+O would |
 //! | `shot:PATH` | save a screenshot of the window to PATH (PNG) and wait until it is written |
 //! | `measure:N` | let N frames pass and log their mean frame time |
 //! | `exit` | quit |
@@ -39,6 +40,8 @@ pub enum ScriptStep {
     SelectEdge(u32, u32),
     /// Select an element by id.
     Select(ElementId),
+    /// Open a file.
+    Open(PathBuf),
     /// Save a screenshot.
     Shot(PathBuf),
     /// Measure the mean frame time over N frames.
@@ -95,6 +98,7 @@ impl Script {
                 }
                 "select" => ScriptStep::Select(parse_element(arg).ok_or_else(bad)?),
                 "shot" => ScriptStep::Shot(PathBuf::from(arg)),
+                "open" => ScriptStep::Open(PathBuf::from(arg)),
                 "exit" => ScriptStep::Exit,
                 _ => return Err(bad()),
             });
@@ -196,6 +200,10 @@ pub fn run_script(world: &mut World) {
                     None => bevy::log::warn!("script: no edge between input vertices {a} and {b}"),
                 }
                 script.waiting = 1;
+            }
+            ScriptStep::Open(path) => {
+                world.write_message(EditRequest::Open(path));
+                script.waiting = 2;
             }
             ScriptStep::Select(id) => {
                 world.write_message(EditRequest::Select(Some(id)));

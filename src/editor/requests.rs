@@ -93,6 +93,9 @@ pub enum EditRequest {
     Save(Option<PathBuf>),
     /// Delete the current mesh.
     DeleteMesh,
+    /// Answer the unsaved-changes question: `true` discards the changes and goes on with what
+    /// was asked (opening another file, quitting), `false` cancels it.
+    ConfirmDiscard(bool),
 }
 
 impl EditRequest {
@@ -118,6 +121,8 @@ impl EditRequest {
             EditRequest::Save(Some(p)) => format!("save as {}", p.display()),
             EditRequest::Save(None) => "save".into(),
             EditRequest::DeleteMesh => "delete mesh".into(),
+            EditRequest::ConfirmDiscard(true) => "discard changes".into(),
+            EditRequest::ConfirmDiscard(false) => "keep changes".into(),
         }
     }
 
@@ -125,10 +130,26 @@ impl EditRequest {
     pub fn edits(&self) -> bool {
         !matches!(
             self,
-            EditRequest::Select(_) | EditRequest::Navigate(_) | EditRequest::Save(_)
+            EditRequest::Select(_)
+                | EditRequest::Navigate(_)
+                | EditRequest::Save(_)
+                | EditRequest::ConfirmDiscard(_)
         )
     }
 }
+
+/// What waits for the user to say whether unsaved changes may be discarded.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PendingDiscard {
+    /// Opening this file over the modified mesh.
+    Open(PathBuf),
+    /// Closing the window.
+    Quit,
+}
+
+/// The unsaved-changes question, while it is open.
+#[derive(Resource, Default, Debug, Clone)]
+pub struct ConfirmDiscard(pub Option<PendingDiscard>);
 
 /// What became of one [`EditRequest`].
 #[derive(Message, Clone, Debug, PartialEq)]

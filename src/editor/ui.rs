@@ -257,6 +257,7 @@ pub fn panels(
     mut captured: ResMut<KeyboardCaptured>,
     mut pointer: ResMut<super::drag::PointerCaptured>,
     mut insets: ResMut<super::scene::PanelInsets>,
+    confirm: Res<super::requests::ConfirmDiscard>,
     mut pending: ResMut<PendingActions>,
     mut requests: MessageWriter<EditRequest>,
 ) -> Result {
@@ -276,7 +277,7 @@ pub fn panels(
                     Ok(s) => ui.label(format!("✔ {}: {s}", last.request)),
                     Err(r) => ui.colored_label(
                         egui::Color32::from_rgb(230, 120, 90),
-                        format!("✘ {}: {r}", last.request),
+                        format!("x {}: {r}", last.request),
                     ),
                 },
                 None => ui.label("Ready. Press F1 or ? for help."),
@@ -310,7 +311,7 @@ pub fn panels(
                 for entry in log.entries.iter().rev().take(30) {
                     let text = match &entry.result {
                         Ok(s) => format!("✔ {}: {s}", entry.request),
-                        Err(r) => format!("✘ {}: {r}", entry.request),
+                        Err(r) => format!("x {}: {r}", entry.request),
                     };
                     ui.label(egui::RichText::new(text).small());
                 }
@@ -323,6 +324,31 @@ pub fn panels(
     };
     if *insets != new_insets {
         *insets = new_insets;
+    }
+
+    if let Some(pending) = &confirm.0 {
+        let what = match pending {
+            super::requests::PendingDiscard::Open(path) => format!("open {}", path.display()),
+            super::requests::PendingDiscard::Quit => "quit".to_string(),
+        };
+        egui::Window::new("Unsaved changes")
+            .collapsible(false)
+            .resizable(false)
+            .anchor(egui::Align2::CENTER_CENTER, [0.0, 0.0])
+            .show(&ctx, |ui| {
+                ui.label(format!(
+                    "The mesh has changes that are not saved. Discard them and {what}?"
+                ));
+                ui.label("(Cancel, then Ctrl+S, to keep them.)");
+                ui.horizontal(|ui| {
+                    if ui.button("Discard changes").clicked() {
+                        requests.write(EditRequest::ConfirmDiscard(true));
+                    }
+                    if ui.button("Cancel").clicked() {
+                        requests.write(EditRequest::ConfirmDiscard(false));
+                    }
+                });
+            });
     }
 
     if ui_state.show_help {
