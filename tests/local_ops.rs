@@ -5,38 +5,13 @@ mod common;
 
 use bevy::math::Vec3;
 use bevy::prelude::World;
-use common::build;
+use common::{build, canonical};
 use pappus::mesh::{
     Edge, EdgeId, Face, Halfedge, MeshId, MeshMembers, MeshRef, PolygonSoup, Position, Vertex,
     VertexId, mesh_stats, shapes, to_soup, validate,
 };
 use pappus::ops::Refusal;
 use pappus::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
-
-type Key = [u32; 3];
-
-fn key(p: Vec3) -> Key {
-    [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()]
-}
-
-/// Faces as cycles of positions, each rotated to start at its smallest corner, sorted: two
-/// meshes with the same canonical form are the same up to relabeling (orientation kept).
-fn canonical(soup: &PolygonSoup) -> Vec<Vec<Key>> {
-    let mut faces: Vec<Vec<Key>> = soup
-        .faces()
-        .map(|f| {
-            let keys: Vec<Key> = f.iter().map(|&i| key(soup.positions[i as usize])).collect();
-            let start = (0..keys.len()).min_by_key(|&i| keys[i]).unwrap();
-            keys[start..]
-                .iter()
-                .chain(&keys[..start])
-                .copied()
-                .collect()
-        })
-        .collect();
-    faces.sort();
-    faces
-}
 
 fn assert_same_mesh(world: &World, mesh: MeshId, expected: &PolygonSoup) {
     validate(world, mesh).unwrap();

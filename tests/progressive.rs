@@ -3,31 +3,10 @@
 
 mod common;
 
-use bevy::math::Vec3;
-use common::build;
+use common::{build, canonical};
 use pappus::mesh::{PolygonSoup, mesh_stats, shapes, to_soup, validate};
 use pappus::ops::progressive::ProgressiveMesh;
 use pappus::ops::simplify::SimplifyParams;
-
-type Key = [u32; 3];
-
-fn canonical(soup: &PolygonSoup) -> Vec<Vec<Key>> {
-    let key = |p: Vec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
-    let mut faces: Vec<Vec<Key>> = soup
-        .faces()
-        .map(|f| {
-            let keys: Vec<Key> = f.iter().map(|&i| key(soup.positions[i as usize])).collect();
-            let start = (0..keys.len()).min_by_key(|&i| keys[i]).unwrap();
-            keys[start..]
-                .iter()
-                .chain(&keys[..start])
-                .copied()
-                .collect()
-        })
-        .collect();
-    faces.sort();
-    faces
-}
 
 fn round_trip(soup: &PolygonSoup, ratio: f64) {
     let (mut world, built) = build(soup);

@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+use bevy::math::Vec3;
 use bevy::prelude::World;
 use pappus::mesh::{BuiltMesh, MeshInfo, PolygonSoup, build_mesh, validate};
 use std::path::PathBuf;
@@ -29,4 +30,28 @@ pub fn models_dir() -> Option<PathBuf> {
 /// The path of one shared model, if the folder is present.
 pub fn model(name: &str) -> Option<PathBuf> {
     models_dir().map(|d| d.join(name))
+}
+
+/// A position as exact bits.
+pub type Key = [u32; 3];
+
+/// Faces as cycles of positions (bitwise), each rotated to start at its smallest corner,
+/// sorted: two meshes with the same canonical form are the same up to relabeling
+/// (orientation kept).
+pub fn canonical(soup: &PolygonSoup) -> Vec<Vec<Key>> {
+    let key = |p: Vec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+    let mut faces: Vec<Vec<Key>> = soup
+        .faces()
+        .map(|f| {
+            let keys: Vec<Key> = f.iter().map(|&i| key(soup.positions[i as usize])).collect();
+            let start = (0..keys.len()).min_by_key(|&i| keys[i]).unwrap();
+            keys[start..]
+                .iter()
+                .chain(&keys[..start])
+                .copied()
+                .collect()
+        })
+        .collect();
+    faces.sort();
+    faces
 }
