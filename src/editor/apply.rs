@@ -120,7 +120,11 @@ fn apply_request(world: &mut World, request: &EditRequest) -> Result<String, Str
             let Some(mut pm) = world.resource_mut::<History>().pm.take() else {
                 return Err("no simplification to move along: simplify first (Shift+S)".into());
             };
-            let result = pm.go_to_faces(world, *faces);
+            // Only the faces around the vertices each step touches are redrawn.
+            let mut near: Vec<FaceId> = Vec::new();
+            let result = pm.go_to_faces_watching(world, *faces, |w, v| {
+                near.extend(faces_near(w, &[v]));
+            });
             let (mesh, now) = (pm.mesh, pm.faces());
             world.resource_mut::<History>().pm = Some(pm);
             let steps = result.map_err(|r| r.to_string())?;
@@ -128,7 +132,7 @@ fn apply_request(world: &mut World, request: &EditRequest) -> Result<String, Str
                 .resource::<Selection>()
                 .element
                 .filter(|&x| super::selection::exists(&MeshRef::new(world), x));
-            edited(world, mesh, selection);
+            edited_locally(world, mesh, near, &[], selection);
             Ok(format!("{steps} step(s), {now} faces"))
         }
         EditRequest::SplitVertex(v) => {

@@ -10,6 +10,7 @@
 //! | `select-edge:A,B` | select the edge between the input file's vertices A and B (0-based) |
 //! | `select:ID` | select an element by id (`f12v0`) |
 //! | `open:PATH` | open a file (or `shape:NAME`) as Ctrl+O would |
+//! | `lod:FACES` | move the level-of-detail slider (after a simplification) |
 //! | `shot:PATH` | save a screenshot of the window to PATH (PNG) and wait until it is written |
 //! | `measure:N` | let N frames pass and log their mean frame time |
 //! | `exit` | quit |
@@ -42,6 +43,8 @@ pub enum ScriptStep {
     Select(ElementId),
     /// Open a file.
     Open(PathBuf),
+    /// Move the level-of-detail slider.
+    Lod(usize),
     /// Save a screenshot.
     Shot(PathBuf),
     /// Measure the mean frame time over N frames.
@@ -99,6 +102,7 @@ impl Script {
                 "select" => ScriptStep::Select(parse_element(arg).ok_or_else(bad)?),
                 "shot" => ScriptStep::Shot(PathBuf::from(arg)),
                 "open" => ScriptStep::Open(PathBuf::from(arg)),
+                "lod" => ScriptStep::Lod(arg.parse().map_err(|_| bad())?),
                 "exit" => ScriptStep::Exit,
                 _ => return Err(bad()),
             });
@@ -200,6 +204,10 @@ pub fn run_script(world: &mut World) {
                     None => bevy::log::warn!("script: no edge between input vertices {a} and {b}"),
                 }
                 script.waiting = 1;
+            }
+            ScriptStep::Lod(faces) => {
+                world.write_message(EditRequest::LevelOfDetail(faces));
+                script.waiting = 2;
             }
             ScriptStep::Open(path) => {
                 world.write_message(EditRequest::Open(path));

@@ -282,6 +282,12 @@ fn rebuild_some(
     let Some(mut chunks) = world.entity_mut(mesh.0).take::<RenderChunks>() else {
         return rebuild_all(world, mesh, settings);
     };
+    // An edit that reaches a quarter of the mesh (a big level-of-detail jump) is cheaper drawn
+    // whole, which also packs the chunks again.
+    if faces.len() > chunks.face_chunk.len() / 4 {
+        world.entity_mut(mesh.0).insert(chunks);
+        return rebuild_all(world, mesh, settings);
+    }
     let mut touched: Vec<u32> = Vec::new();
     for &f in faces {
         let alive = world.get::<crate::mesh::Face>(f.0).is_some();

@@ -218,17 +218,50 @@ impl ProgressiveMesh {
     /// As [`Self::refine_one`] and [`Self::coarsen_one`]; the mesh is then valid, at the level
     /// reached so far.
     pub fn go_to_faces(&mut self, world: &mut World, faces: usize) -> Result<usize, Refusal> {
+        self.go_to_faces_watching(world, faces, |_, _| {})
+    }
+
+    /// [`Self::go_to_faces`], calling `touched(world, v)` for every vertex a step involves (the
+    /// kept and removed vertex and the wings), before and after the step — what a renderer
+    /// needs to redraw only what changed.
+    ///
+    /// # Refusals
+    /// As [`Self::go_to_faces`].
+    pub fn go_to_faces_watching(
+        &mut self,
+        world: &mut World,
+        faces: usize,
+        mut touched: impl FnMut(&World, VertexId),
+    ) -> Result<usize, Refusal> {
         if world.get::<crate::mesh::MeshInfo>(self.mesh.0).is_none() {
             return Err(Refusal::Stale(ElementId::Mesh(self.mesh)));
         }
+        let mut watch = |pm: &ProgressiveMesh, world: &World, r: SlotRecord| {
+            for slot in [Some(r.kept), Some(r.removed), r.left, r.right]
+                .into_iter()
+                .flatten()
+            {
+                if let Some(v) = pm.slots[slot as usize] {
+                    touched(world, v);
+                }
+            }
+        };
         let mut steps = 0;
         let mut now = self.faces();
-        while now < faces && self.refine_one(world)? {
-            now += self.records[self.applied].faces;
+        while now < faces && self.applied > 0 {
+            let r = self.records[self.applied - 1];
+            watch(self, world, r);
+            self.refine_one(world)?;
+            watch(self, world, r);
+            now += r.faces;
             steps += 1;
         }
-        while now > faces && self.coarsen_one(world)? {
-            now -= self.records[self.applied - 1].faces;
+        while now > faces && self.applied < self.records.len() {
+            let r = self.records[self.applied];
+            watch(self, world, r);
+            self.coarsen_one(world)?;
+            watch(self, world, r);
+            now -= r.faces;
             steps += 1;
         }
         Ok(steps)
