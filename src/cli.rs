@@ -27,6 +27,7 @@ use crate::ops::local::{
     CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
 };
 use crate::ops::progressive::ProgressiveMesh;
+use crate::ops::remesh::{RemeshParams, remesh};
 use crate::ops::simplify::SimplifyParams;
 use crate::ops::subdivide::{SubdivisionSummary, catmull_clark, loop_subdivide};
 use crate::ops::{Refusal, triangulate};
@@ -98,7 +99,8 @@ FILE: .obj .off .ply .stl, or shape:NAME (tetrahedron cube icosahedron icosphere
       quad-grid grid-with-holes double-torus)
 STEP: validate | triangulate | flip:A,B | split:A,B | collapse:A,B | dissolve:A,B |
       split-face:A,B | loop[:N] | catmull-clark[:N] | simplify:RATIO | simplify-faces:N |
-      refine[:FACES]   (split simplify's collapses back, up to FACES faces or all)
+      refine[:FACES]   (split simplify's collapses back, up to FACES faces or all) |
+      remesh[:ITERATIONS[:LENGTH]]   (isotropic; LENGTH defaults to the mean edge length)
       A, B: 0-based indices of the input file's vertices (the edge between them)
 ";
 
@@ -125,6 +127,8 @@ pub enum Step {
     SimplifyFaces(usize),
     /// Split the last simplification's collapses back, up to a face count (all if `None`).
     Refine(Option<usize>),
+    /// Isotropic remeshing: iterations, and the target length (mean edge length if `None`).
+    Remesh(u32, Option<f32>),
     /// Loop subdivision, N levels.
     Loop(u32),
     /// Catmull–Clark subdivision, N levels.
@@ -166,6 +170,28 @@ impl Step {
                     "step `{text}`: the ratio must be in (0, 1], as in `simplify:0.25`"
                 )),
             },
+            "remesh" => {
+                let bad = || format!("step `{text}`: expected remesh[:ITERATIONS[:LENGTH]]");
+                let mut parts = args.split(':').filter(|p| !p.is_empty());
+                let iterations = match parts.next() {
+                    Some(n) => n
+                        .parse::<u32>()
+                        .ok()
+                        .filter(|n| (1..=100).contains(n))
+                        .ok_or_else(bad)?,
+                    None => 5,
+                };
+                let length = match parts.next() {
+                    Some(l) => Some(
+                        l.parse::<f32>()
+                            .ok()
+                            .filter(|l| *l > 0.0 && l.is_finite())
+                            .ok_or_else(bad)?,
+                    ),
+                    None => None,
+                };
+                Ok(Step::Remesh(iterations, length))
+            }
             "refine" if args.is_empty() => Ok(Step::Refine(None)),
             "refine" => args
                 .parse::<usize>()
@@ -198,6 +224,8 @@ impl std::fmt::Display for Step {
             Step::SplitFace(a, b) => write!(f, "split-face:{a},{b}"),
             Step::Simplify(r) => write!(f, "simplify:{r}"),
             Step::SimplifyFaces(n) => write!(f, "simplify-faces:{n}"),
+            Step::Remesh(n, None) => write!(f, "remesh:{n}"),
+            Step::Remesh(n, Some(l)) => write!(f, "remesh:{n}:{l}"),
             Step::Refine(None) => write!(f, "refine"),
             Step::Refine(Some(n)) => write!(f, "refine:{n}"),
             Step::Loop(n) => write!(f, "loop:{n}"),
@@ -460,6 +488,20 @@ pub fn run_step(
                         }
                     ))
                 }
+                Err(r) => StepOutcome::Refused(r),
+            }
+        }
+        Step::Remesh(iterations, length) => {
+            let params = RemeshParams {
+                target_length: *length,
+                iterations: *iterations,
+                ..RemeshParams::default()
+            };
+            match remesh(world, mesh, &params) {
+                Ok(s) => StepOutcome::Applied(format!(
+                    "L {:.5}: {} splits, {} collapses, {} flips",
+                    s.target_length, s.splits, s.collapses, s.flips
+                )),
                 Err(r) => StepOutcome::Refused(r),
             }
         }

@@ -11,6 +11,7 @@
 
 pub mod local;
 pub mod progressive;
+pub mod remesh;
 pub mod simplify;
 pub mod subdivide;
 pub mod triangulate;

@@ -1,0 +1,405 @@
+//! Isotropic remeshing (Botsch & Kobbelt 2004) with reprojection and feature preservation.
+//!
+//! Each iteration, for a target edge length `L`:
+//! 1. split every edge longer than 4/3 L at its midpoint;
+//! 2. collapse every edge shorter than 4/5 L, shortest first, to its midpoint or else to one of
+//!    its ends, unless every choice would make an edge longer than 4/3 L (and through the
+//!    collapse plan's refusals, with a 60° normal bound);
+//! 3. flip an edge when that brings the valences of its four vertices closer to 6 (4 on the
+//!    boundary);
+//! 4. move every free vertex 1/5 of the way to its one-ring centroid, within its tangent plane
+//!    (all new positions computed first, then committed), and project it back onto the input
+//!    surface (closest point on the input triangles, found through a uniform grid); the
+//!    smoothing is repeated [`RemeshParams::smoothing_steps`] times (10, as in Scotty3D), the
+//!    projection done after the last.
+//!
+//! Features are kept: boundary edges and edges whose dihedral angle exceeds
+//! [`RemeshParams::feature_angle_deg`] are split but never flipped or collapsed, and a vertex on
+//! a feature does not move. The work is bounded (a fixed number of passes over edge lists taken
+//! at the start of each pass), so it ends on every input.
+
+use bevy::ecs::entity::EntityHashSet;
+use bevy::math::Vec3;
+use bevy::prelude::World;
+
+use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
+use crate::mesh::members::MeshMembers;
+use crate::mesh::topology::MeshRef;
+
+use super::Refusal;
+use super::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
+
+/// How to remesh. The same struct serves the command line, the editor and the tests.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RemeshParams {
+    /// Target edge length; `None`: the mean edge length of the input.
+    pub target_length: Option<f32>,
+    /// Iterations of split, collapse, flip, smooth. Default 5.
+    pub iterations: u32,
+    /// Edges with a dihedral angle above this (degrees) are features. Default 45°.
+    pub feature_angle_deg: f32,
+    /// Smoothing steps (each 1/5 of the way to the one-ring centroid, then reprojected) per
+    /// iteration. Default 10, as Scotty3D's remesher.
+    pub smoothing_steps: u32,
+}
+
+impl Default for RemeshParams {
+    fn default() -> Self {
+        Self {
+            target_length: None,
+            iterations: 5,
+            feature_angle_deg: 45.0,
+            smoothing_steps: 10,
+        }
+    }
+}
+
+/// What a remeshing did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RemeshSummary {
+    /// The target length used.
+    pub target_length: f32,
+    /// Splits, collapses and flips made.
+    pub splits: usize,
+    /// Collapses made.
+    pub collapses: usize,
+    /// Flips made.
+    pub flips: usize,
+}
+
+/// Remeshes a triangle mesh in place (see the module doc).
+///
+/// # Refusals
+/// [`Refusal::NotTriangle`] on polygons; a stale mesh. The mesh is then unchanged.
+pub fn remesh(
+    world: &mut World,
+    mesh: MeshId,
+    params: &RemeshParams,
+) -> Result<RemeshSummary, Refusal> {
+    if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
+        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
+    }
+    let members = MeshMembers::collect(world, mesh);
+    let m = MeshRef::new(world);
+    if let Some(&f) = members.faces.iter().find(|&&f| m.face_degree(f) != 3) {
+        return Err(Refusal::NotTriangle(ElementId::Face(f)));
+    }
+    let length = params.target_length.unwrap_or_else(|| {
+        let sum: f32 = members.edges.iter().map(|&e| edge_length(&m, e)).sum();
+        sum / members.edges.len().max(1) as f32
+    });
+    let reference = Reference::new(&m, &members);
+    let mut features: EntityHashSet = EntityHashSet::default();
+    let cos_limit = params.feature_angle_deg.to_radians().cos();
+    for &e in &members.edges {
+        if is_feature(&m, e, cos_limit) {
+            features.insert(e.0);
+        }
+    }
+    let mut summary = RemeshSummary {
+        target_length: length,
+        splits: 0,
+        collapses: 0,
+        flips: 0,
+    };
+    let (high, low) = (4.0 / 3.0 * length, 4.0 / 5.0 * length);
+    for _ in 0..params.iterations {
+        summary.splits += split_long(world, mesh, high, &mut features);
+        summary.collapses += collapse_short(world, mesh, low, high, &features);
+        summary.flips += flip_to_valence(world, mesh, &features);
+        // Smooth in small steps, then project back onto the input once per iteration (each
+        // projection searches the input's triangles: the expensive part).
+        for step in 0..params.smoothing_steps.max(1) {
+            let last = step + 1 == params.smoothing_steps.max(1);
+            smooth_and_project(world, mesh, &features, last.then_some(&reference));
+        }
+    }
+    Ok(summary)
+}
+
+fn edge_length(m: &MeshRef<'_>, e: EdgeId) -> f32 {
+    let (a, b) = m.edge_vertices(e);
+    m.position(a).distance(m.position(b))
+}
+
+fn is_feature(m: &MeshRef<'_>, e: EdgeId, cos_limit: f32) -> bool {
+    let h = m.edge_halfedge(e);
+    let (Some(f), Some(g)) = (m.face(h), m.face(m.twin(h))) else {
+        return true;
+    };
+    let (n0, n1) = (
+        m.face_area_vector(f).normalize_or_zero(),
+        m.face_area_vector(g).normalize_or_zero(),
+    );
+    n0.dot(n1) < cos_limit
+}
+
+fn feature_vertex(m: &MeshRef<'_>, v: VertexId, features: &EntityHashSet) -> bool {
+    m.vertex_outgoing(v)
+        .any(|h| features.contains(&m.edge(h).0))
+}
+
+fn split_long(world: &mut World, mesh: MeshId, high: f32, features: &mut EntityHashSet) -> usize {
+    let edges = MeshMembers::collect(world, mesh).edges;
+    let mut splits = 0;
+    for e in edges {
+        let m = MeshRef::new(world);
+        if m.try_edge(e).is_none() || edge_length(&m, e) <= high {
+            continue;
+        }
+        let feature = features.contains(&e.0);
+        let Ok(v) = split_edge(world, e, 0.5) else {
+            continue;
+        };
+        splits += 1;
+        if feature {
+            // Both halves of a feature edge stay features; the cuts across faces do not.
+            let m = MeshRef::new(world);
+            let (a, b) = {
+                let h = m.edge_halfedge(e);
+                (m.from_vertex(h), m.to_vertex(h))
+            };
+            for h in m.vertex_outgoing(v) {
+                let w = m.to_vertex(h);
+                if w == a || w == b {
+                    features.insert(m.edge(h).0);
+                }
+            }
+        }
+    }
+    splits
+}
+
+fn collapse_short(
+    world: &mut World,
+    mesh: MeshId,
+    low: f32,
+    high: f32,
+    features: &EntityHashSet,
+) -> usize {
+    // Shortest first: collapsing them early removes the most short edges.
+    let mut edges = MeshMembers::collect(world, mesh).edges;
+    {
+        let m = MeshRef::new(world);
+        let mut keyed: Vec<(f32, EdgeId)> =
+            edges.iter().map(|&e| (edge_length(&m, e), e)).collect();
+        keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        edges = keyed
+            .into_iter()
+            .filter(|&(l, _)| l < low)
+            .map(|(_, e)| e)
+            .collect();
+    }
+    let mut collapses = 0;
+    for e in edges {
+        let m = MeshRef::new(world);
+        if m.try_edge(e).is_none() || features.contains(&e.0) || edge_length(&m, e) >= low {
+            continue;
+        }
+        let (a, b) = m.edge_vertices(e);
+        if feature_vertex(&m, a, features) || feature_vertex(&m, b, features) {
+            continue;
+        }
+        // Where the merged vertex goes: the midpoint, else either end (as PMP tries both
+        // directions), whichever makes no edge longer than 4/3 L.
+        let (pa, pb) = (m.position(a), m.position(b));
+        let fits = |target: Vec3| {
+            !m.vertex_neighbors(a)
+                .chain(m.vertex_neighbors(b))
+                .any(|n| n != a && n != b && m.position(n).distance(target) > high)
+        };
+        let Some(mid) = [(pa + pb) / 2.0, pa, pb].into_iter().find(|&t| fits(t)) else {
+            continue;
+        };
+        let options = CollapseOptions {
+            position: Some(mid),
+            max_normal_change_deg: Some(60.0),
+        };
+        if collapse_edge(world, e, options).is_ok() {
+            collapses += 1;
+        }
+    }
+    collapses
+}
+
+fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> usize {
+    let edges = MeshMembers::collect(world, mesh).edges;
+    let mut flips = 0;
+    for e in edges {
+        let m = MeshRef::new(world);
+        if m.try_edge(e).is_none() || features.contains(&e.0) || m.is_boundary_edge(e) {
+            continue;
+        }
+        let h = m.edge_halfedge(e);
+        let (a, b) = (m.from_vertex(h), m.to_vertex(h));
+        let (c, d) = (m.to_vertex(m.next(h)), m.to_vertex(m.next(m.twin(h))));
+        let target = |v: VertexId| if m.is_boundary_vertex(v) { 4 } else { 6 };
+        let deviation = |v: VertexId, delta: i64| (m.valence(v) as i64 + delta - target(v)).abs();
+        let before = deviation(a, 0) + deviation(b, 0) + deviation(c, 0) + deviation(d, 0);
+        let after = deviation(a, -1) + deviation(b, -1) + deviation(c, 1) + deviation(d, 1);
+        if after < before && flip_edge(world, e).is_ok() {
+            flips += 1;
+        }
+    }
+    flips
+}
+
+fn smooth_and_project(
+    world: &mut World,
+    mesh: MeshId,
+    features: &EntityHashSet,
+    reference: Option<&Reference>,
+) {
+    let vertices = MeshMembers::collect(world, mesh).vertices;
+    let m = MeshRef::new(world);
+    let mut moved: Vec<(VertexId, Vec3)> = Vec::with_capacity(vertices.len());
+    for v in vertices {
+        if m.is_boundary_vertex(v) || feature_vertex(&m, v, features) {
+            continue;
+        }
+        let p = m.position(v);
+        let (mut sum, mut n) = (Vec3::ZERO, 0.0);
+        for w in m.vertex_neighbors(v) {
+            sum += m.position(w);
+            n += 1.0;
+        }
+        let normal: Vec3 = m.vertex_faces(v).map(|f| m.face_area_vector(f)).sum();
+        let normal = normal.normalize_or_zero();
+        let step = sum / n - p;
+        let tangential = step - normal * normal.dot(step);
+        let target = p + 0.2 * tangential;
+        moved.push((v, reference.map_or(target, |r| r.closest(target))));
+    }
+    for (v, p) in moved {
+        if let Some(mut position) = world.get_mut::<crate::mesh::Position>(v.0) {
+            position.0 = p;
+        }
+    }
+}
+
+/// The input surface, for closest-point queries: its triangles in a uniform grid.
+struct Reference {
+    triangles: Vec<[Vec3; 3]>,
+    origin: Vec3,
+    cell: f32,
+    dims: [i32; 3],
+    grid: bevy::platform::collections::HashMap<[i32; 3], Vec<u32>>,
+}
+
+impl Reference {
+    fn new(m: &MeshRef<'_>, members: &MeshMembers) -> Self {
+        let triangles: Vec<[Vec3; 3]> = members
+            .faces
+            .iter()
+            .map(|&f| {
+                let v: Vec<Vec3> = m.face_vertices(f).map(|x| m.position(x)).collect();
+                [v[0], v[1], v[2]]
+            })
+            .collect();
+        let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+        for t in &triangles {
+            for p in t {
+                lo = lo.min(*p);
+                hi = hi.max(*p);
+            }
+        }
+        let extent = (hi - lo).max(Vec3::splat(1e-6));
+        let cell = (extent.x * extent.y * extent.z / triangles.len().max(1) as f32)
+            .cbrt()
+            .max(extent.max_element() / 256.0)
+            * 2.0;
+        let dims = ((extent / cell).ceil().as_ivec3() + 1).to_array();
+        let mut grid: bevy::platform::collections::HashMap<[i32; 3], Vec<u32>> = Default::default();
+        for (i, t) in triangles.iter().enumerate() {
+            let (a, b) = (
+                t.iter().fold(Vec3::splat(f32::MAX), |x, p| x.min(*p)),
+                t.iter().fold(Vec3::splat(f32::MIN), |x, p| x.max(*p)),
+            );
+            let (ca, cb) = (
+                ((a - lo) / cell).floor().as_ivec3(),
+                ((b - lo) / cell).floor().as_ivec3(),
+            );
+            for x in ca.x..=cb.x {
+                for y in ca.y..=cb.y {
+                    for z in ca.z..=cb.z {
+                        grid.entry([x, y, z]).or_default().push(i as u32);
+                    }
+                }
+            }
+        }
+        Self {
+            triangles,
+            origin: lo,
+            cell,
+            dims,
+            grid,
+        }
+    }
+
+    /// The closest point of the input surface to `p` (searching rings of cells outwards).
+    fn closest(&self, p: Vec3) -> Vec3 {
+        let c = ((p - self.origin) / self.cell).floor().as_ivec3();
+        let mut best = (f32::MAX, p);
+        let max_ring = self.dims.iter().copied().max().unwrap_or(1);
+        for ring in 0..=max_ring {
+            for x in -ring..=ring {
+                for y in -ring..=ring {
+                    for z in -ring..=ring {
+                        if x.abs().max(y.abs()).max(z.abs()) != ring {
+                            continue;
+                        }
+                        let Some(list) = self.grid.get(&[c.x + x, c.y + y, c.z + z]) else {
+                            continue;
+                        };
+                        for &i in list {
+                            let q = closest_on_triangle(p, &self.triangles[i as usize]);
+                            let d = q.distance_squared(p);
+                            if d < best.0 {
+                                best = (d, q);
+                            }
+                        }
+                    }
+                }
+            }
+            // Anything in a farther ring is at least `ring * cell` away.
+            if best.0 < f32::MAX && best.0.sqrt() <= ring as f32 * self.cell {
+                break;
+            }
+        }
+        best.1
+    }
+}
+
+/// The closest point of triangle `t` to `p` (Ericson, Real-Time Collision Detection, 5.1.5).
+fn closest_on_triangle(p: Vec3, t: &[Vec3; 3]) -> Vec3 {
+    let [a, b, c] = *t;
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    a + ab * (vb * denom) + ac * (vc * denom)
+}

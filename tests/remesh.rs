@@ -1,0 +1,92 @@
+//! Isotropic remeshing: valid, χ unchanged, edge lengths in [4/5 L, 4/3 L] for ≥ 95 % of
+//! edges, boundaries and features kept.
+
+mod common;
+
+use common::build;
+use pappus::mesh::{MeshMembers, MeshRef, mesh_stats, shapes, validate};
+use pappus::ops::remesh::{RemeshParams, remesh};
+
+fn in_band(world: &bevy::prelude::World, mesh: pappus::mesh::MeshId, length: f32) -> f64 {
+    let m = MeshRef::new(world);
+    let edges = MeshMembers::collect(world, mesh).edges;
+    let good = edges
+        .iter()
+        .filter(|&&e| {
+            let (a, b) = m.edge_vertices(e);
+            let l = m.position(a).distance(m.position(b));
+            l >= 0.8 * length * 0.999 && l <= 4.0 / 3.0 * length * 1.001
+        })
+        .count();
+    good as f64 / edges.len() as f64
+}
+
+#[test]
+fn icosphere_and_torus_get_even_edges() {
+    for (name, soup, length) in [
+        ("icosphere", shapes::icosphere(3), 0.1f32),
+        (
+            "torus",
+            shapes::triangulate_fans(&shapes::torus(24, 12)),
+            0.12,
+        ),
+    ] {
+        let (mut world, built) = build(&soup);
+        let chi = mesh_stats(&world, built.mesh).euler_characteristic;
+        let params = RemeshParams {
+            target_length: Some(length),
+            ..Default::default()
+        };
+        remesh(&mut world, built.mesh, &params).unwrap();
+        validate(&world, built.mesh).unwrap();
+        assert_eq!(
+            mesh_stats(&world, built.mesh).euler_characteristic,
+            chi,
+            "{name}"
+        );
+        let share = in_band(&world, built.mesh, length);
+        println!("{name}: {:.1} % of edges in band", share * 100.0);
+        assert!(
+            share >= 0.95,
+            "{name}: only {:.1} % of edges in [4/5 L, 4/3 L]",
+            share * 100.0
+        );
+        if name == "icosphere" {
+            let m = MeshRef::new(&world);
+            for v in MeshMembers::collect(&world, built.mesh).vertices {
+                let r = m.position(v).length();
+                assert!((r - 1.0).abs() < 0.01, "{r}: reprojection keeps the sphere");
+            }
+        }
+    }
+}
+
+#[test]
+fn an_open_grid_keeps_its_border() {
+    let (mut world, built) = build(&shapes::grid(8, 8));
+    remesh(
+        &mut world,
+        built.mesh,
+        &RemeshParams {
+            target_length: Some(0.06),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    validate(&world, built.mesh).unwrap();
+    let s = mesh_stats(&world, built.mesh);
+    assert_eq!((s.boundary_loops, s.euler_characteristic), (1, 1));
+    let m = MeshRef::new(&world);
+    for v in MeshMembers::collect(&world, built.mesh).vertices {
+        let p = m.position(v);
+        assert!(p.z.abs() < 1e-6);
+        if m.is_boundary_vertex(v) {
+            assert!(
+                [p.x, p.y]
+                    .iter()
+                    .any(|c| c.abs() < 1e-5 || (c - 1.0).abs() < 1e-5),
+                "{p}"
+            );
+        }
+    }
+}
