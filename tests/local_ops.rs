@@ -158,17 +158,19 @@ fn flip_refusals_leave_the_mesh_untouched() {
         refused(shapes::grid(2, 2), 0, 1, flip),
         Refusal::BoundaryEdge(_)
     ));
-    // Every edge of a tetrahedron: the new edge exists already (or a valence-3 endpoint).
+    // Every edge of a tetrahedron: the new edge exists already.
     for (a, b) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
         let r = refused(shapes::tetrahedron(), a, b, flip);
-        assert!(
-            matches!(
-                r,
-                Refusal::WouldDuplicateEdge(..) | Refusal::ValenceTooLow(..)
-            ),
-            "{r}"
-        );
+        assert!(matches!(r, Refusal::WouldDuplicateEdge(..)), "{r}");
     }
+    // Every edge of a cube: both endpoints have valence 3 and would be left with 2.
+    for (a, b) in [(0, 1), (1, 2), (2, 3), (3, 0), (0, 4), (5, 6), (2, 6)] {
+        let r = refused(shapes::cube(), a, b, flip);
+        assert!(matches!(r, Refusal::ValenceTooLow(_, 3)), "{a}-{b}: {r}");
+    }
+    // A polygon that already holds the vertex it would gain.
+    let r = refused(flip_would_repeat_a_corner(), 0, 1, flip);
+    assert!(matches!(r, Refusal::DegenerateFace(_)), "{r}");
     // A stale id.
     let (mut world, built) = build(&shapes::icosahedron());
     let e = edge(&world, &built, 0, 11);
@@ -382,16 +384,10 @@ fn collapse_a_quad_side_leaves_triangles() {
 
 #[test]
 fn collapse_refusals_leave_the_mesh_untouched() {
-    // Every edge of a tetrahedron.
+    // Every edge of a tetrahedron (the edge part of the link condition).
     for (a, b) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
         let r = refused(shapes::tetrahedron(), a, b, collapse);
-        assert!(
-            matches!(
-                r,
-                Refusal::TooSmall | Refusal::LinkCondition(_) | Refusal::ValenceTooLow(..)
-            ),
-            "{r}"
-        );
+        assert!(matches!(r, Refusal::TooSmall), "{r}");
     }
     // An interior edge joining two boundary vertices: the middle edge of a 2×1 grid, and the
     // diamond's diagonal.
@@ -399,13 +395,10 @@ fn collapse_refusals_leave_the_mesh_untouched() {
     assert!(matches!(r, Refusal::BoundaryPinch), "{r}");
     let r = refused(shapes::diamond(), 0, 2, collapse);
     assert!(matches!(r, Refusal::BoundaryPinch), "{r}");
-    // A single triangle: its boundary loop would close into a 2-gon.
+    // A single triangle: the merged edge would have no face on either side.
     let tri = PolygonSoup::from_faces(vec![Vec3::ZERO, Vec3::X, Vec3::Y], &[[0u32, 1, 2]]);
     let r = refused(tri, 0, 1, collapse);
-    assert!(
-        matches!(r, Refusal::DegenerateFace(_) | Refusal::DanglingEdge(_)),
-        "{r}"
-    );
+    assert!(matches!(r, Refusal::DanglingEdge(_)), "{r}");
     // A normal flip when asked to check.
     let r = refused(shapes::icosphere(1), 0, 12, |w, e| {
         collapse_edge(
@@ -713,4 +706,467 @@ fn split_refuses_a_stale_or_polygon_record() {
         Err(Refusal::Stale(_))
     ));
     assert_eq!(snapshot(&world, built.mesh), before);
+}
+
+// ---- fixtures for the rarer refusals -----------------------------------------------------------
+
+/// Positions on a circle, one per vertex: the refusal fixtures below are about connectivity.
+fn ring(n: usize) -> Vec<Vec3> {
+    (0..n)
+        .map(|i| {
+            let a = i as f32 / n as f32 * std::f32::consts::TAU;
+            Vec3::new(a.cos(), a.sin(), 0.1 * i as f32)
+        })
+        .collect()
+}
+
+/// A hexagon `a b c y d z` (0 1 2 3 4 5), a quad `b a d x` (x = 6) and a triangle `d y x`: an
+/// annulus. Flipping `a b` would give the hexagon the corner `d` a second time.
+fn flip_would_repeat_a_corner() -> PolygonSoup {
+    PolygonSoup::from_faces(
+        ring(7),
+        &[vec![0u32, 1, 2, 3, 4, 5], vec![1, 0, 4, 6], vec![4, 3, 6]],
+    )
+}
+
+/// A hexagon `a x y b z w` holding both ends of the edge `a b` (a = 0, b = 1), which lies
+/// between the triangles `a b c` and `b a d`; the rest (c = 2, d = 3, x = 4, y = 5, z = 6,
+/// w = 7, s = 8) makes a disc in which `b` is interior. Collapsing `a b` would make the hexagon
+/// visit the merged vertex twice.
+fn collapse_would_repeat_a_corner() -> PolygonSoup {
+    PolygonSoup::from_faces(
+        ring(9),
+        &[
+            vec![0u32, 4, 5, 1, 6, 7],
+            vec![0, 1, 2],
+            vec![1, 0, 3],
+            vec![3, 0, 7],
+            vec![2, 1, 5],
+            vec![1, 3, 8],
+            vec![3, 7, 8],
+            vec![7, 6, 8],
+            vec![6, 1, 8],
+        ],
+    )
+}
+
+/// A sphere: triangles `a b c`, `b a d` (a = 0, b = 1, c = 2, d = 3), quads `d a c y` and
+/// `c b d z` (y = 4, z = 5) and triangles `y c z`, `y z d`. Collapsing `a b` passes the link
+/// condition but would leave the merged vertex with two edges, between the two quads.
+fn collapse_would_leave_valence_two() -> PolygonSoup {
+    PolygonSoup::from_faces(
+        ring(6),
+        &[
+            vec![0u32, 1, 2],
+            vec![1, 0, 3],
+            vec![3, 0, 2, 4],
+            vec![2, 1, 3, 5],
+            vec![4, 2, 5],
+            vec![4, 5, 3],
+        ],
+    )
+}
+
+/// The cube with its first face `0 3 2 1` split along `0–2`: collapsing the diagonal would
+/// leave the cube corners 1 and 3 with two edges each.
+fn cube_with_a_diagonal() -> PolygonSoup {
+    let cube = shapes::cube();
+    let mut faces: Vec<Vec<u32>> = vec![vec![0, 3, 2], vec![0, 2, 1]];
+    faces.extend(cube.faces().skip(1).map(<[u32]>::to_vec));
+    PolygonSoup::from_faces(cube.positions.clone(), &faces)
+}
+
+#[test]
+fn the_fixtures_are_valid_meshes() {
+    for (soup, chi) in [
+        (flip_would_repeat_a_corner(), 0),
+        (collapse_would_repeat_a_corner(), 1),
+        (collapse_would_leave_valence_two(), 2),
+        (cube_with_a_diagonal(), 2),
+        (mixed(), 1),
+    ] {
+        let (world, built) = build(&soup);
+        assert_eq!(counts(&world, built.mesh).3, chi);
+    }
+}
+
+#[test]
+fn collapse_refuses_each_degenerate_result() {
+    // Another face holds both endpoints.
+    let r = refused(collapse_would_repeat_a_corner(), 0, 1, collapse);
+    assert!(matches!(r, Refusal::DegenerateFace(_)), "{r}");
+    // The merged vertex would keep two edges.
+    let r = refused(collapse_would_leave_valence_two(), 0, 1, collapse);
+    assert!(matches!(r, Refusal::ValenceTooLow(_, 3)), "{r}");
+    // An opposite vertex (a cube corner) would keep two edges.
+    let soup = cube_with_a_diagonal();
+    let r = refused(soup.clone(), 0, 2, collapse);
+    let (world, built) = build(&soup);
+    let corners = [built.input_vertices[1], built.input_vertices[3]].map(Option::unwrap);
+    assert!(
+        matches!(r, Refusal::ValenceTooLow(pappus::mesh::ElementId::Vertex(v), 3) if corners.contains(&v)),
+        "{r}"
+    );
+    drop(world);
+    // The link condition, vertex part: a triangle split in three around a centre (0); the rim
+    // edge 1-2 has the centre opposite, but 3 is a neighbour of both ends as well.
+    let soup = shapes::triangle_fan(3, true);
+    let r = refused(soup.clone(), 1, 2, collapse);
+    let (_, built) = build(&soup);
+    assert_eq!(
+        r,
+        Refusal::LinkCondition(pappus::mesh::ElementId::Vertex(
+            built.input_vertices[3].unwrap()
+        ))
+    );
+    // A lone triangle, collapsed from its boundary side: the boundary loop would become a 2-gon.
+    let tri = PolygonSoup::from_faces(vec![Vec3::ZERO, Vec3::X, Vec3::Y], &[[0u32, 1, 2]]);
+    let (world, built) = build(&tri);
+    let e = edge(&world, &built, 0, 1);
+    let m = MeshRef::new(&world);
+    let outside = m.twin(m.edge_halfedge(e));
+    assert!(m.is_boundary(outside));
+    let r = pappus::ops::local::plan_collapse_halfedge(&world, outside, CollapseOptions::default());
+    assert!(matches!(r, Err(Refusal::DegenerateFace(_))), "{r:?}");
+    // A position that is not finite.
+    let r = refused(shapes::icosphere(1), 0, 12, |w, e| {
+        collapse_edge(
+            w,
+            e,
+            CollapseOptions {
+                position: Some(Vec3::NAN),
+                max_normal_change_deg: None,
+            },
+        )
+        .map(|_| ())
+    });
+    assert!(matches!(r, Refusal::Unsuitable(_)), "{r}");
+}
+
+#[test]
+fn collapse_checks_the_normal_of_a_surviving_polygon_side() {
+    // One quad 0 1 3 2 (quad_grid(1, 1)): collapsing the bottom edge 0-1 leaves a triangle.
+    let soup = shapes::quad_grid(1, 1);
+    let above = CollapseOptions {
+        position: Some(Vec3::new(0.5, 2.0, 0.0)),
+        max_normal_change_deg: Some(90.0),
+    };
+    // Moved above the top edge, the triangle would face the other way.
+    let r = refused(soup.clone(), 0, 1, |w, e| {
+        collapse_edge(w, e, above).map(|_| ())
+    });
+    assert!(matches!(r, Refusal::NormalFlip(_)), "{r}");
+    // At the midpoint it keeps its normal.
+    let (mut world, built) = build(&soup);
+    let e = edge(&world, &built, 0, 1);
+    let options = CollapseOptions {
+        position: None,
+        max_normal_change_deg: Some(1.0),
+    };
+    collapse_edge(&mut world, e, options).unwrap();
+    let mut expected = soup.clone();
+    expected.positions.push(Vec3::new(0.5, 0.0, 0.0)); // 4
+    expected.indices.clear();
+    expected.face_starts = vec![0];
+    expected.push_face(&[4, 3, 2]);
+    assert_same_mesh(&world, built.mesh, &expected);
+    assert_eq!(counts(&world, built.mesh), (3, 3, 1, 1));
+}
+
+#[test]
+fn stale_ids_are_refused_by_every_operation() {
+    // A genuinely stale id: an edge a collapse despawned.
+    let (mut world, built) = build(&shapes::icosphere(1));
+    let before_edges = MeshMembers::collect(&world, built.mesh).edges;
+    let e = edge(&world, &built, 0, 12);
+    collapse_edge(&mut world, e, CollapseOptions::default()).unwrap();
+    let after_edges = MeshMembers::collect(&world, built.mesh).edges;
+    let gone: Vec<EdgeId> = before_edges
+        .into_iter()
+        .filter(|e| !after_edges.contains(e))
+        .collect();
+    assert_eq!(gone.len(), 3);
+    let before = snapshot(&world, built.mesh);
+    for stale in gone {
+        assert!(matches!(
+            flip_edge(&mut world, stale),
+            Err(Refusal::Stale(_))
+        ));
+        assert!(matches!(
+            split_edge(&mut world, stale, 0.5),
+            Err(Refusal::Stale(_))
+        ));
+        assert!(matches!(
+            collapse_edge(&mut world, stale, CollapseOptions::default()),
+            Err(Refusal::Stale(_))
+        ));
+        assert_eq!(snapshot(&world, built.mesh), before);
+    }
+}
+
+#[test]
+fn split_refuses_a_point_on_an_endpoint() {
+    // t > 0 but so small that the point rounds onto the endpoint.
+    let tri = PolygonSoup::from_faces(
+        vec![Vec3::ONE, Vec3::splat(2.0), Vec3::new(1.0, 2.0, 3.0)],
+        &[[0u32, 1, 2]],
+    );
+    let r = refused(tri, 0, 1, |w, e| split_edge(w, e, 1e-12).map(|_| ()));
+    assert!(matches!(r, Refusal::Unsuitable(_)), "{r}");
+    // An edge of length zero.
+    let mut soup = shapes::diamond();
+    soup.positions[2] = soup.positions[0];
+    let r = refused(soup, 0, 2, |w, e| split_edge(w, e, 0.5).map(|_| ()));
+    assert!(matches!(r, Refusal::Unsuitable(_)), "{r}");
+}
+
+/// `soup` with faces replaced.
+fn with_faces(soup: &PolygonSoup, extra: &[Vec3], faces: &[&[u32]]) -> PolygonSoup {
+    let mut positions = soup.positions.clone();
+    positions.extend_from_slice(extra);
+    PolygonSoup::from_faces(positions, faces)
+}
+
+/// Checks what every successful operation must leave: a valid mesh whose counts moved by
+/// `delta` (V, E, F) and whose χ did not change.
+fn assert_counts_moved(
+    world: &World,
+    mesh: MeshId,
+    before: (usize, usize, usize, i64),
+    delta: (i64, i64, i64),
+) {
+    validate(world, mesh).unwrap();
+    let after = counts(world, mesh);
+    let moved = |a: usize, b: usize| a as i64 - b as i64;
+    assert_eq!(
+        (
+            moved(after.0, before.0),
+            moved(after.1, before.1),
+            moved(after.2, before.2),
+            after.3
+        ),
+        (delta.0, delta.1, delta.2, before.3)
+    );
+}
+
+#[test]
+fn flip_an_interior_edge_of_an_open_grid() {
+    // grid(2, 2): vertex (i, j) is 3j + i; the cell 0 1 4 3 is split along 0-4 and the cell
+    // 1 2 5 4 along 1-5. The edge 1-4 lies between the triangles 0 1 4 and 1 5 4: it becomes
+    // 0-5.
+    let soup = shapes::grid(2, 2);
+    let (mut world, built) = build(&soup);
+    let before = counts(&world, built.mesh);
+    let e = edge(&world, &built, 1, 4);
+    flip_edge(&mut world, e).unwrap();
+    let expected = with_faces(
+        &soup,
+        &[],
+        &[
+            &[0, 1, 5],
+            &[0, 5, 4],
+            &[0, 4, 3],
+            &[1, 2, 5],
+            &[3, 4, 7],
+            &[3, 7, 6],
+            &[4, 5, 8],
+            &[4, 8, 7],
+        ],
+    );
+    assert_same_mesh(&world, built.mesh, &expected);
+    assert_counts_moved(&world, built.mesh, before, (0, 0, 0));
+}
+
+#[test]
+fn split_a_spoke_of_a_fan() {
+    // Open fan of 4 around 0 (rim 1..5): the spoke 0-2 lies between 0 1 2 and 0 2 3.
+    let soup = shapes::triangle_fan(4, false);
+    let (mut world, built) = build(&soup);
+    let before = counts(&world, built.mesh);
+    let e = edge(&world, &built, 0, 2);
+    let v = pappus::ops::local::split_edge_midpoint(&mut world, e).unwrap();
+    let mid = MeshRef::new(&world).position(v);
+    assert_eq!(mid, (soup.positions[0] + soup.positions[2]) / 2.0);
+    let expected = with_faces(
+        &soup,
+        &[mid],
+        &[
+            &[0, 1, 6],
+            &[6, 1, 2],
+            &[0, 6, 3],
+            &[6, 2, 3],
+            &[0, 3, 4],
+            &[0, 4, 5],
+        ],
+    );
+    assert_same_mesh(&world, built.mesh, &expected);
+    assert_counts_moved(&world, built.mesh, before, (1, 3, 2));
+}
+
+#[test]
+fn split_and_collapse_at_a_grid_corner() {
+    // grid(3, 3): the corner 3 has the single triangle 2 3 7; its boundary edge 3-7 splits
+    // into two triangles.
+    let soup = shapes::grid(3, 3);
+    let (mut world, built) = build(&soup);
+    let before = counts(&world, built.mesh);
+    let e = edge(&world, &built, 3, 7);
+    let v = split_edge(&mut world, e, 0.5).unwrap();
+    assert!(MeshRef::new(&world).is_boundary_vertex(v));
+    assert_eq!(MeshRef::new(&world).valence(v), 3);
+    assert_counts_moved(&world, built.mesh, before, (1, 2, 1));
+    // Collapsing the new corner edge back (the new vertex into the corner) restores the grid's
+    // connectivity.
+    let corner = built.input_vertices[3].unwrap();
+    let m = MeshRef::new(&world);
+    let h = m.find_halfedge(corner, v).unwrap();
+    let plan = pappus::ops::local::plan_collapse_halfedge(
+        &world,
+        h,
+        CollapseOptions {
+            position: Some(soup.positions[3]),
+            max_normal_change_deg: Some(1.0),
+        },
+    )
+    .unwrap();
+    pappus::ops::local::apply_collapse(&mut world, plan);
+    assert_same_mesh(&world, built.mesh, &soup);
+}
+
+#[test]
+fn split_a_quad_grid_edge_exactly() {
+    // quad_grid(2, 1): 0 1 2 / 3 4 5 at x = 0, 0.5, 1. The shared edge 1-4: each quad cuts off
+    // the triangle ahead of the new vertex 6 = (0.5, 0.5).
+    let soup = shapes::quad_grid(2, 1);
+    let (mut world, built) = build(&soup);
+    let before = counts(&world, built.mesh);
+    let e = edge(&world, &built, 1, 4);
+    split_edge(&mut world, e, 0.5).unwrap();
+    let expected = with_faces(
+        &soup,
+        &[Vec3::new(0.5, 0.5, 0.0)],
+        &[&[0, 1, 6, 3], &[6, 4, 3], &[1, 2, 6], &[6, 2, 5, 4]],
+    );
+    assert_same_mesh(&world, built.mesh, &expected);
+    assert_counts_moved(&world, built.mesh, before, (1, 3, 2));
+    // A boundary edge of a quad: the quad gives a triangle and a quad, the loop gains a corner.
+    let (mut world, built) = build(&soup);
+    let e = edge(&world, &built, 0, 1);
+    split_edge(&mut world, e, 0.5).unwrap();
+    let expected = with_faces(
+        &soup,
+        &[Vec3::new(0.25, 0.0, 0.0)],
+        &[&[0, 6, 4, 3], &[6, 1, 4], &[1, 2, 5, 4]],
+    );
+    assert_same_mesh(&world, built.mesh, &expected);
+    assert_counts_moved(&world, built.mesh, before, (1, 2, 1));
+}
+
+#[test]
+fn collapse_exact_results_on_the_diamond_fan_and_quad_grid() {
+    // The diamond's boundary edge 0-1: the triangle 0 1 2 goes, 0 2 3 stays with 0 moved.
+    let soup = shapes::diamond();
+    let (mut world, built) = build(&soup);
+    let before = counts(&world, built.mesh);
+    let e = edge(&world, &built, 0, 1);
+    collapse_edge(&mut world, e, CollapseOptions::default()).unwrap();
+    let mid = (soup.positions[0] + soup.positions[1]) / 2.0;
+    let expected = with_faces(&soup, &[mid], &[&[4, 2, 3]]);
+    assert_same_mesh(&world, built.mesh, &expected);
+    assert_counts_moved(&world, built.mesh, before, (-1, -2, -1));
+
+    // A spoke of the closed fan of 6: its two triangles go.
+    let soup = shapes::triangle_fan(6, true);
+    let (mut world, built) = build(&soup);
+    let before = counts(&world, built.mesh);
+    let e = edge(&world, &built, 0, 1);
+    collapse_edge(&mut world, e, CollapseOptions::default()).unwrap();
+    let mid = (soup.positions[0] + soup.positions[1]) / 2.0;
+    let expected = with_faces(
+        &soup,
+        &[mid],
+        &[&[7, 2, 3], &[7, 3, 4], &[7, 4, 5], &[7, 5, 6]],
+    );
+    assert_same_mesh(&world, built.mesh, &expected);
+    assert_counts_moved(&world, built.mesh, before, (-1, -3, -2));
+
+    // quad_grid(2, 2), interior spoke 1-4 (1 on the boundary, 4 the centre): both quads lose a
+    // corner and become triangles; nothing else changes.
+    let soup = shapes::quad_grid(2, 2);
+    let (mut world, built) = build(&soup);
+    let before = counts(&world, built.mesh);
+    let e = edge(&world, &built, 1, 4);
+    collapse_edge(&mut world, e, CollapseOptions::default()).unwrap();
+    let mid = (soup.positions[1] + soup.positions[4]) / 2.0;
+    let expected = with_faces(
+        &soup,
+        &[mid],
+        &[&[0, 9, 3], &[9, 2, 5], &[3, 9, 7, 6], &[9, 5, 8, 7]],
+    );
+    assert_same_mesh(&world, built.mesh, &expected);
+    assert_counts_moved(&world, built.mesh, before, (-1, -1, 0));
+}
+
+#[test]
+fn every_edge_of_small_shapes_either_applies_cleanly_or_changes_nothing() {
+    // Each op on each edge of each shape, from a fresh mesh: a refusal leaves every component
+    // as it was; a success validates with the expected count changes.
+    let shapes_list = [
+        shapes::diamond(),
+        shapes::triangle_fan(5, true),
+        shapes::triangle_fan(5, false),
+        shapes::tetrahedron(),
+        shapes::cube(),
+        shapes::icosahedron(),
+        shapes::grid(2, 2),
+        shapes::quad_grid(2, 2),
+        mixed(),
+        cube_with_a_diagonal(),
+        collapse_would_leave_valence_two(),
+    ];
+    let (mut flips, mut splits, mut collapses) = (0, 0, 0);
+    for soup in shapes_list {
+        let edges = {
+            let (world, built) = build(&soup);
+            MeshMembers::collect(&world, built.mesh).edges.len()
+        };
+        for i in 0..edges {
+            for op in 0..3 {
+                let (mut world, built) = build(&soup);
+                let mesh = built.mesh;
+                let e = MeshMembers::collect(&world, mesh).edges[i];
+                let m = MeshRef::new(&world);
+                let h = m.edge_halfedge(e);
+                let triangles = [h, m.twin(h)]
+                    .iter()
+                    .filter(|&&x| m.face(x).is_some_and(|f| m.face_degree(f) == 3))
+                    .count() as i64;
+                let polygons_cut = [h, m.twin(h)]
+                    .iter()
+                    .filter(|&&x| m.face(x).is_some())
+                    .count() as i64;
+                let before = counts(&world, mesh);
+                let snap = snapshot(&world, mesh);
+                let (result, delta) = match op {
+                    0 => (flip_edge(&mut world, e).map(|_| ()), (0, 0, 0)),
+                    1 => (
+                        split_edge(&mut world, e, 0.5).map(|_| ()),
+                        (1, 1 + polygons_cut, polygons_cut),
+                    ),
+                    _ => (collapse(&mut world, e), (-1, -1 - triangles, -triangles)),
+                };
+                match result {
+                    Ok(()) => {
+                        assert_counts_moved(&world, mesh, before, delta);
+                        *[&mut flips, &mut splits, &mut collapses][op] += 1;
+                    }
+                    Err(_) => assert_eq!(snapshot(&world, mesh), snap),
+                }
+            }
+        }
+    }
+    assert!(
+        flips > 20 && splits > 100 && collapses > 30,
+        "{flips} {splits} {collapses}"
+    );
 }

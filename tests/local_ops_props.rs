@@ -1,6 +1,7 @@
-//! Random sequences of flips, splits, collapses, dissolves and face splits on random shapes:
-//! the mesh validates after every step, χ never changes (every one of them preserves it), and a
-//! refused operation changes nothing. 256 cases × 400 operations = 102 400 operations per run.
+//! Random sequences of flips, splits, collapses (with and without the normal check), dissolves
+//! and face splits on random shapes (closed and open, triangles, quads and both mixed): the mesh
+//! validates after every step, χ never changes (every one of them preserves it), and a refused
+//! operation changes no count. 256 cases × 400 operations = 102 400 operations per run.
 
 mod common;
 
@@ -12,15 +13,36 @@ use pappus::ops::local::{
 };
 use proptest::prelude::*;
 
+/// The shapes a case starts from (`SHAPES` of them).
 fn shape(i: u8) -> PolygonSoup {
-    match i % 6 {
+    match i % SHAPES {
         0 => shapes::icosphere(1),
         1 => shapes::torus(6, 5),
         2 => shapes::grid(4, 3),
         3 => shapes::quad_grid(4, 4),
         4 => shapes::tetrahedron(),
-        _ => shapes::grid_with_holes(2),
+        5 => shapes::grid_with_holes(2),
+        6 => shapes::icosphere(2),
+        7 => shapes::cube(),
+        _ => checkerboard(),
     }
+}
+
+const SHAPES: u8 = 9;
+
+/// A 4 × 4 quad grid with every other cell split into two triangles: quads and triangles mixed.
+fn checkerboard() -> PolygonSoup {
+    let quads = shapes::quad_grid(4, 4);
+    let mut out = PolygonSoup::from_faces::<[u32; 3]>(quads.positions.clone(), &[]);
+    for (i, f) in quads.faces().enumerate() {
+        if (i + i / 4) % 2 == 0 {
+            out.push_face(f);
+        } else {
+            out.push_face(&[f[0], f[1], f[2]]);
+            out.push_face(&[f[0], f[2], f[3]]);
+        }
+    }
+    out
 }
 
 fn counts(world: &World, mesh: MeshId) -> (usize, usize, usize) {
@@ -33,8 +55,8 @@ proptest! {
 
     #[test]
     fn random_local_edits_keep_the_mesh_valid(
-        which in 0u8..6,
-        ops in proptest::collection::vec((0u8..5, any::<u32>(), 0.05f32..0.95), 400),
+        which in 0u8..SHAPES,
+        ops in proptest::collection::vec((0u8..6, any::<u32>(), 0.05f32..0.95), 400),
     ) {
         let (mut world, built) = common::build(&shape(which));
         let mesh = built.mesh;
@@ -51,6 +73,16 @@ proptest! {
                 1 => split_edge(&mut world, e, t).is_ok(),
                 2 => collapse_edge(&mut world, e, CollapseOptions::default()).is_ok(),
                 3 => dissolve_edge(&mut world, e).is_ok(),
+                4 => {
+                    // A collapse towards a point along the edge, refused if a face turns over.
+                    let m = MeshRef::new(&world);
+                    let (a, b) = m.edge_vertices(e);
+                    let options = CollapseOptions {
+                        position: Some(m.position(a).lerp(m.position(b), t)),
+                        max_normal_change_deg: Some(60.0),
+                    };
+                    collapse_edge(&mut world, e, options).is_ok()
+                }
                 _ => {
                     // Join the corners two apart in the face of the edge's halfedge.
                     let m = MeshRef::new(&world);

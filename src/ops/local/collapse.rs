@@ -10,24 +10,54 @@
 //!         d                     d
 //! ```
 //!
-//! `a` survives (its entity is kept) and `b` is removed. A triangle on either side disappears
-//! and its two other edges become one (the edge `c a` is kept, `c b` removed); a polygon side
-//! just loses `b`'s corner. A boundary edge has one real side: the boundary loop loses a side.
+//! `h` is the edge's halfedge ([`MeshRef::edge_halfedge`]; [`plan_collapse_halfedge`] picks
+//! another): its start `a` survives (the entity is kept, moved to the midpoint or the given
+//! position) and its tip `b` is despawned, every halfedge that pointed at `b` now pointing at
+//! `a`. A triangle on either side disappears and its two other edges become one (the edge `c a`
+//! is kept, `c b` despawned, with the triangle's face and three halfedges); a polygon side just
+//! loses `b`'s corner (a quad becomes a triangle). A boundary edge has one real side: its
+//! boundary loop loses a side. Counts: an interior edge between two triangles V − 1, E − 3,
+//! F − 2; a boundary edge with a triangle V − 1, E − 2, F − 1; each polygon side instead of a
+//! triangle gives back one edge and one face (two quads: V − 1, E − 1); χ never changes.
 //!
-//! Refusals, each leaving the mesh untouched:
-//! - the **link condition** (Dey et al.; Hoppe 1996): the vertices joined to both `a` and `b`
-//!   must be exactly the opposite vertices of the triangles on the edge, and if both opposite
-//!   vertices `c`, `d` are joined, the triangles `a c d` and `b c d` must not both exist — this
-//!   second, edge part is what refuses every edge of a tetrahedron, which PMP's vertex-only
-//!   test lets through;
-//! - a closed mesh of 4 vertices (`TooSmall`);
-//! - an interior edge whose endpoints are both on the boundary (it would pinch the surface);
-//! - an opposite vertex that would be left with too few edges (fewer than 3, or 2 on the
-//!   boundary);
-//! - a face that would be left with fewer than 3 sides or would visit a vertex twice;
-//! - a triangle whose other two sides are on the boundary (its collapse leaves an edge with no
-//!   face), and a boundary loop of 3 sides (it would close into a 2-gon);
-//! - optionally, a surviving face whose normal would turn by more than a given angle.
+//! ```text
+//!         c                         c
+//!        / \                        |
+//!       /   \                       |
+//!      a --h-> b         →          a'         a triangle above: gone, c a and c b merge;
+//!      |   t   |                   / \         a quad below: loses b, becomes a' x y
+//!      |   g   |                  /   \
+//!      x ----- y                 x --- y
+//! ```
+//!
+//! Afterwards `a` points at an outgoing halfedge that still exists, its boundary one if it is
+//! on the boundary; so does every opposite vertex `c`, `d`; each surviving edge names an
+//! interior halfedge where it has one.
+//!
+//! Refusals, in the order they are checked, each leaving the world untouched:
+//! - `Stale`: the edge (or halfedge) is not live;
+//! - `BoundaryPinch`: an interior edge whose endpoints are both on the boundary (the merged
+//!   vertex would touch the boundary twice);
+//! - `LinkCondition`, vertex part (Dey, Edelsbrunner et al. 1999; Hoppe 1996): a vertex joined
+//!   to both `a` and `b` other than the opposite vertices of the triangles on the edge (the
+//!   collapse would make two edges between the same vertices);
+//! - `TooSmall`, the edge part of the link condition: both opposite vertices `c`, `d` joined
+//!   and the triangles `a c d`, `b c d` both present — on a manifold mesh that is exactly a
+//!   tetrahedron (a closed component of 4 vertices; a larger one would be reported as
+//!   `LinkCondition`, but the four triangles close up, so there is none); PMP's vertex-only test
+//!   lets it through;
+//! - per side: `DanglingEdge`, a triangle whose other two sides are both on the boundary (the
+//!   merged edge would have no face; a lone triangle); `ValenceTooLow`, an opposite vertex left
+//!   with fewer than 3 edges (2 on the boundary); `DegenerateFace`, a boundary loop of 3 sides
+//!   (it would close into a 2-gon);
+//! - `DegenerateFace`: another face holding both `a` and `b` (it would visit the merged vertex
+//!   twice);
+//! - `ValenceTooLow`: the merged vertex would be left with fewer than 3 edges (2 on the
+//!   boundary), e.g. two quads glued along the chain `c a d` and `c b d`;
+//! - `Unsuitable`: a position that is not finite;
+//! - `NormalFlip`, only when [`CollapseOptions::max_normal_change_deg`] is set: a surviving face
+//!   around `a` or `b` (polygon sides included) whose normal would turn by more than that angle,
+//!   or would vanish.
 
 use bevy::math::Vec3;
 use bevy::prelude::World;
@@ -110,6 +140,9 @@ enum Side {
 #[derive(Clone, Debug, PartialEq)]
 pub struct CollapsePlan {
     edge: EdgeId,
+    /// The halfedge from the kept to the removed vertex, and the options: what re-planning needs.
+    h: HalfedgeId,
+    options: CollapseOptions,
     a: VertexId,
     b: VertexId,
     position: Vec3,
@@ -254,6 +287,18 @@ pub fn plan_collapse_halfedge(
             return Err(Refusal::DegenerateFace(ElementId::Face(f)));
         }
     }
+    // The merged vertex: its neighbours are both endpoints' neighbours but a and b, with the
+    // opposite vertices (the only shared ones, by the link condition) counted once. Two quads
+    // glued along an edge chain, for instance, would leave it with two edges inside the surface.
+    let wings = match opposite[..] {
+        [c, d] if c == d => 1,
+        _ => opposite.len(),
+    };
+    let merged_boundary = m.is_boundary_vertex(a) || m.is_boundary_vertex(b);
+    let minimum = if merged_boundary { 2 } else { 3 };
+    if (m.valence(a) + m.valence(b)).saturating_sub(2 + wings) < minimum {
+        return Err(Refusal::ValenceTooLow(vx(a), minimum));
+    }
     let position = options
         .position
         .unwrap_or_else(|| (m.position(a) + m.position(b)) / 2.0);
@@ -263,11 +308,13 @@ pub fn plan_collapse_halfedge(
         )));
     }
     if let Some(max) = options.max_normal_change_deg {
-        check_normals(&m, a, b, position, &own_faces, max)?;
+        check_normals(&m, a, b, position, &sides, max)?;
     }
     let into_b = m.vertex_outgoing(b).map(|x| m.twin(x)).collect();
     Ok(CollapsePlan {
         edge: e,
+        h,
+        options,
         a,
         b,
         position,
@@ -296,13 +343,20 @@ fn check_normals(
     a: VertexId,
     b: VertexId,
     position: Vec3,
-    own: &[FaceId],
+    sides: &[Side; 2],
     max_deg: f32,
 ) -> Result<(), Refusal> {
+    // Triangle sides disappear; polygon sides survive with a and b merged (the repeated corner
+    // adds nothing to a Newell normal), so they are checked like every other face.
+    let vanishes = |f: FaceId| {
+        sides
+            .iter()
+            .any(|s| matches!(*s, Side::Triangle { face, .. } if face == f))
+    };
     let limit = max_deg.to_radians().cos();
     for v in [a, b] {
         for f in m.vertex_faces(v) {
-            if own.contains(&f) {
+            if vanishes(f) {
                 continue;
             }
             // Newell normals before and after, accumulated without collecting the corners.
@@ -338,6 +392,11 @@ fn check_normals(
 
 /// Carries out a collapse planned by [`plan_collapse`] on the unchanged world.
 pub fn apply_collapse(world: &mut World, p: CollapsePlan) -> CollapseResult {
+    debug_assert_eq!(
+        plan_collapse_halfedge(world, p.h, p.options).as_ref(),
+        Ok(&p),
+        "stale collapse plan"
+    );
     let m = MeshRef::new(world);
     let wing = |s: &Side| match *s {
         Side::Triangle { opposite, .. } => (Some(opposite), true),

@@ -11,11 +11,29 @@
 //! ```
 //!
 //! For polygons the same rule: each endpoint gives up the edge, which now joins the vertex after
-//! `b` in `h`'s face to the vertex after `a` in `t`'s face; each face keeps its number of sides.
+//! `b` in `h`'s face to the vertex after `a` in `t`'s face; each face keeps its number of sides
+//! (`h`'s face trades `b` for `d`, `t`'s face trades `a` for `c`). Nothing is spawned or
+//! despawned: the edge, its two halfedges and both faces keep their entities.
 //!
-//! Refusals: a boundary edge; an endpoint that would be left with fewer than 3 edges (2 on the
-//! boundary); a new edge that already exists (every edge of a tetrahedron); a face that would
-//! visit a vertex twice.
+//! ```text
+//!   3 ---- 4 ---- 5          3 ---- 4 ---- 5
+//!   |      |      |          | '.          |
+//!   |      |      |    →     |    '.       |     two quads: 1–4 becomes 3–2,
+//!   |      |      |          |       '.    |     faces 0 1 2 3 and 3 2 5 4
+//!   0 ---- 1 ---- 2          0 ---- 1 ---- 2
+//! ```
+//!
+//! Refusals, in the order they are checked (each leaves the world untouched):
+//! - `Stale`: `e` is not a live edge;
+//! - `BoundaryEdge`: `e` has a side without a face;
+//! - `DegenerateFace`: both faces would gain the same vertex (`c == d`);
+//! - `WouldDuplicateEdge`: `c` and `d` are already joined (every edge of a tetrahedron);
+//! - `ValenceTooLow`: an endpoint would be left with fewer than 3 edges (2 on the boundary),
+//!   i.e. an interior endpoint of valence 3 or a boundary endpoint of valence 2 — for triangles
+//!   a valence-3 endpoint always fails the previous check first, so this one shows on polygons
+//!   (every edge of a cube);
+//! - `DegenerateFace`: a face would visit a vertex twice (a polygon that already holds the vertex
+//!   it would gain).
 
 use bevy::prelude::World;
 
@@ -57,20 +75,22 @@ pub fn plan_flip(world: &World, e: EdgeId) -> Result<FlipPlan, Refusal> {
     let (hn, hp, tn, tp) = (m.next(h), m.prev(h), m.next(t), m.prev(t));
     let (a, b) = (m.from_vertex(h), m.to_vertex(h));
     let (c, d) = (m.to_vertex(hn), m.to_vertex(tn));
-    for v in [a, b] {
-        let minimum = if m.is_boundary_vertex(v) { 2 } else { 3 };
-        if m.valence(v) <= minimum {
-            return Err(Refusal::ValenceTooLow(ElementId::Vertex(v), minimum));
-        }
-    }
     if c == d {
         return Err(Refusal::DegenerateFace(ElementId::Face(f)));
     }
+    // Checked before the valences, so that every edge of a tetrahedron reports the edge that
+    // already exists (its endpoints have valence 3 too).
     if m.find_halfedge(c, d).is_some() {
         return Err(Refusal::WouldDuplicateEdge(
             ElementId::Vertex(c),
             ElementId::Vertex(d),
         ));
+    }
+    for v in [a, b] {
+        let minimum = if m.is_boundary_vertex(v) { 2 } else { 3 };
+        if m.valence(v) <= minimum {
+            return Err(Refusal::ValenceTooLow(ElementId::Vertex(v), minimum));
+        }
     }
     // The new faces: f gains d, g gains c; neither may already hold it.
     if m.face_vertices(f).any(|v| v == d) {

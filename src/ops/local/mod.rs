@@ -1,14 +1,22 @@
-//! Local operations: edge flip, edge split, edge collapse.
+//! Local operations: edge flip, edge split, edge collapse, and their companions (edge
+//! dissolve, face split, vertex split — the exact inverse of a collapse).
 //!
 //! The contract, stated once: **if the result of an operation would not be a valid mesh, the
 //! operation changes nothing and returns a [`Refusal`] that says why.** Each operation is a
-//! read-only `plan_*` (`&World`) that checks the ids, checks every refusal and collects every id
-//! it will touch, and an `apply_*` (`&mut World`) that carries out a fresh plan and cannot fail.
-//! `flip_edge`, `split_edge` and `collapse_edge` do both.
+//! read-only `plan_*` (`&World`) that checks the ids (a stale id is [`Refusal::Stale`]), checks
+//! every refusal and collects every id it will touch, and an `apply_*` (`&mut World`) that
+//! carries out a fresh plan and cannot fail (in debug builds it plans again and asserts that
+//! the plan is unchanged). [`flip_edge`], [`split_edge`] and [`collapse_edge`] do both.
 //!
-//! All three work on triangles and on polygons, and on boundary edges where the operation makes
-//! sense. Entities are reused wherever an element survives, so ids the user is looking at stay
-//! valid when they can.
+//! All of them work on triangles and on polygons, and on boundary edges where the operation
+//! makes sense. Entities are reused wherever an element survives (a flip spawns and despawns
+//! nothing; a split only spawns; a collapse only despawns), so ids the user is looking at stay
+//! valid when they can. After every apply the mesh passes [`crate::mesh::validate`]: in
+//! particular a boundary vertex's halfedge is its boundary one, every face and edge names a
+//! halfedge of its own, and an edge names an interior halfedge where it has one.
+//!
+//! Each operation's module doc has a before/after picture and its refusals, in the order they
+//! are checked.
 
 mod collapse;
 mod dissolve;
@@ -23,7 +31,7 @@ pub use collapse::{
 };
 pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};
 pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
-pub use split::{SplitPlan, apply_split, plan_split, split_edge};
+pub use split::{SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint};
 pub use split_face::{SplitFacePlan, apply_split_face, plan_split_face, split_face};
 pub use vertex_split::vertex_split;
 

@@ -18,13 +18,33 @@
 //! twice; the other face keeps `m` as an extra corner. Counts: an interior edge adds
 //! 1 vertex, 3 edges, 2 faces; a boundary edge 1 vertex, 2 edges, 1 face.
 //!
-//! Refusals: a stale edge; `t` outside the open interval (0, 1).
+//! The rule for a polygon side, stated once: `m` is joined to the vertex two steps ahead of it
+//! along the face (`m → b → c`, so `c`), which cuts the triangle `m b c` off and leaves a
+//! polygon `a m c …` of the same degree `k`:
+//!
+//! ```text
+//!   d ------- c          d ------- c
+//!   |         |          |      .' |
+//!   |    f    |    →     |   .'    |     the quad a b c d gives the quad a m c d
+//!   |         |          | .'      |     and the triangle m b c
+//!   a ---h--> b          a -- m -- b
+//! ```
+//!
+//! Entities: the old edge keeps `h` (now `a → m`) and gets a new twin; `t` (now `b → m`) moves
+//! to a new edge `m b` with a new twin; each cut face keeps its entity for the side holding `h`
+//! (or `t`) and a new face takes the cut-off triangle. Nothing is despawned.
+//!
+//! Refusals (each leaves the world untouched):
+//! - `Stale`: `e` is not a live edge;
+//! - `Unsuitable`: `t` is not strictly between 0 and 1 (NaN included), or the new point would
+//!   coincide with an endpoint (a zero-length edge, or `t` so close to 0 or 1 that it rounds
+//!   onto one), or would not be finite.
 
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
 use crate::mesh::elements::{Edge, Halfedge, InMesh, Position, Vertex};
-use crate::mesh::ids::{EdgeId, ElementId, HalfedgeId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
 use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, cut, he, link, live_edge, spawn_at};
@@ -35,6 +55,15 @@ pub struct SplitPlan {
     edge: EdgeId,
     h: HalfedgeId,
     t: HalfedgeId,
+    /// `next(h)`, `next(t)`: where the new halfedges link in.
+    hn: HalfedgeId,
+    tn: HalfedgeId,
+    /// The faces of `h` and `t` (`None` on the boundary side).
+    f: Option<FaceId>,
+    g: Option<FaceId>,
+    a: VertexId,
+    b: VertexId,
+    param: f32,
     position: Vec3,
     mesh: crate::mesh::ids::MeshId,
 }
@@ -52,26 +81,56 @@ pub fn plan_split(world: &World, e: EdgeId, t: f32) -> Result<SplitPlan, Refusal
         )));
     }
     let (a, b) = (m.position(m.from_vertex(h)), m.position(m.to_vertex(h)));
+    let position = a.lerp(b, t);
+    if !position.is_finite() {
+        return Err(Refusal::Unsuitable(format!(
+            "the split point {position} is not finite"
+        )));
+    }
+    if position == a || position == b {
+        return Err(Refusal::Unsuitable(format!(
+            "the split point {position} would coincide with an endpoint of {e}"
+        )));
+    }
     let mesh = world
         .get::<InMesh>(e.0)
         .ok_or(Refusal::Stale(ElementId::Edge(e)))?
         .0;
+    let twin = m.twin(h);
     Ok(SplitPlan {
         edge: e,
         h,
-        t: m.twin(h),
-        position: a.lerp(b, t),
+        t: twin,
+        hn: m.next(h),
+        tn: m.next(twin),
+        f: m.face(h),
+        g: m.face(twin),
+        a: m.from_vertex(h),
+        b: m.to_vertex(h),
+        param: t,
+        position,
         mesh,
     })
 }
 
 /// Carries out a split planned by [`plan_split`]. Returns the new vertex.
 pub fn apply_split(world: &mut World, p: SplitPlan) -> VertexId {
-    let m = MeshRef::new(world);
-    let (h, t) = (p.h, p.t);
-    let (hn, tn) = (m.next(h), m.next(t));
-    let (f, g) = (m.face(h), m.face(t));
-    let (a, b) = (m.from_vertex(h), m.to_vertex(h));
+    debug_assert_eq!(
+        plan_split(world, p.edge, p.param),
+        Ok(p),
+        "stale split plan"
+    );
+    let SplitPlan {
+        h,
+        t,
+        hn,
+        tn,
+        f,
+        g,
+        a,
+        b,
+        ..
+    } = p;
     let member = InMesh(p.mesh);
     let alloc = world.entity_allocator();
     let (mid, h2, t2, e2) = (
@@ -175,4 +234,12 @@ pub fn apply_split(world: &mut World, p: SplitPlan) -> VertexId {
 pub fn split_edge(world: &mut World, e: EdgeId, t: f32) -> Result<VertexId, Refusal> {
     let plan = plan_split(world, e, t)?;
     Ok(apply_split(world, plan))
+}
+
+/// Splits `e` at its midpoint: [`split_edge`] with `t = 0.5`. Returns the new vertex.
+///
+/// # Refusals
+/// See the module doc; the world is then unchanged.
+pub fn split_edge_midpoint(world: &mut World, e: EdgeId) -> Result<VertexId, Refusal> {
+    split_edge(world, e, 0.5)
 }
