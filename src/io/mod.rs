@@ -2,9 +2,11 @@
 //!
 //! Every reader produces a [`PolygonSoup`] and every writer takes one: this module knows
 //! nothing of entities. Readers keep the file's vertex order (so scripts can name vertices by
-//! their index in the file) and keep unreferenced vertices and bad faces in the soup, so that
-//! the builder can count them as repairs. A file that cannot be read at all is an [`IoError`]
-//! naming the file and the line (text) or byte offset (binary); readers never panic.
+//! their index in the file) and keep unreferenced vertices and bad faces (too few corners, an
+//! index out of range) in the soup, so that the builder can drop and count them as repairs.
+//! What cannot be read at all is an [`IoError`] naming the file and the line (text) or byte
+//! offset (binary); readers never panic, and never reserve memory from a header's counts
+//! beyond what the input could hold.
 //!
 //! Writing goes to a temporary file beside the target, which is then renamed over it: a failed
 //! save never destroys the old file.
@@ -22,13 +24,15 @@ use thiserror::Error;
 use crate::mesh::soup::PolygonSoup;
 
 pub use ply::PlyEncoding;
+pub use stl::StlEncoding;
 
 /// The file formats Pappus reads and writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
-    /// Wavefront OBJ (read with `tobj`).
+    /// Wavefront OBJ (parsed with `tobj`; positions and faces only).
     Obj,
-    /// Object File Format (ASCII).
+    /// Object File Format, ASCII (`OFF`, and `COFF`/`NOFF`/`STOFF`-style variants whose extra
+    /// per-vertex values are ignored).
     Off,
     /// Stanford PLY (ASCII, binary little- and big-endian; written binary little-endian).
     Ply,
@@ -75,20 +79,33 @@ pub enum IoError {
     Parse {
         /// The file.
         path: PathBuf,
-        /// `line N` or `byte N`.
+        /// `line N` (text) or `byte N` (binary, 0-based offset).
         location: String,
         /// What is wrong.
         message: String,
     },
+    /// The contents are well-formed but use a variant of the format Pappus does not read
+    /// (binary OFF, 4-D OFF, a PLY property type outside the standard eight, …).
+    #[error("{path}: {location}: not supported: {message}")]
+    Unsupported {
+        /// The file.
+        path: PathBuf,
+        /// `line N` or `byte N`.
+        location: String,
+        /// What is not supported.
+        message: String,
+    },
 }
 
-/// A parse failure before the file name is known: where, and what.
+/// A reader's failure before the file name is attached: where, and what.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ParseError {
+pub(crate) struct ParseError {
     /// `line N` or `byte N`.
     pub location: String,
     /// What is wrong.
     pub message: String,
+    /// Well-formed but outside what Pappus reads (becomes [`IoError::Unsupported`]).
+    pub unsupported: bool,
 }
 
 impl ParseError {
@@ -97,47 +114,84 @@ impl ParseError {
         Self {
             location: format!("line {line}"),
             message: message.into(),
+            unsupported: false,
         }
     }
 
-    /// An error at a byte offset.
+    /// An error at a 0-based byte offset.
     pub fn byte(offset: usize, message: impl Into<String>) -> Self {
         Self {
             location: format!("byte {offset}"),
             message: message.into(),
+            unsupported: false,
+        }
+    }
+
+    /// Marks the error as an unsupported variant rather than malformed contents.
+    pub fn unsupported(self) -> Self {
+        Self {
+            unsupported: true,
+            ..self
         }
     }
 
     fn in_file(self, path: &Path) -> IoError {
-        IoError::Parse {
-            path: path.to_path_buf(),
-            location: self.location,
-            message: self.message,
+        let path = path.to_path_buf();
+        let (location, message) = (self.location, self.message);
+        if self.unsupported {
+            IoError::Unsupported {
+                path,
+                location,
+                message,
+            }
+        } else {
+            IoError::Parse {
+                path,
+                location,
+                message,
+            }
         }
     }
 }
 
-/// Parses a file's bytes in the given format.
+/// Parses a file's contents, already in memory, in the given format. `name` is only used in
+/// error messages (pass the file's path, or any label).
 ///
 /// # Errors
-/// Where and why the bytes are malformed.
-pub fn read_bytes(format: Format, bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
-    match format {
+/// [`IoError::Parse`] or [`IoError::Unsupported`], naming `name` and the line or byte offset.
+pub fn read_bytes(format: Format, bytes: &[u8], name: &Path) -> Result<PolygonSoup, IoError> {
+    let soup = match format {
         Format::Obj => obj::read(bytes),
         Format::Off => off::read(bytes),
         Format::Ply => ply::read(bytes),
         Format::Stl => stl::read(bytes),
-    }
+    };
+    soup.map_err(|e| e.in_file(name))
 }
 
-/// Encodes a soup in the given format.
+/// Encodes a soup in the given format, as [`write()`] would save it (PLY binary little-endian,
+/// STL binary).
 pub fn write_bytes(format: Format, soup: &PolygonSoup) -> Vec<u8> {
     match format {
         Format::Obj => obj::write(soup),
         Format::Off => off::write(soup),
         Format::Ply => ply::write(soup, PlyEncoding::BinaryLittleEndian),
-        Format::Stl => stl::write(soup),
+        Format::Stl => stl::write(soup, StlEncoding::Binary),
     }
+}
+
+/// Encodes a soup as PLY with the chosen encoding: `float x y z`, then `list uchar int
+/// vertex_indices` (`list int int` when a face has more than 255 corners, `uint` indices
+/// when one exceeds `i32::MAX`).
+pub fn write_ply(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
+    ply::write(soup, encoding)
+}
+
+/// Encodes a soup as STL with the chosen encoding. STL holds only triangles: polygons are
+/// fan-triangulated from their first corner, and every triangle stores its own corners, so
+/// reading the file back welds them by position.
+pub fn write_stl(soup: &PolygonSoup, encoding: StlEncoding) -> Vec<u8> {
+    stl::write(soup, encoding)
 }
 
 /// Reads a mesh file, its format chosen by extension.
@@ -151,21 +205,18 @@ pub fn read(path: &Path) -> Result<PolygonSoup, IoError> {
         path: path.to_path_buf(),
         source,
     })?;
-    read_bytes(format, &bytes).map_err(|e| e.in_file(path))
+    read_bytes(format, &bytes, path)
 }
 
 /// Writes a mesh file, its format chosen by extension, atomically: the data goes to a
-/// temporary file in the same folder, which is renamed over `path` once complete.
+/// temporary file `.NAME.tmp-PID` in the same folder, which is renamed over `path` once
+/// complete and synced. On failure the temporary file is removed and `path` is untouched.
 ///
 /// # Errors
-/// An unknown extension or a file-system failure; `path` is then untouched.
+/// An unknown extension or a file-system failure.
 pub fn write(path: &Path, soup: &PolygonSoup) -> Result<(), IoError> {
     let format = Format::from_path(path)?;
     let bytes = write_bytes(format, soup);
-    let io_err = |source| IoError::Io {
-        path: path.to_path_buf(),
-        source,
-    };
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -174,19 +225,24 @@ pub fn write(path: &Path, soup: &PolygonSoup) -> Result<(), IoError> {
     let result = std::fs::File::create(&tmp)
         .and_then(|mut f| f.write_all(&bytes).and_then(|()| f.sync_all()))
         .and_then(|()| std::fs::rename(&tmp, path));
-    if let Err(e) = result {
+    if let Err(source) = result {
+        // The temporary file may not exist (creation failed); nothing else to undo.
         let _ = std::fs::remove_file(&tmp);
-        return Err(io_err(e));
+        return Err(IoError::Io {
+            path: path.to_path_buf(),
+            source,
+        });
     }
     Ok(())
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use bevy::math::Vec3;
 
-    /// A quad and a triangle sharing an edge, with awkward coordinates.
+    /// A quad and a triangle sharing an edge, with awkward coordinates (a negative zero, a
+    /// third, a subnormal-adjacent value, a large one).
     pub(crate) fn mixed() -> PolygonSoup {
         PolygonSoup::from_faces(
             vec![
@@ -200,15 +256,51 @@ mod tests {
         )
     }
 
+    /// Bitwise equality of positions (`==` on floats would let `-0.0` pass for `0.0`).
+    pub(crate) fn same_bits(a: &PolygonSoup, b: &PolygonSoup) -> bool {
+        let bits = |s: &PolygonSoup| -> Vec<[u32; 3]> {
+            s.positions
+                .iter()
+                .map(|p| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()])
+                .collect()
+        };
+        bits(a) == bits(b) && a.indices == b.indices && a.face_starts == b.face_starts
+    }
+
+    fn name() -> &'static Path {
+        Path::new("t")
+    }
+
     #[test]
     fn every_format_round_trips_exactly() {
         for format in [Format::Obj, Format::Off, Format::Ply] {
             let soup = mixed();
-            let back = read_bytes(format, &write_bytes(format, &soup)).unwrap();
-            assert_eq!(back, soup, "{format:?}");
+            let back = read_bytes(format, &write_bytes(format, &soup), name()).unwrap();
+            assert!(same_bits(&back, &soup), "{format:?}: {back:?}");
         }
-        let ascii = ply::write(&mixed(), PlyEncoding::Ascii);
-        assert_eq!(read_bytes(Format::Ply, &ascii).unwrap(), mixed());
+        for encoding in [
+            PlyEncoding::Ascii,
+            PlyEncoding::BinaryLittleEndian,
+            PlyEncoding::BinaryBigEndian,
+        ] {
+            let back = read_bytes(Format::Ply, &write_ply(&mixed(), encoding), name()).unwrap();
+            assert!(same_bits(&back, &mixed()), "{encoding:?}");
+        }
+    }
+
+    #[test]
+    fn errors_name_the_file_and_the_place() {
+        let err = read_bytes(Format::Obj, b"v 0 0 0\nv 1 2\n", Path::new("m.obj")).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "m.obj: line 2: expected 3 coordinates, found 2"
+        );
+        let err = read_bytes(Format::Stl, &[1u8; 90], Path::new("m.stl")).unwrap_err();
+        assert!(matches!(err, IoError::Parse { .. }));
+        assert!(err.to_string().starts_with("m.stl: byte "), "{err}");
+        let err = read_bytes(Format::Off, b"4OFF\n", Path::new("m.off")).unwrap_err();
+        assert!(matches!(err, IoError::Unsupported { .. }), "{err}");
+        assert!(err.to_string().starts_with("m.off: line 1: not supported"));
     }
 
     #[test]
@@ -217,27 +309,102 @@ mod tests {
             Format::from_path(Path::new("a/B.OBJ")).unwrap(),
             Format::Obj
         );
-        assert_eq!(Format::from_path(Path::new("x.ply")).unwrap(), Format::Ply);
-        let err = Format::from_path(Path::new("notes.txt")).unwrap_err();
-        assert!(err.to_string().contains("notes.txt"));
+        assert_eq!(Format::from_path(Path::new("x.Ply")).unwrap(), Format::Ply);
+        assert_eq!(Format::from_path(Path::new("x.off")).unwrap(), Format::Off);
+        assert_eq!(Format::from_path(Path::new("x.STL")).unwrap(), Format::Stl);
+        for bad in ["notes.txt", "noext", "obj"] {
+            let err = Format::from_path(Path::new(bad)).unwrap_err();
+            assert!(err.to_string().starts_with(bad), "{err}");
+        }
+    }
+
+    /// Every prefix of every encoding, and copies with bytes overwritten, read without a panic.
+    #[test]
+    fn damaged_files_never_panic() {
+        let soup = mixed();
+        let files = [
+            (Format::Obj, write_bytes(Format::Obj, &soup)),
+            (Format::Off, write_bytes(Format::Off, &soup)),
+            (Format::Ply, write_ply(&soup, PlyEncoding::Ascii)),
+            (
+                Format::Ply,
+                write_ply(&soup, PlyEncoding::BinaryLittleEndian),
+            ),
+            (Format::Ply, write_ply(&soup, PlyEncoding::BinaryBigEndian)),
+            (Format::Stl, write_stl(&soup, StlEncoding::Binary)),
+            (Format::Stl, write_stl(&soup, StlEncoding::Ascii)),
+        ];
+        let mut seed = 0x2545_f491_u32;
+        let mut random = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed
+        };
+        for (format, bytes) in &files {
+            for cut in 0..bytes.len() {
+                let _ = read_bytes(*format, &bytes[..cut], name());
+            }
+            for _ in 0..300 {
+                let mut damaged = bytes.clone();
+                for _ in 0..1 + random() % 4 {
+                    let at = random() as usize % damaged.len();
+                    damaged[at] = [b'-', b'9', b' ', b'\n', 0xff, 0, b'#'][random() as usize % 7];
+                }
+                let _ = read_bytes(*format, &damaged, name());
+            }
+        }
+        for format in [Format::Obj, Format::Off, Format::Ply, Format::Stl] {
+            for garbage in [
+                &b""[..],
+                b"\0",
+                b"\xff\xfe",
+                b"solid",
+                b"ply",
+                b"OFF",
+                b"f 1 2 3",
+            ] {
+                let _ = read_bytes(format, garbage, name());
+            }
+        }
     }
 
     #[test]
     fn saving_is_atomic() {
         let dir = std::env::temp_dir().join(format!("pappus-io-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
+        let leftovers = || -> Vec<_> {
+            std::fs::read_dir(&dir)
+                .unwrap()
+                .filter_map(|e| e.ok())
+                .filter(|e| e.file_name().to_string_lossy().contains(".tmp"))
+                .map(|e| e.file_name())
+                .collect()
+        };
         let path = dir.join("m.off");
         write(&path, &mixed()).unwrap();
-        assert_eq!(read(&path).unwrap(), mixed());
-        let leftovers: Vec<_> = std::fs::read_dir(&dir)
-            .unwrap()
-            .filter_map(|e| e.ok())
-            .filter(|e| e.file_name().to_string_lossy().contains(".tmp"))
-            .collect();
-        assert!(leftovers.is_empty());
+        assert!(same_bits(&read(&path).unwrap(), &mixed()));
+        // Overwriting replaces the contents.
+        let tri = PolygonSoup::from_faces(vec![Vec3::X, Vec3::Y, Vec3::Z], &[[0, 1, 2]]);
+        write(&path, &tri).unwrap();
+        assert_eq!(read(&path).unwrap(), tri);
+        assert!(leftovers().is_empty(), "{:?}", leftovers());
         // A folder that does not exist: an error, and nothing written.
         let missing = dir.join("no/such/dir/m.obj");
-        assert!(write(&missing, &mixed()).is_err());
+        let err = write(&missing, &mixed()).unwrap_err();
+        assert!(matches!(err, IoError::Io { .. }));
+        assert!(err.to_string().contains("m.obj"), "{err}");
+        // The target is a folder: the rename fails, the temporary file is removed and the
+        // folder survives.
+        let blocked = dir.join("blocked.ply");
+        std::fs::create_dir_all(blocked.join("inside")).unwrap();
+        assert!(write(&blocked, &mixed()).is_err());
+        assert!(blocked.join("inside").is_dir());
+        assert!(leftovers().is_empty(), "{:?}", leftovers());
+        assert!(matches!(
+            read(&dir.join("absent.obj")),
+            Err(IoError::Io { .. })
+        ));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

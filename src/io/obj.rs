@@ -3,143 +3,166 @@
 //! `tobj` renumbers vertices in order of first use, drops unreferenced ones, splits the file
 //! into models at `o`/`g`/`usemtl` (duplicating vertices shared across them) and rejects the
 //! whole file for one out-of-range face. Pappus wants the file's own numbering (scripts name
-//! vertices by it), every vertex (unreferenced ones are counted as repairs) and one connected
-//! mesh. So a first pass lists the `v` lines and each face's vertex numbers (resolving negative,
-//! relative ones), faces naming a missing vertex are set aside (the builder drops and counts
-//! them), grouping statements are left out, and `tobj` parses what remains as one model; its
-//! first-use numbering is then mapped back to the file's. Materials, texture coordinates and
-//! normals are ignored.
+//! vertices by it), every vertex (unreferenced ones are counted as repairs by the builder) and
+//! one connected mesh. So a first pass here lists the `v` lines and each `f` line's vertex
+//! numbers (the part before the first `/`; negative numbers count back from the last vertex
+//! defined so far, positive ones may name a vertex defined later). Faces that name a missing
+//! vertex, or have fewer than 3 corners, stay in the soup in file order (a missing vertex
+//! becomes its 0-based number, or `u32::MAX` when that does not fit) for the builder to drop
+//! and count. The well-formed faces are handed to `tobj` as one model (grouping statements
+//! left out), and its first-use numbering is mapped back to the file's and checked against
+//! the first pass.
+//!
+//! Ignored: texture coordinates, normals, materials (no `.mtl` is opened), groups and objects
+//! (all merged into one mesh), points and lines, a vertex's `w` or colour. A malformed `v` or
+//! `f` line is an error naming its line.
 
 use bevy::math::Vec3;
 use std::fmt::Write as _;
 
 use super::ParseError;
-use super::text::{cap, float, lines};
+use super::text::{cap, check_text, lines, position};
 use crate::mesh::soup::PolygonSoup;
+
+/// One `f` line: where it was, and its corners as 0-based numbers, not yet range-checked
+/// (`None`: a number that can name no vertex, such as `0`).
+struct RawFace {
+    line: usize,
+    corners: Vec<Option<u64>>,
+}
 
 /// Parses OBJ text.
 pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
+    check_text(bytes)?;
     let mut positions = Vec::new();
-    let mut faces: Vec<(usize, Vec<u32>)> = Vec::new();
-    let mut kept = String::with_capacity(cap(bytes.len(), 1 << 30));
-    let mut bad_faces = 0usize;
+    let mut faces: Vec<RawFace> = Vec::new();
     for (line, text) in lines(bytes) {
         let mut tokens = text.split_whitespace();
         match tokens.next() {
-            Some("v") => {
-                let p = Vec3::new(
-                    float(tokens.next(), line, "x")?,
-                    float(tokens.next(), line, "y")?,
-                    float(tokens.next(), line, "z")?,
-                );
-                positions.push(p);
-                let _ = writeln!(kept, "v {} {} {}", p.x, p.y, p.z);
-            }
+            Some("v") => positions.push(position(&mut tokens, line)?),
             Some("f") => {
-                let mut face = Vec::new();
-                let mut in_range = true;
-                for token in tokens {
-                    let number = token.split('/').next().unwrap_or("");
-                    let n: i64 = number.parse().map_err(|_| {
-                        ParseError::line(line, format!("`{token}` is not a vertex reference"))
-                    })?;
-                    let count = positions.len() as i64;
-                    let i = if n < 0 { count + n } else { n - 1 };
-                    if n == 0 || i < 0 || i >= count {
-                        in_range = false;
-                    }
-                    face.push(i.clamp(0, u32::MAX as i64) as u32);
-                }
-                if face.len() < 3 || !in_range {
-                    bad_faces += 1;
-                    continue;
-                }
-                let _ = write!(kept, "f");
-                for &i in &face {
-                    let _ = write!(kept, " {}", i + 1);
-                }
-                kept.push('\n');
-                faces.push((line, face));
+                let defined = positions.len() as i64;
+                let corners = tokens
+                    .map(|token| {
+                        let number = token.split('/').next().unwrap_or("");
+                        let n: i64 = number.parse().map_err(|_| {
+                            ParseError::line(line, format!("`{token}` is not a vertex reference"))
+                        })?;
+                        // 1-based, or negative: relative to the vertices defined so far.
+                        let i = if n < 0 { defined + n } else { n - 1 };
+                        Ok(u64::try_from(i).ok())
+                    })
+                    .collect::<Result<Vec<_>, ParseError>>()?;
+                faces.push(RawFace { line, corners });
             }
             _ => {}
         }
     }
-    if std::str::from_utf8(bytes).is_err() && positions.is_empty() {
-        return Err(ParseError::byte(0, "not a text file"));
-    }
 
+    let count = positions.len() as u64;
+    let good = |f: &RawFace| {
+        f.corners.len() >= 3 && f.corners.iter().all(|c| c.is_some_and(|i| i < count))
+    };
     let mut soup = PolygonSoup::with_capacity(positions.len(), faces.len(), 0);
     soup.positions = positions;
-    if !faces.is_empty() {
-        let options = tobj::LoadOptions {
-            single_index: false,
-            triangulate: false,
-            ignore_points: true,
-            ignore_lines: true,
-        };
-        let (models, _) = tobj::load_obj_buf(&mut kept.as_bytes(), &options, |_| {
-            Ok((Vec::new(), Default::default()))
-        })
-        .map_err(|e| ParseError::line(faces[0].0, format!("tobj: {e}")))?;
-        append_models(&mut soup, &models, &faces)?;
-    }
-    // Faces naming missing vertices stay in the soup with an out-of-range index, so the builder
-    // drops and counts them.
-    for _ in 0..bad_faces {
-        soup.push_face(&[u32::MAX, u32::MAX, u32::MAX]);
+    let parsed = parse_with_tobj(&soup.positions, &faces, &good)?;
+    let mut parsed = parsed.iter();
+    let mut corners = Vec::new();
+    for face in &faces {
+        if good(face) {
+            let Some(next) = parsed.next() else {
+                return Err(ParseError::line(face.line, "tobj lost this face"));
+            };
+            soup.push_face(next);
+        } else {
+            corners.clear();
+            corners.extend(
+                face.corners
+                    .iter()
+                    .map(|c| c.and_then(|i| u32::try_from(i).ok()).unwrap_or(u32::MAX)),
+            );
+            soup.push_face(&corners);
+        }
     }
     Ok(soup)
 }
 
-/// Maps `tobj`'s first-use numbering back to the file's and appends the faces.
-fn append_models(
-    soup: &mut PolygonSoup,
-    models: &[tobj::Model],
-    faces: &[(usize, Vec<u32>)],
-) -> Result<(), ParseError> {
+/// Runs `tobj` on the vertices and the well-formed faces, and returns those faces in the
+/// file's numbering. Fails if `tobj` disagrees with the first pass (a bug, not a bad file).
+fn parse_with_tobj(
+    positions: &[Vec3],
+    faces: &[RawFace],
+    good: &dyn Fn(&RawFace) -> bool,
+) -> Result<Vec<Vec<u32>>, ParseError> {
+    let Some(first) = faces.iter().find(|f| good(f)) else {
+        return Ok(Vec::new());
+    };
+    let disagree =
+        |what: &str| ParseError::line(first.line, format!("tobj and Pappus disagree: {what}"));
+    let mut text = String::with_capacity(cap(positions.len() * 24 + faces.len() * 16, 1 << 30));
+    for p in positions {
+        let _ = writeln!(text, "v {} {} {}", p.x, p.y, p.z);
+    }
     let mut first_use = Vec::new();
-    let mut seen = vec![false; soup.positions.len()];
-    for (_, face) in faces {
-        for &i in face {
+    let mut seen = vec![false; positions.len()];
+    for face in faces.iter().filter(|f| good(f)) {
+        text.push('f');
+        for &i in face.corners.iter().flatten() {
+            let _ = write!(text, " {}", i + 1);
             if !std::mem::replace(&mut seen[i as usize], true) {
-                first_use.push(i);
+                first_use.push(i as u32);
             }
         }
+        text.push('\n');
     }
-    let [model] = models else {
-        return Err(ParseError::line(
-            faces[0].0,
-            "tobj split the file into several models",
-        ));
+    let options = tobj::LoadOptions {
+        single_index: false,
+        triangulate: false,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    // No material file is ever opened.
+    let (models, _) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |_| {
+        Ok((Vec::new(), Default::default()))
+    })
+    .map_err(|e| disagree(&e.to_string()))?;
+    let [model] = models.as_slice() else {
+        return Err(disagree(&format!("{} models", models.len())));
     };
     let mesh = &model.mesh;
+    let same = |a: f32, b: f32| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
     let agrees = mesh.positions.len() == 3 * first_use.len()
-        && first_use.iter().enumerate().all(|(k, &i)| {
-            let p = soup.positions[i as usize];
-            mesh.positions[3 * k..3 * k + 3] == [p.x, p.y, p.z]
-        });
+        && first_use
+            .iter()
+            .zip(mesh.positions.chunks_exact(3))
+            .all(|(&i, q)| {
+                let p = positions[i as usize];
+                same(p.x, q[0]) && same(p.y, q[1]) && same(p.z, q[2])
+            });
     if !agrees {
-        return Err(ParseError::line(
-            faces[0].0,
-            "tobj and the vertex list disagree",
-        ));
+        return Err(disagree("positions"));
     }
+    // No arities: every face is a triangle.
     let arities: Vec<u32> = if mesh.face_arities.is_empty() {
         vec![3; mesh.indices.len() / 3]
     } else {
         mesh.face_arities.clone()
     };
+    let mut out = Vec::with_capacity(arities.len());
     let mut at = 0usize;
-    let mut face = Vec::new();
     for arity in arities {
-        face.clear();
-        for &k in &mesh.indices[at..at + arity as usize] {
-            face.push(first_use[k as usize]);
-        }
+        let Some(corners) = mesh.indices.get(at..at + arity as usize) else {
+            return Err(disagree("face sizes"));
+        };
         at += arity as usize;
-        soup.push_face(&face);
+        let face = corners
+            .iter()
+            .map(|&k| first_use.get(k as usize).copied())
+            .collect::<Option<Vec<u32>>>()
+            .ok_or_else(|| disagree("indices"))?;
+        out.push(face);
     }
-    Ok(())
+    Ok(out)
 }
 
 /// Writes OBJ text: `v` lines (shortest exact decimal form), then `f` lines (1-based).
@@ -165,35 +188,87 @@ mod tests {
 
     #[test]
     fn keeps_file_order_and_unreferenced_vertices() {
-        let text = b"v 0 0 0\nv 9 9 9\nv 1 0 0\nv 0 1 0\nv 1 1 0\ng a\nf 5 4 3\ng b\nf 1 3 4\n";
+        let text = b"o first\nv 0 0 0\nv 9 9 9\nv 1 0 0\nv 0 1 0\nv 1 1 0\ng a\nusemtl red\nf 5 4 3\ng b\nf 1 3 4\n";
         let soup = read(text).unwrap();
         assert_eq!(soup.positions.len(), 5);
+        assert_eq!(soup.positions[1], Vec3::splat(9.0));
+        assert_eq!(soup.face_count(), 2);
         assert_eq!(soup.face(0), &[4, 3, 2]);
         assert_eq!(soup.face(1), &[0, 2, 3]);
     }
 
     #[test]
-    fn reads_polygons_and_relative_indices() {
-        let text = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf -4/1/1 -3/2/2 -2//3 -1\n";
+    fn reads_quads_and_relative_indices() {
+        let text = b"mtllib none.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf -4/1/1 -3/1/1 -2//1 -1\nv 2 0 0\nf 2 -1 3\nf 1/1 2/1 3/1\n";
         let soup = read(text).unwrap();
-        assert_eq!(soup.face_count(), 1);
+        assert_eq!(soup.face_count(), 3);
         assert_eq!(soup.face(0), &[0, 1, 2, 3]);
+        assert_eq!(soup.face(1), &[1, 4, 2]);
+        assert_eq!(soup.face(2), &[0, 1, 2]);
     }
 
     #[test]
-    fn out_of_range_faces_are_kept_for_the_builder_to_drop() {
-        let soup = read(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 7\n").unwrap();
-        assert_eq!(soup.face_count(), 2);
-        assert_eq!(soup.face(1), &[u32::MAX; 3]);
+    fn faces_may_name_vertices_defined_later() {
+        let soup = read(b"f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n").unwrap();
+        assert_eq!(soup.face(0), &[0, 1, 2]);
+    }
+
+    #[test]
+    fn bad_faces_stay_in_place_for_the_builder_to_drop() {
+        let text =
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 7\nf 1 2\nf 0 1 2\nf -9 1 2\nf 3 2 1\n";
+        let soup = read(text).unwrap();
+        assert_eq!(soup.face_count(), 6);
+        assert_eq!(soup.face(0), &[0, 1, 2]);
+        assert_eq!(soup.face(1), &[0, 1, 6]);
+        assert_eq!(soup.face(2), &[0, 1]);
+        assert_eq!(soup.face(3), &[u32::MAX, 0, 1]);
+        assert_eq!(soup.face(4), &[u32::MAX, 0, 1]);
+        assert_eq!(soup.face(5), &[2, 1, 0]);
+    }
+
+    #[test]
+    fn odd_but_readable_text() {
+        // A Latin-1 comment, CRLF line ends, a NaN coordinate, a `w`, a colour.
+        let text = b"# caf\xe9\r\nv 0 0 0 1\r\nv NaN 0 0\r\nv 0 1 0 0.5 0.5 0.5\r\nf 1 2 3\r\n";
+        let soup = read(text).unwrap();
+        assert!(soup.positions[1].x.is_nan());
+        assert_eq!(soup.face(0), &[0, 1, 2]);
+        let empty = read(b"").unwrap();
+        assert_eq!((empty.positions.len(), empty.face_count()), (0, 0));
     }
 
     #[test]
     fn malformed_lines_name_the_line() {
-        let err = read(b"v 0 0 0\nv 1 x 0\n").unwrap_err();
-        assert_eq!(err.location, "line 2");
-        let err = read(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 q\n").unwrap_err();
-        assert_eq!(err.location, "line 4");
-        let err = read(b"v 0 0\n").unwrap_err();
-        assert!(err.message.contains("missing z"), "{}", err.message);
+        let cases: [(&[u8], &str, &str); 5] = [
+            (b"v 0 0 0\nv 1 x 0\n", "line 2", "`x` is not a number (y)"),
+            (
+                b"v 0 0 0\n\n# c\nv 1 0\n",
+                "line 4",
+                "expected 3 coordinates, found 2",
+            ),
+            (
+                b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 q\n",
+                "line 4",
+                "`q` is not a vertex reference",
+            ),
+            (
+                b"v 0 0 0\nf 1 2.5 3\n",
+                "line 2",
+                "`2.5` is not a vertex reference",
+            ),
+            (
+                b"v 0 0 0\nv\xff 1 0 0\0",
+                "byte 16",
+                "NUL byte: this is not a text file",
+            ),
+        ];
+        for (text, location, message) in cases {
+            let err = read(text).unwrap_err();
+            assert_eq!(
+                (err.location.as_str(), err.message.as_str()),
+                (location, message)
+            );
+        }
     }
 }

@@ -1,57 +1,76 @@
-//! OFF (Object File Format), ASCII: `OFF`, then `V F E`, then V positions, then F faces as
-//! `n i0 … i(n−1)` (anything after the indices, such as a colour, is ignored). The counts may
-//! share the header's line; `#` starts a comment.
+//! OFF (Object File Format), ASCII: a header `OFF`, then `V F E`, then V positions, then F
+//! faces as `n i0 … i(n−1)`. The counts may share the header's line (`OFF 8 6 0`); `#` starts
+//! a comment; blank lines are skipped. Anything after a face's indices (a colour) or after a
+//! vertex's three coordinates is ignored, which also makes the `COFF`, `NOFF`, `STOFF`, …
+//! headers readable. The 4-D and n-D variants (`4OFF`, `nOFF`) and binary OFF are refused as
+//! unsupported. Indices must be non-negative integers; out-of-range ones are kept for the
+//! builder to drop.
 
-use bevy::math::Vec3;
 use std::fmt::Write as _;
 
 use super::ParseError;
-use super::text::{cap, float, index, lines};
+use super::text::{cap, check_text, index, lines, position};
 use crate::mesh::soup::PolygonSoup;
 
 /// Parses OFF text.
 pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
+    check_text(bytes)?;
     let mut lines = lines(bytes);
     let (first_line, header) = lines
         .next()
         .ok_or_else(|| ParseError::line(1, "empty file (expected `OFF`)"))?;
-    let mut tokens: Vec<&str> = header.split_whitespace().collect();
-    match tokens.first() {
-        Some(&"OFF") => {
-            tokens.remove(0);
-        }
-        Some(t) if t.ends_with("OFF") => {
-            return Err(ParseError::line(
-                first_line,
-                format!("`{t}` files are not supported (plain OFF only)"),
-            ));
-        }
-        _ => return Err(ParseError::line(first_line, "expected `OFF`")),
+    let mut tokens = header.split_whitespace();
+    let keyword = tokens.next().unwrap_or("");
+    let Some(prefix) = keyword.strip_suffix("OFF") else {
+        return Err(ParseError::line(
+            first_line,
+            format!("expected `OFF`, found `{keyword}`"),
+        ));
+    };
+    if prefix.contains(['4', 'n']) {
+        return Err(
+            ParseError::line(first_line, format!("`{keyword}`: only 3-D OFF is read"))
+                .unsupported(),
+        );
     }
-    let (count_line, counts) = if tokens.is_empty() {
-        let (l, t) = lines
+    if !prefix.chars().all(|c| matches!(c, 'S' | 'T' | 'C' | 'N')) {
+        return Err(ParseError::line(
+            first_line,
+            format!("expected `OFF`, found `{keyword}`"),
+        ));
+    }
+    let rest: Vec<&str> = tokens.collect();
+    if rest
+        .first()
+        .is_some_and(|t| t.eq_ignore_ascii_case("BINARY"))
+    {
+        return Err(ParseError::line(first_line, "binary OFF").unsupported());
+    }
+    let counts_on_header = !rest.is_empty();
+    let counts_text;
+    let (count_line, mut counts): (usize, Vec<&str>) = if counts_on_header {
+        (first_line, rest)
+    } else {
+        let (line, text) = lines
             .next()
             .ok_or_else(|| ParseError::line(first_line + 1, "missing vertex and face counts"))?;
-        (l, t.split_whitespace().collect::<Vec<_>>())
-    } else {
-        (first_line, tokens)
+        counts_text = text;
+        (line, counts_text.split_whitespace().collect())
     };
+    counts.truncate(2);
     let mut counts = counts.into_iter();
     let nv = index(counts.next(), count_line, "vertex count")? as usize;
     let nf = index(counts.next(), count_line, "face count")? as usize;
 
+    // At least 6 bytes per vertex line ("0 0 0\n") and 8 per face line.
     let mut soup =
         PolygonSoup::with_capacity(cap(nv, bytes.len() / 6), cap(nf, bytes.len() / 8), 0);
     for i in 0..nv {
         let (line, text) = lines.next().ok_or_else(|| {
             ParseError::line(count_line, format!("file ends after {i} of {nv} vertices"))
         })?;
-        let mut t = text.split_whitespace();
-        soup.positions.push(Vec3::new(
-            float(t.next(), line, "x")?,
-            float(t.next(), line, "y")?,
-            float(t.next(), line, "z")?,
-        ));
+        soup.positions
+            .push(position(&mut text.split_whitespace(), line)?);
     }
     let mut face = Vec::new();
     for i in 0..nf {
@@ -61,8 +80,14 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
         let mut t = text.split_whitespace();
         let n = index(t.next(), line, "corner count")? as usize;
         face.clear();
-        for _ in 0..n {
-            face.push(index(t.next(), line, "vertex index")?);
+        for k in 0..n {
+            let Some(token) = t.next() else {
+                return Err(ParseError::line(
+                    line,
+                    format!("expected {n} vertex indices, found {k}"),
+                ));
+            };
+            face.push(index(Some(token), line, "vertex index")?);
         }
         soup.push_face(&face);
     }
@@ -89,33 +114,82 @@ pub fn write(soup: &PolygonSoup) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bevy::math::Vec3;
 
     #[test]
     fn reads_counts_on_the_header_line_and_ignores_colours() {
-        let soup = read(b"OFF 4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3 255 0 0\n").unwrap();
+        let soup = read(
+            b"OFF 4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3 255 0 0\n3 0 2 3 0.5 0.5 0.5 1\n",
+        )
+        .unwrap();
         assert_eq!(soup.positions.len(), 4);
         assert_eq!(soup.face(0), &[0, 1, 2, 3]);
+        assert_eq!(soup.face(1), &[0, 2, 3]);
+    }
+
+    #[test]
+    fn reads_comments_blank_lines_and_variants() {
+        let text = b"# made by hand\nCOFF\n\n# counts\n3 1 3\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255 # red\n0 1 0 0 0 255 255\n3 0 1 2\n";
+        let soup = read(text).unwrap();
+        assert_eq!(soup.positions, vec![Vec3::ZERO, Vec3::X, Vec3::Y]);
+        assert_eq!(soup.face(0), &[0, 1, 2]);
+        // Out of range is the builder's business.
+        let soup = read(b"OFF\n1 1 0\n0 0 0\n3 0 5 9\n").unwrap();
+        assert_eq!(soup.face(0), &[0, 5, 9]);
     }
 
     #[test]
     fn errors_name_the_line() {
-        assert_eq!(read(b"").unwrap_err().location, "line 1");
-        assert!(
-            read(b"PLY\n")
-                .unwrap_err()
-                .message
-                .contains("expected `OFF`")
-        );
-        let err = read(b"OFF\n# c\n2 1 0\n0 0 0\n1 0 0\n3 0 1\n").unwrap_err();
-        assert_eq!(err.location, "line 6");
-        let err = read(b"OFF\n3 1 0\n0 0 0\n").unwrap_err();
-        assert!(
-            err.message.contains("after 1 of 3 vertices"),
-            "{}",
-            err.message
-        );
-        let err = read(b"OFF\n1 0 0\n0 zero 0\n").unwrap_err();
-        assert_eq!(err.location, "line 3");
+        let cases: [(&[u8], &str, &str); 9] = [
+            (b"", "line 1", "empty file (expected `OFF`)"),
+            (b"PLY\n", "line 1", "expected `OFF`, found `PLY`"),
+            (
+                b"OFF\n# c\n2 1 0\n0 0 0\n1 0 0\n3 0 1\n",
+                "line 6",
+                "expected 3 vertex indices, found 2",
+            ),
+            (
+                b"OFF\n3 1 0\n0 0 0\n",
+                "line 2",
+                "file ends after 1 of 3 vertices",
+            ),
+            (
+                b"OFF\n1 0 0\n0 zero 0\n",
+                "line 3",
+                "`zero` is not a number (y)",
+            ),
+            (
+                b"OFF\n1 0 0\n0 0\n",
+                "line 3",
+                "expected 3 coordinates, found 2",
+            ),
+            (
+                b"OFF\n1 1 0\n0 0 0\n3 0 -1 0\n",
+                "line 4",
+                "`-1` is not a non-negative integer (vertex index)",
+            ),
+            (
+                b"OFF\n1 1 0\n0 0 0\n3 0 1.0 0\n",
+                "line 4",
+                "`1.0` is not a non-negative integer (vertex index)",
+            ),
+            (
+                b"OFF\n-1 0 0\n",
+                "line 2",
+                "`-1` is not a non-negative integer (vertex count)",
+            ),
+        ];
+        for (text, location, message) in cases {
+            let err = read(text).unwrap_err();
+            assert_eq!(
+                (err.location.as_str(), err.message.as_str()),
+                (location, message)
+            );
+            assert!(!err.unsupported);
+        }
+        for text in [&b"4OFF\n"[..], b"nOFF\n4\n", b"OFF BINARY\n"] {
+            assert!(read(text).unwrap_err().unsupported);
+        }
     }
 
     #[test]

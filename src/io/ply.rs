@@ -1,9 +1,15 @@
 //! Stanford PLY: ASCII, binary little-endian and binary big-endian.
 //!
-//! Reads the `vertex` element's `x y z` (any numeric type) and the `face` element's
-//! `vertex_indices` (or `vertex_index`) list; every other property and element is read past.
-//! Writes binary little-endian (`float x y z`, `list uchar int vertex_indices`, or `list int
-//! int` when a face has more than 255 corners), or ASCII on request.
+//! Reads the `vertex` element's `x y z` (any of the eight numeric types, converted to `f32`)
+//! and the `face` element's `vertex_indices` (or `vertex_index`) list, whose count and index
+//! may be any integer type. Every other property (scalar or list) and every other element is
+//! read past, in the order the header declares them. The vertex element must have `x`, `y`
+//! and `z`, and a face element must have the index list. Indices must be non-negative
+//! integers; out-of-range ones are kept for the builder to drop.
+//!
+//! Writes `float x y z` and `list uchar int vertex_indices` (`list int int` when a face has
+//! more than 255 corners, `uint` indices when one exceeds `i32::MAX`), binary little-endian
+//! by default or ASCII / big-endian on request.
 
 use bevy::math::Vec3;
 use std::fmt::Write as _;
@@ -15,14 +21,15 @@ use crate::mesh::soup::PolygonSoup;
 /// How a PLY body is encoded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PlyEncoding {
-    /// Text.
+    /// Text, one element per line.
     Ascii,
-    /// Binary, little-endian (the usual one).
+    /// Binary, little-endian (the usual one, and what [`crate::io::write()`] saves).
     BinaryLittleEndian,
     /// Binary, big-endian.
     BinaryBigEndian,
 }
 
+/// The eight PLY scalar types.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Scalar {
     I8,
@@ -58,12 +65,36 @@ impl Scalar {
             Scalar::F64 => 8,
         }
     }
+
+    fn is_integer(self) -> bool {
+        !matches!(self, Scalar::F32 | Scalar::F64)
+    }
+}
+
+/// What the reader does with a property's values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Role {
+    /// Coordinate 0, 1 or 2 of a vertex.
+    Coordinate(usize),
+    /// The corners of a face.
+    Corners,
+    /// Read past.
+    Skip,
 }
 
 #[derive(Debug)]
 enum Property {
-    Scalar(String, Scalar),
-    List(String, Scalar, Scalar),
+    Scalar {
+        name: String,
+        ty: Scalar,
+        role: Role,
+    },
+    List {
+        name: String,
+        count: Scalar,
+        item: Scalar,
+        role: Role,
+    },
 }
 
 #[derive(Debug)]
@@ -71,17 +102,21 @@ struct Element {
     name: String,
     count: usize,
     properties: Vec<Property>,
+    /// The header line declaring it.
+    line: usize,
 }
 
 /// Where values come from: text tokens or binary bytes.
 trait Values {
+    /// The next value, of type `ty`, for the property `what`.
     fn next(&mut self, ty: Scalar, what: &str) -> Result<f64, ParseError>;
     /// An error at the current position.
     fn error(&self, message: String) -> ParseError;
 }
 
+/// An ASCII body: whitespace-separated tokens, lines counted for messages.
 struct Text<'a> {
-    lines: std::iter::Peekable<Box<dyn Iterator<Item = (usize, &'a str)> + 'a>>,
+    lines: std::str::Lines<'a>,
     tokens: std::str::SplitWhitespace<'a>,
     line: usize,
 }
@@ -98,15 +133,16 @@ impl Values for Text<'_> {
                     ParseError::line(self.line, format!("`{t}` is not a number ({what})"))
                 });
             }
-            let (line, text) = self.lines.next().ok_or_else(|| {
-                ParseError::line(self.line, format!("file ends while reading {what}"))
+            let text = self.lines.next().ok_or_else(|| {
+                ParseError::line(self.line, format!("file ends while reading `{what}`"))
             })?;
-            self.line = line;
+            self.line += 1;
             self.tokens = text.split_whitespace();
         }
     }
 }
 
+/// A binary body.
 struct Binary<'a> {
     data: &'a [u8],
     at: usize,
@@ -120,24 +156,24 @@ impl Values for Binary<'_> {
 
     fn next(&mut self, ty: Scalar, what: &str) -> Result<f64, ParseError> {
         let n = ty.size();
-        let bytes = self
-            .data
-            .get(self.at..self.at + n)
-            .ok_or_else(|| ParseError::byte(self.at, format!("file ends while reading {what}")))?;
+        let bytes = self.data.get(self.at..self.at + n).ok_or_else(|| {
+            ParseError::byte(self.at, format!("file ends while reading `{what}`"))
+        })?;
         self.at += n;
         let mut b = [0u8; 8];
         b[..n].copy_from_slice(bytes);
         if self.big_endian {
             b[..n].reverse();
         }
+        let [b0, b1, b2, b3, ..] = b;
         Ok(match ty {
-            Scalar::I8 => f64::from(b[0] as i8),
-            Scalar::U8 => f64::from(b[0]),
-            Scalar::I16 => f64::from(i16::from_le_bytes([b[0], b[1]])),
-            Scalar::U16 => f64::from(u16::from_le_bytes([b[0], b[1]])),
-            Scalar::I32 => f64::from(i32::from_le_bytes([b[0], b[1], b[2], b[3]])),
-            Scalar::U32 => f64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
-            Scalar::F32 => f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+            Scalar::I8 => f64::from(i8::from_le_bytes([b0])),
+            Scalar::U8 => f64::from(b0),
+            Scalar::I16 => f64::from(i16::from_le_bytes([b0, b1])),
+            Scalar::U16 => f64::from(u16::from_le_bytes([b0, b1])),
+            Scalar::I32 => f64::from(i32::from_le_bytes([b0, b1, b2, b3])),
+            Scalar::U32 => f64::from(u32::from_le_bytes([b0, b1, b2, b3])),
+            Scalar::F32 => f64::from(f32::from_le_bytes([b0, b1, b2, b3])),
             Scalar::F64 => f64::from_le_bytes(b),
         })
     }
@@ -146,18 +182,16 @@ impl Values for Binary<'_> {
 /// Parses a PLY file.
 pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     let (encoding, elements, body) = header(bytes)?;
+    let header_lines = bytes[..body].iter().filter(|&&b| b == b'\n').count();
     match encoding {
         PlyEncoding::Ascii => {
-            let text = std::str::from_utf8(&bytes[body..])
-                .map_err(|e| ParseError::byte(body + e.valid_up_to(), "ASCII body is not text"))?;
-            let header_lines = bytes[..body].iter().filter(|&&b| b == b'\n').count();
-            let lines: Box<dyn Iterator<Item = (usize, &str)>> = Box::new(
-                text.lines()
-                    .enumerate()
-                    .map(move |(i, l)| (header_lines + i + 1, l)),
-            );
+            let text = std::str::from_utf8(&bytes[body..]).map_err(|e| {
+                let valid = &bytes[body..body + e.valid_up_to()];
+                let line = header_lines + 1 + valid.iter().filter(|&&b| b == b'\n').count();
+                ParseError::line(line, "the ASCII body is not text")
+            })?;
             let mut values = Text {
-                lines: lines.peekable(),
+                lines: text.lines(),
                 tokens: "".split_whitespace(),
                 line: header_lines,
             };
@@ -174,8 +208,10 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     }
 }
 
+/// Reads the header: the encoding, the elements, and the byte offset where the body starts.
 fn header(bytes: &[u8]) -> Result<(PlyEncoding, Vec<Element>, usize), ParseError> {
-    if !bytes.starts_with(b"ply") {
+    let first = bytes.split(|&b| b == b'\n').next().unwrap_or_default();
+    if first.trim_ascii() != b"ply" {
         return Err(ParseError::line(1, "expected `ply`"));
     }
     let mut encoding = None;
@@ -185,31 +221,37 @@ fn header(bytes: &[u8]) -> Result<(PlyEncoding, Vec<Element>, usize), ParseError
         let line = i + 1;
         at += raw.len() + 1;
         let text = std::str::from_utf8(raw)
-            .map_err(|_| ParseError::line(line, "header is not text"))?
-            .trim();
+            .map_err(|_| ParseError::line(line, "the header is not text"))?;
         let mut t = text.split_whitespace();
         match t.next() {
-            Some("ply") | Some("comment") | Some("obj_info") | None => {}
+            Some("ply" | "comment" | "obj_info") | None => {}
             Some("format") => {
                 encoding = Some(match t.next() {
                     Some("ascii") => PlyEncoding::Ascii,
                     Some("binary_little_endian") => PlyEncoding::BinaryLittleEndian,
                     Some("binary_big_endian") => PlyEncoding::BinaryBigEndian,
                     other => {
-                        return Err(ParseError::line(line, format!("unknown format {other:?}")));
+                        let other = other.unwrap_or("");
+                        return Err(
+                            ParseError::line(line, format!("format `{other}`")).unsupported()
+                        );
                     }
                 });
             }
             Some("element") => {
                 let name = t.next().unwrap_or("").to_string();
-                let count = t
-                    .next()
-                    .and_then(|c| c.parse::<usize>().ok())
-                    .ok_or_else(|| ParseError::line(line, "element without a count"))?;
+                let count = t.next();
+                let count = count.and_then(|c| c.parse::<usize>().ok()).ok_or_else(|| {
+                    ParseError::line(
+                        line,
+                        format!("element `{name}` needs a count, found {count:?}"),
+                    )
+                })?;
                 elements.push(Element {
                     name,
                     count,
                     properties: Vec::new(),
+                    line,
                 });
             }
             Some("property") => {
@@ -217,29 +259,54 @@ fn header(bytes: &[u8]) -> Result<(PlyEncoding, Vec<Element>, usize), ParseError
                     .last_mut()
                     .ok_or_else(|| ParseError::line(line, "property before any element"))?;
                 let ty = |name: Option<&str>| {
-                    name.and_then(Scalar::parse).ok_or_else(|| {
-                        ParseError::line(line, format!("unknown property type {name:?}"))
+                    let name = name.unwrap_or("");
+                    Scalar::parse(name).ok_or_else(|| {
+                        ParseError::line(line, format!("property type `{name}`")).unsupported()
                     })
                 };
                 let first = t.next();
                 let property = if first == Some("list") {
                     let count = ty(t.next())?;
                     let item = ty(t.next())?;
-                    Property::List(t.next().unwrap_or("").to_string(), count, item)
+                    if !count.is_integer() {
+                        return Err(ParseError::line(line, "a list's count must be an integer"));
+                    }
+                    let name = t.next().unwrap_or("").to_string();
+                    let corners = element.name == "face"
+                        && (name == "vertex_indices" || name == "vertex_index");
+                    let role = if corners { Role::Corners } else { Role::Skip };
+                    Property::List {
+                        name,
+                        count,
+                        item,
+                        role,
+                    }
                 } else {
-                    Property::Scalar(t.next().unwrap_or("").to_string(), ty(first)?)
+                    let ty = ty(first)?;
+                    let name = t.next().unwrap_or("").to_string();
+                    let role = match (element.name.as_str(), name.as_str()) {
+                        ("vertex", "x") => Role::Coordinate(0),
+                        ("vertex", "y") => Role::Coordinate(1),
+                        ("vertex", "z") => Role::Coordinate(2),
+                        _ => Role::Skip,
+                    };
+                    Property::Scalar { name, ty, role }
                 };
                 element.properties.push(property);
             }
             Some("end_header") => {
-                let encoding =
-                    encoding.ok_or_else(|| ParseError::line(line, "no `format` line"))?;
+                let encoding = encoding.ok_or_else(|| {
+                    ParseError::line(line, "no `format` line before `end_header`")
+                })?;
+                for element in &elements {
+                    check_element(element)?;
+                }
                 return Ok((encoding, elements, at.min(bytes.len())));
             }
             Some(other) => {
                 return Err(ParseError::line(
                     line,
-                    format!("unknown header line `{other}`"),
+                    format!("unknown header keyword `{other}`"),
                 ));
             }
         }
@@ -247,6 +314,36 @@ fn header(bytes: &[u8]) -> Result<(PlyEncoding, Vec<Element>, usize), ParseError
     Err(ParseError::byte(bytes.len(), "file ends inside the header"))
 }
 
+/// A non-empty `vertex` element needs `x y z`; a non-empty `face` element needs its index list.
+fn check_element(element: &Element) -> Result<(), ParseError> {
+    let has = |role: Role| {
+        element.properties.iter().any(|p| match p {
+            Property::Scalar { role: r, .. } | Property::List { role: r, .. } => *r == role,
+        })
+    };
+    if element.count == 0 {
+        return Ok(());
+    }
+    let missing = match element.name.as_str() {
+        "vertex" => (0..3)
+            .find(|&k| !has(Role::Coordinate(k)))
+            .map(|k| ["property `x`", "property `y`", "property `z`"][k]),
+        "face" => (!has(Role::Corners)).then_some("list `vertex_indices`"),
+        _ => None,
+    };
+    match missing {
+        Some(what) => Err(ParseError::line(
+            element.line,
+            format!("element `{}` has no {what}", element.name),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Reads every element's values in header order, keeping positions and faces.
+///
+/// Every value read consumes at least one byte or token, so a huge count in the header makes
+/// the reader run out of input, not memory (an element without properties is not looped over).
 fn body_values(
     elements: &[Element],
     values: &mut dyn Values,
@@ -255,8 +352,10 @@ fn body_values(
     let mut soup = PolygonSoup::default();
     let mut face = Vec::new();
     for element in elements {
+        if element.properties.is_empty() {
+            continue;
+        }
         let is_vertex = element.name == "vertex";
-        let is_face = element.name == "face";
         if is_vertex {
             soup.positions.reserve(cap(element.count, len / 12));
         }
@@ -264,37 +363,34 @@ fn body_values(
             let mut p = [0.0f32; 3];
             for property in &element.properties {
                 match property {
-                    Property::Scalar(name, ty) => {
+                    Property::Scalar { name, ty, role } => {
                         let v = values.next(*ty, name)?;
-                        if is_vertex {
-                            match name.as_str() {
-                                "x" => p[0] = v as f32,
-                                "y" => p[1] = v as f32,
-                                "z" => p[2] = v as f32,
-                                _ => {}
-                            }
+                        if let Role::Coordinate(k) = role {
+                            p[*k] = v as f32;
                         }
                     }
-                    Property::List(name, count_ty, item_ty) => {
-                        let n = values.next(*count_ty, name)?;
-                        if !(0.0..=1e6).contains(&n) || n.fract() != 0.0 {
-                            return Err(values.error(format!("bad list length {n}")));
+                    Property::List {
+                        name,
+                        count,
+                        item,
+                        role,
+                    } => {
+                        let n = values.next(*count, name)?;
+                        if n < 0.0 || n.fract() != 0.0 {
+                            return Err(values.error(format!("`{name}` has {n} items")));
                         }
-                        let wanted =
-                            is_face && (name == "vertex_indices" || name == "vertex_index");
-                        if wanted {
-                            face.clear();
-                        }
-                        for _ in 0..n as usize {
-                            let v = values.next(*item_ty, name)?;
-                            if wanted {
+                        let corners = *role == Role::Corners;
+                        face.clear();
+                        for _ in 0..n as u64 {
+                            let v = values.next(*item, name)?;
+                            if corners {
                                 if v < 0.0 || v.fract() != 0.0 || v > f64::from(u32::MAX) {
                                     return Err(values.error(format!("bad vertex index {v}")));
                                 }
                                 face.push(v as u32);
                             }
                         }
-                        if wanted {
+                        if corners {
                             soup.push_face(&face);
                         }
                     }
@@ -310,24 +406,42 @@ fn body_values(
 
 /// Encodes a soup as PLY.
 pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
-    let wide = soup.faces().any(|f| f.len() > 255);
-    let count_type = if wide { "int" } else { "uchar" };
+    let count_type = if soup.faces().any(|f| f.len() > 255) {
+        Scalar::I32
+    } else {
+        Scalar::U8
+    };
+    let index_type = if soup.indices.iter().any(|&i| i > i32::MAX as u32) {
+        Scalar::U32
+    } else {
+        Scalar::I32
+    };
     let format = match encoding {
         PlyEncoding::Ascii => "ascii",
         PlyEncoding::BinaryLittleEndian => "binary_little_endian",
         PlyEncoding::BinaryBigEndian => "binary_big_endian",
     };
+    let type_name = |s: Scalar| match s {
+        Scalar::U8 => "uchar",
+        Scalar::U32 => "uint",
+        _ => "int",
+    };
     let mut header = String::new();
     let _ = write!(
         header,
-        "ply\nformat {format} 1.0\ncomment written by Pappus\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\nelement face {}\nproperty list {count_type} int vertex_indices\nend_header\n",
+        "ply\nformat {format} 1.0\ncomment written by Pappus\nelement vertex {}\n\
+         property float x\nproperty float y\nproperty float z\nelement face {}\n\
+         property list {} {} vertex_indices\nend_header\n",
         soup.positions.len(),
-        soup.face_count()
+        soup.face_count(),
+        type_name(count_type),
+        type_name(index_type),
     );
     let mut out = header.into_bytes();
     match encoding {
         PlyEncoding::Ascii => {
-            let mut body = String::new();
+            let mut body =
+                String::with_capacity(soup.positions.len() * 32 + soup.indices.len() * 8);
             for p in &soup.positions {
                 let _ = writeln!(body, "{} {} {}", p.x, p.y, p.z);
             }
@@ -349,20 +463,21 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
                     out.extend_from_slice(&bytes);
                 }
             };
-            out.reserve(soup.positions.len() * 12 + soup.indices.len() * 4 + soup.face_count());
+            out.reserve(soup.positions.len() * 12 + soup.indices.len() * 4 + soup.face_count() * 4);
             for p in &soup.positions {
                 for c in [p.x, p.y, p.z] {
                     put(c.to_le_bytes(), &mut out);
                 }
             }
             for face in soup.faces() {
-                if wide {
-                    put((face.len() as i32).to_le_bytes(), &mut out);
-                } else {
+                if count_type == Scalar::U8 {
                     out.push(face.len() as u8);
+                } else {
+                    put((face.len() as u32).to_le_bytes(), &mut out);
                 }
+                // An index fits `int` unless `uint` was chosen; the bytes are the same.
                 for &i in face {
-                    put((i as i32).to_le_bytes(), &mut out);
+                    put(i.to_le_bytes(), &mut out);
                 }
             }
         }
@@ -373,49 +488,141 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::io::tests::{mixed, same_bits};
+
+    const XYZ: &str = "property float x\nproperty float y\nproperty float z\n";
 
     #[test]
-    fn binary_round_trips_both_ways() {
-        let soup = crate::io::tests::mixed();
+    fn every_encoding_round_trips() {
         for e in [
             PlyEncoding::BinaryLittleEndian,
             PlyEncoding::BinaryBigEndian,
             PlyEncoding::Ascii,
         ] {
-            assert_eq!(read(&write(&soup, e)).unwrap(), soup, "{e:?}");
+            assert!(
+                same_bits(&read(&write(&mixed(), e)).unwrap(), &mixed()),
+                "{e:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn wide_faces_and_huge_indices_change_the_list_types() {
+        let n = 300u32;
+        let mut soup = PolygonSoup::from_faces(
+            (0..n).map(|i| Vec3::new(i as f32, 0.0, 0.0)).collect(),
+            &[(0..n).collect::<Vec<_>>()],
+        );
+        let bytes = write(&soup, PlyEncoding::BinaryLittleEndian);
+        assert!(String::from_utf8_lossy(&bytes).contains("property list int int vertex_indices"));
+        assert_eq!(read(&bytes).unwrap(), soup);
+        soup.push_face(&[0, 1, u32::MAX - 1]);
+        for e in [PlyEncoding::BinaryBigEndian, PlyEncoding::Ascii] {
+            let bytes = write(&soup, e);
+            assert!(
+                String::from_utf8_lossy(&bytes).contains("property list int uint vertex_indices")
+            );
+            assert_eq!(read(&bytes).unwrap(), soup, "{e:?}");
         }
     }
 
     #[test]
     fn skips_other_properties_and_elements() {
-        let text = b"ply\nformat ascii 1.0\ncomment hi\nelement vertex 3\nproperty double x\nproperty float nx\nproperty double y\nproperty double z\nproperty list uchar int junk\nelement face 1\nproperty uchar flags\nproperty list uchar uint vertex_index\nelement edge 1\nproperty int a\nproperty int b\nend_header\n0 9 0 0 2 7 7\n1 9 0 0 0\n0 9 1 0 1 5\n3 3 0 1 2\n0 1\n";
+        let text = b"ply\nformat ascii 1.0\ncomment hi\nobj_info made by hand\nelement vertex 3\nproperty double x\nproperty float nx\nproperty double y\nproperty int16 z\nproperty list uchar int junk\nelement face 1\nproperty uchar flags\nproperty list uint8 uint vertex_index\nelement edge 1\nproperty int a\nproperty int b\nend_header\n0 9 0 0 2 7 7\n1 9 0 0 0\n0 9 1 0 1 5\n3 3 0 1 2\n0 1\n";
         let soup = read(text).unwrap();
         assert_eq!(soup.positions, vec![Vec3::ZERO, Vec3::X, Vec3::Y]);
         assert_eq!(soup.face(0), &[0, 1, 2]);
     }
 
     #[test]
-    fn truncated_files_are_errors_with_an_offset() {
-        let bytes = write(&crate::io::tests::mixed(), PlyEncoding::BinaryLittleEndian);
-        for cut in [3, 40, bytes.len() - 1] {
-            let err = read(&bytes[..cut]).unwrap_err();
-            assert!(
-                err.location.starts_with("byte") || err.location.starts_with("line"),
-                "{err:?}"
+    fn reads_big_endian_doubles_and_an_element_before_the_vertices() {
+        let mut bytes = b"ply\nformat binary_big_endian 1.0\nelement material 2\nproperty list uchar float rgb\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\nproperty uchar red\nelement face 1\nproperty list int16 uint16 vertex_indices\nend_header\n".to_vec();
+        for material in [[1.0f32, 0.5], [0.25, 0.0]] {
+            bytes.push(2);
+            for c in material {
+                bytes.extend(c.to_be_bytes());
+            }
+        }
+        for p in [[0.0f64, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.5]] {
+            for c in p {
+                bytes.extend(c.to_be_bytes());
+            }
+            bytes.push(200);
+        }
+        bytes.extend(3i16.to_be_bytes());
+        for i in [2u16, 1, 0] {
+            bytes.extend(i.to_be_bytes());
+        }
+        let soup = read(&bytes).unwrap();
+        assert_eq!(
+            soup.positions,
+            vec![Vec3::ZERO, Vec3::X, Vec3::new(0.0, 1.0, 0.5)]
+        );
+        assert_eq!(soup.face(0), &[2, 1, 0]);
+    }
+
+    #[test]
+    fn truncated_binary_files_are_errors_at_the_offset() {
+        let bytes = write(&mixed(), PlyEncoding::BinaryLittleEndian);
+        let body = bytes
+            .windows(11)
+            .position(|w| w == b"end_header\n")
+            .unwrap()
+            + 11;
+        // Five vertices of 12 bytes, then the first face's count (1 byte) and 3 of its 4 bytes.
+        let cut = body + 60 + 1 + 3;
+        let err = read(&bytes[..cut]).unwrap_err();
+        assert_eq!(err.location, format!("byte {}", body + 61));
+        assert_eq!(err.message, "file ends while reading `vertex_indices`");
+        let err = read(&bytes[..body + 5]).unwrap_err();
+        assert_eq!(err.location, format!("byte {}", body + 4));
+        for cut in 0..bytes.len() {
+            assert!(read(&bytes[..cut]).is_err(), "cut at {cut}");
+        }
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        let ascii = |body: &str| {
+            format!(
+                "ply\nformat ascii 1.0\nelement vertex 2\n{XYZ}element face 1\nproperty list uchar int vertex_indices\nend_header\n{body}"
+            )
+        };
+        let cases: [(String, &str, &str); 9] = [
+            (ascii("0 0 0\n"), "line 10", "file ends while reading `x`"),
+            (ascii("0 0 0\n1 q 0\n3 0 1 1\n"), "line 11", "`q` is not a number (y)"),
+            (ascii("0 0 0\n1 0 0\n3 0 -1 1\n"), "line 12", "bad vertex index -1"),
+            (ascii("0 0 0\n1 0 0\n3 0 1.5 1\n"), "line 12", "bad vertex index 1.5"),
+            (ascii("0 0 0\n1 0 0\n-3 0 1 1\n"), "line 12", "`vertex_indices` has -3 items"),
+            ("plx\n".into(), "line 1", "expected `ply`"),
+            ("ply\nformat ascii 1.0\nelement vertex\n".into(), "line 3", "element `vertex` needs a count, found None"),
+            ("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n".into(), "line 3", "element `vertex` has no property `z`"),
+            ("ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int corners\nend_header\n3 0 1 2\n".into(), "line 3", "element `face` has no list `vertex_indices`"),
+        ];
+        for (text, location, message) in cases {
+            let err = read(text.as_bytes()).unwrap_err();
+            assert_eq!(
+                (err.location.as_str(), err.message.as_str()),
+                (location, message),
+                "{text}"
             );
         }
-        let err = read(b"ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n").unwrap_err();
-        assert_eq!(err.location, "line 8");
-        assert!(read(b"plx\n").is_err());
-        assert!(
-            read(b"ply\nformat ascii 1.0\nelement vertex 1\nproperty quux x\nend_header\n")
-                .is_err()
-        );
+        let err = read(b"ply\nformat ascii 1.0\nelement vertex 1\nproperty int64 x\nend_header\n")
+            .unwrap_err();
+        assert!(err.unsupported && err.location == "line 4", "{err:?}");
+        let err = read(b"ply\nformat binary_middle_endian 1.0\nend_header\n").unwrap_err();
+        assert!(err.unsupported && err.location == "line 2", "{err:?}");
+        let err = read(b"ply\nformat ascii 1.0\nelement vertex 1\n").unwrap_err();
+        assert_eq!(err.message, "file ends inside the header");
     }
 
     #[test]
     fn huge_counts_do_not_allocate_or_panic() {
-        let text = b"ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nend_header\n";
-        assert!(read(text).is_err());
+        let text = format!(
+            "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\n{XYZ}element nothing 18446744073709551615\nend_header\n"
+        );
+        assert!(read(text.as_bytes()).is_err());
+        let text = "ply\nformat ascii 1.0\nelement nothing 18446744073709551615\nelement face 1\nproperty list uint int vertex_indices\nend_header\n4000000000 1 2 3\n";
+        assert_eq!(read(text.as_bytes()).unwrap_err().location, "line 7");
     }
 }
