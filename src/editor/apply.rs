@@ -14,10 +14,9 @@ use crate::ops::local::{
     CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
 };
 use crate::ops::progressive::ProgressiveMesh;
-use crate::ops::simplify::SimplifyParams;
-use crate::ops::subdivide::{catmull_clark, loop_subdivide};
-use crate::ops::triangulate::triangulate;
 
+use super::history::Redraw;
+use super::jobs::GlobalOp;
 use super::render_sync::DirtyFaces;
 use super::requests::{ConfirmDiscard, EditOutcome, EditRequest, OutcomeLog, PendingDiscard};
 use super::selection::{ActiveMesh, MeshDirty, Selection, navigate};
@@ -94,8 +93,27 @@ pub fn apply(world: &mut World, request: &EditRequest) -> Result<String, String>
             | EditRequest::LevelOfDetail(_)
             | EditRequest::SplitVertex(_)
             | EditRequest::Simplify(..)
+            | EditRequest::CancelJob
+            | EditRequest::ConfirmDiscard(false)
     );
+    if request.edits()
+        && let Some(job) = &world.resource::<super::jobs::Jobs>().running
+    {
+        return Err(format!(
+            "{} is still running: wait for it, or cancel it (Esc)",
+            job.label
+        ));
+    }
+    let pending = super::history::begin(world, request);
+    if let Some((mesh, op)) = super::jobs::wants_job(world, request) {
+        return super::jobs::start(world, mesh, op, request.label(), pending);
+    }
     let result = apply_request(world, request);
+    if result.is_ok()
+        && let Some(pending) = pending
+    {
+        super::history::commit(world, pending, request.label());
+    }
     if result.is_ok() && !keeps_history {
         world.resource_mut::<History>().pm = None;
     }
@@ -116,6 +134,25 @@ pub fn apply(world: &mut World, request: &EditRequest) -> Result<String, String>
 
 fn apply_request(world: &mut World, request: &EditRequest) -> Result<String, String> {
     match request {
+        EditRequest::Undo | EditRequest::Redo => {
+            let redo = matches!(request, EditRequest::Redo);
+            let stepped = super::history::step(world, redo)?;
+            let selection = world.resource::<Selection>().element;
+            match stepped.redraw {
+                Redraw::Near {
+                    mesh,
+                    vertices,
+                    removed,
+                } => edited_locally(world, mesh, removed, &vertices, selection),
+                Redraw::Whole(Some(mesh)) => edited(world, mesh, selection),
+                Redraw::Whole(None) => {}
+            }
+            Ok(format!(
+                "{} {}",
+                if redo { "redid" } else { "undid" },
+                stepped.label
+            ))
+        }
         EditRequest::LevelOfDetail(faces) => {
             let Some(mut pm) = world.resource_mut::<History>().pm.take() else {
                 return Err("no simplification to move along: simplify first (Shift+S)".into());
@@ -186,55 +223,27 @@ fn apply_request(world: &mut World, request: &EditRequest) -> Result<String, Str
             edited_locally(world, mesh, before, &[*a, *b], Some(ElementId::Edge(e)));
             Ok(format!("new edge {e}"))
         }
-        EditRequest::Triangulate(mesh) => {
-            if world.get::<MeshInfo>(mesh.0).is_none() {
-                return Err(format!("{mesh} does not exist"));
-            }
-            let s = triangulate(world, *mesh);
-            let selection = world.resource::<Selection>().element;
-            edited(world, *mesh, selection);
-            Ok(format!(
-                "{} polygon(s) cut into triangles, {} face(s) added",
-                s.polygons, s.added_faces
-            ))
-        }
-        EditRequest::Simplify(mesh, ratio) => {
-            if world.get::<MeshInfo>(mesh.0).is_none() {
-                return Err(format!("{mesh} does not exist"));
-            }
-            let faces = crate::mesh::MeshMembers::collect(world, *mesh).faces.len();
-            let params = SimplifyParams::ratio(faces, f64::from(*ratio));
-            let (pm, s) =
-                ProgressiveMesh::simplify(world, *mesh, &params).map_err(|r| r.to_string())?;
-            world.resource_mut::<History>().pm = Some(pm);
-            let selection = world
-                .resource::<Selection>()
-                .element
-                .filter(|&x| super::selection::exists(&MeshRef::new(world), x));
-            edited(world, *mesh, selection);
-            Ok(format!(
-                "{} -> {} faces{}",
-                s.faces_before,
-                s.faces_after,
-                if s.reached_target {
-                    ""
-                } else {
-                    " (no legal collapse left before the target)"
-                }
-            ))
-        }
-        EditRequest::LoopSubdivide(mesh) | EditRequest::CatmullClark(mesh) => {
-            let result = if matches!(request, EditRequest::LoopSubdivide(_)) {
-                loop_subdivide(world, *mesh, 1)
-            } else {
-                catmull_clark(world, *mesh, 1)
+        EditRequest::Triangulate(_)
+        | EditRequest::Simplify(..)
+        | EditRequest::LoopSubdivide(_)
+        | EditRequest::CatmullClark(_)
+        | EditRequest::Remesh(_) => {
+            let Some((mesh, op)) = GlobalOp::of(request) else {
+                unreachable!("every whole-mesh request has an operation")
             };
-            let s = result.map_err(|r| r.to_string())?;
-            let selection = world.resource::<Selection>().element;
-            let keep = selection.filter(|x| matches!(x, ElementId::Vertex(_)));
-            edited(world, *mesh, keep);
-            Ok(format!("{} vertices, {} faces", s.vertices, s.faces))
+            let done = op.run(world, mesh, |_| true)?;
+            if let Some(pm) = done.progressive {
+                world.resource_mut::<History>().pm = Some(pm);
+            }
+            // Subdivision renumbers everything but the vertices.
+            let selection = world.resource::<Selection>().element.filter(|&x| {
+                (op.keeps_element_ids() || matches!(x, ElementId::Vertex(_)))
+                    && super::selection::exists(&MeshRef::new(world), x)
+            });
+            edited(world, mesh, selection);
+            Ok(done.summary)
         }
+        EditRequest::CancelJob => super::jobs::cancel(world),
         EditRequest::MoveVertex(v, p) => {
             if !p.is_finite() {
                 return Err(format!("{p} is not a finite position"));

@@ -37,6 +37,8 @@ pub enum Action {
     LoopSubdivide,
     /// Catmull–Clark-subdivide the active mesh once.
     CatmullClark,
+    /// Remesh the active mesh (isotropic, default parameters).
+    Remesh,
     /// Move the selection along a relation.
     Navigate(Relation),
     /// Change what a click selects.
@@ -53,6 +55,10 @@ pub enum Action {
     ToggleHalfedges,
     /// Delete the active mesh.
     DeleteMesh,
+    /// Undo the last edit.
+    Undo,
+    /// Redo the last undone edit.
+    Redo,
     /// Open a file (focuses the path field).
     Open,
     /// Save to the mesh's file.
@@ -179,6 +185,12 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "Catmull-Clark subdivision (to quads)",
     ),
     key(
+        KeyCode::KeyM,
+        "M",
+        Action::Remesh,
+        "isotropic remeshing (mean edge length, 5 iterations)",
+    ),
+    key(
         KeyCode::KeyH,
         "H",
         Action::Navigate(Relation::Halfedge),
@@ -254,7 +266,7 @@ pub const SHORTCUTS: &[Shortcut] = &[
         KeyCode::Escape,
         "Esc",
         Action::ClearSelection,
-        "select nothing",
+        "cancel the running operation, else select nothing",
     ),
     key(
         KeyCode::Period,
@@ -300,6 +312,9 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "open a file: a dialog, the path field, or drop one on the window",
     ),
     ctrl(KeyCode::KeyS, false, "Ctrl+S", Action::Save, "save"),
+    ctrl(KeyCode::KeyZ, false, "Ctrl+Z", Action::Undo, "undo"),
+    ctrl(KeyCode::KeyZ, true, "Ctrl+Shift+Z", Action::Redo, "redo"),
+    ctrl(KeyCode::KeyY, false, "Ctrl+Y", Action::Redo, "redo"),
     ctrl(
         KeyCode::KeyS,
         true,
@@ -414,7 +429,11 @@ pub fn perform(world: &mut World, action: Action) {
                 _ => EditRequest::Collapse(edge),
             }
         }
-        Action::Triangulate | Action::LoopSubdivide | Action::CatmullClark | Action::Simplify => {
+        Action::Triangulate
+        | Action::LoopSubdivide
+        | Action::CatmullClark
+        | Action::Remesh
+        | Action::Simplify => {
             let Some(mesh) = world.resource::<ActiveMesh>().0 else {
                 refuse(world, action, "there is no mesh");
                 return;
@@ -422,6 +441,7 @@ pub fn perform(world: &mut World, action: Action) {
             match action {
                 Action::Triangulate => EditRequest::Triangulate(mesh),
                 Action::LoopSubdivide => EditRequest::LoopSubdivide(mesh),
+                Action::Remesh => EditRequest::Remesh(mesh),
                 Action::Simplify => {
                     EditRequest::Simplify(mesh, world.resource::<UiState>().simplify_ratio)
                 }
@@ -429,8 +449,14 @@ pub fn perform(world: &mut World, action: Action) {
             }
         }
         Action::Navigate(relation) => EditRequest::Navigate(relation),
+        // Esc first stops a running operation, as in Blender.
+        Action::ClearSelection if world.resource::<super::jobs::Jobs>().running.is_some() => {
+            EditRequest::CancelJob
+        }
         Action::ClearSelection => EditRequest::Select(None),
         Action::DeleteMesh => EditRequest::DeleteMesh,
+        Action::Undo => EditRequest::Undo,
+        Action::Redo => EditRequest::Redo,
         Action::Save => EditRequest::Save(None),
         Action::Mode(mode) => {
             *world.resource_mut::<SelectMode>() = mode;

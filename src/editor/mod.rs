@@ -16,7 +16,9 @@ pub mod apply;
 pub mod automation;
 pub mod dialog;
 pub mod drag;
+pub mod history;
 pub mod input;
+pub mod jobs;
 pub mod overlay;
 pub mod picking;
 pub mod render_sync;
@@ -64,6 +66,9 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<ActiveMesh>()
             .init_resource::<OutcomeLog>()
             .init_resource::<apply::History>()
+            .init_resource::<history::UndoHistory>()
+            .init_resource::<jobs::Jobs>()
+            .init_resource::<jobs::JobSettings>()
             .init_resource::<requests::ConfirmDiscard>()
             .init_resource::<render_sync::ViewSettings>()
             .init_resource::<render_sync::RenderStats>()
@@ -84,9 +89,13 @@ impl Plugin for EditorLogicPlugin {
             .add_systems(
                 Update,
                 (
-                    input::keyboard_shortcuts.in_set(EditorSystems::Input),
+                    (history::track_presses, input::keyboard_shortcuts)
+                        .chain()
+                        .in_set(EditorSystems::Input),
                     picking::resolve_picks.in_set(EditorSystems::Request),
-                    apply::apply_requests.in_set(EditorSystems::Apply),
+                    (jobs::finish_jobs, apply::apply_requests)
+                        .chain()
+                        .in_set(EditorSystems::Apply),
                     (render_sync::sync_render_meshes, overlay::gather_overlay)
                         .chain()
                         .in_set(EditorSystems::Sync),

@@ -81,6 +81,8 @@ pub enum EditRequest {
     LoopSubdivide(MeshId),
     /// One level of Catmull–Clark subdivision.
     CatmullClark(MeshId),
+    /// Isotropic remeshing with the default parameters (mean edge length, 5 iterations).
+    Remesh(MeshId),
     /// Move a vertex.
     MoveVertex(VertexId, Vec3),
     /// Select an element (or nothing).
@@ -93,6 +95,12 @@ pub enum EditRequest {
     Save(Option<PathBuf>),
     /// Delete the current mesh.
     DeleteMesh,
+    /// Cancel the operation running as a job (the mesh stays as it was).
+    CancelJob,
+    /// Undo the last edit.
+    Undo,
+    /// Redo the last undone edit.
+    Redo,
     /// Answer the unsaved-changes question: `true` discards the changes and goes on with what
     /// was asked (opening another file, quitting), `false` cancels it.
     ConfirmDiscard(bool),
@@ -113,6 +121,7 @@ impl EditRequest {
             EditRequest::SplitVertex(v) => format!("split {v} back"),
             EditRequest::LoopSubdivide(m) => format!("Loop subdivision {m}"),
             EditRequest::CatmullClark(m) => format!("Catmull-Clark subdivision {m}"),
+            EditRequest::Remesh(m) => format!("remesh {m}"),
             EditRequest::MoveVertex(v, _) => format!("move {v}"),
             EditRequest::Select(Some(x)) => format!("select {x}"),
             EditRequest::Select(None) => "select nothing".into(),
@@ -121,6 +130,9 @@ impl EditRequest {
             EditRequest::Save(Some(p)) => format!("save as {}", p.display()),
             EditRequest::Save(None) => "save".into(),
             EditRequest::DeleteMesh => "delete mesh".into(),
+            EditRequest::CancelJob => "cancel".into(),
+            EditRequest::Undo => "undo".into(),
+            EditRequest::Redo => "redo".into(),
             EditRequest::ConfirmDiscard(true) => "discard changes".into(),
             EditRequest::ConfirmDiscard(false) => "keep changes".into(),
         }
@@ -134,6 +146,7 @@ impl EditRequest {
                 | EditRequest::Navigate(_)
                 | EditRequest::Save(_)
                 | EditRequest::ConfirmDiscard(_)
+                | EditRequest::CancelJob
         )
     }
 }

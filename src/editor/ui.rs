@@ -75,6 +75,12 @@ pub struct InspectorView {
     pub stats_generation: usize,
     /// The simplification history: (coarsest, current, full) face counts.
     pub lod: Option<(usize, usize, usize)>,
+    /// The undo history, oldest first: each entry's label and whether it is undone (redoable).
+    pub history: Vec<(String, bool)>,
+    /// Bytes the undo history holds.
+    pub history_bytes: usize,
+    /// The running job: its label, the fraction done and the seconds since it started.
+    pub job: Option<(String, f32, f32)>,
 }
 
 /// The active mesh as shown.
@@ -165,6 +171,33 @@ pub fn snapshot(world: &mut World) {
         .map(|pm| {
             let coarsest = pm.full_faces - pm.records.iter().map(|r| r.faces).sum::<usize>();
             (coarsest, pm.faces(), pm.full_faces)
+        });
+    let history = world.resource::<super::history::UndoHistory>();
+    view.history.clear();
+    view.history.extend(
+        history
+            .undo_entries()
+            .iter()
+            .map(|e| (e.label.clone(), false))
+            .chain(
+                history
+                    .redo_entries()
+                    .iter()
+                    .rev()
+                    .map(|e| (e.label.clone(), true)),
+            ),
+    );
+    view.history_bytes = history.bytes();
+    view.job = world
+        .resource::<super::jobs::Jobs>()
+        .running
+        .as_ref()
+        .map(|j| {
+            (
+                j.label.clone(),
+                j.progress.fraction(),
+                j.started.elapsed().as_secs_f32(),
+            )
         });
     let m = MeshRef::new(world);
     view.selected = world
@@ -298,6 +331,16 @@ pub fn panels(
                 selection_section(ui, &view, &mut fields, &mut requests);
                 ui.separator();
                 operations_section(ui, &mut mode, &settings, &mut pending, &mut ui_state);
+                if let Some((label, fraction, seconds)) = &view.job {
+                    ui.horizontal(|ui| {
+                        let text = format!("{label}: {:.0} % ({seconds:.1} s)", fraction * 100.0);
+                        let bar = egui::ProgressBar::new(*fraction).text(text).animate(true);
+                        ui.add(bar.desired_width(ui.available_width() - 70.0));
+                        if ui.button("Cancel").clicked() {
+                            requests.write(EditRequest::CancelJob);
+                        }
+                    });
+                }
                 if let Some((coarsest, now, full)) = view.lod {
                     let mut faces = now;
                     let slider = egui::Slider::new(&mut faces, coarsest..=full)
@@ -306,6 +349,8 @@ pub fn panels(
                         requests.write(EditRequest::LevelOfDetail(faces));
                     }
                 }
+                ui.separator();
+                history_section(ui, &view, &mut pending);
                 ui.separator();
                 ui.label(egui::RichText::new("Log").strong());
                 for entry in log.entries.iter().rev().take(30) {
@@ -572,6 +617,35 @@ fn selection_section(
     }
 }
 
+/// Undo / redo buttons and the list of entries, the newest first; undone ones are greyed.
+fn history_section(ui: &mut egui::Ui, view: &InspectorView, pending: &mut PendingActions) {
+    let done = view.history.iter().filter(|(_, undone)| !undone).count();
+    ui.horizontal(|ui| {
+        ui.label(egui::RichText::new("History").strong());
+        let undo = format!("Undo ({})", shortcut_label(Action::Undo));
+        if ui.add_enabled(done > 0, egui::Button::new(undo)).clicked() {
+            pending.0.push(Action::Undo);
+        }
+        let redo = format!("Redo ({})", shortcut_label(Action::Redo));
+        let can_redo = done < view.history.len();
+        if ui.add_enabled(can_redo, egui::Button::new(redo)).clicked() {
+            pending.0.push(Action::Redo);
+        }
+    });
+    ui.label(
+        egui::RichText::new(format!(
+            "{} step(s), {:.1} MB",
+            view.history.len(),
+            view.history_bytes as f64 / 1e6
+        ))
+        .small(),
+    );
+    for (label, undone) in view.history.iter().rev().take(12) {
+        let text = egui::RichText::new(label).small();
+        ui.label(if *undone { text.weak().italics() } else { text });
+    }
+}
+
 fn operations_section(
     ui: &mut egui::Ui,
     mode: &mut SelectMode,
@@ -591,6 +665,7 @@ fn operations_section(
             (Action::Triangulate, "Triangulate"),
             (Action::LoopSubdivide, "Loop"),
             (Action::CatmullClark, "Catmull-Clark"),
+            (Action::Remesh, "Remesh"),
             (Action::Frame, "Frame"),
             (Action::DeleteMesh, "Delete mesh"),
         ] {

@@ -98,7 +98,12 @@ pub fn extract(world: &World, mesh: MeshId) -> Extracted {
 
 /// Replaces the contents of `mesh` with `tables`, reusing the old entities row for row (the
 /// first `old.vertices.len()` table vertices keep their vertex entities, so a selected vertex
-/// stays selected) and spawning or despawning the difference.
-pub fn replace_contents(world: &mut World, mesh: MeshId, old: &MeshMembers, tables: &Connectivity) {
-    write_tables(world, tables, mesh, Some(old));
+/// stays selected) and spawning or despawning the difference. Returns the entity of every row.
+pub fn replace_contents(
+    world: &mut World,
+    mesh: MeshId,
+    old: &MeshMembers,
+    tables: &Connectivity,
+) -> MeshMembers {
+    write_tables(world, tables, mesh, Some(old))
 }

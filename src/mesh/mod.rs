@@ -19,6 +19,7 @@
 
 pub mod arrays;
 pub mod build;
+pub mod change;
 pub mod connectivity;
 pub mod elements;
 pub mod ids;

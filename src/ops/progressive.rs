@@ -71,6 +71,21 @@ impl ProgressiveMesh {
         mesh: MeshId,
         params: &SimplifyParams,
     ) -> Result<(ProgressiveMesh, SimplifySummary), Refusal> {
+        Self::simplify_with_progress(world, mesh, params, |_| true)
+    }
+
+    /// [`ProgressiveMesh::simplify`] with a progress callback, as
+    /// [`crate::ops::simplify::simplify_with_progress`] (stopping early records the collapses
+    /// made so far).
+    ///
+    /// # Refusals
+    /// As [`crate::ops::simplify::simplify`].
+    pub fn simplify_with_progress(
+        world: &mut World,
+        mesh: MeshId,
+        params: &SimplifyParams,
+        progress: impl FnMut(f32) -> bool,
+    ) -> Result<(ProgressiveMesh, SimplifySummary), Refusal> {
         let vertices = MeshMembers::collect(world, mesh).vertices;
         let mut slot_of: EntityHashMap<u32> = EntityHashMap::default();
         let mut slots = Vec::with_capacity(vertices.len());
@@ -79,7 +94,7 @@ impl ProgressiveMesh {
             slots.push(Some(v));
         }
         let mut records = Vec::new();
-        let summary = simplify_recorded(world, mesh, params, |r: &CollapseResult| {
+        let summary = simplify_recorded(world, mesh, params, progress, |r: &CollapseResult| {
             let slot = |v: VertexId| slot_of[&v.0];
             let rec = &r.record;
             records.push(SlotRecord {
@@ -119,6 +134,16 @@ impl ProgressiveMesh {
             current[r.removed as usize] = r.removed_position;
         }
         Ok((pm, summary))
+    }
+
+    /// Moves the history to another world: `mesh` is the mesh there, and `map` takes each
+    /// vertex entity the history names to the entity that holds that vertex there (vertices not
+    /// in the map keep their ids).
+    pub fn remap(&mut self, mesh: MeshId, map: &EntityHashMap<bevy::prelude::Entity>) {
+        self.mesh = mesh;
+        for v in self.slots.iter_mut().flatten() {
+            v.0 = map.get(&v.0).copied().unwrap_or(v.0);
+        }
     }
 
     /// Faces at the current level.

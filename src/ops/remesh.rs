@@ -76,6 +76,20 @@ pub fn remesh(
     mesh: MeshId,
     params: &RemeshParams,
 ) -> Result<RemeshSummary, Refusal> {
+    remesh_with_progress(world, mesh, params, |_| true)
+}
+
+/// [`remesh`], calling `progress(fraction done)` after each split, collapse, flip and smoothing
+/// pass; returning `false` stops after that pass (the mesh is then valid, less remeshed).
+///
+/// # Refusals
+/// As [`remesh`].
+pub fn remesh_with_progress(
+    world: &mut World,
+    mesh: MeshId,
+    params: &RemeshParams,
+    mut progress: impl FnMut(f32) -> bool,
+) -> Result<RemeshSummary, Refusal> {
     if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
         return Err(Refusal::Stale(ElementId::Mesh(mesh)));
     }
@@ -103,15 +117,29 @@ pub fn remesh(
         flips: 0,
     };
     let (high, low) = (4.0 / 3.0 * length, 4.0 / 5.0 * length);
-    for _ in 0..params.iterations {
+    let passes = params.iterations as f32 * 4.0;
+    let mut done = |pass: u32, i: u32| progress((i as f32 * 4.0 + pass as f32) / passes);
+    for i in 0..params.iterations {
         summary.splits += split_long(world, mesh, high, &mut features);
+        if !done(1, i) {
+            break;
+        }
         summary.collapses += collapse_short(world, mesh, low, high, &features);
+        if !done(2, i) {
+            break;
+        }
         summary.flips += flip_to_valence(world, mesh, &features);
+        if !done(3, i) {
+            break;
+        }
         // Smooth in small steps, then project back onto the input once per iteration (each
         // projection searches the input's triangles: the expensive part).
         for step in 0..params.smoothing_steps.max(1) {
             let last = step + 1 == params.smoothing_steps.max(1);
             smooth_and_project(world, mesh, &features, last.then_some(&reference));
+        }
+        if !done(4, i) {
+            break;
         }
     }
     Ok(summary)

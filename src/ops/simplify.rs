@@ -184,7 +184,7 @@ pub fn simplify_with_progress(
     simplify_inner(world, mesh, params, progress, |_| {})
 }
 
-/// [`simplify`], handing every collapse it makes to `record` in order (what
+/// [`simplify_with_progress`], handing every collapse it makes to `record` in order (what
 /// [`crate::ops::progressive`] keeps to split them back).
 ///
 /// # Refusals
@@ -193,9 +193,10 @@ pub fn simplify_recorded(
     world: &mut World,
     mesh: MeshId,
     params: &SimplifyParams,
+    progress: impl FnMut(f32) -> bool,
     record: impl FnMut(&super::local::CollapseResult),
 ) -> Result<SimplifySummary, Refusal> {
-    simplify_inner(world, mesh, params, |_| true, record)
+    simplify_inner(world, mesh, params, progress, record)
 }
 
 fn simplify_inner(

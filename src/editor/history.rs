@@ -1,0 +1,448 @@
+//! Undo and redo for every edit (Ctrl+Z; Ctrl+Shift+Z or Ctrl+Y).
+//!
+//! Before [`super::apply`] runs an edit, [`begin`] captures what the edit may change, by its
+//! reach (see [`crate::mesh::change`]): the neighbourhood of a local edit, the tables of a
+//! mesh-wide one, the whole mesh for an open or a delete. Once the edit has succeeded,
+//! [`commit`] turns that into an [`Entry`] on the undo stack; a refused edit leaves no entry.
+//! Undoing applies the entry's record and keeps its inverse on the redo stack, and the other
+//! way round; any new edit clears the redo stack.
+//!
+//! Elements brought back by an undo get new entities (Bevy never reuses an id), so every
+//! application returns a remap, which is passed to the entries that name the restored state:
+//! the rest of the stack the entry came from. The selection is remapped the same way and
+//! returns to what it was on the restored side.
+//!
+//! The entries hold only what changed, and their bytes are counted: past
+//! [`UndoHistory::limit_bytes`] the oldest are dropped. Consecutive moves of one vertex within
+//! one press of the mouse button (a drag, a drag of a panel field) are one entry, as are the
+//! steps of one drag of the level-of-detail slider.
+
+use bevy::input::ButtonInput;
+use bevy::input::mouse::MouseButton;
+use bevy::prelude::{Res, ResMut, Resource, World};
+
+use crate::mesh::change::{Change, LocalRecorder, MeshTables, Remap, SavedMesh, remapped};
+use crate::mesh::despawn_mesh;
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
+use crate::mesh::topology::MeshRef;
+use crate::mesh::{InMesh, MeshInfo};
+
+use super::requests::{EditRequest, PendingDiscard};
+use super::selection::{ActiveMesh, Selection};
+
+/// What an entry puts back.
+enum Record {
+    /// A local edit's changed elements.
+    Local(Change),
+    /// A mesh's whole contents (the mesh entity stays).
+    Whole(MeshTables),
+    /// One mesh replaced by another: `remove` is despawned, `restore` spawned again.
+    Replace {
+        remove: Option<MeshId>,
+        restore: Option<SavedMesh>,
+    },
+}
+
+impl Record {
+    fn bytes(&self) -> usize {
+        match self {
+            Record::Local(c) => c.bytes(),
+            Record::Whole(t) => t.bytes(),
+            Record::Replace { restore, .. } => restore.as_ref().map_or(0, SavedMesh::bytes),
+        }
+    }
+
+    fn remap(&mut self, map: &mut Remap) {
+        match self {
+            Record::Local(c) => c.remap(map),
+            Record::Whole(t) => t.remap(map),
+            Record::Replace { remove, restore } => {
+                if let Some(m) = remove {
+                    *m = MeshId(remapped(map, m.0));
+                }
+                if let Some(s) = restore {
+                    s.remap(map);
+                }
+            }
+        }
+    }
+
+    /// Applies the record: returns its inverse, the remap, and what to redraw.
+    fn apply(self, world: &mut World) -> (Record, Remap, Redraw) {
+        match self {
+            Record::Local(change) => {
+                let mesh = change.mesh;
+                let (inverse, map, touched) = change.apply(world);
+                let redraw = Redraw::Near {
+                    mesh,
+                    vertices: touched.vertices,
+                    removed: touched.removed_faces,
+                };
+                (Record::Local(inverse), map, redraw)
+            }
+            Record::Whole(tables) => {
+                let mesh = tables.mesh;
+                let (inverse, map) = tables.apply(world);
+                (Record::Whole(inverse), map, Redraw::Whole(Some(mesh)))
+            }
+            Record::Replace { remove, restore } => {
+                let saved = remove
+                    .filter(|m| world.get::<MeshInfo>(m.0).is_some())
+                    .map(|m| {
+                        let saved = SavedMesh::capture(world, m);
+                        despawn_mesh(world, m);
+                        saved
+                    });
+                let (mesh, map) = match restore {
+                    Some(s) => {
+                        let (mesh, map) = s.restore(world);
+                        (Some(mesh), map)
+                    }
+                    None => (None, Remap::default()),
+                };
+                world.resource_mut::<ActiveMesh>().0 = mesh;
+                let inverse = Record::Replace {
+                    remove: mesh,
+                    restore: saved,
+                };
+                (inverse, map, Redraw::Whole(mesh))
+            }
+        }
+    }
+}
+
+/// What must be redrawn after an entry was applied.
+pub enum Redraw {
+    /// The faces around these vertices, and these (now removed) faces.
+    Near {
+        /// The mesh.
+        mesh: MeshId,
+        /// Vertices brought back or changed.
+        vertices: Vec<VertexId>,
+        /// Faces removed (they leave the render copy).
+        removed: Vec<FaceId>,
+    },
+    /// The whole mesh (now the active one, if any).
+    Whole(Option<MeshId>),
+}
+
+/// Edits that merge into the entry before them while the mouse button stays down.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum MergeKey {
+    Move(VertexId),
+    LevelOfDetail,
+}
+
+/// One undoable step.
+pub struct Entry {
+    /// What the edit was (the request's label).
+    pub label: String,
+    record: Record,
+    /// The selection on the side this entry restores.
+    selection: Option<ElementId>,
+    /// Set while later edits of the same kind may merge into this entry.
+    merge: Option<(MergeKey, u64)>,
+    bytes: usize,
+}
+
+impl Entry {
+    /// Bytes the entry holds.
+    pub fn bytes(&self) -> usize {
+        self.bytes
+    }
+
+    fn remap(&mut self, map: &mut Remap) {
+        self.record.remap(map);
+        self.selection = self.selection.map(|x| remap_element(x, map));
+    }
+}
+
+/// The undo and redo stacks.
+#[derive(Resource)]
+pub struct UndoHistory {
+    undo: Vec<Entry>,
+    redo: Vec<Entry>,
+    /// The most bytes the entries may hold together; the oldest go first (the newest entry
+    /// always stays, however large).
+    pub limit_bytes: usize,
+    /// Counts presses of the left mouse button; edits within one press may merge.
+    press: u64,
+    pressed: bool,
+}
+
+impl Default for UndoHistory {
+    fn default() -> Self {
+        Self {
+            undo: Vec::new(),
+            redo: Vec::new(),
+            limit_bytes: Self::DEFAULT_LIMIT_BYTES,
+            press: 0,
+            pressed: false,
+        }
+    }
+}
+
+impl UndoHistory {
+    /// The default memory cap: 512 MiB.
+    pub const DEFAULT_LIMIT_BYTES: usize = 512 << 20;
+
+    /// The undoable entries, oldest first.
+    pub fn undo_entries(&self) -> &[Entry] {
+        &self.undo
+    }
+
+    /// The redoable entries, the next one to redo last.
+    pub fn redo_entries(&self) -> &[Entry] {
+        &self.redo
+    }
+
+    /// Bytes held by both stacks.
+    pub fn bytes(&self) -> usize {
+        self.undo.iter().chain(&self.redo).map(|e| e.bytes).sum()
+    }
+
+    /// Forgets everything.
+    pub fn clear(&mut self) {
+        self.undo.clear();
+        self.redo.clear();
+    }
+
+    fn push(&mut self, entry: Entry) {
+        self.redo.clear();
+        self.undo.push(entry);
+        self.trim();
+    }
+
+    /// Drops the oldest entries past the memory cap, keeping at least the newest one.
+    fn trim(&mut self) {
+        let mut total = self.bytes();
+        let mut drop = 0;
+        while total > self.limit_bytes && drop + 1 < self.undo.len() {
+            total -= self.undo[drop].bytes;
+            drop += 1;
+        }
+        self.undo.drain(..drop);
+    }
+
+    fn can_merge(&self, key: MergeKey) -> bool {
+        self.pressed
+            && self.redo.is_empty()
+            && self
+                .undo
+                .last()
+                .is_some_and(|e| e.merge == Some((key, self.press)))
+    }
+}
+
+/// Follows the left mouse button, so that a drag's edits merge into one entry (the `Input`
+/// set; without a mouse nothing merges).
+pub fn track_presses(
+    buttons: Option<Res<ButtonInput<MouseButton>>>,
+    mut history: ResMut<UndoHistory>,
+) {
+    let Some(buttons) = buttons else {
+        return;
+    };
+    if buttons.just_pressed(MouseButton::Left) {
+        history.press += 1;
+    }
+    history.pressed = buttons.pressed(MouseButton::Left);
+}
+
+/// What [`begin`] captured before an edit.
+pub struct Pending {
+    kind: PendingKind,
+    selection: Option<ElementId>,
+    merge: Option<MergeKey>,
+}
+
+enum PendingKind {
+    Local(LocalRecorder),
+    Whole(MeshTables),
+    Replace(Option<SavedMesh>),
+    /// The edit continues the last entry.
+    Merge,
+}
+
+/// Captures what `request` may change, before it runs. `None` for requests that change no
+/// mesh, or that will be refused because what they name is gone.
+pub fn begin(world: &World, request: &EditRequest) -> Option<Pending> {
+    let m = MeshRef::new(world);
+    let mesh_of = |e: bevy::prelude::Entity| world.get::<InMesh>(e).map(|x| x.0);
+    let local = |mesh: Option<MeshId>, seeds: &[VertexId]| {
+        mesh.map(|mesh| PendingKind::Local(LocalRecorder::begin(world, mesh, seeds)))
+    };
+    let whole = |mesh: MeshId| {
+        world
+            .get::<MeshInfo>(mesh.0)
+            .map(|_| PendingKind::Whole(MeshTables::capture(world, mesh)))
+    };
+    let replace = || {
+        let active = world.resource::<ActiveMesh>().0;
+        let saved = active
+            .filter(|a| world.get::<MeshInfo>(a.0).is_some())
+            .map(|a| SavedMesh::capture(world, a));
+        Some(PendingKind::Replace(saved))
+    };
+    let history = world.resource::<UndoHistory>();
+    let mut merge = None;
+    let kind = match request {
+        EditRequest::Flip(e)
+        | EditRequest::Split(e)
+        | EditRequest::Collapse(e)
+        | EditRequest::Dissolve(e) => {
+            m.try_edge(*e)?;
+            let (a, b) = m.edge_vertices(*e);
+            local(mesh_of(e.0), &[a, b])
+        }
+        EditRequest::SplitFace(f, a, b) => local(mesh_of(f.0), &[*a, *b]),
+        EditRequest::SplitVertex(v) => local(mesh_of(v.0), &[*v]),
+        EditRequest::MoveVertex(v, _) => {
+            merge = Some(MergeKey::Move(*v));
+            if history.can_merge(MergeKey::Move(*v)) {
+                Some(PendingKind::Merge)
+            } else {
+                local(mesh_of(v.0), &[*v])
+            }
+        }
+        EditRequest::LevelOfDetail(_) => {
+            merge = Some(MergeKey::LevelOfDetail);
+            if history.can_merge(MergeKey::LevelOfDetail) {
+                Some(PendingKind::Merge)
+            } else {
+                let pm = world.resource::<super::apply::History>().pm.as_ref()?;
+                whole(pm.mesh)
+            }
+        }
+        EditRequest::Triangulate(mesh)
+        | EditRequest::Simplify(mesh, _)
+        | EditRequest::LoopSubdivide(mesh)
+        | EditRequest::CatmullClark(mesh)
+        | EditRequest::Remesh(mesh) => whole(*mesh),
+        EditRequest::Open(_) | EditRequest::DeleteMesh => replace(),
+        EditRequest::ConfirmDiscard(true) => {
+            match world.resource::<super::requests::ConfirmDiscard>().0 {
+                Some(PendingDiscard::Open(_)) => replace(),
+                _ => None,
+            }
+        }
+        EditRequest::ConfirmDiscard(false)
+        | EditRequest::Select(_)
+        | EditRequest::Navigate(_)
+        | EditRequest::Save(_)
+        | EditRequest::CancelJob
+        | EditRequest::Undo
+        | EditRequest::Redo => None,
+    }?;
+    Some(Pending {
+        kind,
+        selection: world.resource::<Selection>().element,
+        merge,
+    })
+}
+
+/// Records a successful edit as an entry (clearing the redo stack).
+pub fn commit(world: &mut World, pending: Pending, label: String) {
+    let record = match pending.kind {
+        PendingKind::Local(recorder) => {
+            let change = recorder.finish(world);
+            if change.is_empty() {
+                return;
+            }
+            Record::Local(change)
+        }
+        PendingKind::Whole(tables) => Record::Whole(tables),
+        PendingKind::Replace(restore) => Record::Replace {
+            remove: world.resource::<ActiveMesh>().0,
+            restore,
+        },
+        PendingKind::Merge => {
+            world.resource_mut::<UndoHistory>().redo.clear();
+            return;
+        }
+    };
+    let mut history = world.resource_mut::<UndoHistory>();
+    let press = history.press;
+    let bytes = record.bytes() + label.capacity() + std::mem::size_of::<Entry>();
+    history.push(Entry {
+        label,
+        record,
+        selection: pending.selection,
+        merge: pending.merge.map(|key| (key, press)),
+        bytes,
+    });
+}
+
+/// What an undo or redo did.
+pub struct Stepped {
+    /// The entry's label.
+    pub label: String,
+    /// What to redraw.
+    pub redraw: Redraw,
+}
+
+/// Undoes the last entry (`redo == false`) or redoes the last undone one.
+///
+/// # Errors
+/// When there is nothing to undo (or redo); nothing changes then.
+pub fn step(world: &mut World, redo: bool) -> Result<Stepped, String> {
+    let mut history = world.resource_mut::<UndoHistory>();
+    let from = if redo {
+        &mut history.redo
+    } else {
+        &mut history.undo
+    };
+    let Some(entry) = from.pop() else {
+        return Err(format!("nothing to {}", if redo { "redo" } else { "undo" }));
+    };
+    let now_selected = world.resource::<Selection>().element;
+    let (inverse, mut map, redraw) = entry.record.apply(world);
+    let mut history = world.resource_mut::<UndoHistory>();
+    let from = if redo {
+        &mut history.redo
+    } else {
+        &mut history.undo
+    };
+    for other in from.iter_mut() {
+        other.remap(&mut map);
+    }
+    let selection = entry
+        .selection
+        .map(|x| remap_element(x, &mut map))
+        .filter(|&x| super::selection::exists(&MeshRef::new(world), x));
+    let bytes = inverse.bytes() + entry.label.capacity() + std::mem::size_of::<Entry>();
+    let back = Entry {
+        label: entry.label.clone(),
+        record: inverse,
+        selection: now_selected,
+        merge: None,
+        bytes,
+    };
+    let mut history = world.resource_mut::<UndoHistory>();
+    if redo {
+        history.undo.push(back);
+        history.trim();
+    } else {
+        history.redo.push(back);
+    }
+    world.resource_mut::<Selection>().element = selection;
+    Ok(Stepped {
+        label: entry.label,
+        redraw,
+    })
+}
+
+fn remap_element(x: ElementId, map: &mut Remap) -> ElementId {
+    with_entity(x, remapped(map, x.entity()))
+}
+
+/// The same kind of element id, for another entity.
+pub fn with_entity(x: ElementId, e: bevy::prelude::Entity) -> ElementId {
+    match x {
+        ElementId::Vertex(_) => ElementId::Vertex(VertexId(e)),
+        ElementId::Halfedge(_) => ElementId::Halfedge(HalfedgeId(e)),
+        ElementId::Edge(_) => ElementId::Edge(EdgeId(e)),
+        ElementId::Face(_) => ElementId::Face(FaceId(e)),
+        ElementId::Mesh(_) => ElementId::Mesh(MeshId(e)),
+    }
+}

@@ -1,0 +1,546 @@
+//! Recording what an edit changed, so that it can be undone and redone exactly.
+//!
+//! Three records, by the reach of the edit:
+//! - [`Change`], for local edits (flip, split, collapse, a vertex move, …): the prior state of
+//!   every element the edit touched. [`LocalRecorder`] captures a neighbourhood of the edit's
+//!   seed vertices before it runs and compares it afterwards, keeping only what differs:
+//!   elements removed (with their components), created (their ids) and modified (their old
+//!   components). A few hundred bytes, whatever the size of the mesh.
+//! - [`MeshTables`], for whole-mesh edits (subdivision, simplification, …): the mesh as flat
+//!   index tables with the entity behind every row, about 32 bytes a halfedge.
+//! - [`SavedMesh`], for a mesh that is deleted or replaced: its tables and its [`MeshInfo`].
+//!
+//! Applying a record puts the world back in the recorded state and returns the inverse record
+//! (apply that to redo) and a [`Remap`]. Bevy never hands out a despawned id again (the
+//! generation is bumped), so elements brought back get new entities; the remap takes every id
+//! the record held to the entity that now stands for it, and every other record that may name
+//! those ids must be passed through it ([`Change::remap`], [`MeshTables::remap`]).
+//!
+//! States are compared bitwise (`-0.0` is not `0.0`), so an undo restores positions exactly.
+
+use bevy::ecs::entity::{EntityHashMap, EntityHashSet};
+use bevy::math::Vec3;
+use bevy::prelude::{Component, Entity, World};
+
+use super::arrays::{Extracted, extract};
+use super::build::write_tables;
+use super::connectivity::Connectivity;
+use super::elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
+use super::ids::{FaceId, MeshId, VertexId};
+use super::members::MeshMembers;
+use super::topology::MeshRef;
+
+/// From the ids a record held to the entities that stand for them after it was applied. Ids
+/// not in the map are unchanged.
+pub type Remap = EntityHashMap<Entity>;
+
+/// Passes one id through a remap.
+#[inline]
+pub fn remapped(map: &Remap, e: Entity) -> Entity {
+    map.get(&e).copied().unwrap_or(e)
+}
+
+/// The components of one element: what an undo writes back.
+#[derive(Clone, Copy, Debug)]
+pub enum ElementState {
+    /// A vertex and its position.
+    Vertex(Vertex, Vec3),
+    /// A halfedge.
+    Halfedge(Halfedge),
+    /// An edge.
+    Edge(Edge),
+    /// A face.
+    Face(Face),
+}
+
+impl ElementState {
+    /// The state of element `e`, or `None` if `e` is not a live element.
+    pub fn of(world: &World, e: Entity) -> Option<Self> {
+        let r = world.get_entity(e).ok()?;
+        if let Some(h) = r.get::<Halfedge>() {
+            Some(Self::Halfedge(*h))
+        } else if let Some(v) = r.get::<Vertex>() {
+            Some(Self::Vertex(*v, r.get::<Position>()?.0))
+        } else if let Some(x) = r.get::<Edge>() {
+            Some(Self::Edge(*x))
+        } else {
+            r.get::<Face>().map(|f| Self::Face(*f))
+        }
+    }
+
+    /// Equal links and bitwise-equal position.
+    pub fn same(&self, other: &Self) -> bool {
+        match (self, other) {
+            (Self::Vertex(a, p), Self::Vertex(b, q)) => {
+                a == b && p.to_array().map(f32::to_bits) == q.to_array().map(f32::to_bits)
+            }
+            (Self::Halfedge(a), Self::Halfedge(b)) => a == b,
+            (Self::Edge(a), Self::Edge(b)) => a == b,
+            (Self::Face(a), Self::Face(b)) => a == b,
+            _ => false,
+        }
+    }
+
+    /// Whether this is a vertex's state.
+    pub fn is_vertex(&self) -> bool {
+        matches!(self, Self::Vertex(..))
+    }
+
+    /// Passes every link through `map`.
+    pub fn remap(&mut self, map: &mut Remap) {
+        match self {
+            Self::Vertex(v, _) => Component::map_entities(v, map),
+            Self::Halfedge(h) => Component::map_entities(h, map),
+            Self::Edge(x) => Component::map_entities(x, map),
+            Self::Face(f) => Component::map_entities(f, map),
+        }
+    }
+
+    /// Overwrites live element `e` with this state (nothing if `e` is gone).
+    fn write(self, world: &mut World, e: Entity) {
+        let Ok(mut r) = world.get_entity_mut(e) else {
+            return;
+        };
+        match self {
+            Self::Vertex(v, p) => {
+                if let Some(mut x) = r.get_mut::<Vertex>() {
+                    *x = v;
+                }
+                if let Some(mut x) = r.get_mut::<Position>() {
+                    x.0 = p;
+                }
+            }
+            Self::Halfedge(h) => {
+                if let Some(mut x) = r.get_mut::<Halfedge>() {
+                    *x = h;
+                }
+            }
+            Self::Edge(edge) => {
+                if let Some(mut x) = r.get_mut::<Edge>() {
+                    *x = edge;
+                }
+            }
+            Self::Face(f) => {
+                if let Some(mut x) = r.get_mut::<Face>() {
+                    *x = f;
+                }
+            }
+        }
+    }
+
+    /// Spawns this state as element `e` of `mesh` (`e` must be allocated and not spawned).
+    fn spawn_at(self, world: &mut World, e: Entity, mesh: MeshId) {
+        let member = InMesh(mesh);
+        let spawned = match self {
+            Self::Vertex(v, p) => world.spawn_at(e, (v, Position(p), member)).map(|_| ()),
+            Self::Halfedge(h) => world.spawn_at(e, (h, member)).map(|_| ()),
+            Self::Edge(x) => world.spawn_at(e, (x, member)).map(|_| ()),
+            Self::Face(f) => world.spawn_at(e, (f, member)).map(|_| ()),
+        };
+        // The entity was allocated just before: spawning it cannot fail.
+        spawned.expect("a freshly allocated entity can be spawned");
+    }
+}
+
+/// What a local edit changed, as the edit that undoes it: elements to bring back, to remove and
+/// to overwrite. Applying it returns the change that redoes the edit.
+#[derive(Clone, Debug)]
+pub struct Change {
+    /// The mesh the elements belong to.
+    pub mesh: MeshId,
+    spawn: Vec<(Entity, ElementState)>,
+    despawn: Vec<Entity>,
+    write: Vec<(Entity, ElementState)>,
+}
+
+/// Entities a change touched once applied, for redrawing.
+#[derive(Clone, Debug, Default)]
+pub struct Touched {
+    /// Vertices spawned or overwritten (their current entities).
+    pub vertices: Vec<VertexId>,
+    /// Faces removed.
+    pub removed_faces: Vec<FaceId>,
+}
+
+impl Change {
+    /// Whether the change does nothing.
+    pub fn is_empty(&self) -> bool {
+        self.spawn.is_empty() && self.despawn.is_empty() && self.write.is_empty()
+    }
+
+    /// Elements it brings back, removes and overwrites.
+    pub fn counts(&self) -> (usize, usize, usize) {
+        (self.spawn.len(), self.despawn.len(), self.write.len())
+    }
+
+    /// Bytes held (what the history's memory cap counts).
+    pub fn bytes(&self) -> usize {
+        let state = std::mem::size_of::<(Entity, ElementState)>();
+        std::mem::size_of::<Self>()
+            + (self.spawn.capacity() + self.write.capacity()) * state
+            + self.despawn.capacity() * std::mem::size_of::<Entity>()
+    }
+
+    /// Puts the recorded states back. Returns the inverse change, the remap from the ids of
+    /// the elements brought back to their new entities, and what was touched.
+    pub fn apply(self, world: &mut World) -> (Change, Remap, Touched) {
+        let mut map = Remap::default();
+        let fresh: Vec<Entity> = self
+            .spawn
+            .iter()
+            .map(|&(old, _)| {
+                let new = world.entity_allocator().alloc();
+                map.insert(old, new);
+                new
+            })
+            .collect();
+        let state_of = |world: &World, &e: &Entity| Some((e, ElementState::of(world, e)?));
+        let inverse = Change {
+            mesh: self.mesh,
+            spawn: self
+                .despawn
+                .iter()
+                .filter_map(|e| state_of(world, e))
+                .collect(),
+            despawn: fresh.clone(),
+            write: self
+                .write
+                .iter()
+                .filter_map(|(e, _)| state_of(world, e))
+                .collect(),
+        };
+        let mut touched = Touched::default();
+        for &e in &self.despawn {
+            if world.get::<Face>(e).is_some() {
+                touched.removed_faces.push(FaceId(e));
+            }
+            world.despawn(e);
+        }
+        for ((_, mut state), e) in self.spawn.into_iter().zip(fresh) {
+            state.remap(&mut map);
+            state.spawn_at(world, e, self.mesh);
+            if state.is_vertex() {
+                touched.vertices.push(VertexId(e));
+            }
+        }
+        for (e, mut state) in self.write {
+            state.remap(&mut map);
+            state.write(world, e);
+            if state.is_vertex() {
+                touched.vertices.push(VertexId(e));
+            }
+        }
+        (inverse, map, touched)
+    }
+
+    /// Passes every id the change holds through `map`.
+    pub fn remap(&mut self, map: &mut Remap) {
+        self.mesh = MeshId(remapped(map, self.mesh.0));
+        for (e, state) in self.spawn.iter_mut().chain(self.write.iter_mut()) {
+            *e = remapped(map, *e);
+            state.remap(map);
+        }
+        for e in &mut self.despawn {
+            *e = remapped(map, *e);
+        }
+    }
+}
+
+/// Every element within reach of `seeds`: the seeds and their neighbours, and for each of those
+/// its outgoing and incoming halfedges with their edges and tips, and every face around it with
+/// all of the face's halfedges, their twins, edges and vertices. Dead seeds are skipped.
+///
+/// This is a superset of what any local operation on an edge or face at the seeds reads or
+/// writes (the one-ring of both ends, the boundary loops through them, the wings' vertices).
+pub fn neighbourhood(world: &World, seeds: &[VertexId]) -> EntityHashSet {
+    let m = MeshRef::new(world);
+    let mut ring: Vec<VertexId> = Vec::new();
+    for &v in seeds {
+        if m.try_vertex(v).is_some() {
+            ring.push(v);
+            ring.extend(m.vertex_neighbors(v));
+        }
+    }
+    ring.sort_unstable();
+    ring.dedup();
+    let mut set = EntityHashSet::default();
+    let mut faces = Vec::new();
+    for &v in &ring {
+        set.insert(v.0);
+        for h in m.vertex_outgoing(v) {
+            let t = m.twin(h);
+            set.extend([h.0, t.0, m.edge(h).0, m.to_vertex(h).0]);
+            faces.extend(m.face(h));
+        }
+    }
+    faces.sort_unstable();
+    faces.dedup();
+    for f in faces {
+        set.insert(f.0);
+        for h in m.face_halfedges(f) {
+            set.extend([h.0, m.twin(h).0, m.edge(h).0, m.to_vertex(h).0]);
+        }
+    }
+    set
+}
+
+/// Records a local edit: [`LocalRecorder::begin`] before it, [`LocalRecorder::finish`] after.
+pub struct LocalRecorder {
+    mesh: MeshId,
+    seeds: Vec<VertexId>,
+    before: EntityHashMap<ElementState>,
+}
+
+impl LocalRecorder {
+    /// Captures the neighbourhood of `seeds` (the vertices the edit is about: an edge's ends, a
+    /// face's corners, a moved vertex).
+    pub fn begin(world: &World, mesh: MeshId, seeds: &[VertexId]) -> Self {
+        let before = neighbourhood(world, seeds)
+            .into_iter()
+            .filter_map(|e| Some((e, ElementState::of(world, e)?)))
+            .collect();
+        Self {
+            mesh,
+            seeds: seeds.to_vec(),
+            before,
+        }
+    }
+
+    /// Compares the neighbourhood (of the seeds still alive, and every element captured) with
+    /// what was captured, and returns the change that undoes the edit.
+    pub fn finish(self, world: &World) -> Change {
+        let mut change = Change {
+            mesh: self.mesh,
+            spawn: Vec::new(),
+            despawn: Vec::new(),
+            write: Vec::new(),
+        };
+        for (&e, state) in &self.before {
+            match ElementState::of(world, e) {
+                None => change.spawn.push((e, *state)),
+                Some(now) if !now.same(state) => change.write.push((e, *state)),
+                Some(_) => {}
+            }
+        }
+        let after = neighbourhood(world, &self.seeds);
+        change.despawn.extend(
+            after
+                .into_iter()
+                .filter(|e| !self.before.contains_key(e) && ElementState::of(world, *e).is_some()),
+        );
+        // Hash order is arbitrary; a fixed order makes replays identical.
+        change.spawn.sort_unstable_by_key(|(e, _)| *e);
+        change.write.sort_unstable_by_key(|(e, _)| *e);
+        change.despawn.sort_unstable();
+        change
+    }
+}
+
+/// A whole mesh as flat tables with the entity behind every row.
+#[derive(Clone)]
+pub struct MeshTables {
+    /// The mesh.
+    pub mesh: MeshId,
+    tables: Connectivity,
+    members: MeshMembers,
+}
+
+impl MeshTables {
+    /// Reads `mesh` (which must be valid).
+    pub fn capture(world: &World, mesh: MeshId) -> Self {
+        let Extracted { tables, members } = extract(world, mesh);
+        Self {
+            mesh,
+            tables,
+            members,
+        }
+    }
+
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        let t = &self.tables;
+        let u32s = t.vertex_halfedge.capacity()
+            + t.twin.capacity()
+            + t.next.capacity()
+            + t.prev.capacity()
+            + t.to_vertex.capacity()
+            + t.edge.capacity()
+            + t.face.capacity()
+            + t.edge_halfedge.capacity()
+            + t.face_halfedge.capacity();
+        let m = &self.members;
+        let ids = m.vertices.capacity()
+            + m.halfedges.capacity()
+            + m.edges.capacity()
+            + m.faces.capacity();
+        std::mem::size_of::<Self>()
+            + u32s * 4
+            + t.positions.capacity() * std::mem::size_of::<Vec3>()
+            + ids * std::mem::size_of::<Entity>()
+    }
+
+    /// Makes the mesh's contents these tables again, reusing its current entities. Returns the
+    /// tables it had (the inverse) and the remap from the recorded row ids to the entities that
+    /// now hold those rows.
+    pub fn apply(self, world: &mut World) -> (MeshTables, Remap) {
+        let now = Self::capture(world, self.mesh);
+        let rows = write_tables(world, &self.tables, self.mesh, Some(&now.members));
+        (now, row_map(&self.members, &rows))
+    }
+
+    /// Passes every id held through `map`.
+    pub fn remap(&mut self, map: &Remap) {
+        self.mesh = MeshId(remapped(map, self.mesh.0));
+        remap_members(&mut self.members, map);
+    }
+}
+
+/// A deleted or replaced mesh, to be brought back whole.
+#[derive(Clone)]
+pub struct SavedMesh {
+    info: MeshInfo,
+    tables: MeshTables,
+}
+
+impl SavedMesh {
+    /// Reads `mesh` (which must be valid).
+    pub fn capture(world: &World, mesh: MeshId) -> Self {
+        Self {
+            info: world.get::<MeshInfo>(mesh.0).cloned().unwrap_or_default(),
+            tables: MeshTables::capture(world, mesh),
+        }
+    }
+
+    /// The id the mesh had.
+    pub fn mesh(&self) -> MeshId {
+        self.tables.mesh
+    }
+
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        self.tables.bytes() + self.info.name.capacity()
+    }
+
+    /// Spawns the mesh again. Returns its new id and the remap from every id it had (the mesh
+    /// and its elements) to the new ones.
+    pub fn restore(self, world: &mut World) -> (MeshId, Remap) {
+        let mesh = MeshId(world.spawn(self.info).id());
+        let rows = write_tables(world, &self.tables.tables, mesh, None);
+        let mut map = row_map(&self.tables.members, &rows);
+        map.insert(self.tables.mesh.0, mesh.0);
+        (mesh, map)
+    }
+
+    /// Passes every id held through `map`.
+    pub fn remap(&mut self, map: &Remap) {
+        self.tables.remap(map);
+    }
+}
+
+/// The bytes of a mesh's element components (links, positions, membership): a lower bound on
+/// the mesh's size in the world, which adds entity bookkeeping and change ticks on top.
+pub fn component_bytes(world: &World, mesh: MeshId) -> usize {
+    use std::mem::size_of;
+    let m = MeshMembers::collect(world, mesh);
+    let member = size_of::<InMesh>();
+    m.vertices.len() * (size_of::<Vertex>() + size_of::<Position>() + member)
+        + m.halfedges.len() * (size_of::<Halfedge>() + member)
+        + m.edges.len() * (size_of::<Edge>() + member)
+        + m.faces.len() * (size_of::<Face>() + member)
+}
+
+fn row_map(old: &MeshMembers, new: &MeshMembers) -> Remap {
+    let mut map = Remap::default();
+    map.reserve(old.vertices.len() + old.halfedges.len() + old.edges.len() + old.faces.len());
+    map.extend(old.entities().zip(new.entities()));
+    map
+}
+
+fn remap_members(m: &mut MeshMembers, map: &Remap) {
+    for v in &mut m.vertices {
+        v.0 = remapped(map, v.0);
+    }
+    for h in &mut m.halfedges {
+        h.0 = remapped(map, h.0);
+    }
+    for e in &mut m.edges {
+        e.0 = remapped(map, e.0);
+    }
+    for f in &mut m.faces {
+        f.0 = remapped(map, f.0);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{build_mesh, shapes, to_soup, validate};
+
+    fn grid() -> (World, MeshId) {
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &shapes::grid(3, 3), MeshInfo::default()).unwrap();
+        (world, built.mesh)
+    }
+
+    #[test]
+    fn a_local_change_undoes_and_redoes_exactly() {
+        let (mut world, mesh) = grid();
+        let original = to_soup(&world, mesh);
+        let v = MeshMembers::collect(&world, mesh).vertices[5];
+        let recorder = LocalRecorder::begin(&world, mesh, &[v]);
+        world.get_mut::<Position>(v.0).unwrap().0 = Vec3::new(-0.0, 9.0, 1.0 / 3.0);
+        let undo = recorder.finish(&world);
+        assert_eq!(undo.counts(), (0, 0, 1), "only the moved vertex differs");
+        let moved = to_soup(&world, mesh);
+        let (redo, map, touched) = undo.apply(&mut world);
+        assert!(map.is_empty());
+        assert_eq!(touched.vertices, vec![v]);
+        assert_eq!(to_soup(&world, mesh), original);
+        let (_, _, _) = redo.apply(&mut world);
+        let again = to_soup(&world, mesh);
+        assert_eq!(again.positions[5].x.to_bits(), (-0.0f32).to_bits());
+        assert_eq!(again, moved);
+    }
+
+    #[test]
+    fn removed_elements_come_back_under_new_ids() {
+        let (mut world, mesh) = grid();
+        let before = to_soup(&world, mesh);
+        let members = MeshMembers::collect(&world, mesh);
+        // Replace the contents with another shape, then put the grid back.
+        let other = build_mesh(&mut world, &shapes::cube(), MeshInfo::default()).unwrap();
+        let cube = MeshTables::capture(&world, other.mesh);
+        let cube_tables = MeshTables {
+            mesh,
+            tables: cube.tables,
+            members: cube.members,
+        };
+        let (grid_again, _) = cube_tables.apply(&mut world);
+        assert_ne!(to_soup(&world, mesh), before);
+        validate(&world, mesh).unwrap();
+        let (_, map) = grid_again.apply(&mut world);
+        assert_eq!(to_soup(&world, mesh), before);
+        validate(&world, mesh).unwrap();
+        // Every recorded row id maps to a live element of the mesh.
+        let now = MeshMembers::collect(&world, mesh);
+        assert_eq!(map.len(), now.entities().count());
+        for e in members.entities() {
+            let new = remapped(&map, e);
+            assert_eq!(world.get::<InMesh>(new).map(|m| m.0), Some(mesh));
+        }
+    }
+
+    #[test]
+    fn a_saved_mesh_is_restored_whole() {
+        let (mut world, mesh) = grid();
+        world.get_mut::<MeshInfo>(mesh.0).unwrap().name = "grid".into();
+        let before = to_soup(&world, mesh);
+        let saved = SavedMesh::capture(&world, mesh);
+        crate::mesh::despawn_mesh(&mut world, mesh);
+        let (back, map) = saved.restore(&mut world);
+        assert_eq!(map[&mesh.0], back.0);
+        assert_eq!(world.get::<MeshInfo>(back.0).unwrap().name, "grid");
+        assert_eq!(to_soup(&world, back), before);
+        validate(&world, back).unwrap();
+    }
+}
