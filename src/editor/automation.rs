@@ -119,32 +119,53 @@ impl Script {
 
 fn key_code(name: &str) -> Option<KeyCode> {
     let single = |c: char| -> Option<KeyCode> {
-        Some(match c.to_ascii_uppercase() {
-            'A' => KeyCode::KeyA,
-            'C' => KeyCode::KeyC,
-            'D' => KeyCode::KeyD,
-            'E' => KeyCode::KeyE,
-            'F' => KeyCode::KeyF,
-            'H' => KeyCode::KeyH,
-            'J' => KeyCode::KeyJ,
-            'L' => KeyCode::KeyL,
-            'Q' => KeyCode::KeyQ,
-            'N' => KeyCode::KeyN,
-            'P' => KeyCode::KeyP,
-            'R' => KeyCode::KeyR,
-            'S' => KeyCode::KeyS,
-            'T' => KeyCode::KeyT,
-            'U' => KeyCode::KeyU,
-            'V' => KeyCode::KeyV,
-            'W' => KeyCode::KeyW,
-            'Z' => KeyCode::KeyZ,
-            '1' => KeyCode::Digit1,
-            '2' => KeyCode::Digit2,
-            '3' => KeyCode::Digit3,
-            '4' => KeyCode::Digit4,
-            '.' => KeyCode::Period,
-            _ => return None,
-        })
+        const LETTERS: [KeyCode; 26] = [
+            KeyCode::KeyA,
+            KeyCode::KeyB,
+            KeyCode::KeyC,
+            KeyCode::KeyD,
+            KeyCode::KeyE,
+            KeyCode::KeyF,
+            KeyCode::KeyG,
+            KeyCode::KeyH,
+            KeyCode::KeyI,
+            KeyCode::KeyJ,
+            KeyCode::KeyK,
+            KeyCode::KeyL,
+            KeyCode::KeyM,
+            KeyCode::KeyN,
+            KeyCode::KeyO,
+            KeyCode::KeyP,
+            KeyCode::KeyQ,
+            KeyCode::KeyR,
+            KeyCode::KeyS,
+            KeyCode::KeyT,
+            KeyCode::KeyU,
+            KeyCode::KeyV,
+            KeyCode::KeyW,
+            KeyCode::KeyX,
+            KeyCode::KeyY,
+            KeyCode::KeyZ,
+        ];
+        const DIGITS: [KeyCode; 10] = [
+            KeyCode::Digit0,
+            KeyCode::Digit1,
+            KeyCode::Digit2,
+            KeyCode::Digit3,
+            KeyCode::Digit4,
+            KeyCode::Digit5,
+            KeyCode::Digit6,
+            KeyCode::Digit7,
+            KeyCode::Digit8,
+            KeyCode::Digit9,
+        ];
+        let c = c.to_ascii_uppercase();
+        match c {
+            'A'..='Z' => Some(LETTERS[(c as u8 - b'A') as usize]),
+            '0'..='9' => Some(DIGITS[(c as u8 - b'0') as usize]),
+            '.' => Some(KeyCode::Period),
+            _ => None,
+        }
     };
     match name {
         "Period" => Some(KeyCode::Period),
@@ -264,4 +285,30 @@ fn input_edge(world: &World, a: u32, b: u32) -> Option<ElementId> {
     let (va, vb) = (*vertices.get(a as usize)?, *vertices.get(b as usize)?);
     let m = MeshRef::new(world);
     m.find_halfedge(va, vb).map(|h| ElementId::Edge(m.edge(h)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_letter_and_digit_key_can_be_scripted() {
+        for c in ('A'..='Z').chain('0'..='9') {
+            assert!(key_code(&c.to_string()).is_some(), "{c}");
+        }
+        assert_eq!(key_code("m"), Some(KeyCode::KeyM));
+        assert_eq!(key_code("7"), Some(KeyCode::Digit7));
+        assert_eq!(key_code("Escape"), Some(KeyCode::Escape));
+        assert_eq!(key_code("MM"), None);
+        let script = Script::parse("key:M;key:Ctrl+Z;key:Ctrl+Y").unwrap();
+        let keys: Vec<ScriptStep> = script.steps.into_iter().collect();
+        assert_eq!(
+            keys,
+            vec![
+                ScriptStep::Key(None, KeyCode::KeyM),
+                ScriptStep::Key(Some(KeyCode::ControlLeft), KeyCode::KeyZ),
+                ScriptStep::Key(Some(KeyCode::ControlLeft), KeyCode::KeyY),
+            ]
+        );
+    }
 }

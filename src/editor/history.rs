@@ -277,12 +277,14 @@ pub fn begin(world: &World, request: &EditRequest) -> Option<Pending> {
             .get::<MeshInfo>(mesh.0)
             .map(|_| PendingKind::Whole(MeshTables::capture(world, mesh)))
     };
+    // Opening over no mesh loses nothing (the file is still there): no entry, so that the
+    // first Ctrl+Z never empties the editor. Replacing or deleting a mesh is an entry.
     let replace = || {
         let active = world.resource::<ActiveMesh>().0;
         let saved = active
             .filter(|a| world.get::<MeshInfo>(a.0).is_some())
-            .map(|a| SavedMesh::capture(world, a));
-        Some(PendingKind::Replace(saved))
+            .map(|a| SavedMesh::capture(world, a))?;
+        Some(PendingKind::Replace(Some(saved)))
     };
     let history = world.resource::<UndoHistory>();
     let mut merge = None;

@@ -204,7 +204,8 @@ pub struct RunningJob {
     pending: Option<Pending>,
     /// The mesh's entities, row by row, as copied.
     rows: MeshMembers,
-    thread: JoinHandle<Result<JobOutput, String>>,
+    /// The thread, until it is joined.
+    thread: Option<JoinHandle<Result<JobOutput, String>>>,
 }
 
 /// The job in flight, if any (one at a time).
@@ -273,7 +274,7 @@ pub fn start(
         op,
         pending,
         rows: members,
-        thread,
+        thread: Some(thread),
     });
     Ok("running (Esc cancels)".into())
 }
@@ -298,14 +299,17 @@ pub fn finish_jobs(world: &mut World) {
         .resource::<Jobs>()
         .running
         .as_ref()
-        .is_some_and(|j| j.thread.is_finished());
+        .and_then(|j| j.thread.as_ref())
+        .is_some_and(JoinHandle::is_finished);
     if !done {
         return;
     }
-    let Some(job) = world.resource_mut::<Jobs>().running.take() else {
+    let Some(mut job) = world.resource_mut::<Jobs>().running.take() else {
         return;
     };
-    let (thread, mut job) = job.into_parts();
+    let Some(thread) = job.thread.take() else {
+        return;
+    };
     let ms = job.started.elapsed().as_secs_f64() * 1000.0;
     let result = match thread.join() {
         Ok(Ok(output)) => commit(world, &mut job, output),
@@ -326,31 +330,7 @@ pub fn finish_jobs(world: &mut World) {
     world.resource_mut::<OutcomeLog>().push(outcome);
 }
 
-impl RunningJob {
-    fn into_parts(self) -> (JoinHandle<Result<JobOutput, String>>, JobRecord) {
-        let record = JobRecord {
-            mesh: self.mesh,
-            label: self.label,
-            started: self.started,
-            op: self.op,
-            pending: self.pending,
-            rows: self.rows,
-        };
-        (self.thread, record)
-    }
-}
-
-/// A finished job, less its thread.
-struct JobRecord {
-    mesh: MeshId,
-    label: String,
-    started: std::time::Instant,
-    op: GlobalOp,
-    pending: Option<Pending>,
-    rows: MeshMembers,
-}
-
-fn commit(world: &mut World, job: &mut JobRecord, output: JobOutput) -> Result<String, String> {
+fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<String, String> {
     let mesh = job.mesh;
     if world.get::<MeshInfo>(mesh.0).is_none() {
         return Err(format!("{mesh} is gone; the result was dropped"));

@@ -632,14 +632,13 @@ fn history_section(ui: &mut egui::Ui, view: &InspectorView, pending: &mut Pendin
             pending.0.push(Action::Redo);
         }
     });
-    ui.label(
-        egui::RichText::new(format!(
-            "{} step(s), {:.1} MB",
-            view.history.len(),
-            view.history_bytes as f64 / 1e6
-        ))
-        .small(),
-    );
+    let bytes = view.history_bytes as f64;
+    let held = if bytes < 1e6 {
+        format!("{:.1} kB", bytes / 1e3)
+    } else {
+        format!("{:.1} MB", bytes / 1e6)
+    };
+    ui.label(egui::RichText::new(format!("{} step(s), {held}", view.history.len())).small());
     for (label, undone) in view.history.iter().rev().take(12) {
         let text = egui::RichText::new(label).small();
         ui.label(if *undone { text.weak().italics() } else { text });
