@@ -2,11 +2,11 @@
 //! refused with a reason), navigation walks the relations, and a change rebuilds the render
 //! copy exactly once. Picking is checked from a ray cast at a known triangle.
 
+mod common;
+
 use bevy::input::ButtonState;
-use bevy::input::InputPlugin;
 use bevy::input::keyboard::{Key, KeyboardInput, NativeKey};
 use bevy::prelude::*;
-use pappus::editor::EditorLogicPlugin;
 use pappus::editor::picking::pick_in_face;
 use pappus::editor::render_sync::{RenderOf, RenderStats, TriangleFaces};
 use pappus::editor::requests::{EditOutcome, EditRequest, OutcomeLog};
@@ -15,16 +15,7 @@ use pappus::mesh::ids::ElementId;
 use pappus::mesh::{MeshRef, validate};
 
 fn app() -> App {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        InputPlugin,
-        AssetPlugin::default(),
-        bevy::mesh::MeshPlugin,
-        EditorLogicPlugin,
-    ));
-    app.update();
-    app
+    common::headless_editor()
 }
 
 fn open(app: &mut App, source: &str) {
@@ -436,7 +427,7 @@ fn dragging_the_selected_vertex_moves_it_in_the_view_plane() {
     let mut app = App::new();
     app.add_plugins((
         MinimalPlugins,
-        InputPlugin,
+        bevy::input::InputPlugin,
         WindowPlugin::default(),
         AssetPlugin::default(),
         bevy::image::ImagePlugin::default(),
@@ -444,7 +435,7 @@ fn dragging_the_selected_vertex_moves_it_in_the_view_plane() {
         bevy::camera::CameraPlugin,
         bevy::render::camera::CameraPlugin,
         TransformPlugin,
-        EditorLogicPlugin,
+        pappus::editor::EditorLogicPlugin,
     ));
     app.init_resource::<bevy::render::texture::ManualTextureViews>();
     app.init_resource::<VertexDrag>();

@@ -7,11 +7,9 @@
 mod common;
 
 use bevy::input::ButtonState;
-use bevy::input::InputPlugin;
 use bevy::input::mouse::{MouseButton, MouseButtonInput};
 use bevy::prelude::*;
 use common::canonical;
-use pappus::editor::EditorLogicPlugin;
 use pappus::editor::history::UndoHistory;
 use pappus::editor::requests::{EditOutcome, EditRequest, OutcomeLog};
 use pappus::editor::selection::{ActiveMesh, Selection};
@@ -19,16 +17,7 @@ use pappus::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
 use pappus::mesh::{MeshMembers, MeshRef, mesh_stats, to_soup, validate};
 
 fn app() -> App {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        InputPlugin,
-        AssetPlugin::default(),
-        bevy::mesh::MeshPlugin,
-        EditorLogicPlugin,
-    ));
-    app.update();
-    app
+    common::headless_editor()
 }
 
 fn request(app: &mut App, r: EditRequest) -> Result<String, String> {

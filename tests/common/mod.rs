@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use bevy::math::Vec3;
-use bevy::prelude::World;
+use bevy::prelude::{App, AssetPlugin, MinimalPlugins, World};
 use pappus::mesh::{BuiltMesh, MeshInfo, PolygonSoup, build_mesh, validate};
 use std::path::PathBuf;
 
@@ -54,4 +54,18 @@ pub fn canonical(soup: &PolygonSoup) -> Vec<Vec<Key>> {
         .collect();
     faces.sort();
     faces
+}
+
+/// The editor's logic without a window (`MinimalPlugins`, input, assets, meshes), updated once.
+pub fn headless_editor() -> App {
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        bevy::input::InputPlugin,
+        AssetPlugin::default(),
+        bevy::mesh::MeshPlugin,
+        pappus::editor::EditorLogicPlugin,
+    ));
+    app.update();
+    app
 }
