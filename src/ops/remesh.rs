@@ -134,10 +134,12 @@ pub fn remesh_with_progress(
         }
         // Smooth in small steps, then project back onto the input once per iteration (each
         // projection searches the input's triangles: the expensive part).
+        let mut smoother = Smoother::new(world, mesh, &features);
         for step in 0..params.smoothing_steps.max(1) {
             let last = step + 1 == params.smoothing_steps.max(1);
-            smooth_and_project(world, mesh, &features, last.then_some(&reference));
+            smoother.step(last.then_some(&reference));
         }
+        smoother.write(world);
         if !done(4, i) {
             break;
         }
@@ -251,56 +253,144 @@ fn collapse_short(
 }
 
 fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> usize {
-    let edges = MeshMembers::collect(world, mesh).edges;
+    let members = MeshMembers::collect(world, mesh);
+    // Valences and targets by entity index, kept up to date flip by flip (a flip changes only
+    // its four vertices' valences, and never which vertices are on the boundary).
+    let size = members
+        .vertices
+        .iter()
+        .map(|v| v.0.index_u32() as usize + 1)
+        .max();
+    let mut valence = vec![0i32; size.unwrap_or(0)];
+    let mut target = vec![6i32; valence.len()];
+    {
+        let m = MeshRef::new(world);
+        for &v in &members.vertices {
+            let i = v.0.index_u32() as usize;
+            valence[i] = m.valence(v) as i32;
+            if m.is_boundary_vertex(v) {
+                target[i] = 4;
+            }
+        }
+    }
     let mut flips = 0;
-    for e in edges {
+    for e in members.edges {
         let m = MeshRef::new(world);
         if m.try_edge(e).is_none() || features.contains(&e.0) || m.is_boundary_edge(e) {
             continue;
         }
         let h = m.edge_halfedge(e);
-        let (a, b) = (m.from_vertex(h), m.to_vertex(h));
-        let (c, d) = (m.to_vertex(m.next(h)), m.to_vertex(m.next(m.twin(h))));
-        let target = |v: VertexId| if m.is_boundary_vertex(v) { 4 } else { 6 };
-        let deviation = |v: VertexId, delta: i64| (m.valence(v) as i64 + delta - target(v)).abs();
-        let before = deviation(a, 0) + deviation(b, 0) + deviation(c, 0) + deviation(d, 0);
-        let after = deviation(a, -1) + deviation(b, -1) + deviation(c, 1) + deviation(d, 1);
+        let ends = [
+            m.from_vertex(h),
+            m.to_vertex(h),
+            m.to_vertex(m.next(h)),
+            m.to_vertex(m.next(m.twin(h))),
+        ]
+        .map(|v| v.0.index_u32() as usize);
+        let change = [-1, -1, 1, 1];
+        let deviation = |k: usize, delta: i32| (valence[ends[k]] + delta - target[ends[k]]).abs();
+        let before: i32 = (0..4).map(|k| deviation(k, 0)).sum();
+        let after: i32 = (0..4).map(|k| deviation(k, change[k])).sum();
         if after < before && flip_edge(world, e).is_ok() {
+            for k in 0..4 {
+                valence[ends[k]] += change[k];
+            }
             flips += 1;
         }
     }
     flips
 }
 
-fn smooth_and_project(
-    world: &mut World,
-    mesh: MeshId,
-    features: &EntityHashSet,
-    reference: Option<&Reference>,
-) {
-    let vertices = MeshMembers::collect(world, mesh).vertices;
-    let m = MeshRef::new(world);
-    let mut moved: Vec<(VertexId, Vec3)> = Vec::with_capacity(vertices.len());
-    for v in vertices {
-        if m.is_boundary_vertex(v) || feature_vertex(&m, v, features) {
-            continue;
+/// The free vertices' one-rings and fans as flat arrays. Smoothing takes many steps over one
+/// connectivity, so the world is read once before them and written once after, and each step
+/// is plain array arithmetic (Jacobi: every new position from the old ones).
+struct Smoother {
+    vertices: Vec<VertexId>,
+    positions: Vec<Vec3>,
+    next: Vec<Vec3>,
+    /// Indices (into `vertices`) of the vertices that move: not on the boundary or a feature.
+    free: Vec<u32>,
+    /// For free vertex `k`, its neighbours are `ring[ring_start[k]..ring_start[k + 1]]`.
+    ring_start: Vec<u32>,
+    ring: Vec<u32>,
+    /// For free vertex `k`, its triangles are `fan[fan_start[k]..fan_start[k + 1]]`.
+    fan_start: Vec<u32>,
+    fan: Vec<[u32; 3]>,
+}
+
+impl Smoother {
+    fn new(world: &World, mesh: MeshId, features: &EntityHashSet) -> Self {
+        let vertices = MeshMembers::collect(world, mesh).vertices;
+        let m = MeshRef::new(world);
+        let size = vertices.iter().map(|v| v.0.index_u32() as usize + 1).max();
+        let mut slot = vec![u32::MAX; size.unwrap_or(0)];
+        for (i, v) in vertices.iter().enumerate() {
+            slot[v.0.index_u32() as usize] = i as u32;
         }
-        let p = m.position(v);
-        let (mut sum, mut n) = (Vec3::ZERO, 0.0);
-        for w in m.vertex_neighbors(v) {
-            sum += m.position(w);
-            n += 1.0;
+        let at = |v: VertexId| slot[v.0.index_u32() as usize];
+        let positions: Vec<Vec3> = vertices.iter().map(|&v| m.position(v)).collect();
+        let mut s = Smoother {
+            next: positions.clone(),
+            positions,
+            free: Vec::new(),
+            ring_start: vec![0],
+            ring: Vec::new(),
+            fan_start: vec![0],
+            fan: Vec::new(),
+            vertices: Vec::new(),
+        };
+        for (i, &v) in vertices.iter().enumerate() {
+            if m.is_boundary_vertex(v) || feature_vertex(&m, v, features) {
+                continue;
+            }
+            s.free.push(i as u32);
+            s.ring.extend(m.vertex_neighbors(v).map(at));
+            s.ring_start.push(s.ring.len() as u32);
+            for f in m.vertex_faces(v) {
+                let mut corners = m.face_vertices(f).map(at);
+                let mut next = || corners.next().unwrap_or(u32::MAX);
+                s.fan.push([next(), next(), next()]);
+            }
+            s.fan_start.push(s.fan.len() as u32);
         }
-        let normal: Vec3 = m.vertex_faces(v).map(|f| m.face_area_vector(f)).sum();
-        let normal = normal.normalize_or_zero();
-        let step = sum / n - p;
-        let tangential = step - normal * normal.dot(step);
-        let target = p + 0.2 * tangential;
-        moved.push((v, reference.map_or(target, |r| r.closest(target))));
+        s.vertices = vertices;
+        s
     }
-    for (v, p) in moved {
-        if let Some(mut position) = world.get_mut::<crate::mesh::Position>(v.0) {
-            position.0 = p;
+
+    /// Moves every free vertex 1/5 of the way to its one-ring centroid within its tangent
+    /// plane (the normal: the sum of its triangles' area vectors), projecting onto `reference`
+    /// if given.
+    fn step(&mut self, reference: Option<&Reference>) {
+        let p = &self.positions;
+        for (k, &i) in self.free.iter().enumerate() {
+            let ring = &self.ring[self.ring_start[k] as usize..self.ring_start[k + 1] as usize];
+            let fan = &self.fan[self.fan_start[k] as usize..self.fan_start[k + 1] as usize];
+            let here = p[i as usize];
+            let centroid = ring.iter().map(|&j| p[j as usize]).sum::<Vec3>() / ring.len() as f32;
+            let normal = fan
+                .iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|j| p[j as usize]);
+                    (b - a).cross(c - a)
+                })
+                .sum::<Vec3>()
+                .normalize_or_zero();
+            let step = centroid - here;
+            let target = here + 0.2 * (step - normal * normal.dot(step));
+            self.next[i as usize] = reference.map_or(target, |r| r.closest(target));
+        }
+        // Every free vertex is rewritten each step and the others never move, so swapping
+        // leaves both buffers right.
+        std::mem::swap(&mut self.positions, &mut self.next);
+    }
+
+    /// Writes the free vertices' positions into the world.
+    fn write(self, world: &mut World) {
+        for &i in &self.free {
+            let v = self.vertices[i as usize];
+            if let Some(mut position) = world.get_mut::<crate::mesh::Position>(v.0) {
+                position.0 = self.positions[i as usize];
+            }
         }
     }
 }
@@ -366,7 +456,13 @@ impl Reference {
 
     /// The closest point of the input surface to `p` (searching rings of cells outwards).
     fn closest(&self, p: Vec3) -> Vec3 {
-        let c = ((p - self.origin) / self.cell).floor().as_ivec3();
+        let local = (p - self.origin) / self.cell;
+        let c = local.floor().as_ivec3();
+        // How far `p` is from the nearest wall of its own cell, in cells: after scanning the
+        // block of cells within `ring` of it, everything unscanned is at least
+        // `(ring + wall) * cell` away.
+        let f = local - local.floor();
+        let wall = f.min(Vec3::ONE - f).min_element();
         let mut best = (f32::MAX, p);
         let max_ring = self.dims.iter().copied().max().unwrap_or(1);
         for ring in 0..=max_ring {
@@ -389,8 +485,7 @@ impl Reference {
                     }
                 }
             }
-            // Anything in a farther ring is at least `ring * cell` away.
-            if best.0 < f32::MAX && best.0.sqrt() <= ring as f32 * self.cell {
+            if best.0 < f32::MAX && best.0.sqrt() <= (ring as f32 + wall) * self.cell {
                 break;
             }
         }
