@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""Isotropic remeshing, Pappus against MeshLab (pymeshlab), side by side in one run.
+
+Runs `pappus process MESH -o OUT remesh --json` (release build: 5 iterations, target length the
+mean edge length, features at 45 degrees) and pymeshlab's `meshing_isotropic_explicit_remeshing`
+with the same iteration count and target length, and measures both results the same way:
+the share of triangles with a minimum angle below 30 degrees, the share of interior vertices
+of valence 6, the symmetric Hausdorff distance to the input (pymeshlab's
+`get_hausdorff_distance` both ways, max, as % of the bounding-box diagonal), and the time.
+
+Usage: python3 benches/remesh_vs_meshlab.py [MESH] (default: ../shared/models/stanford-bunny.obj)
+Needs: pip install pymeshlab numpy; cargo build --release.
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+import pymeshlab
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+MESH = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "../shared/models/stanford-bunny.obj")
+TARGET = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
+PAPPUS = os.path.join(TARGET, "release/pappus")
+
+
+def load(path):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(path)
+    ms.meshing_remove_unreferenced_vertices()
+    m = ms.current_mesh()
+    return m.vertex_matrix(), m.face_matrix()
+
+
+def quality(path):
+    """(% triangles with min angle < 30 deg, % interior vertices of valence 6, faces)."""
+    v, f = load(path)
+    p = v[f]
+    angles = []
+    for i in range(3):
+        a, b, c = p[:, i], p[:, (i + 1) % 3], p[:, (i + 2) % 3]
+        u, w = b - a, c - a
+        cos = (u * w).sum(1) / (np.linalg.norm(u, axis=1) * np.linalg.norm(w, axis=1) + 1e-30)
+        angles.append(np.degrees(np.arccos(np.clip(cos, -1, 1))))
+    min_angle = np.min(np.stack(angles, 1), 1)
+    edges = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), 1)
+    unique, count = np.unique(edges, axis=0, return_counts=True)
+    valence = np.bincount(unique.ravel(), minlength=len(v))
+    on_boundary = np.zeros(len(v), bool)
+    on_boundary[unique[count == 1].ravel()] = True
+    interior = ~on_boundary & (valence > 0)
+    return (100 * np.mean(min_angle < 30), 100 * np.mean(valence[interior] == 6), len(f))
+
+
+def mean_edge_length(path):
+    v, f = load(path)
+    edges = np.unique(np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), 1), axis=0)
+    return float(np.linalg.norm(v[edges[:, 0]] - v[edges[:, 1]], axis=1).mean())
+
+
+def hausdorff_pct(original, result):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(original)
+    ms.meshing_remove_unreferenced_vertices()
+    ms.load_new_mesh(result)
+    diag = ms.mesh(0).bounding_box().diagonal()
+    there = ms.get_hausdorff_distance(sampledmesh=0, targetmesh=1, samplevert=True, sampleface=True)
+    back = ms.get_hausdorff_distance(sampledmesh=1, targetmesh=0, samplevert=True, sampleface=True)
+    return 100 * max(there["max"], back["max"]) / diag
+
+
+def line(name, path, ms_taken=None):
+    angle, six, faces = quality(path)
+    text = f"{name:8} {faces:7d} faces  {angle:6.3f} % < 30 deg  {six:5.1f} % valence 6"
+    if ms_taken is not None:
+        text += f"  Hausdorff {hausdorff_pct(MESH, path):.3f} %  {ms_taken:7.0f} ms"
+    print(text)
+
+
+def main():
+    length = mean_edge_length(MESH)
+    print(f"{os.path.basename(MESH)}: 5 iterations, target length {length:.6f} (mean edge length)")
+    with tempfile.TemporaryDirectory() as tmp:
+        ours = os.path.join(tmp, "pappus.ply")
+        report = json.loads(subprocess.run(
+            [PAPPUS, "process", MESH, "-o", ours, "--json", f"remesh:5:{length}"],
+            check=True, capture_output=True, text=True).stdout)
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(MESH)
+        ms.meshing_remove_unreferenced_vertices()
+        start = time.perf_counter()
+        ms.meshing_isotropic_explicit_remeshing(iterations=5, targetlen=pymeshlab.PureValue(length))
+        meshlab_ms = (time.perf_counter() - start) * 1000
+        theirs = os.path.join(tmp, "meshlab.ply")
+        ms.save_current_mesh(theirs)
+        line("input", MESH)
+        line("Pappus", ours, report["steps"][0]["ms"])
+        line("MeshLab", theirs, meshlab_ms)
+
+
+if __name__ == "__main__":
+    main()
