@@ -22,8 +22,10 @@ use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
+use crate::mesh::arrays::{Extracted, extract};
 use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
+use crate::mesh::repair::NONE;
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
@@ -320,40 +322,55 @@ struct Smoother {
 
 impl Smoother {
     fn new(world: &World, mesh: MeshId, features: &EntityHashSet) -> Self {
-        let vertices = MeshMembers::collect(world, mesh).vertices;
-        let m = MeshRef::new(world);
-        let size = vertices.iter().map(|v| v.0.index_u32() as usize + 1).max();
-        let mut slot = vec![u32::MAX; size.unwrap_or(0)];
-        for (i, v) in vertices.iter().enumerate() {
-            slot[v.0.index_u32() as usize] = i as u32;
-        }
-        let at = |v: VertexId| slot[v.0.index_u32() as usize];
-        let positions: Vec<Vec3> = vertices.iter().map(|&v| m.position(v)).collect();
+        // The flat tables (one pass over the world) are much cheaper to walk than the
+        // entities, and each iteration walks every one-ring.
+        let Extracted { tables: t, members } = extract(world, mesh);
+        let feature: Vec<bool> = members
+            .edges
+            .iter()
+            .map(|e| features.contains(&e.0))
+            .collect();
         let mut s = Smoother {
-            next: positions.clone(),
-            positions,
+            next: t.positions.clone(),
+            positions: t.positions.clone(),
             free: Vec::new(),
             ring_start: vec![0],
             ring: Vec::new(),
             fan_start: vec![0],
             fan: Vec::new(),
-            vertices: Vec::new(),
+            vertices: members.vertices,
         };
-        for (i, &v) in vertices.iter().enumerate() {
-            if m.is_boundary_vertex(v) || feature_vertex(&m, v, features) {
+        let mut outgoing = Vec::new();
+        for (v, &first) in t.vertex_halfedge.iter().enumerate() {
+            // A boundary vertex's halfedge is its boundary one.
+            if t.face[first as usize] == NONE {
                 continue;
             }
-            s.free.push(i as u32);
-            s.ring.extend(m.vertex_neighbors(v).map(at));
-            s.ring_start.push(s.ring.len() as u32);
-            for f in m.vertex_faces(v) {
-                let mut corners = m.face_vertices(f).map(at);
-                let mut next = || corners.next().unwrap_or(u32::MAX);
-                s.fan.push([next(), next(), next()]);
+            outgoing.clear();
+            let mut h = first;
+            loop {
+                outgoing.push(h);
+                h = t.twin[t.prev[h as usize] as usize];
+                if h == first || outgoing.len() > t.halfedge_count() {
+                    break;
+                }
             }
+            if outgoing
+                .iter()
+                .any(|&h| feature[t.edge[h as usize] as usize])
+            {
+                continue;
+            }
+            s.free.push(v as u32);
+            for &h in &outgoing {
+                let h = h as usize;
+                s.ring.push(t.to_vertex[h]);
+                s.fan
+                    .push([v as u32, t.to_vertex[h], t.to_vertex[t.next[h] as usize]]);
+            }
+            s.ring_start.push(s.ring.len() as u32);
             s.fan_start.push(s.fan.len() as u32);
         }
-        s.vertices = vertices;
         s
     }
 
