@@ -23,7 +23,7 @@ use bevy::math::Vec3;
 use bevy::prelude::World;
 
 use crate::mesh::arrays::{Extracted, extract};
-use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::repair::NONE;
 use crate::mesh::topology::MeshRef;
@@ -293,7 +293,7 @@ fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) ->
         let deviation = |k: usize, delta: i32| (valence[ends[k]] + delta - target[ends[k]]).abs();
         let before: i32 = (0..4).map(|k| deviation(k, 0)).sum();
         let after: i32 = (0..4).map(|k| deviation(k, change[k])).sum();
-        if after < before && flip_edge(world, e).is_ok() {
+        if after < before && flip_keeps_shape(&m, h) && flip_edge(world, e).is_ok() {
             for k in 0..4 {
                 valence[ends[k]] += change[k];
             }
@@ -301,6 +301,32 @@ fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) ->
         }
     }
     flips
+}
+
+/// Whether flipping the edge of `h` (between triangles a b c and b a d) gives two triangles
+/// that neither fold over (against the old pair's normal) nor nearly collapse to a segment
+/// (height under 1/1000 of the longest side). A valence-only rule would flip across a
+/// non-convex quad, for instance one whose corner is a locked vertex split onto a crease,
+/// and leave a zero-area triangle that nothing can move.
+fn flip_keeps_shape(m: &MeshRef<'_>, h: HalfedgeId) -> bool {
+    let t = m.twin(h);
+    let [a, b, c, d] = [
+        m.from_vertex(h),
+        m.to_vertex(h),
+        m.to_vertex(m.next(h)),
+        m.to_vertex(m.next(t)),
+    ]
+    .map(|v| m.position(v));
+    let normal = (b - a).cross(c - a) + (a - b).cross(d - b);
+    // The quad is a d b c; the new diagonal is d c.
+    [[a, d, c], [d, b, c]].iter().all(|&[p, q, r]| {
+        let n = (q - p).cross(r - p);
+        let longest = (q - p)
+            .length_squared()
+            .max((r - q).length_squared())
+            .max((p - r).length_squared());
+        n.dot(normal) > 0.0 && n.length_squared() > 1e-6 * longest * longest
+    })
 }
 
 /// The free vertices' one-rings and fans as flat arrays. Smoothing takes many steps over one
@@ -542,4 +568,31 @@ fn closest_on_triangle(p: Vec3, t: &[Vec3; 3]) -> Vec3 {
     }
     let denom = 1.0 / (va + vb + vc);
     a + ab * (vb * denom) + ac * (vc * denom)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{MeshInfo, PolygonSoup, build_mesh};
+
+    /// Triangles a b c and b a d; whether flipping a b keeps both new triangles in shape.
+    fn flip_ok(a: Vec3) -> bool {
+        let (b, c, d) = (Vec3::X, Vec3::Y, -Vec3::Y);
+        let soup = PolygonSoup::from_faces(vec![a, b, c, d], &[[0, 1, 2], [1, 0, 3]]);
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
+        let v = |i: usize| built.input_vertices[i].unwrap();
+        let m = MeshRef::new(&world);
+        flip_keeps_shape(&m, m.find_halfedge(v(0), v(1)).unwrap())
+    }
+
+    #[test]
+    fn flips_that_fold_or_flatten_a_triangle_are_refused() {
+        // Convex quad: the new diagonal c d runs inside it.
+        assert!(flip_ok(Vec3::new(-0.5, 0.0, 0.0)));
+        // a on the new diagonal: one new triangle would have zero area.
+        assert!(!flip_ok(Vec3::ZERO));
+        // a past it (a dart): the new triangles would fold over each other.
+        assert!(!flip_ok(Vec3::new(0.3, 0.0, 0.0)));
+    }
 }
