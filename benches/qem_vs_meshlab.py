@@ -19,20 +19,11 @@ import time
 
 import pymeshlab
 
+from meshlab_common import hausdorff_pct
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MESH = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "../shared/models/stanford-bunny.obj")
 PAPPUS = os.path.join(ROOT, "target/release/pappus")
-
-
-def hausdorff_pct(original, simplified):
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(original)
-    ms.meshing_remove_unreferenced_vertices()
-    ms.load_new_mesh(simplified)
-    diag = ms.mesh(0).bounding_box().diagonal()
-    there = ms.get_hausdorff_distance(sampledmesh=0, targetmesh=1, samplevert=True, sampleface=True)
-    back = ms.get_hausdorff_distance(sampledmesh=1, targetmesh=0, samplevert=True, sampleface=True)
-    return 100 * max(there["max"], back["max"]) / diag
 
 
 def main():

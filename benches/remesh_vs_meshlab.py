@@ -21,6 +21,8 @@ import time
 import numpy as np
 import pymeshlab
 
+from meshlab_common import hausdorff_pct
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MESH = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "../shared/models/stanford-bunny.obj")
 TARGET = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
@@ -59,17 +61,6 @@ def mean_edge_length(path):
     v, f = load(path)
     edges = np.unique(np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), 1), axis=0)
     return float(np.linalg.norm(v[edges[:, 0]] - v[edges[:, 1]], axis=1).mean())
-
-
-def hausdorff_pct(original, result):
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(original)
-    ms.meshing_remove_unreferenced_vertices()
-    ms.load_new_mesh(result)
-    diag = ms.mesh(0).bounding_box().diagonal()
-    there = ms.get_hausdorff_distance(sampledmesh=0, targetmesh=1, samplevert=True, sampleface=True)
-    back = ms.get_hausdorff_distance(sampledmesh=1, targetmesh=0, samplevert=True, sampleface=True)
-    return 100 * max(there["max"], back["max"]) / diag
 
 
 def line(name, path, ms_taken=None):

@@ -45,12 +45,7 @@ fn press(app: &mut App, key: KeyCode) {
 }
 
 fn last_outcome(app: &App) -> EditOutcome {
-    app.world()
-        .resource::<OutcomeLog>()
-        .entries
-        .last()
-        .unwrap()
-        .clone()
+    common::last_outcome(app)
 }
 
 fn selection(app: &App) -> Option<ElementId> {

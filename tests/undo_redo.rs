@@ -11,7 +11,7 @@ use bevy::input::mouse::{MouseButton, MouseButtonInput};
 use bevy::prelude::*;
 use common::canonical;
 use pappus::editor::history::UndoHistory;
-use pappus::editor::requests::{EditOutcome, EditRequest, OutcomeLog};
+use pappus::editor::requests::{EditOutcome, EditRequest};
 use pappus::editor::selection::{ActiveMesh, Selection};
 use pappus::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
 use pappus::mesh::{MeshMembers, MeshRef, mesh_stats, to_soup, validate};
@@ -27,12 +27,7 @@ fn request(app: &mut App, r: EditRequest) -> Result<String, String> {
 }
 
 fn last(app: &App) -> EditOutcome {
-    app.world()
-        .resource::<OutcomeLog>()
-        .entries
-        .last()
-        .unwrap()
-        .clone()
+    common::last_outcome(app)
 }
 
 fn active(app: &App) -> Option<MeshId> {

@@ -69,3 +69,13 @@ pub fn headless_editor() -> App {
     app.update();
     app
 }
+
+/// The editor's last outcome (the request's label and what became of it).
+pub fn last_outcome(app: &App) -> pappus::editor::requests::EditOutcome {
+    app.world()
+        .resource::<pappus::editor::requests::OutcomeLog>()
+        .entries
+        .last()
+        .expect("an outcome")
+        .clone()
+}
