@@ -23,7 +23,7 @@ use bevy::prelude::{Res, ResMut, Resource, World};
 
 use crate::mesh::change::{Change, LocalRecorder, MeshTables, Remap, SavedMesh, remapped};
 use crate::mesh::despawn_mesh;
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
+use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 use crate::mesh::{InMesh, MeshInfo};
 
@@ -146,6 +146,22 @@ pub struct Entry {
 }
 
 impl Entry {
+    fn new(
+        label: String,
+        record: Record,
+        selection: Option<ElementId>,
+        merge: Option<(MergeKey, u64)>,
+    ) -> Self {
+        let bytes = record.bytes() + label.capacity() + std::mem::size_of::<Entry>();
+        Self {
+            label,
+            record,
+            selection,
+            merge,
+            bytes,
+        }
+    }
+
     /// Bytes the entry holds.
     pub fn bytes(&self) -> usize {
         self.bytes
@@ -201,10 +217,9 @@ impl UndoHistory {
         self.undo.iter().chain(&self.redo).map(|e| e.bytes).sum()
     }
 
-    /// Forgets everything.
-    pub fn clear(&mut self) {
-        self.undo.clear();
-        self.redo.clear();
+    /// The undo stack, or the redo stack.
+    fn stack(&mut self, redo: bool) -> &mut Vec<Entry> {
+        if redo { &mut self.redo } else { &mut self.undo }
     }
 
     fn push(&mut self, entry: Entry) {
@@ -254,6 +269,16 @@ pub struct Pending {
     kind: PendingKind,
     selection: Option<ElementId>,
     merge: Option<MergeKey>,
+}
+
+impl Pending {
+    /// The mesh's tables, when this is the record of a whole-mesh edit.
+    pub fn tables(&self) -> Option<&MeshTables> {
+        match &self.kind {
+            PendingKind::Whole(tables) => Some(tables),
+            _ => None,
+        }
+    }
 }
 
 enum PendingKind {
@@ -364,15 +389,8 @@ pub fn commit(world: &mut World, pending: Pending, label: String) {
         }
     };
     let mut history = world.resource_mut::<UndoHistory>();
-    let press = history.press;
-    let bytes = record.bytes() + label.capacity() + std::mem::size_of::<Entry>();
-    history.push(Entry {
-        label,
-        record,
-        selection: pending.selection,
-        merge: pending.merge.map(|key| (key, press)),
-        bytes,
-    });
+    let merge = pending.merge.map(|key| (key, history.press));
+    history.push(Entry::new(label, record, pending.selection, merge));
 }
 
 /// What an undo or redo did.
@@ -388,38 +406,19 @@ pub struct Stepped {
 /// # Errors
 /// When there is nothing to undo (or redo); nothing changes then.
 pub fn step(world: &mut World, redo: bool) -> Result<Stepped, String> {
-    let mut history = world.resource_mut::<UndoHistory>();
-    let from = if redo {
-        &mut history.redo
-    } else {
-        &mut history.undo
-    };
-    let Some(entry) = from.pop() else {
+    let Some(entry) = world.resource_mut::<UndoHistory>().stack(redo).pop() else {
         return Err(format!("nothing to {}", if redo { "redo" } else { "undo" }));
     };
     let now_selected = world.resource::<Selection>().element;
     let (inverse, mut map, redraw) = entry.record.apply(world);
-    let mut history = world.resource_mut::<UndoHistory>();
-    let from = if redo {
-        &mut history.redo
-    } else {
-        &mut history.undo
-    };
-    for other in from.iter_mut() {
+    for other in world.resource_mut::<UndoHistory>().stack(redo).iter_mut() {
         other.remap(&mut map);
     }
     let selection = entry
         .selection
         .map(|x| remap_element(x, &mut map))
         .filter(|&x| super::selection::exists(&MeshRef::new(world), x));
-    let bytes = inverse.bytes() + entry.label.capacity() + std::mem::size_of::<Entry>();
-    let back = Entry {
-        label: entry.label.clone(),
-        record: inverse,
-        selection: now_selected,
-        merge: None,
-        bytes,
-    };
+    let back = Entry::new(entry.label.clone(), inverse, now_selected, None);
     let mut history = world.resource_mut::<UndoHistory>();
     if redo {
         history.undo.push(back);
@@ -435,16 +434,5 @@ pub fn step(world: &mut World, redo: bool) -> Result<Stepped, String> {
 }
 
 fn remap_element(x: ElementId, map: &mut Remap) -> ElementId {
-    with_entity(x, remapped(map, x.entity()))
-}
-
-/// The same kind of element id, for another entity.
-pub fn with_entity(x: ElementId, e: bevy::prelude::Entity) -> ElementId {
-    match x {
-        ElementId::Vertex(_) => ElementId::Vertex(VertexId(e)),
-        ElementId::Halfedge(_) => ElementId::Halfedge(HalfedgeId(e)),
-        ElementId::Edge(_) => ElementId::Edge(EdgeId(e)),
-        ElementId::Face(_) => ElementId::Face(FaceId(e)),
-        ElementId::Mesh(_) => ElementId::Mesh(MeshId(e)),
-    }
+    x.with_entity(remapped(map, x.entity()))
 }

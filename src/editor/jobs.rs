@@ -11,14 +11,14 @@
 //! exactly as it was. While a job runs, edits of its mesh (undo and redo included) are refused
 //! with a message; selecting and looking around still work.
 
-use bevy::ecs::entity::EntityHashMap;
-use bevy::prelude::{Entity, Resource, World};
+use bevy::prelude::{Resource, World};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::thread::JoinHandle;
 
 use crate::mesh::arrays::{Extracted, extract, replace_contents};
 use crate::mesh::build::spawn_connectivity;
+use crate::mesh::change::row_map;
 use crate::mesh::ids::{ElementId, MeshId};
 use crate::mesh::{MeshInfo, MeshMembers, MeshRef};
 use crate::ops::progressive::ProgressiveMesh;
@@ -215,14 +215,6 @@ pub struct Jobs {
     pub running: Option<RunningJob>,
 }
 
-/// Whether a job is working on `mesh` (edits of it are then refused).
-pub fn busy(world: &World, mesh: Option<MeshId>) -> bool {
-    world
-        .get_resource::<Jobs>()
-        .and_then(|j| j.running.as_ref())
-        .is_some_and(|j| Some(j.mesh) == mesh)
-}
-
 /// Whether `request` should run as a job (a whole-mesh operation on a large enough mesh).
 pub fn wants_job(world: &World, request: &EditRequest) -> Option<(MeshId, GlobalOp)> {
     let (mesh, op) = GlobalOp::of(request)?;
@@ -244,7 +236,15 @@ pub fn start(
     if world.resource::<Jobs>().running.is_some() {
         return Err("another operation is running: wait for it, or cancel it (Esc)".into());
     }
-    let Extracted { tables, members } = extract(world, mesh);
+    // The undo record has read the mesh already: copying its tables is cheaper than reading
+    // the entities again.
+    let (tables, members) = match pending.as_ref().and_then(Pending::tables) {
+        Some(record) => (record.tables().clone(), record.members().clone()),
+        None => {
+            let Extracted { tables, members } = extract(world, mesh);
+            (tables, members)
+        }
+    };
     let progress = Arc::new(Progress::default());
     let shared = Arc::clone(&progress);
     let thread = std::thread::Builder::new()
@@ -338,8 +338,7 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
     let old = MeshMembers::collect(world, mesh);
     let rows = replace_contents(world, mesh, &old, &output.result.tables);
     // Scratch entities of the result → the entities that hold those rows now.
-    let mut to_main: EntityHashMap<Entity> = EntityHashMap::default();
-    to_main.extend(output.result.members.entities().zip(rows.entities()));
+    let to_main = row_map(&output.result.members, &rows);
     if let Some(pending) = job.pending.take() {
         super::history::commit(world, pending, job.label.clone());
     }
@@ -355,14 +354,13 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
         .entity_mut(mesh.0)
         .insert((MeshDirty, super::apply::Modified));
     // The selection, followed from its row in the copy to that element's row in the result.
-    let mut to_scratch: EntityHashMap<Entity> = EntityHashMap::default();
-    to_scratch.extend(job.rows.entities().zip(output.input.entities()));
+    let to_scratch = row_map(&job.rows, &output.input);
     let selection = world.resource::<Selection>().element.and_then(|x| {
         if !(job.op.keeps_element_ids() || matches!(x, ElementId::Vertex(_))) {
             return None;
         }
         let now = to_main.get(to_scratch.get(&x.entity())?)?;
-        let x = super::history::with_entity(x, *now);
+        let x = x.with_entity(*now);
         super::selection::exists(&MeshRef::new(world), x).then_some(x)
     });
     world.resource_mut::<Selection>().element = selection;

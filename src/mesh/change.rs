@@ -356,6 +356,16 @@ impl MeshTables {
         }
     }
 
+    /// The tables.
+    pub fn tables(&self) -> &Connectivity {
+        &self.tables
+    }
+
+    /// The entity behind every row.
+    pub fn members(&self) -> &MeshMembers {
+        &self.members
+    }
+
     /// Bytes held.
     pub fn bytes(&self) -> usize {
         let t = &self.tables;
@@ -449,7 +459,9 @@ pub fn component_bytes(world: &World, mesh: MeshId) -> usize {
         + m.faces.len() * (size_of::<Face>() + member)
 }
 
-fn row_map(old: &MeshMembers, new: &MeshMembers) -> Remap {
+/// The remap from the entities of `old`'s rows to those of `new`'s, row by row and kind by
+/// kind (the two must have the same rows).
+pub fn row_map(old: &MeshMembers, new: &MeshMembers) -> Remap {
     let mut map = Remap::default();
     map.reserve(old.vertices.len() + old.halfedges.len() + old.edges.len() + old.faces.len());
     map.extend(old.entities().zip(new.entities()));

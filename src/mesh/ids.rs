@@ -102,6 +102,18 @@ pub enum ElementId {
 }
 
 impl ElementId {
+    /// An id of the same kind for another entity (where an element was brought back under a
+    /// new entity).
+    pub fn with_entity(self, e: Entity) -> ElementId {
+        match self {
+            Self::Vertex(_) => Self::Vertex(VertexId(e)),
+            Self::Halfedge(_) => Self::Halfedge(HalfedgeId(e)),
+            Self::Edge(_) => Self::Edge(EdgeId(e)),
+            Self::Face(_) => Self::Face(FaceId(e)),
+            Self::Mesh(_) => Self::Mesh(MeshId(e)),
+        }
+    }
+
     /// The entity behind the id.
     pub fn entity(self) -> Entity {
         match self {
