@@ -144,11 +144,13 @@ struct Candidate {
     position: Vec3,
 }
 
-/// Per-vertex data, indexed by entity index.
+/// Per-vertex and per-edge data, indexed by entity index.
 struct VertexTable {
     quadric: Vec<Quadric>,
     /// Each edge's stamp (by edge entity index): bumped whenever its cost is pushed again.
     stamp: Vec<u32>,
+    /// Where each edge would collapse to, as of its latest push (by edge entity index).
+    target: Vec<Vec3>,
 }
 
 impl VertexTable {
@@ -225,6 +227,7 @@ fn simplify_inner(
         .max()
         .unwrap_or(0);
     table.stamp = vec![0; edge_slots];
+    table.target = vec![Vec3::ZERO; edge_slots];
     let mut heap = BinaryHeap::with_capacity(members.edges.len() * 2);
     for &e in &members.edges {
         push(world, &mut table, &mut heap, e);
@@ -244,14 +247,13 @@ fn simplify_inner(
         {
             continue;
         }
-        let Some(c) = candidate(world, &table, edge) else {
-            continue;
-        };
+        // A fresh entry's target still holds: both ends are as they were when it was pushed.
+        let position = table.target[edge.0.index_u32() as usize];
         let Ok(plan) = plan_collapse(
             world,
             edge,
             CollapseOptions {
-                position: Some(c.position),
+                position: Some(position),
                 ..options
             },
         ) else {
@@ -301,6 +303,7 @@ fn initial_quadrics(world: &World, members: &MeshMembers, boundary_weight: f64) 
     let mut table = VertexTable {
         quadric: vec![Quadric::default(); size],
         stamp: Vec::new(),
+        target: Vec::new(),
     };
     for &f in &members.faces {
         let corners: Vec<VertexId> = m.face_vertices(f).collect();
@@ -348,6 +351,7 @@ fn push(world: &World, table: &mut VertexTable, heap: &mut BinaryHeap<Entry>, e:
     };
     let slot = e.0.index_u32() as usize;
     table.stamp[slot] = table.stamp[slot].wrapping_add(1);
+    table.target[slot] = c.position;
     // Non-negative f32s order like their bits.
     let cost = (c.cost.max(0.0) as f32).to_bits();
     heap.push(Entry {

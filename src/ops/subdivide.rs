@@ -30,7 +30,8 @@
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::arrays::{extract, replace_contents};
+use crate::mesh::arrays::extract;
+use crate::mesh::build::{RowCounts, reserve_rows, write_links};
 use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{ElementId, FaceId, MeshId};
 use crate::mesh::repair::{NONE, RepairedFaces};
@@ -130,8 +131,24 @@ pub fn loop_subdivide(
     mesh: MeshId,
     levels: u32,
 ) -> Result<SubdivisionSummary, Refusal> {
-    subdivide(world, mesh, levels, |t, members| {
-        loop_tables(t).map_err(|f| Refusal::NotTriangle(ElementId::Face(members.faces[f])))
+    let scheme = Scheme {
+        step: |t| loop_tables(t).expect("checked: every face is a triangle"),
+        counts: |t, _| {
+            let edges = 2 * t.edges + 3 * t.faces;
+            RowCounts {
+                vertices: t.vertices + t.edges,
+                halfedges: 2 * edges,
+                edges,
+                faces: 4 * t.faces,
+            }
+        },
+    };
+    subdivide(world, mesh, levels, scheme, |t, members| {
+        let rings = FaceRings::new(t);
+        match (0..t.face_count()).find(|&f| rings.face(f).len() != 3) {
+            Some(f) => Err(Refusal::NotTriangle(ElementId::Face(members.faces[f]))),
+            None => Ok(()),
+        }
     })
 }
 
@@ -141,30 +158,83 @@ pub fn catmull_clark(
     mesh: MeshId,
     levels: u32,
 ) -> Result<SubdivisionSummary, Refusal> {
-    subdivide(world, mesh, levels, |t, _| Ok(catmull_clark_tables(t)))
+    let scheme = Scheme {
+        step: catmull_clark_tables,
+        // Every corner becomes a quad, and each adds an edge from its face point.
+        counts: |t, corners| {
+            let edges = 2 * t.edges + corners;
+            RowCounts {
+                vertices: t.vertices + t.edges + t.faces,
+                halfedges: 2 * edges,
+                edges,
+                faces: corners,
+            }
+        },
+    };
+    subdivide(world, mesh, levels, scheme, |_, _| Ok(()))
 }
 
+/// A subdivision scheme: one level on tables, and the row counts a level makes from the
+/// counts before it and the number of face corners, known before the tables are computed.
+struct Scheme {
+    step: fn(&Connectivity) -> Connectivity,
+    counts: fn(RowCounts, usize) -> RowCounts,
+}
+
+/// Runs `levels` levels of `scheme` after `check` passed. The tables are computed on a second
+/// thread while this one makes the result's entities exist (the two largest costs, overlapped),
+/// and the links are written once both are done.
 fn subdivide(
     world: &mut World,
     mesh: MeshId,
     levels: u32,
-    step: impl Fn(&Connectivity, &crate::mesh::MeshMembers) -> Result<Connectivity, Refusal>,
+    scheme: Scheme,
+    check: impl Fn(&Connectivity, &crate::mesh::MeshMembers) -> Result<(), Refusal>,
 ) -> Result<SubdivisionSummary, Refusal> {
     if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
         return Err(Refusal::Stale(ElementId::Mesh(mesh)));
     }
     let extracted = extract(world, mesh);
-    let mut tables = step(&extracted.tables, &extracted.members)?;
-    for _ in 1..levels {
-        tables = step(&tables, &extracted.members)?;
+    check(&extracted.tables, &extracted.members)?;
+    if levels == 0 {
+        return Ok(SubdivisionSummary {
+            levels,
+            vertices: extracted.tables.vertex_count(),
+            faces: extracted.tables.face_count(),
+        });
     }
-    if levels > 0 {
-        replace_contents(world, mesh, &extracted.members, &tables);
+    let mut counts = RowCounts::of(&extracted.tables);
+    let mut corners = extracted.tables.face.iter().filter(|&&f| f != NONE).count();
+    for _ in 0..levels {
+        counts = (scheme.counts)(counts, corners);
+        corners = 4 * counts.faces;
+        if counts.halfedges >= NONE as usize {
+            return Err(Refusal::Unsuitable(format!(
+                "{levels} levels would make {} halfedges, more than 32-bit indices can address",
+                counts.halfedges
+            )));
+        }
     }
+    let tables = &extracted.tables;
+    let (result, rows) = std::thread::scope(|s| {
+        let worker = s.spawn(move || {
+            let mut t = (scheme.step)(tables);
+            for _ in 1..levels {
+                t = (scheme.step)(&t);
+            }
+            t
+        });
+        let rows = reserve_rows(world, counts, mesh, Some(&extracted.members));
+        let result = worker
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (result, rows)
+    });
+    write_links(world, &result, &rows);
     Ok(SubdivisionSummary {
         levels,
-        vertices: tables.vertex_count(),
-        faces: tables.face_count(),
+        vertices: result.vertex_count(),
+        faces: result.face_count(),
     })
 }
 
