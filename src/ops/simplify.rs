@@ -7,22 +7,23 @@
 //! collapsing an edge is `vᵀ (Q_a + Q_b) v` at the optimal `v` (the solution of the 3×3 system;
 //! when it is near singular, the best of the two ends and the midpoint).
 //!
-//! Edges wait in a binary heap with lazy invalidation: an entry remembers the version of both
-//! end vertices and is skipped when either has changed since. Equal costs are ordered by the
-//! edge's entity bits, so a run is deterministic. Every collapse goes through
+//! Edges wait in an indexed heap ([`super::indexed_heap`]), one entry per edge: when a collapse
+//! changes the cost of the edges around the merged vertex, their entries are re-keyed in place,
+//! so no pop is spent on a stale entry. Equal costs are ordered by the edge's entity bits, so a
+//! run is deterministic. Every collapse goes through
 //! [`crate::ops::local::plan_collapse`] — link condition, degenerate faces and a bound on how
 //! far a face normal may turn — and a refused edge is simply dropped until a neighbouring
 //! collapse gives it a new chance.
 
 use bevy::math::{DVec3, Vec3};
 use bevy::prelude::World;
-use std::collections::BinaryHeap;
 
 use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
+use super::indexed_heap::IndexedHeap;
 use super::local::{CollapseOptions, apply_collapse, plan_collapse};
 
 /// How to simplify. The same struct serves the command line, the editor and the tests.
@@ -129,14 +130,9 @@ impl std::ops::Add for Quadric {
     }
 }
 
-/// A heap entry, 16 bytes: the cost as order-preserving bits, the edge, and the edge's stamp
-/// when it was pushed. Lowest cost first, ties by edge; an entry whose stamp is old is stale.
-#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-struct Entry {
-    cost: std::cmp::Reverse<u32>,
-    edge: std::cmp::Reverse<u64>,
-    stamp: u32,
-}
+/// A heap key: the cost as order-preserving bits (non-negative f32s order like their bits),
+/// then the edge's entity bits. Lowest first.
+type Key = (u32, u64);
 
 /// Where an edge should collapse to and what it costs.
 struct Candidate {
@@ -147,9 +143,7 @@ struct Candidate {
 /// Per-vertex and per-edge data, indexed by entity index.
 struct VertexTable {
     quadric: Vec<Quadric>,
-    /// Each edge's stamp (by edge entity index): bumped whenever its cost is pushed again.
-    stamp: Vec<u32>,
-    /// Where each edge would collapse to, as of its latest push (by edge entity index).
+    /// Where each edge would collapse to, as of its latest key (by edge entity index).
     target: Vec<Vec3>,
 }
 
@@ -226,12 +220,13 @@ fn simplify_inner(
         .map(|e| e.0.index_u32() as usize + 1)
         .max()
         .unwrap_or(0);
-    table.stamp = vec![0; edge_slots];
     table.target = vec![Vec3::ZERO; edge_slots];
-    let mut heap = BinaryHeap::with_capacity(members.edges.len() * 2);
-    for &e in &members.edges {
-        push(world, &mut table, &mut heap, e);
-    }
+    let entries = members
+        .edges
+        .iter()
+        .filter_map(|&e| Some((keyed(world, &mut table, e)?, e.0.index_u32())))
+        .collect();
+    let mut heap = IndexedHeap::from_entries(edge_slots, entries);
     let options = CollapseOptions {
         position: None,
         max_normal_change_deg: Some(params.max_normal_change_deg),
@@ -240,14 +235,15 @@ fn simplify_inner(
     let mut collapses = 0;
     let to_remove = faces_before.saturating_sub(params.target_faces).max(1);
     while faces > params.target_faces {
-        let Some(entry) = heap.pop() else { break };
-        let edge = EdgeId(bevy::prelude::Entity::from_bits(entry.edge.0));
-        if world.get::<crate::mesh::Edge>(edge.0).is_none()
-            || table.stamp[edge.0.index_u32() as usize] != entry.stamp
-        {
+        let Some(((_, bits), _)) = heap.pop() else {
+            break;
+        };
+        // Edges a collapse removed keep their entries until popped; skip them then.
+        let edge = EdgeId(bevy::prelude::Entity::from_bits(bits));
+        if world.get::<crate::mesh::Edge>(edge.0).is_none() {
             continue;
         }
-        // A fresh entry's target still holds: both ends are as they were when it was pushed.
+        // The target still holds: both ends are as they were when the edge was last keyed.
         let position = table.target[edge.0.index_u32() as usize];
         let Ok(plan) = plan_collapse(
             world,
@@ -275,7 +271,10 @@ fn simplify_inner(
             m.vertex_outgoing(result.kept).map(|h| m.edge(h)).collect()
         };
         for e in around {
-            push(world, &mut table, &mut heap, e);
+            match keyed(world, &mut table, e) {
+                Some(key) => heap.set(e.0.index_u32(), key),
+                None => heap.remove(e.0.index_u32()),
+            }
         }
         if collapses % 512 == 0 {
             let done = (faces_before - faces) as f32 / to_remove as f32;
@@ -302,7 +301,6 @@ fn initial_quadrics(world: &World, members: &MeshMembers, boundary_weight: f64) 
         .unwrap_or(0);
     let mut table = VertexTable {
         quadric: vec![Quadric::default(); size],
-        stamp: Vec::new(),
         target: Vec::new(),
     };
     for &f in &members.faces {
@@ -344,21 +342,12 @@ fn initial_quadrics(world: &World, members: &MeshMembers, boundary_weight: f64) 
     table
 }
 
-/// Pushes `e` with its current cost, making any older entry for it stale.
-fn push(world: &World, table: &mut VertexTable, heap: &mut BinaryHeap<Entry>, e: EdgeId) {
-    let Some(c) = candidate(world, table, e) else {
-        return;
-    };
-    let slot = e.0.index_u32() as usize;
-    table.stamp[slot] = table.stamp[slot].wrapping_add(1);
-    table.target[slot] = c.position;
-    // Non-negative f32s order like their bits.
-    let cost = (c.cost.max(0.0) as f32).to_bits();
-    heap.push(Entry {
-        cost: std::cmp::Reverse(cost),
-        edge: std::cmp::Reverse(e.0.to_bits()),
-        stamp: table.stamp[slot],
-    });
+/// `e`'s heap key at its current cost, remembering where it would collapse to; `None` if `e`
+/// is gone.
+fn keyed(world: &World, table: &mut VertexTable, e: EdgeId) -> Option<Key> {
+    let c = candidate(world, table, e)?;
+    table.target[e.0.index_u32() as usize] = c.position;
+    Some(((c.cost.max(0.0) as f32).to_bits(), e.0.to_bits()))
 }
 
 fn candidate(world: &World, table: &VertexTable, e: EdgeId) -> Option<Candidate> {
