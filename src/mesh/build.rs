@@ -141,7 +141,9 @@ pub(crate) fn write_tables(
 /// must run back to back (in between, other work that does not touch the world may run:
 /// subdivision computes its tables on another thread meanwhile).
 ///
-/// Batch spawning measured 52–56 ns an entity against 71–85 ns for spawning at allocated ids.
+/// Batch spawning is the cheaper way in Bevy 0.19: 52–56 ns an entity against 71–85 ns for
+/// spawning at allocated ids (31–35 ns in memory already faulted in, up to 280 ns in fresh
+/// memory on the development VM).
 pub(crate) fn reserve_rows(
     world: &mut World,
     counts: RowCounts,
@@ -196,7 +198,7 @@ pub(crate) fn reserve_rows(
 }
 
 /// Writes every link of the tables `c` into the rows `rows` (from [`reserve_rows`] with
-/// `RowCounts::of(c)`; 2–5 ns an entity).
+/// `RowCounts::of(c)`; 12–18 ns an entity, a lookup and a change tick each).
 ///
 /// # Panics
 /// If the row counts differ from the tables' (a bug in the caller).

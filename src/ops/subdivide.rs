@@ -143,13 +143,16 @@ pub fn loop_subdivide(
             }
         },
     };
-    subdivide(world, mesh, levels, scheme, |t, members| {
-        let rings = FaceRings::new(t);
-        match (0..t.face_count()).find(|&f| rings.face(f).len() != 3) {
+    subdivide(
+        world,
+        mesh,
+        levels,
+        scheme,
+        |t, members| match first_non_triangle_row(t) {
             Some(f) => Err(Refusal::NotTriangle(ElementId::Face(members.faces[f]))),
             None => Ok(()),
-        }
-    })
+        },
+    )
 }
 
 /// Catmull–Clark-subdivides any polygon mesh `levels` times. Never refuses.
@@ -238,12 +241,21 @@ fn subdivide(
     })
 }
 
+/// The first face of the tables that is not a triangle, if any (three `next` steps from its
+/// halfedge do not come back to it).
+fn first_non_triangle_row(t: &Connectivity) -> Option<usize> {
+    let next = |h: u32| t.next[h as usize];
+    t.face_halfedge
+        .iter()
+        .position(|&h| next(h) == h || next(next(next(h))) != h)
+}
+
 /// One level of Loop subdivision on tables; `Err(face)` if a face is not a triangle.
 pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, usize> {
-    let rings = FaceRings::new(t);
-    if let Some(f) = (0..t.face_count()).find(|&f| rings.face(f).len() != 3) {
+    if let Some(f) = first_non_triangle_row(t) {
         return Err(f);
     }
+    let rings = FaceRings::new(t);
     let (nv, ne, nf) = (t.vertex_count(), t.edge_count(), t.face_count());
     let mut positions = Vec::with_capacity(nv + ne);
     for v in 0..nv as u32 {

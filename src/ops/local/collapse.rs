@@ -64,7 +64,7 @@ use bevy::prelude::World;
 
 use crate::mesh::elements::{Edge, Face, Halfedge, Position, Vertex};
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
-use crate::mesh::topology::{MAX_LOOP, MeshRef};
+use crate::mesh::topology::{MAX_LOOP, MeshRef, newell_area_vector};
 
 use super::{Refusal, he, link, live_edge};
 
@@ -425,15 +425,15 @@ impl Merge {
                     (o.links.vertex, o.tip),
                 ];
                 (
-                    newell(corners.iter().map(|&(_, p)| p)),
-                    newell(corners.iter().map(|&(v, p)| self.moved(v, p))),
+                    newell_area_vector(&corners.map(|(_, p)| p)),
+                    newell_area_vector(&corners.map(|(v, p)| self.moved(v, p))),
                 )
             } else {
-                let corners = || m.face_vertices(f).map(|x| (x, m.position(x)));
-                (
-                    newell(corners().map(|(_, p)| p)),
-                    newell(corners().map(|(v, p)| self.moved(v, p))),
-                )
+                let corners: Vec<(VertexId, Vec3)> =
+                    m.face_vertices(f).map(|x| (x, m.position(x))).collect();
+                let before: Vec<Vec3> = corners.iter().map(|&(_, p)| p).collect();
+                let after: Vec<Vec3> = corners.iter().map(|&(v, p)| self.moved(v, p)).collect();
+                (newell_area_vector(&before), newell_area_vector(&after))
             };
             let (Some(n0), Some(n1)) = (n0.try_normalize(), n1.try_normalize()) else {
                 return Err(Refusal::NormalFlip(ElementId::Face(f)));
@@ -444,20 +444,6 @@ impl Merge {
         }
         Ok(())
     }
-}
-
-/// The Newell normal (twice the vector area) of a closed polygon, without collecting it.
-fn newell(mut corners: impl Iterator<Item = Vec3>) -> Vec3 {
-    let Some(first) = corners.next() else {
-        return Vec3::ZERO;
-    };
-    let mut n = Vec3::ZERO;
-    let mut last = first;
-    for p in corners {
-        n += last.cross(p);
-        last = p;
-    }
-    n + last.cross(first)
 }
 
 /// Carries out a collapse planned by [`plan_collapse`] on the unchanged world.
