@@ -4,7 +4,8 @@
 //! 1. split every edge longer than 4/3 L at its midpoint;
 //! 2. collapse every edge shorter than 4/5 L, shortest first, to its midpoint or else to one of
 //!    its ends, unless every choice would make an edge longer than 4/3 L (and through the
-//!    collapse plan's refusals, with a 60° normal bound);
+//!    collapse plan's refusals, with a 60° normal bound; features restrict the choice, see
+//!    below);
 //! 3. flip an edge when that brings the valences of its four vertices closer to 6 (4 on the
 //!    boundary);
 //! 4. move every free vertex 1/5 of the way to its one-ring centroid, within its tangent plane
@@ -14,9 +15,12 @@
 //!    projection done after the last.
 //!
 //! Features are kept: boundary edges and edges whose dihedral angle exceeds
-//! [`RemeshParams::feature_angle_deg`] are split but never flipped or collapsed, and a vertex on
-//! a feature does not move. The work is bounded (a fixed number of passes over edge lists taken
-//! at the start of each pass), so it ends on every input.
+//! [`RemeshParams::feature_angle_deg`] are split (both halves stay features) but never flipped,
+//! and a vertex on a feature does not move. A free vertex may collapse into a feature vertex
+//! (which stays put), and a vertex on a feature line (two feature edges) into its neighbour
+//! along the line where the line is straight to within L/20 there; feature corners never go.
+//! The work is bounded (a fixed number of passes over edge lists taken at the start of each
+//! pass), so it ends on every input.
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
@@ -29,7 +33,9 @@ use crate::mesh::repair::NONE;
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
-use super::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
+use super::local::{
+    CollapseOptions, apply_collapse, flip_edge, plan_collapse_halfedge, split_edge,
+};
 
 /// How to remesh. The same struct serves the command line, the editor and the tests.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -166,9 +172,12 @@ fn is_feature(m: &MeshRef<'_>, e: EdgeId, cos_limit: f32) -> bool {
     n0.dot(n1) < cos_limit
 }
 
-fn feature_vertex(m: &MeshRef<'_>, v: VertexId, features: &EntityHashSet) -> bool {
+/// How many feature edges (boundary edges included) meet at `v`: 0 for a free vertex, 2 on a
+/// feature line, any other count a feature corner.
+fn feature_degree(m: &MeshRef<'_>, v: VertexId, features: &EntityHashSet) -> usize {
     m.vertex_outgoing(v)
-        .any(|h| features.contains(&m.edge(h).0))
+        .filter(|&h| features.contains(&m.edge(h).0))
+        .count()
 }
 
 fn split_long(world: &mut World, mesh: MeshId, high: f32, features: &mut EntityHashSet) -> usize {
@@ -180,6 +189,8 @@ fn split_long(world: &mut World, mesh: MeshId, high: f32, features: &mut EntityH
             continue;
         }
         let feature = features.contains(&e.0);
+        // The ends, read before the split: afterwards `e` is one of the halves.
+        let (a, b) = m.edge_vertices(e);
         let Ok(v) = split_edge(world, e, 0.5) else {
             continue;
         };
@@ -187,10 +198,6 @@ fn split_long(world: &mut World, mesh: MeshId, high: f32, features: &mut EntityH
         if feature {
             // Both halves of a feature edge stay features; the cuts across faces do not.
             let m = MeshRef::new(world);
-            let (a, b) = {
-                let h = m.edge_halfedge(e);
-                (m.from_vertex(h), m.to_vertex(h))
-            };
             for h in m.vertex_outgoing(v) {
                 let w = m.to_vertex(h);
                 if w == a || w == b {
@@ -225,33 +232,99 @@ fn collapse_short(
     let mut collapses = 0;
     for e in edges {
         let m = MeshRef::new(world);
-        if m.try_edge(e).is_none() || features.contains(&e.0) || edge_length(&m, e) >= low {
+        if m.try_edge(e).is_none() || edge_length(&m, e) >= low {
             continue;
         }
-        let (a, b) = m.edge_vertices(e);
-        if feature_vertex(&m, a, features) || feature_vertex(&m, b, features) {
-            continue;
-        }
-        // Where the merged vertex goes: the midpoint, else either end (as PMP tries both
-        // directions), whichever makes no edge longer than 4/3 L.
-        let (pa, pb) = (m.position(a), m.position(b));
-        let fits = |target: Vec3| {
-            !m.vertex_neighbors(a)
-                .chain(m.vertex_neighbors(b))
-                .any(|n| n != a && n != b && m.position(n).distance(target) > high)
-        };
-        let Some(mid) = [(pa + pb) / 2.0, pa, pb].into_iter().find(|&t| fits(t)) else {
+        let Some((h, target)) = collapse_choice(&m, e, features, high, low) else {
             continue;
         };
         let options = CollapseOptions {
-            position: Some(mid),
+            position: Some(target),
             max_normal_change_deg: Some(60.0),
         };
-        if collapse_edge(world, e, options).is_ok() {
+        if let Ok(plan) = plan_collapse_halfedge(world, h, options) {
+            apply_collapse(world, plan);
             collapses += 1;
         }
     }
     collapses
+}
+
+/// How the short edge `e` may collapse without harming a feature: the halfedge whose start
+/// survives (its tip is removed) and where the survivor goes; `None` if it may not.
+///
+/// - Two free vertices merge at the midpoint, else at either end (as PMP tries both
+///   directions), whichever makes no edge longer than `high` (4/3 L).
+/// - A free vertex merges into a feature vertex, which stays where it is.
+/// - Along a feature line (the edge is a feature and one end has exactly two feature edges),
+///   that end merges into the other, which stays; only where the line is nearly straight
+///   there (the removed vertex within `low / 16`, L/20, of the line's new segment), so a crease keeps
+///   its shape and the boundary stays where it was.
+/// - Feature corners never go, and no collapse removes a feature edge other than its own:
+///   the removed vertex's other edges in the vanishing triangles merge into the survivor's.
+fn collapse_choice(
+    m: &MeshRef<'_>,
+    e: EdgeId,
+    features: &EntityHashSet,
+    high: f32,
+    low: f32,
+) -> Option<(HalfedgeId, Vec3)> {
+    let h = m.edge_halfedge(e);
+    let (a, b) = (m.from_vertex(h), m.to_vertex(h));
+    let (pa, pb) = (m.position(a), m.position(b));
+    let fits = |target: Vec3| {
+        !m.vertex_neighbors(a)
+            .chain(m.vertex_neighbors(b))
+            .any(|n| n != a && n != b && m.position(n).distance(target) > high)
+    };
+    let (da, db) = (
+        feature_degree(m, a, features),
+        feature_degree(m, b, features),
+    );
+    match (da, db) {
+        (0, 0) => [(pa + pb) / 2.0, pa, pb]
+            .into_iter()
+            .find(|&t| fits(t))
+            .map(|t| (h, t)),
+        (_, 0) => fits(pa).then_some((h, pa)),
+        (0, _) => fits(pb).then_some((m.twin(h), pb)),
+        _ if features.contains(&e.0) => [(h, db), (m.twin(h), da)]
+            .into_iter()
+            .filter(|&(_, degree)| degree == 2)
+            .find(|&(keep, _)| {
+                let target = m.position(m.from_vertex(keep));
+                fits(target) && slides_along_line(m, keep, features, low / 16.0)
+            })
+            .map(|(keep, _)| (keep, m.position(m.from_vertex(keep)))),
+        _ => None,
+    }
+}
+
+/// Whether removing the tip `r` of the feature halfedge `keep` (from `k`) keeps its feature
+/// line: `r`'s other feature neighbour `x` is not a wing of the collapse (that would merge two
+/// feature edges into one), and `r` lies within `tolerance` of the new segment `k x`.
+fn slides_along_line(
+    m: &MeshRef<'_>,
+    keep: HalfedgeId,
+    features: &EntityHashSet,
+    tolerance: f32,
+) -> bool {
+    let (k, r) = (m.from_vertex(keep), m.to_vertex(keep));
+    let wings = [keep, m.twin(keep)].map(|x| m.face(x).map(|_| m.to_vertex(m.next(x))));
+    let Some(x) = m
+        .vertex_outgoing(r)
+        .find(|&o| m.to_vertex(o) != k && features.contains(&m.edge(o).0))
+        .map(|o| m.to_vertex(o))
+    else {
+        return false;
+    };
+    if wings.contains(&Some(x)) {
+        return false;
+    }
+    let (pk, px, pr) = (m.position(k), m.position(x), m.position(r));
+    let along = px - pk;
+    let t = ((pr - pk).dot(along) / along.length_squared().max(f32::MIN_POSITIVE)).clamp(0.0, 1.0);
+    (pk + along * t).distance(pr) <= tolerance
 }
 
 fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> usize {
