@@ -57,3 +57,42 @@ fn the_bunny_simplified_to_one_percent_refines_back_exactly() {
     let soup = pappus::io::read(&path).unwrap();
     round_trip(&soup, 0.01);
 }
+
+/// A long refine goes in bulk (tables, then one write); a short one split by split. Both must
+/// make the same mesh: refine one copy in bulk and the other one split at a time, to the same
+/// level, and compare.
+#[test]
+fn bulk_and_single_refines_make_the_same_mesh() {
+    for soup in [shapes::icosphere(3), shapes::grid(12, 12)] {
+        let (mut bulk_world, bulk) = build(&soup);
+        let (mut single_world, single) = build(&soup);
+        let faces = mesh_stats(&bulk_world, bulk.mesh).faces;
+        let params = SimplifyParams::ratio(faces, 0.05);
+        let (mut by_bulk, _) =
+            ProgressiveMesh::simplify(&mut bulk_world, bulk.mesh, &params).unwrap();
+        let (mut by_single, _) =
+            ProgressiveMesh::simplify(&mut single_world, single.mesh, &params).unwrap();
+        let halfway = (faces + by_bulk.faces()) / 2;
+        let steps = by_bulk.go_to_faces(&mut bulk_world, halfway).unwrap();
+        assert!(steps > 10);
+        while by_single.faces() < by_bulk.faces() {
+            assert!(by_single.refine_one(&mut single_world).unwrap());
+        }
+        validate(&bulk_world, bulk.mesh).unwrap();
+        validate(&single_world, single.mesh).unwrap();
+        assert_eq!(
+            canonical(&to_soup(&bulk_world, bulk.mesh)),
+            canonical(&to_soup(&single_world, single.mesh))
+        );
+        // The history still works from the level the bulk path left: down a little, then
+        // all the way up.
+        by_bulk.go_to_faces(&mut bulk_world, halfway - 8).unwrap();
+        by_bulk.go_to_faces(&mut bulk_world, usize::MAX).unwrap();
+        validate(&bulk_world, bulk.mesh).unwrap();
+        let (fresh_world, fresh) = build(&soup);
+        assert_eq!(
+            canonical(&to_soup(&bulk_world, bulk.mesh)),
+            canonical(&to_soup(&fresh_world, fresh.mesh))
+        );
+    }
+}

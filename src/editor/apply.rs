@@ -157,20 +157,27 @@ fn apply_request(world: &mut World, request: &EditRequest) -> Result<String, Str
             let Some(mut pm) = world.resource_mut::<History>().pm.take() else {
                 return Err("no simplification to move along: simplify first (Shift+S)".into());
             };
-            // Only the faces around the vertices each step touches are redrawn.
+            // Only the faces around the vertices each step touches are redrawn, unless the
+            // move rewrote the whole mesh (a long refine).
             let mut near: Vec<FaceId> = Vec::new();
             let result = pm.go_to_faces_watching(world, *faces, |w, v| {
                 near.extend(faces_near(w, &[v]));
             });
             let (mesh, now) = (pm.mesh, pm.faces());
             world.resource_mut::<History>().pm = Some(pm);
-            let steps = result.map_err(|r| r.to_string())?;
             let selection = world
                 .resource::<Selection>()
                 .element
                 .filter(|&x| super::selection::exists(&MeshRef::new(world), x));
-            edited_locally(world, mesh, near, &[], selection);
-            Ok(format!("{steps} step(s), {now} faces"))
+            // A bulk refine that stopped on a refusal has still rewritten the mesh.
+            let rewritten = result.as_ref().map_or(true, |moved| moved.rewritten);
+            if rewritten {
+                edited(world, mesh, selection);
+            } else {
+                edited_locally(world, mesh, near, &[], selection);
+            }
+            let moved = result.map_err(|r| r.to_string())?;
+            Ok(format!("{} step(s), {now} faces", moved.steps))
         }
         EditRequest::SplitVertex(v) => {
             let Some(mut pm) = world.resource_mut::<History>().pm.take() else {

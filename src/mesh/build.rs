@@ -108,6 +108,16 @@ pub struct RowCounts {
 }
 
 impl RowCounts {
+    /// The counts of both, added kind by kind.
+    pub fn plus(self, other: Self) -> Self {
+        Self {
+            vertices: self.vertices + other.vertices,
+            halfedges: self.halfedges + other.halfedges,
+            edges: self.edges + other.edges,
+            faces: self.faces + other.faces,
+        }
+    }
+
     /// The counts of `c`.
     pub fn of(c: &Connectivity) -> Self {
         Self {
@@ -197,6 +207,33 @@ pub(crate) fn reserve_rows(
     }
 }
 
+/// Despawns the rows of `rows` past `keep` (of each kind): what [`reserve_rows`] made beyond
+/// what the tables turned out to need.
+pub(crate) fn release_rows(world: &mut World, rows: &mut MeshMembers, keep: RowCounts) {
+    let surplus = rows
+        .vertices
+        .drain(keep.vertices.min(rows.vertices.len())..);
+    let mut gone: Vec<Entity> = surplus.map(|v| v.0).collect();
+    gone.extend(
+        rows.halfedges
+            .drain(keep.halfedges.min(rows.halfedges.len())..)
+            .map(|h| h.0),
+    );
+    gone.extend(
+        rows.edges
+            .drain(keep.edges.min(rows.edges.len())..)
+            .map(|e| e.0),
+    );
+    gone.extend(
+        rows.faces
+            .drain(keep.faces.min(rows.faces.len())..)
+            .map(|f| f.0),
+    );
+    for e in gone {
+        world.despawn(e);
+    }
+}
+
 /// Writes every link of the tables `c` into the rows `rows` (from [`reserve_rows`] with
 /// `RowCounts::of(c)`; 12–18 ns an entity, a lookup and a change tick each).
 ///
@@ -261,8 +298,32 @@ where
     }
     let mut ids = old;
     ids.truncate(keep);
+    sort_free_ids(world, n - keep);
     ids.extend(world.spawn_batch(std::iter::repeat_n(placeholder, n - keep)));
     ids
+}
+
+/// Puts the next `count` ids Bevy will hand out in ascending index order, where they come from
+/// freed ones.
+///
+/// Bevy reuses freed ids first, in the order they were freed; after a simplification that is
+/// a random order, and spawning and then linking rows whose ids are scattered misses the cache
+/// on every entity (the bulk refine of the bunny spent 57 ms there, 29 ms with sorted ids).
+/// So the freed ids about to be reused are taken, sorted and handed back: the batch spawn then
+/// takes them again, front to back. Fresh ids are in order already, and a world that has freed
+/// none (a mesh just loaded and subdivided) pays nothing.
+fn sort_free_ids(world: &mut World, count: usize) {
+    let spawned: usize = world.archetypes().iter().map(|a| a.len() as usize).sum();
+    let freed = (world.entities().len() as usize).saturating_sub(spawned);
+    let Ok(count) = u32::try_from(count.min(freed)) else {
+        return;
+    };
+    if count == 0 {
+        return;
+    }
+    let mut ids: Vec<Entity> = world.entity_allocator().alloc_many(count).collect();
+    ids.sort_unstable_by_key(|e| e.index_u32());
+    world.entity_allocator_mut().free_many(&ids);
 }
 
 /// The mesh as a polygon soup: vertices in table order, faces as vertex cycles. The inverse of

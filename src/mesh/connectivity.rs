@@ -132,4 +132,23 @@ impl Connectivity {
     pub fn face_count(&self) -> usize {
         self.face_halfedge.len()
     }
+
+    /// Makes room for `more` rows of each kind beyond the current ones (tables that grow
+    /// row by row, as the bulk refine's, then never reallocate).
+    pub fn reserve(&mut self, more: super::build::RowCounts) {
+        self.positions.reserve(more.vertices);
+        self.vertex_halfedge.reserve(more.vertices);
+        for table in [
+            &mut self.twin,
+            &mut self.next,
+            &mut self.prev,
+            &mut self.to_vertex,
+            &mut self.edge,
+            &mut self.face,
+        ] {
+            table.reserve(more.halfedges);
+        }
+        self.edge_halfedge.reserve(more.edges);
+        self.face_halfedge.reserve(more.faces);
+    }
 }

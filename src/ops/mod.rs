@@ -15,6 +15,7 @@ pub mod progressive;
 pub mod remesh;
 pub mod simplify;
 pub mod subdivide;
+pub mod table_split;
 pub mod triangulate;
 
 use crate::mesh::ids::ElementId;
