@@ -7,7 +7,8 @@
 //!    collapse plan's refusals, with a 60° normal bound; features restrict the choice, see
 //!    below);
 //! 3. flip an edge when that brings the valences of its four vertices closer to 6 (4 on the
-//!    boundary);
+//!    boundary), or leaves them as close and the edge was not locally Delaunay (the angles
+//!    facing it summed to over 180°: flipping raises the pair's smallest angle);
 //! 4. move every free vertex 1/5 of the way to its one-ring centroid, within its tangent plane
 //!    (all new positions computed first, then committed), and project it back onto the input
 //!    surface (closest point on the input triangles, found through a uniform grid); the
@@ -366,7 +367,9 @@ fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) ->
         let deviation = |k: usize, delta: i32| (valence[ends[k]] + delta - target[ends[k]]).abs();
         let before: i32 = (0..4).map(|k| deviation(k, 0)).sum();
         let after: i32 = (0..4).map(|k| deviation(k, change[k])).sum();
-        if after < before && flip_keeps_shape(&m, h) && flip_edge(world, e).is_ok() {
+        // Closer valences; or as close, and a better-shaped pair.
+        let better = after < before || (after == before && !locally_delaunay(&m, h));
+        if better && flip_keeps_shape(&m, h) && flip_edge(world, e).is_ok() {
             for k in 0..4 {
                 valence[ends[k]] += change[k];
             }
@@ -374,6 +377,22 @@ fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) ->
         }
     }
     flips
+}
+
+/// Whether the edge of `h` (between triangles a b c and b a d) is locally Delaunay: the angles
+/// facing it, at c and at d, sum to at most 180°. Flipping an edge that is not makes the
+/// pair's smallest angle larger.
+fn locally_delaunay(m: &MeshRef<'_>, h: HalfedgeId) -> bool {
+    let t = m.twin(h);
+    let [a, b, c, d] = [
+        m.from_vertex(h),
+        m.to_vertex(h),
+        m.to_vertex(m.next(h)),
+        m.to_vertex(m.next(t)),
+    ]
+    .map(|v| m.position(v));
+    let angle = |apex: Vec3| (a - apex).angle_between(b - apex);
+    angle(c) + angle(d) <= std::f32::consts::PI + 1e-4
 }
 
 /// Whether flipping the edge of `h` (between triangles a b c and b a d) gives two triangles
