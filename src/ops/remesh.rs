@@ -379,18 +379,22 @@ fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) ->
     flips
 }
 
+/// The positions of `a b c d` around the edge of `h`, between triangles a b c and b a d.
+fn quad_corners(m: &MeshRef<'_>, h: HalfedgeId) -> [Vec3; 4] {
+    [
+        m.from_vertex(h),
+        m.to_vertex(h),
+        m.to_vertex(m.next(h)),
+        m.to_vertex(m.next(m.twin(h))),
+    ]
+    .map(|v| m.position(v))
+}
+
 /// Whether the edge of `h` (between triangles a b c and b a d) is locally Delaunay: the angles
 /// facing it, at c and at d, sum to at most 180°. Flipping an edge that is not makes the
 /// pair's smallest angle larger.
 fn locally_delaunay(m: &MeshRef<'_>, h: HalfedgeId) -> bool {
-    let t = m.twin(h);
-    let [a, b, c, d] = [
-        m.from_vertex(h),
-        m.to_vertex(h),
-        m.to_vertex(m.next(h)),
-        m.to_vertex(m.next(t)),
-    ]
-    .map(|v| m.position(v));
+    let [a, b, c, d] = quad_corners(m, h);
     let angle = |apex: Vec3| (a - apex).angle_between(b - apex);
     angle(c) + angle(d) <= std::f32::consts::PI + 1e-4
 }
@@ -401,14 +405,7 @@ fn locally_delaunay(m: &MeshRef<'_>, h: HalfedgeId) -> bool {
 /// non-convex quad, for instance one whose corner is a locked vertex split onto a crease,
 /// and leave a zero-area triangle that nothing can move.
 fn flip_keeps_shape(m: &MeshRef<'_>, h: HalfedgeId) -> bool {
-    let t = m.twin(h);
-    let [a, b, c, d] = [
-        m.from_vertex(h),
-        m.to_vertex(h),
-        m.to_vertex(m.next(h)),
-        m.to_vertex(m.next(t)),
-    ]
-    .map(|v| m.position(v));
+    let [a, b, c, d] = quad_corners(m, h);
     let normal = (b - a).cross(c - a) + (a - b).cross(d - b);
     // The quad is a d b c; the new diagonal is d c.
     [[a, d, c], [d, b, c]].iter().all(|&[p, q, r]| {
