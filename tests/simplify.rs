@@ -11,6 +11,12 @@ use pappus::ops::simplify::{SimplifyParams, simplify};
 #[test]
 fn icosphere_reaches_the_target_and_stays_a_sphere() {
     let (mut world, built) = build(&shapes::icosphere(4));
+    // Entities in the world besides the mesh's elements (the mesh itself, and Bevy's own).
+    let others = |world: &bevy::prelude::World| {
+        world.entities().count_spawned() as usize
+            - MeshMembers::collect(world, built.mesh).entities().count()
+    };
+    let before = others(&world);
     for target in [2560, 1000, 200] {
         let s = simplify(&mut world, built.mesh, &SimplifyParams::faces(target)).unwrap();
         validate(&world, built.mesh).unwrap();
@@ -22,6 +28,14 @@ fn icosphere_reaches_the_target_and_stays_a_sphere() {
             st.faces
         );
         assert_eq!((st.euler_characteristic, st.boundary_loops), (2, 0));
+        // Nothing the collapses removed is left in the world: a closed triangle mesh of F
+        // faces and χ = 2 has 3F/2 edges, 3F halfedges and 2 + F/2 vertices.
+        assert_eq!(others(&world), before);
+        let f = st.faces;
+        assert_eq!(
+            MeshMembers::collect(&world, built.mesh).entities().count(),
+            (2 + f / 2) + 3 * f + 3 * f / 2 + f
+        );
         // Every vertex is still on the unit sphere, up to the simplification's error.
         let m = MeshRef::new(&world);
         for v in MeshMembers::collect(&world, built.mesh).vertices {

@@ -24,7 +24,7 @@ use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
 use super::indexed_heap::IndexedHeap;
-use super::local::{CollapseOptions, apply_collapse, plan_collapse};
+use super::local::{CollapseOptions, Removed, apply_collapse_deferred, plan_collapse};
 
 /// How to simplify. The same struct serves the command line, the editor and the tests.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -233,16 +233,15 @@ fn simplify_inner(
     };
     let mut faces = faces_before;
     let mut collapses = 0;
+    // What the collapses removed, despawned together at the end (see `despawn_removed`).
+    let mut graveyard: Vec<Removed> = Vec::new();
     let to_remove = faces_before.saturating_sub(params.target_faces).max(1);
     while faces > params.target_faces {
         let Some(((_, bits), _)) = heap.pop() else {
             break;
         };
-        // Edges a collapse removed keep their entries until popped; skip them then.
+        // Edges a collapse removes leave the queue with it, so this one is live.
         let edge = EdgeId(bevy::prelude::Entity::from_bits(bits));
-        if world.get::<crate::mesh::Edge>(edge.0).is_none() {
-            continue;
-        }
         // The target still holds: both ends are as they were when the edge was last keyed.
         let position = table.target[edge.0.index_u32() as usize];
         let Ok(plan) = plan_collapse(
@@ -260,7 +259,11 @@ fn simplify_inner(
         let (a, b) = (m.from_vertex(h), m.to_vertex(h));
         // A collapse removes the triangles on the edge: two inside, one on the boundary.
         let before = usize::from(m.face(h).is_some()) + usize::from(m.face(m.twin(h)).is_some());
-        let result = apply_collapse(world, plan);
+        let (result, removed) = apply_collapse_deferred(world, plan);
+        for e in &removed.edges {
+            heap.remove(e.0.index_u32());
+        }
+        graveyard.push(removed);
         record(&result);
         faces -= before;
         collapses += 1;
@@ -283,12 +286,26 @@ fn simplify_inner(
             }
         }
     }
+    despawn_removed(world, graveyard);
     Ok(SimplifySummary {
         faces_before,
         faces_after: faces,
         collapses,
         reached_target: faces <= params.target_faces,
     })
+}
+
+/// Despawns what the collapses removed, highest entity index first. The elements were
+/// spawned in index order when the mesh was built, so this takes table rows from the end:
+/// few live rows have to move into the holes, and memory is walked in order, where despawning
+/// collapse by collapse moved a row and missed the cache for every element.
+fn despawn_removed(world: &mut World, graveyard: Vec<Removed>) {
+    let mut gone: Vec<bevy::prelude::Entity> =
+        graveyard.into_iter().flat_map(|r| r.entities).collect();
+    gone.sort_unstable_by_key(|e| std::cmp::Reverse(e.index_u32()));
+    for e in gone {
+        world.despawn(e);
+    }
 }
 
 fn initial_quadrics(world: &World, members: &MeshMembers, boundary_weight: f64) -> VertexTable {

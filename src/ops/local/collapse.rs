@@ -60,7 +60,7 @@
 //!   or would vanish.
 
 use bevy::math::Vec3;
-use bevy::prelude::World;
+use bevy::prelude::{Entity, World};
 
 use crate::mesh::elements::{Edge, Face, Halfedge, Position, Vertex};
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
@@ -448,6 +448,39 @@ impl Merge {
 
 /// Carries out a collapse planned by [`plan_collapse`] on the unchanged world.
 pub fn apply_collapse(world: &mut World, p: CollapsePlan) -> CollapseResult {
+    let (result, removed) = apply_collapse_deferred(world, p);
+    removed.despawn(world);
+    result
+}
+
+/// The elements a collapse took out of the mesh.
+#[derive(Debug, Default)]
+pub(crate) struct Removed {
+    /// Halfedges, edges, faces and the vertex, as entities.
+    pub entities: Vec<Entity>,
+    /// The edges among them (the simplifier drops them from its queue).
+    pub edges: Vec<EdgeId>,
+}
+
+impl Removed {
+    /// Despawns them.
+    pub fn despawn(self, world: &mut World) {
+        for e in self.entities {
+            world.despawn(e);
+        }
+    }
+}
+
+/// [`apply_collapse`], leaving the removed elements spawned for the caller to despawn. No
+/// live element links to them any more, but they are still in the world: until they are
+/// despawned the mesh must be read only by walking its links (never by listing its members,
+/// nor by asking whether an id is live). The simplifier makes tens of thousands of collapses
+/// this way and despawns all the removed elements at the end, in index order, which costs
+/// much less than despawning them one collapse at a time.
+pub(crate) fn apply_collapse_deferred(
+    world: &mut World,
+    p: CollapsePlan,
+) -> (CollapseResult, Removed) {
     debug_assert_eq!(
         plan_collapse_halfedge(world, p.h, p.options).as_ref(),
         Ok(&p),
@@ -547,41 +580,49 @@ pub fn apply_collapse(world: &mut World, p: CollapsePlan) -> CollapseResult {
         };
         world.get_mut::<Edge>(keep.0).expect("planned").halfedge = interior;
     }
-    for x in removed_halfedges {
-        world.despawn(x.0);
-    }
-    for e in removed_edges {
-        world.despawn(e.0);
-    }
-    for f in removed_faces {
-        world.despawn(f.0);
-    }
-    world.despawn(p.b.0);
     world.get_mut::<Position>(p.a.0).expect("planned").0 = p.position;
     // Every vertex whose outgoing halfedge may be gone, or whose boundary halfedge may have
     // changed, gets a fresh one: the boundary one if it has one.
+    let gone = |h: &HalfedgeId| removed_halfedges.contains(h);
     let twins: Vec<HalfedgeId> = candidates
         .iter()
-        .filter(|&&h| world.get_entity(h.0).is_ok())
+        .filter(|h| !gone(h))
         .map(|&h| MeshRef::new(world).twin(h))
         .collect();
     candidates.extend(twins);
+    candidates.retain(|h| !gone(h));
     for (v, boundary) in fix_vertex {
-        repoint(world, v, boundary, &candidates);
+        repoint(world, v, boundary, &candidates, &removed_halfedges);
     }
-    CollapseResult {
+    let mut entities: Vec<Entity> = removed_halfedges.iter().map(|h| h.0).collect();
+    entities.extend(removed_edges.iter().map(|e| e.0));
+    entities.extend(removed_faces.iter().map(|f| f.0));
+    entities.push(p.b.0);
+    let result = CollapseResult {
         kept: p.a,
         removed: p.b,
         record,
-    }
+    };
+    let removed = Removed {
+        entities,
+        edges: removed_edges,
+    };
+    (result, removed)
 }
 
 /// Points `v` at a live outgoing halfedge, its boundary one if it is on the `boundary`.
-/// `candidates` are halfedges that may now leave `v`.
-fn repoint(world: &mut World, v: VertexId, boundary: bool, candidates: &[HalfedgeId]) {
+/// `candidates` are live halfedges that may now leave `v`; `removed` are those the collapse
+/// took out (perhaps not despawned yet).
+fn repoint(
+    world: &mut World,
+    v: VertexId,
+    boundary: bool,
+    candidates: &[HalfedgeId],
+    removed: &[HalfedgeId],
+) {
     let m = MeshRef::new(world);
     let current = m.try_vertex(v).map(|x| x.halfedge);
-    let leaves_v = |h: HalfedgeId| m.try_halfedge(h).is_some() && m.from_vertex(h) == v;
+    let leaves_v = |h: HalfedgeId| !removed.contains(&h) && m.from_vertex(h) == v;
     let start = current
         .filter(|&h| leaves_v(h))
         .or_else(|| candidates.iter().copied().find(|&h| leaves_v(h)));
