@@ -24,7 +24,7 @@ use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
 use super::indexed_heap::IndexedHeap;
-use super::local::{CollapseOptions, Removed, apply_collapse_deferred, plan_collapse};
+use super::local::{CollapseOptions, apply_collapse_deferred, plan_collapse};
 
 /// How to simplify. The same struct serves the command line, the editor and the tests.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -234,7 +234,7 @@ fn simplify_inner(
     let mut faces = faces_before;
     let mut collapses = 0;
     // What the collapses removed, despawned together at the end (see `despawn_removed`).
-    let mut graveyard: Vec<Removed> = Vec::new();
+    let mut graveyard: Vec<bevy::prelude::Entity> = Vec::new();
     let to_remove = faces_before.saturating_sub(params.target_faces).max(1);
     while faces > params.target_faces {
         let Some(((_, bits), _)) = heap.pop() else {
@@ -263,7 +263,7 @@ fn simplify_inner(
         for e in &removed.edges {
             heap.remove(e.0.index_u32());
         }
-        graveyard.push(removed);
+        graveyard.extend(removed.entities);
         record(&result);
         faces -= before;
         collapses += 1;
@@ -299,9 +299,7 @@ fn simplify_inner(
 /// spawned in index order when the mesh was built, so this takes table rows from the end:
 /// few live rows have to move into the holes, and memory is walked in order, where despawning
 /// collapse by collapse moved a row and missed the cache for every element.
-fn despawn_removed(world: &mut World, graveyard: Vec<Removed>) {
-    let mut gone: Vec<bevy::prelude::Entity> =
-        graveyard.into_iter().flat_map(|r| r.entities).collect();
+fn despawn_removed(world: &mut World, mut gone: Vec<bevy::prelude::Entity>) {
     gone.sort_unstable_by_key(|e| std::cmp::Reverse(e.index_u32()));
     for e in gone {
         world.despawn(e);
