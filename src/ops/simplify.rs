@@ -269,15 +269,25 @@ fn simplify_inner(
         collapses += 1;
         let merged = table.quadric[VertexTable::slot(a)] + table.quadric[VertexTable::slot(b)];
         table.quadric[VertexTable::slot(result.kept)] = merged;
-        let around: Vec<EdgeId> = {
+        // Re-key the edges around the merged vertex, reading each spoke once.
+        let around: Vec<(EdgeId, [(VertexId, Vec3); 2])> = {
             let m = MeshRef::new(world);
-            m.vertex_outgoing(result.kept).map(|h| m.edge(h)).collect()
+            let kept = (result.kept, m.position(result.kept));
+            m.vertex_outgoing(result.kept)
+                .map(|h| {
+                    let x = m.halfedge(h);
+                    let tip = (x.vertex, m.position(x.vertex));
+                    let ends = if m.edge_halfedge(x.edge) == h {
+                        [kept, tip]
+                    } else {
+                        [tip, kept]
+                    };
+                    (x.edge, ends)
+                })
+                .collect()
         };
-        for e in around {
-            match keyed(world, &mut table, e) {
-                Some(key) => heap.set(e.0.index_u32(), key),
-                None => heap.remove(e.0.index_u32()),
-            }
+        for (e, ends) in around {
+            heap.set(e.0.index_u32(), keyed_ends(&mut table, e, ends));
         }
         if collapses % 512 == 0 {
             let done = (faces_before - faces) as f32 / to_remove as f32;
@@ -360,26 +370,36 @@ fn initial_quadrics(world: &World, members: &MeshMembers, boundary_weight: f64) 
 /// `e`'s heap key at its current cost, remembering where it would collapse to; `None` if `e`
 /// is gone.
 fn keyed(world: &World, table: &mut VertexTable, e: EdgeId) -> Option<Key> {
-    let c = candidate(world, table, e)?;
-    table.target[e.0.index_u32() as usize] = c.position;
-    Some(((c.cost.max(0.0) as f32).to_bits(), e.0.to_bits()))
-}
-
-fn candidate(world: &World, table: &VertexTable, e: EdgeId) -> Option<Candidate> {
     let m = MeshRef::new(world);
     m.try_edge(e)?;
     let h = m.edge_halfedge(e);
     let (a, b) = (m.from_vertex(h), m.to_vertex(h));
+    Some(keyed_ends(
+        table,
+        e,
+        [(a, m.position(a)), (b, m.position(b))],
+    ))
+}
+
+/// [`keyed`] for an edge whose ends (in its halfedge's direction) and their positions the
+/// caller has read already.
+fn keyed_ends(table: &mut VertexTable, e: EdgeId, ends: [(VertexId, Vec3); 2]) -> Key {
+    let c = candidate(table, ends);
+    table.target[e.0.index_u32() as usize] = c.position;
+    ((c.cost.max(0.0) as f32).to_bits(), e.0.to_bits())
+}
+
+fn candidate(table: &VertexTable, [(a, pa), (b, pb)]: [(VertexId, Vec3); 2]) -> Candidate {
     let q = table.quadric[VertexTable::slot(a)] + table.quadric[VertexTable::slot(b)];
-    let (pa, pb) = (m.position(a).as_dvec3(), m.position(b).as_dvec3());
+    let (pa, pb) = (pa.as_dvec3(), pb.as_dvec3());
     let position = q.optimum().unwrap_or_else(|| {
         [pa, pb, (pa + pb) / 2.0]
             .into_iter()
             .min_by(|x, y| q.error(*x).total_cmp(&q.error(*y)))
             .unwrap_or(pa)
     });
-    Some(Candidate {
+    Candidate {
         cost: q.error(position).max(0.0),
         position: position.as_vec3(),
-    })
+    }
 }
