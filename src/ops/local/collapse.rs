@@ -194,19 +194,23 @@ struct Spoke {
 }
 
 /// The spokes of `v`, counter-clockwise from its halfedge (bounded like every circulator).
-/// Four lookups a spoke, against the dozen the separate walks of a plan used to take.
+/// Three lookups a spoke, against the dozen the separate walks of a plan used to take: the
+/// spoke, its tip's position, and the halfedge coming back into `v` in the face on its left,
+/// which gives both the next spoke (its twin) and whether that face is a triangle (then the
+/// halfedge before it is the spoke's next).
 fn spokes(m: &MeshRef<'_>, v: VertexId) -> Vec<Spoke> {
     let start = m.vertex_halfedge(v);
     let mut out = Vec::with_capacity(8);
     let mut h = start;
     for _ in 0..MAX_LOOP {
         let links = *m.halfedge(h);
+        let back = m.halfedge(links.prev);
         out.push(Spoke {
             links,
             tip: m.position(links.vertex),
-            triangle: links.face.is_some() && m.next(links.next) == links.prev,
+            triangle: links.face.is_some() && back.prev == links.next,
         });
-        h = m.twin(links.prev);
+        h = back.twin;
         if h == start {
             break;
         }
