@@ -12,6 +12,7 @@
 use bevy::math::Vec3;
 
 use super::repair::{NONE, RepairedFaces};
+use super::topology::MAX_LOOP;
 
 /// Halfedge tables. `NONE` ([`super::repair::NONE`]) marks a boundary halfedge's face.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -131,6 +132,27 @@ impl Connectivity {
     /// Number of faces.
     pub fn face_count(&self) -> usize {
         self.face_halfedge.len()
+    }
+
+    /// The next outgoing halfedge of `h`'s start vertex, counter-clockwise: `twin(prev(h))`.
+    #[inline]
+    pub fn ccw_rotated(&self, h: u32) -> u32 {
+        self.twin[self.prev[h as usize] as usize]
+    }
+
+    /// The outgoing halfedges of `v`, counter-clockwise from its halfedge (the boundary one
+    /// first on the boundary). Stops after [`MAX_LOOP`] steps even if the links do not close,
+    /// like every circulator.
+    pub fn outgoing(&self, v: u32) -> impl Iterator<Item = u32> + '_ {
+        let first = self.vertex_halfedge[v as usize];
+        let mut h = Some(first);
+        std::iter::from_fn(move || {
+            let current = h?;
+            let next = self.ccw_rotated(current);
+            h = (next != first).then_some(next);
+            Some(current)
+        })
+        .take(MAX_LOOP)
     }
 
     /// Makes room for `more` rows of each kind beyond the current ones (tables that grow

@@ -462,14 +462,7 @@ impl Smoother {
                 continue;
             }
             outgoing.clear();
-            let mut h = first;
-            loop {
-                outgoing.push(h);
-                h = t.twin[t.prev[h as usize] as usize];
-                if h == first || outgoing.len() > t.halfedge_count() {
-                    break;
-                }
-            }
+            outgoing.extend(t.outgoing(v as u32));
             if outgoing
                 .iter()
                 .any(|&h| feature[t.edge[h as usize] as usize])

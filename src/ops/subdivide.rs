@@ -101,18 +101,6 @@ fn is_boundary_edge(t: &Connectivity, h: u32) -> bool {
     t.face[h as usize] == NONE || t.face[t.twin[h as usize] as usize] == NONE
 }
 
-/// The outgoing halfedges of `v`, rotating from its halfedge.
-fn outgoing(t: &Connectivity, v: u32) -> impl Iterator<Item = u32> + '_ {
-    let first = t.vertex_halfedge[v as usize];
-    let mut h = Some(first);
-    std::iter::from_fn(move || {
-        let current = h?;
-        let next = t.twin[t.prev[current as usize] as usize];
-        h = (next != first).then_some(next);
-        Some(current)
-    })
-}
-
 /// Boundary rule shared by both schemes: `3/4 P + 1/8 (a + b)` with the two boundary
 /// neighbours (the vertex's halfedge is its outgoing boundary halfedge).
 fn boundary_vertex(t: &Connectivity, v: u32) -> Vec3 {
@@ -261,7 +249,7 @@ pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, usize> {
     for v in 0..nv as u32 {
         let p = t.positions[v as usize];
         let h0 = t.vertex_halfedge[v as usize];
-        let n = outgoing(t, v).count();
+        let n = t.outgoing(v).count();
         positions.push(if t.face[h0 as usize] == NONE {
             if n <= 2 { p } else { boundary_vertex(t, v) }
         } else {
@@ -270,7 +258,8 @@ pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, usize> {
             } else {
                 3.0 / (8.0 * n as f32)
             };
-            let sum: Vec3 = outgoing(t, v)
+            let sum: Vec3 = t
+                .outgoing(v)
                 .map(|h| t.positions[t.to_vertex[h as usize] as usize])
                 .sum();
             (1.0 - n as f32 * u) * p + u * sum
@@ -341,14 +330,15 @@ pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
         let p = t.positions[v as usize];
         let h0 = t.vertex_halfedge[v as usize];
         if t.face[h0 as usize] == NONE {
-            let faces = outgoing(t, v)
+            let faces = t
+                .outgoing(v)
                 .filter(|&h| t.face[h as usize] != NONE)
                 .count();
             positions.push(if faces <= 1 { p } else { boundary_vertex(t, v) });
             continue;
         }
         let (mut q, mut r, mut n) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
-        for h in outgoing(t, v) {
+        for h in t.outgoing(v) {
             q += face_points[t.face[h as usize] as usize];
             r += (p + t.positions[t.to_vertex[h as usize] as usize]) * 0.5;
             n += 1.0;

@@ -64,8 +64,8 @@ pub fn split_in_tables(t: &mut Connectivity, s: &TableSplit) -> Result<u32, Spli
     }
     // The removed vertex's fan, counter-clockwise from the right wing (or just past the
     // boundary) to the left wing (or the boundary halfedge itself).
-    let start = hd.unwrap_or_else(|| ccw_rotated(t, boundary_out));
-    let stop = hc.unwrap_or_else(|| ccw_rotated(t, boundary_out));
+    let start = hd.unwrap_or_else(|| t.ccw_rotated(boundary_out));
+    let stop = hc.unwrap_or_else(|| t.ccw_rotated(boundary_out));
     let pin = t.prev[boundary_out as usize];
     let twin_edge = |h: Option<u32>| h.map(|h| (t.twin[h as usize], t.edge[h as usize]));
     let (left_old, right_old) = (twin_edge(hc), twin_edge(hd));
@@ -80,7 +80,7 @@ pub fn split_in_tables(t: &mut Connectivity, s: &TableSplit) -> Result<u32, Spli
             let into = t.twin[h as usize];
             t.to_vertex[into as usize] = b;
         }
-        h = ccw_rotated(t, h);
+        h = t.ccw_rotated(h);
         steps += 1;
     }
     if let Some((tc, _)) = left_old {
@@ -134,17 +134,9 @@ pub fn split_in_tables(t: &mut Connectivity, s: &TableSplit) -> Result<u32, Spli
     t.positions[a as usize] = s.kept_position;
     // Each vertex points at its boundary halfedge if it has one.
     for v in [a, b] {
-        let first = t.vertex_halfedge[v as usize];
-        let mut h = first;
-        for _ in 0..MAX_LOOP {
-            if t.face[h as usize] == NONE {
-                t.vertex_halfedge[v as usize] = h;
-                break;
-            }
-            h = ccw_rotated(t, h);
-            if h == first {
-                break;
-            }
+        let boundary = t.outgoing(v).find(|&h| t.face[h as usize] == NONE);
+        if let Some(h) = boundary {
+            t.vertex_halfedge[v as usize] = h;
         }
     }
     Ok(b)
@@ -152,23 +144,7 @@ pub fn split_in_tables(t: &mut Connectivity, s: &TableSplit) -> Result<u32, Spli
 
 /// The halfedge from `a` to `w`, if they are neighbours.
 fn find_halfedge(t: &Connectivity, a: u32, w: u32) -> Option<u32> {
-    let first = t.vertex_halfedge[a as usize];
-    let mut h = first;
-    for _ in 0..MAX_LOOP {
-        if t.to_vertex[h as usize] == w {
-            return Some(h);
-        }
-        h = ccw_rotated(t, h);
-        if h == first {
-            return None;
-        }
-    }
-    None
-}
-
-#[inline]
-fn ccw_rotated(t: &Connectivity, h: u32) -> u32 {
-    t.twin[t.prev[h as usize] as usize]
+    t.outgoing(a).find(|&h| t.to_vertex[h as usize] == w)
 }
 
 /// The index the next halfedge row gets.
