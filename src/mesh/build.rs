@@ -207,6 +207,26 @@ pub(crate) fn reserve_rows(
     }
 }
 
+/// [`reserve_rows`] on this thread while `compute` runs on another: the two largest costs of a
+/// bulk rewrite (making the entities exist, computing the new tables) overlapped. Returns what
+/// `compute` returned and the rows; a panic in `compute` is passed on.
+pub(crate) fn reserve_rows_while<T: Send>(
+    world: &mut World,
+    counts: RowCounts,
+    mesh: MeshId,
+    old: Option<&MeshMembers>,
+    compute: impl FnOnce() -> T + Send,
+) -> (T, MeshMembers) {
+    std::thread::scope(|scope| {
+        let worker = scope.spawn(compute);
+        let rows = reserve_rows(world, counts, mesh, old);
+        let computed = worker
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (computed, rows)
+    })
+}
+
 /// Despawns the rows of `rows` past `keep` (of each kind): what [`reserve_rows`] made beyond
 /// what the tables turned out to need.
 pub(crate) fn release_rows(world: &mut World, rows: &mut MeshMembers, keep: RowCounts) {

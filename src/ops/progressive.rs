@@ -16,7 +16,7 @@ use bevy::math::Vec3;
 use bevy::prelude::World;
 
 use crate::mesh::arrays::extract;
-use crate::mesh::build::{RowCounts, release_rows, reserve_rows, write_links};
+use crate::mesh::build::{RowCounts, release_rows, reserve_rows_while, write_links};
 use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
@@ -363,15 +363,10 @@ impl ProgressiveMesh {
         };
         let mut tables = extracted.tables;
         tables.reserve(added);
-        let (replayed, mut written) = std::thread::scope(|scope| {
-            let worker = scope.spawn(|| replay(&mut tables, records, &mut rows, &old.vertices));
-            let written = reserve_rows(world, before.plus(added), self.mesh, Some(old));
-            let replayed = worker
-                .join()
-                .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-            (replayed, written)
-        });
-        let (made, refusal) = replayed;
+        let ((made, refusal), mut written) =
+            reserve_rows_while(world, before.plus(added), self.mesh, Some(old), || {
+                replay(&mut tables, records, &mut rows, &old.vertices)
+            });
         // A refusal left fewer rows than were reserved: the surplus goes.
         release_rows(world, &mut written, RowCounts::of(&tables));
         write_links(world, &tables, &written);

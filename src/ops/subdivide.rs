@@ -31,7 +31,7 @@ use bevy::math::Vec3;
 use bevy::prelude::World;
 
 use crate::mesh::arrays::extract;
-use crate::mesh::build::{RowCounts, reserve_rows, write_links};
+use crate::mesh::build::{RowCounts, reserve_rows_while, write_links};
 use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{ElementId, FaceId, MeshId};
 use crate::mesh::repair::{NONE, RepairedFaces};
@@ -207,20 +207,14 @@ fn subdivide(
         }
     }
     let tables = &extracted.tables;
-    let (result, rows) = std::thread::scope(|s| {
-        let worker = s.spawn(move || {
+    let (result, rows) =
+        reserve_rows_while(world, counts, mesh, Some(&extracted.members), move || {
             let mut t = (scheme.step)(tables);
             for _ in 1..levels {
                 t = (scheme.step)(&t);
             }
             t
         });
-        let rows = reserve_rows(world, counts, mesh, Some(&extracted.members));
-        let result = worker
-            .join()
-            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-        (result, rows)
-    });
     write_links(world, &result, &rows);
     Ok(SubdivisionSummary {
         levels,
