@@ -82,7 +82,7 @@ pub fn build_mesh(
 /// mesh and the entities of every row, by kind, in table order.
 ///
 /// The tables must be consistent (as [`Connectivity::from_repaired`] makes them); the result is
-/// then a mesh that passes [`super::validate`].
+/// then a mesh that passes [`super::validate()`].
 pub fn spawn_connectivity(
     world: &mut World,
     c: &Connectivity,
@@ -93,7 +93,7 @@ pub fn spawn_connectivity(
     (mesh, rows)
 }
 
-/// How many rows of each kind a set of tables has: what [`reserve_rows`] needs to know before
+/// How many rows of each kind a set of tables has: what `reserve_rows` needs to know before
 /// the tables themselves exist.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RowCounts {
@@ -115,6 +115,16 @@ impl RowCounts {
             halfedges: self.halfedges + other.halfedges,
             edges: self.edges + other.edges,
             faces: self.faces + other.faces,
+        }
+    }
+
+    /// The counts of `rows`.
+    pub fn of_rows(rows: &MeshMembers) -> Self {
+        Self {
+            vertices: rows.vertices.len(),
+            halfedges: rows.halfedges.len(),
+            edges: rows.edges.len(),
+            faces: rows.faces.len(),
         }
     }
 
@@ -262,12 +272,7 @@ pub(crate) fn release_rows(world: &mut World, rows: &mut MeshMembers, keep: RowC
 pub(crate) fn write_links(world: &mut World, c: &Connectivity, rows: &MeshMembers) {
     assert_eq!(
         RowCounts::of(c),
-        RowCounts {
-            vertices: rows.vertices.len(),
-            halfedges: rows.halfedges.len(),
-            edges: rows.edges.len(),
-            faces: rows.faces.len(),
-        },
+        RowCounts::of_rows(rows),
         "rows reserved for other tables"
     );
     let h = |i: u32| rows.halfedges[i as usize];

@@ -47,7 +47,7 @@ pub struct MeshStats {
     pub mean_edge_length: f64,
 }
 
-/// Computes the statistics of `mesh`. Assumes a mesh that passes [`super::validate`].
+/// Computes the statistics of `mesh`. Assumes a mesh that passes [`super::validate()`].
 pub fn mesh_stats(world: &World, mesh: MeshId) -> MeshStats {
     let members = MeshMembers::collect(world, mesh);
     let m = MeshRef::new(world);

@@ -6,7 +6,7 @@
 //!
 //! Two layers of access:
 //! - `try_*` lookups return `None` for a missing or stale element. Use them on ids that come from
-//!   outside (a user, a file, an old selection) and in [`crate::mesh::validate`].
+//!   outside (a user, a file, an old selection) and in [`crate::mesh::validate()`].
 //! - The plain accessors assume a valid mesh and panic, naming the element, when a link points
 //!   nowhere: on a mesh that passes `validate` that is a bug in the code that last edited it.
 //!

@@ -17,6 +17,7 @@ use bevy::prelude::World;
 
 use crate::mesh::arrays::extract;
 use crate::mesh::build::{RowCounts, release_rows, reserve_rows_while, write_links};
+use crate::mesh::change::remapped;
 use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
@@ -165,7 +166,7 @@ impl ProgressiveMesh {
     pub fn remap(&mut self, mesh: MeshId, map: &EntityHashMap<bevy::prelude::Entity>) {
         self.mesh = mesh;
         for v in self.slots.iter_mut().flatten() {
-            v.0 = map.get(&v.0).copied().unwrap_or(v.0);
+            v.0 = remapped(map, v.0);
         }
     }
 

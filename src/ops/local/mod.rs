@@ -11,7 +11,7 @@
 //! All of them work on triangles and on polygons, and on boundary edges where the operation
 //! makes sense. Entities are reused wherever an element survives (a flip spawns and despawns
 //! nothing; a split only spawns; a collapse only despawns), so ids the user is looking at stay
-//! valid when they can. After every apply the mesh passes [`crate::mesh::validate`]: in
+//! valid when they can. After every apply the mesh passes [`crate::mesh::validate()`]: in
 //! particular a boundary vertex's halfedge is its boundary one, every face and edge names a
 //! halfedge of its own, and an edge names an interior halfedge where it has one.
 //!
