@@ -129,7 +129,7 @@ impl ProgressiveMesh {
                 removed_position: rec.removed_position,
                 left: rec.left.map(slot),
                 right: rec.right.map(slot),
-                faces: usize::from(rec.left.is_some()) + usize::from(rec.right.is_some()),
+                faces: rec.triangles_removed(),
             });
         })?;
         let mut pm = ProgressiveMesh {

@@ -254,19 +254,15 @@ fn simplify_inner(
         ) else {
             continue;
         };
-        let m = MeshRef::new(world);
-        let h = m.edge_halfedge(edge);
-        let (a, b) = (m.from_vertex(h), m.to_vertex(h));
-        // A collapse removes the triangles on the edge: two inside, one on the boundary.
-        let before = usize::from(m.face(h).is_some()) + usize::from(m.face(m.twin(h)).is_some());
         let (result, removed) = apply_collapse_deferred(world, plan);
         for e in &removed.edges {
             heap.remove(e.0.index_u32());
         }
         graveyard.extend(removed.entities);
         record(&result);
-        faces -= before;
+        faces -= result.record.triangles_removed();
         collapses += 1;
+        let (a, b) = (result.kept, result.removed);
         let merged = table.quadric[VertexTable::slot(a)] + table.quadric[VertexTable::slot(b)];
         table.quadric[VertexTable::slot(result.kept)] = merged;
         // Re-key the edges around the merged vertex, reading each spoke once.

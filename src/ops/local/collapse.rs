@@ -109,6 +109,14 @@ pub struct CollapseRecord {
     pub invertible: bool,
 }
 
+impl CollapseRecord {
+    /// The triangles the collapse removed: one per wing (2 inside, 1 on the boundary; a
+    /// polygon side loses a corner, not the face).
+    pub fn triangles_removed(&self) -> usize {
+        usize::from(self.left.is_some()) + usize::from(self.right.is_some())
+    }
+}
+
 /// One side of the collapsing edge.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Side {
@@ -149,6 +157,8 @@ pub struct CollapsePlan {
     sides: [Side; 2],
     /// Halfedges pointing at `b` (they will point at `a`).
     into_b: Vec<HalfedgeId>,
+    /// Whether the merged vertex is on the boundary (either end was).
+    merged_boundary: bool,
 }
 
 fn side(m: &MeshRef<'_>, x: HalfedgeId) -> Side {
@@ -361,6 +371,7 @@ pub fn plan_collapse_halfedge(
         position,
         sides,
         into_b,
+        merged_boundary,
     })
 }
 
@@ -514,7 +525,7 @@ pub(crate) fn apply_collapse_deferred(
     let mut unlink = Vec::new(); // (prev, next, face to re-point)
     // Whether each vertex to re-point is on the boundary (the merged one if either end was): an
     // interior vertex needs just a live outgoing halfedge, a boundary one its boundary halfedge.
-    let mut fix_vertex = vec![(p.a, m.is_boundary_vertex(p.a) || m.is_boundary_vertex(p.b))];
+    let mut fix_vertex = vec![(p.a, p.merged_boundary)];
     for s in &p.sides {
         match *s {
             Side::Triangle {
