@@ -12,10 +12,7 @@ other interior vertices, and boundary vertices.
 Usage: python3 benches/loop_vs_meshlab.py [MESH]   (default: ../shared/models/stanford-bunny.obj)
 Needs: pip install pymeshlab numpy scipy; cargo build --release.
 """
-import json
 import os
-import subprocess
-import sys
 import tempfile
 import time
 
@@ -23,23 +20,15 @@ import numpy as np
 import pymeshlab
 from scipy.spatial import cKDTree
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-MESH = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "../shared/models/stanford-bunny.obj")
-PAPPUS = os.path.join(ROOT, "target/release/pappus")
+from meshlab_common import MESH, meshset, run_pappus
 
 
 def pappus(mesh, out):
-    result = subprocess.run([PAPPUS, "process", mesh, "-o", out, "--json", "loop:1"],
-                            check=True, capture_output=True, text=True)
-    report = json.loads(result.stdout)
-    return report["steps"][0]["ms"]
+    return run_pappus(mesh, out, "loop:1")["steps"][0]["ms"]
 
 
 def meshlab(mesh, out):
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(mesh)
-    # Drop unreferenced vertices as Pappus does, so both subdivide the same surface.
-    ms.meshing_remove_unreferenced_vertices()
+    ms = meshset(mesh)
     start = time.perf_counter()
     ms.meshing_surface_subdivision_loop(loopweight="Loop", iterations=1,
                                         threshold=pymeshlab.PercentageValue(0.0))
@@ -49,8 +38,7 @@ def meshlab(mesh, out):
 
 
 def load(path):
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(path)
+    ms = meshset(path)  # kept alive while its mesh is read
     m = ms.current_mesh()
     return m.vertex_matrix(), m.face_matrix()
 

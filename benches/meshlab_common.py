@@ -1,13 +1,40 @@
-"""What the side-by-side scripts against MeshLab share."""
+"""What the side-by-side scripts against MeshLab share: where the input and the Pappus binary
+are, running one Pappus step, loading a mesh into pymeshlab, and the Hausdorff distance."""
+import json
+import os
+import subprocess
+import sys
+
 import pymeshlab
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# The mesh named on the command line, else the shared Stanford bunny.
+MESH = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "../shared/models/stanford-bunny.obj")
+# The release build, in CARGO_TARGET_DIR if that is set (as CI sets it), else in target/.
+PAPPUS = os.path.join(os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target")),
+                      "release/pappus")
+
+
+def run_pappus(mesh, out, step):
+    """Runs `pappus process MESH -o OUT --json STEP` and returns its JSON report."""
+    result = subprocess.run([PAPPUS, "process", mesh, "-o", out, "--json", step],
+                            check=True, capture_output=True, text=True)
+    return json.loads(result.stdout)
+
+
+def meshset(path):
+    """A pymeshlab MeshSet holding the mesh at `path`, unreferenced vertices dropped as Pappus
+    drops them, so that both work on the same surface."""
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(path)
+    ms.meshing_remove_unreferenced_vertices()
+    return ms
 
 
 def hausdorff_pct(original, result):
     """Symmetric Hausdorff distance between two mesh files (pymeshlab's
     `get_hausdorff_distance` both ways, max), as % of the original's bounding-box diagonal."""
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(original)
-    ms.meshing_remove_unreferenced_vertices()
+    ms = meshset(original)
     ms.load_new_mesh(result)
     diag = ms.mesh(0).bounding_box().diagonal()
     there = ms.get_hausdorff_distance(sampledmesh=0, targetmesh=1, samplevert=True, sampleface=True)

@@ -10,32 +10,19 @@ diagonal.
 Usage: python3 benches/qem_vs_meshlab.py [MESH] (default: ../shared/models/stanford-bunny.obj)
 Needs: pip install pymeshlab; cargo build --release.
 """
-import json
 import os
-import subprocess
-import sys
 import tempfile
 import time
 
-import pymeshlab
-
-from meshlab_common import hausdorff_pct
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-MESH = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "../shared/models/stanford-bunny.obj")
-PAPPUS = os.path.join(ROOT, "target/release/pappus")
+from meshlab_common import MESH, hausdorff_pct, meshset, run_pappus
 
 
 def main():
     with tempfile.TemporaryDirectory() as tmp:
         for ratio in (0.5, 0.25, 0.1):
             ours = os.path.join(tmp, f"pappus-{ratio}.ply")
-            report = json.loads(subprocess.run(
-                [PAPPUS, "process", MESH, "-o", ours, "--json", f"simplify:{ratio}"],
-                check=True, capture_output=True, text=True).stdout)
-            ms = pymeshlab.MeshSet()
-            ms.load_new_mesh(MESH)
-            ms.meshing_remove_unreferenced_vertices()
+            report = run_pappus(MESH, ours, f"simplify:{ratio}")
+            ms = meshset(MESH)
             faces = ms.current_mesh().face_number()
             start = time.perf_counter()
             ms.meshing_decimation_quadric_edge_collapse(targetfacenum=round(faces * ratio),

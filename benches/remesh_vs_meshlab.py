@@ -11,28 +11,18 @@ of valence 6, the symmetric Hausdorff distance to the input (pymeshlab's
 Usage: python3 benches/remesh_vs_meshlab.py [MESH] (default: ../shared/models/stanford-bunny.obj)
 Needs: pip install pymeshlab numpy; cargo build --release.
 """
-import json
 import os
-import subprocess
-import sys
 import tempfile
 import time
 
 import numpy as np
 import pymeshlab
 
-from meshlab_common import hausdorff_pct
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-MESH = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "../shared/models/stanford-bunny.obj")
-TARGET = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
-PAPPUS = os.path.join(TARGET, "release/pappus")
+from meshlab_common import MESH, hausdorff_pct, meshset, run_pappus
 
 
 def load(path):
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(path)
-    ms.meshing_remove_unreferenced_vertices()
+    ms = meshset(path)  # kept alive while its mesh is read
     m = ms.current_mesh()
     return m.vertex_matrix(), m.face_matrix()
 
@@ -76,12 +66,8 @@ def main():
     print(f"{os.path.basename(MESH)}: 5 iterations, target length {length:.6f} (mean edge length)")
     with tempfile.TemporaryDirectory() as tmp:
         ours = os.path.join(tmp, "pappus.ply")
-        report = json.loads(subprocess.run(
-            [PAPPUS, "process", MESH, "-o", ours, "--json", f"remesh:5:{length}"],
-            check=True, capture_output=True, text=True).stdout)
-        ms = pymeshlab.MeshSet()
-        ms.load_new_mesh(MESH)
-        ms.meshing_remove_unreferenced_vertices()
+        report = run_pappus(MESH, ours, f"remesh:5:{length}")
+        ms = meshset(MESH)
         start = time.perf_counter()
         ms.meshing_isotropic_explicit_remeshing(iterations=5, targetlen=pymeshlab.PureValue(length))
         meshlab_ms = (time.perf_counter() - start) * 1000
