@@ -16,11 +16,13 @@
 //! collapse gives it a new chance.
 
 use bevy::math::{DVec3, Vec3};
-use bevy::prelude::World;
+use bevy::prelude::{Entity, World};
 
+use crate::mesh::arrays::{Extracted, extract};
+use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
-use crate::mesh::members::MeshMembers;
-use crate::mesh::topology::MeshRef;
+use crate::mesh::repair::NONE;
+use crate::mesh::topology::{MeshRef, newell_area_vector};
 
 use super::Refusal;
 use super::indexed_heap::IndexedHeap;
@@ -205,28 +207,11 @@ fn simplify_inner(
     if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
         return Err(Refusal::Stale(ElementId::Mesh(mesh)));
     }
-    let members = MeshMembers::collect(world, mesh);
-    {
-        let m = MeshRef::new(world);
-        if let Some(&f) = members.faces.iter().find(|&&f| m.face_degree(f) != 3) {
-            return Err(Refusal::NotTriangle(ElementId::Face(f)));
-        }
-    }
-    let faces_before = members.faces.len();
-    let mut table = initial_quadrics(world, &members, params.boundary_weight);
-    let edge_slots = members
-        .edges
-        .iter()
-        .map(|e| e.0.index_u32() as usize + 1)
-        .max()
-        .unwrap_or(0);
-    table.target = vec![Vec3::ZERO; edge_slots];
-    let entries = members
-        .edges
-        .iter()
-        .filter_map(|&e| Some((keyed(world, &mut table, e)?, e.0.index_u32())))
-        .collect();
-    let mut heap = IndexedHeap::from_entries(edge_slots, entries);
+    let Setup {
+        mut table,
+        mut heap,
+        faces_before,
+    } = setup(world, mesh, params.boundary_weight)?;
     let options = CollapseOptions {
         position: None,
         max_normal_change_deg: Some(params.max_normal_change_deg),
@@ -234,14 +219,15 @@ fn simplify_inner(
     let mut faces = faces_before;
     let mut collapses = 0;
     // What the collapses removed, despawned together at the end (see `despawn_removed`).
-    let mut graveyard: Vec<bevy::prelude::Entity> = Vec::new();
+    let mut graveyard: Vec<Entity> = Vec::new();
+    let mut ring = Vec::new();
     let to_remove = faces_before.saturating_sub(params.target_faces).max(1);
     while faces > params.target_faces {
         let Some(((_, bits), _)) = heap.pop() else {
             break;
         };
         // Edges a collapse removes leave the queue with it, so this one is live.
-        let edge = EdgeId(bevy::prelude::Entity::from_bits(bits));
+        let edge = EdgeId(Entity::from_bits(bits));
         // The target still holds: both ends are as they were when the edge was last keyed.
         let position = table.target[edge.0.index_u32() as usize];
         let Ok(plan) = plan_collapse(
@@ -254,6 +240,10 @@ fn simplify_inner(
         ) else {
             continue;
         };
+        // The edges around the merged vertex, read by the plan already.
+        ring.clear();
+        ring.extend(plan.merged_ring());
+        let merged = (plan.kept(), plan.position());
         let (result, removed) = apply_collapse_deferred(world, plan);
         for e in &removed.edges {
             heap.remove(e.0.index_u32());
@@ -263,27 +253,17 @@ fn simplify_inner(
         faces -= result.record.triangles_removed();
         collapses += 1;
         let (a, b) = (result.kept, result.removed);
-        let merged = table.quadric[VertexTable::slot(a)] + table.quadric[VertexTable::slot(b)];
-        table.quadric[VertexTable::slot(result.kept)] = merged;
-        // Re-key the edges around the merged vertex, reading each spoke once.
-        let around: Vec<(EdgeId, [(VertexId, Vec3); 2])> = {
-            let m = MeshRef::new(world);
-            let kept = (result.kept, m.position(result.kept));
-            m.vertex_outgoing(result.kept)
-                .map(|h| {
-                    let x = m.halfedge(h);
-                    let tip = (x.vertex, m.position(x.vertex));
-                    let ends = if m.edge_halfedge(x.edge) == h {
-                        [kept, tip]
-                    } else {
-                        [tip, kept]
-                    };
-                    (x.edge, ends)
-                })
-                .collect()
-        };
-        for (e, ends) in around {
-            heap.set(e.0.index_u32(), keyed_ends(&mut table, e, ends));
+        table.quadric[VertexTable::slot(a)] =
+            table.quadric[VertexTable::slot(a)] + table.quadric[VertexTable::slot(b)];
+        debug_assert!(
+            ring_matches(&MeshRef::new(world), a, &ring),
+            "the plan's ring of {a} differs from the mesh after the collapse"
+        );
+        for &(e, tip, at) in &ring {
+            heap.set(
+                e.0.index_u32(),
+                keyed_ends(&mut table, e, [merged, (tip, at)]),
+            );
         }
         if collapses % 512 == 0 {
             let done = (faces_before - faces) as f32 / to_remove as f32;
@@ -301,85 +281,151 @@ fn simplify_inner(
     })
 }
 
+/// Whether `ring` lists exactly the edges around `v`, with their other ends where they are.
+fn ring_matches(m: &MeshRef<'_>, v: VertexId, ring: &[(EdgeId, VertexId, Vec3)]) -> bool {
+    let mut live: Vec<(u64, u64, [u32; 3])> = m
+        .vertex_outgoing(v)
+        .map(|h| {
+            let tip = m.to_vertex(h);
+            let at = m.position(tip).to_array().map(f32::to_bits);
+            (m.edge(h).0.to_bits(), tip.0.to_bits(), at)
+        })
+        .collect();
+    let mut planned: Vec<(u64, u64, [u32; 3])> = ring
+        .iter()
+        .map(|(e, tip, at)| {
+            (
+                e.0.to_bits(),
+                tip.0.to_bits(),
+                at.to_array().map(f32::to_bits),
+            )
+        })
+        .collect();
+    live.sort_unstable();
+    planned.sort_unstable();
+    live == planned
+}
+
 /// Despawns what the collapses removed, highest entity index first. The elements were
 /// spawned in index order when the mesh was built, so this takes table rows from the end:
 /// few live rows have to move into the holes, and memory is walked in order, where despawning
 /// collapse by collapse moved a row and missed the cache for every element.
-fn despawn_removed(world: &mut World, mut gone: Vec<bevy::prelude::Entity>) {
+fn despawn_removed(world: &mut World, mut gone: Vec<Entity>) {
     gone.sort_unstable_by_key(|e| std::cmp::Reverse(e.index_u32()));
     for e in gone {
         world.despawn(e);
     }
 }
 
-fn initial_quadrics(world: &World, members: &MeshMembers, boundary_weight: f64) -> VertexTable {
-    let m = MeshRef::new(world);
-    let size = members
-        .vertices
-        .iter()
-        .map(|v| v.0.index_u32() as usize + 1)
-        .max()
-        .unwrap_or(0);
-    let mut table = VertexTable {
-        quadric: vec![Quadric::default(); size],
-        target: Vec::new(),
+/// What the main loop starts from: every vertex's quadric and every edge in the heap.
+struct Setup {
+    table: VertexTable,
+    heap: IndexedHeap<Key>,
+    faces_before: usize,
+}
+
+/// Reads the mesh once into tables ([`extract`]) and computes the quadrics and the first key
+/// of every edge from them: plain array passes, where walking the entities edge by edge spent
+/// most of the setup on lookups.
+///
+/// # Refusals
+/// [`Refusal::NotTriangle`] naming the first face that is not a triangle.
+fn setup(world: &World, mesh: MeshId, boundary_weight: f64) -> Result<Setup, Refusal> {
+    let Extracted { tables: t, members } = extract(world, mesh);
+    if let Some(f) = (0..t.face_count()).find(|&f| {
+        let h = t.face_halfedge[f] as usize;
+        t.next[t.next[t.next[h] as usize] as usize] as usize != h
+    }) {
+        return Err(Refusal::NotTriangle(ElementId::Face(members.faces[f])));
+    }
+    let slots = |list: &mut dyn Iterator<Item = Entity>| {
+        list.map(|e| e.index_u32() as usize + 1).max().unwrap_or(0)
     };
-    for &f in &members.faces {
-        let corners: Vec<VertexId> = m.face_vertices(f).collect();
-        let p: Vec<DVec3> = corners.iter().map(|&v| m.position(v).as_dvec3()).collect();
+    let mut table = VertexTable {
+        quadric: vec![Quadric::default(); slots(&mut members.vertices.iter().map(|v| v.0))],
+        target: vec![Vec3::ZERO; slots(&mut members.edges.iter().map(|e| e.0))],
+    };
+    // By table row first, then moved to the entity slots the main loop reads.
+    let mut quadric = vec![Quadric::default(); t.vertex_count()];
+    let position = |v: u32| t.positions[v as usize].as_dvec3();
+    for &first in &t.face_halfedge {
+        let (h0, h1) = (first as usize, t.next[first as usize] as usize);
+        let corners = [
+            t.to_vertex[h0],
+            t.to_vertex[h1],
+            t.to_vertex[t.next[h1] as usize],
+        ];
+        let p = corners.map(position);
         let cross = (p[1] - p[0]).cross(p[2] - p[0]);
-        let area = cross.length() / 2.0;
         let Some(n) = cross.try_normalize() else {
             continue;
         };
-        let q = Quadric::plane(n, -n.dot(p[0]), area);
+        let q = Quadric::plane(n, -n.dot(p[0]), cross.length() / 2.0);
         for v in corners {
-            let slot = VertexTable::slot(v);
-            table.quadric[slot] = table.quadric[slot] + q;
+            quadric[v as usize] = quadric[v as usize] + q;
         }
     }
     // Boundary edges: a plane through the edge, perpendicular to its face.
-    for &h in &members.halfedges {
-        if !m.is_boundary(h) {
+    for h in 0..t.halfedge_count() {
+        let inner = t.twin[h] as usize;
+        if t.face[h] != NONE || t.face[inner] == NONE {
             continue;
         }
-        let inner = m.twin(h);
-        let Some(f) = m.face(inner) else { continue };
-        let (a, b) = (
-            m.position(m.from_vertex(h)).as_dvec3(),
-            m.position(m.to_vertex(h)).as_dvec3(),
-        );
-        let normal = m.face_area_vector(f).as_dvec3();
+        let (from, to) = (t.to_vertex[inner], t.to_vertex[h]);
+        let (a, b) = (position(from), position(to));
+        let normal = face_area_vector(&t, t.face[inner]).as_dvec3();
         let Some(n) = (b - a).cross(normal).try_normalize() else {
             continue;
         };
-        let weight = boundary_weight * (b - a).length_squared();
-        let q = Quadric::plane(n, -n.dot(a), weight);
-        for v in [m.from_vertex(h), m.to_vertex(h)] {
-            let slot = VertexTable::slot(v);
-            table.quadric[slot] = table.quadric[slot] + q;
+        let q = Quadric::plane(n, -n.dot(a), boundary_weight * (b - a).length_squared());
+        for v in [from, to] {
+            quadric[v as usize] = quadric[v as usize] + q;
         }
     }
-    table
-}
-
-/// `e`'s heap key at its current cost, remembering where it would collapse to; `None` if `e`
-/// is gone.
-fn keyed(world: &World, table: &mut VertexTable, e: EdgeId) -> Option<Key> {
-    let m = MeshRef::new(world);
-    m.try_edge(e)?;
-    let h = m.edge_halfedge(e);
-    let (a, b) = (m.from_vertex(h), m.to_vertex(h));
-    Some(keyed_ends(
+    for (v, q) in members.vertices.iter().zip(quadric) {
+        table.quadric[VertexTable::slot(*v)] = q;
+    }
+    let end = |v: u32| {
+        let id = members.vertices[v as usize];
+        (id, t.positions[v as usize])
+    };
+    let entries = members
+        .edges
+        .iter()
+        .zip(&t.edge_halfedge)
+        .map(|(&e, &h)| {
+            let ends = [
+                end(t.to_vertex[t.twin[h as usize] as usize]),
+                end(t.to_vertex[h as usize]),
+            ];
+            (keyed_ends(&mut table, e, ends), e.0.index_u32())
+        })
+        .collect();
+    Ok(Setup {
+        heap: IndexedHeap::from_entries(table.target.len(), entries),
         table,
-        e,
-        [(a, m.position(a)), (b, m.position(b))],
-    ))
+        faces_before: t.face_count(),
+    })
 }
 
-/// [`keyed`] for an edge whose ends (in its halfedge's direction) and their positions the
-/// caller has read already.
-fn keyed_ends(table: &mut VertexTable, e: EdgeId, ends: [(VertexId, Vec3); 2]) -> Key {
+/// A face's area vector from the tables, as [`MeshRef::face_area_vector`] computes it.
+fn face_area_vector(t: &Connectivity, f: u32) -> Vec3 {
+    let first = t.face_halfedge[f as usize];
+    let mut corners = [Vec3::ZERO; 3];
+    let mut h = first;
+    for c in &mut corners {
+        *c = t.positions[t.to_vertex[h as usize] as usize];
+        h = t.next[h as usize];
+    }
+    newell_area_vector(&corners)
+}
+
+/// `e`'s heap key at its current cost, for its ends and their positions
+/// the caller has read, remembering where it would collapse to.
+fn keyed_ends(table: &mut VertexTable, e: EdgeId, mut ends: [(VertexId, Vec3); 2]) -> Key {
+    // Either order gives the same sum of quadrics; a fixed one makes the fallback's tie
+    // between the two ends independent of how the caller reached the edge.
+    ends.sort_unstable_by_key(|(v, _)| v.0.to_bits());
     let c = candidate(table, ends);
     table.target[e.0.index_u32() as usize] = c.position;
     ((c.cost.max(0.0) as f32).to_bits(), e.0.to_bits())

@@ -155,10 +155,45 @@ pub struct CollapsePlan {
     b: VertexId,
     position: Vec3,
     sides: [Side; 2],
-    /// Halfedges pointing at `b` (they will point at `a`).
-    into_b: Vec<HalfedgeId>,
+    /// The spokes of `a` and of `b` as the plan read them.
+    around: [Vec<Spoke>; 2],
     /// Whether the merged vertex is on the boundary (either end was).
     merged_boundary: bool,
+}
+
+impl CollapsePlan {
+    /// The edges the merged vertex will have once the collapse is applied, each with its other
+    /// end and that end's position (which the collapse does not move), as the plan read them:
+    /// what a caller that re-weighs those edges needs without reading the mesh again. The
+    /// edge to the removed vertex and the edges from it to the wings (which merge into the
+    /// kept vertex's) are left out.
+    pub fn merged_ring(&self) -> impl Iterator<Item = (EdgeId, VertexId, Vec3)> + '_ {
+        let wing = |v: VertexId| {
+            self.sides
+                .iter()
+                .any(|s| matches!(*s, Side::Triangle { opposite, .. } if opposite == v))
+        };
+        let [around_a, around_b] = &self.around;
+        around_a
+            .iter()
+            .filter(|s| s.links.vertex != self.b)
+            .chain(
+                around_b
+                    .iter()
+                    .filter(move |s| s.links.vertex != self.a && !wing(s.links.vertex)),
+            )
+            .map(|s| (s.links.edge, s.links.vertex, s.tip))
+    }
+
+    /// The vertex that survives (the edge's halfedge's start unless planned from another).
+    pub fn kept(&self) -> VertexId {
+        self.a
+    }
+
+    /// Where the surviving vertex goes.
+    pub fn position(&self) -> Vec3 {
+        self.position
+    }
 }
 
 fn side(m: &MeshRef<'_>, x: HalfedgeId) -> Side {
@@ -196,7 +231,7 @@ pub fn plan_collapse(
 
 /// One outgoing halfedge of a vertex, read once for all the checks of a plan: its links, its
 /// tip's position, and whether the face on its left is a triangle.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 struct Spoke {
     links: Halfedge,
     tip: Vec3,
@@ -361,7 +396,6 @@ pub fn plan_collapse_halfedge(
         merge.check_normals(&m, a, &around_a, &sides)?;
         merge.check_normals(&m, b, &around_b, &sides)?;
     }
-    let into_b = around_b.iter().map(|s| s.links.twin).collect();
     Ok(CollapsePlan {
         edge: e,
         h,
@@ -370,7 +404,7 @@ pub fn plan_collapse_halfedge(
         b,
         position,
         sides,
-        into_b,
+        around: [around_a, around_b],
         merged_boundary,
     })
 }
@@ -521,7 +555,9 @@ pub(crate) fn apply_collapse_deferred(
     let mut removed_edges = vec![p.edge];
     let mut removed_faces = Vec::new();
     let mut glue = Vec::new(); // (twin of next, twin of prev, the edge they share)
-    let mut candidates: Vec<HalfedgeId> = p.into_b.clone();
+    // Halfedges pointing at `b` (they will point at `a`).
+    let into_b: Vec<HalfedgeId> = p.around[1].iter().map(|s| s.links.twin).collect();
+    let mut candidates: Vec<HalfedgeId> = into_b.clone();
     let mut unlink = Vec::new(); // (prev, next, face to re-point)
     // Whether each vertex to re-point is on the boundary (the merged one if either end was): an
     // interior vertex needs just a live outgoing halfedge, a boundary one its boundary halfedge.
@@ -566,7 +602,7 @@ pub(crate) fn apply_collapse_deferred(
             }
         }
     }
-    for &x in &p.into_b {
+    for &x in &into_b {
         if !removed_halfedges.contains(&x) {
             he(world, x).vertex = p.a;
         }
