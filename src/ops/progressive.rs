@@ -111,15 +111,17 @@ impl ProgressiveMesh {
         progress: impl FnMut(f32) -> bool,
     ) -> Result<(ProgressiveMesh, SimplifySummary), Refusal> {
         let vertices = MeshMembers::collect(world, mesh).vertices;
-        let mut slot_of: EntityHashMap<u32> = EntityHashMap::default();
-        let mut slots = Vec::with_capacity(vertices.len());
-        for v in vertices {
-            slot_of.insert(v.0, slots.len() as u32);
-            slots.push(Some(v));
+        // Slots by entity index: one array read a lookup, where hashing cost more than the
+        // rest of recording. The collapses only remove vertices, so the table stays valid.
+        let size = vertices.iter().map(|v| v.0.index_u32() as usize + 1).max();
+        let mut slot_of = vec![u32::MAX; size.unwrap_or(0)];
+        for (i, v) in vertices.iter().enumerate() {
+            slot_of[v.0.index_u32() as usize] = i as u32;
         }
+        let slots = vertices.into_iter().map(Some).collect();
         let mut records = Vec::new();
         let summary = simplify_recorded(world, mesh, params, progress, |r: &CollapseResult| {
-            let slot = |v: VertexId| slot_of[&v.0];
+            let slot = |v: VertexId| slot_of[v.0.index_u32() as usize];
             let rec = &r.record;
             records.push(SlotRecord {
                 kept: slot(r.kept),
