@@ -6,14 +6,16 @@
 //! survive a replacement (so a selected vertex stays selected); halfedges, edges and faces are
 //! despawned and spawned anew.
 
+use bevy::ecs::query::ReadOnlyQueryData;
+use bevy::math::Vec3;
 use bevy::prelude::{Entity, World};
 
 use super::build::write_tables;
 use super::connectivity::Connectivity;
+use super::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
 use super::ids::{HalfedgeId, MeshId};
 use super::members::MeshMembers;
 use super::repair::NONE;
-use super::topology::MeshRef;
 
 /// A mesh read into tables, with the entity behind every table row.
 pub struct Extracted {
@@ -57,43 +59,61 @@ impl DenseIndex {
 }
 
 /// Reads `mesh` into tables. The mesh must be valid.
+///
+/// Each kind is read by a query, in storage order, and each element written to its row by
+/// the dense index: no entity lookup an element, which after many edits (rows no longer in
+/// entity order) missed the cache on nearly every one.
 pub fn extract(world: &World, mesh: MeshId) -> Extracted {
     let members = MeshMembers::collect(world, mesh);
-    let m = MeshRef::new(world);
     let index = DenseIndex::new(&members);
     let h = |x: HalfedgeId| index.get(x.0);
+    let row = |e: Entity| index.get(e) as usize;
+    let (nv, nh) = (members.vertices.len(), members.halfedges.len());
     let mut t = Connectivity {
-        positions: Vec::with_capacity(members.vertices.len()),
-        vertex_halfedge: Vec::with_capacity(members.vertices.len()),
-        twin: Vec::with_capacity(members.halfedges.len()),
-        next: Vec::with_capacity(members.halfedges.len()),
-        prev: Vec::with_capacity(members.halfedges.len()),
-        to_vertex: Vec::with_capacity(members.halfedges.len()),
-        edge: Vec::with_capacity(members.halfedges.len()),
-        face: Vec::with_capacity(members.halfedges.len()),
-        edge_halfedge: Vec::with_capacity(members.edges.len()),
-        face_halfedge: Vec::with_capacity(members.faces.len()),
+        positions: vec![Vec3::ZERO; nv],
+        vertex_halfedge: vec![NONE; nv],
+        twin: vec![NONE; nh],
+        next: vec![NONE; nh],
+        prev: vec![NONE; nh],
+        to_vertex: vec![NONE; nh],
+        edge: vec![NONE; nh],
+        face: vec![NONE; nh],
+        edge_halfedge: vec![NONE; members.edges.len()],
+        face_halfedge: vec![NONE; members.faces.len()],
     };
-    for &v in &members.vertices {
-        t.positions.push(m.position(v));
-        t.vertex_halfedge.push(h(m.vertex_halfedge(v)));
-    }
-    for &x in &members.halfedges {
-        let he = m.halfedge(x);
-        t.twin.push(h(he.twin));
-        t.next.push(h(he.next));
-        t.prev.push(h(he.prev));
-        t.to_vertex.push(index.get(he.vertex.0));
-        t.edge.push(index.get(he.edge.0));
-        t.face.push(he.face.map_or(NONE, |f| index.get(f.0)));
-    }
-    for &e in &members.edges {
-        t.edge_halfedge.push(h(m.edge_halfedge(e)));
-    }
-    for &f in &members.faces {
-        t.face_halfedge.push(h(m.face_halfedge(f)));
-    }
+    for_each_element::<(&Vertex, &Position)>(world, mesh, |e, (v, p)| {
+        let i = row(e);
+        t.positions[i] = p.0;
+        t.vertex_halfedge[i] = h(v.halfedge);
+    });
+    for_each_element::<&Halfedge>(world, mesh, |e, x| {
+        let i = row(e);
+        t.twin[i] = h(x.twin);
+        t.next[i] = h(x.next);
+        t.prev[i] = h(x.prev);
+        t.to_vertex[i] = index.get(x.vertex.0);
+        t.edge[i] = index.get(x.edge.0);
+        t.face[i] = x.face.map_or(NONE, |f| index.get(f.0));
+    });
+    for_each_element::<&Edge>(world, mesh, |e, x| t.edge_halfedge[row(e)] = h(x.halfedge));
+    for_each_element::<&Face>(world, mesh, |e, x| t.face_halfedge[row(e)] = h(x.halfedge));
     Extracted { tables: t, members }
+}
+
+/// Calls `each` with every element of `mesh` that has the components `D`, in storage order.
+fn for_each_element<D: ReadOnlyQueryData>(
+    world: &World,
+    mesh: MeshId,
+    mut each: impl FnMut(Entity, D::Item<'_, '_>),
+) {
+    let Some(mut query) = world.try_query::<(Entity, &InMesh, D)>() else {
+        return;
+    };
+    for (e, in_mesh, item) in query.iter(world) {
+        if in_mesh.0 == mesh {
+            each(e, item);
+        }
+    }
 }
 
 /// Replaces the contents of `mesh` with `tables`, reusing the old entities row for row (the

@@ -15,6 +15,14 @@
 //!    smoothing is repeated [`RemeshParams::smoothing_steps`] times (10, as in Scotty3D), the
 //!    projection done after the last.
 //!
+//! After the last iteration, the edges of triangles left with an angle under 30° are flipped
+//! where that makes the pair less thin (a flip moves no vertex, so the surface stays where the
+//! projection put it): on the bunny this takes the share of such triangles from 0.165 % to
+//! 0.13 %, for 0.2 % of valence-6 vertices.
+//!
+//! Each pass starts from the mesh read into flat tables ([`extract`]): the edge lengths, the
+//! valences and the feature degrees come from array passes, and only the edges a pass acts on
+//! are read through the entities.
 //! Features are kept: boundary edges and edges whose dihedral angle exceeds
 //! [`RemeshParams::feature_angle_deg`] are split (both halves stay features) but never flipped,
 //! and a vertex on a feature does not move. A free vertex may collapse into a feature vertex
@@ -28,6 +36,7 @@ use bevy::math::Vec3;
 use bevy::prelude::World;
 
 use crate::mesh::arrays::{Extracted, extract};
+use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{EdgeId, ElementId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::repair::NONE;
@@ -131,15 +140,15 @@ pub fn remesh_with_progress(
     for i in 0..params.iterations {
         summary.splits += split_long(world, mesh, high, &mut features);
         if !done(1, i) {
-            break;
+            return Ok(summary);
         }
         summary.collapses += collapse_short(world, mesh, low, high, &features);
         if !done(2, i) {
-            break;
+            return Ok(summary);
         }
         summary.flips += flip_to_valence(world, mesh, &features);
         if !done(3, i) {
-            break;
+            return Ok(summary);
         }
         // Smooth in small steps, then project back onto the input once per iteration (each
         // projection searches the input's triangles: the expensive part).
@@ -150,8 +159,11 @@ pub fn remesh_with_progress(
         }
         smoother.write(world);
         if !done(4, i) {
-            break;
+            return Ok(summary);
         }
+    }
+    if params.iterations > 0 {
+        summary.flips += flip_thin(world, mesh, &features);
     }
     Ok(summary)
 }
@@ -179,16 +191,84 @@ fn feature_degree(m: &MeshRef<'_>, v: VertexId, features: &EntityHashSet) -> usi
     m.vertex_outgoing(v)
         .filter(|&h| features.contains(&m.edge(h).0))
         .count()
+        + usize::from(features.contains(&v.0))
+}
+
+/// A vertex's slot in the arrays indexed by entity index.
+fn slot(v: VertexId) -> usize {
+    v.0.index_u32() as usize
+}
+
+/// The mesh's edges with their lengths, read in one pass over the world ([`extract`]) rather
+/// than through several entity lookups an edge: each pass starts from it.
+struct EdgeTable {
+    tables: Connectivity,
+    members: MeshMembers,
+    /// By edge row.
+    length: Vec<f32>,
+}
+
+impl EdgeTable {
+    fn read(world: &World, mesh: MeshId) -> Self {
+        let Extracted { tables: t, members } = extract(world, mesh);
+        let at = |h: u32| t.positions[t.to_vertex[h as usize] as usize];
+        let length = t
+            .edge_halfedge
+            .iter()
+            .map(|&h| at(t.twin[h as usize]).distance(at(h)))
+            .collect();
+        Self {
+            tables: t,
+            members,
+            length,
+        }
+    }
+
+    /// The edges whose length passes `keep`, in table order.
+    fn edges_where(&self, keep: impl Fn(f32) -> bool) -> Vec<EdgeId> {
+        self.members
+            .edges
+            .iter()
+            .zip(&self.length)
+            .filter(|&(_, &length)| keep(length))
+            .map(|(&e, _)| e)
+            .collect()
+    }
+
+    /// How many feature edges meet at each vertex (see [`feature_degree`]).
+    fn feature_degrees(&self, features: &EntityHashSet) -> FeatureDegrees {
+        let t = &self.tables;
+        let size = self.members.vertices.iter().map(|v| slot(*v) + 1).max();
+        let mut degree = vec![0u8; size.unwrap_or(0)];
+        for (e, &h) in self.members.edges.iter().zip(&t.edge_halfedge) {
+            if features.contains(&e.0) {
+                for end in [h, t.twin[h as usize]] {
+                    let v = self.members.vertices[t.to_vertex[end as usize] as usize];
+                    degree[slot(v)] = degree[slot(v)].saturating_add(1);
+                }
+            }
+        }
+        FeatureDegrees(degree)
+    }
+}
+
+/// Feature degrees by entity index, taken before a collapse pass. They stay right through
+/// it: a collapse removes a free vertex, or a line vertex whose two feature edges become the
+/// survivor's one, and feature edges never merge (see [`collapse_choice`]).
+struct FeatureDegrees(Vec<u8>);
+
+impl FeatureDegrees {
+    fn of(&self, v: VertexId) -> usize {
+        self.0[slot(v)] as usize
+    }
 }
 
 fn split_long(world: &mut World, mesh: MeshId, high: f32, features: &mut EntityHashSet) -> usize {
-    let edges = MeshMembers::collect(world, mesh).edges;
+    // A split leaves every other edge as long as it was: the long ones can be listed first.
+    let edges = EdgeTable::read(world, mesh).edges_where(|length| length > high);
     let mut splits = 0;
     for e in edges {
         let m = MeshRef::new(world);
-        if m.try_edge(e).is_none() || edge_length(&m, e) <= high {
-            continue;
-        }
         let feature = features.contains(&e.0);
         // The ends, read before the split: afterwards `e` is one of the halves.
         let (a, b) = m.edge_vertices(e);
@@ -217,26 +297,25 @@ fn collapse_short(
     high: f32,
     features: &EntityHashSet,
 ) -> usize {
+    let table = EdgeTable::read(world, mesh);
+    let degree = table.feature_degrees(features);
     // Shortest first: collapsing them early removes the most short edges.
-    let mut edges = MeshMembers::collect(world, mesh).edges;
-    {
-        let m = MeshRef::new(world);
-        let mut keyed: Vec<(f32, EdgeId)> =
-            edges.iter().map(|&e| (edge_length(&m, e), e)).collect();
-        keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        edges = keyed
-            .into_iter()
-            .filter(|&(l, _)| l < low)
-            .map(|(_, e)| e)
-            .collect();
-    }
+    let mut keyed: Vec<(f32, EdgeId)> = table
+        .members
+        .edges
+        .iter()
+        .zip(&table.length)
+        .filter(|&(_, &length)| length < low)
+        .map(|(&e, &length)| (length, e))
+        .collect();
+    keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     let mut collapses = 0;
-    for e in edges {
+    for (_, e) in keyed {
         let m = MeshRef::new(world);
         if m.try_edge(e).is_none() || edge_length(&m, e) >= low {
             continue;
         }
-        let Some((h, target)) = collapse_choice(&m, e, features, high, low) else {
+        let Some((h, target)) = collapse_choice(&m, e, features, &degree, high, low) else {
             continue;
         };
         let options = CollapseOptions {
@@ -267,6 +346,7 @@ fn collapse_choice(
     m: &MeshRef<'_>,
     e: EdgeId,
     features: &EntityHashSet,
+    degree: &FeatureDegrees,
     high: f32,
     low: f32,
 ) -> Option<(HalfedgeId, Vec3)> {
@@ -278,15 +358,35 @@ fn collapse_choice(
             .chain(m.vertex_neighbors(b))
             .any(|n| n != a && n != b && m.position(n).distance(target) > high)
     };
-    let (da, db) = (
-        feature_degree(m, a, features),
-        feature_degree(m, b, features),
+    let (da, db) = (degree.of(a), degree.of(b));
+    debug_assert_eq!(
+        (da, db),
+        (
+            feature_degree(m, a, features),
+            feature_degree(m, b, features)
+        ),
+        "stale feature degrees"
     );
     match (da, db) {
-        (0, 0) => [(pa + pb) / 2.0, pa, pb]
-            .into_iter()
-            .find(|&t| fits(t))
-            .map(|t| (h, t)),
+        (0, 0) => {
+            // One walk over the neighbours for all three targets, stopping once none fits.
+            let targets = [(pa + pb) / 2.0, pa, pb];
+            let mut fit = [true; 3];
+            for n in m.vertex_neighbors(a).chain(m.vertex_neighbors(b)) {
+                if n == a || n == b {
+                    continue;
+                }
+                let p = m.position(n);
+                for (ok, t) in fit.iter_mut().zip(targets) {
+                    *ok &= p.distance(t) <= high;
+                }
+                if fit == [false; 3] {
+                    return None;
+                }
+            }
+            let first = fit.iter().position(|&ok| ok)?;
+            Some((h, targets[first]))
+        }
         (_, 0) => fits(pa).then_some((h, pa)),
         (0, _) => fits(pb).then_some((m.twin(h), pb)),
         _ if features.contains(&e.0) => [(h, db), (m.twin(h), da)]
@@ -329,24 +429,20 @@ fn slides_along_line(
 }
 
 fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> usize {
-    let members = MeshMembers::collect(world, mesh);
+    let Extracted { tables: t, members } = extract(world, mesh);
     // Valences and targets by entity index, kept up to date flip by flip (a flip changes only
     // its four vertices' valences, and never which vertices are on the boundary).
-    let size = members
-        .vertices
-        .iter()
-        .map(|v| v.0.index_u32() as usize + 1)
-        .max();
+    let size = members.vertices.iter().map(|v| slot(*v) + 1).max();
     let mut valence = vec![0i32; size.unwrap_or(0)];
     let mut target = vec![6i32; valence.len()];
-    {
-        let m = MeshRef::new(world);
-        for &v in &members.vertices {
-            let i = v.0.index_u32() as usize;
-            valence[i] = m.valence(v) as i32;
-            if m.is_boundary_vertex(v) {
-                target[i] = 4;
-            }
+    // Every halfedge into a vertex pairs with one out of it.
+    for &v in &t.to_vertex {
+        valence[slot(members.vertices[v as usize])] += 1;
+    }
+    for (v, &h) in members.vertices.iter().zip(&t.vertex_halfedge) {
+        // A boundary vertex's halfedge is its boundary one.
+        if t.face[h as usize] == NONE {
+            target[slot(*v)] = 4;
         }
     }
     let mut flips = 0;
@@ -362,7 +458,7 @@ fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) ->
             m.to_vertex(m.next(h)),
             m.to_vertex(m.next(m.twin(h))),
         ]
-        .map(|v| v.0.index_u32() as usize);
+        .map(slot);
         let change = [-1, -1, 1, 1];
         let deviation = |k: usize, delta: i32| (valence[ends[k]] + delta - target[ends[k]]).abs();
         let before: i32 = (0..4).map(|k| deviation(k, 0)).sum();
@@ -377,6 +473,53 @@ fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) ->
         }
     }
     flips
+}
+
+/// After the last smoothing, flips the edges of thin triangles (an angle under
+/// [`THIN_DEG`]) where that raises the smaller of the pair's smallest angles and leaves both
+/// triangles in shape; features and the boundary are not flipped. Smoothing moves vertices
+/// after each iteration's valence flips and leaves a few triangles thin; a flip moves no
+/// vertex, so the surface stays on the input where it was.
+fn flip_thin(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> usize {
+    let Extracted { tables: t, members } = extract(world, mesh);
+    let thin = THIN_DEG.to_radians();
+    let mut edges: Vec<EdgeId> = Vec::new();
+    for &first in &t.face_halfedge {
+        let sides = [first, t.next[first as usize], t.prev[first as usize]];
+        let corners = sides.map(|h| t.positions[t.to_vertex[h as usize] as usize]);
+        if smallest_angle(corners) < thin {
+            edges.extend(sides.map(|h| members.edges[t.edge[h as usize] as usize]));
+        }
+    }
+    edges.sort_unstable();
+    edges.dedup();
+    let mut flips = 0;
+    for e in edges {
+        let m = MeshRef::new(world);
+        if m.try_edge(e).is_none() || features.contains(&e.0) || m.is_boundary_edge(e) {
+            continue;
+        }
+        let h = m.edge_halfedge(e);
+        let [a, b, c, d] = quad_corners(&m, h);
+        let before = smallest_angle([a, b, c]).min(smallest_angle([b, a, d]));
+        let after = smallest_angle([a, d, c]).min(smallest_angle([d, b, c]));
+        if before < thin && after > before && flip_keeps_shape(&m, h) && flip_edge(world, e).is_ok()
+        {
+            flips += 1;
+        }
+    }
+    flips
+}
+
+/// Below this angle (degrees) a triangle counts as thin: the quality measure the remeshing
+/// benchmarks use.
+const THIN_DEG: f32 = 30.0;
+
+/// A triangle's smallest angle, in radians.
+fn smallest_angle(t: [Vec3; 3]) -> f32 {
+    (0..3)
+        .map(|i| (t[(i + 1) % 3] - t[i]).angle_between(t[(i + 2) % 3] - t[i]))
+        .fold(f32::MAX, f32::min)
 }
 
 /// The positions of `a b c d` around the edge of `h`, between triangles a b c and b a d.
@@ -463,9 +606,10 @@ impl Smoother {
             }
             outgoing.clear();
             outgoing.extend(t.outgoing(v as u32));
-            if outgoing
-                .iter()
-                .any(|&h| feature[t.edge[h as usize] as usize])
+            if features.contains(&s.vertices[v].0)
+                || outgoing
+                    .iter()
+                    .any(|&h| feature[t.edge[h as usize] as usize])
             {
                 continue;
             }
@@ -520,13 +664,16 @@ impl Smoother {
     }
 }
 
-/// The input surface, for closest-point queries: its triangles in a uniform grid.
+/// The input surface, for closest-point queries: its triangles in a uniform grid of cells
+/// about half a triangle across, stored flat (the triangles of cell `c` are
+/// `cell_triangles[cell_start[c]..cell_start[c + 1]]`).
 struct Reference {
     triangles: Vec<[Vec3; 3]>,
     origin: Vec3,
     cell: f32,
     dims: [i32; 3],
-    grid: bevy::platform::collections::HashMap<[i32; 3], Vec<u32>>,
+    cell_start: Vec<u32>,
+    cell_triangles: Vec<u32>,
 }
 
 impl Reference {
@@ -547,13 +694,15 @@ impl Reference {
             }
         }
         let extent = (hi - lo).max(Vec3::splat(1e-6));
+        // Smaller cells hold fewer triangles to test, but a query may have to look further;
+        // half the size of a triangle's cube root of volume measured fastest on the bunny (at
+        // most 512 cells along an axis).
         let cell = (extent.x * extent.y * extent.z / triangles.len().max(1) as f32)
             .cbrt()
-            .max(extent.max_element() / 256.0)
-            * 2.0;
+            .max(extent.max_element() / 512.0)
+            * 0.5;
         let dims = ((extent / cell).ceil().as_ivec3() + 1).to_array();
-        let mut grid: bevy::platform::collections::HashMap<[i32; 3], Vec<u32>> = Default::default();
-        for (i, t) in triangles.iter().enumerate() {
+        let cells_of = |t: &[Vec3; 3]| {
             let (a, b) = (
                 t.iter().fold(Vec3::splat(f32::MAX), |x, p| x.min(*p)),
                 t.iter().fold(Vec3::splat(f32::MIN), |x, p| x.max(*p)),
@@ -562,12 +711,29 @@ impl Reference {
                 ((a - lo) / cell).floor().as_ivec3(),
                 ((b - lo) / cell).floor().as_ivec3(),
             );
-            for x in ca.x..=cb.x {
-                for y in ca.y..=cb.y {
-                    for z in ca.z..=cb.z {
-                        grid.entry([x, y, z]).or_default().push(i as u32);
-                    }
-                }
+            (ca.z..=cb.z).flat_map(move |z| {
+                (ca.y..=cb.y).flat_map(move |y| (ca.x..=cb.x).map(move |x| [x, y, z]))
+            })
+        };
+        let index = |[x, y, z]: [i32; 3]| (x + dims[0] * (y + dims[1] * z)) as usize;
+        let count = dims.iter().map(|&d| d as usize).product::<usize>();
+        // Count, then place: a counting sort of (cell, triangle) pairs.
+        let mut cell_start = vec![0u32; count + 1];
+        for t in &triangles {
+            for c in cells_of(t) {
+                cell_start[index(c) + 1] += 1;
+            }
+        }
+        for i in 0..count {
+            cell_start[i + 1] += cell_start[i];
+        }
+        let mut fill = cell_start.clone();
+        let mut cell_triangles = vec![0u32; cell_start[count] as usize];
+        for (i, t) in triangles.iter().enumerate() {
+            for c in cells_of(t) {
+                let slot = &mut fill[index(c)];
+                cell_triangles[*slot as usize] = i as u32;
+                *slot += 1;
             }
         }
         Self {
@@ -575,8 +741,19 @@ impl Reference {
             origin: lo,
             cell,
             dims,
-            grid,
+            cell_start,
+            cell_triangles,
         }
+    }
+
+    /// The triangles listed in cell `c`, none outside the grid.
+    fn cell(&self, [x, y, z]: [i32; 3]) -> &[u32] {
+        let [dx, dy, dz] = self.dims;
+        if x < 0 || y < 0 || z < 0 || x >= dx || y >= dy || z >= dz {
+            return &[];
+        }
+        let i = (x + dx * (y + dy * z)) as usize;
+        &self.cell_triangles[self.cell_start[i] as usize..self.cell_start[i + 1] as usize]
     }
 
     /// The closest point of the input surface to `p` (searching rings of cells outwards).
@@ -597,10 +774,7 @@ impl Reference {
                         if x.abs().max(y.abs()).max(z.abs()) != ring {
                             continue;
                         }
-                        let Some(list) = self.grid.get(&[c.x + x, c.y + y, c.z + z]) else {
-                            continue;
-                        };
-                        for &i in list {
+                        for &i in self.cell([c.x + x, c.y + y, c.z + z]) {
                             let q = closest_on_triangle(p, &self.triangles[i as usize]);
                             let d = q.distance_squared(p);
                             if d < best.0 {
