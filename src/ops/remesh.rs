@@ -766,7 +766,12 @@ impl Reference {
         let f = local - local.floor();
         let wall = f.min(Vec3::ONE - f).min_element();
         let mut best = (f32::MAX, p);
-        let max_ring = self.dims.iter().copied().max().unwrap_or(1);
+        // Far enough to take in the whole grid, from a point outside it too.
+        let outside = (0..3)
+            .map(|k| (-c[k]).max(c[k] - self.dims[k] + 1).max(0))
+            .max()
+            .unwrap_or(0);
+        let max_ring = self.dims.iter().copied().max().unwrap_or(1) + outside;
         for ring in 0..=max_ring {
             for x in -ring..=ring {
                 for y in -ring..=ring {
@@ -840,6 +845,62 @@ mod tests {
         let v = |i: usize| built.input_vertices[i].unwrap();
         let m = MeshRef::new(&world);
         flip_keeps_shape(&m, m.find_halfedge(v(0), v(1)).unwrap())
+    }
+
+    /// The kite a b c d, thin along its long diagonal a b: triangles a b c and b a d, with
+    /// angles of 5.7° at a and b.
+    fn thin_kite() -> (World, MeshId, [VertexId; 4]) {
+        let points = vec![
+            Vec3::new(-1.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.1, 0.0),
+            Vec3::new(0.0, -0.1, 0.0),
+        ];
+        let soup = PolygonSoup::from_faces(points, &[[0, 1, 2], [1, 0, 3]]);
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
+        let v = |i: usize| built.input_vertices[i].unwrap();
+        (world, built.mesh, [v(0), v(1), v(2), v(3)])
+    }
+
+    #[test]
+    fn thin_triangles_get_the_other_diagonal_unless_it_is_a_feature() {
+        let (mut world, mesh, [a, b, c, d]) = thin_kite();
+        assert_eq!(flip_thin(&mut world, mesh, &EntityHashSet::default()), 1);
+        let m = MeshRef::new(&world);
+        assert!(m.find_halfedge(a, b).is_none());
+        assert!(m.find_halfedge(c, d).is_some());
+        crate::mesh::validate(&world, mesh).unwrap();
+
+        let (mut world, mesh, [a, b, ..]) = thin_kite();
+        let m = MeshRef::new(&world);
+        let diagonal = m.edge(m.find_halfedge(a, b).unwrap());
+        let features: EntityHashSet = [diagonal.0].into_iter().collect();
+        assert_eq!(flip_thin(&mut world, mesh, &features), 0);
+    }
+
+    #[test]
+    fn the_reference_grid_finds_the_closest_point_of_all_triangles() {
+        let soup = crate::mesh::shapes::icosphere(2);
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
+        let members = MeshMembers::collect(&world, built.mesh);
+        let reference = Reference::new(&MeshRef::new(&world), &members);
+        // Points inside, near and far outside the sphere (a fixed pseudo-random sequence).
+        let mut state = 7u32;
+        let mut coordinate = || {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (state >> 8) as f32 / (1u32 << 24) as f32 * 8.0 - 4.0
+        };
+        for _ in 0..200 {
+            let p = Vec3::new(coordinate(), coordinate(), coordinate());
+            let nearest = reference
+                .triangles
+                .iter()
+                .map(|t| closest_on_triangle(p, t).distance(p))
+                .fold(f32::MAX, f32::min);
+            assert_eq!(reference.closest(p).distance(p), nearest, "at {p}");
+        }
     }
 
     #[test]
