@@ -22,11 +22,11 @@ use crate::mesh::arrays::{Extracted, extract};
 use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
 use crate::mesh::repair::NONE;
-use crate::mesh::topology::{MeshRef, newell_area_vector};
+use crate::mesh::topology::{Lookups, MeshRef, newell_area_vector};
 
 use super::Refusal;
 use super::indexed_heap::IndexedHeap;
-use super::local::{CollapseOptions, apply_collapse_deferred, plan_collapse};
+use super::local::{CollapseOptions, apply_collapse_deferred, plan_collapse_in};
 
 /// How to simplify. The same struct serves the command line, the editor and the tests.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -221,6 +221,7 @@ fn simplify_inner(
     // What the collapses removed, despawned together at the end (see `despawn_removed`).
     let mut graveyard: Vec<Entity> = Vec::new();
     let mut ring = Vec::new();
+    let lookups = Lookups::new(world);
     let to_remove = faces_before.saturating_sub(params.target_faces).max(1);
     while faces > params.target_faces {
         let Some(((_, bits), _)) = heap.pop() else {
@@ -230,8 +231,8 @@ fn simplify_inner(
         let edge = EdgeId(Entity::from_bits(bits));
         // The target still holds: both ends are as they were when the edge was last keyed.
         let position = table.target[edge.0.index_u32() as usize];
-        let Ok(plan) = plan_collapse(
-            world,
+        let Ok(plan) = plan_collapse_in(
+            MeshRef::with_lookups(world, &lookups),
             edge,
             CollapseOptions {
                 position: Some(position),

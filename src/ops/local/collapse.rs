@@ -225,8 +225,20 @@ pub fn plan_collapse(
     e: EdgeId,
     options: CollapseOptions,
 ) -> Result<CollapsePlan, Refusal> {
-    let h = live_edge(&MeshRef::new(world), e)?;
-    plan_collapse_halfedge(world, h, options)
+    plan_collapse_in(MeshRef::new(world), e, options)
+}
+
+/// [`plan_collapse`], reading through `m` (which may carry cached [`crate::mesh::topology::Lookups`]).
+///
+/// # Refusals
+/// See the module doc.
+pub(crate) fn plan_collapse_in(
+    m: MeshRef<'_>,
+    e: EdgeId,
+    options: CollapseOptions,
+) -> Result<CollapsePlan, Refusal> {
+    let h = live_edge(&m, e)?;
+    plan_halfedge(m, h, options)
 }
 
 /// One outgoing halfedge of a vertex, read once for all the checks of a plan: its links, its
@@ -272,7 +284,14 @@ pub fn plan_collapse_halfedge(
     h: HalfedgeId,
     options: CollapseOptions,
 ) -> Result<CollapsePlan, Refusal> {
-    let m = MeshRef::new(world);
+    plan_halfedge(MeshRef::new(world), h, options)
+}
+
+fn plan_halfedge(
+    m: MeshRef<'_>,
+    h: HalfedgeId,
+    options: CollapseOptions,
+) -> Result<CollapsePlan, Refusal> {
     let e = m
         .try_halfedge(h)
         .ok_or(Refusal::Stale(ElementId::Halfedge(h)))?

@@ -25,11 +25,11 @@ mod split;
 mod split_face;
 mod vertex_split;
 
-pub(crate) use collapse::apply_collapse_deferred;
 pub use collapse::{
     CollapseOptions, CollapsePlan, CollapseRecord, CollapseResult, apply_collapse, collapse_edge,
     plan_collapse, plan_collapse_halfedge,
 };
+pub(crate) use collapse::{apply_collapse_deferred, plan_collapse_in};
 pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};
 pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
 pub use split::{SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint};
