@@ -245,7 +245,7 @@ fn simplify_inner(
         ring.clear();
         ring.extend(plan.merged_ring());
         let merged = (plan.kept(), plan.position());
-        let (result, removed) = apply_collapse_deferred(world, plan);
+        let (result, removed) = apply_collapse_deferred(world, plan, Some(&lookups));
         for e in &removed.edges {
             heap.remove(e.0.index_u32());
         }

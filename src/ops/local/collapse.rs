@@ -64,7 +64,7 @@ use bevy::prelude::{Entity, World};
 
 use crate::mesh::elements::{Edge, Face, Halfedge, Position, Vertex};
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
-use crate::mesh::topology::{MAX_LOOP, MeshRef, newell_area_vector};
+use crate::mesh::topology::{Lookups, MAX_LOOP, MeshRef, newell_area_vector};
 
 use super::{Refusal, he, link, live_edge};
 
@@ -516,7 +516,7 @@ impl Merge {
 
 /// Carries out a collapse planned by [`plan_collapse`] on the unchanged world.
 pub fn apply_collapse(world: &mut World, p: CollapsePlan) -> CollapseResult {
-    let (result, removed) = apply_collapse_deferred(world, p);
+    let (result, removed) = apply_collapse_deferred(world, p, None);
     removed.despawn(world);
     result
 }
@@ -545,16 +545,19 @@ impl Removed {
 /// nor by asking whether an id is live). The simplifier makes tens of thousands of collapses
 /// this way and despawns all the removed elements at the end, in index order, which costs
 /// much less than despawning them one collapse at a time.
+///
+/// `lookups`, when given, must have been made for this world: the reads go through them.
 pub(crate) fn apply_collapse_deferred(
     world: &mut World,
     p: CollapsePlan,
+    lookups: Option<&Lookups>,
 ) -> (CollapseResult, Removed) {
     debug_assert_eq!(
         plan_collapse_halfedge(world, p.h, p.options).as_ref(),
         Ok(&p),
         "stale collapse plan"
     );
-    let m = MeshRef::new(world);
+    let m = MeshRef::through(world, lookups);
     let wing = |s: &Side| match *s {
         Side::Triangle { opposite, .. } => (Some(opposite), true),
         Side::Boundary { .. } => (None, true),
@@ -643,7 +646,7 @@ pub(crate) fn apply_collapse_deferred(
             x.twin = on;
             x.edge = keep;
         }
-        let interior = if MeshRef::new(world).is_boundary(on) {
+        let interior = if MeshRef::through(world, lookups).is_boundary(on) {
             op
         } else {
             on
@@ -657,12 +660,12 @@ pub(crate) fn apply_collapse_deferred(
     let twins: Vec<HalfedgeId> = candidates
         .iter()
         .filter(|h| !gone(h))
-        .map(|&h| MeshRef::new(world).twin(h))
+        .map(|&h| MeshRef::through(world, lookups).twin(h))
         .collect();
     candidates.extend(twins);
     candidates.retain(|h| !gone(h));
     for (v, boundary) in fix_vertex {
-        repoint(world, v, boundary, &candidates, &removed_halfedges);
+        repoint(world, lookups, v, boundary, &candidates, &removed_halfedges);
     }
     let mut entities: Vec<Entity> = removed_halfedges.iter().map(|h| h.0).collect();
     entities.extend(removed_edges.iter().map(|e| e.0));
@@ -685,12 +688,13 @@ pub(crate) fn apply_collapse_deferred(
 /// took out (perhaps not despawned yet).
 fn repoint(
     world: &mut World,
+    lookups: Option<&Lookups>,
     v: VertexId,
     boundary: bool,
     candidates: &[HalfedgeId],
     removed: &[HalfedgeId],
 ) {
-    let m = MeshRef::new(world);
+    let m = MeshRef::through(world, lookups);
     let current = m.try_vertex(v).map(|x| x.halfedge);
     let leaves_v = |h: HalfedgeId| !removed.contains(&h) && m.from_vertex(h) == v;
     let start = current
