@@ -9,7 +9,7 @@
 //!
 //! Edges wait in an indexed heap ([`super::indexed_heap`]), one entry per edge: when a collapse
 //! changes the cost of the edges around the merged vertex, their entries are re-keyed in place,
-//! so no pop is spent on a stale entry. Equal costs are ordered by the edge's entity bits, so a
+//! so no pop is spent on a stale entry. Equal costs are ordered by the edge's entity index, so a
 //! run is deterministic. Every collapse goes through
 //! [`crate::ops::local::plan_collapse`] — link condition, degenerate faces and a bound on how
 //! far a face normal may turn — and a refused edge is simply dropped until a neighbouring
@@ -132,9 +132,10 @@ impl std::ops::Add for Quadric {
     }
 }
 
-/// A heap key: the cost as order-preserving bits (non-negative f32s order like their bits),
-/// then the edge's entity bits. Lowest first.
-type Key = (u32, u64);
+/// A heap key: the cost as order-preserving bits (non-negative f32s order like their bits)
+/// above the edge's entity index, in one word (the heap's entries stay small, four children to
+/// a cache line). Lowest first.
+type Key = u64;
 
 /// Where an edge should collapse to and what it costs.
 struct Candidate {
@@ -147,6 +148,8 @@ struct VertexTable {
     quadric: Vec<Quadric>,
     /// Where each edge would collapse to, as of its latest key (by edge entity index).
     target: Vec<Vec3>,
+    /// The edge behind each slot of the heap (by edge entity index).
+    edge: Vec<EdgeId>,
 }
 
 impl VertexTable {
@@ -224,11 +227,11 @@ fn simplify_inner(
     let lookups = Lookups::new(world);
     let to_remove = faces_before.saturating_sub(params.target_faces).max(1);
     while faces > params.target_faces {
-        let Some(((_, bits), _)) = heap.pop() else {
+        let Some((_, slot)) = heap.pop() else {
             break;
         };
         // Edges a collapse removes leave the queue with it, so this one is live.
-        let edge = EdgeId(Entity::from_bits(bits));
+        let edge = table.edge[slot as usize];
         // The target still holds: both ends are as they were when the edge was last keyed.
         let position = table.target[edge.0.index_u32() as usize];
         let Ok(plan) = plan_collapse_in(
@@ -345,7 +348,11 @@ fn setup(world: &World, mesh: MeshId, boundary_weight: f64) -> Result<Setup, Ref
     let mut table = VertexTable {
         quadric: vec![Quadric::default(); slots(&mut members.vertices.iter().map(|v| v.0))],
         target: vec![Vec3::ZERO; slots(&mut members.edges.iter().map(|e| e.0))],
+        edge: vec![EdgeId(Entity::PLACEHOLDER); slots(&mut members.edges.iter().map(|e| e.0))],
     };
+    for &e in &members.edges {
+        table.edge[e.0.index_u32() as usize] = e;
+    }
     // By table row first, then moved to the entity slots the main loop reads.
     let mut quadric = vec![Quadric::default(); t.vertex_count()];
     let position = |v: u32| t.positions[v as usize].as_dvec3();
@@ -429,7 +436,7 @@ fn keyed_ends(table: &mut VertexTable, e: EdgeId, mut ends: [(VertexId, Vec3); 2
     ends.sort_unstable_by_key(|(v, _)| v.0.to_bits());
     let c = candidate(table, ends);
     table.target[e.0.index_u32() as usize] = c.position;
-    ((c.cost.max(0.0) as f32).to_bits(), e.0.to_bits())
+    (u64::from((c.cost.max(0.0) as f32).to_bits()) << 32) | u64::from(e.0.index_u32())
 }
 
 fn candidate(table: &VertexTable, [(a, pa), (b, pb)]: [(VertexId, Vec3); 2]) -> Candidate {
