@@ -20,7 +20,8 @@ use crate::mesh::build::{RowCounts, release_rows, reserve_rows_while, write_link
 use crate::mesh::change::remapped;
 use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
-use crate::mesh::members::MeshMembers;
+use crate::mesh::elements::Vertex;
+use crate::mesh::members::of_kind;
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
@@ -110,7 +111,7 @@ impl ProgressiveMesh {
         params: &SimplifyParams,
         progress: impl FnMut(f32) -> bool,
     ) -> Result<(ProgressiveMesh, SimplifySummary), Refusal> {
-        let vertices = MeshMembers::collect(world, mesh).vertices;
+        let vertices = of_kind::<Vertex, _>(world, mesh, VertexId);
         // Slots by entity index: one array read a lookup, where hashing cost more than the
         // rest of recording. The collapses only remove vertices, so the table stays valid.
         let size = vertices.iter().map(|v| v.0.index_u32() as usize + 1).max();
