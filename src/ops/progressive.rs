@@ -19,8 +19,8 @@ use crate::mesh::arrays::extract;
 use crate::mesh::build::{RowCounts, release_rows, reserve_rows_while, write_links};
 use crate::mesh::change::remapped;
 use crate::mesh::connectivity::Connectivity;
-use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::mesh::elements::Vertex;
+use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::mesh::members::of_kind;
 use crate::mesh::topology::MeshRef;
 
