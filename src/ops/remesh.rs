@@ -191,7 +191,6 @@ fn feature_degree(m: &MeshRef<'_>, v: VertexId, features: &EntityHashSet) -> usi
     m.vertex_outgoing(v)
         .filter(|&h| features.contains(&m.edge(h).0))
         .count()
-        + usize::from(features.contains(&v.0))
 }
 
 /// A vertex's slot in the arrays indexed by entity index.
@@ -606,10 +605,9 @@ impl Smoother {
             }
             outgoing.clear();
             outgoing.extend(t.outgoing(v as u32));
-            if features.contains(&s.vertices[v].0)
-                || outgoing
-                    .iter()
-                    .any(|&h| feature[t.edge[h as usize] as usize])
+            if outgoing
+                .iter()
+                .any(|&h| feature[t.edge[h as usize] as usize])
             {
                 continue;
             }
