@@ -13,7 +13,7 @@ use bevy::prelude::{Entity, World};
 use super::build::write_tables;
 use super::connectivity::Connectivity;
 use super::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
-use super::ids::{HalfedgeId, MeshId};
+use super::ids::{HalfedgeId, MeshId, slot, slots_for};
 use super::members::MeshMembers;
 use super::repair::NONE;
 
@@ -34,15 +34,10 @@ struct DenseIndex {
 
 impl DenseIndex {
     fn new(members: &MeshMembers) -> Self {
-        let size = members
-            .entities()
-            .map(|e| e.index_u32() as usize + 1)
-            .max()
-            .unwrap_or(0);
-        let mut slots = vec![NONE; size];
+        let mut slots = vec![NONE; slots_for(members.entities())];
         let mut fill = |list: &mut dyn Iterator<Item = Entity>| {
             for (i, e) in list.enumerate() {
-                slots[e.index_u32() as usize] = i as u32;
+                slots[slot(e)] = i as u32;
             }
         };
         fill(&mut members.vertices.iter().map(|v| v.0));
@@ -54,7 +49,7 @@ impl DenseIndex {
 
     #[inline]
     fn get(&self, e: Entity) -> u32 {
-        self.slots[e.index_u32() as usize]
+        self.slots[slot(e)]
     }
 }
 

@@ -10,6 +10,18 @@ use bevy::ecs::entity::{ContainsEntity, EntityGeneration, EntityIndex, EntityMap
 use bevy::prelude::Entity;
 use std::fmt;
 
+/// `e`'s place in an array indexed by entity index. Indices are unique among live entities of
+/// every kind, so such an array can hold one value per element, read without hashing.
+#[inline]
+pub fn slot(e: Entity) -> usize {
+    e.index_u32() as usize
+}
+
+/// The length an array indexed by entity index needs to hold a value for each of `entities`.
+pub fn slots_for(entities: impl IntoIterator<Item = Entity>) -> usize {
+    entities.into_iter().map(|e| slot(e) + 1).max().unwrap_or(0)
+}
+
 macro_rules! element_id {
     ($(#[$doc:meta])* $name:ident, $prefix:literal) => {
         $(#[$doc])*
@@ -25,6 +37,12 @@ macro_rules! element_id {
             #[inline]
             pub fn entity(self) -> Entity {
                 self.0
+            }
+
+            /// Its place in an array indexed by entity index (see [`slots_for`]).
+            #[inline]
+            pub fn slot(self) -> usize {
+                slot(self.0)
             }
         }
 

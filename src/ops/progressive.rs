@@ -20,7 +20,7 @@ use crate::mesh::build::{RowCounts, release_rows, reserve_rows_while, write_link
 use crate::mesh::change::remapped;
 use crate::mesh::connectivity::Connectivity;
 use crate::mesh::elements::Vertex;
-use crate::mesh::ids::{ElementId, MeshId, VertexId};
+use crate::mesh::ids::{ElementId, MeshId, VertexId, slots_for};
 use crate::mesh::members::of_kind;
 use crate::mesh::topology::MeshRef;
 
@@ -114,15 +114,14 @@ impl ProgressiveMesh {
         let vertices = of_kind::<Vertex, _>(world, mesh, VertexId);
         // Slots by entity index: one array read a lookup, where hashing cost more than the
         // rest of recording. The collapses only remove vertices, so the table stays valid.
-        let size = vertices.iter().map(|v| v.0.index_u32() as usize + 1).max();
-        let mut slot_of = vec![u32::MAX; size.unwrap_or(0)];
+        let mut slot_of = vec![u32::MAX; slots_for(vertices.iter().map(|v| v.0))];
         for (i, v) in vertices.iter().enumerate() {
-            slot_of[v.0.index_u32() as usize] = i as u32;
+            slot_of[v.slot()] = i as u32;
         }
         let slots = vertices.into_iter().map(Some).collect();
         let mut records = Vec::new();
         let summary = simplify_recorded(world, mesh, params, progress, |r: &CollapseResult| {
-            let slot = |v: VertexId| slot_of[v.0.index_u32() as usize];
+            let slot = |v: VertexId| slot_of[v.slot()];
             let rec = &r.record;
             records.push(SlotRecord {
                 kept: slot(r.kept),

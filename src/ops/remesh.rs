@@ -37,7 +37,7 @@ use bevy::prelude::World;
 
 use crate::mesh::arrays::{Extracted, extract};
 use crate::mesh::connectivity::Connectivity;
-use crate::mesh::ids::{EdgeId, ElementId, HalfedgeId, MeshId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, HalfedgeId, MeshId, VertexId, slots_for};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::repair::NONE;
 use crate::mesh::topology::MeshRef;
@@ -193,11 +193,6 @@ fn feature_degree(m: &MeshRef<'_>, v: VertexId, features: &EntityHashSet) -> usi
         .count()
 }
 
-/// A vertex's slot in the arrays indexed by entity index.
-fn slot(v: VertexId) -> usize {
-    v.0.index_u32() as usize
-}
-
 /// The mesh's edges with their lengths, read in one pass over the world ([`extract`]) rather
 /// than through several entity lookups an edge: each pass starts from it.
 struct EdgeTable {
@@ -237,13 +232,12 @@ impl EdgeTable {
     /// How many feature edges meet at each vertex (see [`feature_degree`]).
     fn feature_degrees(&self, features: &EntityHashSet) -> FeatureDegrees {
         let t = &self.tables;
-        let size = self.members.vertices.iter().map(|v| slot(*v) + 1).max();
-        let mut degree = vec![0u8; size.unwrap_or(0)];
+        let mut degree = vec![0u8; slots_for(self.members.vertices.iter().map(|v| v.0))];
         for (e, &h) in self.members.edges.iter().zip(&t.edge_halfedge) {
             if features.contains(&e.0) {
                 for end in [h, t.twin[h as usize]] {
                     let v = self.members.vertices[t.to_vertex[end as usize] as usize];
-                    degree[slot(v)] = degree[slot(v)].saturating_add(1);
+                    degree[v.slot()] = degree[v.slot()].saturating_add(1);
                 }
             }
         }
@@ -258,7 +252,7 @@ struct FeatureDegrees(Vec<u8>);
 
 impl FeatureDegrees {
     fn of(&self, v: VertexId) -> usize {
-        self.0[slot(v)] as usize
+        self.0[v.slot()] as usize
     }
 }
 
@@ -431,17 +425,16 @@ fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) ->
     let Extracted { tables: t, members } = extract(world, mesh);
     // Valences and targets by entity index, kept up to date flip by flip (a flip changes only
     // its four vertices' valences, and never which vertices are on the boundary).
-    let size = members.vertices.iter().map(|v| slot(*v) + 1).max();
-    let mut valence = vec![0i32; size.unwrap_or(0)];
+    let mut valence = vec![0i32; slots_for(members.vertices.iter().map(|v| v.0))];
     let mut target = vec![6i32; valence.len()];
     // Every halfedge into a vertex pairs with one out of it.
     for &v in &t.to_vertex {
-        valence[slot(members.vertices[v as usize])] += 1;
+        valence[members.vertices[v as usize].slot()] += 1;
     }
     for (v, &h) in members.vertices.iter().zip(&t.vertex_halfedge) {
         // A boundary vertex's halfedge is its boundary one.
         if t.face[h as usize] == NONE {
-            target[slot(*v)] = 4;
+            target[v.slot()] = 4;
         }
     }
     let mut flips = 0;
@@ -457,7 +450,7 @@ fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) ->
             m.to_vertex(m.next(h)),
             m.to_vertex(m.next(m.twin(h))),
         ]
-        .map(slot);
+        .map(VertexId::slot);
         let change = [-1, -1, 1, 1];
         let deviation = |k: usize, delta: i32| (valence[ends[k]] + delta - target[ends[k]]).abs();
         let before: i32 = (0..4).map(|k| deviation(k, 0)).sum();

@@ -20,7 +20,7 @@ use bevy::prelude::{Entity, World};
 
 use crate::mesh::arrays::{Extracted, extract};
 use crate::mesh::connectivity::Connectivity;
-use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId, slots_for};
 use crate::mesh::repair::NONE;
 use crate::mesh::topology::{Lookups, MeshRef, newell_area_vector};
 
@@ -152,12 +152,6 @@ struct VertexTable {
     edge: Vec<EdgeId>,
 }
 
-impl VertexTable {
-    fn slot(v: VertexId) -> usize {
-        v.0.index_u32() as usize
-    }
-}
-
 /// Simplifies `mesh` (triangles only) until it has at most `params.target_faces` faces or no
 /// legal collapse remains.
 ///
@@ -233,7 +227,7 @@ fn simplify_inner(
         // Edges a collapse removes leave the queue with it, so this one is live.
         let edge = table.edge[slot as usize];
         // The target still holds: both ends are as they were when the edge was last keyed.
-        let position = table.target[edge.0.index_u32() as usize];
+        let position = table.target[edge.slot()];
         let Ok(plan) = plan_collapse_in(
             MeshRef::with_lookups(world, &lookups),
             edge,
@@ -257,8 +251,7 @@ fn simplify_inner(
         faces -= result.record.triangles_removed();
         collapses += 1;
         let (a, b) = (result.kept, result.removed);
-        table.quadric[VertexTable::slot(a)] =
-            table.quadric[VertexTable::slot(a)] + table.quadric[VertexTable::slot(b)];
+        table.quadric[a.slot()] = table.quadric[a.slot()] + table.quadric[b.slot()];
         debug_assert!(
             ring_matches(&MeshRef::new(world), a, &ring),
             "the plan's ring of {a} differs from the mesh after the collapse"
@@ -342,16 +335,14 @@ fn setup(world: &World, mesh: MeshId, boundary_weight: f64) -> Result<Setup, Ref
     }) {
         return Err(Refusal::NotTriangle(ElementId::Face(members.faces[f])));
     }
-    let slots = |list: &mut dyn Iterator<Item = Entity>| {
-        list.map(|e| e.index_u32() as usize + 1).max().unwrap_or(0)
-    };
+    let edge_slots = slots_for(members.edges.iter().map(|e| e.0));
     let mut table = VertexTable {
-        quadric: vec![Quadric::default(); slots(&mut members.vertices.iter().map(|v| v.0))],
-        target: vec![Vec3::ZERO; slots(&mut members.edges.iter().map(|e| e.0))],
-        edge: vec![EdgeId(Entity::PLACEHOLDER); slots(&mut members.edges.iter().map(|e| e.0))],
+        quadric: vec![Quadric::default(); slots_for(members.vertices.iter().map(|v| v.0))],
+        target: vec![Vec3::ZERO; edge_slots],
+        edge: vec![EdgeId(Entity::PLACEHOLDER); edge_slots],
     };
     for &e in &members.edges {
-        table.edge[e.0.index_u32() as usize] = e;
+        table.edge[e.slot()] = e;
     }
     // By table row first, then moved to the entity slots the main loop reads.
     let mut quadric = vec![Quadric::default(); t.vertex_count()];
@@ -391,7 +382,7 @@ fn setup(world: &World, mesh: MeshId, boundary_weight: f64) -> Result<Setup, Ref
         }
     }
     for (v, q) in members.vertices.iter().zip(quadric) {
-        table.quadric[VertexTable::slot(*v)] = q;
+        table.quadric[v.slot()] = q;
     }
     let end = |v: u32| {
         let id = members.vertices[v as usize];
@@ -435,12 +426,12 @@ fn keyed_ends(table: &mut VertexTable, e: EdgeId, mut ends: [(VertexId, Vec3); 2
     // between the two ends independent of how the caller reached the edge.
     ends.sort_unstable_by_key(|(v, _)| v.0.to_bits());
     let c = candidate(table, ends);
-    table.target[e.0.index_u32() as usize] = c.position;
+    table.target[e.slot()] = c.position;
     (u64::from((c.cost.max(0.0) as f32).to_bits()) << 32) | u64::from(e.0.index_u32())
 }
 
 fn candidate(table: &VertexTable, [(a, pa), (b, pb)]: [(VertexId, Vec3); 2]) -> Candidate {
-    let q = table.quadric[VertexTable::slot(a)] + table.quadric[VertexTable::slot(b)];
+    let q = table.quadric[a.slot()] + table.quadric[b.slot()];
     let (pa, pb) = (pa.as_dvec3(), pb.as_dvec3());
     let position = q.optimum().unwrap_or_else(|| {
         [pa, pb, (pa + pb) / 2.0]
