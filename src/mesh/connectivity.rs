@@ -134,6 +134,15 @@ impl Connectivity {
         self.face_halfedge.len()
     }
 
+    /// The first face that is not a triangle, if any (three `next` steps from its halfedge do
+    /// not come back to it).
+    pub fn first_non_triangle(&self) -> Option<usize> {
+        let next = |h: u32| self.next[h as usize];
+        self.face_halfedge
+            .iter()
+            .position(|&h| next(h) == h || next(next(next(h))) != h)
+    }
+
     /// The next outgoing halfedge of `h`'s start vertex, counter-clockwise: `twin(prev(h))`.
     #[inline]
     pub fn ccw_rotated(&self, h: u32) -> u32 {

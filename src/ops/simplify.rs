@@ -329,10 +329,7 @@ struct Setup {
 /// [`Refusal::NotTriangle`] naming the first face that is not a triangle.
 fn setup(world: &World, mesh: MeshId, boundary_weight: f64) -> Result<Setup, Refusal> {
     let Extracted { tables: t, members } = extract(world, mesh);
-    if let Some(f) = (0..t.face_count()).find(|&f| {
-        let h = t.face_halfedge[f] as usize;
-        t.next[t.next[t.next[h] as usize] as usize] as usize != h
-    }) {
+    if let Some(f) = t.first_non_triangle() {
         return Err(Refusal::NotTriangle(ElementId::Face(members.faces[f])));
     }
     let edge_slots = slots_for(members.edges.iter().map(|e| e.0));

@@ -131,16 +131,12 @@ pub fn loop_subdivide(
             }
         },
     };
-    subdivide(
-        world,
-        mesh,
-        levels,
-        scheme,
-        |t, members| match first_non_triangle_row(t) {
+    subdivide(world, mesh, levels, scheme, |t, members| {
+        match t.first_non_triangle() {
             Some(f) => Err(Refusal::NotTriangle(ElementId::Face(members.faces[f]))),
             None => Ok(()),
-        },
-    )
+        }
+    })
 }
 
 /// Catmull–Clark-subdivides any polygon mesh `levels` times. Never refuses.
@@ -223,18 +219,9 @@ fn subdivide(
     })
 }
 
-/// The first face of the tables that is not a triangle, if any (three `next` steps from its
-/// halfedge do not come back to it).
-fn first_non_triangle_row(t: &Connectivity) -> Option<usize> {
-    let next = |h: u32| t.next[h as usize];
-    t.face_halfedge
-        .iter()
-        .position(|&h| next(h) == h || next(next(next(h))) != h)
-}
-
 /// One level of Loop subdivision on tables; `Err(face)` if a face is not a triangle.
 pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, usize> {
-    if let Some(f) = first_non_triangle_row(t) {
+    if let Some(f) = t.first_non_triangle() {
         return Err(f);
     }
     let rings = FaceRings::new(t);
