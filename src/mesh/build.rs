@@ -356,12 +356,7 @@ fn sort_free_ids(world: &mut World, count: usize) {
 pub fn to_soup(world: &World, mesh: MeshId) -> PolygonSoup {
     let members = MeshMembers::collect(world, mesh);
     let m = MeshRef::new(world);
-    let index: bevy::ecs::entity::EntityHashMap<u32> = members
-        .vertices
-        .iter()
-        .enumerate()
-        .map(|(i, v)| (v.0, i as u32))
-        .collect();
+    let index = members.vertex_rows();
     let mut soup = PolygonSoup::with_capacity(
         members.vertices.len(),
         members.faces.len(),

@@ -4,6 +4,7 @@
 //! component (in Bevy 0.19 resources are entities too, so a bare `Query<Entity>` would match
 //! them). Order is the world's storage order: spawn order for a freshly built mesh.
 
+use bevy::ecs::entity::EntityHashMap;
 use bevy::prelude::{Entity, World};
 
 use super::elements::{Edge, Face, Halfedge, InMesh, Vertex};
@@ -31,6 +32,15 @@ impl MeshMembers {
             edges: of_kind::<Edge, _>(world, mesh, EdgeId),
             faces: of_kind::<Face, _>(world, mesh, FaceId),
         }
+    }
+
+    /// Each vertex's position in [`MeshMembers::vertices`], by entity.
+    pub fn vertex_rows(&self) -> EntityHashMap<u32> {
+        self.vertices
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (v.0, i as u32))
+            .collect()
     }
 
     /// Every element entity.

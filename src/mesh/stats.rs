@@ -5,7 +5,7 @@
 //! Σ (2 − 2 g_i − b_i)`, so the total genus is `g = (2C − B − χ) / 2`. Every mesh Pappus holds is
 //! oriented (the builder orients it), so `g` is a whole number.
 
-use bevy::ecs::entity::{EntityHashMap, EntityHashSet};
+use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 use std::collections::BTreeMap;
@@ -157,12 +157,7 @@ fn count_boundary_loops(m: &MeshRef<'_>, members: &MeshMembers) -> usize {
 }
 
 fn count_components(m: &MeshRef<'_>, members: &MeshMembers) -> usize {
-    let index: EntityHashMap<u32> = members
-        .vertices
-        .iter()
-        .enumerate()
-        .map(|(i, v)| (v.0, i as u32))
-        .collect();
+    let index = members.vertex_rows();
     let mut parent: Vec<u32> = (0..members.vertices.len() as u32).collect();
     fn find(parent: &mut [u32], mut x: u32) -> u32 {
         while parent[x as usize] != x {

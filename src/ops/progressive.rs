@@ -343,12 +343,7 @@ impl ProgressiveMesh {
     fn refine_in_bulk(&mut self, world: &mut World, count: usize) -> Result<usize, Refusal> {
         let extracted = extract(world, self.mesh);
         let old = &extracted.members;
-        let row_of: EntityHashMap<u32> = old
-            .vertices
-            .iter()
-            .enumerate()
-            .map(|(i, v)| (v.0, i as u32))
-            .collect();
+        let row_of = old.vertex_rows();
         // Each slot's table row, as the splits go (rows for the vertices they make are new).
         let mut rows: Vec<u32> = self
             .slots
