@@ -305,7 +305,7 @@ fn collapse_short(
     let mut collapses = 0;
     for (_, e) in keyed {
         let m = MeshRef::new(world);
-        if m.try_edge(e).is_none() || edge_length(&m, e) >= low {
+        if m.try_edge(e).is_none() {
             continue;
         }
         let Some((h, target)) = collapse_choice(&m, e, features, &degree, high, low) else {
@@ -324,7 +324,8 @@ fn collapse_short(
 }
 
 /// How the short edge `e` may collapse without harming a feature: the halfedge whose start
-/// survives (its tip is removed) and where the survivor goes; `None` if it may not.
+/// survives (its tip is removed) and where the survivor goes; `None` if it may not, or if it
+/// is no longer shorter than `low` (an earlier collapse of the pass moved an end).
 ///
 /// - Two free vertices merge at the midpoint, else at either end (as PMP tries both
 ///   directions), whichever makes no edge longer than `high` (4/3 L).
@@ -346,6 +347,9 @@ fn collapse_choice(
     let h = m.edge_halfedge(e);
     let (a, b) = (m.from_vertex(h), m.to_vertex(h));
     let (pa, pb) = (m.position(a), m.position(b));
+    if pa.distance(pb) >= low {
+        return None;
+    }
     let fits = |target: Vec3| {
         !m.vertex_neighbors(a)
             .chain(m.vertex_neighbors(b))
