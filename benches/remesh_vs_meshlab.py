@@ -18,7 +18,7 @@ import time
 import numpy as np
 import pymeshlab
 
-from meshlab_common import MESH, hausdorff_pct, meshset, run_pappus
+from meshlab_common import MESH, hausdorff_text, meshset, run_pappus
 
 
 def load(path):
@@ -57,7 +57,7 @@ def line(name, path, ms_taken=None):
     angle, six, faces = quality(path)
     text = f"{name:8} {faces:7d} faces  {angle:6.3f} % < 30 deg  {six:5.1f} % valence 6"
     if ms_taken is not None:
-        text += f"  Hausdorff {hausdorff_pct(MESH, path):.3f} %  {ms_taken:7.0f} ms"
+        text += f"  {hausdorff_text(MESH, path)}  {ms_taken:7.0f} ms"
     print(text)
 
 
