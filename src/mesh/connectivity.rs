@@ -143,6 +143,15 @@ impl Connectivity {
             .position(|&h| next(h) == h || next(next(next(h))) != h)
     }
 
+    /// The halfedges of face `f` in order from its first: its three sides when it is a
+    /// triangle (see [`Connectivity::first_non_triangle`]), the first three otherwise.
+    #[inline]
+    pub fn triangle(&self, f: usize) -> [u32; 3] {
+        let first = self.face_halfedge[f];
+        let second = self.next[first as usize];
+        [first, second, self.next[second as usize]]
+    }
+
     /// The next outgoing halfedge of `h`'s start vertex, counter-clockwise: `twin(prev(h))`.
     #[inline]
     pub fn ccw_rotated(&self, h: u32) -> u32 {

@@ -76,7 +76,7 @@ pub fn mesh_stats(world: &World, mesh: MeshId) -> MeshStats {
         min_angle = min_angle.min(face_min);
         if corners.len() == 3 {
             triangles += 1;
-            sharp += usize::from(face_min < 30.0);
+            sharp += usize::from(face_min < THIN_ANGLE_DEG);
         }
     }
 
@@ -121,6 +121,11 @@ pub fn mesh_stats(world: &World, mesh: MeshId) -> MeshStats {
         mean_edge_length: if e == 0 { 0.0 } else { total_length / e as f64 },
     }
 }
+
+/// Below this corner angle (degrees) a triangle counts as thin: the share that
+/// [`MeshStats::pct_min_angle_below_30`] reports, and the quality measure of the remeshing
+/// benchmarks.
+pub const THIN_ANGLE_DEG: f64 = 30.0;
 
 /// The smallest interior angle at any corner of a polygon, in degrees (0 for a degenerate
 /// corner with a zero-length side).

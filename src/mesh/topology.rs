@@ -17,7 +17,7 @@ use super::elements::{Edge, Face, Halfedge, Position, Vertex};
 use super::ids::{EdgeId, FaceId, HalfedgeId, VertexId};
 use bevy::ecs::query::QueryState;
 use bevy::math::Vec3;
-use bevy::prelude::World;
+use bevy::prelude::{Component, Entity, World};
 
 /// The most steps a circulator takes before giving up on a loop that does not close.
 pub const MAX_LOOP: usize = 1 << 22;
@@ -83,50 +83,48 @@ impl<'w> MeshRef<'w> {
 
     // ---- checked lookups -------------------------------------------------------------------
 
+    /// `e`'s component `C`, through the query state `state` picks from the lookups when the
+    /// view has them, else through [`World::get`].
+    #[inline]
+    fn read<C: Component>(
+        &self,
+        e: Entity,
+        state: impl Fn(&'w Lookups) -> &'w QueryState<&'static C>,
+    ) -> Option<&'w C> {
+        match self.lookups {
+            Some(l) => state(l).get_manual(self.world, e).ok(),
+            None => self.world.get::<C>(e),
+        }
+    }
+
     /// The halfedge's links, or `None` if `h` is not a live halfedge.
     #[inline]
     pub fn try_halfedge(&self, h: HalfedgeId) -> Option<&'w Halfedge> {
-        match self.lookups {
-            Some(l) => l.halfedge.get_manual(self.world, h.0).ok(),
-            None => self.world.get::<Halfedge>(h.0),
-        }
+        self.read(h.0, |l| &l.halfedge)
     }
 
     /// The vertex's record, or `None` if `v` is not a live vertex.
     #[inline]
     pub fn try_vertex(&self, v: VertexId) -> Option<&'w Vertex> {
-        match self.lookups {
-            Some(l) => l.vertex.get_manual(self.world, v.0).ok(),
-            None => self.world.get::<Vertex>(v.0),
-        }
+        self.read(v.0, |l| &l.vertex)
     }
 
     /// The edge's record, or `None` if `e` is not a live edge.
     #[inline]
     pub fn try_edge(&self, e: EdgeId) -> Option<&'w Edge> {
-        match self.lookups {
-            Some(l) => l.edge.get_manual(self.world, e.0).ok(),
-            None => self.world.get::<Edge>(e.0),
-        }
+        self.read(e.0, |l| &l.edge)
     }
 
     /// The face's record, or `None` if `f` is not a live face.
     #[inline]
     pub fn try_face(&self, f: FaceId) -> Option<&'w Face> {
-        match self.lookups {
-            Some(l) => l.face.get_manual(self.world, f.0).ok(),
-            None => self.world.get::<Face>(f.0),
-        }
+        self.read(f.0, |l| &l.face)
     }
 
     /// The vertex position, or `None` if `v` has none.
     #[inline]
     pub fn try_position(&self, v: VertexId) -> Option<Vec3> {
-        match self.lookups {
-            Some(l) => l.position.get_manual(self.world, v.0).ok(),
-            None => self.world.get::<Position>(v.0),
-        }
-        .map(|p| p.0)
+        self.read(v.0, |l| &l.position).map(|p| p.0)
     }
 
     // ---- navigation (valid mesh) ----------------------------------------------------------

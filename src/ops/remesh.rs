@@ -41,6 +41,7 @@ use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{EdgeId, ElementId, HalfedgeId, MeshId, VertexId, slots_for};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::repair::NONE;
+use crate::mesh::stats::{THIN_ANGLE_DEG, min_corner_angle_deg};
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
@@ -505,18 +506,17 @@ fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) ->
 }
 
 /// After the last smoothing, flips the edges of thin triangles (an angle under
-/// [`THIN_DEG`]) where that raises the smaller of the pair's smallest angles and leaves both
+/// [`THIN_ANGLE_DEG`]) where that raises the smaller of the pair's smallest angles and leaves both
 /// triangles in shape; features and the boundary are not flipped. Smoothing moves vertices
 /// after each iteration's valence flips and leaves a few triangles thin; a flip moves no
 /// vertex, so the surface stays on the input where it was.
 fn flip_thin(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> usize {
     let Extracted { tables: t, members } = extract(world, mesh);
-    let thin = THIN_DEG.to_radians();
     let mut edges: Vec<EdgeId> = Vec::new();
-    for &first in &t.face_halfedge {
-        let sides = [first, t.next[first as usize], t.prev[first as usize]];
+    for f in 0..t.face_count() {
+        let sides = t.triangle(f);
         let corners = sides.map(|h| t.positions[t.to_vertex[h as usize] as usize]);
-        if smallest_angle(corners) < thin {
+        if min_corner_angle_deg(&corners) < THIN_ANGLE_DEG {
             edges.extend(sides.map(|h| members.edges[t.edge[h as usize] as usize]));
         }
     }
@@ -530,25 +530,17 @@ fn flip_thin(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> usize
         }
         let h = m.edge_halfedge(e);
         let [a, b, c, d] = quad_corners(&m, h);
-        let before = smallest_angle([a, b, c]).min(smallest_angle([b, a, d]));
-        let after = smallest_angle([a, d, c]).min(smallest_angle([d, b, c]));
-        if before < thin && after > before && flip_keeps_shape(&m, h) && flip_edge(world, e).is_ok()
+        let before = min_corner_angle_deg(&[a, b, c]).min(min_corner_angle_deg(&[b, a, d]));
+        let after = min_corner_angle_deg(&[a, d, c]).min(min_corner_angle_deg(&[d, b, c]));
+        if before < THIN_ANGLE_DEG
+            && after > before
+            && flip_keeps_shape(&m, h)
+            && flip_edge(world, e).is_ok()
         {
             flips += 1;
         }
     }
     flips
-}
-
-/// Below this angle (degrees) a triangle counts as thin: the quality measure the remeshing
-/// benchmarks use.
-const THIN_DEG: f32 = 30.0;
-
-/// A triangle's smallest angle, in radians.
-fn smallest_angle(t: [Vec3; 3]) -> f32 {
-    (0..3)
-        .map(|i| (t[(i + 1) % 3] - t[i]).angle_between(t[(i + 2) % 3] - t[i]))
-        .fold(f32::MAX, f32::min)
 }
 
 /// The positions of `a b c d` around the edge of `h`, between triangles a b c and b a d.
@@ -743,7 +735,7 @@ impl Reference {
                 (ca.y..=cb.y).flat_map(move |y| (ca.x..=cb.x).map(move |x| [x, y, z]))
             })
         };
-        let index = |[x, y, z]: [i32; 3]| (x + dims[0] * (y + dims[1] * z)) as usize;
+        let index = |c: [i32; 3]| cell_row(dims, c);
         let count = dims.iter().map(|&d| d as usize).product::<usize>();
         // Count, then place: a counting sort of (cell, triangle) pairs.
         let mut cell_start = vec![0u32; count + 1];
@@ -780,7 +772,7 @@ impl Reference {
         if x < 0 || y < 0 || z < 0 || x >= dx || y >= dy || z >= dz {
             return &[];
         }
-        let i = (x + dx * (y + dy * z)) as usize;
+        let i = cell_row(self.dims, [x, y, z]);
         &self.cell_triangles[self.cell_start[i] as usize..self.cell_start[i + 1] as usize]
     }
 
@@ -823,6 +815,11 @@ impl Reference {
         }
         best.1
     }
+}
+
+/// The row of cell `[x, y, z]` (inside the grid) in a grid of `dims` cells, x fastest.
+fn cell_row([dx, dy, _]: [i32; 3], [x, y, z]: [i32; 3]) -> usize {
+    (x + dx * (y + dy * z)) as usize
 }
 
 /// The closest point of triangle `t` to `p` (Ericson, Real-Time Collision Detection, 5.1.5).

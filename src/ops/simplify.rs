@@ -344,13 +344,8 @@ fn setup(world: &World, mesh: MeshId, boundary_weight: f64) -> Result<Setup, Ref
     // By table row first, then moved to the entity slots the main loop reads.
     let mut quadric = vec![Quadric::default(); t.vertex_count()];
     let position = |v: u32| t.positions[v as usize].as_dvec3();
-    for &first in &t.face_halfedge {
-        let (h0, h1) = (first as usize, t.next[first as usize] as usize);
-        let corners = [
-            t.to_vertex[h0],
-            t.to_vertex[h1],
-            t.to_vertex[t.next[h1] as usize],
-        ];
+    for f in 0..t.face_count() {
+        let corners = t.triangle(f).map(|h| t.to_vertex[h as usize]);
         let p = corners.map(position);
         let cross = (p[1] - p[0]).cross(p[2] - p[0]);
         let Some(n) = cross.try_normalize() else {
@@ -404,16 +399,12 @@ fn setup(world: &World, mesh: MeshId, boundary_weight: f64) -> Result<Setup, Ref
     })
 }
 
-/// A face's area vector from the tables, as [`MeshRef::face_area_vector`] computes it.
+/// A triangle's area vector from the tables, as [`MeshRef::face_area_vector`] computes it.
 fn face_area_vector(t: &Connectivity, f: u32) -> Vec3 {
-    let first = t.face_halfedge[f as usize];
-    let mut corners = [Vec3::ZERO; 3];
-    let mut h = first;
-    for c in &mut corners {
-        *c = t.positions[t.to_vertex[h as usize] as usize];
-        h = t.next[h as usize];
-    }
-    newell_area_vector(&corners)
+    newell_area_vector(
+        &t.triangle(f as usize)
+            .map(|h| t.positions[t.to_vertex[h as usize] as usize]),
+    )
 }
 
 /// `e`'s heap key at its current cost, for its ends and their positions

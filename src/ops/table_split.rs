@@ -3,9 +3,9 @@
 //! [`split_in_tables`] is [`crate::ops::local::vertex_split`] done on a [`Connectivity`]
 //! instead of on entities: the same fan walk, the same new elements, the same links, with the
 //! new rows appended. Refining thousands of records this way and writing the tables back once
-//! (`write_links`, into rows spawned in one batch meanwhile) costs a
-//! batch spawn per element instead of a spawn and a dozen lookups each, which is what makes a full refine of the bunny fit a frame
-//! budget. The entity version stays the one the editor's single splits use; the tests check
+//! (`write_links`, into rows spawned in one batch meanwhile) costs a batch spawn per element
+//! instead of a spawn and a dozen lookups each, which is what makes a full refine of the bunny
+//! fit a frame budget. The entity version stays the one the editor's single splits use; the tests check
 //! that both give the same mesh.
 
 use bevy::math::Vec3;
