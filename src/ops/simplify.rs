@@ -3,7 +3,10 @@
 //! Every face contributes the quadric `K = p pᵀ` of its plane `p = (n, −n·x)` (area-weighted);
 //! a vertex's quadric is the sum over its faces, plus, on the boundary, quadrics of planes
 //! through each boundary edge perpendicular to its face (weighted by [`SimplifyParams::
-//! boundary_weight`]) so that borders keep their shape and holes do not close. The cost of
+//! boundary_weight`]) so that borders keep their shape and holes do not close. Sharp edges
+//! (dihedral angle above [`SimplifyParams::feature_angle_deg`]) get the same planes, one per
+//! side, weighted by [`SimplifyParams::feature_weight`]: a crease then holds its line as the
+//! faces beside it are merged, where the face planes alone let it be rounded off. The cost of
 //! collapsing an edge is `vᵀ (Q_a + Q_b) v` at the optimal `v` (the solution of the 3×3 system;
 //! when it is near singular, the best of the two ends and the midpoint).
 //!
@@ -38,6 +41,12 @@ pub struct SimplifyParams {
     pub max_normal_change_deg: f32,
     /// Weight of the boundary-preserving planes relative to the face planes. Default 100.
     pub boundary_weight: f64,
+    /// Interior edges whose faces meet at more than this angle (degrees between their
+    /// normals) keep their line like the boundary does. Default 45°, the remesher's; 180
+    /// turns it off.
+    pub feature_angle_deg: f32,
+    /// Weight of those feature planes relative to the face planes. Default 1.
+    pub feature_weight: f64,
 }
 
 impl SimplifyParams {
@@ -52,6 +61,8 @@ impl SimplifyParams {
             target_faces: target,
             max_normal_change_deg: 60.0,
             boundary_weight: 100.0,
+            feature_angle_deg: 45.0,
+            feature_weight: 1.0,
         }
     }
 }
@@ -208,7 +219,7 @@ fn simplify_inner(
         mut table,
         mut heap,
         faces_before,
-    } = setup(world, mesh, params.boundary_weight)?;
+    } = setup(world, mesh, params)?;
     let options = CollapseOptions {
         position: None,
         max_normal_change_deg: Some(params.max_normal_change_deg),
@@ -327,7 +338,7 @@ struct Setup {
 ///
 /// # Refusals
 /// [`Refusal::NotTriangle`] naming the first face that is not a triangle.
-fn setup(world: &World, mesh: MeshId, boundary_weight: f64) -> Result<Setup, Refusal> {
+fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, Refusal> {
     let Extracted { tables: t, members } = extract(world, mesh);
     if let Some(f) = t.first_non_triangle() {
         return Err(Refusal::NotTriangle(ElementId::Face(members.faces[f])));
@@ -356,19 +367,30 @@ fn setup(world: &World, mesh: MeshId, boundary_weight: f64) -> Result<Setup, Ref
             quadric[v as usize] = quadric[v as usize] + q;
         }
     }
-    // Boundary edges: a plane through the edge, perpendicular to its face.
+    // Boundary and sharp edges: a plane through the edge, perpendicular to the face on the
+    // far side of `h` (for a sharp edge, `h` and its twin each give one).
+    let sharp = params.feature_angle_deg.to_radians().cos();
     for h in 0..t.halfedge_count() {
         let inner = t.twin[h] as usize;
-        if t.face[h] != NONE || t.face[inner] == NONE {
+        if t.face[inner] == NONE {
             continue;
         }
+        let normal = face_area_vector(&t, t.face[inner]).as_dvec3();
+        let weight = if t.face[h] == NONE {
+            params.boundary_weight
+        } else {
+            let other = face_area_vector(&t, t.face[h]).as_dvec3();
+            match (normal.try_normalize(), other.try_normalize()) {
+                (Some(n0), Some(n1)) if n0.dot(n1) < f64::from(sharp) => params.feature_weight,
+                _ => continue,
+            }
+        };
         let (from, to) = (t.to_vertex[inner], t.to_vertex[h]);
         let (a, b) = (position(from), position(to));
-        let normal = face_area_vector(&t, t.face[inner]).as_dvec3();
         let Some(n) = (b - a).cross(normal).try_normalize() else {
             continue;
         };
-        let q = Quadric::plane(n, -n.dot(a), boundary_weight * (b - a).length_squared());
+        let q = Quadric::plane(n, -n.dot(a), weight * (b - a).length_squared());
         for v in [from, to] {
             quadric[v as usize] = quadric[v as usize] + q;
         }
@@ -430,5 +452,47 @@ fn candidate(table: &VertexTable, [(a, pa), (b, pb)]: [(VertexId, Vec3); 2]) -> 
     Candidate {
         cost: q.error(position).max(0.0),
         position: position.as_vec3(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::soup::PolygonSoup;
+    use crate::mesh::{MeshInfo, build_mesh};
+
+    /// The quadric `setup` gives the corner at the origin of two unit right triangles folded at
+    /// 90° along the x axis: `(0,0,0) (1,0,0) (0,1,0)` in the plane z = 0 and `(1,0,0)
+    /// (0,0,0) (0,0,1)` in the plane y = 0.
+    fn fold_corner_quadric(params: &SimplifyParams) -> Quadric {
+        let soup = PolygonSoup::from_faces(
+            vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z],
+            &[[0, 1, 2], [1, 0, 3]],
+        );
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
+        let origin = built.input_vertices[0].unwrap();
+        let Ok(s) = setup(&world, built.mesh, params) else {
+            panic!("two triangles are refused");
+        };
+        s.table.quadric[origin.slot()]
+    }
+
+    #[test]
+    fn a_sharp_edge_adds_the_planes_through_it_perpendicular_to_its_faces() {
+        let with = SimplifyParams::faces(0);
+        // The fold's faces meet at 90°: sharp at the default 45°, not at 100°.
+        let without = SimplifyParams {
+            feature_angle_deg: 100.0,
+            ..with
+        };
+        let p = DVec3::new(0.3, 0.2, -0.5);
+        // Perpendicular to the face in z = 0 through the x axis is the plane y = 0, and the
+        // other way round; each weighs |edge|² = 1, so they add y² + z².
+        let added = fold_corner_quadric(&with).error(p) - fold_corner_quadric(&without).error(p);
+        assert!(
+            (added - (0.2f64.powi(2) + 0.5f64.powi(2))).abs() < 1e-9,
+            "{added}"
+        );
     }
 }
