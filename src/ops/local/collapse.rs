@@ -275,6 +275,29 @@ fn spokes(m: &MeshRef<'_>, v: VertexId) -> Vec<Spoke> {
     out
 }
 
+/// What a vertex's spokes show of one neighbour `o`.
+struct Sighting {
+    /// Whether the edge to `o` lacks a face on one side (is on the boundary).
+    open: bool,
+    /// The third corners of the triangles on either side of that edge: other neighbours of `o`.
+    beyond: [Option<VertexId>; 2],
+}
+
+/// What `ring` (a vertex's spokes) shows of its neighbour `o`, or `None` if `o` is not one.
+/// The faces on the two sides of spoke `i` are the ones left of spokes `i` and `i − 1`.
+fn seen_from(ring: &[Spoke], o: VertexId) -> Option<Sighting> {
+    let i = ring.iter().position(|s| s.links.vertex == o)?;
+    let n = ring.len();
+    let (before, at, after) = (&ring[(i + n - 1) % n], &ring[i], &ring[(i + 1) % n]);
+    Some(Sighting {
+        open: at.links.face.is_none() || before.links.face.is_none(),
+        beyond: [
+            at.triangle.then_some(after.links.vertex),
+            before.triangle.then_some(before.links.vertex),
+        ],
+    })
+}
+
 /// [`plan_collapse`] for the edge of `h`, keeping `h`'s start and removing its tip.
 ///
 /// # Refusals
@@ -342,20 +365,30 @@ fn plan_halfedge(
     }
     for s in &sides {
         match *s {
-            Side::Triangle {
-                face,
-                next,
-                prev,
-                opposite,
-                ..
-            } => {
-                if m.is_boundary(m.twin(next)) && m.is_boundary(m.twin(prev)) {
+            Side::Triangle { face, opposite, .. } => {
+                // The two rings already show both sides of the edges to the wing.
+                let (Some(from_a), Some(from_b)) = (
+                    seen_from(&around_a, opposite),
+                    seen_from(&around_b, opposite),
+                ) else {
+                    unreachable!("{opposite} is a corner of a triangle on the edge {a} {b}");
+                };
+                if from_a.open && from_b.open {
                     return Err(Refusal::DanglingEdge(ElementId::Face(face)));
                 }
-                let minimum = if m.is_boundary_vertex(opposite) { 2 } else { 3 };
-                // Only whether the valence exceeds the minimum matters: stop counting past it.
-                if m.vertex_outgoing(opposite).take(minimum + 1).count() <= minimum {
-                    return Err(Refusal::ValenceTooLow(vx(opposite), minimum));
+                // Four distinct neighbours in sight clear any minimum; else count them.
+                let mut known = vec![a, b];
+                for n in from_a.beyond.into_iter().chain(from_b.beyond).flatten() {
+                    if !known.contains(&n) {
+                        known.push(n);
+                    }
+                }
+                if known.len() < 4 {
+                    let minimum = if m.is_boundary_vertex(opposite) { 2 } else { 3 };
+                    // Only whether the valence exceeds the minimum matters: stop counting past it.
+                    if m.vertex_outgoing(opposite).take(minimum + 1).count() <= minimum {
+                        return Err(Refusal::ValenceTooLow(vx(opposite), minimum));
+                    }
                 }
             }
             Side::Polygon { face, .. } => {
