@@ -370,16 +370,19 @@ fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, 
     // Boundary and sharp edges: a plane through the edge, perpendicular to the face on the
     // far side of `h` (for a sharp edge, `h` and its twin each give one).
     let sharp = params.feature_angle_deg.to_radians().cos();
+    let area_vector: Vec<DVec3> = (0..t.face_count() as u32)
+        .map(|f| face_area_vector(&t, f).as_dvec3())
+        .collect();
     for h in 0..t.halfedge_count() {
         let inner = t.twin[h] as usize;
         if t.face[inner] == NONE {
             continue;
         }
-        let normal = face_area_vector(&t, t.face[inner]).as_dvec3();
+        let normal = area_vector[t.face[inner] as usize];
         let weight = if t.face[h] == NONE {
             params.boundary_weight
         } else {
-            let other = face_area_vector(&t, t.face[h]).as_dvec3();
+            let other = area_vector[t.face[h] as usize];
             match (normal.try_normalize(), other.try_normalize()) {
                 (Some(n0), Some(n1)) if n0.dot(n1) < f64::from(sharp) => params.feature_weight,
                 _ => continue,

@@ -376,14 +376,15 @@ fn plan_halfedge(
                 if from_a.open && from_b.open {
                     return Err(Refusal::DanglingEdge(ElementId::Face(face)));
                 }
-                // Four distinct neighbours in sight clear any minimum; else count them.
-                let mut known = vec![a, b];
-                for n in from_a.beyond.into_iter().chain(from_b.beyond).flatten() {
-                    if !known.contains(&n) {
-                        known.push(n);
-                    }
-                }
-                if known.len() < 4 {
+                // a, b and a distinct corner across each of the wing's two edges are four
+                // neighbours, which clear any minimum; else count them.
+                let across = |seen: &Sighting, other: VertexId| {
+                    seen.beyond.into_iter().flatten().find(|&n| n != other)
+                };
+                if !matches!(
+                    (across(&from_a, b), across(&from_b, a)),
+                    (Some(p), Some(q)) if p != q
+                ) {
                     let minimum = if m.is_boundary_vertex(opposite) { 2 } else { 3 };
                     // Only whether the valence exceeds the minimum matters: stop counting past it.
                     if m.vertex_outgoing(opposite).take(minimum + 1).count() <= minimum {
