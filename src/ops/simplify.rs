@@ -253,11 +253,10 @@ fn simplify_inner(
         ring.clear();
         ring.extend(plan.merged_ring());
         let merged = (plan.kept(), plan.position());
-        let (result, removed) = apply_collapse_deferred(world, plan, Some(&lookups));
-        for e in &removed.edges {
+        let (result, removed_edges) = apply_collapse_deferred(world, plan, &mut graveyard);
+        for e in removed_edges.into_iter().flatten() {
             heap.remove(e.0.index_u32());
         }
-        graveyard.extend(removed.entities);
         record(&result);
         faces -= result.record.triangles_removed();
         collapses += 1;
