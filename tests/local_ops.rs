@@ -347,6 +347,51 @@ fn collapse_counts_interior_and_boundary() {
 }
 
 #[test]
+fn collapse_from_either_halfedge_keeps_the_mesh_valid() {
+    use pappus::ops::local::{apply_collapse, plan_collapse_halfedge};
+    // Interior and boundary sides, boundary halfedges as the one planned from, polygon sides.
+    let cases = [
+        ("fan", shapes::triangle_fan(5, false)),
+        (
+            "holes",
+            shapes::triangulate_fans(&shapes::grid_with_holes(2)),
+        ),
+        ("quads", shapes::quad_grid(3, 3)),
+        ("icosphere", shapes::icosphere(1)),
+    ];
+    for (name, soup) in cases {
+        let halfedges = {
+            let (world, built) = build(&soup);
+            MeshMembers::collect(&world, built.mesh).halfedges.len()
+        };
+        let mut applied = 0;
+        for i in 0..halfedges {
+            let (mut world, built) = build(&soup);
+            let h = MeshMembers::collect(&world, built.mesh).halfedges[i];
+            let m = MeshRef::new(&world);
+            let (kept, gone) = (m.from_vertex(h), m.to_vertex(h));
+            let (v, e, f, chi) = counts(&world, built.mesh);
+            let Ok(plan) = plan_collapse_halfedge(&world, h, CollapseOptions::default()) else {
+                continue;
+            };
+            let result = apply_collapse(&mut world, plan);
+            validate(&world, built.mesh).unwrap_or_else(|x| panic!("{name} halfedge {i}: {x}"));
+            assert_eq!((result.kept, result.removed), (kept, gone), "{name} {i}");
+            // Each triangle side takes a face and merges two edges; a polygon side loses a
+            // corner; the boundary loses a side.
+            let triangles = result.record.triangles_removed();
+            assert_eq!(
+                counts(&world, built.mesh),
+                (v - 1, e - 1 - triangles, f - triangles, chi),
+                "{name} halfedge {i}"
+            );
+            applied += 1;
+        }
+        assert!(applied > halfedges / 3, "{name}: {applied} of {halfedges}");
+    }
+}
+
+#[test]
 fn collapse_at_a_given_position() {
     let (mut world, built) = build(&shapes::icosphere(1));
     let e = edge(&world, &built, 0, 12);

@@ -155,7 +155,9 @@ pub struct CollapsePlan {
     b: VertexId,
     position: Vec3,
     sides: [Side; 2],
-    /// The spokes of `a` and of `b` as the plan read them.
+    /// The spokes of `a` and of `b` as the plan read them, counter-clockwise from `h` and from
+    /// its twin: a side's wing is the tip of its ring's second spoke, and the other ring's last
+    /// spoke is the side's `next`.
     around: [Vec<Spoke>; 2],
     /// Whether the merged vertex is on the boundary (either end was).
     merged_boundary: bool,
