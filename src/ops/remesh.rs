@@ -18,7 +18,12 @@
 //! After the last iteration, the edges of triangles left with an angle under 30° are flipped
 //! where that makes the pair less thin (a flip moves no vertex, so the surface stays where the
 //! projection put it): on the bunny this removed a fifth of them, for 0.2 % of valence-6
-//! vertices.
+//! vertices. Then the free corners of the triangles still thin move, each to the point on the
+//! way to its one-ring centroid (projected onto the input) that best shapes its triangles,
+//! and the edges around them get the same flips, for up to [`THIN_ROUNDS`] rounds: on the
+//! bunny a further quarter of the thin triangles go (0.107 → 0.081 %, the mean of five runs
+//! at lengths within ±0.2 % of the mean edge length), with the Hausdorff distance unchanged.
+//! What stays thin has a corner on a feature or the boundary, which do not move.
 //!
 //! Each pass starts from the mesh read into flat tables ([`extract`]): the edge lengths, the
 //! valences and the feature degrees come from array passes, and only the edges a pass acts on
@@ -167,10 +172,26 @@ pub fn remesh_with_progress(
         }
     }
     if params.iterations > 0 {
-        summary.flips += flip_thin(world, mesh, &features);
+        let mut edges = thin_triangle_edges(world, mesh);
+        summary.flips += flip_thin(world, &edges, &features);
+        for _ in 0..THIN_ROUNDS {
+            edges = relax_thin_corners(world, &edges, &features, &reference);
+            if edges.is_empty() {
+                break;
+            }
+            summary.flips += flip_thin(world, &edges, &features);
+        }
     }
     Ok(summary)
 }
+
+/// The most rounds of moving the free corners of thin triangles after the last iteration (see
+/// the module doc).
+const THIN_ROUNDS: usize = 3;
+
+/// How far along the way to its one-ring centroid a thin triangle's free corner is tried, in
+/// fractions of the way (beyond 1: past the centroid).
+const RELAX_STEPS: [f32; 6] = [0.25, 0.5, 0.75, 1.0, 1.25, 1.5];
 
 fn edge_length(m: &MeshRef<'_>, e: EdgeId) -> f32 {
     let (a, b) = m.edge_vertices(e);
@@ -505,12 +526,8 @@ fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) ->
     flips
 }
 
-/// After the last smoothing, flips the edges of thin triangles (an angle under
-/// [`THIN_ANGLE_DEG`]) where that raises the smaller of the pair's smallest angles and leaves both
-/// triangles in shape; features and the boundary are not flipped. Smoothing moves vertices
-/// after each iteration's valence flips and leaves a few triangles thin; a flip moves no
-/// vertex, so the surface stays on the input where it was.
-fn flip_thin(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> usize {
+/// The sides of the triangles with an angle under [`THIN_ANGLE_DEG`].
+fn thin_triangle_edges(world: &World, mesh: MeshId) -> Vec<EdgeId> {
     let Extracted { tables: t, members } = extract(world, mesh);
     let mut edges: Vec<EdgeId> = Vec::new();
     for f in 0..t.face_count() {
@@ -522,8 +539,17 @@ fn flip_thin(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> usize
     }
     edges.sort_unstable();
     edges.dedup();
+    edges
+}
+
+/// After the last smoothing, flips those of `edges` that are sides of thin triangles (an angle
+/// under [`THIN_ANGLE_DEG`]) where that raises the smaller of the pair's smallest angles and
+/// leaves both triangles in shape; features and the boundary are not flipped. Smoothing moves
+/// vertices after each iteration's valence flips and leaves a few triangles thin; a flip moves
+/// no vertex, so the surface stays on the input where it was.
+fn flip_thin(world: &mut World, edges: &[EdgeId], features: &EntityHashSet) -> usize {
     let mut flips = 0;
-    for e in edges {
+    for &e in edges {
         let m = MeshRef::new(world);
         if m.try_edge(e).is_none() || features.contains(&e.0) || m.is_boundary_edge(e) {
             continue;
@@ -541,6 +567,83 @@ fn flip_thin(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> usize
         }
     }
     flips
+}
+
+/// Moves the free ends of `edges` (off the boundary, on no feature) that have a thin triangle
+/// around them: each to the best of [`RELAX_STEPS`] on the way to its one-ring centroid,
+/// within its tangent plane and projected onto `reference`, the one that most raises the
+/// smallest angle of its triangles, none of which may turn by more than 60° (a fold has
+/// angles too). Vertex by vertex, each seeing the moves before it. Returns the edges of the
+/// triangles around the vertices that moved.
+fn relax_thin_corners(
+    world: &mut World,
+    edges: &[EdgeId],
+    features: &EntityHashSet,
+    reference: &Reference,
+) -> Vec<EdgeId> {
+    let limit = 60f32.to_radians().cos();
+    let m = MeshRef::new(world);
+    let mut corners: Vec<VertexId> = edges
+        .iter()
+        .filter(|&&e| m.try_edge(e).is_some())
+        .flat_map(|&e| <[VertexId; 2]>::from(m.edge_vertices(e)))
+        .collect();
+    corners.sort_unstable();
+    corners.dedup();
+    let mut touched = Vec::new();
+    for v in corners {
+        let m = MeshRef::new(world);
+        if m.is_boundary_vertex(v)
+            || m.vertex_outgoing(v)
+                .any(|h| features.contains(&m.edge(h).0))
+        {
+            continue;
+        }
+        // The triangles around `v`: its spoke to each neighbour and the next corner.
+        let fan: Vec<[Vec3; 2]> = m
+            .vertex_outgoing(v)
+            .map(|h| [m.to_vertex(h), m.to_vertex(m.next(h))].map(|x| m.position(x)))
+            .collect();
+        let here = m.position(v);
+        let area = |at: Vec3, [b, c]: [Vec3; 2]| (b - at).cross(c - at);
+        // The smallest angle of the fan with `v` at `at`, or `None` if a triangle would turn
+        // too far.
+        let smallest = |at: Vec3| {
+            fan.iter().try_fold(f64::INFINITY, |min, &[b, c]| {
+                let (before, after) = (area(here, [b, c]), area(at, [b, c]));
+                let turned = before.normalize_or_zero().dot(after.normalize_or_zero());
+                (turned >= limit).then(|| min.min(min_corner_angle_deg(&[at, b, c])))
+            })
+        };
+        let Some(before) = smallest(here).filter(|&a| a < THIN_ANGLE_DEG) else {
+            continue;
+        };
+        let centroid = fan.iter().map(|[b, _]| *b).sum::<Vec3>() / fan.len() as f32;
+        let normal = fan
+            .iter()
+            .map(|&t| area(here, t))
+            .sum::<Vec3>()
+            .normalize_or_zero();
+        let step = centroid - here;
+        let tangent = step - normal * normal.dot(step);
+        let best = RELAX_STEPS
+            .iter()
+            .map(|&t| reference.closest(here + t * tangent))
+            .filter_map(|at| smallest(at).map(|angle| (angle, at)))
+            .filter(|&(angle, _)| angle > before)
+            .max_by(|x, y| x.0.total_cmp(&y.0));
+        let Some((_, at)) = best else { continue };
+        touched.extend(
+            m.vertex_outgoing(v)
+                .flat_map(|h| [m.edge(h), m.edge(m.next(h))]),
+        );
+        if let Some(mut position) = world.get_mut::<crate::mesh::Position>(v.0) {
+            position.0 = at;
+        }
+    }
+    touched.sort_unstable();
+    touched.dedup();
+    touched
 }
 
 /// The positions of `a b c d` around the edge of `h`, between triangles a b c and b a d.
@@ -891,7 +994,9 @@ mod tests {
     #[test]
     fn thin_triangles_get_the_other_diagonal_unless_it_is_a_feature() {
         let (mut world, mesh, [a, b, c, d]) = thin_kite();
-        assert_eq!(flip_thin(&mut world, mesh, &EntityHashSet::default()), 1);
+        let edges = thin_triangle_edges(&world, mesh);
+        assert_eq!(edges.len(), 5);
+        assert_eq!(flip_thin(&mut world, &edges, &EntityHashSet::default()), 1);
         let m = MeshRef::new(&world);
         assert!(m.find_halfedge(a, b).is_none());
         assert!(m.find_halfedge(c, d).is_some());
@@ -901,7 +1006,56 @@ mod tests {
         let m = MeshRef::new(&world);
         let diagonal = m.edge(m.find_halfedge(a, b).unwrap());
         let features: EntityHashSet = [diagonal.0].into_iter().collect();
-        assert_eq!(flip_thin(&mut world, mesh, &features), 0);
+        let edges = thin_triangle_edges(&world, mesh);
+        assert_eq!(flip_thin(&mut world, &edges, &features), 0);
+    }
+
+    /// A regular hexagon fanned around a centre at `centre`, in the plane z = 0: the world,
+    /// the mesh and the centre vertex.
+    fn hexagon_fan(centre: Vec3) -> (World, MeshId, VertexId) {
+        let mut points: Vec<Vec3> = (0..6)
+            .map(|k| {
+                let angle = k as f32 * std::f32::consts::TAU / 6.0;
+                Vec3::new(angle.cos(), angle.sin(), 0.0)
+            })
+            .collect();
+        points.push(centre);
+        let faces: Vec<[u32; 3]> = (0..6).map(|k| [6, k, (k + 1) % 6]).collect();
+        let soup = PolygonSoup::from_faces(points, &faces);
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
+        let centre = built.input_vertices[6].unwrap();
+        (world, built.mesh, centre)
+    }
+
+    #[test]
+    fn a_thin_triangles_free_corner_moves_to_where_its_triangles_are_best_shaped() {
+        // Pushed 4/5 of the way to a rim vertex, the centre leaves two triangles thin; the
+        // best point on the way back to the ring's centroid is the centroid itself, where
+        // every angle is 60°, and it stays on the input surface (the plane).
+        let (mut world, mesh, centre) = hexagon_fan(Vec3::new(0.8, 0.0, 0.0));
+        let reference = Reference::new(&MeshRef::new(&world), &MeshMembers::collect(&world, mesh));
+        let edges = thin_triangle_edges(&world, mesh);
+        let touched = relax_thin_corners(&mut world, &edges, &EntityHashSet::default(), &reference);
+        // The six spokes and the six rim edges around the centre.
+        assert_eq!(touched.len(), 12);
+        let m = MeshRef::new(&world);
+        let at = m.position(centre);
+        assert!(at.length() < 1e-5, "{at}");
+        assert!(thin_triangle_edges(&world, mesh).is_empty());
+        crate::mesh::validate(&world, mesh).unwrap();
+
+        // On a feature, the same centre stays where it is.
+        let (mut world, mesh, centre) = hexagon_fan(Vec3::new(0.8, 0.0, 0.0));
+        let reference = Reference::new(&MeshRef::new(&world), &MeshMembers::collect(&world, mesh));
+        let m = MeshRef::new(&world);
+        let spoke: EntityHashSet = [m.edge(m.vertex_halfedge(centre)).0].into_iter().collect();
+        let edges = thin_triangle_edges(&world, mesh);
+        assert!(relax_thin_corners(&mut world, &edges, &spoke, &reference).is_empty());
+        assert_eq!(
+            MeshRef::new(&world).position(centre),
+            Vec3::new(0.8, 0.0, 0.0)
+        );
     }
 
     /// The sharp edges `without_noise` keeps of `pairs` (input vertex indices) on `soup`, as
