@@ -187,7 +187,8 @@ pub fn remesh_with_progress(
 }
 
 /// The most rounds of moving the corners of thin triangles after the last iteration (see the
-/// module doc); on the bunny the third still moves two vertices.
+/// module doc). On the bunny the rounds move about 47, 11 and 6 vertices; six rounds
+/// measured no fewer thin triangles than three.
 const THIN_ROUNDS: usize = 3;
 
 /// How far along the way to its one-ring centroid a thin triangle's free corner is tried, in
