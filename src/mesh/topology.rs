@@ -63,11 +63,6 @@ impl<'w> MeshRef<'w> {
         }
     }
 
-    /// [`MeshRef::with_lookups`] when there are lookups, else [`MeshRef::new`].
-    pub fn through(world: &'w World, lookups: Option<&'w Lookups>) -> Self {
-        Self { world, lookups }
-    }
-
     /// A view of `world` that reads through `lookups` (made for this world).
     pub fn with_lookups(world: &'w World, lookups: &'w Lookups) -> Self {
         Self {
