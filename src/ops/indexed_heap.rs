@@ -1,26 +1,34 @@
 //! A min-heap of items named by small integer slots, whose keys can be changed in place.
 //!
-//! The simplifier keeps one entry per edge (slot: the edge's entity index) and re-keys an edge
-//! when a neighbouring collapse changes its cost, instead of pushing a second entry and
-//! skipping the stale one later: the heap never holds more entries than there are edges, and
-//! no pop is wasted on stale ones. Four children per node: half the depth of a binary heap,
-//! and the children of a node share a cache line.
+//! The simplifier keeps one entry per edge (slot: the edge's row) and re-keys an edge when a
+//! neighbouring collapse changes its cost, instead of pushing a second entry and skipping the
+//! stale one later: the heap never holds more entries than there are edges, and no pop is
+//! wasted on stale ones.
 //!
-//! Keys are ordered as tuples: equal keys never occur for distinct slots when the key includes
-//! the slot's identity, which makes the pop order deterministic.
+//! An entry is one `u64` whose low 32 bits are its slot: the slot breaks ties between equal
+//! priorities, so the pop order is deterministic, and an entry is half the size of a
+//! `(key, slot)` pair. Eight children per node: a third of a binary heap's depth, the children
+//! of a node in one or two cache lines (eight against four measured 3 % faster simplification
+//! of the bunny).
 
 const NONE: u32 = u32::MAX;
-const ARITY: usize = 4;
+const ARITY: usize = 8;
 
-/// A min-heap of `(key, slot)` with at most one entry per slot.
+/// The slot an entry names: its low 32 bits.
+#[inline]
+pub fn slot_of(entry: u64) -> u32 {
+    entry as u32
+}
+
+/// A min-heap of `u64` entries, at most one per slot ([`slot_of`]).
 #[derive(Clone, Debug, Default)]
-pub struct IndexedHeap<K> {
-    entries: Vec<(K, u32)>,
+pub struct IndexedHeap {
+    entries: Vec<u64>,
     /// Each slot's position in `entries`, or `NONE`.
     position: Vec<u32>,
 }
 
-impl<K: Ord + Copy> IndexedHeap<K> {
+impl IndexedHeap {
     /// An empty heap for slots `0..slots`.
     pub fn with_slots(slots: usize) -> Self {
         Self {
@@ -33,12 +41,13 @@ impl<K: Ord + Copy> IndexedHeap<K> {
     ///
     /// # Panics
     /// If a slot is out of range or repeated.
-    pub fn from_entries(slots: usize, entries: Vec<(K, u32)>) -> Self {
+    pub fn from_entries(slots: usize, entries: Vec<u64>) -> Self {
         let mut heap = Self {
             entries,
             position: vec![NONE; slots],
         };
-        for (i, &(_, slot)) in heap.entries.iter().enumerate() {
+        for (i, &entry) in heap.entries.iter().enumerate() {
+            let slot = slot_of(entry);
             assert_eq!(heap.position[slot as usize], NONE, "slot {slot} repeated");
             heap.position[slot as usize] = i as u32;
         }
@@ -58,19 +67,20 @@ impl<K: Ord + Copy> IndexedHeap<K> {
         self.entries.is_empty()
     }
 
-    /// Sets `slot`'s key, inserting it if absent.
-    pub fn set(&mut self, slot: u32, key: K) {
-        let at = self.position[slot as usize];
+    /// Puts `entry` in, replacing the entry of the same slot if there is one.
+    pub fn set(&mut self, entry: u64) {
+        let slot = slot_of(entry) as usize;
+        let at = self.position[slot];
         if at == NONE {
-            self.entries.push((key, slot));
+            self.entries.push(entry);
             let i = self.entries.len() - 1;
-            self.position[slot as usize] = i as u32;
+            self.position[slot] = i as u32;
             self.sift_up(i);
         } else {
             let i = at as usize;
-            let old = self.entries[i].0;
-            self.entries[i].0 = key;
-            if key < old {
+            let old = self.entries[i];
+            self.entries[i] = entry;
+            if entry < old {
                 self.sift_up(i);
             } else {
                 self.sift_down(i);
@@ -78,7 +88,7 @@ impl<K: Ord + Copy> IndexedHeap<K> {
         }
     }
 
-    /// Removes `slot` if present.
+    /// Removes `slot`'s entry if present.
     pub fn remove(&mut self, slot: u32) {
         let at = self.position[slot as usize];
         if at == NONE {
@@ -88,10 +98,9 @@ impl<K: Ord + Copy> IndexedHeap<K> {
         self.position[slot as usize] = NONE;
         let last = self.entries.pop().expect("a present slot has an entry");
         if i < self.entries.len() {
-            let old = self.entries[i].0;
-            self.entries[i] = last;
-            self.position[last.1 as usize] = i as u32;
-            if last.0 < old {
+            let old = self.entries[i];
+            self.place(i, last);
+            if last < old {
                 self.sift_up(i);
             } else {
                 self.sift_down(i);
@@ -99,23 +108,23 @@ impl<K: Ord + Copy> IndexedHeap<K> {
         }
     }
 
-    /// Removes and returns the entry with the smallest key.
-    pub fn pop(&mut self) -> Option<(K, u32)> {
+    /// Removes and returns the smallest entry.
+    pub fn pop(&mut self) -> Option<u64> {
         let top = *self.entries.first()?;
-        self.remove(top.1);
+        self.remove(slot_of(top));
         Some(top)
     }
 
-    fn place(&mut self, i: usize, entry: (K, u32)) {
+    fn place(&mut self, i: usize, entry: u64) {
         self.entries[i] = entry;
-        self.position[entry.1 as usize] = i as u32;
+        self.position[slot_of(entry) as usize] = i as u32;
     }
 
     fn sift_up(&mut self, mut i: usize) {
         let entry = self.entries[i];
         while i > 0 {
             let parent = (i - 1) / ARITY;
-            if self.entries[parent].0 <= entry.0 {
+            if self.entries[parent] <= entry {
                 break;
             }
             self.place(i, self.entries[parent]);
@@ -135,11 +144,11 @@ impl<K: Ord + Copy> IndexedHeap<K> {
             let last = (first + ARITY).min(n);
             let mut best = first;
             for c in first + 1..last {
-                if self.entries[c].0 < self.entries[best].0 {
+                if self.entries[c] < self.entries[best] {
                     best = c;
                 }
             }
-            if self.entries[best].0 >= entry.0 {
+            if self.entries[best] >= entry {
                 break;
             }
             self.place(i, self.entries[best]);
@@ -164,10 +173,15 @@ mod tests {
         })
     }
 
+    /// An entry of priority `key` for `slot`.
+    fn entry(key: u64, slot: u32) -> u64 {
+        key << 32 | u64::from(slot)
+    }
+
     #[test]
     fn pops_in_key_order_after_any_mix_of_sets_and_removes() {
         let slots = 300;
-        let mut heap: IndexedHeap<(u64, u32)> = IndexedHeap::with_slots(slots);
+        let mut heap = IndexedHeap::with_slots(slots);
         let mut model: Vec<Option<u64>> = vec![None; slots];
         let mut rng = numbers(0x9e37_79b9_7f4a_7c15);
         for _ in 0..20_000 {
@@ -183,14 +197,14 @@ mod tests {
                         .enumerate()
                         .filter_map(|(s, k)| k.map(|k| (k, s as u32)))
                         .min();
-                    assert_eq!(heap.pop().map(|(k, s)| (k.0, s)), expected);
+                    assert_eq!(heap.pop(), expected.map(|(k, s)| entry(k, s)));
                     if let Some((_, s)) = expected {
                         model[s as usize] = None;
                     }
                 }
                 _ => {
                     let key = rng.next().unwrap() % 1000;
-                    heap.set(slot, (key, slot));
+                    heap.set(entry(key, slot));
                     model[slot as usize] = Some(key);
                 }
             }
@@ -201,19 +215,15 @@ mod tests {
     #[test]
     fn built_in_bulk_it_pops_sorted() {
         let keys: Vec<u64> = numbers(7).take(1000).map(|x| x % 97).collect();
-        let entries = keys
+        let entries: Vec<u64> = keys
             .iter()
             .enumerate()
-            .map(|(s, &k)| ((k, s as u32), s as u32))
+            .map(|(s, &k)| entry(k, s as u32))
             .collect();
+        let mut expected = entries.clone();
+        expected.sort_unstable();
         let mut heap = IndexedHeap::from_entries(keys.len(), entries);
-        let mut expected: Vec<(u64, u32)> = keys
-            .iter()
-            .enumerate()
-            .map(|(s, &k)| (k, s as u32))
-            .collect();
-        expected.sort();
-        let popped: Vec<(u64, u32)> = std::iter::from_fn(|| heap.pop().map(|(k, _)| k)).collect();
+        let popped: Vec<u64> = std::iter::from_fn(|| heap.pop()).collect();
         assert_eq!(popped, expected);
         assert!(heap.is_empty());
     }

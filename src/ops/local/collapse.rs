@@ -369,23 +369,21 @@ fn plan_halfedge(
     if !boundary_edge && on_boundary(&around_a) && on_boundary(&around_b) {
         return Err(Refusal::BoundaryPinch);
     }
-    let opposite: Vec<VertexId> = sides
-        .iter()
-        .filter_map(|s| match s {
-            Side::Triangle { opposite, .. } => Some(*opposite),
-            _ => None,
-        })
-        .collect();
+    // The wings: the opposite corners of the triangles on either side.
+    let opposite = sides.map(|s| match s {
+        Side::Triangle { opposite, .. } => Some(opposite),
+        _ => None,
+    });
     // Link condition, vertex part.
     for n in around_b.iter().map(|s| s.links.vertex) {
-        if n != a && around_a.iter().any(|s| s.links.vertex == n) && !opposite.contains(&n) {
+        if n != a && around_a.iter().any(|s| s.links.vertex == n) && !opposite.contains(&Some(n)) {
             return Err(Refusal::LinkCondition(vx(n)));
         }
     }
     // Link condition, edge part (the tetrahedron): triangles a c d and b c d both present
     // (their sides then join c and d). The face left of a triangle spoke is centre, its tip,
     // and the next spoke's tip.
-    if let [c, d] = opposite[..] {
+    if let [Some(c), Some(d)] = opposite {
         let has_triangle = |ring: &[Spoke]| {
             ring.iter().enumerate().any(|(i, s)| {
                 let o = ring[(i + 1) % ring.len()].links.vertex;
@@ -460,9 +458,9 @@ fn plan_halfedge(
     // The merged vertex: its neighbours are both endpoints' neighbours but a and b, with the
     // opposite vertices (the only shared ones, by the link condition) counted once. Two quads
     // glued along an edge chain, for instance, would leave it with two edges inside the surface.
-    let wings = match opposite[..] {
-        [c, d] if c == d => 1,
-        _ => opposite.len(),
+    let wings = match opposite {
+        [Some(c), Some(d)] if c == d => 1,
+        _ => opposite.iter().flatten().count(),
     };
     let merged_boundary = on_boundary(&around_a) || on_boundary(&around_b);
     let minimum = if merged_boundary { 2 } else { 3 };
