@@ -746,6 +746,7 @@ fn restore_tips(
     let surface = Reference::new(&MeshRef::new(world), &members);
     let mut far: Vec<(f32, Vec3, usize)> = tips
         .iter()
+        .filter(|&&p| !surface.is_near(p, tolerance))
         .filter_map(|&p| {
             let (q, row) = surface.closest_on(p);
             let d = q.distance(p);
@@ -807,6 +808,9 @@ fn fill_grooves(
         .zip(&t.edge_halfedge)
         .filter_map(|(&e, &h)| {
             let middle = (at(h) + at(t.twin[h as usize])) / 2.0;
+            if input.is_near(middle, tolerance) {
+                return None;
+            }
             let q = input.closest(middle);
             let d = q.distance(middle);
             (d > tolerance).then_some((d, e, q))
@@ -1126,6 +1130,24 @@ impl Reference {
     /// The closest point of the input surface to `p` (searching rings of cells outwards).
     fn closest(&self, p: Vec3) -> Vec3 {
         self.closest_on(p).0
+    }
+
+    /// Whether some triangle lies within `r` of `p`: the cells the ball around `p` touches,
+    /// stopping at the first triangle found within reach (far cheaper than
+    /// [`Reference::closest`] where most points are near, as the remesh's are).
+    fn is_near(&self, p: Vec3, r: f32) -> bool {
+        let cell_of = |q: Vec3| ((q - self.origin) / self.cell).floor().as_ivec3();
+        let (lo, hi) = (cell_of(p - Vec3::splat(r)), cell_of(p + Vec3::splat(r)));
+        (lo.z..=hi.z).any(|z| {
+            (lo.y..=hi.y).any(|y| {
+                (lo.x..=hi.x).any(|x| {
+                    self.cell([x, y, z]).iter().any(|&i| {
+                        closest_on_triangle(p, &self.triangles[i as usize]).distance_squared(p)
+                            <= r * r
+                    })
+                })
+            })
+        })
     }
 
     /// [`Reference::closest`], with the row of the triangle it lies on (the row of its face
@@ -1525,7 +1547,7 @@ mod tests {
     }
 
     #[test]
-    fn the_reference_grid_finds_the_closest_point_of_all_triangles() {
+    fn the_reference_grid_finds_the_closest_point_of_all_triangles_and_which_are_near() {
         let soup = crate::mesh::shapes::icosphere(2);
         let mut world = World::new();
         let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
@@ -1545,6 +1567,9 @@ mod tests {
                 .map(|t| closest_on_triangle(p, t).distance(p))
                 .fold(f32::MAX, f32::min);
             assert_eq!(reference.closest(p).distance(p), nearest, "at {p}");
+            for r in [0.05, 0.3, 1.0, 3.0] {
+                assert_eq!(reference.is_near(p, r), nearest <= r, "at {p}, within {r}");
+            }
         }
     }
 
