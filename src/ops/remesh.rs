@@ -877,7 +877,7 @@ fn split_onto(
         return None;
     }
     let along = b - a;
-    let t = ((to - a).dot(along) / along.length_squared()).clamp(0.1, 0.9);
+    let t = ((to - a).dot(along) / along.length_squared().max(f32::MIN_POSITIVE)).clamp(0.1, 0.9);
     let e = m.edge(h);
     let t = if m.edge_halfedge(e) == h { t } else { 1.0 - t };
     let v = split_edge(world, e, t).ok()?;
