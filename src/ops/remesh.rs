@@ -798,11 +798,9 @@ fn fill_grooves(
     features: &EntityHashSet,
     tolerance: f32,
 ) -> usize {
-    let table = EdgeTable::read(world, mesh);
-    let t = &table.tables;
+    let Extracted { tables: t, members } = extract(world, mesh);
     let at = |h: u32| t.positions[t.to_vertex[h as usize] as usize];
-    let mut far: Vec<(f32, EdgeId, Vec3)> = table
-        .members
+    let mut far: Vec<(f32, EdgeId, Vec3)> = members
         .edges
         .iter()
         .zip(&t.edge_halfedge)
@@ -1311,16 +1309,23 @@ mod tests {
         (world, built.mesh, centre)
     }
 
+    /// One round of [`relax_thin_corners`] over `mesh`'s thin triangles, with `features`,
+    /// nothing pinned, the mesh itself as the input and lines straight to within 0.05: the
+    /// edges it touched.
+    fn relax_once(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> Vec<EdgeId> {
+        let reference = Reference::new(&MeshRef::new(world), &MeshMembers::collect(world, mesh));
+        let edges = thin_triangle_edges(world, mesh);
+        let pinned = EntityHashSet::default();
+        relax_thin_corners(world, &edges, features, &pinned, &reference, 0.05)
+    }
+
     #[test]
     fn a_thin_triangles_free_corner_moves_to_where_its_triangles_are_best_shaped() {
         // Pushed 4/5 of the way to a rim vertex, the centre leaves two triangles thin; the
         // best point on the way back to the ring's centroid is the centroid itself, where
         // every angle is 60°, and it stays on the input surface (the plane).
         let (mut world, mesh, centre) = hexagon_fan(Vec3::new(0.8, 0.0, 0.0));
-        let reference = Reference::new(&MeshRef::new(&world), &MeshMembers::collect(&world, mesh));
-        let edges = thin_triangle_edges(&world, mesh);
-        let none = EntityHashSet::default();
-        let touched = relax_thin_corners(&mut world, &edges, &none, &none, &reference, 0.05);
+        let touched = relax_once(&mut world, mesh, &EntityHashSet::default());
         // The six spokes and the six rim edges around the centre.
         assert_eq!(touched.len(), 12);
         let m = MeshRef::new(&world);
@@ -1331,21 +1336,9 @@ mod tests {
 
         // On a feature, the same centre stays where it is.
         let (mut world, mesh, centre) = hexagon_fan(Vec3::new(0.8, 0.0, 0.0));
-        let reference = Reference::new(&MeshRef::new(&world), &MeshMembers::collect(&world, mesh));
         let m = MeshRef::new(&world);
         let spoke: EntityHashSet = [m.edge(m.vertex_halfedge(centre)).0].into_iter().collect();
-        let edges = thin_triangle_edges(&world, mesh);
-        assert!(
-            relax_thin_corners(
-                &mut world,
-                &edges,
-                &spoke,
-                &EntityHashSet::default(),
-                &reference,
-                0.05
-            )
-            .is_empty()
-        );
+        assert!(relax_once(&mut world, mesh, &spoke).is_empty());
         assert_eq!(
             MeshRef::new(&world).position(centre),
             Vec3::new(0.8, 0.0, 0.0)
@@ -1381,16 +1374,7 @@ mod tests {
         // The boundary runs straight from (0, 0) through (0.2, 0) to (2, 0); the apex (1, 1)
         // sees the first side at under 10°.
         let (mut world, mesh, corner, boundary) = boundary_corner(Vec3::new(0.2, 0.0, 0.0));
-        let reference = Reference::new(&MeshRef::new(&world), &MeshMembers::collect(&world, mesh));
-        let edges = thin_triangle_edges(&world, mesh);
-        let touched = relax_thin_corners(
-            &mut world,
-            &edges,
-            &boundary,
-            &EntityHashSet::default(),
-            &reference,
-            0.05,
-        );
+        let touched = relax_once(&mut world, mesh, &boundary);
         assert!(!touched.is_empty());
         let at = MeshRef::new(&world).position(corner);
         // Along the line towards (2, 0), and the line stays straight.
@@ -1400,19 +1384,7 @@ mod tests {
 
         // Bent by more than the tolerance there, the line holds the vertex where it is.
         let (mut world, mesh, corner, boundary) = boundary_corner(Vec3::new(0.2, -0.1, 0.0));
-        let reference = Reference::new(&MeshRef::new(&world), &MeshMembers::collect(&world, mesh));
-        let edges = thin_triangle_edges(&world, mesh);
-        assert!(
-            relax_thin_corners(
-                &mut world,
-                &edges,
-                &boundary,
-                &EntityHashSet::default(),
-                &reference,
-                0.05
-            )
-            .is_empty()
-        );
+        assert!(relax_once(&mut world, mesh, &boundary).is_empty());
         assert_eq!(
             MeshRef::new(&world).position(corner),
             Vec3::new(0.2, -0.1, 0.0)
