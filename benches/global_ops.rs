@@ -75,7 +75,7 @@ fn bench(c: &mut Criterion) {
             &format!("simplify to {} % (bunny)", ratio * 100.0),
             &bunny,
             |world, mesh| {
-                black_box(simplify(world, mesh, &SimplifyParams::ratio(faces, ratio)).unwrap());
+                black_box(simplify(world, mesh, &SimplifyParams::ratio(ratio)).unwrap());
             },
         );
     }
@@ -85,8 +85,7 @@ fn bench(c: &mut Criterion) {
         &bunny,
         |world, mesh| {
             black_box(
-                ProgressiveMesh::simplify(world, mesh, &SimplifyParams::ratio(faces, 0.01))
-                    .unwrap(),
+                ProgressiveMesh::simplify(world, mesh, &SimplifyParams::ratio(0.01)).unwrap(),
             );
         },
     );
@@ -95,8 +94,7 @@ fn bench(c: &mut Criterion) {
     let coarsest = || {
         let (mut world, mesh) = built(&bunny);
         let (pm, _) =
-            ProgressiveMesh::simplify(&mut world, mesh, &SimplifyParams::ratio(faces, 0.01))
-                .unwrap();
+            ProgressiveMesh::simplify(&mut world, mesh, &SimplifyParams::ratio(0.01)).unwrap();
         (world, pm)
     };
     c.bench_function("progressive: refine 1 % -> full (bunny)", |b| {

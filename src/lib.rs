@@ -6,11 +6,14 @@
 //!   typed ids inside components. Building from a polygon soup (with repairs), validation,
 //!   statistics, procedural shapes. No rendering, no UI, no file formats.
 //! - [`ops`]: operations on the entity mesh (plan, then apply; a refusal is a value).
+//! - [`edit`]: the one edit layer: every operation as a value of [`edit::Edit`], with what the
+//!   editor's pipeline and the command line need to know about it.
 //! - [`io`]: file formats (OBJ, OFF, PLY, STL), all to and from a [`mesh::soup::PolygonSoup`].
 //! - [`cli`]: the batch command line (`info`, `convert`, `process`), no window needed.
 //! - [`editor`]: the Bevy application.
 
 pub mod cli;
+pub mod edit;
 pub mod editor;
 pub mod io;
 pub mod mesh;

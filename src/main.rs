@@ -1,15 +1,14 @@
 //! The `pappus` program: the editor, or batch mode when given a subcommand.
 
-use pappus::cli::{self, Command};
+use clap::Parser;
+use pappus::cli::{self, Cli};
 
 fn main() {
-    let code = match cli::parse_args(std::env::args().skip(1)) {
-        Ok(Command::Editor(path)) => pappus::editor::run(path),
-        Ok(command) => cli::run(command),
-        Err(message) => {
-            eprintln!("pappus: {message}");
-            2
-        }
+    // A usage error prints the usage and exits with 2; --help and --version exit with 0.
+    let Cli { file, command } = Cli::parse();
+    let code = match command {
+        None => pappus::editor::run(file),
+        Some(command) => cli::run(command),
     };
     std::process::exit(code);
 }

@@ -293,7 +293,7 @@ fn split_refuses_bad_parameters_and_stale_edges() {
         let r = refused(shapes::icosahedron(), 0, 11, |w, e| {
             split_edge(w, e, t).map(|_| ())
         });
-        assert!(matches!(r, Refusal::Unsuitable(_)), "{t}: {r}");
+        assert!(matches!(r, Refusal::SplitParameter(_)), "{t}: {r}");
     }
 }
 
@@ -663,7 +663,7 @@ fn dissolve_and_split_face_refusals_leave_the_mesh_untouched() {
     let v2 = built.input_vertices[2].unwrap();
     assert!(matches!(
         split_face(&mut world, quad, v0, v2),
-        Err(Refusal::Unsuitable(_))
+        Err(Refusal::NotACorner(..))
     ));
     // Corners already joined elsewhere: 1-4 is the shared edge, so splitting the quad 0 1 4 3
     // between 1 and 4 would duplicate it.
@@ -736,7 +736,7 @@ fn split_refuses_a_stale_or_polygon_record() {
     let before = snapshot(&world, built.mesh);
     assert!(matches!(
         vertex_split(&mut world, &result.record),
-        Err(Refusal::Unsuitable(_))
+        Err(Refusal::NotInvertible)
     ));
     assert_eq!(snapshot(&world, built.mesh), before);
     let (mut world, built) = build(&shapes::icosphere(1));
@@ -885,7 +885,7 @@ fn collapse_refuses_each_degenerate_result() {
         )
         .map(|_| ())
     });
-    assert!(matches!(r, Refusal::Unsuitable(_)), "{r}");
+    assert!(matches!(r, Refusal::NotFinite(_)), "{r}");
 }
 
 #[test]
@@ -957,12 +957,12 @@ fn split_refuses_a_point_on_an_endpoint() {
         &[[0u32, 1, 2]],
     );
     let r = refused(tri, 0, 1, |w, e| split_edge(w, e, 1e-12).map(|_| ()));
-    assert!(matches!(r, Refusal::Unsuitable(_)), "{r}");
+    assert!(matches!(r, Refusal::SplitAtEndpoint(_)), "{r}");
     // An edge of length zero.
     let mut soup = shapes::diamond();
     soup.positions[2] = soup.positions[0];
     let r = refused(soup, 0, 2, |w, e| split_edge(w, e, 0.5).map(|_| ()));
-    assert!(matches!(r, Refusal::Unsuitable(_)), "{r}");
+    assert!(matches!(r, Refusal::SplitAtEndpoint(_)), "{r}");
 }
 
 /// `soup` with faces replaced.

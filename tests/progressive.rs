@@ -13,8 +13,7 @@ fn round_trip(soup: &PolygonSoup, ratio: f64) {
     let original = canonical(&to_soup(&world, built.mesh));
     let faces = mesh_stats(&world, built.mesh).faces;
     let (mut pm, summary) =
-        ProgressiveMesh::simplify(&mut world, built.mesh, &SimplifyParams::ratio(faces, ratio))
-            .unwrap();
+        ProgressiveMesh::simplify(&mut world, built.mesh, &SimplifyParams::ratio(ratio)).unwrap();
     assert_eq!(pm.faces(), summary.faces_after);
     validate(&world, built.mesh).unwrap();
     // All the way up: the original mesh, exactly.
@@ -67,7 +66,7 @@ fn bulk_and_single_refines_make_the_same_mesh() {
         let (mut bulk_world, bulk) = build(&soup);
         let (mut single_world, single) = build(&soup);
         let faces = mesh_stats(&bulk_world, bulk.mesh).faces;
-        let params = SimplifyParams::ratio(faces, 0.05);
+        let params = SimplifyParams::ratio(0.05);
         let (mut by_bulk, _) =
             ProgressiveMesh::simplify(&mut bulk_world, bulk.mesh, &params).unwrap();
         let (mut by_single, _) =

@@ -10,20 +10,23 @@ use bevy::input::ButtonState;
 use bevy::input::mouse::{MouseButton, MouseButtonInput};
 use bevy::prelude::*;
 use common::canonical;
+use pappus::edit::{Edit, Scheme, Subdivision};
 use pappus::editor::history::UndoHistory;
-use pappus::editor::requests::{EditOutcome, EditRequest};
+use pappus::editor::requests::{EditOutcome, Request};
 use pappus::editor::selection::{ActiveMesh, Selection};
 use pappus::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
 use pappus::mesh::{MeshMembers, MeshRef, mesh_stats, to_soup, validate};
+use pappus::ops::remesh::RemeshParams;
+use pappus::ops::simplify::SimplifyParams;
 
 fn app() -> App {
     common::headless_editor()
 }
 
-fn request(app: &mut App, r: EditRequest) -> Result<String, String> {
+fn request(app: &mut App, r: Request) -> Result<String, String> {
     app.world_mut().write_message(r);
     app.update();
-    last(app).result
+    last(app).result.map_err(|e| e.to_string())
 }
 
 fn last(app: &App) -> EditOutcome {
@@ -49,20 +52,20 @@ fn undo_depth(app: &App) -> usize {
 
 /// Opens a shape, discarding unsaved changes if asked.
 fn open(app: &mut App, shape: &str) {
-    if let Err(reason) = request(app, EditRequest::Open(shape.into())) {
+    if let Err(reason) = request(app, Request::Open(shape.into())) {
         assert!(reason.contains("unsaved"), "{reason}");
-        request(app, EditRequest::ConfirmDiscard(true)).unwrap();
+        request(app, Request::ConfirmDiscard(true)).unwrap();
     }
 }
 
 /// Applies `r`, then checks undo → exactly before, redo → exactly after, undo and redo again.
-fn round_trip(app: &mut App, r: EditRequest) {
+fn round_trip(app: &mut App, r: Request) {
     let label = r.label();
     assert!(try_round_trip(app, r), "{label}: {:?}", last(app).result);
 }
 
 /// As [`round_trip`], but a refused request is skipped: returns whether it applied.
-fn try_round_trip(app: &mut App, r: EditRequest) -> bool {
+fn try_round_trip(app: &mut App, r: Request) -> bool {
     let before = state(app);
     let depth = undo_depth(app);
     let label = r.label();
@@ -83,9 +86,9 @@ fn try_round_trip(app: &mut App, r: EditRequest) -> bool {
     let after = state(app);
     assert_ne!(before, after, "{label} changed nothing");
     for _ in 0..2 {
-        assert!(request(app, EditRequest::Undo).is_ok());
+        assert!(request(app, Request::Undo).is_ok());
         assert_eq!(state(app), before, "undo of {label}");
-        assert!(request(app, EditRequest::Redo).is_ok());
+        assert!(request(app, Request::Redo).is_ok());
         assert_eq!(state(app), after, "redo of {label}");
     }
     true
@@ -99,7 +102,7 @@ fn members(app: &App) -> MeshMembers {
 type EdgePick = fn(&MeshRef<'_>, EdgeId) -> bool;
 
 /// Makes the next request from the app's state.
-type MakeRequest = Box<dyn Fn(&App) -> EditRequest>;
+type MakeRequest = Box<dyn Fn(&App) -> Request>;
 
 fn is_interior(m: &MeshRef<'_>, e: EdgeId) -> bool {
     !m.is_boundary_edge(e)
@@ -125,12 +128,11 @@ fn edge_where(app: &App, pick: EdgePick) -> EdgeId {
 
 /// Round-trips the first of `make(edge)` over the picked edges that applies; returns whether
 /// one did.
-fn round_trip_some(app: &mut App, pick: EdgePick, make: fn(EdgeId) -> EditRequest) -> bool {
+fn round_trip_some(app: &mut App, pick: EdgePick, make: fn(EdgeId) -> Edit) -> bool {
     let candidates = edges_where(app, pick);
-    candidates
-        .into_iter()
-        .take(40)
-        .any(|e| MeshRef::new(app.world()).try_edge(e).is_some() && try_round_trip(app, make(e)))
+    candidates.into_iter().take(40).any(|e| {
+        MeshRef::new(app.world()).try_edge(e).is_some() && try_round_trip(app, make(e).into())
+    })
 }
 
 #[test]
@@ -149,23 +151,14 @@ fn every_local_edit_undoes_and_redoes_exactly() {
                 continue;
             }
             if interior {
-                assert!(
-                    round_trip_some(&mut app, pick, EditRequest::Flip),
-                    "{shape}: flip"
-                );
-                assert!(
-                    round_trip_some(&mut app, pick, EditRequest::Dissolve),
-                    "{shape}"
-                );
+                assert!(round_trip_some(&mut app, pick, Edit::Flip), "{shape}: flip");
+                assert!(round_trip_some(&mut app, pick, Edit::Dissolve), "{shape}");
             }
             assert!(
-                round_trip_some(&mut app, pick, EditRequest::Split),
+                round_trip_some(&mut app, pick, Edit::Split),
                 "{shape}: split"
             );
-            assert!(
-                round_trip_some(&mut app, pick, EditRequest::Collapse),
-                "{shape}"
-            );
+            assert!(round_trip_some(&mut app, pick, Edit::Collapse), "{shape}");
         }
         // Cut a polygon (the dissolve's, or a quad) between two corners.
         let (f, a, b) = {
@@ -178,36 +171,55 @@ fn every_local_edit_undoes_and_redoes_exactly() {
             let corners: Vec<VertexId> = m.face_vertices(f).collect();
             (f, corners[0], corners[2])
         };
-        round_trip(&mut app, EditRequest::SplitFace(f, a, b));
+        round_trip(&mut app, Request::Edit(Edit::SplitFace(f, a, b)));
         let v = members(&app).vertices[3];
         let p = MeshRef::new(app.world()).position(v);
         round_trip(
             &mut app,
-            EditRequest::MoveVertex(v, p + Vec3::new(0.1, -0.2, 0.3)),
+            Request::Edit(Edit::MoveVertex(v, p + Vec3::new(0.1, -0.2, 0.3))),
         );
     }
 }
 
 #[test]
 fn every_global_edit_undoes_and_redoes_exactly() {
-    use pappus::editor::apply::History;
+    use pappus::editor::session::SimplificationHistory as History;
     let mut app = app();
     open(&mut app, "shape:cube");
-    let cube = active(&app).unwrap();
-    round_trip(&mut app, EditRequest::CatmullClark(cube));
-    round_trip(&mut app, EditRequest::Triangulate(cube));
-    round_trip(&mut app, EditRequest::LoopSubdivide(cube));
-    round_trip(&mut app, EditRequest::Remesh(cube));
-    round_trip(&mut app, EditRequest::Simplify(cube, 0.5));
+    round_trip(
+        &mut app,
+        Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::CatmullClark))),
+    );
+    round_trip(&mut app, Request::Edit(Edit::Triangulate));
+    round_trip(
+        &mut app,
+        Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::Loop))),
+    );
+    round_trip(
+        &mut app,
+        Request::Edit(Edit::Remesh(RemeshParams::default())),
+    );
+    round_trip(
+        &mut app,
+        Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.5))),
+    );
     // Undo and redo end the simplification's own history; simplify again for the slider and
     // for splitting a vertex back.
-    request(&mut app, EditRequest::Simplify(cube, 0.5)).unwrap();
+    request(
+        &mut app,
+        Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.5))),
+    )
+    .unwrap();
     let next = {
         let pm = app.world().resource::<History>().pm.as_ref().unwrap();
         pm.next_split_vertex().unwrap()
     };
-    round_trip(&mut app, EditRequest::SplitVertex(next));
-    request(&mut app, EditRequest::Simplify(cube, 0.5)).unwrap();
+    round_trip(&mut app, Request::Edit(Edit::SplitVertex(next)));
+    request(
+        &mut app,
+        Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.5))),
+    )
+    .unwrap();
     let full = app
         .world()
         .resource::<History>()
@@ -215,16 +227,16 @@ fn every_global_edit_undoes_and_redoes_exactly() {
         .as_ref()
         .unwrap()
         .full_faces;
-    round_trip(&mut app, EditRequest::LevelOfDetail(full));
+    round_trip(&mut app, Request::Edit(Edit::LevelOfDetail(full)));
     // Opening over the edits (after the question) and deleting replace the mesh; undo brings
     // the old one back.
-    assert!(request(&mut app, EditRequest::Open("shape:torus".into())).is_err());
-    round_trip(&mut app, EditRequest::ConfirmDiscard(true));
-    round_trip(&mut app, EditRequest::DeleteMesh);
+    assert!(request(&mut app, Request::Open("shape:torus".into())).is_err());
+    round_trip(&mut app, Request::ConfirmDiscard(true));
+    round_trip(&mut app, Request::DeleteMesh);
     assert_eq!(active(&app), None);
     // Opening over no mesh loses nothing: it is not an entry.
     let depth = undo_depth(&app);
-    request(&mut app, EditRequest::Open("shape:tetrahedron".into())).unwrap();
+    request(&mut app, Request::Open("shape:tetrahedron".into())).unwrap();
     assert_eq!(undo_depth(&app), depth);
 }
 
@@ -244,19 +256,19 @@ impl Rng {
     }
 }
 
-fn random_edit(app: &App, rng: &mut Rng) -> EditRequest {
+fn random_edit(app: &App, rng: &mut Rng) -> Request {
     let m = MeshRef::new(app.world());
     let all = members(app);
     let e = all.edges[rng.below(all.edges.len())];
     match rng.below(7) {
-        0 | 1 => EditRequest::Flip(e),
-        2 => EditRequest::Split(e),
-        3 | 4 => EditRequest::Collapse(e),
-        5 => EditRequest::Dissolve(e),
+        0 | 1 => Request::Edit(Edit::Flip(e)),
+        2 => Request::Edit(Edit::Split(e)),
+        3 | 4 => Request::Edit(Edit::Collapse(e)),
+        5 => Request::Edit(Edit::Dissolve(e)),
         _ => {
             let v = all.vertices[rng.below(all.vertices.len())];
             let d = (rng.below(1000) as f32 - 500.0) * 1e-4;
-            EditRequest::MoveVertex(v, m.position(v) + Vec3::splat(d))
+            Request::Edit(Edit::MoveVertex(v, m.position(v) + Vec3::splat(d)))
         }
     }
 }
@@ -282,10 +294,10 @@ fn random_edits_undo_to_the_original_and_redo_to_the_end() {
             // Now and then, step back and forth in the middle of the sequence.
             if step % 37 == 0 && applied > 2 {
                 let here = state(&app);
-                request(&mut app, EditRequest::Undo).unwrap();
-                request(&mut app, EditRequest::Undo).unwrap();
-                request(&mut app, EditRequest::Redo).unwrap();
-                request(&mut app, EditRequest::Redo).unwrap();
+                request(&mut app, Request::Undo).unwrap();
+                request(&mut app, Request::Undo).unwrap();
+                request(&mut app, Request::Redo).unwrap();
+                request(&mut app, Request::Redo).unwrap();
                 assert_eq!(state(&app), here, "{shape}: step {step}");
             }
             if step % 25 == 0 {
@@ -301,15 +313,15 @@ fn random_edits_undo_to_the_original_and_redo_to_the_end() {
         );
         let end = state(&app);
         for _ in 0..applied {
-            request(&mut app, EditRequest::Undo).unwrap();
+            request(&mut app, Request::Undo).unwrap();
         }
         assert_eq!(state(&app), original, "{shape}: undone to the start");
         for _ in 0..applied {
-            request(&mut app, EditRequest::Redo).unwrap();
+            request(&mut app, Request::Redo).unwrap();
         }
         assert_eq!(state(&app), end, "{shape}: redone to the end");
         assert!(
-            request(&mut app, EditRequest::Redo).is_err(),
+            request(&mut app, Request::Redo).is_err(),
             "nothing left to redo"
         );
     }
@@ -319,18 +331,17 @@ fn random_edits_undo_to_the_original_and_redo_to_the_end() {
 fn mixed_history_keeps_ids_valid_across_global_restores() {
     let mut app = app();
     open(&mut app, "shape:icosphere:1");
-    let mesh = active(&app).unwrap();
     let mut states = vec![state(&app)];
     let interior = is_interior;
     let steps: Vec<MakeRequest> = vec![
-        Box::new(move |a| EditRequest::Flip(edge_where(a, interior))),
-        Box::new(move |_| EditRequest::LoopSubdivide(mesh)),
-        Box::new(move |a| EditRequest::Collapse(edge_where(a, interior))),
-        Box::new(move |a| EditRequest::Split(edge_where(a, interior))),
-        Box::new(move |_| EditRequest::Simplify(mesh, 0.6)),
-        Box::new(move |a| EditRequest::Dissolve(edge_where(a, interior))),
-        Box::new(move |_| EditRequest::CatmullClark(mesh)),
-        Box::new(move |a| EditRequest::Collapse(edge_where(a, interior))),
+        Box::new(move |a| Request::Edit(Edit::Flip(edge_where(a, interior)))),
+        Box::new(move |_| Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::Loop)))),
+        Box::new(move |a| Request::Edit(Edit::Collapse(edge_where(a, interior)))),
+        Box::new(move |a| Request::Edit(Edit::Split(edge_where(a, interior)))),
+        Box::new(move |_| Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.6)))),
+        Box::new(move |a| Request::Edit(Edit::Dissolve(edge_where(a, interior)))),
+        Box::new(move |_| Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)))),
+        Box::new(move |a| Request::Edit(Edit::Collapse(edge_where(a, interior)))),
     ];
     for step in &steps {
         let r = step(&app);
@@ -339,36 +350,36 @@ fn mixed_history_keeps_ids_valid_across_global_restores() {
     }
     // All the way back, checking each state; then all the way forward.
     for expected in states.iter().rev().skip(1) {
-        request(&mut app, EditRequest::Undo).unwrap();
+        request(&mut app, Request::Undo).unwrap();
         assert_eq!(&state(&app), expected);
     }
     // The first open replaced nothing: there is nothing more to undo, and the mesh stays.
-    assert!(request(&mut app, EditRequest::Undo).is_err());
+    assert!(request(&mut app, Request::Undo).is_err());
     assert!(active(&app).is_some());
     for expected in states.iter().skip(1) {
-        request(&mut app, EditRequest::Redo).unwrap();
+        request(&mut app, Request::Redo).unwrap();
         assert_eq!(&state(&app), expected);
     }
     // Half way back, then a new edit: the redo stack is gone.
     for _ in 0..4 {
-        request(&mut app, EditRequest::Undo).unwrap();
+        request(&mut app, Request::Undo).unwrap();
     }
     let e = edge_where(&app, interior);
-    request(&mut app, EditRequest::Flip(e)).unwrap();
-    assert!(request(&mut app, EditRequest::Redo).is_err());
+    request(&mut app, Request::Edit(Edit::Flip(e))).unwrap();
+    assert!(request(&mut app, Request::Redo).is_err());
     assert_eq!(undo_depth(&app), states.len() - 1 - 4 + 1);
 }
 
 #[test]
 fn the_selection_follows_undo_and_redo() {
     let mut app = app();
-    request(&mut app, EditRequest::Open("shape:icosphere:1".into())).unwrap();
+    request(&mut app, Request::Open("shape:icosphere:1".into())).unwrap();
     let e = edge_where(&app, is_interior);
-    request(&mut app, EditRequest::Select(Some(ElementId::Edge(e)))).unwrap();
-    request(&mut app, EditRequest::Collapse(e)).unwrap();
+    request(&mut app, Request::Select(Some(ElementId::Edge(e)))).unwrap();
+    request(&mut app, Request::Edit(Edit::Collapse(e))).unwrap();
     let kept = app.world().resource::<Selection>().element;
     assert!(matches!(kept, Some(ElementId::Vertex(_))));
-    request(&mut app, EditRequest::Undo).unwrap();
+    request(&mut app, Request::Undo).unwrap();
     // The edge was brought back under a new id, and it is selected again.
     let Some(ElementId::Edge(back)) = app.world().resource::<Selection>().element else {
         panic!("the collapsed edge should be selected again");
@@ -376,7 +387,7 @@ fn the_selection_follows_undo_and_redo() {
     assert_ne!(back, e);
     let m = MeshRef::new(app.world());
     assert!(m.try_edge(back).is_some());
-    request(&mut app, EditRequest::Redo).unwrap();
+    request(&mut app, Request::Redo).unwrap();
     assert_eq!(app.world().resource::<Selection>().element, kept);
 }
 
@@ -400,16 +411,16 @@ fn a_drag_is_one_entry() {
         mouse(&mut app, ButtonState::Pressed);
         for i in 1..=5 {
             let p = start + Vec3::X * (drag * 5 + i) as f32 * 0.01;
-            request(&mut app, EditRequest::MoveVertex(v, p)).unwrap();
+            request(&mut app, Request::Edit(Edit::MoveVertex(v, p))).unwrap();
         }
         mouse(&mut app, ButtonState::Released);
     }
     assert_eq!(undo_depth(&app), before + 2, "one entry per press");
-    request(&mut app, EditRequest::Undo).unwrap();
+    request(&mut app, Request::Undo).unwrap();
     let p = MeshRef::new(app.world()).position(v);
     let first_end = start + Vec3::X * 5.0 * 0.01;
     assert_eq!(p, first_end, "back to the end of the first drag");
-    request(&mut app, EditRequest::Undo).unwrap();
+    request(&mut app, Request::Undo).unwrap();
     let p = MeshRef::new(app.world()).position(v);
     assert_eq!(
         p.to_array().map(f32::to_bits),
@@ -421,21 +432,32 @@ fn a_drag_is_one_entry() {
 fn the_memory_cap_drops_the_oldest_entries() {
     let mut app = app();
     open(&mut app, "shape:quad-grid");
-    let mesh = active(&app).unwrap();
-    request(&mut app, EditRequest::CatmullClark(mesh)).unwrap();
-    request(&mut app, EditRequest::Triangulate(mesh)).unwrap();
-    request(&mut app, EditRequest::Remesh(mesh)).unwrap();
+    request(
+        &mut app,
+        Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::CatmullClark))),
+    )
+    .unwrap();
+    request(&mut app, Request::Edit(Edit::Triangulate)).unwrap();
+    request(
+        &mut app,
+        Request::Edit(Edit::Remesh(RemeshParams::default())),
+    )
+    .unwrap();
     let whole = app.world().resource::<UndoHistory>().undo_entries()[2].bytes();
     // Room for two and a half whole-mesh entries of this size.
     let cap = whole * 5 / 2;
     app.world_mut().resource_mut::<UndoHistory>().limit_bytes = cap;
     for _ in 0..4 {
         let e = edge_where(&app, is_interior);
-        request(&mut app, EditRequest::Flip(e)).unwrap();
-        request(&mut app, EditRequest::Remesh(mesh)).unwrap();
+        request(&mut app, Request::Edit(Edit::Flip(e))).unwrap();
+        request(
+            &mut app,
+            Request::Edit(Edit::Remesh(RemeshParams::default())),
+        )
+        .unwrap();
     }
     let e = edge_where(&app, is_interior);
-    request(&mut app, EditRequest::Flip(e)).unwrap();
+    request(&mut app, Request::Edit(Edit::Flip(e))).unwrap();
     let history = app.world().resource::<UndoHistory>();
     assert!(history.bytes() <= cap, "{} > {cap}", history.bytes());
     let labels: Vec<String> = history
@@ -454,10 +476,10 @@ fn the_memory_cap_drops_the_oldest_entries() {
     assert!(labels.last().unwrap().starts_with("flip"));
     // What is left still undoes cleanly, and no further.
     for _ in 0..labels.len() {
-        request(&mut app, EditRequest::Undo).unwrap();
+        request(&mut app, Request::Undo).unwrap();
         state(&app);
     }
-    assert!(request(&mut app, EditRequest::Undo).is_err());
+    assert!(request(&mut app, Request::Undo).is_err());
 }
 
 #[test]
@@ -466,10 +488,10 @@ fn a_refused_edit_leaves_no_entry() {
     open(&mut app, "shape:grid");
     let depth = undo_depth(&app);
     let e = edge_where(&app, is_boundary);
-    assert!(request(&mut app, EditRequest::Flip(e)).is_err());
+    assert!(request(&mut app, Request::Edit(Edit::Flip(e))).is_err());
     assert_eq!(undo_depth(&app), depth);
     assert!(
-        request(&mut app, EditRequest::Undo)
+        request(&mut app, Request::Undo)
             .unwrap_err()
             .contains("nothing to undo")
     );
@@ -484,16 +506,24 @@ fn remeshing_history_is_smaller_than_the_mesh() {
     let mesh = active(&app).unwrap();
     let own = pappus::mesh::change::component_bytes(app.world(), mesh);
     let before = app.world().resource::<UndoHistory>().bytes();
-    request(&mut app, EditRequest::Remesh(mesh)).unwrap();
-    request(&mut app, EditRequest::Remesh(mesh)).unwrap();
+    request(
+        &mut app,
+        Request::Edit(Edit::Remesh(RemeshParams::default())),
+    )
+    .unwrap();
+    request(
+        &mut app,
+        Request::Edit(Edit::Remesh(RemeshParams::default())),
+    )
+    .unwrap();
     let held = app.world().resource::<UndoHistory>().bytes() - before;
     // Two remeshes of 5 iterations: two whole-mesh entries.
     assert!(
         held < 3 * own,
         "{held} bytes of history for a {own}-byte mesh"
     );
-    request(&mut app, EditRequest::Undo).unwrap();
-    request(&mut app, EditRequest::Undo).unwrap();
+    request(&mut app, Request::Undo).unwrap();
+    request(&mut app, Request::Undo).unwrap();
     assert_eq!(mesh_stats(app.world(), mesh).faces, 1280);
 }
 
@@ -538,10 +568,13 @@ fn a_cancelled_job_leaves_the_mesh_exactly_as_it_was() {
     let mut app = app();
     jobs_from(&mut app, 1000);
     open(&mut app, "shape:icosphere:5");
-    let mesh = active(&app).unwrap();
     let before = state(&app);
     let depth = undo_depth(&app);
-    let started = request(&mut app, EditRequest::Simplify(mesh, 0.02)).unwrap();
+    let started = request(
+        &mut app,
+        Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.02))),
+    )
+    .unwrap();
     assert!(started.contains("running"), "{started}");
     // Frames go on while the thread works, and its progress shows.
     let frames = frames_until(&mut app, |a| job_progress(a) > 0.0);
@@ -552,9 +585,9 @@ fn a_cancelled_job_leaves_the_mesh_exactly_as_it_was() {
     assert!(frames >= 1);
     // Edits wait for the job.
     let e = edge_where(&app, is_interior);
-    let refused = request(&mut app, EditRequest::Flip(e)).unwrap_err();
+    let refused = request(&mut app, Request::Edit(Edit::Flip(e))).unwrap_err();
     assert!(refused.contains("still running"), "{refused}");
-    assert!(request(&mut app, EditRequest::Undo).is_err());
+    assert!(request(&mut app, Request::Undo).is_err());
     // Esc cancels it.
     app.world_mut()
         .write_message(bevy::input::keyboard::KeyboardInput {
@@ -578,7 +611,7 @@ fn a_cancelled_job_leaves_the_mesh_exactly_as_it_was() {
 
 #[test]
 fn a_finished_job_commits_as_one_undo_entry() {
-    use pappus::editor::apply::History;
+    use pappus::editor::session::SimplificationHistory as History;
     let mut app = app();
     jobs_from(&mut app, 100);
     open(&mut app, "shape:icosphere:3");
@@ -586,12 +619,18 @@ fn a_finished_job_commits_as_one_undo_entry() {
     let before = state(&app);
     let depth = undo_depth(&app);
     let v = members(&app).vertices[0];
-    request(&mut app, EditRequest::Select(Some(ElementId::Vertex(v)))).unwrap();
-    assert!(request(&mut app, EditRequest::Simplify(mesh, 0.5)).is_ok());
+    request(&mut app, Request::Select(Some(ElementId::Vertex(v)))).unwrap();
+    assert!(
+        request(
+            &mut app,
+            Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.5)))
+        )
+        .is_ok()
+    );
     frames_until(&mut app, |a| !job_running(a));
     let outcome = last(&app);
     assert!(outcome.request.starts_with("simplify"), "{outcome:?}");
-    assert_eq!(outcome.result, Ok("1280 -> 640 faces".into()));
+    assert!(outcome.result.unwrap().starts_with("1280 -> 640 faces"));
     assert_eq!(mesh_stats(app.world(), mesh).faces, 640);
     assert_eq!(undo_depth(&app), depth + 1);
     let after = state(&app);
@@ -609,20 +648,24 @@ fn a_finished_job_commits_as_one_undo_entry() {
     }
     // The simplification's history came across: the slider moves, exactly.
     assert!(app.world().resource::<History>().pm.is_some());
-    request(&mut app, EditRequest::LevelOfDetail(1280)).unwrap();
+    request(&mut app, Request::Edit(Edit::LevelOfDetail(1280))).unwrap();
     assert_eq!(
         state(&app),
         before,
         "refined all the way: the original mesh"
     );
-    request(&mut app, EditRequest::Undo).unwrap();
+    request(&mut app, Request::Undo).unwrap();
     assert_eq!(state(&app), after);
-    request(&mut app, EditRequest::Undo).unwrap();
+    request(&mut app, Request::Undo).unwrap();
     assert_eq!(state(&app), before);
     // Loop subdivision as a job too.
-    request(&mut app, EditRequest::LoopSubdivide(mesh)).unwrap();
+    request(
+        &mut app,
+        Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::Loop))),
+    )
+    .unwrap();
     frames_until(&mut app, |a| !job_running(a));
     assert_eq!(mesh_stats(app.world(), mesh).faces, 5120);
-    request(&mut app, EditRequest::Undo).unwrap();
+    request(&mut app, Request::Undo).unwrap();
     assert_eq!(state(&app), before);
 }

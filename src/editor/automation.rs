@@ -27,7 +27,9 @@ use std::path::PathBuf;
 use crate::mesh::ids::{ElementId, parse_element};
 use crate::mesh::topology::MeshRef;
 
-use super::requests::EditRequest;
+use crate::edit::Edit;
+
+use super::requests::Request;
 use super::selection::ActiveMesh;
 
 /// One scripted step (see the module doc).
@@ -220,22 +222,22 @@ pub fn run_script(world: &mut World) {
                 let edge = input_edge(world, a, b);
                 match edge {
                     Some(e) => {
-                        world.write_message(EditRequest::Select(Some(e)));
+                        world.write_message(Request::Select(Some(e)));
                     }
                     None => bevy::log::warn!("script: no edge between input vertices {a} and {b}"),
                 }
                 script.waiting = 1;
             }
             ScriptStep::Lod(faces) => {
-                world.write_message(EditRequest::LevelOfDetail(faces));
+                world.write_message(Request::Edit(Edit::LevelOfDetail(faces)));
                 script.waiting = 2;
             }
             ScriptStep::Open(path) => {
-                world.write_message(EditRequest::Open(path));
+                world.write_message(Request::Open(path));
                 script.waiting = 2;
             }
             ScriptStep::Select(id) => {
-                world.write_message(EditRequest::Select(Some(id)));
+                world.write_message(Request::Select(Some(id)));
                 script.waiting = 1;
             }
             ScriptStep::Shot(path) => {

@@ -1,5 +1,5 @@
 //! Native file dialogs (through `rfd`), run on a thread of their own so the window keeps
-//! drawing while one is open. The chosen path comes back as an ordinary [`EditRequest`]. Where
+//! drawing while one is open. The chosen path comes back as an ordinary [`Request`]. Where
 //! no dialog can be shown (no desktop portal, as under Xvfb) nothing comes back, and the path
 //! field in the panel, which the same shortcut focuses, is the way to type a path.
 
@@ -7,8 +7,16 @@ use bevy::prelude::*;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
-use super::input::PathPurpose;
-use super::requests::EditRequest;
+use super::requests::Request;
+
+/// What a path is being chosen for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PathPurpose {
+    /// Open the file.
+    Open,
+    /// Save to the file.
+    SaveAs,
+}
 
 /// What a dialog thread hands back: nothing yet, or its answer (`None`: cancelled or none).
 type Answer = Arc<Mutex<Option<Option<PathBuf>>>>;
@@ -48,7 +56,7 @@ pub fn show(world: &mut World, purpose: PathPurpose) {
 }
 
 /// Turns a chosen path into a request (the `Input` set).
-pub fn receive(mut state: ResMut<OpenDialog>, mut requests: MessageWriter<EditRequest>) {
+pub fn receive(mut state: ResMut<OpenDialog>, mut requests: MessageWriter<Request>) {
     let Some((purpose, answer)) = &state.pending else {
         return;
     };
@@ -58,8 +66,8 @@ pub fn receive(mut state: ResMut<OpenDialog>, mut requests: MessageWriter<EditRe
     };
     if let Some(path) = choice {
         requests.write(match purpose {
-            PathPurpose::Open => EditRequest::Open(path),
-            PathPurpose::SaveAs => EditRequest::Save(Some(path)),
+            PathPurpose::Open => Request::Open(path),
+            PathPurpose::SaveAs => Request::Save(Some(path)),
         });
     }
     state.pending = None;

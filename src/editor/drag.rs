@@ -3,7 +3,7 @@
 //! A left press within [`super::picking::VERTEX_RADIUS_PX`] of the selected vertex starts a
 //! drag; while the button is held the vertex follows the pointer in the plane through its
 //! starting position that faces the camera; releasing ends it. Each frame of the drag writes a
-//! [`EditRequest::MoveVertex`], so the mesh (and its render copy) updates live through the same
+//! [`Edit::MoveVertex`](crate::edit::Edit::MoveVertex), so the mesh (and its render copy) updates live through the same
 //! path as every other edit.
 
 use bevy::input::mouse::MouseButton;
@@ -15,7 +15,7 @@ use crate::mesh::ids::{ElementId, VertexId};
 use crate::mesh::topology::MeshRef;
 
 use super::picking::VERTEX_RADIUS_PX;
-use super::requests::EditRequest;
+use super::requests::Request;
 use super::selection::Selection;
 
 /// Whether egui is using the pointer this frame (set by the UI); drags do not start then.
@@ -85,6 +85,6 @@ pub fn drive_vertex_drag(world: &mut World) {
     if let Some(target) = ray.plane_intersection_point(origin, plane)
         && MeshRef::new(world).try_position(v) != Some(target)
     {
-        world.write_message(EditRequest::MoveVertex(v, target));
+        world.write_message(Request::Edit(crate::edit::Edit::MoveVertex(v, target)));
     }
 }

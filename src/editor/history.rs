@@ -1,8 +1,9 @@
 //! Undo and redo for every edit (Ctrl+Z; Ctrl+Shift+Z or Ctrl+Y).
 //!
-//! Before [`super::apply`] runs an edit, [`begin`] captures what the edit may change, by its
-//! reach (see [`crate::mesh::change`]): the neighbourhood of a local edit, the tables of a
-//! mesh-wide one, the whole mesh for an open or a delete. Once the edit has succeeded,
+//! Before an edit runs, [`begin_edit`] captures what it may change, by its
+//! [`crate::edit::Edit::reach`] (see [`crate::mesh::change`]): the neighbourhood of a local
+//! edit, the tables of a mesh-wide one; [`begin_replace`] captures the whole mesh before an open
+//! or a delete. Once the edit has succeeded,
 //! [`commit`] turns that into an [`Entry`] on the undo stack; a refused edit leaves no entry.
 //! Undoing applies the entry's record and keeps its inverse on the redo stack, and the other
 //! way round; any new edit clears the redo stack.
@@ -21,14 +22,15 @@ use bevy::input::ButtonInput;
 use bevy::input::mouse::MouseButton;
 use bevy::prelude::{Res, ResMut, Resource, World};
 
+use crate::mesh::MeshInfo;
 use crate::mesh::change::{Change, LocalRecorder, MeshTables, Remap, SavedMesh, remapped};
 use crate::mesh::despawn_mesh;
 use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
-use crate::mesh::{InMesh, MeshInfo};
 
-use super::requests::{EditRequest, PendingDiscard};
-use super::selection::{ActiveMesh, Selection};
+use crate::edit::{Edit, MergeKey, Reach};
+
+use super::selection::{ActiveMesh, Selection, exists};
 
 /// What an entry puts back.
 enum Record {
@@ -124,13 +126,6 @@ pub enum Redraw {
     },
     /// The whole mesh (now the active one, if any).
     Whole(Option<MeshId>),
-}
-
-/// Edits that merge into the entry before them while the mouse button stays down.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum MergeKey {
-    Move(VertexId),
-    LevelOfDetail,
 }
 
 /// One undoable step.
@@ -289,82 +284,39 @@ enum PendingKind {
     Merge,
 }
 
-/// Captures what `request` may change, before it runs. `None` for requests that change no
-/// mesh, or that will be refused because what they name is gone.
-pub fn begin(world: &World, request: &EditRequest) -> Option<Pending> {
-    let m = MeshRef::new(world);
-    let mesh_of = |e: bevy::prelude::Entity| world.get::<InMesh>(e).map(|x| x.0);
-    let local = |mesh: Option<MeshId>, seeds: &[VertexId]| {
-        mesh.map(|mesh| PendingKind::Local(LocalRecorder::begin(world, mesh, seeds)))
-    };
-    let whole = |mesh: MeshId| {
-        world
-            .get::<MeshInfo>(mesh.0)
-            .map(|_| PendingKind::Whole(MeshTables::capture(world, mesh)))
-    };
-    // Opening over no mesh loses nothing (the file is still there): no entry, so that the
-    // first Ctrl+Z never empties the editor. Replacing or deleting a mesh is an entry.
-    let replace = || {
-        let active = world.resource::<ActiveMesh>().0;
-        let saved = active
-            .filter(|a| world.get::<MeshInfo>(a.0).is_some())
-            .map(|a| SavedMesh::capture(world, a))?;
-        Some(PendingKind::Replace(Some(saved)))
-    };
-    let history = world.resource::<UndoHistory>();
-    let mut merge = None;
-    let kind = match request {
-        EditRequest::Flip(e)
-        | EditRequest::Split(e)
-        | EditRequest::Collapse(e)
-        | EditRequest::Dissolve(e) => {
-            m.try_edge(*e)?;
-            let (a, b) = m.edge_vertices(*e);
-            local(mesh_of(e.0), &[a, b])
-        }
-        EditRequest::SplitFace(f, a, b) => local(mesh_of(f.0), &[*a, *b]),
-        EditRequest::SplitVertex(v) => local(mesh_of(v.0), &[*v]),
-        EditRequest::MoveVertex(v, _) => {
-            merge = Some(MergeKey::Move(*v));
-            if history.can_merge(MergeKey::Move(*v)) {
-                Some(PendingKind::Merge)
-            } else {
-                local(mesh_of(v.0), &[*v])
+/// Captures what `edit` may change in `mesh`, before it runs. `None` when it names what is
+/// gone (it will be refused and change nothing).
+pub fn begin_edit(world: &World, edit: &Edit, mesh: MeshId) -> Option<Pending> {
+    let merge = edit.merge_key();
+    let kind = if merge.is_some_and(|key| world.resource::<UndoHistory>().can_merge(key)) {
+        PendingKind::Merge
+    } else {
+        match edit.reach(world, mesh)? {
+            Reach::Local(mesh, seeds) => {
+                PendingKind::Local(LocalRecorder::begin(world, mesh, &seeds))
             }
+            Reach::Whole(mesh) => PendingKind::Whole(MeshTables::capture(world, mesh)),
         }
-        EditRequest::LevelOfDetail(_) => {
-            merge = Some(MergeKey::LevelOfDetail);
-            if history.can_merge(MergeKey::LevelOfDetail) {
-                Some(PendingKind::Merge)
-            } else {
-                let pm = world.resource::<super::apply::History>().pm.as_ref()?;
-                whole(pm.mesh)
-            }
-        }
-        EditRequest::Triangulate(mesh)
-        | EditRequest::Simplify(mesh, _)
-        | EditRequest::LoopSubdivide(mesh)
-        | EditRequest::CatmullClark(mesh)
-        | EditRequest::Remesh(mesh) => whole(*mesh),
-        EditRequest::Open(_) | EditRequest::DeleteMesh => replace(),
-        EditRequest::ConfirmDiscard(true) => {
-            match world.resource::<super::requests::ConfirmDiscard>().0 {
-                Some(PendingDiscard::Open(_)) => replace(),
-                _ => None,
-            }
-        }
-        EditRequest::ConfirmDiscard(false)
-        | EditRequest::Select(_)
-        | EditRequest::Navigate(_)
-        | EditRequest::Save(_)
-        | EditRequest::CancelJob
-        | EditRequest::Undo
-        | EditRequest::Redo => None,
-    }?;
+    };
     Some(Pending {
         kind,
         selection: world.resource::<Selection>().element,
         merge,
+    })
+}
+
+/// Captures the active mesh whole, before it is replaced (an open) or deleted. `None` when
+/// there is no mesh: opening over no mesh loses nothing (the file is still there), so that the
+/// first Ctrl+Z never empties the editor.
+pub fn begin_replace(world: &World) -> Option<Pending> {
+    let active = world.resource::<ActiveMesh>().0;
+    let saved = active
+        .filter(|a| world.get::<MeshInfo>(a.0).is_some())
+        .map(|a| SavedMesh::capture(world, a))?;
+    Some(Pending {
+        kind: PendingKind::Replace(Some(saved)),
+        selection: world.resource::<Selection>().element,
+        merge: None,
     })
 }
 
@@ -403,12 +355,9 @@ pub struct Stepped {
 
 /// Undoes the last entry (`redo == false`) or redoes the last undone one.
 ///
-/// # Errors
-/// When there is nothing to undo (or redo); nothing changes then.
-pub fn step(world: &mut World, redo: bool) -> Result<Stepped, String> {
-    let Some(entry) = world.resource_mut::<UndoHistory>().stack(redo).pop() else {
-        return Err(format!("nothing to {}", if redo { "redo" } else { "undo" }));
-    };
+/// `None` when there is nothing to undo (or redo); nothing changes then.
+pub fn step(world: &mut World, redo: bool) -> Option<Stepped> {
+    let entry = world.resource_mut::<UndoHistory>().stack(redo).pop()?;
     let now_selected = world.resource::<Selection>().element;
     let (inverse, mut map, redraw) = entry.record.apply(world);
     for other in world.resource_mut::<UndoHistory>().stack(redo).iter_mut() {
@@ -417,7 +366,7 @@ pub fn step(world: &mut World, redo: bool) -> Result<Stepped, String> {
     let selection = entry
         .selection
         .map(|x| remap_element(x, &mut map))
-        .filter(|&x| super::selection::exists(&MeshRef::new(world), x));
+        .filter(|&x| exists(&MeshRef::new(world), x));
     let back = Entry::new(entry.label.clone(), inverse, now_selected, None);
     let mut history = world.resource_mut::<UndoHistory>();
     if redo {
@@ -427,7 +376,7 @@ pub fn step(world: &mut World, redo: bool) -> Result<Stepped, String> {
         history.redo.push(back);
     }
     world.resource_mut::<Selection>().element = selection;
-    Ok(Stepped {
+    Some(Stepped {
         label: entry.label,
         redraw,
     })

@@ -1,17 +1,24 @@
 //! Keyboard shortcuts: one table, read by the input system and listed by the help overlay.
 //!
-//! Shortcuts only write [`EditRequest`]s or flip view settings; they never touch a mesh. They
-//! are ignored while egui wants the keyboard (typing in a text field), which the UI reports
-//! through [`KeyboardCaptured`].
+//! Shortcuts only write [`Request`]s or flip view settings; they never touch a mesh. An edit's
+//! parameters are the panel's ([`UiState`]), the same structs and defaults as the command
+//! line's. Shortcuts are ignored while egui wants the keyboard (typing in a text field), which
+//! the UI reports through [`KeyboardCaptured`].
 
 use bevy::prelude::*;
 
+use crate::edit::{Edit, Scheme, Subdivision};
+use crate::mesh::MeshRef;
 use crate::mesh::ids::ElementId;
+use crate::ops::remesh::RemeshParams;
+use crate::ops::simplify::SimplifyParams;
 
-use super::apply::selected_edge;
+use super::dialog::{OpenDialog, PathPurpose};
+use super::finish::report;
+use super::jobs::Jobs;
 use super::render_sync::{ViewSettings, set_wireframes_visible};
-use super::requests::{EditOutcome, EditRequest, OutcomeLog, Relation};
-use super::selection::{ActiveMesh, MeshDirty, SelectMode, Selection};
+use super::requests::{Declined, Relation, Request};
+use super::selection::{ActiveMesh, MeshDirty, SelectMode, Selection, selected_edge};
 
 /// What a shortcut does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,15 +36,15 @@ pub enum Action {
     CutCorner,
     /// Triangulate the active mesh.
     Triangulate,
-    /// Simplify the active mesh (QEM) to the panel's ratio.
+    /// Simplify the active mesh (QEM) with the panel's parameters.
     Simplify,
     /// Split the selected vertex back (undo its last collapse from the simplification).
     SplitVertex,
-    /// Loop-subdivide the active mesh once.
+    /// Loop-subdivide the active mesh (the panel's levels).
     LoopSubdivide,
-    /// Catmull–Clark-subdivide the active mesh once.
+    /// Catmull–Clark-subdivide the active mesh (the panel's levels).
     CatmullClark,
-    /// Remesh the active mesh (isotropic, default parameters).
+    /// Remesh the active mesh (isotropic, the panel's parameters).
     Remesh,
     /// Move the selection along a relation.
     Navigate(Relation),
@@ -170,25 +177,25 @@ pub const SHORTCUTS: &[Shortcut] = &[
         shift: true,
         action: Action::Simplify,
         keys: "Shift+S",
-        description: "simplify (QEM) to the ratio set in the panel",
+        description: "simplify (QEM) to the target set in the panel",
     },
     key(
         KeyCode::KeyL,
         "L",
         Action::LoopSubdivide,
-        "Loop subdivision (triangles)",
+        "Loop subdivision (triangles; levels in the panel)",
     ),
     key(
         KeyCode::KeyQ,
         "Q",
         Action::CatmullClark,
-        "Catmull-Clark subdivision (to quads)",
+        "Catmull-Clark subdivision (to quads; levels in the panel)",
     ),
     key(
         KeyCode::KeyM,
         "M",
         Action::Remesh,
-        "isotropic remeshing (mean edge length, 5 iterations)",
+        "isotropic remeshing (length, iterations, feature angle in the panel)",
     ),
     key(
         KeyCode::KeyH,
@@ -337,15 +344,20 @@ pub const SHORTCUTS: &[Shortcut] = &[
 #[derive(Resource, Default, Debug, Clone, Copy)]
 pub struct KeyboardCaptured(pub bool);
 
-/// UI state that shortcuts can change.
+/// UI state that shortcuts read and change: the overlay, the path field, and the parameters
+/// of the whole-mesh edits (set in the panel; the command line's defaults).
 #[derive(Resource, Debug, Clone)]
 pub struct UiState {
     /// The help overlay is open.
     pub show_help: bool,
     /// The path field should take the keyboard focus (for Open / Save as).
     pub focus_path: Option<PathPurpose>,
-    /// The fraction of faces Simplify keeps (0.01–1, default one half).
-    pub simplify_ratio: f32,
+    /// Simplification: its target (a ratio or a face count) and limits.
+    pub simplify: SimplifyParams,
+    /// Remeshing: target length, iterations, feature angle.
+    pub remesh: RemeshParams,
+    /// Subdivision levels per press (1–[`Subdivision::MAX_LEVELS`]).
+    pub subdivision_levels: u32,
 }
 
 impl Default for UiState {
@@ -353,18 +365,11 @@ impl Default for UiState {
         Self {
             show_help: false,
             focus_path: None,
-            simplify_ratio: 0.5,
+            simplify: SimplifyParams::default(),
+            remesh: RemeshParams::default(),
+            subdivision_levels: 1,
         }
     }
-}
-
-/// What the path field is being focused for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PathPurpose {
-    /// Open the typed path.
-    Open,
-    /// Save to the typed path.
-    SaveAs,
 }
 
 /// The shortcut matching a key press with the given modifiers, if any.
@@ -395,38 +400,43 @@ pub fn keyboard_shortcuts(world: &mut World) {
 
 /// Performs an action: writes the request it stands for, or changes a setting.
 pub fn perform(world: &mut World, action: Action) {
-    let request = match action {
-        Action::SplitVertex => {
-            let Some(ElementId::Vertex(v)) = world.resource::<Selection>().element else {
-                refuse(world, action, "select a vertex first");
-                return;
-            };
-            EditRequest::SplitVertex(v)
+    match request_for(world, action) {
+        Ok(Some(request)) => {
+            world.write_message(request);
         }
+        Ok(None) => {}
+        Err(why) => report(world, format!("{action:?}").to_lowercase(), Err(why), 0.0),
+    }
+}
+
+/// The request an action stands for (`None` for actions that only change a setting, done
+/// here), or why it cannot be asked now.
+fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Declined> {
+    let selection = world.resource::<Selection>().element;
+    let m = MeshRef::new(world);
+    let edit = match action {
+        Action::SplitVertex => match selection {
+            Some(ElementId::Vertex(v)) => Edit::SplitVertex(v),
+            _ => return Err(Declined::SelectFirst("a vertex")),
+        },
         Action::CutCorner => {
-            let m = crate::mesh::MeshRef::new(world);
-            let target = match world.resource::<Selection>().element {
+            let target = match selection {
                 Some(ElementId::Halfedge(h)) if m.try_halfedge(h).is_some() => m
                     .face(h)
                     .map(|f| (f, m.to_vertex(h), m.to_vertex(m.next(m.next(h))))),
                 _ => None,
             };
-            let Some((f, a, b)) = target else {
-                refuse(world, action, "select a halfedge of a face first (mode 4)");
-                return;
-            };
-            EditRequest::SplitFace(f, a, b)
+            let (f, a, b) = target.ok_or(Declined::SelectFirst("a halfedge of a face (mode 4)"))?;
+            Edit::SplitFace(f, a, b)
         }
         Action::Flip | Action::Split | Action::Collapse | Action::Dissolve => {
-            let Some(edge) = selected_edge(world) else {
-                refuse(world, action, "select an edge (or halfedge) first");
-                return;
-            };
+            let edge = selected_edge(&m, selection)
+                .ok_or(Declined::SelectFirst("an edge (or halfedge)"))?;
             match action {
-                Action::Flip => EditRequest::Flip(edge),
-                Action::Split => EditRequest::Split(edge),
-                Action::Dissolve => EditRequest::Dissolve(edge),
-                _ => EditRequest::Collapse(edge),
+                Action::Flip => Edit::Flip(edge),
+                Action::Split => Edit::Split(edge),
+                Action::Dissolve => Edit::Dissolve(edge),
+                _ => Edit::Collapse(edge),
             }
         }
         Action::Triangulate
@@ -434,43 +444,48 @@ pub fn perform(world: &mut World, action: Action) {
         | Action::CatmullClark
         | Action::Remesh
         | Action::Simplify => {
-            let Some(mesh) = world.resource::<ActiveMesh>().0 else {
-                refuse(world, action, "there is no mesh");
-                return;
-            };
+            if world.resource::<ActiveMesh>().0.is_none() {
+                return Err(Declined::NoMesh);
+            }
+            let ui = world.resource::<UiState>();
+            let levels = ui.subdivision_levels.clamp(1, Subdivision::MAX_LEVELS);
             match action {
-                Action::Triangulate => EditRequest::Triangulate(mesh),
-                Action::LoopSubdivide => EditRequest::LoopSubdivide(mesh),
-                Action::Remesh => EditRequest::Remesh(mesh),
-                Action::Simplify => {
-                    EditRequest::Simplify(mesh, world.resource::<UiState>().simplify_ratio)
-                }
-                _ => EditRequest::CatmullClark(mesh),
+                Action::Triangulate => Edit::Triangulate,
+                Action::Remesh => Edit::Remesh(ui.remesh),
+                Action::Simplify => Edit::Simplify(ui.simplify),
+                Action::LoopSubdivide => Edit::Subdivide(Subdivision {
+                    scheme: Scheme::Loop,
+                    levels,
+                }),
+                _ => Edit::Subdivide(Subdivision {
+                    scheme: Scheme::CatmullClark,
+                    levels,
+                }),
             }
         }
-        Action::Navigate(relation) => EditRequest::Navigate(relation),
+        Action::Navigate(relation) => return Ok(Some(Request::Navigate(relation))),
         // Esc first stops a running operation, as in Blender.
-        Action::ClearSelection if world.resource::<super::jobs::Jobs>().running.is_some() => {
-            EditRequest::CancelJob
+        Action::ClearSelection if world.resource::<Jobs>().running.is_some() => {
+            return Ok(Some(Request::CancelJob));
         }
-        Action::ClearSelection => EditRequest::Select(None),
-        Action::DeleteMesh => EditRequest::DeleteMesh,
-        Action::Undo => EditRequest::Undo,
-        Action::Redo => EditRequest::Redo,
-        Action::Save => EditRequest::Save(None),
+        Action::ClearSelection => return Ok(Some(Request::Select(None))),
+        Action::DeleteMesh => return Ok(Some(Request::DeleteMesh)),
+        Action::Undo => return Ok(Some(Request::Undo)),
+        Action::Redo => return Ok(Some(Request::Redo)),
+        Action::Save => return Ok(Some(Request::Save(None))),
         Action::Mode(mode) => {
             *world.resource_mut::<SelectMode>() = mode;
-            return;
+            return Ok(None);
         }
         Action::Frame => {
             super::scene::frame_selection(world);
-            return;
+            return Ok(None);
         }
         Action::ToggleSmooth => {
             let mut settings = world.resource_mut::<ViewSettings>();
             settings.smooth = !settings.smooth;
             mark_all_dirty(world);
-            return;
+            return Ok(None);
         }
         Action::ToggleWireframe => {
             let mut settings = world.resource_mut::<ViewSettings>();
@@ -480,43 +495,33 @@ pub fn perform(world: &mut World, action: Action) {
             if visible {
                 mark_all_dirty(world);
             }
-            return;
+            return Ok(None);
         }
         Action::ToggleHalfedges => {
             let mut settings = world.resource_mut::<ViewSettings>();
             settings.halfedges = !settings.halfedges;
-            return;
+            return Ok(None);
         }
         Action::Open | Action::SaveAs | Action::Help => {
-            let mut ui = world.resource_mut::<UiState>();
-            match action {
-                Action::Open => ui.focus_path = Some(PathPurpose::Open),
-                Action::SaveAs => ui.focus_path = Some(PathPurpose::SaveAs),
-                _ => ui.show_help = !ui.show_help,
-            }
             let purpose = match action {
                 Action::Open => Some(PathPurpose::Open),
                 Action::SaveAs => Some(PathPurpose::SaveAs),
                 _ => None,
             };
+            let mut ui = world.resource_mut::<UiState>();
+            match purpose {
+                Some(purpose) => ui.focus_path = Some(purpose),
+                None => ui.show_help = !ui.show_help,
+            }
             if let Some(purpose) = purpose
-                && world.contains_resource::<super::dialog::OpenDialog>()
+                && world.contains_resource::<OpenDialog>()
             {
                 super::dialog::show(world, purpose);
             }
-            return;
+            return Ok(None);
         }
     };
-    world.write_message(request);
-}
-
-fn refuse(world: &mut World, action: Action, reason: &str) {
-    let outcome = EditOutcome {
-        request: format!("{action:?}").to_lowercase(),
-        result: Err(reason.to_string()),
-    };
-    world.write_message(outcome.clone());
-    world.resource_mut::<OutcomeLog>().push(outcome);
+    Ok(Some(Request::Edit(edit)))
 }
 
 fn mark_all_dirty(world: &mut World) {

@@ -16,6 +16,7 @@ pub mod apply;
 pub mod automation;
 pub mod dialog;
 pub mod drag;
+pub mod finish;
 pub mod history;
 pub mod input;
 pub mod jobs;
@@ -25,12 +26,13 @@ pub mod render_sync;
 pub mod requests;
 pub mod scene;
 pub mod selection;
+pub mod session;
 pub mod ui;
 
 use bevy::prelude::*;
 use std::path::PathBuf;
 
-use requests::{EditOutcome, EditRequest, OutcomeLog};
+use requests::{EditOutcome, OutcomeLog, Request};
 use selection::{ActiveMesh, Hover, SelectMode, Selection};
 
 /// The editor's stages, in order, in `Update`.
@@ -57,7 +59,7 @@ pub struct EditorLogicPlugin;
 
 impl Plugin for EditorLogicPlugin {
     fn build(&self, app: &mut App) {
-        app.add_message::<EditRequest>()
+        app.add_message::<Request>()
             .add_message::<EditOutcome>()
             .add_message::<picking::PickRequest>()
             .init_resource::<Selection>()
@@ -65,7 +67,7 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<SelectMode>()
             .init_resource::<ActiveMesh>()
             .init_resource::<OutcomeLog>()
-            .init_resource::<apply::History>()
+            .init_resource::<session::SimplificationHistory>()
             .init_resource::<history::UndoHistory>()
             .init_resource::<jobs::Jobs>()
             .init_resource::<jobs::JobSettings>()
@@ -115,9 +117,9 @@ impl Plugin for EditorWindowPlugin {
         let open = self.open.clone();
         app.init_gizmo_group::<overlay::HighlightGizmos>()
             .add_systems(Startup, (scene::setup_scene, overlay::configure_gizmos))
-            .add_systems(Startup, move |mut requests: MessageWriter<EditRequest>| {
+            .add_systems(Startup, move |mut requests: MessageWriter<Request>| {
                 if let Some(path) = open.clone() {
-                    requests.write(EditRequest::Open(path));
+                    requests.write(Request::Open(path));
                 }
             })
             .add_systems(
@@ -157,11 +159,11 @@ impl Plugin for EditorWindowPlugin {
 /// Opens files dropped on the window.
 fn open_dropped_files(
     mut drops: MessageReader<bevy::window::FileDragAndDrop>,
-    mut requests: MessageWriter<EditRequest>,
+    mut requests: MessageWriter<Request>,
 ) {
     for drop in drops.read() {
         if let bevy::window::FileDragAndDrop::DroppedFile { path_buf, .. } = drop {
-            requests.write(EditRequest::Open(path_buf.clone()));
+            requests.write(Request::Open(path_buf.clone()));
         }
     }
 }

@@ -17,7 +17,7 @@ use crate::mesh::ids::{ElementId, FaceId, HalfedgeId};
 use crate::mesh::topology::MeshRef;
 
 use super::render_sync::{RenderOf, TriangleFaces};
-use super::requests::EditRequest;
+use super::requests::Request;
 use super::selection::{Hover, SelectMode};
 
 /// Screen distance (pixels) within which a click picks a vertex in auto mode.
@@ -47,7 +47,7 @@ pub fn on_click(
     cameras: Query<(&Camera, &GlobalTransform)>,
     mut ray_cast: MeshRayCast,
     mut picks: MessageWriter<PickRequest>,
-    mut requests: MessageWriter<EditRequest>,
+    mut requests: MessageWriter<Request>,
 ) {
     if click.event.button != PointerButton::Primary {
         return;
@@ -74,7 +74,7 @@ pub fn on_click(
             });
         }
         None => {
-            requests.write(EditRequest::Select(None));
+            requests.write(Request::Select(None));
         }
     }
 }
@@ -148,7 +148,7 @@ pub fn resolve_picks(
             continue;
         };
         if pick.select {
-            world.write_message(EditRequest::Select(Some(element)));
+            world.write_message(Request::Select(Some(element)));
         } else {
             world.resource_mut::<Hover>().element = Some(element);
         }

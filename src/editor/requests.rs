@@ -1,15 +1,18 @@
 //! The messages that drive the editor: requests in, outcomes out.
 //!
-//! Every way of asking for an edit — a key, a panel button, a test — writes the same
-//! [`EditRequest`]. One exclusive system ([`super::apply`]) applies them in order, in the
-//! `Apply` set, and writes one [`EditOutcome`] per request, which the status line, the log and
-//! (later) the history read. Nothing but that system changes a mesh.
+//! Every way of asking for an edit — a key, a panel button, a script, a test — writes the same
+//! [`Request`]. One exclusive system (`apply::apply_requests`) applies them in order, in the
+//! `Apply` set, and writes one [`EditOutcome`] per request (a job's when it finishes), which the
+//! status line and the log read. Nothing else changes a mesh.
 
-use bevy::math::Vec3;
 use bevy::prelude::{Message, Resource};
 use std::path::PathBuf;
 
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
+use thiserror::Error;
+
+use crate::edit::Edit;
+use crate::mesh::ids::ElementId;
+use crate::ops::Refusal;
 
 /// A step along a halfedge relation, from the selected element.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -56,35 +59,12 @@ impl Relation {
     }
 }
 
-/// An edit or navigation the user asked for.
+/// Something the user asked of the editor: an [`Edit`] of a mesh, or a request about the
+/// session (selection, files, undo, jobs).
 #[derive(Message, Clone, Debug, PartialEq)]
-pub enum EditRequest {
-    /// Flip an edge.
-    Flip(EdgeId),
-    /// Split an edge at its midpoint.
-    Split(EdgeId),
-    /// Collapse an edge to its midpoint.
-    Collapse(EdgeId),
-    /// Merge the two faces of an edge.
-    Dissolve(EdgeId),
-    /// Split a face between two of its corners.
-    SplitFace(FaceId, VertexId, VertexId),
-    /// Triangulate every polygon of a mesh.
-    Triangulate(MeshId),
-    /// QEM simplification to a ratio of the faces (recording its history).
-    Simplify(MeshId, f32),
-    /// Move along the last simplification's history to about this many faces.
-    LevelOfDetail(usize),
-    /// Split back the last collapse of the simplification history, if it kept this vertex.
-    SplitVertex(VertexId),
-    /// One level of Loop subdivision.
-    LoopSubdivide(MeshId),
-    /// One level of Catmull–Clark subdivision.
-    CatmullClark(MeshId),
-    /// Isotropic remeshing with the default parameters (mean edge length, 5 iterations).
-    Remesh(MeshId),
-    /// Move a vertex.
-    MoveVertex(VertexId, Vec3),
+pub enum Request {
+    /// Apply an edit: to the elements it names, or to the active mesh.
+    Edit(Edit),
     /// Select an element (or nothing).
     Select(Option<ElementId>),
     /// Move the selection along a relation.
@@ -106,49 +86,88 @@ pub enum EditRequest {
     ConfirmDiscard(bool),
 }
 
-impl EditRequest {
+impl From<Edit> for Request {
+    fn from(edit: Edit) -> Self {
+        Request::Edit(edit)
+    }
+}
+
+impl Request {
     /// A short label for logs.
     pub fn label(&self) -> String {
         match self {
-            EditRequest::Flip(e) => format!("flip {e}"),
-            EditRequest::Split(e) => format!("split {e}"),
-            EditRequest::Collapse(e) => format!("collapse {e}"),
-            EditRequest::Dissolve(e) => format!("dissolve {e}"),
-            EditRequest::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
-            EditRequest::Triangulate(m) => format!("triangulate {m}"),
-            EditRequest::Simplify(m, r) => format!("simplify {m} to {:.0} %", r * 100.0),
-            EditRequest::LevelOfDetail(n) => format!("level of detail {n} faces"),
-            EditRequest::SplitVertex(v) => format!("split {v} back"),
-            EditRequest::LoopSubdivide(m) => format!("Loop subdivision {m}"),
-            EditRequest::CatmullClark(m) => format!("Catmull-Clark subdivision {m}"),
-            EditRequest::Remesh(m) => format!("remesh {m}"),
-            EditRequest::MoveVertex(v, _) => format!("move {v}"),
-            EditRequest::Select(Some(x)) => format!("select {x}"),
-            EditRequest::Select(None) => "select nothing".into(),
-            EditRequest::Navigate(r) => format!("go to {}", r.name()),
-            EditRequest::Open(p) => format!("open {}", p.display()),
-            EditRequest::Save(Some(p)) => format!("save as {}", p.display()),
-            EditRequest::Save(None) => "save".into(),
-            EditRequest::DeleteMesh => "delete mesh".into(),
-            EditRequest::CancelJob => "cancel".into(),
-            EditRequest::Undo => "undo".into(),
-            EditRequest::Redo => "redo".into(),
-            EditRequest::ConfirmDiscard(true) => "discard changes".into(),
-            EditRequest::ConfirmDiscard(false) => "keep changes".into(),
+            Request::Edit(edit) => edit.label(),
+            Request::Select(Some(x)) => format!("select {x}"),
+            Request::Select(None) => "select nothing".into(),
+            Request::Navigate(r) => format!("go to {}", r.name()),
+            Request::Open(p) => format!("open {}", p.display()),
+            Request::Save(Some(p)) => format!("save as {}", p.display()),
+            Request::Save(None) => "save".into(),
+            Request::DeleteMesh => "delete mesh".into(),
+            Request::CancelJob => "cancel".into(),
+            Request::Undo => "undo".into(),
+            Request::Redo => "redo".into(),
+            Request::ConfirmDiscard(true) => "discard changes".into(),
+            Request::ConfirmDiscard(false) => "keep changes".into(),
         }
     }
 
-    /// Whether the request changes a mesh (and so marks it for re-rendering).
+    /// Whether the request changes a mesh (and so must wait while a job runs).
     pub fn edits(&self) -> bool {
-        !matches!(
+        matches!(
             self,
-            EditRequest::Select(_)
-                | EditRequest::Navigate(_)
-                | EditRequest::Save(_)
-                | EditRequest::ConfirmDiscard(_)
-                | EditRequest::CancelJob
+            Request::Edit(_)
+                | Request::Open(_)
+                | Request::DeleteMesh
+                | Request::Undo
+                | Request::Redo
+                | Request::ConfirmDiscard(true)
         )
     }
+}
+
+/// Why the editor did not do what was asked. The mesh is then unchanged.
+#[derive(Clone, Debug, PartialEq, Error)]
+pub enum Declined {
+    /// The operation refused (see [`Refusal`]).
+    #[error(transparent)]
+    Refused(#[from] Refusal),
+    /// There is no mesh to act on.
+    #[error("there is no mesh")]
+    NoMesh,
+    /// The request needs a selected element of some kind.
+    #[error("select {0} first")]
+    SelectFirst(&'static str),
+    /// A relation that leads nowhere from the selected element.
+    #[error("{0} has no {1} (a boundary halfedge has no face)")]
+    NoRelation(ElementId, &'static str),
+    /// The named element does not exist.
+    #[error("{0} does not exist")]
+    NoSuchElement(ElementId),
+    /// An edit was asked while an operation runs as a job.
+    #[error("{0} is still running: wait for it, or cancel it (Esc)")]
+    Busy(String),
+    /// Cancel was asked with no job running.
+    #[error("no operation is running")]
+    NoJob,
+    /// Nothing to undo or redo.
+    #[error("nothing to {0}")]
+    NothingTo(&'static str),
+    /// Opening over unsaved changes: the user is asked first.
+    #[error("the mesh has unsaved changes: save it (Ctrl+S) or discard them first")]
+    UnsavedChanges,
+    /// An answer to a question nobody asked.
+    #[error("nothing is waiting for an answer")]
+    NothingWaiting,
+    /// Save without a path for a mesh that never had a file.
+    #[error("this mesh has no file yet: use Save as")]
+    NoFileYet,
+    /// A file could not be read or written; the text names it and says why.
+    #[error("{0}")]
+    File(String),
+    /// A job's thread could not start, or broke (a bug).
+    #[error("{0}")]
+    Job(String),
 }
 
 /// What waits for the user to say whether unsaved changes may be discarded.
@@ -164,13 +183,13 @@ pub enum PendingDiscard {
 #[derive(Resource, Default, Debug, Clone)]
 pub struct ConfirmDiscard(pub Option<PendingDiscard>);
 
-/// What became of one [`EditRequest`].
+/// What became of one [`Request`].
 #[derive(Message, Clone, Debug, PartialEq)]
 pub struct EditOutcome {
     /// The request's label.
     pub request: String,
-    /// `Ok(summary)` if applied, `Err(reason)` if refused (the mesh is then unchanged).
-    pub result: Result<String, String>,
+    /// `Ok(summary)` if applied, `Err(why)` if declined (the mesh is then unchanged).
+    pub result: Result<String, Declined>,
 }
 
 /// The last outcomes, newest last, for the status line and the log panel.

@@ -2,7 +2,7 @@
 
 use bevy::prelude::{Component, Resource};
 
-use crate::mesh::ids::{ElementId, MeshId};
+use crate::mesh::ids::{EdgeId, ElementId, MeshId};
 use crate::mesh::topology::MeshRef;
 
 use super::requests::Relation;
@@ -104,6 +104,15 @@ pub fn navigate(m: &MeshRef<'_>, from: ElementId, relation: Relation) -> Option<
             ElementId::Face(face?)
         }
     })
+}
+
+/// The edge under a selection, for operations on edges: the edge itself, or a halfedge's edge.
+pub fn selected_edge(m: &MeshRef<'_>, selection: Option<ElementId>) -> Option<EdgeId> {
+    match selection? {
+        ElementId::Edge(e) => m.try_edge(e).map(|_| e),
+        ElementId::Halfedge(h) => m.try_halfedge(h).map(|x| x.edge),
+        _ => None,
+    }
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 //!
 //! The UI only reads and asks. An exclusive system ([`snapshot`]) copies what the panels show
 //! into [`InspectorView`] in the `Ui` set; the egui system ([`panels`]) draws that copy and
-//! answers clicks by writing [`EditRequest`]s, exactly as the keyboard does. Statistics and
+//! answers clicks by writing [`Request`]s, exactly as the keyboard does. Statistics and
 //! validation (O(mesh)) are recomputed only when a mesh was rebuilt, not every frame.
 
 use bevy::math::Vec3;
@@ -15,11 +15,16 @@ use crate::mesh::ids::{ElementId, parse_element};
 use crate::mesh::topology::MeshRef;
 use crate::mesh::{MeshInfo, MeshStats, mesh_stats, validate};
 
+use crate::edit::{Edit, Subdivision};
+use crate::ops::simplify::SimplifyTarget;
+
 use super::EditorSystems;
-use super::input::{Action, KeyboardCaptured, PathPurpose, SHORTCUTS, UiState, perform};
+use super::dialog::PathPurpose;
+use super::input::{Action, KeyboardCaptured, SHORTCUTS, UiState, perform};
 use super::render_sync::{RenderStats, ViewSettings};
-use super::requests::{EditRequest, OutcomeLog, Relation};
+use super::requests::{OutcomeLog, Relation, Request};
 use super::selection::{ActiveMesh, SelectMode, Selection, navigate};
+use super::session::SimplificationHistory;
 
 /// The panels' plugin.
 pub struct UiPlugin;
@@ -152,7 +157,13 @@ pub fn snapshot(world: &mut World) {
     match active.filter(|m| world.get::<MeshInfo>(m.0).is_some()) {
         None => view.mesh = None,
         Some(mesh) => {
-            if view.mesh.is_none() || view.stats_generation != generation {
+            // Statistics and validation are O(mesh): they wait for the end of a drag (the
+            // mouse button held on a vertex or a panel field) instead of slowing each frame.
+            let dragging = world
+                .get_resource::<ButtonInput<MouseButton>>()
+                .is_some_and(|b| b.pressed(MouseButton::Left));
+            let stale = view.stats_generation != generation && !dragging;
+            if view.mesh.is_none() || stale {
                 let info = world.get::<MeshInfo>(mesh.0).cloned().unwrap_or_default();
                 view.mesh = Some(MeshView {
                     name: info.name,
@@ -164,14 +175,7 @@ pub fn snapshot(world: &mut World) {
             }
         }
     }
-    view.lod = world
-        .resource::<super::apply::History>()
-        .pm
-        .as_ref()
-        .map(|pm| {
-            let coarsest = pm.full_faces - pm.records.iter().map(|r| r.faces).sum::<usize>();
-            (coarsest, pm.faces(), pm.full_faces)
-        });
+    view.lod = world.resource::<SimplificationHistory>().levels();
     let history = world.resource::<super::history::UndoHistory>();
     view.history.clear();
     view.history.extend(
@@ -292,7 +296,7 @@ pub fn panels(
     mut insets: ResMut<super::scene::PanelInsets>,
     confirm: Res<super::requests::ConfirmDiscard>,
     mut pending: ResMut<PendingActions>,
-    mut requests: MessageWriter<EditRequest>,
+    mut requests: MessageWriter<Request>,
 ) -> Result {
     let ctx = contexts.ctx_mut()?.clone();
     let mut root = egui::Ui::new(
@@ -337,7 +341,7 @@ pub fn panels(
                         let bar = egui::ProgressBar::new(*fraction).text(text).animate(true);
                         ui.add(bar.desired_width(ui.available_width() - 70.0));
                         if ui.button("Cancel").clicked() {
-                            requests.write(EditRequest::CancelJob);
+                            requests.write(Request::CancelJob);
                         }
                     });
                 }
@@ -346,7 +350,7 @@ pub fn panels(
                     let slider = egui::Slider::new(&mut faces, coarsest..=full)
                         .text("faces (level of detail)");
                     if ui.add(slider).changed() && faces != now {
-                        requests.write(EditRequest::LevelOfDetail(faces));
+                        requests.write(Request::Edit(Edit::LevelOfDetail(faces)));
                     }
                 }
                 ui.separator();
@@ -387,10 +391,10 @@ pub fn panels(
                 ui.label("(Cancel, then Ctrl+S, to keep them.)");
                 ui.horizontal(|ui| {
                     if ui.button("Discard changes").clicked() {
-                        requests.write(EditRequest::ConfirmDiscard(true));
+                        requests.write(Request::ConfirmDiscard(true));
                     }
                     if ui.button("Cancel").clicked() {
-                        requests.write(EditRequest::ConfirmDiscard(false));
+                        requests.write(Request::ConfirmDiscard(false));
                     }
                 });
             });
@@ -433,7 +437,7 @@ fn file_section(
     ui: &mut egui::Ui,
     fields: &mut UiFields,
     ui_state: &mut UiState,
-    requests: &mut MessageWriter<EditRequest>,
+    requests: &mut MessageWriter<Request>,
 ) {
     // Ctrl+O / Ctrl+Shift+S focus the field; Enter then opens or saves, as the key asked.
     if let Some(purpose) = ui_state.focus_path.take() {
@@ -458,13 +462,13 @@ fn file_section(
         let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
         if entered && has_path {
             requests.write(match fields.enter_means {
-                PathPurpose::Open => EditRequest::Open(path.clone()),
-                PathPurpose::SaveAs => EditRequest::Save(Some(path.clone())),
+                PathPurpose::Open => Request::Open(path.clone()),
+                PathPurpose::SaveAs => Request::Save(Some(path.clone())),
             });
             fields.enter_means = PathPurpose::Open;
         }
         if ui.button("Open").clicked() && has_path {
-            requests.write(EditRequest::Open(path.clone()));
+            requests.write(Request::Open(path.clone()));
         }
     });
     ui.horizontal(|ui| {
@@ -472,11 +476,11 @@ fn file_section(
             .button(format!("Save ({})", shortcut_label(Action::Save)))
             .clicked()
         {
-            requests.write(EditRequest::Save(None));
+            requests.write(Request::Save(None));
         }
         let save_as = format!("Save as ({})", shortcut_label(Action::SaveAs));
         if ui.button(save_as).clicked() && has_path {
-            requests.write(EditRequest::Save(Some(path.clone())));
+            requests.write(Request::Save(Some(path.clone())));
         }
     });
 }
@@ -534,7 +538,7 @@ fn selection_section(
     ui: &mut egui::Ui,
     view: &InspectorView,
     fields: &mut UiFields,
-    requests: &mut MessageWriter<EditRequest>,
+    requests: &mut MessageWriter<Request>,
 ) {
     ui.horizontal(|ui| {
         let field = ui.add(
@@ -546,7 +550,7 @@ fn selection_section(
         if ui.button("Go").clicked() || entered {
             match parse_element(&fields.jump) {
                 Some(id) => {
-                    requests.write(EditRequest::Select(Some(id)));
+                    requests.write(Request::Select(Some(id)));
                 }
                 None => {
                     fields.jump = format!("not an id: {}", fields.jump);
@@ -583,7 +587,7 @@ fn selection_section(
                         .link(egui::RichText::new(t.to_string()).monospace())
                         .clicked()
                     {
-                        requests.write(EditRequest::Select(Some(*t)));
+                        requests.write(Request::Select(Some(*t)));
                     }
                 }
                 None => {
@@ -611,7 +615,7 @@ fn selection_section(
                 | ui.add(egui::DragValue::new(&mut q.z).speed(speed).prefix("z "))
                     .changed();
             if changed && q != p {
-                requests.write(EditRequest::MoveVertex(v, q));
+                requests.write(Request::Edit(Edit::MoveVertex(v, q)));
             }
         });
     }
@@ -662,9 +666,6 @@ fn operations_section(
             (Action::CutCorner, "Split face"),
             (Action::SplitVertex, "Split vertex back"),
             (Action::Triangulate, "Triangulate"),
-            (Action::LoopSubdivide, "Loop"),
-            (Action::CatmullClark, "Catmull-Clark"),
-            (Action::Remesh, "Remesh"),
             (Action::Frame, "Frame"),
             (Action::DeleteMesh, "Delete mesh"),
         ] {
@@ -676,19 +677,7 @@ fn operations_section(
             }
         }
     });
-    ui.horizontal(|ui| {
-        ui.add(
-            egui::Slider::new(&mut ui_state.simplify_ratio, 0.01..=1.0)
-                .text("of the faces")
-                .custom_formatter(|v, _| format!("{:.0} %", v * 100.0)),
-        );
-        if ui
-            .button(format!("Simplify ({})", shortcut_label(Action::Simplify)))
-            .clicked()
-        {
-            pending.0.push(Action::Simplify);
-        }
-    });
+    parameters_section(ui, ui_state, pending);
     ui.horizontal(|ui| {
         ui.label("click selects");
         for m in [
@@ -714,5 +703,86 @@ fn operations_section(
                 pending.0.push(action);
             }
         }
+    });
+}
+
+/// The whole-mesh edits with their parameters: the same structs and defaults as the command
+/// line's steps (`simplify:RATIO`, `simplify-faces:N`, `remesh:ITERATIONS:LENGTH`, `loop:N`).
+fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
+    let mut button = |ui: &mut egui::Ui, action: Action, name: &str| {
+        if ui
+            .button(format!("{name} ({})", shortcut_label(action)))
+            .clicked()
+        {
+            pending.0.push(action);
+        }
+    };
+    // Simplify: a ratio of the faces, or a face count.
+    ui.horizontal(|ui| {
+        let params = &mut state.simplify;
+        let mut by_ratio = matches!(params.target, SimplifyTarget::Ratio(_));
+        if ui.selectable_label(by_ratio, "%").clicked() {
+            by_ratio = true;
+        }
+        if ui.selectable_label(!by_ratio, "faces").clicked() {
+            by_ratio = false;
+        }
+        params.target = match (by_ratio, params.target) {
+            (true, SimplifyTarget::Ratio(mut r)) => {
+                let slider = egui::Slider::new(&mut r, 0.01..=1.0)
+                    .custom_formatter(|v, _| format!("{:.0} %", v * 100.0));
+                ui.add(slider);
+                SimplifyTarget::Ratio(r)
+            }
+            (false, SimplifyTarget::Faces(mut n)) => {
+                ui.add(
+                    egui::DragValue::new(&mut n)
+                        .range(1..=usize::MAX)
+                        .speed(10.0),
+                );
+                SimplifyTarget::Faces(n)
+            }
+            (true, SimplifyTarget::Faces(_)) => SimplifyTarget::Ratio(0.5),
+            (false, SimplifyTarget::Ratio(_)) => SimplifyTarget::Faces(1000),
+        };
+        button(ui, Action::Simplify, "Simplify");
+    });
+    // Remesh: target length (mean edge length when unset), iterations, feature angle.
+    ui.horizontal_wrapped(|ui| {
+        let params = &mut state.remesh;
+        let mut auto = params.target_length.is_none();
+        ui.checkbox(&mut auto, "mean length");
+        if auto {
+            params.target_length = None;
+        } else {
+            let mut length = params.target_length.unwrap_or(0.01);
+            let field = egui::DragValue::new(&mut length)
+                .range(1e-6..=f32::MAX)
+                .speed(0.0005)
+                .prefix("L ");
+            ui.add(field);
+            params.target_length = Some(length);
+        }
+        ui.add(
+            egui::DragValue::new(&mut params.iterations)
+                .range(1..=100)
+                .suffix(" iterations"),
+        );
+        ui.add(
+            egui::DragValue::new(&mut params.feature_angle_deg)
+                .range(0.0..=180.0)
+                .suffix("° features"),
+        );
+        button(ui, Action::Remesh, "Remesh");
+    });
+    // Subdivision: levels per press.
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::DragValue::new(&mut state.subdivision_levels)
+                .range(1..=Subdivision::MAX_LEVELS)
+                .suffix(" level(s)"),
+        );
+        button(ui, Action::LoopSubdivide, "Loop");
+        button(ui, Action::CatmullClark, "Catmull-Clark");
     });
 }

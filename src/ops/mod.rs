@@ -22,7 +22,7 @@ use crate::mesh::ids::ElementId;
 use thiserror::Error;
 
 /// Why an operation was not carried out. Expected, shown to the user, never a bug.
-#[derive(Clone, Debug, PartialEq, Eq, Error)]
+#[derive(Clone, Debug, PartialEq, Error)]
 pub enum Refusal {
     /// The id names no live element of the expected kind (despawned, or never existed).
     #[error("{0} does not exist (stale or wrong id)")]
@@ -60,7 +60,51 @@ pub enum Refusal {
     /// The operation needs triangles.
     #[error("{0} is not a triangle (triangulate first)")]
     NotTriangle(ElementId),
-    /// The input is otherwise unsuitable; the text says why.
-    #[error("{0}")]
-    Unsuitable(String),
+    /// There is no mesh to act on.
+    #[error("there is no mesh")]
+    NoMesh,
+    /// A position or a parameter that would put a point at infinity or NaN.
+    #[error("{0} is not a finite position")]
+    NotFinite(bevy::math::Vec3),
+    /// A split parameter outside the open interval (0, 1).
+    #[error("split parameter {0} is not strictly between 0 and 1")]
+    SplitParameter(f32),
+    /// The split point would coincide with an end of the edge (the edge is too short for the
+    /// floating-point grid there).
+    #[error("the split point would coincide with an endpoint of {0}")]
+    SplitAtEndpoint(ElementId),
+    /// The vertex is not a corner of the face.
+    #[error("{0} is not a corner of {1}")]
+    NotACorner(ElementId, ElementId),
+    /// The result would need more rows than 32-bit indices address.
+    #[error("the result would have {0} halfedges, more than 32-bit indices can address")]
+    TooLarge(usize),
+    /// A collapse that removed a polygon corner: only triangle collapses can be split back.
+    #[error("this collapse removed a polygon corner: only triangle collapses can be split back")]
+    NotInvertible,
+    /// The simplification history no longer describes the mesh (it was edited since); the
+    /// text names what no longer fits.
+    #[error("the simplification history no longer fits the mesh: {0}")]
+    HistoryMismatch(String),
+    /// There is no simplification history to move along.
+    #[error("no simplification to move along: simplify first")]
+    NoHistory,
+    /// The mesh is already at the full level of its simplification history.
+    #[error("the mesh is at its full level")]
+    AtFullLevel,
+    /// Only the vertex kept by the last collapse can be split back.
+    #[error("{0} is not the next vertex to split (that is {1}); use the level slider")]
+    NotNextSplit(ElementId, ElementId),
+    /// The mesh breaks an invariant (the text says which, and where).
+    #[error("invalid: {0}")]
+    Invalid(String),
+    /// A `process` step names a vertex number the input file does not have.
+    #[error("the input has no vertex {0}")]
+    NoInputVertex(u32),
+    /// A `process` step names two input vertices that share no edge.
+    #[error("input vertices {0} and {1} share no edge")]
+    NoEdgeBetween(u32, u32),
+    /// A `process` step names two input vertices that share no face.
+    #[error("input vertices {0} and {1} share no face")]
+    NoSharedFace(u32, u32),
 }

@@ -182,8 +182,9 @@ impl ProgressiveMesh {
     }
 
     fn vertex(&self, slot: u32) -> Result<VertexId, Refusal> {
-        self.slots[slot as usize]
-            .ok_or_else(|| Refusal::Unsuitable(format!("history slot {slot} has no vertex now")))
+        self.slots[slot as usize].ok_or_else(|| {
+            Refusal::HistoryMismatch(format!("history slot {slot} has no vertex now"))
+        })
     }
 
     /// Splits the last applied collapse back. Returns `false` at the full level.
@@ -219,7 +220,7 @@ impl ProgressiveMesh {
         };
         let (a, b) = (self.vertex(r.kept)?, self.vertex(r.removed)?);
         let h = MeshRef::new(world).find_halfedge(a, b).ok_or_else(|| {
-            Refusal::Unsuitable(format!("{a} and {b} are no longer joined by an edge"))
+            Refusal::HistoryMismatch(format!("{a} and {b} are no longer joined by an edge"))
         })?;
         let plan = plan_collapse_halfedge(
             world,
@@ -249,14 +250,15 @@ impl ProgressiveMesh {
     /// vertex is), or as [`Self::refine_one`].
     pub fn refine_vertex(&mut self, world: &mut World, v: VertexId) -> Result<VertexId, Refusal> {
         let Some(i) = self.applied.checked_sub(1) else {
-            return Err(Refusal::Unsuitable("the mesh is at its full level".into()));
+            return Err(Refusal::AtFullLevel);
         };
         let r = self.records[i];
         let kept = self.vertex(r.kept)?;
         if kept != v {
-            return Err(Refusal::Unsuitable(format!(
-                "{v} is not the next vertex to split (that is {kept}); use the level slider"
-            )));
+            return Err(Refusal::NotNextSplit(
+                ElementId::Vertex(v),
+                ElementId::Vertex(kept),
+            ));
         }
         self.refine_one(world)?;
         self.vertex(r.removed)
@@ -382,7 +384,7 @@ impl ProgressiveMesh {
             old.get(row as usize)
                 .map_or("a vertex this refine made".to_string(), |v| v.to_string())
         };
-        Refusal::Unsuitable(match why {
+        Refusal::HistoryMismatch(match why {
             SplitMismatch::NotNeighbour(w) => format!(
                 "{} is no longer a neighbour of {}",
                 name(w),
@@ -412,7 +414,7 @@ fn replay(
 ) -> (usize, Option<Refusal>) {
     for (made, r) in records.iter().rev().enumerate() {
         let row = |slot: u32| match rows[slot as usize] {
-            NO_ROW => Err(Refusal::Unsuitable(format!(
+            NO_ROW => Err(Refusal::HistoryMismatch(format!(
                 "history slot {slot} has no vertex now"
             ))),
             row => Ok(row),
@@ -453,7 +455,7 @@ mod tests {
         let built = build_mesh(&mut world, &shapes::icosphere(3), MeshInfo::default()).unwrap();
         let mesh = built.mesh;
         let faces = mesh_stats(&world, mesh).faces;
-        let params = SimplifyParams::ratio(faces, 0.05);
+        let params = SimplifyParams::ratio(0.05);
         let (mut pm, _) = ProgressiveMesh::simplify(&mut world, mesh, &params).unwrap();
         // Edges between a kept vertex and its wing, from records a quarter of the way back
         // into the history, among the vertices alive now: flipping one breaks that record.

@@ -31,12 +31,32 @@ use super::Refusal;
 use super::indexed_heap::{IndexedHeap, slot_of};
 use super::local::{CollapseOptions, apply_collapse_deferred, plan_collapse_in};
 
+/// How many faces a simplification keeps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SimplifyTarget {
+    /// This fraction (0–1] of the faces the mesh has when the simplification starts.
+    Ratio(f64),
+    /// This many faces.
+    Faces(usize),
+}
+
+impl SimplifyTarget {
+    /// The face count to reach from a mesh of `faces` faces (a ratio rounds to the nearest
+    /// count; one outside [0, 1] is clamped).
+    pub fn faces(self, faces: usize) -> usize {
+        match self {
+            SimplifyTarget::Ratio(ratio) => (faces as f64 * ratio.clamp(0.0, 1.0)).round() as usize,
+            SimplifyTarget::Faces(target) => target,
+        }
+    }
+}
+
 /// How to simplify. The same struct serves the command line, the editor and the tests.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SimplifyParams {
-    /// Stop when the mesh has at most this many faces.
-    pub target_faces: usize,
-    /// Refuse collapses that turn a surviving face's normal by more than this (degrees).
+    /// How many faces to keep. Default: half of them.
+    pub target: SimplifyTarget,
+    /// The most a face normal may turn in one collapse (degrees); the collapse is refused past it.
     /// Default 60°.
     pub max_normal_change_deg: f32,
     /// Weight of the boundary-preserving planes relative to the face planes. Default 100.
@@ -49,16 +69,27 @@ pub struct SimplifyParams {
     pub feature_weight: f64,
 }
 
+impl Default for SimplifyParams {
+    fn default() -> Self {
+        Self::ratio(0.5)
+    }
+}
+
 impl SimplifyParams {
-    /// Simplify to `ratio` (0–1] of the current face count, with the default limits.
-    pub fn ratio(faces: usize, ratio: f64) -> Self {
-        Self::faces((faces as f64 * ratio.clamp(0.0, 1.0)).round() as usize)
+    /// Simplify to `ratio` (0–1] of the face count at the start, with the default limits.
+    pub fn ratio(ratio: f64) -> Self {
+        Self::to(SimplifyTarget::Ratio(ratio))
     }
 
     /// Simplify to `target` faces, with the default limits.
     pub fn faces(target: usize) -> Self {
+        Self::to(SimplifyTarget::Faces(target))
+    }
+
+    /// Simplify to `target`, with the default limits.
+    pub fn to(target: SimplifyTarget) -> Self {
         Self {
-            target_faces: target,
+            target,
             max_normal_change_deg: 60.0,
             boundary_weight: 100.0,
             feature_angle_deg: 45.0,
@@ -184,7 +215,7 @@ impl VertexTable {
     }
 }
 
-/// Simplifies `mesh` (triangles only) until it has at most `params.target_faces` faces or no
+/// Simplifies `mesh` (triangles only) until it has at most the target's faces or no
 /// legal collapse remains.
 ///
 /// # Refusals
@@ -251,8 +282,9 @@ fn simplify_inner(
     let mut graveyard: Vec<Entity> = Vec::new();
     let mut ring = Vec::new();
     let lookups = Lookups::new(world);
-    let to_remove = faces_before.saturating_sub(params.target_faces).max(1);
-    while faces > params.target_faces {
+    let target_faces = params.target.faces(faces_before);
+    let to_remove = faces_before.saturating_sub(target_faces).max(1);
+    while faces > target_faces {
         let Some(slot) = heap.pop().map(slot_of) else {
             break;
         };
@@ -302,7 +334,7 @@ fn simplify_inner(
         faces_before,
         faces_after: faces,
         collapses,
-        reached_target: faces <= params.target_faces,
+        reached_target: faces <= target_faces,
     })
 }
 

@@ -196,10 +196,7 @@ fn subdivide(
         counts = (scheme.counts)(counts, corners);
         corners = 4 * counts.faces;
         if counts.halfedges >= NONE as usize {
-            return Err(Refusal::Unsuitable(format!(
-                "{levels} levels would make {} halfedges, more than 32-bit indices can address",
-                counts.halfedges
-            )));
+            return Err(Refusal::TooLarge(counts.halfedges));
         }
     }
     let tables = &extracted.tables;

@@ -54,7 +54,7 @@
 //!   twice);
 //! - `ValenceTooLow`: the merged vertex would be left with fewer than 3 edges (2 on the
 //!   boundary), e.g. two quads glued along the chain `c a d` and `c b d`;
-//! - `Unsuitable`: a position that is not finite;
+//! - `NotFinite`: a position that is not finite;
 //! - `NormalFlip`, only when [`CollapseOptions::max_normal_change_deg`] is set: a surviving face
 //!   around `a` or `b` (polygon sides included) whose normal would turn by more than that angle,
 //!   or would vanish.
@@ -469,9 +469,7 @@ fn plan_halfedge(
     }
     let position = options.position.unwrap_or((at_a + at_b) / 2.0);
     if !position.is_finite() {
-        return Err(Refusal::Unsuitable(format!(
-            "{position} is not a finite position"
-        )));
+        return Err(Refusal::NotFinite(position));
     }
     if let Some(max) = options.max_normal_change_deg {
         let merge = Merge {

@@ -36,9 +36,10 @@
 //!
 //! Refusals (each leaves the world untouched):
 //! - `Stale`: `e` is not a live edge;
-//! - `Unsuitable`: `t` is not strictly between 0 and 1 (NaN included), or the new point would
-//!   coincide with an endpoint (a zero-length edge, or `t` so close to 0 or 1 that it rounds
-//!   onto one), or would not be finite.
+//! - `SplitParameter`: `t` is not strictly between 0 and 1 (NaN included);
+//! - `SplitAtEndpoint`: the new point would coincide with an endpoint (a zero-length edge, or
+//!   `t` so close to 0 or 1 that it rounds onto one);
+//! - `NotFinite`: the new point would not be finite.
 
 use bevy::math::Vec3;
 use bevy::prelude::World;
@@ -76,21 +77,15 @@ pub fn plan_split(world: &World, e: EdgeId, t: f32) -> Result<SplitPlan, Refusal
     let m = MeshRef::new(world);
     let h = live_edge(&m, e)?;
     if !(t > 0.0 && t < 1.0) {
-        return Err(Refusal::Unsuitable(format!(
-            "split parameter {t} is not strictly between 0 and 1"
-        )));
+        return Err(Refusal::SplitParameter(t));
     }
     let (a, b) = (m.position(m.from_vertex(h)), m.position(m.to_vertex(h)));
     let position = a.lerp(b, t);
     if !position.is_finite() {
-        return Err(Refusal::Unsuitable(format!(
-            "the split point {position} is not finite"
-        )));
+        return Err(Refusal::NotFinite(position));
     }
     if position == a || position == b {
-        return Err(Refusal::Unsuitable(format!(
-            "the split point {position} would coincide with an endpoint of {e}"
-        )));
+        return Err(Refusal::SplitAtEndpoint(ElementId::Edge(e)));
     }
     let mesh = world
         .get::<InMesh>(e.0)

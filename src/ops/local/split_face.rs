@@ -50,7 +50,10 @@ pub fn plan_split_face(
         ring.iter()
             .copied()
             .find(|&h| m.to_vertex(h) == v)
-            .ok_or_else(|| Refusal::Unsuitable(format!("{v} is not a corner of {f}")))
+            .ok_or(Refusal::NotACorner(
+                ElementId::Vertex(v),
+                ElementId::Face(f),
+            ))
     };
     let (into_a, into_b) = (find(a)?, find(b)?);
     if a == b || m.next(into_a) == into_b || m.next(into_b) == into_a {

@@ -38,10 +38,7 @@ pub fn vertex_split(world: &mut World, record: &CollapseRecord) -> Result<Vertex
     let m = MeshRef::new(world);
     let a = record.kept;
     if !record.invertible {
-        return Err(Refusal::Unsuitable(
-            "this collapse removed a polygon corner: only triangle collapses can be split back"
-                .into(),
-        ));
+        return Err(Refusal::NotInvertible);
     }
     m.try_vertex(a)
         .ok_or(Refusal::Stale(ElementId::Vertex(a)))?;
@@ -56,7 +53,7 @@ pub fn vertex_split(world: &mut World, record: &CollapseRecord) -> Result<Vertex
                 m.try_vertex(w)
                     .ok_or(Refusal::Stale(ElementId::Vertex(w)))?;
                 m.find_halfedge(a, w).map(Some).ok_or_else(|| {
-                    Refusal::Unsuitable(format!("{w} is no longer a neighbour of {a}"))
+                    Refusal::HistoryMismatch(format!("{w} is no longer a neighbour of {a}"))
                 })
             }
         }
@@ -64,7 +61,7 @@ pub fn vertex_split(world: &mut World, record: &CollapseRecord) -> Result<Vertex
     let (hc, hd) = (towards(record.left)?, towards(record.right)?);
     let boundary_out = m.vertex_halfedge(a);
     if (hc.is_none() || hd.is_none()) && !m.is_boundary(boundary_out) {
-        return Err(Refusal::Unsuitable(format!(
+        return Err(Refusal::HistoryMismatch(format!(
             "{a} is not on the boundary, but the collapse it undoes was"
         )));
     }

@@ -1,0 +1,797 @@
+//! The one edit layer: every operation Pappus can apply to a mesh, as one value of [`Edit`].
+//!
+//! The command line parses its `process` steps into an [`Edit`] ([`Step`]); the editor's keys,
+//! buttons and scripts write `Edit` requests; the undo history, the job runner and the panel
+//! ask the `Edit` what they need instead of matching every operation:
+//!
+//! | question                                    | answer                      |
+//! |---------------------------------------------|-----------------------------|
+//! | what it may change (for the undo record)    | [`Edit::reach`]             |
+//! | whether it may run as a job on a large mesh | [`Edit::may_run_as_job`]    |
+//! | which element ids survive it                | [`Edit::keeps_ids`]         |
+//! | whether the simplification history survives | [`Edit::keeps_history`]     |
+//! | whether it merges into the previous edit    | [`Edit::merge_key`]         |
+//! | what it is called in the log / a step       | [`Edit::label`], [`Step`]   |
+//!
+//! [`Edit::run`] applies it to a `&mut World` (with progress and cancel) and returns either
+//! [`Applied`] — a summary that prints, what to redraw and what to select — or a [`Refusal`],
+//! and then the world is exactly as it was.
+//!
+//! Adding an operation: its file in `ops/`, one variant here (its parameters, its arms in the
+//! `match`es below), its test. The command line, the editor's pipeline, undo and jobs then
+//! handle it; a key or a button is one row in the editor's shortcut table.
+
+use bevy::math::Vec3;
+use bevy::prelude::World;
+
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
+use crate::mesh::{InMesh, MeshInfo, MeshRef, validate};
+use crate::ops::Refusal;
+use crate::ops::local::{
+    CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
+};
+use crate::ops::progressive::ProgressiveMesh;
+use crate::ops::remesh::{RemeshParams, remesh_with_progress};
+use crate::ops::simplify::{SimplifyParams, SimplifyTarget};
+use crate::ops::subdivide::{catmull_clark, loop_subdivide};
+use crate::ops::triangulate::triangulate;
+
+/// A subdivision scheme.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scheme {
+    /// Loop (1987): triangles to triangles, approximating.
+    Loop,
+    /// Catmull–Clark (1978): any polygons to quads, approximating.
+    CatmullClark,
+}
+
+/// How to subdivide. The same struct serves the command line, the editor and the tests.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Subdivision {
+    /// The scheme.
+    pub scheme: Scheme,
+    /// How many levels (1–[`Subdivision::MAX_LEVELS`]). Default 1.
+    pub levels: u32,
+}
+
+impl Subdivision {
+    /// The most levels one step may ask for (each quadruples the faces).
+    pub const MAX_LEVELS: u32 = 8;
+
+    /// One level of `scheme`.
+    pub fn once(scheme: Scheme) -> Self {
+        Self { scheme, levels: 1 }
+    }
+}
+
+/// Every operation on a mesh. Local edits name their elements; whole-mesh edits act on the
+/// mesh [`Edit::run`] is given.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Edit {
+    /// Flip (rotate) an edge between two triangles.
+    Flip(EdgeId),
+    /// Split an edge at its midpoint (the faces beside it are cut in two).
+    Split(EdgeId),
+    /// Collapse an edge to its midpoint.
+    Collapse(EdgeId),
+    /// Merge the two faces of an edge into one.
+    Dissolve(EdgeId),
+    /// Split a face between two of its corners.
+    SplitFace(FaceId, VertexId, VertexId),
+    /// Move a vertex.
+    MoveVertex(VertexId, Vec3),
+    /// Split back the last collapse of the simplification history, if it kept this vertex.
+    SplitVertex(VertexId),
+    /// Move along the simplification history to the level nearest this many faces
+    /// (`usize::MAX`: the full level).
+    LevelOfDetail(usize),
+    /// Cut every polygon into triangles.
+    Triangulate,
+    /// QEM simplification, recording the history that [`Edit::LevelOfDetail`] moves along.
+    Simplify(SimplifyParams),
+    /// Subdivision.
+    Subdivide(Subdivision),
+    /// Isotropic remeshing.
+    Remesh(RemeshParams),
+}
+
+/// What an edit may change, so that an undo record can capture it first.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Reach {
+    /// The neighbourhood of these vertices of this mesh.
+    Local(MeshId, Vec<VertexId>),
+    /// Any element of this mesh.
+    Whole(MeshId),
+}
+
+/// Which element ids mean the same element after an edit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IdsKept {
+    /// Every element that survives keeps its id.
+    All,
+    /// Only vertices keep theirs (the tables were rewritten: subdivision).
+    VerticesOnly,
+}
+
+/// What to redraw after an edit.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Redraw {
+    /// The faces around these vertices (as they are now), and these faces (from before the
+    /// edit; they may be gone).
+    Near {
+        /// Faces from before the edit.
+        faces: Vec<FaceId>,
+        /// Vertices around which the faces changed.
+        vertices: Vec<VertexId>,
+    },
+    /// The whole mesh.
+    Whole,
+}
+
+/// An edit carried out.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Applied {
+    /// One line for the status bar, the log and the command line's report.
+    pub summary: String,
+    /// What changed, for a renderer.
+    pub redraw: Redraw,
+    /// What the edit made, for the selection to move to (`None`: keep the selection, if its
+    /// element survived).
+    pub made: Option<ElementId>,
+}
+
+/// What an edit runs with beside the world: the simplification history, and the progress
+/// callback that long edits report to.
+pub struct EditContext<'a> {
+    /// The simplification history: [`Edit::Simplify`] replaces it, [`Edit::LevelOfDetail`] and
+    /// [`Edit::SplitVertex`] move along it. The caller drops it after an edit that does not
+    /// [`Edit::keeps_history`].
+    pub history: &'a mut Option<ProgressiveMesh>,
+    /// Called with the fraction done (0–1) now and then by long edits; returning `false` asks
+    /// the edit to stop early where it can (the mesh is then valid, the edit partly done).
+    pub progress: &'a mut dyn FnMut(f32) -> bool,
+}
+
+impl Edit {
+    /// A short label for logs and the undo history.
+    pub fn label(&self) -> String {
+        match self {
+            Edit::Flip(e) => format!("flip {e}"),
+            Edit::Split(e) => format!("split {e}"),
+            Edit::Collapse(e) => format!("collapse {e}"),
+            Edit::Dissolve(e) => format!("dissolve {e}"),
+            Edit::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
+            Edit::MoveVertex(v, _) => format!("move {v}"),
+            Edit::SplitVertex(v) => format!("split {v} back"),
+            Edit::LevelOfDetail(usize::MAX) => "full level of detail".into(),
+            Edit::LevelOfDetail(n) => format!("level of detail {n} faces"),
+            Edit::Triangulate => "triangulate".into(),
+            Edit::Simplify(p) => match p.target {
+                SimplifyTarget::Ratio(r) => format!("simplify to {:.0} %", r * 100.0),
+                SimplifyTarget::Faces(n) => format!("simplify to {n} faces"),
+            },
+            Edit::Subdivide(s) => {
+                let name = match s.scheme {
+                    Scheme::Loop => "Loop",
+                    Scheme::CatmullClark => "Catmull-Clark",
+                };
+                match s.levels {
+                    1 => format!("{name} subdivision"),
+                    n => format!("{name} subdivision x{n}"),
+                }
+            }
+            Edit::Remesh(p) => match p.target_length {
+                Some(l) => format!("remesh (L {l}, {} iterations)", p.iterations),
+                None => format!("remesh ({} iterations)", p.iterations),
+            },
+        }
+    }
+
+    /// What the edit may change: `None` when an element it names is gone (it will be
+    /// refused, and changes nothing) or, for whole-mesh edits, when `mesh` is gone.
+    pub fn reach(&self, world: &World, mesh: MeshId) -> Option<Reach> {
+        let m = MeshRef::new(world);
+        let mesh_of = |e: bevy::prelude::Entity| world.get::<InMesh>(e).map(|x| x.0);
+        let local = |seeds: Vec<VertexId>| Some(Reach::Local(mesh_of(seeds[0].0)?, seeds));
+        match self {
+            Edit::Flip(e) | Edit::Split(e) | Edit::Collapse(e) | Edit::Dissolve(e) => {
+                m.try_edge(*e)?;
+                let (a, b) = m.edge_vertices(*e);
+                local(vec![a, b])
+            }
+            Edit::SplitFace(f, a, b) => {
+                m.try_face(*f)?;
+                local(vec![*a, *b])
+            }
+            Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => {
+                m.try_vertex(*v)?;
+                local(vec![*v])
+            }
+            Edit::LevelOfDetail(_)
+            | Edit::Triangulate
+            | Edit::Simplify(_)
+            | Edit::Subdivide(_)
+            | Edit::Remesh(_) => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
+        }
+    }
+
+    /// The mesh the edit acts on: the mesh of the element it names, or `active` for a
+    /// whole-mesh edit.
+    ///
+    /// # Refusals
+    /// [`Refusal::Stale`] when the named element (or the active mesh) is gone.
+    pub fn target(&self, world: &World, active: Option<MeshId>) -> Result<MeshId, Refusal> {
+        let named = match self {
+            Edit::Flip(e) | Edit::Split(e) | Edit::Collapse(e) | Edit::Dissolve(e) => {
+                Some(ElementId::Edge(*e))
+            }
+            Edit::SplitFace(f, ..) => Some(ElementId::Face(*f)),
+            Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => Some(ElementId::Vertex(*v)),
+            _ => None,
+        };
+        match named {
+            Some(x) => world
+                .get::<InMesh>(x.entity())
+                .map(|m| m.0)
+                .ok_or(Refusal::Stale(x)),
+            None => {
+                let mesh = active.ok_or(Refusal::NoMesh)?;
+                world
+                    .get::<MeshInfo>(mesh.0)
+                    .map(|_| mesh)
+                    .ok_or(Refusal::Stale(ElementId::Mesh(mesh)))
+            }
+        }
+    }
+
+    /// Whether the edit may run as a job (on a copy of the mesh, on a thread of its own) when
+    /// the mesh is large: the whole-mesh operations that compute a new mesh from the old.
+    pub fn may_run_as_job(&self) -> bool {
+        matches!(
+            self,
+            Edit::Triangulate | Edit::Simplify(_) | Edit::Subdivide(_) | Edit::Remesh(_)
+        )
+    }
+
+    /// Which element ids keep their meaning through the edit.
+    pub fn keeps_ids(&self) -> IdsKept {
+        match self {
+            Edit::Subdivide(_) => IdsKept::VerticesOnly,
+            _ => IdsKept::All,
+        }
+    }
+
+    /// Whether the simplification history still describes the mesh after the edit (the edits
+    /// that move along it, and the simplification that makes it). Any other edit ends it.
+    pub fn keeps_history(&self) -> bool {
+        matches!(
+            self,
+            Edit::SplitVertex(_) | Edit::LevelOfDetail(_) | Edit::Simplify(_)
+        )
+    }
+
+    /// Edits with the same key merge into one undo step while one mouse press lasts (the
+    /// frames of a vertex drag, a drag of the level-of-detail slider).
+    pub fn merge_key(&self) -> Option<MergeKey> {
+        match self {
+            Edit::MoveVertex(v, _) => Some(MergeKey::Move(*v)),
+            Edit::LevelOfDetail(_) => Some(MergeKey::LevelOfDetail),
+            _ => None,
+        }
+    }
+
+    /// Applies the edit to `mesh` (whole-mesh edits) or to the elements it names.
+    ///
+    /// # Refusals
+    /// The operation's [`Refusal`]; the world is then exactly as it was. A level-of-detail
+    /// move that meets a record the mesh no longer fits stops there and is applied as far as
+    /// it went (its summary says why it stopped); it is refused only if it moved nowhere.
+    pub fn run(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        context: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let near = |world: &World, faces: Vec<FaceId>, vertices: Vec<VertexId>| Redraw::Near {
+            faces: [faces_around(world, &vertices), faces].concat(),
+            vertices,
+        };
+        let whole = |summary: String| Applied {
+            summary,
+            redraw: Redraw::Whole,
+            made: None,
+        };
+        if world.get::<MeshInfo>(mesh.0).is_none() {
+            return Err(Refusal::Stale(ElementId::Mesh(mesh)));
+        }
+        Ok(match self {
+            Edit::Flip(e) => {
+                let before = faces_around(world, &edge_ends(world, *e));
+                let flipped = flip_edge(world, *e)?;
+                Applied {
+                    summary: format!("flipped to {flipped}"),
+                    redraw: near(world, before, edge_ends(world, flipped)),
+                    made: Some(ElementId::Edge(flipped)),
+                }
+            }
+            Edit::Split(e) => {
+                let before = faces_around(world, &edge_ends(world, *e));
+                let v = split_edge(world, *e, 0.5)?;
+                Applied {
+                    summary: format!("new vertex {v}"),
+                    redraw: near(world, before, vec![v]),
+                    made: Some(ElementId::Vertex(v)),
+                }
+            }
+            Edit::Collapse(e) => {
+                let before = faces_around(world, &edge_ends(world, *e));
+                let r = collapse_edge(world, *e, CollapseOptions::default())?;
+                Applied {
+                    summary: format!("kept {}, removed {}", r.kept, r.removed),
+                    redraw: near(world, before, vec![r.kept]),
+                    made: Some(ElementId::Vertex(r.kept)),
+                }
+            }
+            Edit::Dissolve(e) => {
+                let ends = edge_ends(world, *e);
+                let before = faces_around(world, &ends);
+                let f = dissolve_edge(world, *e)?;
+                Applied {
+                    summary: format!("merged into {f}"),
+                    redraw: near(world, before, ends),
+                    made: Some(ElementId::Face(f)),
+                }
+            }
+            Edit::SplitFace(f, a, b) => {
+                let before = faces_around(world, &[*a, *b]);
+                let e = split_face(world, *f, *a, *b)?;
+                Applied {
+                    summary: format!("new edge {e}"),
+                    redraw: near(world, before, vec![*a, *b]),
+                    made: Some(ElementId::Edge(e)),
+                }
+            }
+            Edit::MoveVertex(v, p) => {
+                if !p.is_finite() {
+                    return Err(Refusal::NotFinite(*p));
+                }
+                let Some(mut position) = world.get_mut::<crate::mesh::Position>(v.0) else {
+                    return Err(Refusal::Stale(ElementId::Vertex(*v)));
+                };
+                position.0 = *p;
+                // Smooth normals of the neighbours change too: their faces are redrawn as well.
+                let mut ring: Vec<VertexId> = MeshRef::new(world).vertex_neighbors(*v).collect();
+                ring.push(*v);
+                Applied {
+                    summary: format!("{v} at {p}"),
+                    redraw: near(world, Vec::new(), ring),
+                    made: None,
+                }
+            }
+            Edit::SplitVertex(v) => {
+                let pm = context.history.as_mut().ok_or(Refusal::NoHistory)?;
+                let b = pm.refine_vertex(world, *v)?;
+                Applied {
+                    summary: format!("split back {b}"),
+                    redraw: Redraw::Whole,
+                    made: Some(ElementId::Vertex(*v)),
+                }
+            }
+            Edit::LevelOfDetail(faces) => {
+                let pm = context.history.as_mut().ok_or(Refusal::NoHistory)?;
+                let before = pm.faces();
+                // Only the faces around the vertices each step touches are redrawn, unless the
+                // move rewrote the whole mesh (a long refine).
+                let mut touched: Vec<FaceId> = Vec::new();
+                let moved = pm.go_to_faces_watching(world, *faces, |w, v| {
+                    touched.extend(faces_around(w, &[v]));
+                });
+                let now = pm.faces();
+                match moved {
+                    Ok(moved) => Applied {
+                        summary: format!("{} step(s), {now} faces", moved.steps),
+                        redraw: if moved.rewritten {
+                            Redraw::Whole
+                        } else {
+                            Redraw::Near {
+                                faces: touched,
+                                vertices: Vec::new(),
+                            }
+                        },
+                        made: None,
+                    },
+                    // A bulk refine that stopped on a refusal has still rewritten the mesh.
+                    Err(refusal) if now != before => {
+                        whole(format!("stopped at {now} faces: {refusal}"))
+                    }
+                    Err(refusal) => return Err(refusal),
+                }
+            }
+            Edit::Triangulate => {
+                let s = triangulate(world, mesh);
+                (context.progress)(1.0);
+                whole(format!(
+                    "{} polygon(s) cut into triangles, {} face(s) added",
+                    s.polygons, s.added_faces
+                ))
+            }
+            Edit::Simplify(params) => {
+                let (pm, s) = ProgressiveMesh::simplify_with_progress(
+                    world,
+                    mesh,
+                    params,
+                    &mut *context.progress,
+                )?;
+                *context.history = Some(pm);
+                let reached = if s.reached_target {
+                    ""
+                } else {
+                    " (no legal collapse left before the target)"
+                };
+                whole(format!(
+                    "{} -> {} faces in {} collapses{reached}",
+                    s.faces_before, s.faces_after, s.collapses
+                ))
+            }
+            Edit::Subdivide(subdivision) => {
+                let s = match subdivision.scheme {
+                    Scheme::Loop => loop_subdivide(world, mesh, subdivision.levels),
+                    Scheme::CatmullClark => catmull_clark(world, mesh, subdivision.levels),
+                }?;
+                (context.progress)(1.0);
+                whole(format!(
+                    "{} level(s): {} vertices, {} faces",
+                    s.levels, s.vertices, s.faces
+                ))
+            }
+            Edit::Remesh(params) => {
+                let s = remesh_with_progress(world, mesh, params, &mut *context.progress)?;
+                whole(format!(
+                    "L {:.5}: {} splits, {} collapses, {} flips",
+                    s.target_length, s.splits, s.collapses, s.flips
+                ))
+            }
+        })
+    }
+}
+
+/// Edits that merge into the undo step before them while the mouse button stays down.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MergeKey {
+    /// Moves of this vertex.
+    Move(VertexId),
+    /// Moves along the level-of-detail history.
+    LevelOfDetail,
+}
+
+/// The two ends of an edge (none if it is gone).
+fn edge_ends(world: &World, e: EdgeId) -> Vec<VertexId> {
+    let m = MeshRef::new(world);
+    if m.try_edge(e).is_none() {
+        return Vec::new();
+    }
+    let (a, b) = m.edge_vertices(e);
+    vec![a, b]
+}
+
+/// The faces around some vertices (dead vertices skipped).
+fn faces_around(world: &World, vertices: &[VertexId]) -> Vec<FaceId> {
+    let m = MeshRef::new(world);
+    let mut faces = Vec::new();
+    for &v in vertices {
+        if m.try_vertex(v).is_some() {
+            faces.extend(m.vertex_faces(v));
+        }
+    }
+    faces
+}
+
+/// A local edit as a `process` step writes it: by the input file's vertex numbers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LocalKind {
+    /// `flip:A,B`.
+    Flip,
+    /// `split:A,B`.
+    Split,
+    /// `collapse:A,B`.
+    Collapse,
+    /// `dissolve:A,B`.
+    Dissolve,
+    /// `split-face:A,B`: the face the two vertices share, between them.
+    SplitFace,
+}
+
+impl LocalKind {
+    /// Every kind, with its step name.
+    pub const ALL: [(LocalKind, &'static str); 5] = [
+        (LocalKind::Flip, "flip"),
+        (LocalKind::Split, "split"),
+        (LocalKind::Collapse, "collapse"),
+        (LocalKind::Dissolve, "dissolve"),
+        (LocalKind::SplitFace, "split-face"),
+    ];
+
+    /// Its step name.
+    pub fn name(self) -> &'static str {
+        Self::ALL
+            .iter()
+            .find(|(k, _)| *k == self)
+            .map_or("", |(_, n)| n)
+    }
+
+    /// The edit on the elements between the live vertices `a` and `b` (the input file's
+    /// vertices `ia` and `ib`, named in refusals).
+    ///
+    /// # Refusals
+    /// [`Refusal::NoEdgeBetween`] / [`Refusal::NoSharedFace`] when the two share none.
+    pub fn between(
+        self,
+        world: &World,
+        (a, b): (VertexId, VertexId),
+        (ia, ib): (u32, u32),
+    ) -> Result<Edit, Refusal> {
+        let m = MeshRef::new(world);
+        if self == LocalKind::SplitFace {
+            let face = m
+                .vertex_faces(a)
+                .find(|&f| m.face_vertices(f).any(|v| v == b))
+                .ok_or(Refusal::NoSharedFace(ia, ib))?;
+            return Ok(Edit::SplitFace(face, a, b));
+        }
+        let e = m
+            .find_halfedge(a, b)
+            .map(|h| m.edge(h))
+            .ok_or(Refusal::NoEdgeBetween(ia, ib))?;
+        Ok(match self {
+            LocalKind::Flip => Edit::Flip(e),
+            LocalKind::Split => Edit::Split(e),
+            LocalKind::Collapse => Edit::Collapse(e),
+            LocalKind::Dissolve => Edit::Dissolve(e),
+            LocalKind::SplitFace => unreachable!("handled above"),
+        })
+    }
+}
+
+/// One step of `pappus process`, as parsed from its text (`simplify:0.25`, `flip:3,17`, …).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Step {
+    /// Check every invariant; refused (with the broken rule) if one fails.
+    Validate,
+    /// An edit that names no element (a whole-mesh edit, or a move along the history).
+    Edit(Edit),
+    /// A local edit on the elements between two of the input file's vertices.
+    Local(LocalKind, u32, u32),
+}
+
+/// The step syntax, for usage texts.
+pub const STEP_SYNTAX: &str = "\
+validate | triangulate | flip:A,B | split:A,B | collapse:A,B | dissolve:A,B |
+split-face:A,B | loop[:N] | catmull-clark[:N] | simplify:RATIO | simplify-faces:N |
+refine[:FACES]   (split simplify's collapses back, up to FACES faces or all) |
+remesh[:ITERATIONS[:LENGTH]]   (isotropic; LENGTH defaults to the mean edge length)
+A, B: 0-based indices of the input file's vertices (the edge between them)";
+
+impl Step {
+    /// Parses a step as written on the command line.
+    ///
+    /// # Errors
+    /// A message naming the step when it is unknown or its arguments are malformed.
+    pub fn parse(text: &str) -> Result<Step, String> {
+        let (name, args) = text.split_once(':').unwrap_or((text, ""));
+        let pair = || -> Result<(u32, u32), String> {
+            let bad = || format!("step `{text}`: expected two vertex numbers, as in `{name}:3,17`");
+            let (a, b) = args.split_once(',').ok_or_else(bad)?;
+            Ok((
+                a.trim().parse().map_err(|_| bad())?,
+                b.trim().parse().map_err(|_| bad())?,
+            ))
+        };
+        let levels = |scheme| -> Result<Step, String> {
+            let levels = match args {
+                "" => 1,
+                _ => args
+                    .parse::<u32>()
+                    .ok()
+                    .filter(|n| (1..=Subdivision::MAX_LEVELS).contains(n))
+                    .ok_or_else(|| {
+                        format!(
+                            "step `{text}`: levels must be a number from 1 to {}",
+                            Subdivision::MAX_LEVELS
+                        )
+                    })?,
+            };
+            Ok(Step::Edit(Edit::Subdivide(Subdivision { scheme, levels })))
+        };
+        if let Some(&(kind, _)) = LocalKind::ALL.iter().find(|(_, n)| *n == name) {
+            return pair().map(|(a, b)| Step::Local(kind, a, b));
+        }
+        let edit = match name {
+            "validate" => return Ok(Step::Validate),
+            "loop" => return levels(Scheme::Loop),
+            "catmull-clark" => return levels(Scheme::CatmullClark),
+            "triangulate" => Edit::Triangulate,
+            "simplify" => match args.parse::<f64>() {
+                Ok(r) if r > 0.0 && r <= 1.0 => Edit::Simplify(SimplifyParams::ratio(r)),
+                _ => {
+                    return Err(format!(
+                        "step `{text}`: the ratio must be in (0, 1], as in `simplify:0.25`"
+                    ));
+                }
+            },
+            "simplify-faces" => Edit::Simplify(SimplifyParams::faces(
+                args.parse::<usize>().map_err(|_| {
+                    format!("step `{text}`: expected a face count, as in `simplify-faces:1000`")
+                })?,
+            )),
+            "refine" if args.is_empty() => Edit::LevelOfDetail(usize::MAX),
+            "refine" => Edit::LevelOfDetail(args.parse::<usize>().map_err(|_| {
+                format!("step `{text}`: expected a face count, as in `refine:5000`")
+            })?),
+            "remesh" => {
+                let bad = || format!("step `{text}`: expected remesh[:ITERATIONS[:LENGTH]]");
+                let mut parts = args.split(':').filter(|p| !p.is_empty());
+                let mut params = RemeshParams::default();
+                if let Some(n) = parts.next() {
+                    params.iterations = n
+                        .parse::<u32>()
+                        .ok()
+                        .filter(|n| (1..=100).contains(n))
+                        .ok_or_else(bad)?;
+                }
+                if let Some(l) = parts.next() {
+                    params.target_length = Some(
+                        l.parse::<f32>()
+                            .ok()
+                            .filter(|l| *l > 0.0 && l.is_finite())
+                            .ok_or_else(bad)?,
+                    );
+                }
+                Edit::Remesh(params)
+            }
+            _ => {
+                return Err(format!(
+                    "unknown step `{text}` (see `pappus process --help`)"
+                ));
+            }
+        };
+        Ok(Step::Edit(edit))
+    }
+
+    /// Runs the step on `mesh`. `input_vertices` maps the input file's vertex numbers to the
+    /// vertices they became; `history` is the simplification history a `refine` moves along.
+    ///
+    /// # Refusals
+    /// As [`Edit::run`]; a local step naming vertices the input lacks or that share no
+    /// edge (face); `validate` on an invalid mesh.
+    pub fn run(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        input_vertices: &[Option<VertexId>],
+        history: &mut Option<ProgressiveMesh>,
+    ) -> Result<String, Refusal> {
+        let edit = match self {
+            Step::Validate => {
+                return validate(world, mesh)
+                    .map(|()| "valid".to_string())
+                    .map_err(|e| Refusal::Invalid(e.to_string()));
+            }
+            Step::Edit(edit) => edit.clone(),
+            Step::Local(kind, a, b) => {
+                let live = |i: u32| -> Result<VertexId, Refusal> {
+                    let v = input_vertices
+                        .get(i as usize)
+                        .copied()
+                        .flatten()
+                        .ok_or(Refusal::NoInputVertex(i))?;
+                    MeshRef::new(world)
+                        .try_vertex(v)
+                        .map(|_| v)
+                        .ok_or(Refusal::Stale(ElementId::Vertex(v)))
+                };
+                kind.between(world, (live(*a)?, live(*b)?), (*a, *b))?
+            }
+        };
+        let mut context = EditContext {
+            history,
+            progress: &mut |_| true,
+        };
+        let applied = edit.run(world, mesh, &mut context)?;
+        if !edit.keeps_history() {
+            *history = None;
+        }
+        Ok(applied.summary)
+    }
+}
+
+impl std::fmt::Display for Step {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Step::Validate => write!(f, "validate"),
+            Step::Local(kind, a, b) => write!(f, "{}:{a},{b}", kind.name()),
+            Step::Edit(edit) => match edit {
+                Edit::Triangulate => write!(f, "triangulate"),
+                Edit::Simplify(p) => match p.target {
+                    SimplifyTarget::Ratio(r) => write!(f, "simplify:{r}"),
+                    SimplifyTarget::Faces(n) => write!(f, "simplify-faces:{n}"),
+                },
+                Edit::LevelOfDetail(usize::MAX) => write!(f, "refine"),
+                Edit::LevelOfDetail(n) => write!(f, "refine:{n}"),
+                Edit::Subdivide(s) => match s.scheme {
+                    Scheme::Loop => write!(f, "loop:{}", s.levels),
+                    Scheme::CatmullClark => write!(f, "catmull-clark:{}", s.levels),
+                },
+                Edit::Remesh(p) => match p.target_length {
+                    None => write!(f, "remesh:{}", p.iterations),
+                    Some(l) => write!(f, "remesh:{}:{l}", p.iterations),
+                },
+                other => write!(f, "{}", other.label()),
+            },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_step_prints_as_it_parses() {
+        for text in [
+            "validate",
+            "triangulate",
+            "flip:3,17",
+            "split:0,1",
+            "collapse:1,2",
+            "dissolve:4,5",
+            "split-face:0,2",
+            "loop:1",
+            "catmull-clark:2",
+            "simplify:0.25",
+            "simplify-faces:1000",
+            "refine",
+            "refine:5000",
+            "remesh:5",
+            "remesh:3:0.5",
+        ] {
+            let step = Step::parse(text).unwrap();
+            assert_eq!(step.to_string(), text);
+            assert_eq!(Step::parse(&step.to_string()).unwrap(), step);
+        }
+        assert_eq!(Step::parse("loop").unwrap().to_string(), "loop:1");
+        assert_eq!(Step::parse("remesh").unwrap().to_string(), "remesh:5");
+    }
+
+    #[test]
+    fn malformed_steps_say_what_is_expected() {
+        for (text, expected) in [
+            ("frobnicate", "unknown step"),
+            ("flip:3", "two vertex numbers"),
+            ("loop:9", "from 1 to 8"),
+            ("simplify:0", "(0, 1]"),
+            ("simplify:1.5", "(0, 1]"),
+            ("remesh:0", "ITERATIONS"),
+            ("remesh:3:-1", "LENGTH"),
+            ("refine:lots", "face count"),
+        ] {
+            let e = Step::parse(text).unwrap_err();
+            assert!(e.contains(expected), "{text}: {e}");
+        }
+    }
+
+    #[test]
+    fn only_whole_mesh_computations_run_as_jobs_and_only_subdivision_renumbers() {
+        let v = VertexId(bevy::prelude::Entity::PLACEHOLDER);
+        let e = EdgeId(bevy::prelude::Entity::PLACEHOLDER);
+        let loop1 = Edit::Subdivide(Subdivision::once(Scheme::Loop));
+        assert!(loop1.may_run_as_job() && Edit::Remesh(RemeshParams::default()).may_run_as_job());
+        assert!(!Edit::Flip(e).may_run_as_job() && !Edit::LevelOfDetail(5).may_run_as_job());
+        assert_eq!(loop1.keeps_ids(), IdsKept::VerticesOnly);
+        assert_eq!(Edit::Triangulate.keeps_ids(), IdsKept::All);
+        assert!(Edit::SplitVertex(v).keeps_history() && !Edit::Flip(e).keeps_history());
+        assert_eq!(
+            Edit::MoveVertex(v, Vec3::ZERO).merge_key(),
+            Some(MergeKey::Move(v))
+        );
+    }
+}
