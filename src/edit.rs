@@ -286,7 +286,25 @@ impl Edit {
     /// The operation's [`Refusal`]; the world is then exactly as it was. A level-of-detail
     /// move that meets a record the mesh no longer fits stops there and is applied as far as
     /// it went (its summary says why it stopped); it is refused only if it moved nowhere.
+    ///
+    /// # Panics
+    /// In debug builds (and so in every test), when an applied edit left the mesh invalid: that
+    /// is a bug in the operation, and loud.
     pub fn run(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        context: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let applied = self.apply(world, mesh, context)?;
+        #[cfg(debug_assertions)]
+        if let Err(e) = validate(world, mesh) {
+            panic!("{} left an invalid mesh: {e}", self.label());
+        }
+        Ok(applied)
+    }
+
+    fn apply(
         &self,
         world: &mut World,
         mesh: MeshId,

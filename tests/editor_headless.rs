@@ -178,24 +178,104 @@ fn operation_keys_without_an_edge_are_refused_with_a_reason() {
     }
 }
 
+/// (V, E, F) of the active mesh.
+fn counts(app: &App) -> (usize, usize, usize) {
+    let s = pappus::mesh::mesh_stats(app.world(), mesh(app));
+    (s.vertices, s.edges, s.faces)
+}
+
 #[test]
-fn operation_keys_write_requests_for_the_selected_edge() {
+fn each_operation_key_applies_its_operation() {
     let mut app = app();
     open(&mut app, "shape:icosphere");
-    for (key, verb) in [
-        (KeyCode::KeyR, "flip"),
-        (KeyCode::KeyS, "split"),
-        (KeyCode::KeyC, "collapse"),
+    let m = mesh(&app);
+    // Local edits on the selected edge: each changes the counts as its formula says, and the
+    // selection moves to what it made.
+    for (key, verb, (dv, de, df)) in [
+        (KeyCode::KeyR, "flip", (0, 0, 0)),
+        (KeyCode::KeyS, "split", (1, 3, 2)),
+        (KeyCode::KeyC, "collapse", (-1, -3, -2)),
+        (KeyCode::KeyD, "dissolve", (0, -1, -1)),
     ] {
         let e = some_interior_edge(&app);
+        let ends = MeshRef::new(app.world()).edge_vertices(e);
         app.world_mut()
             .write_message(Request::Select(Some(ElementId::Edge(e))));
         app.update();
+        let (v, ed, f) = counts(&app);
         press(&mut app, key);
         let outcome = last_outcome(&app);
         assert_eq!(outcome.request, format!("{verb} {}", ElementId::Edge(e)));
-        validate(app.world(), mesh(&app)).unwrap();
+        assert!(outcome.result.is_ok(), "{outcome:?}");
+        let expected = (
+            v.checked_add_signed(dv).unwrap(),
+            ed.checked_add_signed(de).unwrap(),
+            f.checked_add_signed(df).unwrap(),
+        );
+        assert_eq!(counts(&app), expected, "{verb}");
+        let world = app.world();
+        let m = MeshRef::new(world);
+        match (verb, selection(&app)) {
+            // The flipped edge joins the two vertices opposite the old one.
+            ("flip", Some(ElementId::Edge(flipped))) => {
+                let (a, b) = m.edge_vertices(flipped);
+                assert!(![a, b].contains(&ends.0) && ![a, b].contains(&ends.1));
+            }
+            ("split", Some(ElementId::Vertex(new))) => assert_eq!(m.valence(new), 4),
+            ("collapse", Some(ElementId::Vertex(kept))) => {
+                assert!([ends.0, ends.1].contains(&kept));
+            }
+            ("dissolve", Some(ElementId::Face(merged))) => assert_eq!(m.face_degree(merged), 4),
+            (_, other) => panic!("{verb} selected {other:?}"),
+        }
+        validate(world, mesh(&app)).unwrap();
     }
+    // J cuts the quad the dissolve made back into two triangles.
+    let Some(ElementId::Face(quad)) = selection(&app) else {
+        unreachable!("the dissolve selected its face")
+    };
+    let h = MeshRef::new(app.world()).face_halfedge(quad);
+    app.world_mut()
+        .write_message(Request::Select(Some(ElementId::Halfedge(h))));
+    app.update();
+    let (v, e, f) = counts(&app);
+    press(&mut app, KeyCode::KeyJ);
+    assert!(
+        last_outcome(&app).result.is_ok(),
+        "{:?}",
+        last_outcome(&app)
+    );
+    assert_eq!(counts(&app), (v, e + 1, f + 1));
+    // Whole-mesh edits: Loop quadruples the triangles, Catmull–Clark makes a quad of every
+    // corner, M remeshes to a valid triangle mesh, each recorded as one undo step.
+    let (v, e, f) = counts(&app);
+    press(&mut app, KeyCode::KeyL);
+    assert_eq!(counts(&app), (v + e, 2 * e + 3 * f, 4 * f));
+    press(&mut app, KeyCode::KeyM);
+    assert!(last_outcome(&app).request.starts_with("remesh"));
+    assert!(
+        last_outcome(&app).result.is_ok(),
+        "{:?}",
+        last_outcome(&app)
+    );
+    let s = pappus::mesh::mesh_stats(app.world(), m);
+    assert_eq!(s.face_sizes.keys().copied().collect::<Vec<_>>(), [3]);
+    assert_eq!(s.euler_characteristic, 2);
+    let (v, e, f) = counts(&app);
+    press(&mut app, KeyCode::KeyQ);
+    assert_eq!(counts(&app), (v + e + f, 2 * e + 3 * f, 3 * f));
+    press(&mut app, KeyCode::KeyM);
+    assert!(
+        last_outcome(&app).result.is_err(),
+        "remeshing quads is refused"
+    );
+    let history = app
+        .world()
+        .resource::<pappus::editor::history::UndoHistory>()
+        .undo_entries()
+        .len();
+    assert_eq!(history, 8, "one undo step per applied key");
+    validate(app.world(), m).unwrap();
 }
 
 #[test]

@@ -200,6 +200,16 @@ fn undo_or_redo(world: &mut World, redo: bool) -> Result<String, Declined> {
         }
         Redraw::Whole(None) => {}
     }
+    #[cfg(debug_assertions)]
+    if let Some(mesh) = world.resource::<ActiveMesh>().0
+        && let Err(e) = crate::mesh::validate(world, mesh)
+    {
+        panic!(
+            "{} of {} left an invalid mesh: {e}",
+            if redo { "redo" } else { "undo" },
+            stepped.label
+        );
+    }
     Ok(format!(
         "{} {}",
         if redo { "redid" } else { "undid" },

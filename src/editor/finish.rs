@@ -3,9 +3,9 @@
 //!
 //! After an applied edit, [`finish_edit`]: records the undo entry, ends the simplification
 //! history unless the edit keeps it, marks the mesh modified, marks what must be redrawn, moves
-//! the selection to what the edit made (or keeps it where its element survived), and in debug
-//! builds validates the mesh — an invalid mesh after an applied edit is a bug, and loud.
-//! [`report`] then logs the outcome and writes it as an [`EditOutcome`] message.
+//! the selection to what the edit made (or keeps it where its element survived). (The edit has
+//! validated the mesh already in debug builds: see [`Edit::run`].) [`report`] then logs the
+//! outcome and writes it as an [`EditOutcome`] message.
 
 use bevy::prelude::World;
 
@@ -38,9 +38,6 @@ pub struct Finished {
 ///
 /// # Errors
 /// The edit's refusal; nothing is recorded then.
-///
-/// # Panics
-/// In debug builds, when an applied edit left an invalid mesh (a bug in the operation).
 pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Declined> {
     let Finished {
         edit,
@@ -79,10 +76,6 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
         })
     });
     world.resource_mut::<Selection>().element = selection;
-    #[cfg(debug_assertions)]
-    if let Err(e) = crate::mesh::validate(world, mesh) {
-        panic!("{} left an invalid mesh: {e}", edit.label());
-    }
     Ok(applied.summary)
 }
 

@@ -1,0 +1,134 @@
+//! The layering rules of DESIGN §1, checked on the source: no two modules of `src/editor`,
+//! `src/mesh` or `src/ops` import each other, directly or round a longer cycle.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// The sibling modules of a folder and, for each, the siblings its files name (through
+/// `super::NAME` or `crate::FOLDER::NAME`). A sub-folder counts as one module.
+fn import_graph(folder: &str) -> BTreeMap<String, BTreeSet<String>> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("src")
+        .join(folder);
+    let module_of = |path: &Path| -> Option<String> {
+        let rel = path.strip_prefix(&root).ok()?;
+        let first = rel
+            .components()
+            .next()?
+            .as_os_str()
+            .to_string_lossy()
+            .into_owned();
+        Some(first.trim_end_matches(".rs").to_string())
+    };
+    let mut files = Vec::new();
+    let mut stack = vec![root.clone()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                files.push(path);
+            }
+        }
+    }
+    let modules: BTreeSet<String> = files.iter().filter_map(|f| module_of(f)).collect();
+    let crate_prefix = format!("crate::{}::", folder.replace('/', "::"));
+    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for file in &files {
+        let Some(from) = module_of(file) else {
+            continue;
+        };
+        // A file directly in the folder reaches its siblings as `super::`; one in a sub-folder
+        // reaches them as `super::super::` or by the crate path, and its own folder's files as
+        // `super::` (which are not siblings at this level).
+        let depth = file.strip_prefix(&root).unwrap().components().count();
+        let sibling_prefix = "super::".repeat(depth);
+        let text = std::fs::read_to_string(file).unwrap();
+        for line in text.lines().map(str::trim) {
+            if line.starts_with("//") {
+                continue;
+            }
+            for prefix in [sibling_prefix.as_str(), crate_prefix.as_str()] {
+                for (i, _) in line.match_indices(prefix) {
+                    let rest = &line[i + prefix.len()..];
+                    let name: String = rest
+                        .chars()
+                        .take_while(|c| c.is_alphanumeric() || *c == '_')
+                        .collect();
+                    // `use super::{a, b}` names several.
+                    let names: Vec<String> = if rest.starts_with('{') {
+                        rest[1..]
+                            .split(['}', ','])
+                            .map(|n| n.trim().split("::").next().unwrap_or("").to_string())
+                            .collect()
+                    } else {
+                        vec![name]
+                    };
+                    for name in names {
+                        if name != from && modules.contains(&name) {
+                            graph.entry(from.clone()).or_default().insert(name);
+                        }
+                    }
+                }
+            }
+        }
+        graph.entry(from).or_default();
+    }
+    graph
+}
+
+/// A cycle of the graph, if any (as the list of modules round it).
+fn find_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
+    fn visit(
+        node: &str,
+        graph: &BTreeMap<String, BTreeSet<String>>,
+        path: &mut Vec<String>,
+        done: &mut BTreeSet<String>,
+    ) -> Option<Vec<String>> {
+        if let Some(start) = path.iter().position(|n| n == node) {
+            return Some(path[start..].to_vec());
+        }
+        if done.contains(node) {
+            return None;
+        }
+        path.push(node.to_string());
+        for next in graph.get(node).into_iter().flatten() {
+            if let Some(cycle) = visit(next, graph, path, done) {
+                return Some(cycle);
+            }
+        }
+        path.pop();
+        done.insert(node.to_string());
+        None
+    }
+    let mut done = BTreeSet::new();
+    graph
+        .keys()
+        .find_map(|n| visit(n, graph, &mut Vec::new(), &mut done))
+}
+
+#[test]
+fn no_module_pair_imports_each_other() {
+    for folder in ["editor", "mesh", "ops", "ops/local"] {
+        let graph = import_graph(folder);
+        assert!(graph.len() > 2, "{folder}: found no modules");
+        if let Some(cycle) = find_cycle(&graph) {
+            panic!("src/{folder}: import cycle {}", cycle.join(" -> "));
+        }
+    }
+}
+
+#[test]
+fn the_cycle_finder_finds_cycles() {
+    let graph: BTreeMap<String, BTreeSet<String>> = [
+        ("a", vec!["b"]),
+        ("b", vec!["c"]),
+        ("c", vec!["a"]),
+        ("d", vec![]),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v.into_iter().map(String::from).collect()))
+    .collect();
+    assert_eq!(find_cycle(&graph).map(|c| c.len()), Some(3));
+}
