@@ -1,0 +1,148 @@
+//! Feature edges, which the remesh holds in place: the boundary and sharp creases keep their
+//! line through the split, collapse, flip and relaxation steps of Botsch & Kobbelt 2004.
+//!
+//! An edge is a feature when it is on the boundary or its two faces meet at more than
+//! [`RemeshParams::feature_angle_deg`](super::RemeshParams::feature_angle_deg), less the three
+//! sides of every triangle dented by scanner noise ([`without_noise`]). A feature edge is split
+//! (both halves stay features) but never flipped. A vertex's feature degree (how many feature
+//! edges meet there) says what it may do: 0, free; 2, on a feature line, which it may leave
+//! only by merging into its neighbour along the line, and move only along it (in the
+//! thin-triangle clean-up), both only where the line is straight there; any other count, a
+//! feature corner, which never moves or goes. The degrees of a collapse pass are read from the
+//! flat tables in one pass ([`FeatureDegrees`]) and stay right through it.
+
+use bevy::ecs::entity::EntityHashSet;
+
+use crate::mesh::ids::{EdgeId, VertexId, slots_for};
+use crate::mesh::members::MeshMembers;
+use crate::mesh::topology::MeshRef;
+
+use super::EdgeTable;
+
+/// Whether `e` is sharp: on the boundary, or with a dihedral angle whose cosine is under
+/// `cos_limit` (its faces' normals turn by more than the feature angle).
+pub(super) fn is_feature(m: &MeshRef<'_>, e: EdgeId, cos_limit: f32) -> bool {
+    let h = m.edge_halfedge(e);
+    let (Some(f), Some(g)) = (m.face(h), m.face(m.twin(h))) else {
+        return true;
+    };
+    let (n0, n1) = (
+        m.face_area_vector(f).normalize_or_zero(),
+        m.face_area_vector(g).normalize_or_zero(),
+    );
+    n0.dot(n1) < cos_limit
+}
+
+/// The sharp edges (`sharp`: boundary edges and edges over the dihedral limit) less the three
+/// sides of every dented triangle, one whose three sides are all sharp and none on the
+/// boundary: scanner noise (a single triangle tilted against all its neighbours), not a crease.
+///
+/// Kept as features, a dent's sides pin a knot of vertices that the triangles around cannot
+/// fit: the bunny has 15 dented triangles, and with them kept its result had 24 thin
+/// triangles made of sharp sides alone. A crease never dents a lone triangle (the fandisk
+/// has none). A sharp line folded back on itself (two sharp edges at under 30°) looks like
+/// noise too, but the fandisk has one on a real crease, so those stay.
+pub(super) fn without_noise(
+    m: &MeshRef<'_>,
+    members: &MeshMembers,
+    mut sharp: EntityHashSet,
+) -> EntityHashSet {
+    let creased = |e: EdgeId| sharp.contains(&e.0) && !m.is_boundary_edge(e);
+    let mut noise: Vec<EdgeId> = Vec::new();
+    for &f in &members.faces {
+        // Every face is a triangle (checked before).
+        let h = m.face_halfedge(f);
+        let sides = [h, m.next(h), m.prev(h)].map(|h| m.edge(h));
+        if sides.iter().all(|&e| creased(e)) {
+            noise.extend(sides);
+        }
+    }
+    for e in noise {
+        sharp.remove(&e.0);
+    }
+    sharp
+}
+
+/// How many feature edges (boundary edges included) meet at `v`: 0 for a free vertex, 2 on a
+/// feature line, any other count a feature corner.
+pub(super) fn feature_degree(m: &MeshRef<'_>, v: VertexId, features: &EntityHashSet) -> usize {
+    m.vertex_outgoing(v)
+        .filter(|&h| features.contains(&m.edge(h).0))
+        .count()
+}
+
+impl EdgeTable {
+    /// How many feature edges meet at each vertex (see [`feature_degree`]).
+    pub(super) fn feature_degrees(&self, features: &EntityHashSet) -> FeatureDegrees {
+        let t = &self.tables;
+        let mut degree = vec![0u8; slots_for(self.members.vertices.iter().map(|v| v.0))];
+        for (e, &h) in self.members.edges.iter().zip(&t.edge_halfedge) {
+            if features.contains(&e.0) {
+                for end in [h, t.twin[h as usize]] {
+                    let v = self.members.vertices[t.to_vertex[end as usize] as usize];
+                    degree[v.slot()] = degree[v.slot()].saturating_add(1);
+                }
+            }
+        }
+        FeatureDegrees(degree)
+    }
+}
+
+/// Feature degrees by entity index, taken before a collapse pass. They stay right through
+/// it: a collapse removes a free vertex, or a line vertex whose two feature edges become the
+/// survivor's one, and feature edges never merge (see [`super::collapse::collapse_choice`]).
+pub(super) struct FeatureDegrees(Vec<u8>);
+
+impl FeatureDegrees {
+    /// How many feature edges meet at `v`.
+    pub(super) fn of(&self, v: VertexId) -> usize {
+        self.0[v.slot()] as usize
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{MeshInfo, PolygonSoup, build_mesh};
+    use bevy::prelude::World;
+
+    /// The sharp edges `without_noise` keeps of `pairs` (input vertex indices) on `soup`, as
+    /// the same pairs.
+    fn kept_of(soup: &PolygonSoup, pairs: &[(usize, usize)]) -> Vec<(usize, usize)> {
+        let mut world = World::new();
+        let built = build_mesh(&mut world, soup, MeshInfo::default()).unwrap();
+        let members = MeshMembers::collect(&world, built.mesh);
+        let m = MeshRef::new(&world);
+        let v = |i: usize| built.input_vertices[i].unwrap();
+        let edge = |(a, b): (usize, usize)| m.edge(m.find_halfedge(v(a), v(b)).unwrap());
+        let sharp = pairs.iter().map(|&p| edge(p).0).collect();
+        let kept = without_noise(&m, &members, sharp);
+        pairs
+            .iter()
+            .copied()
+            .filter(|&p| kept.contains(&edge(p).0))
+            .collect()
+    }
+
+    #[test]
+    fn dented_triangles_are_noise_lines_and_boundaries_are_not() {
+        // A 4 × 4 grid: vertex (i, j) is 5 j + i. The cell at (1, 1) has the triangle
+        // 6 7 12 (its rising diagonal 6 12); the line j = 3 runs 16 17 18 19; 0 1 is boundary.
+        let grid = crate::mesh::shapes::grid(4, 4);
+        let dent = [(6, 7), (7, 12), (12, 6)];
+        let line = [(16, 17), (17, 18), (18, 19)];
+        let mut all = dent.to_vec();
+        all.extend(line);
+        all.push((0, 1));
+        let mut expected = line.to_vec();
+        expected.push((0, 1));
+        assert_eq!(kept_of(&grid, &all), expected);
+        // Two sides of the triangle are a corner, not a dent.
+        assert_eq!(kept_of(&grid, &dent[..2]), dent[..2].to_vec());
+        // A triangle in the grid's corner: its two boundary sides stay, being boundary.
+        assert_eq!(
+            kept_of(&grid, &[(0, 1), (1, 6), (0, 6), (0, 5)]),
+            vec![(0, 1), (1, 6), (0, 6), (0, 5)]
+        );
+    }
+}

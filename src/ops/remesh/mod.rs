@@ -1,0 +1,264 @@
+//! Isotropic remeshing (Botsch & Kobbelt, "A Remeshing Approach to Multiresolution Modeling",
+//! SGP 2004) with reprojection and feature preservation.
+//!
+//! Each iteration, for a target edge length `L`:
+//! 1. split every edge longer than 4/3 L at its midpoint ([`split`]);
+//! 2. collapse every edge shorter than 4/5 L, shortest first, to its midpoint or else to one of
+//!    its ends, unless every choice would make an edge longer than 4/3 L (and through the
+//!    collapse plan's refusals, with a 60° normal bound; features restrict the choice, see
+//!    below) ([`collapse`]);
+//! 3. flip an edge when that brings the valences of its four vertices closer to 6 (4 on the
+//!    boundary), or leaves them as close and the edge was not locally Delaunay (the angles
+//!    facing it summed to over 180°: flipping raises the pair's smallest angle) ([`flip`]);
+//! 4. move every free vertex 1/5 of the way to its one-ring centroid, within its tangent plane
+//!    (all new positions computed first, then committed), and project it back onto the input
+//!    surface (closest point on the input triangles, found through a uniform grid:
+//!    [`reference`]); the smoothing is repeated [`RemeshParams::smoothing_steps`] times (10, as
+//!    in Scotty3D), the projection done after the last ([`relax`]).
+//!
+//! After the last iteration ([`finish`]), the detail that triangles of length L cannot follow
+//! is put back where the remesh strays from the input by more than
+//! [`DETAIL_TOLERANCE`](finish::DETAIL_TOLERANCE) · L: the input's vertices left that far off
+//! its surface (the tips of spikes and folds narrower than L) become vertices again
+//! ([`restore_tips`](finish::restore_tips)), and the edges whose middle is that far off
+//! (bridging a groove or the foot of a spike) are split onto the input
+//! ([`fill_grooves`](finish::fill_grooves)); each split only where its triangles lie no farther
+//! from the input than the gap it closes.
+//!
+//! Then the edges of triangles left with an angle under 30° are flipped where that makes the
+//! pair less thin (a flip moves no vertex, so the surface stays where the projection put it).
+//! Then the corners of the triangles still thin move to where their triangles are best shaped
+//! ([`relax_thin_corners`](relax::relax_thin_corners): a free corner within its tangent plane
+//! and back onto the input, a corner on a straight feature line or boundary along it), and the
+//! edges around them get the same flips, for a bounded number of rounds
+//! ([`clean_up_thin`](finish::clean_up_thin)). What stays thin has a corner that may not move:
+//! a feature corner, or a feature line or boundary that bends there.
+//!
+//! Each pass starts from the mesh read into flat tables ([`extract`]): the edge lengths, the
+//! valences and the feature degrees come from array passes, and only the edges a pass acts on
+//! are read through the entities.
+//! Features are kept ([`features`]): boundary edges and edges whose dihedral angle exceeds
+//! [`RemeshParams::feature_angle_deg`] (less the sides of triangles dented by scanner noise,
+//! see [`without_noise`](features::without_noise)) are split (both halves stay features) but
+//! never flipped, and a vertex on a feature does not move. A free vertex may collapse into a
+//! feature vertex (which stays put), and a vertex on a feature line (two feature edges) into
+//! its neighbour along the line where the line is straight to within L/20 there; feature
+//! corners never go.
+//! The work is bounded (a fixed number of passes over edge lists taken at the start of each
+//! pass), so it ends on every input.
+//!
+//! What the passes measured on the test models (distance to the input, thin triangles) is in
+//! `docs/remesh.md`.
+
+mod collapse;
+mod features;
+mod finish;
+mod flip;
+mod reference;
+mod relax;
+mod split;
+
+use bevy::ecs::entity::EntityHashSet;
+use bevy::math::Vec3;
+use bevy::prelude::World;
+
+use crate::mesh::arrays::{Extracted, extract};
+use crate::mesh::connectivity::Connectivity;
+use crate::mesh::ids::{EdgeId, ElementId, MeshId};
+use crate::mesh::members::MeshMembers;
+use crate::mesh::topology::MeshRef;
+
+use super::Refusal;
+use collapse::collapse_short;
+use features::{is_feature, without_noise};
+use finish::{DETAIL_TOLERANCE, clean_up_thin, fill_grooves, restore_tips};
+use flip::flip_to_valence;
+use reference::Reference;
+use relax::Smoother;
+use split::split_long;
+
+/// How to remesh. The same struct serves the command line, the editor and the tests.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RemeshParams {
+    /// Target edge length; `None`: the mean edge length of the input.
+    pub target_length: Option<f32>,
+    /// Iterations of split, collapse, flip, smooth. Default 5.
+    pub iterations: u32,
+    /// Edges with a dihedral angle above this (degrees) are features, unless all three sides
+    /// of a triangle are (a dent, scanner noise). Default 45°.
+    pub feature_angle_deg: f32,
+    /// Smoothing steps (each 1/5 of the way to the one-ring centroid, then reprojected) per
+    /// iteration. Default 10, as Scotty3D's remesher.
+    pub smoothing_steps: u32,
+}
+
+impl Default for RemeshParams {
+    fn default() -> Self {
+        Self {
+            target_length: None,
+            iterations: 5,
+            feature_angle_deg: 45.0,
+            smoothing_steps: 10,
+        }
+    }
+}
+
+/// What a remeshing did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RemeshSummary {
+    /// The target length used.
+    pub target_length: f32,
+    /// Splits, collapses and flips made.
+    pub splits: usize,
+    /// Collapses made.
+    pub collapses: usize,
+    /// Flips made.
+    pub flips: usize,
+}
+
+/// Remeshes a triangle mesh in place (see the module doc).
+///
+/// # Refusals
+/// [`Refusal::NotTriangle`] on polygons; a stale mesh. The mesh is then unchanged.
+pub fn remesh(
+    world: &mut World,
+    mesh: MeshId,
+    params: &RemeshParams,
+) -> Result<RemeshSummary, Refusal> {
+    remesh_with_progress(world, mesh, params, |_| true)
+}
+
+/// [`remesh`], calling `progress(fraction done)` after each split, collapse, flip and smoothing
+/// pass; returning `false` stops after that pass (the mesh is then valid, less remeshed).
+///
+/// # Refusals
+/// As [`remesh`].
+pub fn remesh_with_progress(
+    world: &mut World,
+    mesh: MeshId,
+    params: &RemeshParams,
+    mut progress: impl FnMut(f32) -> bool,
+) -> Result<RemeshSummary, Refusal> {
+    if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
+        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
+    }
+    let members = MeshMembers::collect(world, mesh);
+    let m = MeshRef::new(world);
+    if let Some(&f) = members.faces.iter().find(|&&f| m.face_degree(f) != 3) {
+        return Err(Refusal::NotTriangle(ElementId::Face(f)));
+    }
+    let length = params.target_length.unwrap_or_else(|| {
+        let sum: f32 = members.edges.iter().map(|&e| edge_length(&m, e)).sum();
+        sum / members.edges.len().max(1) as f32
+    });
+    let reference = Reference::new(&m, &members);
+    // The input's interior vertices, for [`restore_tips`].
+    let tips: Vec<Vec3> = members
+        .vertices
+        .iter()
+        .filter(|&&v| !m.is_boundary_vertex(v))
+        .map(|&v| m.position(v))
+        .collect();
+    let cos_limit = params.feature_angle_deg.to_radians().cos();
+    let sharp: EntityHashSet = members
+        .edges
+        .iter()
+        .filter(|&&e| is_feature(&m, e, cos_limit))
+        .map(|e| e.0)
+        .collect();
+    let mut features = without_noise(&m, &members, sharp);
+    let mut summary = RemeshSummary {
+        target_length: length,
+        splits: 0,
+        collapses: 0,
+        flips: 0,
+    };
+    let (high, low) = (4.0 / 3.0 * length, 4.0 / 5.0 * length);
+    let passes = params.iterations as f32 * 4.0;
+    let mut done = |pass: u32, i: u32| progress((i as f32 * 4.0 + pass as f32) / passes);
+    for i in 0..params.iterations {
+        summary.splits += split_long(world, mesh, high, &mut features);
+        if !done(1, i) {
+            return Ok(summary);
+        }
+        summary.collapses += collapse_short(world, mesh, low, high, &features);
+        if !done(2, i) {
+            return Ok(summary);
+        }
+        summary.flips += flip_to_valence(world, mesh, &features);
+        if !done(3, i) {
+            return Ok(summary);
+        }
+        // Smooth in small steps, then project back onto the input once per iteration (each
+        // projection searches the input's triangles: the expensive part).
+        let mut smoother = Smoother::new(world, mesh, &features);
+        for step in 0..params.smoothing_steps.max(1) {
+            let last = step + 1 == params.smoothing_steps.max(1);
+            smoother.step(last.then_some(&reference));
+        }
+        smoother.write(world);
+        if !done(4, i) {
+            return Ok(summary);
+        }
+    }
+    if params.iterations > 0 {
+        let tolerance = DETAIL_TOLERANCE * length;
+        let pinned = restore_tips(world, mesh, &tips, &reference, &features, length, tolerance);
+        summary.splits += pinned.len();
+        summary.splits += fill_grooves(world, mesh, &reference, &features, tolerance);
+        summary.flips += clean_up_thin(world, mesh, &features, &pinned, &reference, low / 16.0);
+    }
+    Ok(summary)
+}
+
+/// The length of `e`.
+fn edge_length(m: &MeshRef<'_>, e: EdgeId) -> f32 {
+    let (a, b) = m.edge_vertices(e);
+    m.position(a).distance(m.position(b))
+}
+
+/// The mesh's edges with their lengths, read in one pass over the world ([`extract`]) rather
+/// than through several entity lookups an edge: each pass starts from it. Split and collapse
+/// read it; its feature degrees are read in [`features`] ([`EdgeTable::feature_degrees`]).
+struct EdgeTable {
+    tables: Connectivity,
+    members: MeshMembers,
+    /// By edge row.
+    length: Vec<f32>,
+}
+
+impl EdgeTable {
+    /// Reads `mesh`'s tables and measures every edge.
+    fn read(world: &World, mesh: MeshId) -> Self {
+        let Extracted { tables: t, members } = extract(world, mesh);
+        let at = |h: u32| t.positions[t.to_vertex[h as usize] as usize];
+        let length = t
+            .edge_halfedge
+            .iter()
+            .map(|&h| at(t.twin[h as usize]).distance(at(h)))
+            .collect();
+        Self {
+            tables: t,
+            members,
+            length,
+        }
+    }
+
+    /// The edges whose length passes `keep`, in table order.
+    fn edges_where(&self, keep: impl Fn(f32) -> bool) -> Vec<EdgeId> {
+        self.members
+            .edges
+            .iter()
+            .zip(&self.length)
+            .filter(|&(_, &length)| keep(length))
+            .map(|(&e, _)| e)
+            .collect()
+    }
+}
+
+/// How far `p` is from the segment `a b`.
+fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f32 {
+    let along = b - a;
+    let t = ((p - a).dot(along) / along.length_squared().max(f32::MIN_POSITIVE)).clamp(0.0, 1.0);
+    (a + along * t).distance(p)
+}

@@ -1,0 +1,244 @@
+//! The input surface the remesh is projected back onto (Botsch & Kobbelt 2004 project each
+//! relaxed vertex onto the original surface).
+//!
+//! [`Reference`] holds a surface's triangles in a uniform grid and answers the exact closest
+//! point of all its triangles ([`Reference::closest`]: rings of cells are searched outwards
+//! until nothing unscanned can be nearer) and whether some triangle lies within a distance
+//! ([`Reference::is_near`]). The input's is built once, before the first pass; the finishing
+//! passes also build one of the remesh, to find the input's vertices it left behind.
+
+use bevy::math::Vec3;
+
+use crate::mesh::members::MeshMembers;
+use crate::mesh::topology::MeshRef;
+
+/// The input surface, for closest-point queries: its triangles in a uniform grid of cells
+/// about half a triangle across, stored flat (the triangles of cell `c` are
+/// `cell_triangles[cell_start[c]..cell_start[c + 1]]`).
+pub(super) struct Reference {
+    triangles: Vec<[Vec3; 3]>,
+    origin: Vec3,
+    cell: f32,
+    dims: [i32; 3],
+    cell_start: Vec<u32>,
+    cell_triangles: Vec<u32>,
+}
+
+impl Reference {
+    /// The grid of `members`' faces (triangles all).
+    pub(super) fn new(m: &MeshRef<'_>, members: &MeshMembers) -> Self {
+        let triangles: Vec<[Vec3; 3]> = members
+            .faces
+            .iter()
+            .map(|&f| {
+                let v: Vec<Vec3> = m.face_vertices(f).map(|x| m.position(x)).collect();
+                [v[0], v[1], v[2]]
+            })
+            .collect();
+        let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+        for t in &triangles {
+            for p in t {
+                lo = lo.min(*p);
+                hi = hi.max(*p);
+            }
+        }
+        let extent = (hi - lo).max(Vec3::splat(1e-6));
+        // Smaller cells hold fewer triangles to test, but a query may have to look further;
+        // half the size of a triangle's cube root of volume measured fastest on the bunny (at
+        // most 512 cells along an axis).
+        let cell = (extent.x * extent.y * extent.z / triangles.len().max(1) as f32)
+            .cbrt()
+            .max(extent.max_element() / 512.0)
+            * 0.5;
+        let dims = ((extent / cell).ceil().as_ivec3() + 1).to_array();
+        let cells_of = |t: &[Vec3; 3]| {
+            let (a, b) = (
+                t.iter().fold(Vec3::splat(f32::MAX), |x, p| x.min(*p)),
+                t.iter().fold(Vec3::splat(f32::MIN), |x, p| x.max(*p)),
+            );
+            let (ca, cb) = (
+                ((a - lo) / cell).floor().as_ivec3(),
+                ((b - lo) / cell).floor().as_ivec3(),
+            );
+            (ca.z..=cb.z).flat_map(move |z| {
+                (ca.y..=cb.y).flat_map(move |y| (ca.x..=cb.x).map(move |x| [x, y, z]))
+            })
+        };
+        let index = |c: [i32; 3]| cell_row(dims, c);
+        let count = dims.iter().map(|&d| d as usize).product::<usize>();
+        // Count, then place: a counting sort of (cell, triangle) pairs.
+        let mut cell_start = vec![0u32; count + 1];
+        for t in &triangles {
+            for c in cells_of(t) {
+                cell_start[index(c) + 1] += 1;
+            }
+        }
+        for i in 0..count {
+            cell_start[i + 1] += cell_start[i];
+        }
+        let mut fill = cell_start.clone();
+        let mut cell_triangles = vec![0u32; cell_start[count] as usize];
+        for (i, t) in triangles.iter().enumerate() {
+            for c in cells_of(t) {
+                let slot = &mut fill[index(c)];
+                cell_triangles[*slot as usize] = i as u32;
+                *slot += 1;
+            }
+        }
+        Self {
+            triangles,
+            origin: lo,
+            cell,
+            dims,
+            cell_start,
+            cell_triangles,
+        }
+    }
+
+    /// The triangles listed in cell `c`, none outside the grid.
+    fn cell(&self, [x, y, z]: [i32; 3]) -> &[u32] {
+        let [dx, dy, dz] = self.dims;
+        if x < 0 || y < 0 || z < 0 || x >= dx || y >= dy || z >= dz {
+            return &[];
+        }
+        let i = cell_row(self.dims, [x, y, z]);
+        &self.cell_triangles[self.cell_start[i] as usize..self.cell_start[i + 1] as usize]
+    }
+
+    /// The closest point of the input surface to `p` (searching rings of cells outwards).
+    pub(super) fn closest(&self, p: Vec3) -> Vec3 {
+        self.closest_on(p).0
+    }
+
+    /// Whether some triangle lies within `r` of `p`: the cells the ball around `p` touches,
+    /// stopping at the first triangle found within reach (far cheaper than
+    /// [`Reference::closest`] where most points are near, as the remesh's are).
+    pub(super) fn is_near(&self, p: Vec3, r: f32) -> bool {
+        let cell_of = |q: Vec3| ((q - self.origin) / self.cell).floor().as_ivec3();
+        let (lo, hi) = (cell_of(p - Vec3::splat(r)), cell_of(p + Vec3::splat(r)));
+        (lo.z..=hi.z).any(|z| {
+            (lo.y..=hi.y).any(|y| {
+                (lo.x..=hi.x).any(|x| {
+                    self.cell([x, y, z]).iter().any(|&i| {
+                        closest_on_triangle(p, &self.triangles[i as usize]).distance_squared(p)
+                            <= r * r
+                    })
+                })
+            })
+        })
+    }
+
+    /// [`Reference::closest`], with the row of the triangle it lies on (the row of its face
+    /// in the members the reference was made from).
+    pub(super) fn closest_on(&self, p: Vec3) -> (Vec3, usize) {
+        let local = (p - self.origin) / self.cell;
+        let c = local.floor().as_ivec3();
+        // How far `p` is from the nearest wall of its own cell, in cells: after scanning the
+        // block of cells within `ring` of it, everything unscanned is at least
+        // `(ring + wall) * cell` away.
+        let f = local - local.floor();
+        let wall = f.min(Vec3::ONE - f).min_element();
+        let mut best = (f32::MAX, p, 0);
+        // Far enough to take in the whole grid, from a point outside it too.
+        let outside = (0..3)
+            .map(|k| (-c[k]).max(c[k] - self.dims[k] + 1).max(0))
+            .max()
+            .unwrap_or(0);
+        let max_ring = self.dims.iter().copied().max().unwrap_or(1) + outside;
+        for ring in 0..=max_ring {
+            for x in -ring..=ring {
+                for y in -ring..=ring {
+                    for z in -ring..=ring {
+                        if x.abs().max(y.abs()).max(z.abs()) != ring {
+                            continue;
+                        }
+                        for &i in self.cell([c.x + x, c.y + y, c.z + z]) {
+                            let q = closest_on_triangle(p, &self.triangles[i as usize]);
+                            let d = q.distance_squared(p);
+                            if d < best.0 {
+                                best = (d, q, i as usize);
+                            }
+                        }
+                    }
+                }
+            }
+            if best.0 < f32::MAX && best.0.sqrt() <= (ring as f32 + wall) * self.cell {
+                break;
+            }
+        }
+        (best.1, best.2)
+    }
+}
+
+/// The row of cell `[x, y, z]` (inside the grid) in a grid of `dims` cells, x fastest.
+fn cell_row([dx, dy, _]: [i32; 3], [x, y, z]: [i32; 3]) -> usize {
+    (x + dx * (y + dy * z)) as usize
+}
+
+/// The closest point of triangle `t` to `p` (Ericson, Real-Time Collision Detection, 5.1.5).
+fn closest_on_triangle(p: Vec3, t: &[Vec3; 3]) -> Vec3 {
+    let [a, b, c] = *t;
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    a + ab * (vb * denom) + ac * (vc * denom)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{MeshInfo, build_mesh};
+    use bevy::prelude::World;
+
+    #[test]
+    fn the_reference_grid_finds_the_closest_point_of_all_triangles_and_which_are_near() {
+        let soup = crate::mesh::shapes::icosphere(2);
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
+        let members = MeshMembers::collect(&world, built.mesh);
+        let reference = Reference::new(&MeshRef::new(&world), &members);
+        // Points inside, near and far outside the sphere (a fixed pseudo-random sequence).
+        let mut state = 7u32;
+        let mut coordinate = || {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (state >> 8) as f32 / (1u32 << 24) as f32 * 8.0 - 4.0
+        };
+        for _ in 0..200 {
+            let p = Vec3::new(coordinate(), coordinate(), coordinate());
+            let nearest = reference
+                .triangles
+                .iter()
+                .map(|t| closest_on_triangle(p, t).distance(p))
+                .fold(f32::MAX, f32::min);
+            assert_eq!(reference.closest(p).distance(p), nearest, "at {p}");
+            for r in [0.05, 0.3, 1.0, 3.0] {
+                assert_eq!(reference.is_near(p, r), nearest <= r, "at {p}, within {r}");
+            }
+        }
+    }
+}
