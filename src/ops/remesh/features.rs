@@ -37,11 +37,10 @@ pub(super) fn is_feature(m: &MeshRef<'_>, e: EdgeId, cos_limit: f32) -> bool {
 /// sides of every dented triangle, one whose three sides are all sharp and none on the
 /// boundary: scanner noise (a single triangle tilted against all its neighbours), not a crease.
 ///
-/// Kept as features, a dent's sides pin a knot of vertices that the triangles around cannot
-/// fit: the bunny has 15 dented triangles, and with them kept its result had 24 thin
-/// triangles made of sharp sides alone. A crease never dents a lone triangle (the fandisk
-/// has none). A sharp line folded back on itself (two sharp edges at under 30°) looks like
-/// noise too, but the fandisk has one on a real crease, so those stay.
+/// Kept as features, a dent's sides would pin a knot of vertices that the triangles around
+/// cannot fit; a crease never dents a lone triangle. A sharp line folded back on itself (two
+/// sharp edges at under 30°) looks like noise too, but real creases do that, so those stay.
+/// (What this measured: `docs/remesh.md`.)
 pub(super) fn without_noise(
     m: &MeshRef<'_>,
     members: &MeshMembers,

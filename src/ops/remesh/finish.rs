@@ -31,15 +31,13 @@ use super::relax::relax_thin_corners;
 
 /// How far from the input (times the target length) the finished remesh may leave an input
 /// vertex or the middle of one of its edges before [`restore_tips`] and [`fill_grooves`] put
-/// the detail back: 0.2 L is 0.12 % of the bunny's diagonal. At 0.2 the bunny's Hausdorff
-/// distance fell from 0.157 to 0.143 % (pymeshlab's sparse measure, the mean of ten lengths
-/// within ±0.5 % of the mean edge length); at 0.16 and under, more insertions measured no
-/// better (0.147 %, and up to 0.26 % on the dense measure).
+/// the detail back. Smaller tolerances insert more vertices without bringing the remesh closer
+/// to the input (the measurements are in `docs/remesh.md`).
 pub(super) const DETAIL_TOLERANCE: f32 = 0.2;
 
 /// The most rounds of moving the corners of thin triangles after the last iteration (see the
-/// module doc). On the bunny the rounds move about 47, 11 and 6 vertices; six rounds
-/// measured no fewer thin triangles than three.
+/// module doc); each round moves fewer corners than the one before, and more rounds left no
+/// fewer thin triangles (`docs/remesh.md`).
 const THIN_ROUNDS: usize = 3;
 
 /// Puts back the input's vertices that the remesh left farther than `tolerance` from its

@@ -88,8 +88,8 @@ pub(super) fn thin_triangle_edges(world: &World, mesh: MeshId) -> Vec<EdgeId> {
 /// After the last smoothing, flips those of `edges` that are sides of thin triangles (an angle
 /// under [`THIN_ANGLE_DEG`]) where that raises the smaller of the pair's smallest angles and
 /// leaves both triangles in shape; features, the boundary and the edges at a `pinned` vertex
-/// (a tip put back by [`super::finish::restore_tips`], where a flip could bridge the side of the spike: it
-/// took the spot's Hausdorff distance from 0.49 to 1.1 %) are not flipped. Smoothing moves
+/// (a tip put back by [`super::finish::restore_tips`], where a flip could bridge the side of
+/// the spike and undo the tip) are not flipped. Smoothing moves
 /// vertices after each iteration's valence flips and leaves a few triangles thin; a flip moves
 /// no vertex, so the surface stays on the input where it was.
 pub(super) fn flip_thin(

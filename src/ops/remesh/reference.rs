@@ -44,8 +44,8 @@ impl Reference {
         }
         let extent = (hi - lo).max(Vec3::splat(1e-6));
         // Smaller cells hold fewer triangles to test, but a query may have to look further;
-        // half the size of a triangle's cube root of volume measured fastest on the bunny (at
-        // most 512 cells along an axis).
+        // half the size of a triangle's cube root of volume measured fastest (at most 512
+        // cells along an axis).
         let cell = (extent.x * extent.y * extent.z / triangles.len().max(1) as f32)
             .cbrt()
             .max(extent.max_element() / 512.0)
