@@ -68,11 +68,11 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
         12..=21 => edge(rng).map(Edit::Split),
         22..=35 => edge(rng).map(Edit::Collapse),
         36..=41 => edge(rng).map(Edit::Dissolve),
-        42..=45 => face(rng).and_then(|f| {
+        42..=45 => face(rng).map(|f| {
             let corners: Vec<VertexId> = r.face_vertices(f).collect();
             let a = rng.below(corners.len());
             let b = (a + 2 + rng.below(corners.len().saturating_sub(2).max(1))) % corners.len();
-            Some(Edit::SplitFace(f, corners[a], corners[b]))
+            Edit::SplitFace(f, corners[a], corners[b])
         }),
         46..=50 => vertex(rng).map(|v| {
             let nudge = Vec3::new(
