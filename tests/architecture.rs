@@ -57,9 +57,8 @@ fn import_graph(folder: &str) -> BTreeMap<String, BTreeSet<String>> {
                         .take_while(|c| c.is_alphanumeric() || *c == '_')
                         .collect();
                     // `use super::{a, b}` names several.
-                    let names: Vec<String> = if rest.starts_with('{') {
-                        rest[1..]
-                            .split(['}', ','])
+                    let names: Vec<String> = if let Some(list) = rest.strip_prefix('{') {
+                        list.split(['}', ','])
                             .map(|n| n.trim().split("::").next().unwrap_or("").to_string())
                             .collect()
                     } else {
