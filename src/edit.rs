@@ -28,7 +28,7 @@ use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::{InMesh, MeshInfo, MeshRef, validate};
 use crate::ops::Refusal;
 use crate::ops::local::{
-    CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
+    CollapseOptions, bisect_edge, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
 };
 use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::remesh::{RemeshParams, remesh_with_progress};
@@ -72,6 +72,8 @@ pub enum Edit {
     Flip(EdgeId),
     /// Split an edge at its midpoint (the faces beside it are cut in two).
     Split(EdgeId),
+    /// Put a vertex at an edge's midpoint, cutting no face (each face beside it gains a side).
+    Bisect(EdgeId),
     /// Collapse an edge to its midpoint.
     Collapse(EdgeId),
     /// Merge the two faces of an edge into one.
@@ -158,6 +160,7 @@ impl Edit {
         match self {
             Edit::Flip(e) => format!("flip {e}"),
             Edit::Split(e) => format!("split {e}"),
+            Edit::Bisect(e) => format!("bisect {e}"),
             Edit::Collapse(e) => format!("collapse {e}"),
             Edit::Dissolve(e) => format!("dissolve {e}"),
             Edit::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
@@ -194,7 +197,11 @@ impl Edit {
         let mesh_of = |e: bevy::prelude::Entity| world.get::<InMesh>(e).map(|x| x.0);
         let local = |seeds: Vec<VertexId>| Some(Reach::Local(mesh_of(seeds[0].0)?, seeds));
         match self {
-            Edit::Flip(e) | Edit::Split(e) | Edit::Collapse(e) | Edit::Dissolve(e) => {
+            Edit::Flip(e)
+            | Edit::Split(e)
+            | Edit::Bisect(e)
+            | Edit::Collapse(e)
+            | Edit::Dissolve(e) => {
                 m.try_edge(*e)?;
                 let (a, b) = m.edge_vertices(*e);
                 local(vec![a, b])
@@ -222,9 +229,11 @@ impl Edit {
     /// [`Refusal::Stale`] when the named element (or the active mesh) is gone.
     pub fn target(&self, world: &World, active: Option<MeshId>) -> Result<MeshId, Refusal> {
         let named = match self {
-            Edit::Flip(e) | Edit::Split(e) | Edit::Collapse(e) | Edit::Dissolve(e) => {
-                Some(ElementId::Edge(*e))
-            }
+            Edit::Flip(e)
+            | Edit::Split(e)
+            | Edit::Bisect(e)
+            | Edit::Collapse(e)
+            | Edit::Dissolve(e) => Some(ElementId::Edge(*e)),
             Edit::SplitFace(f, ..) => Some(ElementId::Face(*f)),
             Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => Some(ElementId::Vertex(*v)),
             _ => None,
@@ -337,6 +346,15 @@ impl Edit {
                 let v = split_edge(world, *e, 0.5)?;
                 Applied {
                     summary: format!("new vertex {v}"),
+                    redraw: near(world, before, vec![v]),
+                    made: Some(ElementId::Vertex(v)),
+                }
+            }
+            Edit::Bisect(e) => {
+                let before = faces_around(world, &edge_ends(world, *e));
+                let v = bisect_edge(world, *e, 0.5)?;
+                Applied {
+                    summary: format!("new vertex {v} on {e}"),
                     redraw: near(world, before, vec![v]),
                     made: Some(ElementId::Vertex(v)),
                 }
@@ -511,6 +529,8 @@ pub enum LocalKind {
     Flip,
     /// `split:A,B`.
     Split,
+    /// `bisect:A,B`.
+    Bisect,
     /// `collapse:A,B`.
     Collapse,
     /// `dissolve:A,B`.
@@ -521,9 +541,10 @@ pub enum LocalKind {
 
 impl LocalKind {
     /// Every kind, with its step name.
-    pub const ALL: [(LocalKind, &'static str); 5] = [
+    pub const ALL: [(LocalKind, &'static str); 6] = [
         (LocalKind::Flip, "flip"),
         (LocalKind::Split, "split"),
+        (LocalKind::Bisect, "bisect"),
         (LocalKind::Collapse, "collapse"),
         (LocalKind::Dissolve, "dissolve"),
         (LocalKind::SplitFace, "split-face"),
@@ -560,12 +581,20 @@ impl LocalKind {
             .find_halfedge(a, b)
             .map(|h| m.edge(h))
             .ok_or(Refusal::NoEdgeBetween(ia, ib))?;
-        Ok(match self {
+        Ok(self
+            .on_edge(e)
+            .expect("every kind but split-face acts on an edge"))
+    }
+
+    /// The edit of this kind on edge `e`; `None` for the kinds that do not act on an edge.
+    pub fn on_edge(self, e: EdgeId) -> Option<Edit> {
+        Some(match self {
             LocalKind::Flip => Edit::Flip(e),
             LocalKind::Split => Edit::Split(e),
+            LocalKind::Bisect => Edit::Bisect(e),
             LocalKind::Collapse => Edit::Collapse(e),
             LocalKind::Dissolve => Edit::Dissolve(e),
-            LocalKind::SplitFace => unreachable!("handled above"),
+            LocalKind::SplitFace => return None,
         })
     }
 }
@@ -583,8 +612,8 @@ pub enum Step {
 
 /// The step syntax, for usage texts.
 pub const STEP_SYNTAX: &str = "\
-validate | triangulate | flip:A,B | split:A,B | collapse:A,B | dissolve:A,B |
-split-face:A,B | loop[:N] | catmull-clark[:N] | simplify:RATIO | simplify-faces:N |
+validate | triangulate | flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
+dissolve:A,B | split-face:A,B | loop[:N] | catmull-clark[:N] | simplify:RATIO | simplify-faces:N |
 refine[:FACES]   (split simplify's collapses back, up to FACES faces or all) |
 remesh[:ITERATIONS[:LENGTH]]   (isotropic; LENGTH defaults to the mean edge length)
 A, B: 0-based indices of the input file's vertices (the edge between them)";
@@ -760,6 +789,7 @@ mod tests {
             "triangulate",
             "flip:3,17",
             "split:0,1",
+            "bisect:0,1",
             "collapse:1,2",
             "dissolve:4,5",
             "split-face:0,2",

@@ -183,15 +183,17 @@ fn local_steps_name_edges_by_input_vertices() {
         "split:0,11",
         "flip:0,5",
         "collapse:1,5",
+        "bisect:2,3",
         "validate",
     ]));
     let steps = v["steps"].as_array().unwrap();
     for s in steps {
         assert_eq!(s["outcome"], "applied", "{s}");
     }
-    // split: V+1 F+2; flip: same; collapse: V-1 F-2.
-    assert_eq!(v["result"]["vertices"], 12);
+    // split: V+1 F+2; flip: same; collapse: V-1 F-2; bisect: V+1, two triangles become quads.
+    assert_eq!(v["result"]["vertices"], 13);
     assert_eq!(v["result"]["faces"], 20);
+    assert_eq!(v["result"]["face_sizes"]["4"], 2);
     assert_eq!(v["result"]["euler_characteristic"], 2);
 }
 

@@ -191,11 +191,13 @@ fn each_operation_key_applies_its_operation() {
     let m = mesh(&app);
     // Local edits on the selected edge: each changes the counts as its formula says, and the
     // selection moves to what it made.
+    let mut quad = None;
     for (key, verb, (dv, de, df)) in [
         (KeyCode::KeyR, "flip", (0, 0, 0)),
         (KeyCode::KeyS, "split", (1, 3, 2)),
         (KeyCode::KeyC, "collapse", (-1, -3, -2)),
         (KeyCode::KeyD, "dissolve", (0, -1, -1)),
+        (KeyCode::KeyK, "bisect", (1, 1, 0)),
     ] {
         let e = some_interior_edge(&app);
         let ends = MeshRef::new(app.world()).edge_vertices(e);
@@ -222,19 +224,20 @@ fn each_operation_key_applies_its_operation() {
                 assert!(![a, b].contains(&ends.0) && ![a, b].contains(&ends.1));
             }
             ("split", Some(ElementId::Vertex(new))) => assert_eq!(m.valence(new), 4),
+            ("bisect", Some(ElementId::Vertex(new))) => assert_eq!(m.valence(new), 2),
             ("collapse", Some(ElementId::Vertex(kept))) => {
                 assert!([ends.0, ends.1].contains(&kept));
             }
-            ("dissolve", Some(ElementId::Face(merged))) => assert_eq!(m.face_degree(merged), 4),
+            ("dissolve", Some(ElementId::Face(merged))) => {
+                assert_eq!(m.face_degree(merged), 4);
+                quad = Some(merged);
+            }
             (_, other) => panic!("{verb} selected {other:?}"),
         }
         validate(world, mesh(&app)).unwrap();
     }
-    // J cuts the quad the dissolve made back into two triangles.
-    let Some(ElementId::Face(quad)) = selection(&app) else {
-        unreachable!("the dissolve selected its face")
-    };
-    let h = MeshRef::new(app.world()).face_halfedge(quad);
+    // J cuts the polygon the dissolve made (a quad, a pentagon if the bisection was beside it).
+    let h = MeshRef::new(app.world()).face_halfedge(quad.expect("the dissolve selected its face"));
     app.world_mut()
         .write_message(Request::Select(Some(ElementId::Halfedge(h))));
     app.update();
@@ -246,6 +249,10 @@ fn each_operation_key_applies_its_operation() {
         last_outcome(&app)
     );
     assert_eq!(counts(&app), (v, e + 1, f + 1));
+    // The bisection left polygons (Ctrl+T is tested on its own below).
+    app.world_mut()
+        .write_message(Request::Edit(Edit::Triangulate));
+    app.update();
     // Whole-mesh edits: Loop quadruples the triangles, Catmull–Clark makes a quad of every
     // corner, M remeshes to a valid triangle mesh, each recorded as one undo step.
     let (v, e, f) = counts(&app);
@@ -274,7 +281,7 @@ fn each_operation_key_applies_its_operation() {
         .resource::<pappus::editor::history::UndoHistory>()
         .undo_entries()
         .len();
-    assert_eq!(history, 8, "one undo step per applied key");
+    assert_eq!(history, 10, "one undo step per applied edit");
     validate(app.world(), m).unwrap();
 }
 

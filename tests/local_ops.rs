@@ -1,4 +1,4 @@
-//! Flip, split and collapse: exact expected meshes (up to relabeling), counts, χ, validity, and
+//! Flip, split, bisect and collapse: exact expected meshes (up to relabeling), counts, χ, validity, and
 //! every classic refusal with the world compared element by element before and after.
 
 mod common;
@@ -11,7 +11,7 @@ use pappus::mesh::{
     VertexId, mesh_stats, shapes, to_soup, validate,
 };
 use pappus::ops::Refusal;
-use pappus::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
+use pappus::ops::local::{CollapseOptions, bisect_edge, collapse_edge, flip_edge, split_edge};
 
 fn assert_same_mesh(world: &World, mesh: MeshId, expected: &PolygonSoup) {
     validate(world, mesh).unwrap();
@@ -218,6 +218,72 @@ fn split_the_diamond_interior_edge() {
     assert_same_mesh(&world, built.mesh, &expected);
     assert_eq!(counts(&world, built.mesh), (5, 8, 4, 1));
     assert_eq!(m.valence(v), 4);
+}
+
+// ---- bisect -------------------------------------------------------------------------------
+
+#[test]
+fn bisect_the_diamond_interior_edge_makes_two_quads() {
+    let soup = shapes::diamond();
+    let (mut world, built) = build(&soup);
+    let e = edge(&world, &built, 0, 2);
+    let v = bisect_edge(&mut world, e, 0.25).unwrap();
+    let m = MeshRef::new(&world);
+    // A quarter of the way from 0 (0,-1) to 2 (0,1).
+    assert_eq!(m.position(v), Vec3::new(0.0, -0.5, 0.0));
+    let mut expected = soup.clone();
+    expected.positions.push(Vec3::new(0.0, -0.5, 0.0)); // 4
+    expected.indices.clear();
+    expected.face_starts = vec![0];
+    for f in [[0, 1, 2, 4], [0, 4, 2, 3]] {
+        expected.push_face(&f);
+    }
+    assert_same_mesh(&world, built.mesh, &expected);
+    // One vertex and one edge more, no face more: χ unchanged.
+    assert_eq!(counts(&world, built.mesh), (5, 6, 2, 1));
+    assert_eq!(m.valence(v), 2);
+}
+
+#[test]
+fn bisect_a_boundary_edge_adds_a_corner_to_its_face_and_loop() {
+    let soup = shapes::diamond();
+    let (mut world, built) = build(&soup);
+    let e = edge(&world, &built, 0, 1);
+    let v = bisect_edge(&mut world, e, 0.5).unwrap();
+    let m = MeshRef::new(&world);
+    assert!(m.is_boundary_vertex(v));
+    assert!(m.is_boundary(m.vertex_halfedge(v)));
+    let mut expected = soup.clone();
+    expected.positions.push(Vec3::new(0.5, -0.5, 0.0));
+    expected.indices.clear();
+    expected.face_starts = vec![0];
+    expected.push_face(&[0, 4, 1, 2]);
+    expected.push_face(&[0, 2, 3]);
+    assert_same_mesh(&world, built.mesh, &expected);
+    assert_eq!(counts(&world, built.mesh), (5, 6, 2, 1));
+    assert_eq!(mesh_stats(&world, built.mesh).boundary_loops, 1);
+}
+
+#[test]
+fn bisect_refuses_what_split_refuses_and_changes_nothing() {
+    for t in [0.0, 1.0, f32::NAN] {
+        let r = refused(shapes::diamond(), 0, 2, |w, e| {
+            bisect_edge(w, e, t).map(|_| ())
+        });
+        assert!(matches!(r, Refusal::SplitParameter(_)), "{t}: {r}");
+    }
+    let mut soup = shapes::diamond();
+    soup.positions[2] = soup.positions[0];
+    let r = refused(soup, 0, 2, |w, e| bisect_edge(w, e, 0.5).map(|_| ()));
+    assert!(matches!(r, Refusal::SplitAtEndpoint(_)), "{r}");
+    // A stale edge: the diamond's edge after the diamond is gone.
+    let (mut world, built) = build(&shapes::diamond());
+    let e = edge(&world, &built, 0, 2);
+    pappus::mesh::despawn_mesh(&mut world, built.mesh);
+    assert_eq!(
+        bisect_edge(&mut world, e, 0.5),
+        Err(Refusal::Stale(pappus::mesh::ElementId::Edge(e)))
+    );
 }
 
 #[test]

@@ -9,7 +9,7 @@ use bevy::prelude::World;
 use pappus::mesh::MeshRef;
 use pappus::mesh::{MeshId, MeshMembers, PolygonSoup, mesh_stats, shapes, validate};
 use pappus::ops::local::{
-    CollapseOptions, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
+    CollapseOptions, bisect_edge, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
 };
 use proptest::prelude::*;
 
@@ -56,7 +56,7 @@ proptest! {
     #[test]
     fn random_local_edits_keep_the_mesh_valid(
         which in 0u8..SHAPES,
-        ops in proptest::collection::vec((0u8..6, any::<u32>(), 0.05f32..0.95), 400),
+        ops in proptest::collection::vec((0u8..7, any::<u32>(), 0.05f32..0.95), 400),
     ) {
         let (mut world, built) = common::build(&shape(which));
         let mesh = built.mesh;
@@ -73,6 +73,7 @@ proptest! {
                 1 => split_edge(&mut world, e, t).is_ok(),
                 2 => collapse_edge(&mut world, e, CollapseOptions::default()).is_ok(),
                 3 => dissolve_edge(&mut world, e).is_ok(),
+                6 => bisect_edge(&mut world, e, t).is_ok(),
                 4 => {
                     // A collapse towards a point along the edge, refused if a face turns over.
                     let m = MeshRef::new(&world);

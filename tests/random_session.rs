@@ -65,7 +65,8 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
     let roll = rng.below(100);
     let edit = match roll {
         0..=11 => edge(rng).map(Edit::Flip),
-        12..=21 => edge(rng).map(Edit::Split),
+        12..=18 => edge(rng).map(Edit::Split),
+        19..=21 => edge(rng).map(Edit::Bisect),
         22..=35 => edge(rng).map(Edit::Collapse),
         36..=41 => edge(rng).map(Edit::Dissolve),
         42..=45 => face(rng).map(|f| {

@@ -7,7 +7,7 @@
 
 use bevy::prelude::*;
 
-use crate::edit::{Edit, Scheme, Subdivision};
+use crate::edit::{Edit, LocalKind, Scheme, Subdivision};
 use crate::mesh::MeshRef;
 use crate::mesh::ids::ElementId;
 use crate::ops::remesh::RemeshParams;
@@ -23,14 +23,9 @@ use super::selection::{ActiveMesh, MeshDirty, SelectMode, Selection, selected_ed
 /// What a shortcut does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Action {
-    /// Flip the selected edge.
-    Flip,
-    /// Split the selected edge at its midpoint.
-    Split,
-    /// Collapse the selected edge to its midpoint.
-    Collapse,
-    /// Merge the two faces of the selected edge.
-    Dissolve,
+    /// A local edit of the selected edge (or halfedge's edge): flip, split, bisect, collapse,
+    /// dissolve.
+    OnEdge(LocalKind),
     /// Cut a corner off the selected halfedge's face: join its tip to the vertex two corners
     /// ahead.
     CutCorner,
@@ -131,25 +126,31 @@ pub const SHORTCUTS: &[Shortcut] = &[
     key(
         KeyCode::KeyR,
         "R",
-        Action::Flip,
+        Action::OnEdge(LocalKind::Flip),
         "flip (rotate) the selected edge",
     ),
     key(
         KeyCode::KeyS,
         "S",
-        Action::Split,
+        Action::OnEdge(LocalKind::Split),
         "split the selected edge at its midpoint",
+    ),
+    key(
+        KeyCode::KeyK,
+        "K",
+        Action::OnEdge(LocalKind::Bisect),
+        "bisect the selected edge: a vertex at its midpoint, no face cut",
     ),
     key(
         KeyCode::KeyC,
         "C",
-        Action::Collapse,
+        Action::OnEdge(LocalKind::Collapse),
         "collapse the selected edge to its midpoint",
     ),
     key(
         KeyCode::KeyD,
         "D",
-        Action::Dissolve,
+        Action::OnEdge(LocalKind::Dissolve),
         "dissolve the selected edge (merge its two faces)",
     ),
     key(
@@ -429,15 +430,11 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             let (f, a, b) = target.ok_or(Declined::SelectFirst("a halfedge of a face (mode 4)"))?;
             Edit::SplitFace(f, a, b)
         }
-        Action::Flip | Action::Split | Action::Collapse | Action::Dissolve => {
+        Action::OnEdge(kind) => {
             let edge = selected_edge(&m, selection)
                 .ok_or(Declined::SelectFirst("an edge (or halfedge)"))?;
-            match action {
-                Action::Flip => Edit::Flip(edge),
-                Action::Split => Edit::Split(edge),
-                Action::Dissolve => Edit::Dissolve(edge),
-                _ => Edit::Collapse(edge),
-            }
+            kind.on_edge(edge)
+                .ok_or(Declined::SelectFirst("a halfedge of a face (mode 4)"))?
         }
         Action::Triangulate
         | Action::LoopSubdivide

@@ -15,7 +15,7 @@ use crate::mesh::ids::{ElementId, parse_element};
 use crate::mesh::topology::MeshRef;
 use crate::mesh::{MeshInfo, MeshStats, mesh_stats, validate};
 
-use crate::edit::{Edit, Subdivision};
+use crate::edit::{Edit, LocalKind, Subdivision};
 use crate::ops::simplify::SimplifyTarget;
 
 use super::EditorSystems;
@@ -659,10 +659,11 @@ fn operations_section(
     ui.label(egui::RichText::new("Operations").strong());
     ui.horizontal_wrapped(|ui| {
         for (action, name) in [
-            (Action::Flip, "Flip"),
-            (Action::Split, "Split"),
-            (Action::Collapse, "Collapse"),
-            (Action::Dissolve, "Dissolve"),
+            (Action::OnEdge(LocalKind::Flip), "Flip"),
+            (Action::OnEdge(LocalKind::Split), "Split"),
+            (Action::OnEdge(LocalKind::Bisect), "Bisect"),
+            (Action::OnEdge(LocalKind::Collapse), "Collapse"),
+            (Action::OnEdge(LocalKind::Dissolve), "Dissolve"),
             (Action::CutCorner, "Split face"),
             (Action::SplitVertex, "Split vertex back"),
             (Action::Triangulate, "Triangulate"),

@@ -1,5 +1,5 @@
 //! Local operations: edge flip, edge split, edge collapse, and their companions (edge
-//! dissolve, face split, vertex split — the exact inverse of a collapse).
+//! bisection, edge dissolve, face split, vertex split — the exact inverse of a collapse).
 //!
 //! The contract, stated once: **if the result of an operation would not be a valid mesh, the
 //! operation changes nothing and returns a [`Refusal`] that says why.** Each operation is a
@@ -18,6 +18,7 @@
 //! Each operation's module doc has a before/after picture and its refusals, in the order they
 //! are checked.
 
+mod bisect;
 mod collapse;
 mod dissolve;
 mod flip;
@@ -25,6 +26,7 @@ mod split;
 mod split_face;
 mod vertex_split;
 
+pub use bisect::{BisectPlan, apply_bisect, bisect_edge, plan_bisect};
 pub use collapse::{
     CollapseOptions, CollapsePlan, CollapseRecord, CollapseResult, apply_collapse, collapse_edge,
     plan_collapse, plan_collapse_halfedge,

@@ -30,6 +30,7 @@
 //!   a ---h--> b          a -- m -- b
 //! ```
 //!
+//! A split is a bisection ([`super::bisect`]: the vertex `m` on the edge) followed by the cuts.
 //! Entities: the old edge keeps `h` (now `a → m`) and gets a new twin; `t` (now `b → m`) moves
 //! to a new edge `m b` with a new twin; each cut face keeps its entity for the side holding `h`
 //! (or `t`) and a new face takes the cut-off triangle. Nothing is despawned.
@@ -41,170 +42,32 @@
 //!   `t` so close to 0 or 1 that it rounds onto one);
 //! - `NotFinite`: the new point would not be finite.
 
-use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::elements::{Edge, Halfedge, InMesh, Position, Vertex};
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::ids::{EdgeId, VertexId};
 use crate::mesh::topology::MeshRef;
 
-use super::{Refusal, cut, he, link, live_edge, spawn_at};
+use super::bisect::{BisectPlan, apply_bisect, plan_bisect};
+use super::{Refusal, cut};
 
-/// Everything a split touches, collected by [`plan_split`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SplitPlan {
-    edge: EdgeId,
-    h: HalfedgeId,
-    t: HalfedgeId,
-    /// `next(h)`, `next(t)`: where the new halfedges link in.
-    hn: HalfedgeId,
-    tn: HalfedgeId,
-    /// The faces of `h` and `t` (`None` on the boundary side).
-    f: Option<FaceId>,
-    g: Option<FaceId>,
-    a: VertexId,
-    b: VertexId,
-    param: f32,
-    position: Vec3,
-    mesh: crate::mesh::ids::MeshId,
-}
+/// Everything a split touches: the bisection's plan (a split is a bisection, then a cut of each
+/// face from the new vertex).
+pub type SplitPlan = BisectPlan;
 
 /// Checks that `e` can be split at parameter `t` (from the edge's halfedge's start).
 ///
 /// # Refusals
 /// See the module doc.
 pub fn plan_split(world: &World, e: EdgeId, t: f32) -> Result<SplitPlan, Refusal> {
-    let m = MeshRef::new(world);
-    let h = live_edge(&m, e)?;
-    if !(t > 0.0 && t < 1.0) {
-        return Err(Refusal::SplitParameter(t));
-    }
-    let (a, b) = (m.position(m.from_vertex(h)), m.position(m.to_vertex(h)));
-    let position = a.lerp(b, t);
-    if !position.is_finite() {
-        return Err(Refusal::NotFinite(position));
-    }
-    if position == a || position == b {
-        return Err(Refusal::SplitAtEndpoint(ElementId::Edge(e)));
-    }
-    let mesh = world
-        .get::<InMesh>(e.0)
-        .ok_or(Refusal::Stale(ElementId::Edge(e)))?
-        .0;
-    let twin = m.twin(h);
-    Ok(SplitPlan {
-        edge: e,
-        h,
-        t: twin,
-        hn: m.next(h),
-        tn: m.next(twin),
-        f: m.face(h),
-        g: m.face(twin),
-        a: m.from_vertex(h),
-        b: m.to_vertex(h),
-        param: t,
-        position,
-        mesh,
-    })
+    plan_bisect(world, e, t)
 }
 
 /// Carries out a split planned by [`plan_split`]. Returns the new vertex.
 pub fn apply_split(world: &mut World, p: SplitPlan) -> VertexId {
-    debug_assert_eq!(
-        plan_split(world, p.edge, p.param),
-        Ok(p),
-        "stale split plan"
-    );
-    let SplitPlan {
-        h,
-        t,
-        hn,
-        tn,
-        f,
-        g,
-        a,
-        b,
-        ..
-    } = p;
-    let member = InMesh(p.mesh);
-    let alloc = world.entity_allocator();
-    let (mid, h2, t2, e2) = (
-        VertexId(alloc.alloc()),
-        HalfedgeId(alloc.alloc()),
-        HalfedgeId(alloc.alloc()),
-        EdgeId(alloc.alloc()),
-    );
-    // h: a → m, h2: m → b (same face as h); t: b → m, t2: m → a (same face as t).
-    // Twins: (h, t2) on the old edge, (h2, t) on the new one.
-    he(world, h).vertex = mid;
-    he(world, h).twin = t2;
-    he(world, t).vertex = mid;
-    he(world, t).twin = h2;
-    he(world, t).edge = e2;
-    spawn_at(
-        world,
-        h2.0,
-        (
-            Halfedge {
-                twin: t,
-                next: hn,
-                prev: h,
-                vertex: b,
-                edge: e2,
-                face: f,
-            },
-            member,
-        ),
-    );
-    spawn_at(
-        world,
-        t2.0,
-        (
-            Halfedge {
-                twin: h,
-                next: tn,
-                prev: t,
-                vertex: a,
-                edge: p.edge,
-                face: g,
-            },
-            member,
-        ),
-    );
-    link(world, h, h2);
-    link(world, h2, hn);
-    link(world, t, t2);
-    link(world, t2, tn);
-    let boundary_out = if f.is_none() {
-        h2
-    } else if g.is_none() {
-        t2
-    } else {
-        h2
-    };
-    spawn_at(
-        world,
-        mid.0,
-        (
-            Vertex {
-                halfedge: boundary_out,
-            },
-            Position(p.position),
-            member,
-        ),
-    );
-    // Each edge names an interior halfedge where it has one.
-    world.get_mut::<Edge>(p.edge.0).expect("planned").halfedge = if f.is_some() { h } else { t2 };
-    spawn_at(
-        world,
-        e2.0,
-        (
-            Edge {
-                halfedge: if f.is_some() { h2 } else { t },
-            },
-            member,
-        ),
-    );
+    let BisectPlan { h, t, tn, f, g, .. } = p;
+    let mid = apply_bisect(world, p);
+    let hn = p.hn;
+    let h2 = MeshRef::new(world).next(h);
     // b's outgoing halfedge may have been t (b → a), which is now b → m: still outgoing.
     // Cut each real face from m to the vertex after the edge.
     if let Some(f) = f {
