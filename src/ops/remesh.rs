@@ -52,12 +52,10 @@ use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::arrays::{Extracted, extract};
-use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{EdgeId, ElementId, HalfedgeId, MeshId, VertexId, slots_for};
 use crate::mesh::members::MeshMembers;
-use crate::mesh::repair::NONE;
 use crate::mesh::stats::{THIN_ANGLE_DEG, min_corner_angle_deg};
+use crate::mesh::tables::{Connectivity, MeshTables as Extracted, NONE, extract};
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
