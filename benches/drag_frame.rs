@@ -70,7 +70,7 @@ fn drag_frame(c: &mut Criterion) {
             b.iter(|| {
                 step += 1;
                 let p = MeshRef::new(app.world()).position(v)
-                    + Vec3::splat(if step % 2 == 0 { 1e-4 } else { -1e-4 });
+                    + Vec3::splat(if step.is_multiple_of(2) { 1e-4 } else { -1e-4 });
                 app.world_mut()
                     .write_message(Request::Edit(Edit::MoveVertex(v, p)));
                 app.update();

@@ -8,7 +8,7 @@
 
 use bevy::prelude::World;
 use criterion::{Criterion, criterion_group, criterion_main};
-use pappus::mesh::change::{LocalRecorder, MeshTables, component_bytes, remapped};
+use pappus::mesh::change::{LocalRecorder, SavedContents, component_bytes, remapped};
 use pappus::mesh::{
     EdgeId, MeshId, MeshInfo, MeshMembers, MeshRef, PolygonSoup, build_mesh, shapes,
 };
@@ -64,7 +64,7 @@ fn memory(soup: &PolygonSoup) {
         mib(components)
     );
     // One remesh of 10 iterations is one entry: the tables before it.
-    let one = MeshTables::capture(&world, mesh).bytes();
+    let one = SavedContents::capture(&world, mesh).bytes();
     println!(
         "history of one remesh (any number of iterations): {:.1} MiB = {:.2}x resident, {:.2}x components",
         mib(one),
@@ -78,10 +78,10 @@ fn memory(soup: &PolygonSoup) {
     };
     let mut entries = Vec::new();
     for _ in 0..10 {
-        entries.push(MeshTables::capture(&world, mesh));
+        entries.push(SavedContents::capture(&world, mesh));
         remesh(&mut world, mesh, &params).unwrap();
     }
-    let held: usize = entries.iter().map(MeshTables::bytes).sum();
+    let held: usize = entries.iter().map(SavedContents::bytes).sum();
     println!(
         "history of 10 one-iteration remeshes (10 entries): {:.1} MiB = {:.2}x resident, {:.2}x components",
         mib(held),
@@ -137,9 +137,9 @@ fn bench(c: &mut Criterion) {
         });
     });
     c.bench_function("capture the whole mesh (bunny)", |b| {
-        b.iter(|| MeshTables::capture(&world, mesh));
+        b.iter(|| SavedContents::capture(&world, mesh));
     });
-    let mut tables = Some(MeshTables::capture(&world, mesh));
+    let mut tables = Some(SavedContents::capture(&world, mesh));
     c.bench_function(
         "restore the whole mesh, undo of a global edit (bunny)",
         |b| {

@@ -227,12 +227,15 @@ fn bisect_the_diamond_interior_edge_makes_two_quads() {
     let soup = shapes::diamond();
     let (mut world, built) = build(&soup);
     let e = edge(&world, &built, 0, 2);
+    // A quarter of the way along the edge's halfedge, from 0 (0,-1) to 2 (0,1) or back.
+    let h = MeshRef::new(&world).edge_halfedge(e);
+    let from = MeshRef::new(&world).position(MeshRef::new(&world).from_vertex(h));
+    let at = Vec3::new(0.0, from.y / 2.0, 0.0);
     let v = bisect_edge(&mut world, e, 0.25).unwrap();
     let m = MeshRef::new(&world);
-    // A quarter of the way from 0 (0,-1) to 2 (0,1).
-    assert_eq!(m.position(v), Vec3::new(0.0, -0.5, 0.0));
+    assert_eq!(m.position(v), at);
     let mut expected = soup.clone();
-    expected.positions.push(Vec3::new(0.0, -0.5, 0.0)); // 4
+    expected.positions.push(at); // 4
     expected.indices.clear();
     expected.face_starts = vec![0];
     for f in [[0, 1, 2, 4], [0, 4, 2, 3]] {

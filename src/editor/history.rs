@@ -23,9 +23,10 @@ use bevy::input::mouse::MouseButton;
 use bevy::prelude::{Res, ResMut, Resource, World};
 
 use crate::mesh::MeshInfo;
-use crate::mesh::change::{Change, LocalRecorder, MeshTables, Remap, SavedMesh, remapped};
+use crate::mesh::change::{Change, LocalRecorder, Remap, SavedContents, SavedMesh, remapped};
 use crate::mesh::despawn_mesh;
 use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
+use crate::mesh::tables::MeshTables;
 use crate::mesh::topology::MeshRef;
 
 use crate::edit::{Edit, MergeKey, Reach};
@@ -37,7 +38,7 @@ enum Record {
     /// A local edit's changed elements.
     Local(Change),
     /// A mesh's whole contents (the mesh entity stays).
-    Whole(MeshTables),
+    Whole(SavedContents),
     /// One mesh replaced by another: `remove` is despawned, `restore` spawned again.
     Replace {
         remove: Option<MeshId>,
@@ -82,9 +83,9 @@ impl Record {
                 };
                 (Record::Local(inverse), map, redraw)
             }
-            Record::Whole(tables) => {
-                let mesh = tables.mesh;
-                let (inverse, map) = tables.apply(world);
+            Record::Whole(saved) => {
+                let mesh = saved.mesh;
+                let (inverse, map) = saved.apply(world);
                 (Record::Whole(inverse), map, Redraw::Whole(Some(mesh)))
             }
             Record::Replace { remove, restore } => {
@@ -270,7 +271,7 @@ impl Pending {
     /// The mesh's tables, when this is the record of a whole-mesh edit.
     pub fn tables(&self) -> Option<&MeshTables> {
         match &self.kind {
-            PendingKind::Whole(tables) => Some(tables),
+            PendingKind::Whole(saved) => Some(&saved.tables),
             _ => None,
         }
     }
@@ -278,7 +279,7 @@ impl Pending {
 
 enum PendingKind {
     Local(LocalRecorder),
-    Whole(MeshTables),
+    Whole(SavedContents),
     Replace(Option<SavedMesh>),
     /// The edit continues the last entry.
     Merge,
@@ -295,7 +296,7 @@ pub fn begin_edit(world: &World, edit: &Edit, mesh: MeshId) -> Option<Pending> {
             Reach::Local(mesh, seeds) => {
                 PendingKind::Local(LocalRecorder::begin(world, mesh, &seeds))
             }
-            Reach::Whole(mesh) => PendingKind::Whole(MeshTables::capture(world, mesh)),
+            Reach::Whole(mesh) => PendingKind::Whole(SavedContents::capture(world, mesh)),
         }
     };
     Some(Pending {
@@ -330,7 +331,7 @@ pub fn commit(world: &mut World, pending: Pending, label: String) {
             }
             Record::Local(change)
         }
-        PendingKind::Whole(tables) => Record::Whole(tables),
+        PendingKind::Whole(saved) => Record::Whole(saved),
         PendingKind::Replace(restore) => Record::Replace {
             remove: world.resource::<ActiveMesh>().0,
             restore,

@@ -17,10 +17,9 @@ use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::thread::JoinHandle;
 
 use crate::edit::{Applied, Edit, EditContext, IdsKept};
-use crate::mesh::arrays::{Extracted, extract, replace_contents};
-use crate::mesh::build::spawn_connectivity;
 use crate::mesh::change::row_map;
 use crate::mesh::ids::{ElementId, MeshId};
+use crate::mesh::tables::{MeshTables, extract, replace_contents, spawn_connectivity};
 use crate::mesh::{MeshInfo, MeshMembers, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::progressive::ProgressiveMesh;
@@ -79,7 +78,7 @@ impl Progress {
 /// entity behind every row, and the scratch entities the input's rows were spawned as (the two
 /// carry the selection and the simplification history over).
 struct JobOutput {
-    result: Extracted,
+    result: MeshTables,
     input: MeshMembers,
     applied: Applied,
     history: Option<ProgressiveMesh>,
@@ -138,12 +137,9 @@ pub fn start(
     }
     // The undo record has read the mesh already: copying its tables is cheaper than reading
     // the entities again.
-    let (tables, members) = match pending.as_ref().and_then(Pending::tables) {
-        Some(record) => (record.tables().clone(), record.members().clone()),
-        None => {
-            let Extracted { tables, members } = extract(world, mesh);
-            (tables, members)
-        }
+    let MeshTables { tables, members } = match pending.as_ref().and_then(Pending::tables) {
+        Some(record) => record.clone(),
+        None => extract(world, mesh),
     };
     let label = edit.label();
     let progress = Arc::new(Progress::default());

@@ -6,15 +6,16 @@
 //!   seed vertices before it runs and compares it afterwards, keeping only what differs:
 //!   elements removed (with their components), created (their ids) and modified (their old
 //!   components). A few hundred bytes, whatever the size of the mesh.
-//! - [`MeshTables`], for whole-mesh edits (subdivision, simplification, …): the mesh as flat
-//!   index tables with the entity behind every row, about 32 bytes a halfedge.
-//! - [`SavedMesh`], for a mesh that is deleted or replaced: its tables and its [`MeshInfo`].
+//! - [`SavedContents`], for whole-mesh edits (subdivision, simplification, …): the mesh's
+//!   [`MeshTables`] (flat index tables with the entity behind every row, about 32 bytes a
+//!   halfedge, read by [`extract`]) and which mesh they are the contents of.
+//! - [`SavedMesh`], for a mesh that is deleted or replaced: its contents and its [`MeshInfo`].
 //!
 //! Applying a record puts the world back in the recorded state and returns the inverse record
 //! (apply that to redo) and a [`Remap`]. Bevy never hands out a despawned id again (the
 //! generation is bumped), so elements brought back get new entities; the remap takes every id
 //! the record held to the entity that now stands for it, and every other record that may name
-//! those ids must be passed through it ([`Change::remap`], [`MeshTables::remap`]).
+//! those ids must be passed through it ([`Change::remap`], [`SavedContents::remap`]).
 //!
 //! States are compared bitwise (`-0.0` is not `0.0`), so an undo restores positions exactly.
 
@@ -22,12 +23,11 @@ use bevy::ecs::entity::{EntityHashMap, EntityHashSet};
 use bevy::math::Vec3;
 use bevy::prelude::{Component, Entity, World};
 
-use super::arrays::{Extracted, extract};
-use super::build::write_tables;
-use super::connectivity::Connectivity;
 use super::elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
 use super::ids::{FaceId, MeshId, VertexId};
 use super::members::MeshMembers;
+use super::tables::write::write_tables;
+use super::tables::{MeshTables, extract};
 use super::topology::MeshRef;
 
 /// From the ids a record held to the entities that stand for them after it was applied. Ids
@@ -336,72 +336,48 @@ impl LocalRecorder {
     }
 }
 
-/// A whole mesh as flat tables with the entity behind every row.
+/// A mesh's whole contents, to be put back into the same mesh entity: the record of a
+/// whole-mesh edit.
 #[derive(Clone)]
-pub struct MeshTables {
+pub struct SavedContents {
     /// The mesh.
     pub mesh: MeshId,
-    tables: Connectivity,
-    members: MeshMembers,
+    /// Its contents: the tables, with the entity behind every row.
+    pub tables: MeshTables,
 }
 
-impl MeshTables {
+impl SavedContents {
     /// Reads `mesh` (which must be valid).
     pub fn capture(world: &World, mesh: MeshId) -> Self {
-        let Extracted { tables, members } = extract(world, mesh);
         Self {
             mesh,
-            tables,
-            members,
+            tables: extract(world, mesh),
         }
-    }
-
-    /// The tables.
-    pub fn tables(&self) -> &Connectivity {
-        &self.tables
-    }
-
-    /// The entity behind every row.
-    pub fn members(&self) -> &MeshMembers {
-        &self.members
     }
 
     /// Bytes held.
     pub fn bytes(&self) -> usize {
-        let t = &self.tables;
-        let u32s = t.vertex_halfedge.capacity()
-            + t.twin.capacity()
-            + t.next.capacity()
-            + t.prev.capacity()
-            + t.to_vertex.capacity()
-            + t.edge.capacity()
-            + t.face.capacity()
-            + t.edge_halfedge.capacity()
-            + t.face_halfedge.capacity();
-        let m = &self.members;
-        let ids = m.vertices.capacity()
-            + m.halfedges.capacity()
-            + m.edges.capacity()
-            + m.faces.capacity();
-        std::mem::size_of::<Self>()
-            + u32s * 4
-            + t.positions.capacity() * std::mem::size_of::<Vec3>()
-            + ids * std::mem::size_of::<Entity>()
+        std::mem::size_of::<MeshId>() + self.tables.bytes()
     }
 
     /// Makes the mesh's contents these tables again, reusing its current entities. Returns the
-    /// tables it had (the inverse) and the remap from the recorded row ids to the entities that
-    /// now hold those rows.
-    pub fn apply(self, world: &mut World) -> (MeshTables, Remap) {
+    /// contents it had (the inverse) and the remap from the recorded row ids to the entities
+    /// that now hold those rows.
+    pub fn apply(self, world: &mut World) -> (SavedContents, Remap) {
         let now = Self::capture(world, self.mesh);
-        let rows = write_tables(world, &self.tables, self.mesh, Some(&now.members));
-        (now, row_map(&self.members, &rows))
+        let rows = write_tables(
+            world,
+            &self.tables.tables,
+            self.mesh,
+            Some(&now.tables.members),
+        );
+        (now, row_map(&self.tables.members, &rows))
     }
 
     /// Passes every id held through `map`.
     pub fn remap(&mut self, map: &Remap) {
         self.mesh = MeshId(remapped(map, self.mesh.0));
-        remap_members(&mut self.members, map);
+        remap_members(&mut self.tables.members, map);
     }
 }
 
@@ -409,7 +385,7 @@ impl MeshTables {
 #[derive(Clone)]
 pub struct SavedMesh {
     info: MeshInfo,
-    tables: MeshTables,
+    contents: SavedContents,
 }
 
 impl SavedMesh {
@@ -417,33 +393,34 @@ impl SavedMesh {
     pub fn capture(world: &World, mesh: MeshId) -> Self {
         Self {
             info: world.get::<MeshInfo>(mesh.0).cloned().unwrap_or_default(),
-            tables: MeshTables::capture(world, mesh),
+            contents: SavedContents::capture(world, mesh),
         }
     }
 
     /// The id the mesh had.
     pub fn mesh(&self) -> MeshId {
-        self.tables.mesh
+        self.contents.mesh
     }
 
     /// Bytes held.
     pub fn bytes(&self) -> usize {
-        self.tables.bytes() + self.info.name.capacity()
+        self.contents.bytes() + self.info.name.capacity()
     }
 
     /// Spawns the mesh again. Returns its new id and the remap from every id it had (the mesh
     /// and its elements) to the new ones.
     pub fn restore(self, world: &mut World) -> (MeshId, Remap) {
         let mesh = MeshId(world.spawn(self.info).id());
-        let rows = write_tables(world, &self.tables.tables, mesh, None);
-        let mut map = row_map(&self.tables.members, &rows);
-        map.insert(self.tables.mesh.0, mesh.0);
+        let saved = &self.contents.tables;
+        let rows = write_tables(world, &saved.tables, mesh, None);
+        let mut map = row_map(&saved.members, &rows);
+        map.insert(self.contents.mesh.0, mesh.0);
         (mesh, map)
     }
 
     /// Passes every id held through `map`.
     pub fn remap(&mut self, map: &Remap) {
-        self.tables.remap(map);
+        self.contents.remap(map);
     }
 }
 
@@ -521,11 +498,9 @@ mod tests {
         let members = MeshMembers::collect(&world, mesh);
         // Replace the contents with another shape, then put the grid back.
         let other = build_mesh(&mut world, &shapes::cube(), MeshInfo::default()).unwrap();
-        let cube = MeshTables::capture(&world, other.mesh);
-        let cube_tables = MeshTables {
+        let cube_tables = SavedContents {
             mesh,
-            tables: cube.tables,
-            members: cube.members,
+            tables: extract(&world, other.mesh),
         };
         let (grid_again, _) = cube_tables.apply(&mut world);
         assert_ne!(to_soup(&world, mesh), before);

@@ -15,12 +15,13 @@
 //! [`validate::validate`]: links are mutual, faces and vertex fans close, every vertex is
 //! manifold (one fan), no two edges join the same vertices, faces have ≥ 3 sides.
 //!
+//! Whole-mesh work reads and writes a mesh in bulk through its flat-table form, [`tables`]:
+//! index tables with typed rows, and the two passes between them and the entities.
+//!
 //! This module knows nothing of operations, files or rendering.
 
-pub mod arrays;
 pub mod build;
 pub mod change;
-pub mod connectivity;
 pub mod elements;
 pub mod ids;
 pub mod members;
@@ -28,6 +29,7 @@ pub mod repair;
 pub mod shapes;
 pub mod soup;
 pub mod stats;
+pub mod tables;
 pub mod topology;
 pub mod validate;
 

@@ -19,15 +19,14 @@
 //! 5. **Unreferenced vertices** are dropped.
 //!
 //! The result ([`RepairedFaces`]) pairs every face corner with its twin corner, ready for
-//! [`super::connectivity`].
+//! [`Connectivity::from_corners`](super::tables::Connectivity::from_corners). "None" in its
+//! tables is the tables' [`NONE`].
 
 use bevy::math::Vec3;
 use bevy::platform::collections::HashMap;
 
 use super::soup::PolygonSoup;
-
-/// Marks "none" in the index tables (no twin, dropped vertex, boundary).
-pub const NONE: u32 = u32::MAX;
+use super::tables::{FaceCorners, NONE};
 
 /// What the builder had to repair, by kind. Every count is zero for a clean mesh.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -124,6 +123,16 @@ impl RepairedFaces {
     /// Number of faces.
     pub fn face_count(&self) -> usize {
         self.face_starts.len().saturating_sub(1)
+    }
+
+    /// The faces as corners with their twins, to lay out as tables.
+    pub fn corners(&self) -> FaceCorners<'_> {
+        FaceCorners {
+            positions: &self.positions,
+            indices: &self.indices,
+            face_starts: &self.face_starts,
+            twin: &self.twin,
+        }
     }
 }
 

@@ -15,13 +15,12 @@ use bevy::ecs::entity::EntityHashMap;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::arrays::extract;
-use crate::mesh::build::{RowCounts, release_rows, reserve_rows_while, write_links};
 use crate::mesh::change::remapped;
-use crate::mesh::connectivity::Connectivity;
 use crate::mesh::elements::Vertex;
 use crate::mesh::ids::{ElementId, MeshId, VertexId, slots_for};
 use crate::mesh::members::of_kind;
+use crate::mesh::tables::write::{release_rows, reserve_rows_while, write_links};
+use crate::mesh::tables::{Connectivity, RowCounts, VertexRow, extract};
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
@@ -346,15 +345,19 @@ impl ProgressiveMesh {
         let extracted = extract(world, self.mesh);
         let old = &extracted.members;
         let row_of = old.vertex_rows();
-        // Each slot's table row, as the splits go (rows for the vertices they make are new).
-        let mut rows: Vec<u32> = self
+        // Each slot's table row, as the splits go (rows for the vertices they make are new);
+        // `NONE` for a slot with no vertex at this level.
+        let mut rows: Vec<VertexRow> = self
             .slots
             .iter()
-            .map(|v| v.and_then(|v| row_of.get(&v.0).copied()).unwrap_or(NO_ROW))
+            .map(|v| {
+                v.and_then(|v| row_of.get(&v.0).copied())
+                    .map_or(VertexRow::NONE, VertexRow::new)
+            })
             .collect();
         let records = &self.records[self.applied - count..self.applied];
         let faces: usize = records.iter().map(|r| r.faces).sum();
-        let before = RowCounts::of(&extracted.tables);
+        let before = extracted.tables.row_counts();
         let added = RowCounts {
             vertices: count,
             halfedges: 2 * (count + faces),
@@ -368,10 +371,10 @@ impl ProgressiveMesh {
                 replay(&mut tables, records, &mut rows, &old.vertices)
             });
         // A refusal left fewer rows than were reserved: the surplus goes.
-        release_rows(world, &mut written, RowCounts::of(&tables));
+        release_rows(world, &mut written, tables.row_counts());
         write_links(world, &tables, &written);
         for (slot, &row) in self.slots.iter_mut().zip(&rows) {
-            *slot = (row != NO_ROW).then(|| written.vertices[row as usize]);
+            *slot = (!row.is_none()).then(|| written.vertices[row.index()]);
         }
         self.applied -= made;
         refusal.map_or(Ok(made), Err)
@@ -380,8 +383,8 @@ impl ProgressiveMesh {
     /// The refusal for a split that does not fit, naming vertices by the entities they had
     /// before the bulk refine began (`old`, by row).
     fn mismatch(why: SplitMismatch, split: &TableSplit, old: &[VertexId]) -> Refusal {
-        let name = |row: u32| {
-            old.get(row as usize)
+        let name = |row: VertexRow| {
+            old.get(row.index())
                 .map_or("a vertex this refine made".to_string(), |v| v.to_string())
         };
         Refusal::HistoryMismatch(match why {
@@ -399,22 +402,20 @@ impl ProgressiveMesh {
     }
 }
 
-/// A slot with no table row (its vertex is collapsed away at this level).
-const NO_ROW: u32 = u32::MAX;
-
 /// Replays the splits of `records`, the last first, on `tables`; `rows` maps each history
-/// slot to its table row and follows the splits. Stops at the first record that no longer
+/// slot to its table row ([`VertexRow::NONE`] while its vertex is collapsed away) and follows
+/// the splits. Stops at the first record that no longer
 /// fits. Returns how many splits it made, and the refusal if it stopped (vertices named by
 /// `old`, the entities of the rows that existed before).
 fn replay(
     tables: &mut Connectivity,
     records: &[SlotRecord],
-    rows: &mut [u32],
+    rows: &mut [VertexRow],
     old: &[VertexId],
 ) -> (usize, Option<Refusal>) {
     for (made, r) in records.iter().rev().enumerate() {
         let row = |slot: u32| match rows[slot as usize] {
-            NO_ROW => Err(Refusal::HistoryMismatch(format!(
+            VertexRow::NONE => Err(Refusal::HistoryMismatch(format!(
                 "history slot {slot} has no vertex now"
             ))),
             row => Ok(row),

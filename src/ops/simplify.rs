@@ -21,10 +21,8 @@
 use bevy::math::{DVec3, Vec3};
 use bevy::prelude::{Entity, World};
 
-use crate::mesh::arrays::{Extracted, extract};
-use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId, slot, slots_for};
-use crate::mesh::repair::NONE;
+use crate::mesh::tables::{Connectivity, FaceRow, MeshTables, VertexRow, extract};
 use crate::mesh::topology::{Lookups, MeshRef, newell_area_vector};
 
 use super::Refusal;
@@ -393,9 +391,11 @@ struct Setup {
 /// # Refusals
 /// [`Refusal::NotTriangle`] naming the first face that is not a triangle.
 fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, Refusal> {
-    let Extracted { tables: t, members } = extract(world, mesh);
+    let MeshTables { tables: t, members } = extract(world, mesh);
     if let Some(f) = t.first_non_triangle() {
-        return Err(Refusal::NotTriangle(ElementId::Face(members.faces[f])));
+        return Err(Refusal::NotTriangle(ElementId::Face(
+            members.faces[f.index()],
+        )));
     }
     let edge_base = members
         .edges
@@ -417,9 +417,9 @@ fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, 
     // Each table vertex's slot in `table.quadric`.
     let slot_of_row: Vec<usize> = members.vertices.iter().map(|v| v.slot()).collect();
     let quadric = &mut table.quadric;
-    let position = |v: u32| t.positions[v as usize].as_dvec3();
-    for f in 0..t.face_count() {
-        let corners = t.triangle(f).map(|h| t.to_vertex[h as usize]);
+    let position = |v: VertexRow| t.position(v).as_dvec3();
+    for f in t.faces() {
+        let corners = t.triangle_halfedges(f).map(|h| t.to_vertex(h));
         let p = corners.map(position);
         let cross = (p[1] - p[0]).cross(p[2] - p[0]);
         let Some(n) = cross.try_normalize() else {
@@ -427,58 +427,50 @@ fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, 
         };
         let q = Quadric::plane(n, -n.dot(p[0]), cross.length() / 2.0);
         for v in corners {
-            let at = slot_of_row[v as usize];
+            let at = slot_of_row[v.index()];
             quadric[at] = quadric[at] + q;
         }
     }
     // Boundary and sharp edges: a plane through the edge, perpendicular to the face on the
     // far side of `h` (for a sharp edge, `h` and its twin each give one).
     let sharp = params.feature_angle_deg.to_radians().cos();
-    let area_vector: Vec<DVec3> = (0..t.face_count() as u32)
+    let area_vector: Vec<DVec3> = t
+        .faces()
         .map(|f| face_area_vector(&t, f).as_dvec3())
         .collect();
     let unit_normal: Vec<Option<DVec3>> = area_vector.iter().map(|a| a.try_normalize()).collect();
-    for h in 0..t.halfedge_count() {
-        let inner = t.twin[h] as usize;
-        if t.face[inner] == NONE {
+    for h in t.halfedges() {
+        let inner = t.twin(h);
+        let Some(inner_face) = t.face(inner) else {
             continue;
-        }
-        let normal = area_vector[t.face[inner] as usize];
-        let weight = if t.face[h] == NONE {
-            params.boundary_weight
-        } else {
-            match (
-                unit_normal[t.face[inner] as usize],
-                unit_normal[t.face[h] as usize],
-            ) {
+        };
+        let normal = area_vector[inner_face.index()];
+        let weight = match t.face(h) {
+            None => params.boundary_weight,
+            Some(face) => match (unit_normal[inner_face.index()], unit_normal[face.index()]) {
                 (Some(n0), Some(n1)) if n0.dot(n1) < f64::from(sharp) => params.feature_weight,
                 _ => continue,
-            }
+            },
         };
-        let (from, to) = (t.to_vertex[inner], t.to_vertex[h]);
+        let (from, to) = (t.to_vertex(inner), t.to_vertex(h));
         let (a, b) = (position(from), position(to));
         let Some(n) = (b - a).cross(normal).try_normalize() else {
             continue;
         };
         let q = Quadric::plane(n, -n.dot(a), weight * (b - a).length_squared());
         for v in [from, to] {
-            let at = slot_of_row[v as usize];
+            let at = slot_of_row[v.index()];
             quadric[at] = quadric[at] + q;
         }
     }
-    let end = |v: u32| {
-        let id = members.vertices[v as usize];
-        (id, t.positions[v as usize])
-    };
+    let end = |v: VertexRow| (members.vertices[v.index()], t.position(v));
     let entries = members
         .edges
         .iter()
-        .zip(&t.edge_halfedge)
-        .map(|(&e, &h)| {
-            let ends = [
-                end(t.to_vertex[t.twin[h as usize] as usize]),
-                end(t.to_vertex[h as usize]),
-            ];
+        .zip(t.edges())
+        .map(|(&e, row)| {
+            let h = t.edge_halfedge(row);
+            let ends = [end(t.from_vertex(h)), end(t.to_vertex(h))];
             keyed_ends(&mut table, e, ends)
         })
         .collect();
@@ -490,11 +482,8 @@ fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, 
 }
 
 /// A triangle's area vector from the tables, as [`MeshRef::face_area_vector`] computes it.
-fn face_area_vector(t: &Connectivity, f: u32) -> Vec3 {
-    newell_area_vector(
-        &t.triangle(f as usize)
-            .map(|h| t.positions[t.to_vertex[h as usize] as usize]),
-    )
+fn face_area_vector(t: &Connectivity, f: FaceRow) -> Vec3 {
+    newell_area_vector(&t.triangle_halfedges(f).map(|h| t.position(t.to_vertex(h))))
 }
 
 /// `e`'s heap key at its current cost, for its ends and their positions

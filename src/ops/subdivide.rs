@@ -1,6 +1,6 @@
 //! Loop and Catmull–Clark subdivision, computed in bulk on index tables.
 //!
-//! Both read the mesh once ([`crate::mesh::arrays::extract`]), build the refined connectivity
+//! Both read the mesh once ([`crate::mesh::tables::extract`]), build the refined connectivity
 //! by index arithmetic — every child halfedge's twin is known from its parent's, so no search
 //! or sort is needed — and write it back in one pass. Old vertices keep their entities.
 //!
@@ -30,11 +30,12 @@
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::arrays::extract;
-use crate::mesh::build::{RowCounts, reserve_rows_while, write_links};
-use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{ElementId, FaceId, MeshId};
-use crate::mesh::repair::{NONE, RepairedFaces};
+use crate::mesh::tables::write::{reserve_rows_while, write_links};
+use crate::mesh::tables::{
+    Connectivity, FaceCorners, FaceRow, HalfedgeRow, MeshTables, NONE, RowCounts, VertexRow,
+    extract,
+};
 
 use super::Refusal;
 
@@ -52,8 +53,8 @@ pub struct SubdivisionSummary {
 /// The faces of a table mesh as rings of halfedges, each starting at the face's halfedge.
 struct FaceRings {
     starts: Vec<u32>,
-    ring: Vec<u32>,
-    /// Each interior halfedge's position in its face's ring.
+    ring: Vec<HalfedgeRow>,
+    /// Each interior halfedge's position in its face's ring, by halfedge row.
     slot: Vec<u32>,
 }
 
@@ -63,51 +64,44 @@ impl FaceRings {
         let mut ring = Vec::with_capacity(t.halfedge_count());
         let mut slot = vec![NONE; t.halfedge_count()];
         starts.push(0);
-        for &first in &t.face_halfedge {
-            let mut h = first;
-            let mut i = 0;
-            loop {
-                slot[h as usize] = i;
+        for f in t.faces() {
+            for (i, h) in t.face_halfedges(f).enumerate() {
+                slot[h.index()] = i as u32;
                 ring.push(h);
-                i += 1;
-                h = t.next[h as usize];
-                if h == first {
-                    break;
-                }
             }
             starts.push(ring.len() as u32);
         }
         Self { starts, ring, slot }
     }
 
-    fn face(&self, f: usize) -> &[u32] {
-        &self.ring[self.starts[f] as usize..self.starts[f + 1] as usize]
+    /// Face `f`'s halfedges.
+    fn face(&self, f: FaceRow) -> &[HalfedgeRow] {
+        &self.ring[self.start(f)..self.starts[f.index() + 1] as usize]
+    }
+
+    /// Where face `f`'s ring starts in [`FaceRings::ring`].
+    fn start(&self, f: FaceRow) -> usize {
+        self.starts[f.index()] as usize
+    }
+
+    /// Interior halfedge `h`'s position in its face's ring.
+    fn slot(&self, h: HalfedgeRow) -> usize {
+        self.slot[h.index()] as usize
     }
 }
 
-fn from_vertex(t: &Connectivity, h: u32) -> u32 {
-    t.to_vertex[t.twin[h as usize] as usize]
-}
-
 /// The positions at the start and the tip of halfedge `h`.
-fn ends(t: &Connectivity, h: u32) -> (Vec3, Vec3) {
-    (
-        t.positions[from_vertex(t, h) as usize],
-        t.positions[t.to_vertex[h as usize] as usize],
-    )
-}
-
-fn is_boundary_edge(t: &Connectivity, h: u32) -> bool {
-    t.face[h as usize] == NONE || t.face[t.twin[h as usize] as usize] == NONE
+fn ends(t: &Connectivity, h: HalfedgeRow) -> (Vec3, Vec3) {
+    (t.position(t.from_vertex(h)), t.position(t.to_vertex(h)))
 }
 
 /// Boundary rule shared by both schemes: `3/4 P + 1/8 (a + b)` with the two boundary
 /// neighbours (the vertex's halfedge is its outgoing boundary halfedge).
-fn boundary_vertex(t: &Connectivity, v: u32) -> Vec3 {
-    let h = t.vertex_halfedge[v as usize];
-    let a = t.positions[t.to_vertex[h as usize] as usize];
-    let b = t.positions[from_vertex(t, t.prev[h as usize]) as usize];
-    0.75 * t.positions[v as usize] + 0.125 * (a + b)
+fn boundary_vertex(t: &Connectivity, v: VertexRow) -> Vec3 {
+    let h = t.vertex_halfedge(v);
+    let a = t.position(t.to_vertex(h));
+    let b = t.position(t.from_vertex(t.prev(h)));
+    0.75 * t.position(v) + 0.125 * (a + b)
 }
 
 /// Loop-subdivides a triangle mesh `levels` times.
@@ -133,7 +127,9 @@ pub fn loop_subdivide(
     };
     subdivide(world, mesh, levels, scheme, |t, members| {
         match t.first_non_triangle() {
-            Some(f) => Err(Refusal::NotTriangle(ElementId::Face(members.faces[f]))),
+            Some(f) => Err(Refusal::NotTriangle(ElementId::Face(
+                members.faces[f.index()],
+            ))),
             None => Ok(()),
         }
     })
@@ -181,17 +177,20 @@ fn subdivide(
     if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
         return Err(Refusal::Stale(ElementId::Mesh(mesh)));
     }
-    let extracted = extract(world, mesh);
-    check(&extracted.tables, &extracted.members)?;
+    let MeshTables { tables, members } = extract(world, mesh);
+    check(&tables, &members)?;
     if levels == 0 {
         return Ok(SubdivisionSummary {
             levels,
-            vertices: extracted.tables.vertex_count(),
-            faces: extracted.tables.face_count(),
+            vertices: tables.vertex_count(),
+            faces: tables.face_count(),
         });
     }
-    let mut counts = RowCounts::of(&extracted.tables);
-    let mut corners = extracted.tables.face.iter().filter(|&&f| f != NONE).count();
+    let mut counts = tables.row_counts();
+    let mut corners = tables
+        .halfedges()
+        .filter(|&h| !tables.is_boundary(h))
+        .count();
     for _ in 0..levels {
         counts = (scheme.counts)(counts, corners);
         corners = 4 * counts.faces;
@@ -199,15 +198,14 @@ fn subdivide(
             return Err(Refusal::TooLarge(counts.halfedges));
         }
     }
-    let tables = &extracted.tables;
-    let (result, rows) =
-        reserve_rows_while(world, counts, mesh, Some(&extracted.members), move || {
-            let mut t = (scheme.step)(tables);
-            for _ in 1..levels {
-                t = (scheme.step)(&t);
-            }
-            t
-        });
+    let tables = &tables;
+    let (result, rows) = reserve_rows_while(world, counts, mesh, Some(&members), move || {
+        let mut t = (scheme.step)(tables);
+        for _ in 1..levels {
+            t = (scheme.step)(&t);
+        }
+        t
+    });
     write_links(world, &result, &rows);
     Ok(SubdivisionSummary {
         levels,
@@ -217,18 +215,17 @@ fn subdivide(
 }
 
 /// One level of Loop subdivision on tables; `Err(face)` if a face is not a triangle.
-pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, usize> {
+pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, FaceRow> {
     if let Some(f) = t.first_non_triangle() {
         return Err(f);
     }
     let rings = FaceRings::new(t);
     let (nv, ne, nf) = (t.vertex_count(), t.edge_count(), t.face_count());
     let mut positions = Vec::with_capacity(nv + ne);
-    for v in 0..nv as u32 {
-        let p = t.positions[v as usize];
-        let h0 = t.vertex_halfedge[v as usize];
-        let n = t.outgoing(v).count();
-        positions.push(if t.face[h0 as usize] == NONE {
+    for v in t.vertices() {
+        let p = t.position(v);
+        let n = t.vertex_outgoing(v).count();
+        positions.push(if t.is_boundary_vertex(v) {
             if n <= 2 { p } else { boundary_vertex(t, v) }
         } else {
             let u = if n == 3 {
@@ -237,38 +234,39 @@ pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, usize> {
                 3.0 / (8.0 * n as f32)
             };
             let sum: Vec3 = t
-                .outgoing(v)
-                .map(|h| t.positions[t.to_vertex[h as usize] as usize])
+                .vertex_outgoing(v)
+                .map(|h| t.position(t.to_vertex(h)))
                 .sum();
             (1.0 - n as f32 * u) * p + u * sum
         });
     }
-    for e in 0..ne {
-        let h = t.edge_halfedge[e];
+    for e in t.edges() {
+        let h = t.edge_halfedge(e);
         let (a, b) = ends(t, h);
-        positions.push(if is_boundary_edge(t, h) {
+        positions.push(if t.is_boundary_edge(e) {
             (a + b) * 0.5
         } else {
-            let c = t.positions[t.to_vertex[t.next[h as usize] as usize] as usize];
-            let twin = t.twin[h as usize];
-            let d = t.positions[t.to_vertex[t.next[twin as usize] as usize] as usize];
+            let c = t.position(t.to_vertex(t.next(h)));
+            let d = t.position(t.to_vertex(t.next(t.twin(h))));
             0.375 * (a + b) + 0.125 * (c + d)
         });
     }
 
+    // The new faces as corners: vertex rows (the old vertices, then one per old edge) and
+    // each corner's twin corner.
     let mut indices = Vec::with_capacity(12 * nf);
     let mut twin = Vec::with_capacity(12 * nf);
     let corner = |face: usize, k: usize| (3 * face + k) as u32;
-    for f in 0..nf {
+    for f in t.faces() {
         let hs = rings.face(f);
-        let v = |i: usize| from_vertex(t, hs[i % 3]);
-        let m = |i: usize| nv as u32 + t.edge[hs[i % 3] as usize];
+        let v = |i: usize| t.from_vertex(hs[i % 3]).get();
+        let m = |i: usize| nv as u32 + t.edge(hs[i % 3]).get();
         // The neighbour across side i: (its face, the side's slot there), or none.
         let across = |i: usize| {
-            let o = t.twin[hs[i % 3] as usize];
-            let g = t.face[o as usize];
-            (g != NONE).then(|| (g as usize, rings.slot[o as usize] as usize))
+            let o = t.twin(hs[i % 3]);
+            t.face(o).map(|g| (g.index(), rings.slot(o)))
         };
+        let f = f.index();
         for i in 0..3 {
             indices.extend([v(i), m(i), m(i + 2)]);
             twin.push(across(i).map_or(NONE, |(g, j)| corner(4 * g + (j + 1) % 3, 2)));
@@ -280,13 +278,12 @@ pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, usize> {
             twin.push(corner(4 * f + (j + 1) % 3, 1));
         }
     }
-    let face_starts = (0..=4 * nf as u32).map(|i| 3 * i).collect();
-    Ok(Connectivity::from_repaired(&RepairedFaces {
-        positions,
-        indices,
-        face_starts,
-        twin,
-        input_vertex: Vec::new(),
+    let face_starts: Vec<u32> = (0..=4 * nf as u32).map(|i| 3 * i).collect();
+    Ok(Connectivity::from_corners(FaceCorners {
+        positions: &positions,
+        indices: &indices,
+        face_starts: &face_starts,
+        twin: &twin,
     }))
 }
 
@@ -294,73 +291,68 @@ pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, usize> {
 pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
     let rings = FaceRings::new(t);
     let (nv, ne, nf) = (t.vertex_count(), t.edge_count(), t.face_count());
-    let face_points: Vec<Vec3> = (0..nf)
+    let face_points: Vec<Vec3> = t
+        .faces()
         .map(|f| {
             let hs = rings.face(f);
-            hs.iter()
-                .map(|&h| t.positions[t.to_vertex[h as usize] as usize])
-                .sum::<Vec3>()
-                / hs.len() as f32
+            hs.iter().map(|&h| t.position(t.to_vertex(h))).sum::<Vec3>() / hs.len() as f32
         })
         .collect();
+    // The face point of the face of `h`, which must have one.
+    let face_point = |h: HalfedgeRow| {
+        let f = t.face(h).expect("an interior halfedge has a face");
+        face_points[f.index()]
+    };
     let mut positions = Vec::with_capacity(nv + ne + nf);
-    for v in 0..nv as u32 {
-        let p = t.positions[v as usize];
-        let h0 = t.vertex_halfedge[v as usize];
-        if t.face[h0 as usize] == NONE {
-            let faces = t
-                .outgoing(v)
-                .filter(|&h| t.face[h as usize] != NONE)
-                .count();
+    for v in t.vertices() {
+        let p = t.position(v);
+        if t.is_boundary_vertex(v) {
+            let faces = t.vertex_outgoing(v).filter(|&h| !t.is_boundary(h)).count();
             positions.push(if faces <= 1 { p } else { boundary_vertex(t, v) });
             continue;
         }
         let (mut q, mut r, mut n) = (Vec3::ZERO, Vec3::ZERO, 0.0f32);
-        for h in t.outgoing(v) {
-            q += face_points[t.face[h as usize] as usize];
-            r += (p + t.positions[t.to_vertex[h as usize] as usize]) * 0.5;
+        for h in t.vertex_outgoing(v) {
+            q += face_point(h);
+            r += (p + t.position(t.to_vertex(h))) * 0.5;
             n += 1.0;
         }
         positions.push((q / n + 2.0 * r / n + (n - 3.0) * p) / n);
     }
-    for e in 0..ne {
-        let h = t.edge_halfedge[e];
+    for e in t.edges() {
+        let h = t.edge_halfedge(e);
         let (a, b) = ends(t, h);
-        positions.push(if is_boundary_edge(t, h) {
+        positions.push(if t.is_boundary_edge(e) {
             (a + b) * 0.5
         } else {
-            let f1 = face_points[t.face[h as usize] as usize];
-            let f2 = face_points[t.face[t.twin[h as usize] as usize] as usize];
+            let f1 = face_point(h);
+            let f2 = face_point(t.twin(h));
             (a + b + f1 + f2) * 0.25
         });
     }
     positions.extend_from_slice(&face_points);
 
+    // The new quads as corners: vertex rows (the old vertices, one per old edge, one per old
+    // face) and each corner's twin corner.
     let corners = rings.ring.len();
     let mut indices = Vec::with_capacity(4 * corners);
     let mut twin = Vec::with_capacity(4 * corners);
     let quad = |r: usize, k: usize| (4 * r + k) as u32;
-    for f in 0..nf {
+    for f in t.faces() {
         let hs = rings.face(f);
         let k = hs.len();
-        let base = rings.starts[f] as usize;
-        let fp = (nv + ne + f) as u32;
-        let e = |i: usize| nv as u32 + t.edge[hs[i % k] as usize];
+        let base = rings.start(f);
+        let fp = (nv + ne + f.index()) as u32;
+        let e = |i: usize| nv as u32 + t.edge(hs[i % k]).get();
+        // The neighbour across side i: (where its ring starts, the side's slot there, its
+        // side count), or none.
         let across = |i: usize| {
-            let o = t.twin[hs[i % k] as usize];
-            let g = t.face[o as usize];
-            (g != NONE).then(|| {
-                let g = g as usize;
-                let kg = (rings.starts[g + 1] - rings.starts[g]) as usize;
-                (
-                    rings.starts[g] as usize,
-                    rings.slot[o as usize] as usize,
-                    kg,
-                )
-            })
+            let o = t.twin(hs[i % k]);
+            t.face(o)
+                .map(|g| (rings.start(g), rings.slot(o), rings.face(g).len()))
         };
         for (i, &h) in hs.iter().enumerate() {
-            let v = from_vertex(t, h);
+            let v = t.from_vertex(h).get();
             indices.extend([v, e(i), fp, e(i + k - 1)]);
             twin.push(across(i).map_or(NONE, |(gb, j, kg)| quad(gb + (j + 1) % kg, 3)));
             twin.push(quad(base + (i + 1) % k, 2));
@@ -368,13 +360,12 @@ pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
             twin.push(across(i + k - 1).map_or(NONE, |(gb, j, _)| quad(gb + j, 0)));
         }
     }
-    let face_starts = (0..=corners as u32).map(|i| 4 * i).collect();
-    Connectivity::from_repaired(&RepairedFaces {
-        positions,
-        indices,
-        face_starts,
-        twin,
-        input_vertex: Vec::new(),
+    let face_starts: Vec<u32> = (0..=corners as u32).map(|i| 4 * i).collect();
+    Connectivity::from_corners(FaceCorners {
+        positions: &positions,
+        indices: &indices,
+        face_starts: &face_starts,
+        twin: &twin,
     })
 }
 

@@ -17,10 +17,10 @@ use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::arrays::{Extracted, extract};
 use crate::mesh::ids::{EdgeId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::stats::min_corner_angle_deg;
+use crate::mesh::tables::{MeshTables, extract};
 use crate::mesh::topology::MeshRef;
 use crate::ops::local::split_edge;
 
@@ -111,7 +111,7 @@ pub(super) fn fill_grooves(
     features: &EntityHashSet,
     tolerance: f32,
 ) -> usize {
-    let Extracted { tables: t, members } = extract(world, mesh);
+    let MeshTables { tables: t, members } = extract(world, mesh);
     let at = |h: u32| t.positions[t.to_vertex[h as usize] as usize];
     let mut far: Vec<(f32, EdgeId, Vec3)> = members
         .edges

@@ -13,10 +13,10 @@ use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::arrays::{Extracted, extract};
 use crate::mesh::ids::{EdgeId, HalfedgeId, MeshId, VertexId, slots_for};
-use crate::mesh::repair::NONE;
 use crate::mesh::stats::{THIN_ANGLE_DEG, min_corner_angle_deg};
+use crate::mesh::tables::NONE;
+use crate::mesh::tables::{MeshTables, extract};
 use crate::mesh::topology::MeshRef;
 use crate::ops::local::flip_edge;
 
@@ -24,7 +24,7 @@ use crate::ops::local::flip_edge;
 /// four vertices closer to 6 (4 on the boundary), or leaves them as close and the edge was
 /// not [`locally_delaunay`]; only flips that [`flip_keeps_shape`]. Returns how many.
 pub(super) fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> usize {
-    let Extracted { tables: t, members } = extract(world, mesh);
+    let MeshTables { tables: t, members } = extract(world, mesh);
     // Valences and targets by entity index, kept up to date flip by flip (a flip changes only
     // its four vertices' valences, and never which vertices are on the boundary).
     let mut valence = vec![0i32; slots_for(members.vertices.iter().map(|v| v.0))];
@@ -71,7 +71,7 @@ pub(super) fn flip_to_valence(world: &mut World, mesh: MeshId, features: &Entity
 
 /// The sides of the triangles with an angle under [`THIN_ANGLE_DEG`].
 pub(super) fn thin_triangle_edges(world: &World, mesh: MeshId) -> Vec<EdgeId> {
-    let Extracted { tables: t, members } = extract(world, mesh);
+    let MeshTables { tables: t, members } = extract(world, mesh);
     let mut edges: Vec<EdgeId> = Vec::new();
     for f in 0..t.face_count() {
         let sides = t.triangle(f);

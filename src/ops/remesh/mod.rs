@@ -62,10 +62,10 @@ use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::arrays::{Extracted, extract};
-use crate::mesh::connectivity::Connectivity;
 use crate::mesh::ids::{EdgeId, ElementId, MeshId};
 use crate::mesh::members::MeshMembers;
+use crate::mesh::tables::Connectivity;
+use crate::mesh::tables::{MeshTables, extract};
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
@@ -230,7 +230,7 @@ struct EdgeTable {
 impl EdgeTable {
     /// Reads `mesh`'s tables and measures every edge.
     fn read(world: &World, mesh: MeshId) -> Self {
-        let Extracted { tables: t, members } = extract(world, mesh);
+        let MeshTables { tables: t, members } = extract(world, mesh);
         let at = |h: u32| t.positions[t.to_vertex[h as usize] as usize];
         let length = t
             .edge_halfedge

@@ -14,10 +14,10 @@ use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::arrays::{Extracted, extract};
 use crate::mesh::ids::{EdgeId, MeshId, VertexId};
-use crate::mesh::repair::NONE;
 use crate::mesh::stats::{THIN_ANGLE_DEG, min_corner_angle_deg};
+use crate::mesh::tables::NONE;
+use crate::mesh::tables::{MeshTables, extract};
 use crate::mesh::topology::MeshRef;
 
 use super::distance_to_segment;
@@ -45,7 +45,7 @@ impl Smoother {
     pub(super) fn new(world: &World, mesh: MeshId, features: &EntityHashSet) -> Self {
         // The flat tables (one pass over the world) are much cheaper to walk than the
         // entities, and each iteration walks every one-ring.
-        let Extracted { tables: t, members } = extract(world, mesh);
+        let MeshTables { tables: t, members } = extract(world, mesh);
         let feature: Vec<bool> = members
             .edges
             .iter()

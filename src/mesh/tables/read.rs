@@ -1,28 +1,55 @@
-//! A mesh's entities as flat index tables, and back: the bulk path for whole-mesh operations.
+//! Entities → tables: reading a mesh into [`MeshTables`].
 //!
-//! Global operations (subdivision, …) read the whole mesh once into a [`Connectivity`]
-//! ([`extract`]), compute the new tables with plain index arithmetic, and write the result back
-//! in one pass ([`replace_contents`]) instead of editing entities one by one. Vertex entities
-//! survive a replacement (so a selected vertex stays selected); halfedges, edges and faces are
-//! despawned and spawned anew.
+//! [`extract`] is the one way from a mesh's entities to its tables. It reads each kind of
+//! element by one query, in storage order, and writes each element to its row through a dense
+//! index (entity index → row), so no element costs an entity lookup. The rows of each kind
+//! follow the world's storage order; [`MeshTables::members`] keeps the entity behind every row,
+//! which is what takes the tables back into the same entities ([`super::write`]) and what an
+//! undo record holds ([`crate::mesh::change`]).
 
 use bevy::ecs::query::ReadOnlyQueryData;
 use bevy::math::Vec3;
 use bevy::prelude::{Entity, World};
 
-use super::build::write_tables;
 use super::connectivity::Connectivity;
-use super::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
-use super::ids::{HalfedgeId, MeshId, slot, slots_for};
-use super::members::MeshMembers;
-use super::repair::NONE;
+use super::rows::NONE;
+use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
+use crate::mesh::ids::{HalfedgeId, MeshId, slot, slots_for};
+use crate::mesh::members::MeshMembers;
 
-/// A mesh read into tables, with the entity behind every table row.
-pub struct Extracted {
+/// A mesh read into tables, with the entity behind every table row: a snapshot of its whole
+/// contents (about 32 bytes a halfedge).
+#[derive(Clone, Debug, Default)]
+pub struct MeshTables {
     /// The tables.
     pub tables: Connectivity,
-    /// The entities, by table index.
+    /// The entities, by kind and row: `members.vertices[v]` is vertex row `v`, and so on.
     pub members: MeshMembers,
+}
+
+impl MeshTables {
+    /// Bytes held (what the undo history's memory cap counts).
+    pub fn bytes(&self) -> usize {
+        let t = &self.tables;
+        let u32s = t.vertex_halfedge.capacity()
+            + t.twin.capacity()
+            + t.next.capacity()
+            + t.prev.capacity()
+            + t.to_vertex.capacity()
+            + t.edge.capacity()
+            + t.face.capacity()
+            + t.edge_halfedge.capacity()
+            + t.face_halfedge.capacity();
+        let m = &self.members;
+        let ids = m.vertices.capacity()
+            + m.halfedges.capacity()
+            + m.edges.capacity()
+            + m.faces.capacity();
+        std::mem::size_of::<Self>()
+            + u32s * 4
+            + t.positions.capacity() * std::mem::size_of::<Vec3>()
+            + ids * std::mem::size_of::<Entity>()
+    }
 }
 
 /// Maps each element entity to its index *within its kind* through a table indexed by entity
@@ -58,7 +85,7 @@ impl DenseIndex {
 /// Each kind is read by a query, in storage order, and each element written to its row by
 /// the dense index: no entity lookup an element, which after many edits (rows no longer in
 /// entity order) missed the cache on nearly every one.
-pub fn extract(world: &World, mesh: MeshId) -> Extracted {
+pub fn extract(world: &World, mesh: MeshId) -> MeshTables {
     let members = MeshMembers::collect(world, mesh);
     let index = DenseIndex::new(&members);
     let h = |x: HalfedgeId| index.get(x.0);
@@ -92,7 +119,7 @@ pub fn extract(world: &World, mesh: MeshId) -> Extracted {
     });
     for_each_element::<&Edge>(world, mesh, |e, x| t.edge_halfedge[row(e)] = h(x.halfedge));
     for_each_element::<&Face>(world, mesh, |e, x| t.face_halfedge[row(e)] = h(x.halfedge));
-    Extracted { tables: t, members }
+    MeshTables { tables: t, members }
 }
 
 /// Calls `each` with every element of `mesh` that has the components `D`, in storage order.
@@ -109,16 +136,4 @@ fn for_each_element<D: ReadOnlyQueryData>(
             each(e, item);
         }
     }
-}
-
-/// Replaces the contents of `mesh` with `tables`, reusing the old entities row for row (the
-/// first `old.vertices.len()` table vertices keep their vertex entities, so a selected vertex
-/// stays selected) and spawning or despawning the difference. Returns the entity of every row.
-pub fn replace_contents(
-    world: &mut World,
-    mesh: MeshId,
-    old: &MeshMembers,
-    tables: &Connectivity,
-) -> MeshMembers {
-    write_tables(world, tables, mesh, Some(old))
 }
