@@ -9,11 +9,13 @@
 //! Operations are plain functions over `&World` / `&mut World`, callable from a unit test, the
 //! command line and the editor alike; the editor's systems are thin adapters around them.
 
+pub mod geometry;
 pub mod indexed_heap;
 pub mod local;
 pub mod progressive;
 pub mod remesh;
 pub mod simplify;
+pub mod smooth;
 pub mod subdivide;
 pub mod table_split;
 pub mod triangulate;
@@ -66,6 +68,9 @@ pub enum Refusal {
     /// A position or a parameter that would put a point at infinity or NaN.
     #[error("{0} is not a finite position")]
     NotFinite(bevy::math::Vec3),
+    /// A parameter out of its range; the text names it and the range.
+    #[error("{0}")]
+    BadParameter(String),
     /// A split parameter outside the open interval (0, 1).
     #[error("split parameter {0} is not strictly between 0 and 1")]
     SplitParameter(f32),

@@ -1,0 +1,13 @@
+//! Discrete differential geometry on a mesh's triangles: normals and curvature.
+//!
+//! Everything here is computed on a [`Surface`], the mesh's triangles as flat `f64` arrays by
+//! table row, and returns one value per vertex (or face) row: the caller maps rows back to
+//! entities through the tables' members.
+
+pub mod curvature;
+pub mod normals;
+pub mod surface;
+
+pub use curvature::{Curvature, curvature, mixed_areas};
+pub use normals::{NormalWeighting, face_normals, vertex_normals, vertex_normals_by_angle};
+pub use surface::Surface;

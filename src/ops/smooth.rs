@@ -1,0 +1,396 @@
+//! Smoothing: moving vertices by a discrete Laplacian, keeping the connectivity.
+//!
+//! - **Uniform** (the umbrella operator): `x_i += λ (mean of the neighbours − x_i)`, over the
+//!   mesh's edges, so polygons smooth by their real sides.
+//! - **Cotangent**: `x_i += λ Σ w_ij (x_j − x_i) / Σ w_ij` with the cotangent weights of the
+//!   fanned triangles ([`super::geometry::Surface`]): it moves vertices across the surface far less
+//!   than the umbrella (a planar mesh is a fixed point, whatever its triangles: the cotangent
+//!   Laplacian reproduces linear functions). A vertex whose weights sum to zero or less stays.
+//! - **Implicit** mean-curvature flow (Desbrun, Meyer, Schröder & Barr 1999): one backward Euler
+//!   step `(M − h L) x' = M x` per iteration, with `L` the cotangent stiffness matrix, `M` the
+//!   mixed areas ([`super::geometry::mixed_areas`]) and `h = λ · ℓ²` (`ℓ` the mean edge length,
+//!   so λ is scale-free). `M − h L` is symmetric positive definite for `h > 0` (the cotangent
+//!   stiffness matrix is positive semi-definite), solved by faer's sparse Cholesky. Unconditionally
+//!   stable: large steps are allowed.
+//! - **Taubin** λ|μ (Taubin 1995): each iteration a uniform step with λ, then one with μ < −λ
+//!   (μ = −λ/(1 − λ k_PB), pass-band k_PB = 0.1): low frequencies pass, so the mesh does not
+//!   shrink as it does under the umbrella alone.
+//!
+//! Held vertices do not move: the boundary when [`SmoothParams::hold_boundary`] is set (the
+//! default), and every vertex named in [`SmoothParams::held`]. In the implicit step they are
+//! Dirichlet conditions (their columns move to the right-hand side, keeping the matrix
+//! symmetric).
+
+use bevy::math::DVec3;
+use bevy::prelude::World;
+use faer::linalg::solvers::Solve;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, Side};
+
+use crate::mesh::ids::{ElementId, MeshId, VertexId};
+use crate::mesh::tables::{Connectivity, extract};
+use crate::mesh::{MeshInfo, Position};
+
+use super::Refusal;
+use super::geometry::{Surface, mixed_areas};
+
+/// Which Laplacian moves the vertices.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SmoothMethod {
+    /// The umbrella operator, explicit.
+    #[default]
+    Uniform,
+    /// Normalised cotangent weights, explicit.
+    Cotan,
+    /// Implicit mean-curvature flow (backward Euler, a sparse solve a step).
+    Implicit,
+    /// Taubin's λ|μ: no shrinking.
+    Taubin,
+}
+
+impl SmoothMethod {
+    /// Every method, with its name on the command line.
+    pub const ALL: [(SmoothMethod, &'static str); 4] = [
+        (SmoothMethod::Uniform, "uniform"),
+        (SmoothMethod::Cotan, "cotan"),
+        (SmoothMethod::Implicit, "implicit"),
+        (SmoothMethod::Taubin, "taubin"),
+    ];
+
+    /// Its name on the command line and in the panel.
+    pub fn name(self) -> &'static str {
+        Self::ALL
+            .iter()
+            .find(|(m, _)| *m == self)
+            .map_or("", |(_, n)| n)
+    }
+
+    /// The step λ it uses by default: 0.5 for the explicit ones, 1 for the implicit flow.
+    pub fn default_step(self) -> f64 {
+        match self {
+            SmoothMethod::Implicit => 1.0,
+            _ => 0.5,
+        }
+    }
+}
+
+/// How to smooth. The same struct serves the command line, the editor and the tests.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SmoothParams {
+    /// The Laplacian. Default uniform.
+    pub method: SmoothMethod,
+    /// Iterations. Default 1.
+    pub iterations: u32,
+    /// The step λ: the fraction of the way to the neighbours' mean for the explicit methods
+    /// (0 < λ ≤ 1), the time step over the squared mean edge length for the implicit flow.
+    /// Default [`SmoothMethod::default_step`].
+    pub step: f64,
+    /// Boundary vertices stay. Default true.
+    pub hold_boundary: bool,
+    /// These vertices stay too (the editor's selection).
+    pub held: Vec<VertexId>,
+}
+
+impl SmoothParams {
+    /// `method` with its default step, one iteration, the boundary held.
+    pub fn new(method: SmoothMethod) -> Self {
+        Self {
+            method,
+            iterations: 1,
+            step: method.default_step(),
+            hold_boundary: true,
+            held: Vec::new(),
+        }
+    }
+}
+
+impl Default for SmoothParams {
+    fn default() -> Self {
+        Self::new(SmoothMethod::Uniform)
+    }
+}
+
+/// What a smoothing did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SmoothSummary {
+    /// Vertices that moved freely.
+    pub free: usize,
+    /// The mean distance a free vertex moved, over all iterations.
+    pub mean_move: f64,
+}
+
+/// The pass-band frequency of Taubin's filter.
+const TAUBIN_PASS_BAND: f64 = 0.1;
+
+/// Smooths `mesh` (see the module doc).
+///
+/// # Refusals
+/// A stale mesh; a step that is not finite and positive ([`Refusal::BadParameter`]); the mesh is
+/// then unchanged.
+pub fn smooth(
+    world: &mut World,
+    mesh: MeshId,
+    params: &SmoothParams,
+) -> Result<SmoothSummary, Refusal> {
+    if world.get::<MeshInfo>(mesh.0).is_none() {
+        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
+    }
+    let explicit_ok = params.method == SmoothMethod::Implicit || params.step <= 1.0;
+    if !(params.step.is_finite() && params.step > 0.0 && explicit_ok) {
+        return Err(Refusal::BadParameter(format!(
+            "smoothing step {} (explicit methods take 0 < λ ≤ 1, the implicit flow any λ > 0)",
+            params.step
+        )));
+    }
+    let read = extract(world, mesh);
+    let t = &read.tables;
+    let mut held: Vec<bool> = t
+        .vertices()
+        .map(|v| params.hold_boundary && t.is_boundary_vertex(v))
+        .collect();
+    let rows = read.members.vertex_rows();
+    for v in &params.held {
+        if let Some(&row) = rows.get(&v.0) {
+            held[row as usize] = true;
+        }
+    }
+    let start: Vec<DVec3> = t.positions.iter().map(|p| p.as_dvec3()).collect();
+    let mut x = start.clone();
+    for _ in 0..params.iterations {
+        match params.method {
+            SmoothMethod::Uniform => umbrella_step(t, &held, &mut x, params.step),
+            SmoothMethod::Taubin => {
+                let mu = params.step / (TAUBIN_PASS_BAND * params.step - 1.0);
+                umbrella_step(t, &held, &mut x, params.step);
+                umbrella_step(t, &held, &mut x, mu);
+            }
+            SmoothMethod::Cotan => cotan_step(t, &held, &mut x, params.step),
+            SmoothMethod::Implicit => implicit_step(t, &held, &mut x, params.step)?,
+        }
+    }
+    let free = held.iter().filter(|h| !**h).count();
+    let moved: f64 = x.iter().zip(&start).map(|(a, b)| a.distance(*b)).sum();
+    for (row, v) in read.members.vertices.iter().enumerate() {
+        if let Some(mut p) = world.get_mut::<Position>(v.0) {
+            p.0 = x[row].as_vec3();
+        }
+    }
+    Ok(SmoothSummary {
+        free,
+        mean_move: if free > 0 { moved / free as f64 } else { 0.0 },
+    })
+}
+
+/// One umbrella step of size `lambda` (negative for Taubin's μ) over the mesh's edges.
+fn umbrella_step(t: &Connectivity, held: &[bool], x: &mut [DVec3], lambda: f64) {
+    let before = x.to_vec();
+    for v in t.vertices() {
+        if held[v.index()] {
+            continue;
+        }
+        let (mut sum, mut count) = (DVec3::ZERO, 0.0);
+        for h in t.vertex_outgoing(v) {
+            sum += before[t.to_vertex(h).index()];
+            count += 1.0;
+        }
+        if count > 0.0 {
+            let p = before[v.index()];
+            x[v.index()] = p + lambda * (sum / count - p);
+        }
+    }
+}
+
+/// The cotangent weights `½(cot α + cot β)` of every edge of the fanned triangles, as
+/// (i, j, w) with i < j, merged.
+fn cotan_edges(s: &Surface) -> Vec<(u32, u32, f64)> {
+    let mut edges: Vec<(u32, u32, f64)> = Vec::with_capacity(3 * s.triangles.len());
+    for (t, tri) in s.triangles.iter().enumerate() {
+        let p = s.corners(t);
+        for k in 0..3 {
+            let (a, b, c) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
+            let (u, v) = (b - a, c - a);
+            let sin = u.cross(v).length();
+            let w = if sin > 0.0 { 0.5 * u.dot(v) / sin } else { 0.0 };
+            let (i, j) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
+            edges.push((i.min(j), i.max(j), w));
+        }
+    }
+    edges.sort_unstable_by_key(|&(i, j, _)| (i, j));
+    let mut merged: Vec<(u32, u32, f64)> = Vec::with_capacity(edges.len() / 2 + 1);
+    for (i, j, w) in edges {
+        match merged.last_mut() {
+            Some(last) if (last.0, last.1) == (i, j) => last.2 += w,
+            _ => merged.push((i, j, w)),
+        }
+    }
+    merged
+}
+
+/// One explicit step with the normalised cotangent weights.
+fn cotan_step(t: &Connectivity, held: &[bool], x: &mut [DVec3], lambda: f64) {
+    let mut s = Surface::from_tables(t);
+    s.positions.copy_from_slice(x);
+    let n = x.len();
+    let (mut sum, mut weight) = (vec![DVec3::ZERO; n], vec![0.0; n]);
+    for (i, j, w) in cotan_edges(&s) {
+        let (i, j) = (i as usize, j as usize);
+        sum[i] += w * (x[j] - x[i]);
+        sum[j] += w * (x[i] - x[j]);
+        weight[i] += w;
+        weight[j] += w;
+    }
+    for i in 0..n {
+        if !held[i] && weight[i] > 0.0 {
+            x[i] += lambda * sum[i] / weight[i];
+        }
+    }
+}
+
+/// One backward Euler step of mean-curvature flow: `(M − h L) x' = M x` over the free
+/// vertices, the held ones moved to the right-hand side.
+fn implicit_step(
+    t: &Connectivity,
+    held: &[bool],
+    x: &mut [DVec3],
+    lambda: f64,
+) -> Result<(), Refusal> {
+    let mut s = Surface::from_tables(t);
+    s.positions.copy_from_slice(x);
+    let n = x.len();
+    let edges = cotan_edges(&s);
+    let mean_length = if edges.is_empty() {
+        0.0
+    } else {
+        edges
+            .iter()
+            .map(|&(i, j, _)| x[i as usize].distance(x[j as usize]))
+            .sum::<f64>()
+            / edges.len() as f64
+    };
+    let h = lambda * mean_length * mean_length;
+    let area = mixed_areas(&s);
+    // Free vertices get columns 0..free; held ones none.
+    let mut column = vec![u32::MAX; n];
+    let mut free = 0usize;
+    for i in 0..n {
+        if !held[i] {
+            column[i] = free as u32;
+            free += 1;
+        }
+    }
+    if free == 0 {
+        return Ok(());
+    }
+    let mut rhs = Mat::<f64>::zeros(free, 3);
+    let mut diagonal = vec![0.0; free];
+    let mut triplets: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(2 * edges.len() + free);
+    for i in 0..n {
+        if let Some(k) = column.get(i).copied().filter(|&k| k != u32::MAX) {
+            let k = k as usize;
+            diagonal[k] = area[i];
+            for (c, value) in x[i].to_array().into_iter().enumerate() {
+                rhs[(k, c)] = area[i] * value;
+            }
+        }
+    }
+    for &(i, j, w) in &edges {
+        let (ci, cj) = (column[i as usize], column[j as usize]);
+        // (M − hL): off-diagonal −h w, diagonal + h w for each edge at a free vertex.
+        for (ca, b, cb) in [(ci, j, cj), (cj, i, ci)] {
+            if ca == u32::MAX {
+                continue;
+            }
+            diagonal[ca as usize] += h * w;
+            if cb == u32::MAX {
+                // A held neighbour: its term moves to the right-hand side.
+                for (c, value) in x[b as usize].to_array().into_iter().enumerate() {
+                    rhs[(ca as usize, c)] += h * w * value;
+                }
+            } else {
+                triplets.push(Triplet::new(ca as usize, cb as usize, -h * w));
+            }
+        }
+    }
+    for (k, d) in diagonal.into_iter().enumerate() {
+        triplets.push(Triplet::new(k, k, d));
+    }
+    let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(free, free, &triplets)
+        .map_err(|e| Refusal::BadParameter(format!("the smoothing system: {e:?}")))?;
+    let llt = matrix.sp_cholesky(Side::Lower).map_err(|e| {
+        Refusal::BadParameter(format!(
+            "the smoothing system is not positive definite ({e:?}): degenerate triangles?"
+        ))
+    })?;
+    llt.solve_in_place(rhs.as_mut());
+    for i in 0..n {
+        let k = column[i];
+        if k != u32::MAX {
+            let k = k as usize;
+            let p = DVec3::new(rhs[(k, 0)], rhs[(k, 1)], rhs[(k, 2)]);
+            if p.is_finite() {
+                x[i] = p;
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{MeshMembers, MeshRef, build_mesh, shapes, validate};
+
+    fn positions(world: &World, mesh: MeshId) -> Vec<bevy::math::Vec3> {
+        let m = MeshRef::new(world);
+        MeshMembers::collect(world, mesh)
+            .vertices
+            .iter()
+            .map(|&v| m.position(v))
+            .collect()
+    }
+
+    #[test]
+    fn a_planar_grid_is_a_fixed_point_of_every_method() {
+        for (method, _) in SmoothMethod::ALL {
+            let mut world = World::new();
+            let built = build_mesh(&mut world, &shapes::grid(6, 6), MeshInfo::default()).unwrap();
+            let before = positions(&world, built.mesh);
+            let params = SmoothParams {
+                iterations: 3,
+                ..SmoothParams::new(method)
+            };
+            smooth(&mut world, built.mesh, &params).unwrap();
+            validate(&world, built.mesh).unwrap();
+            for (a, b) in before.iter().zip(positions(&world, built.mesh)) {
+                assert!(a.distance(b) < 1e-5, "{method:?}: {a} -> {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn held_vertices_stay_and_bad_steps_are_refused() {
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &shapes::icosphere(2), MeshInfo::default()).unwrap();
+        let v = MeshMembers::collect(&world, built.mesh).vertices[3];
+        let at = MeshRef::new(&world).position(v);
+        let params = SmoothParams {
+            held: vec![v],
+            iterations: 4,
+            ..SmoothParams::new(SmoothMethod::Implicit)
+        };
+        smooth(&mut world, built.mesh, &params).unwrap();
+        assert_eq!(MeshRef::new(&world).position(v), at);
+        let before = positions(&world, built.mesh);
+        for step in [0.0, -1.0, f64::NAN, 1.5] {
+            let bad = SmoothParams {
+                step,
+                ..SmoothParams::new(SmoothMethod::Uniform)
+            };
+            assert!(matches!(
+                smooth(&mut world, built.mesh, &bad),
+                Err(Refusal::BadParameter(_))
+            ));
+        }
+        assert_eq!(positions(&world, built.mesh), before);
+    }
+}
