@@ -33,6 +33,7 @@ use crate::ops::local::{
 use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::remesh::{RemeshParams, remesh_with_progress};
 use crate::ops::simplify::{SimplifyParams, SimplifyTarget};
+use crate::ops::smooth::{SmoothMethod, SmoothParams, smooth};
 use crate::ops::subdivide::{catmull_clark, loop_subdivide};
 use crate::ops::triangulate::triangulate;
 
@@ -95,6 +96,8 @@ pub enum Edit {
     Subdivide(Subdivision),
     /// Isotropic remeshing.
     Remesh(RemeshParams),
+    /// Smoothing: vertices move, the connectivity stays.
+    Smooth(SmoothParams),
 }
 
 /// What an edit may change, so that an undo record can capture it first.
@@ -187,6 +190,12 @@ impl Edit {
                 Some(l) => format!("remesh (L {l}, {} iterations)", p.iterations),
                 None => format!("remesh ({} iterations)", p.iterations),
             },
+            Edit::Smooth(p) => format!(
+                "smooth ({}, {} iterations, step {})",
+                p.method.name(),
+                p.iterations,
+                p.step
+            ),
         }
     }
 
@@ -218,7 +227,8 @@ impl Edit {
             | Edit::Triangulate
             | Edit::Simplify(_)
             | Edit::Subdivide(_)
-            | Edit::Remesh(_) => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
+            | Edit::Remesh(_)
+            | Edit::Smooth(_) => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
         }
     }
 
@@ -258,7 +268,11 @@ impl Edit {
     pub fn may_run_as_job(&self) -> bool {
         matches!(
             self,
-            Edit::Triangulate | Edit::Simplify(_) | Edit::Subdivide(_) | Edit::Remesh(_)
+            Edit::Triangulate
+                | Edit::Simplify(_)
+                | Edit::Subdivide(_)
+                | Edit::Remesh(_)
+                | Edit::Smooth(_)
         )
     }
 
@@ -487,6 +501,14 @@ impl Edit {
                     s.target_length, s.splits, s.collapses, s.flips
                 ))
             }
+            Edit::Smooth(params) => {
+                let s = smooth(world, mesh, params)?;
+                (context.progress)(1.0);
+                whole(format!(
+                    "{} free vertices moved {:.3e} on average",
+                    s.free, s.mean_move
+                ))
+            }
         })
     }
 }
@@ -615,7 +637,8 @@ pub const STEP_SYNTAX: &str = "\
 validate | triangulate | flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
 dissolve:A,B | split-face:A,B | loop[:N] | catmull-clark[:N] | simplify:RATIO | simplify-faces:N |
 refine[:FACES]   (split simplify's collapses back, up to FACES faces or all) |
-remesh[:ITERATIONS[:LENGTH]]   (isotropic; LENGTH defaults to the mean edge length)
+remesh[:ITERATIONS[:LENGTH]]   (isotropic; LENGTH defaults to the mean edge length) |
+smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held)
 A, B: 0-based indices of the input file's vertices (the edge between them)";
 
 impl Step {
@@ -695,6 +718,11 @@ impl Step {
                 }
                 Edit::Remesh(params)
             }
+            "smooth" => Edit::Smooth(parse_smooth(args).ok_or_else(|| {
+                format!(
+                    "step `{text}`: expected smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]"
+                )
+            })?),
             _ => {
                 return Err(format!(
                     "unknown step `{text}` (see `pappus process --help`)"
@@ -751,6 +779,21 @@ impl Step {
     }
 }
 
+/// `METHOD[:ITERATIONS[:STEP]]` of a `smooth` step.
+fn parse_smooth(args: &str) -> Option<SmoothParams> {
+    let mut parts = args.split(':');
+    let method = parts.next()?;
+    let (method, _) = SmoothMethod::ALL.iter().find(|(_, n)| *n == method)?;
+    let mut params = SmoothParams::new(*method);
+    if let Some(n) = parts.next() {
+        params.iterations = n.parse().ok().filter(|n| (1..=10_000).contains(n))?;
+    }
+    if let Some(step) = parts.next() {
+        params.step = step.parse().ok().filter(|s: &f64| *s > 0.0 && s.is_finite())?;
+    }
+    parts.next().is_none().then_some(params)
+}
+
 impl std::fmt::Display for Step {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
@@ -772,6 +815,9 @@ impl std::fmt::Display for Step {
                     None => write!(f, "remesh:{}", p.iterations),
                     Some(l) => write!(f, "remesh:{}:{l}", p.iterations),
                 },
+                Edit::Smooth(p) => {
+                    write!(f, "smooth:{}:{}:{}", p.method.name(), p.iterations, p.step)
+                }
                 other => write!(f, "{}", other.label()),
             },
         }
@@ -801,6 +847,8 @@ mod tests {
             "refine:5000",
             "remesh:5",
             "remesh:3:0.5",
+            "smooth:taubin:10:0.5",
+            "smooth:implicit:1:2",
         ] {
             let step = Step::parse(text).unwrap();
             assert_eq!(step.to_string(), text);
@@ -808,6 +856,10 @@ mod tests {
         }
         assert_eq!(Step::parse("loop").unwrap().to_string(), "loop:1");
         assert_eq!(Step::parse("remesh").unwrap().to_string(), "remesh:5");
+        assert_eq!(
+            Step::parse("smooth:cotan").unwrap().to_string(),
+            "smooth:cotan:1:0.5"
+        );
     }
 
     #[test]
@@ -821,6 +873,8 @@ mod tests {
             ("remesh:0", "ITERATIONS"),
             ("remesh:3:-1", "LENGTH"),
             ("refine:lots", "face count"),
+            ("smooth:gaussian", "uniform|cotan"),
+            ("smooth:uniform:0", "ITERATIONS"),
         ] {
             let e = Step::parse(text).unwrap_err();
             assert!(e.contains(expected), "{text}: {e}");

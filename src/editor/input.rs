@@ -12,6 +12,7 @@ use crate::mesh::MeshRef;
 use crate::mesh::ids::ElementId;
 use crate::ops::remesh::RemeshParams;
 use crate::ops::simplify::SimplifyParams;
+use crate::ops::smooth::SmoothParams;
 
 use super::dialog::{OpenDialog, PathPurpose};
 use super::finish::report;
@@ -41,6 +42,8 @@ pub enum Action {
     CatmullClark,
     /// Remesh the active mesh (isotropic, the panel's parameters).
     Remesh,
+    /// Smooth the active mesh (the panel's method, iterations, step; the selected vertex held).
+    Smooth,
     /// Move the selection along a relation.
     Navigate(Relation),
     /// Change what a click selects.
@@ -197,6 +200,12 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "M",
         Action::Remesh,
         "isotropic remeshing (length, iterations, feature angle in the panel)",
+    ),
+    key(
+        KeyCode::KeyO,
+        "O",
+        Action::Smooth,
+        "smooth with the panel's method (the boundary and the selected vertex held)",
     ),
     key(
         KeyCode::KeyH,
@@ -359,6 +368,8 @@ pub struct UiState {
     pub remesh: RemeshParams,
     /// Subdivision levels per press (1–[`Subdivision::MAX_LEVELS`]).
     pub subdivision_levels: u32,
+    /// Smoothing: method, iterations, step, whether the boundary is held.
+    pub smooth: SmoothParams,
 }
 
 impl Default for UiState {
@@ -369,6 +380,7 @@ impl Default for UiState {
             simplify: SimplifyParams::default(),
             remesh: RemeshParams::default(),
             subdivision_levels: 1,
+            smooth: SmoothParams::default(),
         }
     }
 }
@@ -440,6 +452,7 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
         | Action::LoopSubdivide
         | Action::CatmullClark
         | Action::Remesh
+        | Action::Smooth
         | Action::Simplify => {
             if world.resource::<ActiveMesh>().0.is_none() {
                 return Err(Declined::NoMesh);
@@ -450,6 +463,13 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
                 Action::Triangulate => Edit::Triangulate,
                 Action::Remesh => Edit::Remesh(ui.remesh),
                 Action::Simplify => Edit::Simplify(ui.simplify),
+                Action::Smooth => Edit::Smooth(SmoothParams {
+                    held: match selection {
+                        Some(ElementId::Vertex(v)) => vec![v],
+                        _ => Vec::new(),
+                    },
+                    ..ui.smooth.clone()
+                }),
                 Action::LoopSubdivide => Edit::Subdivide(Subdivision {
                     scheme: Scheme::Loop,
                     levels,

@@ -17,6 +17,7 @@ use crate::mesh::{MeshInfo, MeshStats, mesh_stats, validate};
 
 use crate::edit::{Edit, LocalKind, Subdivision};
 use crate::ops::simplify::SimplifyTarget;
+use crate::ops::smooth::SmoothMethod;
 
 use super::EditorSystems;
 use super::dialog::PathPurpose;
@@ -775,6 +776,39 @@ fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
                 .suffix("° features"),
         );
         button(ui, Action::Remesh, "Remesh");
+    });
+    // Smoothing: method, iterations, step, the boundary held or not.
+    ui.horizontal_wrapped(|ui| {
+        let params = &mut state.smooth;
+        let before = params.method;
+        egui::ComboBox::from_id_salt("smooth method")
+            .selected_text(params.method.name())
+            .show_ui(ui, |ui| {
+                for (method, name) in SmoothMethod::ALL {
+                    ui.selectable_value(&mut params.method, method, name);
+                }
+            });
+        if params.method != before {
+            params.step = params.method.default_step();
+        }
+        ui.add(
+            egui::DragValue::new(&mut params.iterations)
+                .range(1..=1000)
+                .suffix(" iterations"),
+        );
+        let most = if params.method == SmoothMethod::Implicit {
+            1e6
+        } else {
+            1.0
+        };
+        ui.add(
+            egui::DragValue::new(&mut params.step)
+                .range(1e-4..=most)
+                .speed(0.01)
+                .prefix("λ "),
+        );
+        ui.checkbox(&mut params.hold_boundary, "hold boundary");
+        button(ui, Action::Smooth, "Smooth");
     });
     // Subdivision: levels per press.
     ui.horizontal(|ui| {
