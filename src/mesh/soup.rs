@@ -22,6 +22,11 @@ pub struct PolygonSoup {
     /// Always holds `face_count() + 1` entries (a default soup starts with `[0]` once a face is
     /// pushed; an empty soup may hold `[]` or `[0]`).
     pub face_starts: Vec<u32>,
+    /// A scalar per vertex (PLY's `quality`), when the soup carries one: a quantity computed on
+    /// the mesh for export (curvature, valence, …). One per position.
+    pub vertex_quality: Option<Vec<f32>>,
+    /// A colour per vertex (8-bit sRGB), when the soup carries one. One per position.
+    pub vertex_colors: Option<Vec<[u8; 3]>>,
 }
 
 impl PolygonSoup {
@@ -33,6 +38,8 @@ impl PolygonSoup {
             positions: Vec::with_capacity(vertices),
             indices: Vec::with_capacity(corners),
             face_starts,
+            vertex_quality: None,
+            vertex_colors: None,
         }
     }
 
