@@ -19,9 +19,13 @@ use serde_json::{Map, Value, json};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use crate::colormap::Range;
 use crate::edit::{STEP_SYNTAX, Step};
 use crate::io;
+use crate::mesh::tables::extract;
 use crate::mesh::{BuiltMesh, MeshId, RepairReport, build_mesh, mesh_stats, to_soup, validate};
+use crate::ops::geometry::{Quantity, Surface, curvature, face_normals};
+use bevy::math::DVec3;
 
 /// Writes to stdout; a reader that has gone away (`pappus info … | head`) ends the output
 /// quietly instead of panicking.
@@ -92,6 +96,11 @@ pub enum Command {
         /// One JSON object with a record per step instead of text.
         #[arg(long)]
         json: bool,
+        /// Write this per-vertex quantity of the result into OUT (a PLY file) as `quality`,
+        /// and as vertex colours: mean, gaussian, angle-defect, max-curvature, min-curvature,
+        /// valence, min-angle, edge-length.
+        #[arg(long, value_parser = parse_quantity, value_name = "NAME")]
+        quantity: Option<Quantity>,
         /// The steps, in order.
         #[arg(value_parser = Step::parse, value_name = "STEP")]
         steps: Vec<Step>,
@@ -179,7 +188,59 @@ pub fn info_json(world: &World, mesh: MeshId, report: &RepairReport) -> Map<Stri
     if let Err(e) = validation {
         out.insert("validation_error".into(), json!(e.to_string()));
     }
+    let (curvature, normals) = geometry_json(world, mesh, s.euler_characteristic);
+    out.insert("curvature".into(), Value::Object(curvature));
+    out.insert("normals".into(), Value::Object(normals));
     out
+}
+
+/// The curvature and normal summaries of `info --json`: each curvature's min, median and max
+/// over the vertices; the total angle defect beside 2πχ (Gauss–Bonnet: equal); faces and
+/// vertices whose normal is undefined (zero area).
+fn geometry_json(
+    world: &World,
+    mesh: MeshId,
+    chi: i64,
+) -> (Map<String, Value>, Map<String, Value>) {
+    let tables = extract(world, mesh).tables;
+    let surface = Surface::from_tables(&tables);
+    let c = curvature(&surface);
+    let summary = |values: &[f64]| {
+        let mut sorted: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+        sorted.sort_unstable_by(f64::total_cmp);
+        let at = |p: f64| {
+            sorted
+                .get(((sorted.len().max(1) - 1) as f64 * p).round() as usize)
+                .copied()
+                .unwrap_or(0.0)
+        };
+        json!({ "min": at(0.0), "median": at(0.5), "max": at(1.0) })
+    };
+    let mut curvature_out = Map::new();
+    for (k, v) in [
+        ("mean", summary(&c.mean)),
+        ("gaussian", summary(&c.gaussian)),
+        ("max_principal", summary(&c.max)),
+        ("min_principal", summary(&c.min)),
+        (
+            "total_angle_defect",
+            json!(c.angle_defect.iter().sum::<f64>()),
+        ),
+        ("two_pi_chi", json!(2.0 * std::f64::consts::PI * chi as f64)),
+    ] {
+        curvature_out.insert(k.to_string(), v);
+    }
+    let faces = face_normals(&surface, tables.face_count());
+    let mut normals = Map::new();
+    normals.insert(
+        "degenerate_faces".into(),
+        json!(faces.iter().filter(|n| **n == DVec3::ZERO).count()),
+    );
+    normals.insert(
+        "degenerate_vertices".into(),
+        json!(c.normal.iter().filter(|n| **n == DVec3::ZERO).count()),
+    );
+    (curvature_out, normals)
 }
 
 fn round(x: f64, digits: i32) -> f64 {
@@ -266,7 +327,15 @@ fn execute(command: Command) -> Result<(), String> {
             output,
             steps,
             json,
+            quantity,
         } => {
+            if quantity.is_some() && !matches!(io::Format::from_path(&output), Ok(io::Format::Ply))
+            {
+                return Err(format!(
+                    "--quantity writes vertex quality and colours, which only PLY holds: {} is not a .ply file",
+                    output.display()
+                ));
+            }
             let mut loaded = load(&input)?;
             let mesh = loaded.built.mesh;
             let mut records = Vec::new();
@@ -301,14 +370,16 @@ fn execute(command: Command) -> Result<(), String> {
                 record.insert("ms".into(), json!(ms));
                 records.push(Value::Object(record));
             }
-            let soup = to_soup(&loaded.world, mesh);
+            let mut soup = to_soup(&loaded.world, mesh);
+            let quantity = quantity.map(|q| attach_quantity(&loaded.world, mesh, q, &mut soup));
             io::write(&output, &soup).map_err(|e| e.to_string())?;
             let result = info_json(&loaded.world, mesh, &loaded.built.report);
             if json {
-                outln!(
-                    "{}",
-                    json!({ "steps": records, "result": Value::Object(result) })
-                );
+                let mut report = json!({ "steps": records, "result": Value::Object(result) });
+                if let Some(q) = quantity {
+                    report["quantity"] = Value::Object(q);
+                }
+                outln!("{report}");
             } else {
                 out!(
                     "{}",
@@ -318,6 +389,51 @@ fn execute(command: Command) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// Parses a `--quantity` name.
+fn parse_quantity(name: &str) -> Result<Quantity, String> {
+    Quantity::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Quantity::ALL.iter().map(|(_, n)| *n).collect();
+        format!("unknown quantity `{name}`; known: {}", names.join(", "))
+    })
+}
+
+/// Computes `quantity` on `mesh` and puts it into `soup` (whose vertices are the mesh's table
+/// rows, as [`to_soup`] writes them) as quality and colours. Returns its JSON summary.
+fn attach_quantity(
+    world: &World,
+    mesh: MeshId,
+    quantity: Quantity,
+    soup: &mut crate::mesh::PolygonSoup,
+) -> Map<String, Value> {
+    let start = Instant::now();
+    let values = quantity.per_vertex(&extract(world, mesh).tables);
+    let ms = ms_since(start);
+    let map = quantity.colormap();
+    let range = Range::robust(&values, 1.0, map);
+    soup.vertex_colors = Some(values.iter().map(|&v| map.at(range.fraction(v))).collect());
+    soup.vertex_quality = Some(values.iter().map(|&v| v as f32).collect());
+    let finite: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+    let mean = finite.iter().sum::<f64>() / finite.len().max(1) as f64;
+    let (min, max) = finite
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let mut out = Map::new();
+    for (k, v) in [
+        ("name", json!(quantity.name())),
+        ("ms", json!(round(ms, 3))),
+        ("min", json!(min)),
+        ("max", json!(max)),
+        ("mean", json!(mean)),
+        ("colour_low", json!(range.low)),
+        ("colour_high", json!(range.high)),
+    ] {
+        out.insert(k.to_string(), v);
+    }
+    out
 }
 
 #[cfg(test)]
@@ -352,6 +468,7 @@ mod tests {
                 output: "b.ply".into(),
                 steps: vec![Step::Edit(crate::edit::Edit::Triangulate), Step::Validate],
                 json: true,
+                quantity: None,
             })
         );
         assert!(parse("process a.obj triangulate").is_err());

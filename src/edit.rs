@@ -789,7 +789,10 @@ fn parse_smooth(args: &str) -> Option<SmoothParams> {
         params.iterations = n.parse().ok().filter(|n| (1..=10_000).contains(n))?;
     }
     if let Some(step) = parts.next() {
-        params.step = step.parse().ok().filter(|s: &f64| *s > 0.0 && s.is_finite())?;
+        params.step = step
+            .parse()
+            .ok()
+            .filter(|s: &f64| *s > 0.0 && s.is_finite())?;
     }
     parts.next().is_none().then_some(params)
 }

@@ -9,10 +9,12 @@
 //! - [`edit`]: the one edit layer: every operation as a value of [`edit::Edit`], with what the
 //!   editor's pipeline and the command line need to know about it.
 //! - [`io`]: file formats (OBJ, OFF, PLY, STL), all to and from a [`mesh::soup::PolygonSoup`].
+//! - [`colormap`]: the colour maps quantities on a mesh are shown and exported with.
 //! - [`cli`]: the batch command line (`info`, `convert`, `process`), no window needed.
 //! - [`editor`]: the Bevy application.
 
 pub mod cli;
+pub mod colormap;
 pub mod edit;
 pub mod editor;
 pub mod io;

@@ -62,6 +62,11 @@ fn info_json_has_every_key_and_exact_figures() {
     assert_eq!(v["manifold"], true);
     assert_eq!(v["face_sizes"]["4"], 50);
     assert_eq!(v["repairs"]["unreferenced_vertices"], 0);
+    // Gauss–Bonnet: the angle defects add up to 2πχ = −4π.
+    let total = v["curvature"]["total_angle_defect"].as_f64().unwrap();
+    assert!((total + 4.0 * std::f64::consts::PI).abs() < 1e-9, "{total}");
+    assert_eq!(v["curvature"]["two_pi_chi"], -4.0 * std::f64::consts::PI);
+    assert_eq!(v["normals"]["degenerate_faces"], 0);
     let v = json(&pappus(&["info", "shape:grid", "--json"]));
     assert_eq!(
         (v["vertices"].as_u64(), v["faces"].as_u64()),
@@ -250,4 +255,51 @@ fn simplify_then_refine_gives_back_the_input() {
     );
     assert_eq!(v["result"]["faces"], 1280);
     assert_eq!(v["result"]["euler_characteristic"], 2);
+}
+
+#[test]
+fn a_quantity_is_exported_to_ply_and_summarised() {
+    let out_path = tmp("curvature.ply");
+    let v = json(&pappus(&[
+        "process",
+        "shape:icosphere",
+        "-o",
+        out_path.to_str().unwrap(),
+        "--json",
+        "--quantity",
+        "mean",
+    ]));
+    // The unit sphere's mean curvature is 1, within the discretisation's error.
+    let q = &v["quantity"];
+    assert_eq!(q["name"], "mean");
+    for key in ["min", "max", "mean"] {
+        assert!((q[key].as_f64().unwrap() - 1.0).abs() < 0.01, "{q}");
+    }
+    assert!(q["ms"].as_f64().unwrap() >= 0.0);
+    // Only PLY holds per-vertex quality: anything else is refused before any work.
+    let out = pappus(&["process", "shape:cube", "-o", "x.obj", "--quantity", "mean"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("PLY"));
+    let out = pappus(&["process", "shape:cube", "-o", "x.ply", "--quantity", "wobble"]);
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
+fn smooth_steps_run_every_method() {
+    for method in ["uniform", "cotan", "implicit", "taubin"] {
+        let out_path = tmp(&format!("smooth-{method}.obj"));
+        let v = json(&pappus(&[
+            "process",
+            "shape:icosphere",
+            "-o",
+            out_path.to_str().unwrap(),
+            "--json",
+            &format!("smooth:{method}:2"),
+            "validate",
+        ]));
+        for s in v["steps"].as_array().unwrap() {
+            assert_eq!(s["outcome"], "applied", "{s}");
+        }
+        assert_eq!(v["result"]["vertices"], 642);
+    }
 }

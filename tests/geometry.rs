@@ -102,6 +102,9 @@ fn every_smoothing_takes_noise_off_a_sphere() {
         };
         smooth(&mut world, built.mesh, &params).unwrap();
         let after = spread(&world, built.mesh);
-        assert!(after < before / 2.0, "{method:?}: spread {before} -> {after}");
+        assert!(
+            after < before / 2.0,
+            "{method:?}: spread {before} -> {after}"
+        );
     }
 }

@@ -1,4 +1,5 @@
-//! Discrete differential geometry on a mesh's triangles: normals and curvature.
+//! Discrete differential geometry on a mesh's triangles: normals, curvature, and the per-vertex
+//! quantities the editor colours by and the command line exports.
 //!
 //! Everything here is computed on a [`Surface`], the mesh's triangles as flat `f64` arrays by
 //! table row, and returns one value per vertex (or face) row: the caller maps rows back to
@@ -6,8 +7,10 @@
 
 pub mod curvature;
 pub mod normals;
+pub mod quantity;
 pub mod surface;
 
 pub use curvature::{Curvature, curvature, mixed_areas};
 pub use normals::{NormalWeighting, face_normals, vertex_normals, vertex_normals_by_angle};
+pub use quantity::Quantity;
 pub use surface::Surface;

@@ -1,0 +1,172 @@
+//! The quantities a mesh can be coloured by or exported with: one value per vertex, by table
+//! row.
+//!
+//! Curvatures come from [`super::curvature`]; valence counts a vertex's edges; the smallest
+//! angle is the smallest corner angle, in degrees, of the faces around the vertex (where thin
+//! triangles are); the edge length is the mean length of the vertex's edges.
+
+use crate::colormap::ColorMap;
+use crate::mesh::tables::Connectivity;
+
+use super::curvature::curvature;
+use super::surface::Surface;
+
+/// A per-vertex quantity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Quantity {
+    /// Mean curvature `H`.
+    Mean,
+    /// Gaussian curvature `K` (angle defect over area).
+    Gaussian,
+    /// The angle defect (integrated Gaussian curvature).
+    AngleDefect,
+    /// The larger principal curvature.
+    MaxCurvature,
+    /// The smaller principal curvature.
+    MinCurvature,
+    /// The number of edges at the vertex.
+    Valence,
+    /// The smallest corner angle (degrees) of the faces around the vertex.
+    MinAngle,
+    /// The mean length of the vertex's edges.
+    EdgeLength,
+}
+
+impl Quantity {
+    /// Every quantity, with its name on the command line.
+    pub const ALL: [(Quantity, &'static str); 8] = [
+        (Quantity::Mean, "mean"),
+        (Quantity::Gaussian, "gaussian"),
+        (Quantity::AngleDefect, "angle-defect"),
+        (Quantity::MaxCurvature, "max-curvature"),
+        (Quantity::MinCurvature, "min-curvature"),
+        (Quantity::Valence, "valence"),
+        (Quantity::MinAngle, "min-angle"),
+        (Quantity::EdgeLength, "edge-length"),
+    ];
+
+    /// Its name on the command line.
+    pub fn name(self) -> &'static str {
+        Self::ALL
+            .iter()
+            .find(|(q, _)| *q == self)
+            .map_or("", |(_, n)| n)
+    }
+
+    /// The quantity a command-line name stands for.
+    pub fn from_name(name: &str) -> Option<Quantity> {
+        Self::ALL.iter().find(|(_, n)| *n == name).map(|(q, _)| *q)
+    }
+
+    /// Its name in the panel and the legend.
+    pub fn label(self) -> &'static str {
+        match self {
+            Quantity::Mean => "mean curvature",
+            Quantity::Gaussian => "Gaussian curvature",
+            Quantity::AngleDefect => "angle defect",
+            Quantity::MaxCurvature => "max principal curvature",
+            Quantity::MinCurvature => "min principal curvature",
+            Quantity::Valence => "valence",
+            Quantity::MinAngle => "smallest corner angle (°)",
+            Quantity::EdgeLength => "edge length",
+        }
+    }
+
+    /// The colour map that shows it: diverging for signed quantities.
+    pub fn colormap(self) -> ColorMap {
+        match self {
+            Quantity::Valence | Quantity::MinAngle | Quantity::EdgeLength => ColorMap::Viridis,
+            _ => ColorMap::Diverging,
+        }
+    }
+
+    /// Its value at every vertex of the mesh in `t`, by row.
+    pub fn per_vertex(self, t: &Connectivity) -> Vec<f64> {
+        let curvature_of = || curvature(&Surface::from_tables(t));
+        match self {
+            Quantity::Mean => curvature_of().mean,
+            Quantity::Gaussian => curvature_of().gaussian,
+            Quantity::AngleDefect => curvature_of().angle_defect,
+            Quantity::MaxCurvature => curvature_of().max,
+            Quantity::MinCurvature => curvature_of().min,
+            Quantity::Valence => t
+                .vertices()
+                .map(|v| t.vertex_outgoing(v).count() as f64)
+                .collect(),
+            Quantity::EdgeLength => t
+                .vertices()
+                .map(|v| {
+                    let p = t.position(v);
+                    let (sum, n) = t.vertex_outgoing(v).fold((0.0, 0.0), |(s, n), h| {
+                        (
+                            s + f64::from(p.distance(t.position(t.to_vertex(h)))),
+                            n + 1.0,
+                        )
+                    });
+                    if n > 0.0 { sum / n } else { 0.0 }
+                })
+                .collect(),
+            Quantity::MinAngle => {
+                let mut smallest = vec![f64::INFINITY; t.vertex_count()];
+                for f in t.faces() {
+                    let corners: Vec<_> = t
+                        .face_halfedges(f)
+                        .map(|h| t.position(t.to_vertex(h)).as_dvec3())
+                        .collect();
+                    let k = corners.len();
+                    let mut least = f64::INFINITY;
+                    for i in 0..k {
+                        let (p, a, b) =
+                            (corners[i], corners[(i + k - 1) % k], corners[(i + 1) % k]);
+                        let angle = (a - p).angle_between(b - p).to_degrees();
+                        if angle.is_finite() {
+                            least = least.min(angle);
+                        }
+                    }
+                    for h in t.face_halfedges(f) {
+                        let v = t.to_vertex(h).index();
+                        smallest[v] = smallest[v].min(least);
+                    }
+                }
+                smallest
+                    .into_iter()
+                    .map(|a| if a.is_finite() { a } else { 0.0 })
+                    .collect()
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::tables::extract;
+    use crate::mesh::{MeshInfo, build_mesh, shapes};
+    use bevy::prelude::World;
+
+    #[test]
+    fn exact_values_on_a_cube_and_names_round_trip() {
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &shapes::cube(), MeshInfo::default()).unwrap();
+        let t = extract(&world, built.mesh).tables;
+        assert!(Quantity::Valence.per_vertex(&t).iter().all(|&v| v == 3.0));
+        assert!(
+            Quantity::MinAngle
+                .per_vertex(&t)
+                .iter()
+                .all(|&a| (a - 90.0).abs() < 1e-9)
+        );
+        // Three right angles at each corner: the defect is π/2.
+        for d in Quantity::AngleDefect.per_vertex(&t) {
+            assert!((d - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        }
+        let side = 2.0 * f64::from(shapes::cube().positions[0].x.abs());
+        for l in Quantity::EdgeLength.per_vertex(&t) {
+            assert!((l - side).abs() < 1e-6, "{l}");
+        }
+        for (q, name) in Quantity::ALL {
+            assert_eq!(Quantity::from_name(name), Some(q));
+            assert_eq!(q.name(), name);
+        }
+    }
+}
