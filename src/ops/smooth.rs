@@ -13,7 +13,7 @@
 //!   stiffness matrix is positive semi-definite), solved by faer's sparse Cholesky. Unconditionally
 //!   stable: large steps are allowed.
 //! - **Taubin** λ|μ (Taubin 1995): each iteration a uniform step with λ, then one with μ < −λ
-//!   (μ = −λ/(1 − λ k_PB), pass-band k_PB = 0.1): low frequencies pass, so the mesh does not
+//!   (`μ = −λ/(1 − λ k_PB)`, pass-band `k_PB = 0.1`): low frequencies pass, so the mesh does not
 //!   shrink as it does under the umbrella alone.
 //!
 //! Held vertices do not move: the boundary when [`SmoothParams::hold_boundary`] is set (the
