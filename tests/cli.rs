@@ -280,7 +280,14 @@ fn a_quantity_is_exported_to_ply_and_summarised() {
     let out = pappus(&["process", "shape:cube", "-o", "x.obj", "--quantity", "mean"]);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("PLY"));
-    let out = pappus(&["process", "shape:cube", "-o", "x.ply", "--quantity", "wobble"]);
+    let out = pappus(&[
+        "process",
+        "shape:cube",
+        "-o",
+        "x.ply",
+        "--quantity",
+        "wobble",
+    ]);
     assert_eq!(out.status.code(), Some(2));
 }
 

@@ -11,6 +11,7 @@
 //! | `select:ID` | select an element by id (`f12v0`) |
 //! | `open:PATH` | open a file (or `shape:NAME`) as Ctrl+O would |
 //! | `lod:FACES` | move the level-of-detail slider (after a simplification) |
+//! | `colour:NAME` | colour the mesh by a quantity (`colour:mean`, names as `process --quantity`; `colour:none`) |
 //! | `shot:PATH` | save a screenshot of the window to PATH (PNG) and wait until it is written |
 //! | `measure:N` | let N frames pass and log their mean frame time |
 //! | `exit` | quit |
@@ -28,6 +29,7 @@ use crate::mesh::ids::{ElementId, parse_element};
 use crate::mesh::topology::MeshRef;
 
 use crate::edit::Edit;
+use crate::ops::geometry::Quantity;
 
 use super::requests::Request;
 use super::selection::ActiveMesh;
@@ -47,6 +49,8 @@ pub enum ScriptStep {
     Open(PathBuf),
     /// Move the level-of-detail slider.
     Lod(usize),
+    /// Colour by a quantity (or by nothing).
+    Colour(Option<Quantity>),
     /// Save a screenshot.
     Shot(PathBuf),
     /// Measure the mean frame time over N frames.
@@ -105,6 +109,8 @@ impl Script {
                 "shot" => ScriptStep::Shot(PathBuf::from(arg)),
                 "open" => ScriptStep::Open(PathBuf::from(arg)),
                 "lod" => ScriptStep::Lod(arg.parse().map_err(|_| bad())?),
+                "colour" if arg == "none" => ScriptStep::Colour(None),
+                "colour" => ScriptStep::Colour(Some(Quantity::from_name(arg).ok_or_else(bad)?)),
                 "exit" => ScriptStep::Exit,
                 _ => return Err(bad()),
             });
@@ -230,6 +236,10 @@ pub fn run_script(world: &mut World) {
             }
             ScriptStep::Lod(faces) => {
                 world.write_message(Request::Edit(Edit::LevelOfDetail(faces)));
+                script.waiting = 2;
+            }
+            ScriptStep::Colour(quantity) => {
+                world.resource_mut::<super::colouring::ColorBy>().0 = quantity;
                 script.waiting = 2;
             }
             ScriptStep::Open(path) => {

@@ -14,6 +14,7 @@
 
 pub mod apply;
 pub mod automation;
+pub mod colouring;
 pub mod dialog;
 pub mod drag;
 pub mod finish;
@@ -22,6 +23,7 @@ pub mod input;
 pub mod jobs;
 pub mod overlay;
 pub mod picking;
+pub mod plots;
 pub mod render_sync;
 pub mod requests;
 pub mod scene;
@@ -73,6 +75,7 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<jobs::JobSettings>()
             .init_resource::<requests::ConfirmDiscard>()
             .init_resource::<render_sync::ViewSettings>()
+            .init_resource::<colouring::ColorBy>()
             .init_resource::<render_sync::RenderStats>()
             .init_resource::<overlay::Overlay>()
             .init_resource::<input::KeyboardCaptured>()
@@ -98,7 +101,11 @@ impl Plugin for EditorLogicPlugin {
                     (jobs::finish_jobs, apply::apply_requests)
                         .chain()
                         .in_set(EditorSystems::Apply),
-                    (render_sync::sync_render_meshes, overlay::gather_overlay)
+                    (
+                        colouring::update_vertex_values,
+                        render_sync::sync_render_meshes,
+                        overlay::gather_overlay,
+                    )
                         .chain()
                         .in_set(EditorSystems::Sync),
                 ),

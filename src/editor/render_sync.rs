@@ -20,9 +20,10 @@ use bevy::prelude::{Assets, Component, Entity, Resource, Transform, Visibility, 
 use std::time::Instant;
 
 use crate::mesh::MeshInfo;
-use crate::mesh::ids::{FaceId, MeshId};
+use crate::mesh::ids::{FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 
+use super::colouring::VertexValues;
 use super::selection::MeshDirty;
 
 /// The render entity of a mesh: carries its [`Mesh3d`] and [`TriangleFaces`].
@@ -93,6 +94,8 @@ pub struct RenderData {
     pub indices: Vec<u32>,
     /// The face of each triangle.
     pub triangle_faces: Vec<FaceId>,
+    /// The mesh vertex behind each render vertex (for colouring by a quantity).
+    pub vertices: Vec<VertexId>,
 }
 
 /// The render chunks of a mesh (a component of the mesh entity).
@@ -132,6 +135,7 @@ pub fn render_data(world: &World, faces: &[FaceId], smooth: bool) -> RenderData 
                 let next = index.len() as u32;
                 let i = *index.entry(v.0).or_insert_with(|| {
                     out.positions.push(m.position(v).to_array());
+                    out.vertices.push(v);
                     let n: Vec3 = m.vertex_faces(v).map(|g| m.face_area_vector(g)).sum();
                     out.normals
                         .push(n.try_normalize().unwrap_or(Vec3::Z).to_array());
@@ -147,6 +151,7 @@ pub fn render_data(world: &World, faces: &[FaceId], smooth: bool) -> RenderData 
             let start = out.positions.len();
             out.positions
                 .extend(m.face_vertices(f).map(|v| m.position(v).to_array()));
+            out.vertices.extend(m.face_vertices(f));
             let points: Vec<Vec3> = out.positions[start..]
                 .iter()
                 .map(|&p| Vec3::from_array(p))
@@ -362,6 +367,11 @@ fn draw_chunk(
     );
     render.insert_attribute(Mesh::ATTRIBUTE_POSITION, data.positions);
     render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, data.normals);
+    let mesh = world.get::<RenderOf>(chunk).map(|r| r.0);
+    if let Some(values) = mesh.and_then(|m| world.get::<VertexValues>(m.0)) {
+        let colours: Vec<[f32; 4]> = data.vertices.iter().map(|&v| values.colour(v)).collect();
+        render.insert_attribute(Mesh::ATTRIBUTE_COLOR, colours);
+    }
     render.insert_indices(Indices::U32(data.indices));
     let handle = world.resource_mut::<Assets<Mesh>>().add(render);
     let material = world

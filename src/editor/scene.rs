@@ -46,6 +46,9 @@ impl OrbitCamera {
     }
 }
 
+/// The surface colour of meshes (when no quantity is shown).
+pub const SURFACE_COLOR: Color = Color::srgb(0.78, 0.74, 0.66);
+
 /// Materials shared by every mesh.
 #[derive(Resource, Debug, Clone)]
 pub struct SceneMaterials {
@@ -78,7 +81,7 @@ pub fn setup_scene(mut commands: Commands, mut materials: ResMut<Assets<Standard
     commands.insert_resource(ClearColor(Color::srgb(0.32, 0.34, 0.38)));
     commands.insert_resource(SceneMaterials {
         surface: materials.add(StandardMaterial {
-            base_color: Color::srgb(0.78, 0.74, 0.66),
+            base_color: SURFACE_COLOR,
             perceptual_roughness: 0.8,
             double_sided: true,
             cull_mode: None,

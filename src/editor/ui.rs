@@ -20,12 +20,16 @@ use crate::ops::simplify::SimplifyTarget;
 use crate::ops::smooth::SmoothMethod;
 
 use super::EditorSystems;
+use super::colouring::{ColorBy, VertexValues};
 use super::dialog::PathPurpose;
 use super::input::{Action, KeyboardCaptured, SHORTCUTS, UiState, perform};
+use super::plots::{Histogram, histograms};
 use super::render_sync::{RenderStats, ViewSettings};
 use super::requests::{OutcomeLog, Relation, Request};
 use super::selection::{ActiveMesh, SelectMode, Selection, navigate};
 use super::session::SimplificationHistory;
+use crate::colormap::{ColorMap, Range};
+use crate::ops::geometry::Quantity;
 
 /// The panels' plugin.
 pub struct UiPlugin;
@@ -87,6 +91,10 @@ pub struct InspectorView {
     pub history_bytes: usize,
     /// The running job: its label, the fraction done and the seconds since it started.
     pub job: Option<(String, f32, f32)>,
+    /// The histograms of the active mesh (counted with the statistics).
+    pub histograms: Vec<Histogram>,
+    /// The quantity the mesh is coloured by: its label, colour map and range (the legend).
+    pub colour: Option<(String, ColorMap, Range)>,
 }
 
 /// The active mesh as shown.
@@ -172,10 +180,14 @@ pub fn snapshot(world: &mut World) {
                     stats: mesh_stats(world, mesh),
                     validation: validate(world, mesh).map_err(|e| e.to_string()),
                 });
+                view.histograms = histograms(world, mesh, world.get::<VertexValues>(mesh.0));
                 view.stats_generation = generation;
             }
         }
     }
+    view.colour = active
+        .and_then(|m| world.get::<VertexValues>(m.0))
+        .map(|v| (v.quantity.label().to_string(), v.map, v.range));
     view.lod = world.resource::<SimplificationHistory>().levels();
     let history = world.resource::<super::history::UndoHistory>();
     view.history.clear();
@@ -210,6 +222,16 @@ pub fn snapshot(world: &mut World) {
         .element
         .filter(|&x| super::selection::exists(&m, x))
         .map(|id| describe(&m, id));
+    // The value of the quantity on display at a selected vertex.
+    if let Some(selected) = view.selected.as_mut()
+        && let ElementId::Vertex(v) = selected.id
+        && let Some(values) = active.and_then(|mesh| world.get::<VertexValues>(mesh.0))
+        && let Some(value) = values.values.get(&v.0)
+    {
+        selected
+            .facts
+            .push((values.quantity.label().to_string(), format!("{value:.6}")));
+    }
     *world.resource_mut::<InspectorView>() = view;
 }
 
@@ -296,6 +318,7 @@ pub fn panels(
     mut pointer: ResMut<super::drag::PointerCaptured>,
     mut insets: ResMut<super::scene::PanelInsets>,
     confirm: Res<super::requests::ConfirmDiscard>,
+    mut colour_by: ResMut<ColorBy>,
     mut pending: ResMut<PendingActions>,
     mut requests: MessageWriter<Request>,
 ) -> Result {
@@ -332,6 +355,7 @@ pub fn panels(
                 file_section(ui, &mut fields, &mut ui_state, &mut requests);
                 ui.separator();
                 mesh_section(ui, &view);
+                colour_section(ui, &view, &mut colour_by);
                 ui.separator();
                 selection_section(ui, &view, &mut fields, &mut requests);
                 ui.separator();
@@ -820,4 +844,60 @@ fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
         button(ui, Action::LoopSubdivide, "Loop");
         button(ui, Action::CatmullClark, "Catmull-Clark");
     });
+}
+
+/// Colour by a quantity: the choice, the legend (the map from its low to its high value, as
+/// clamped) and the histograms.
+fn colour_section(ui: &mut egui::Ui, view: &InspectorView, colour_by: &mut ColorBy) {
+    ui.horizontal(|ui| {
+        ui.label("colour by");
+        let shown = colour_by.0.map_or("nothing", Quantity::label);
+        egui::ComboBox::from_id_salt("colour by")
+            .selected_text(shown)
+            .show_ui(ui, |ui| {
+                ui.selectable_value(&mut colour_by.0, None, "nothing");
+                for (q, _) in Quantity::ALL {
+                    ui.selectable_value(&mut colour_by.0, Some(q), q.label());
+                }
+            });
+    });
+    if let Some((label, map, range)) = &view.colour {
+        legend(ui, label, *map, *range);
+    }
+    if !view.histograms.is_empty() {
+        egui::CollapsingHeader::new("Histograms")
+            .default_open(true)
+            .show(ui, |ui| {
+                for h in &view.histograms {
+                    super::plots::draw(ui, h);
+                }
+            });
+    }
+}
+
+/// The colour map as a bar from its low to its high value, with both ends labelled.
+fn legend(ui: &mut egui::Ui, label: &str, map: ColorMap, range: Range) {
+    ui.label(egui::RichText::new(label).small());
+    let width = ui.available_width().min(260.0);
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(width, 14.0), egui::Sense::hover());
+    let steps = 64;
+    for i in 0..steps {
+        let [r, g, b] = map.at((i as f32 + 0.5) / steps as f32);
+        let x0 = rect.left() + rect.width() * i as f32 / steps as f32;
+        let x1 = rect.left() + rect.width() * (i + 1) as f32 / steps as f32;
+        let cell =
+            egui::Rect::from_min_max(egui::pos2(x0, rect.top()), egui::pos2(x1, rect.bottom()));
+        ui.painter()
+            .rect_filled(cell, 0.0, egui::Color32::from_rgb(r, g, b));
+    }
+    ui.horizontal(|ui| {
+        ui.monospace(format!("{:.4}", range.low));
+        ui.add_space((width - 160.0).max(0.0));
+        ui.monospace(format!("{:.4}", range.high));
+    });
+    ui.label(
+        egui::RichText::new("clamped at the 1st and 99th percentiles")
+            .small()
+            .weak(),
+    );
 }
