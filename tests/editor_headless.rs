@@ -715,3 +715,48 @@ fn unsaved_changes_are_not_lost_to_an_open() {
     assert_eq!(pappus::mesh::mesh_stats(app.world(), mesh(&app)).faces, 4);
     assert!(path.exists());
 }
+
+#[test]
+fn colouring_by_a_quantity_paints_the_render_copy_and_goes_away() {
+    use pappus::editor::colouring::{ColorBy, VertexValues};
+    use pappus::ops::geometry::Quantity;
+    let mut app = app();
+    open(&mut app, "shape:icosphere");
+    let has_colours = |app: &mut App| {
+        let meshes: Vec<Handle<Mesh>> = app
+            .world_mut()
+            .query_filtered::<&Mesh3d, With<RenderOf>>()
+            .iter(app.world())
+            .map(|m| m.0.clone())
+            .collect();
+        let assets = app.world().resource::<Assets<Mesh>>();
+        meshes.iter().all(|h| {
+            assets
+                .get(h)
+                .unwrap()
+                .attribute(Mesh::ATTRIBUTE_COLOR)
+                .is_some()
+        })
+    };
+    assert!(!has_colours(&mut app));
+    app.world_mut().resource_mut::<ColorBy>().0 = Some(Quantity::Mean);
+    app.update();
+    let values = app.world().get::<VertexValues>(mesh(&app).0).unwrap();
+    assert_eq!(values.values.len(), 642);
+    assert!(values.values.values().all(|h| (h - 1.0).abs() < 0.01));
+    // A local edit recomputes the values and keeps the range the legend shows.
+    let range = values.range;
+    assert!(has_colours(&mut app));
+    let e = some_interior_edge(&app);
+    app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
+    app.update();
+    assert_eq!(
+        app.world().get::<VertexValues>(mesh(&app).0).unwrap().range,
+        range
+    );
+    assert!(has_colours(&mut app));
+    app.world_mut().resource_mut::<ColorBy>().0 = None;
+    app.update();
+    assert!(app.world().get::<VertexValues>(mesh(&app).0).is_none());
+    assert!(!has_colours(&mut app));
+}
