@@ -34,7 +34,8 @@ pub enum Format {
     /// Object File Format, ASCII (`OFF`, and `COFF`/`NOFF`/`STOFF`-style variants whose extra
     /// per-vertex values are ignored).
     Off,
-    /// Stanford PLY (ASCII, binary little- and big-endian; written binary little-endian).
+    /// Stanford PLY (ASCII, binary little- and big-endian; written binary little-endian). The
+    /// one format that carries a per-vertex quality and colour, both ways.
     Ply,
     /// STL (ASCII and binary; written binary, polygons fan-triangulated).
     Stl,
@@ -180,9 +181,11 @@ pub fn write_bytes(format: Format, soup: &PolygonSoup) -> Vec<u8> {
     }
 }
 
-/// Encodes a soup as PLY with the chosen encoding: `float x y z`, then `list uchar int
-/// vertex_indices` (`list int int` when a face has more than 255 corners, `uint` indices
-/// when one exceeds `i32::MAX`).
+/// Encodes a soup as PLY with the chosen encoding: `float x y z`, then `uchar red green blue`
+/// and `float quality` when the soup carries [`vertex_colors`](PolygonSoup::vertex_colors)
+/// and [`vertex_quality`](PolygonSoup::vertex_quality) (one per position; MeshLab reads them
+/// as the vertex colour and scalar), then `list uchar int vertex_indices` (`list int int`
+/// when a face has more than 255 corners, `uint` indices when one exceeds `i32::MAX`).
 pub fn write_ply(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
     ply::write(soup, encoding)
 }

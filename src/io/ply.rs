@@ -2,14 +2,24 @@
 //!
 //! Reads the `vertex` element's `x y z` (any of the eight numeric types, converted to `f32`)
 //! and the `face` element's `vertex_indices` (or `vertex_index`) list, whose count and index
-//! may be any integer type. Every other property (scalar or list) and every other element is
-//! read past, in the order the header declares them. The vertex element must have `x`, `y`
-//! and `z`, and a face element must have the index list. Indices must be non-negative
-//! integers; out-of-range ones are kept for the builder to drop.
+//! may be any integer type. Two optional vertex properties are kept too, as MeshLab writes
+//! them: `quality` (any numeric type, converted to `f32`) becomes the soup's
+//! [`vertex_quality`](PolygonSoup::vertex_quality), and `red green blue` (all three, else
+//! none) its [`vertex_colors`](PolygonSoup::vertex_colors): integer channels are taken as
+//! they are, clamped to 0–255, floating-point ones as fractions of full intensity (0–1,
+//! scaled by 255 and rounded). Every other property (scalar or list, `alpha` included) and
+//! every other element is read past, in the order the header declares them. The vertex
+//! element must have `x`, `y` and `z`, and a face element must have the index list. Indices
+//! must be non-negative integers; out-of-range ones are kept for the builder to drop. In an
+//! ASCII body a `float` property is parsed as an `f32` directly (not through `f64`), so what
+//! the writer prints reads back bit for bit.
 //!
-//! Writes `float x y z` and `list uchar int vertex_indices` (`list int int` when a face has
-//! more than 255 corners, `uint` indices when one exceeds `i32::MAX`), binary little-endian
-//! by default or ASCII / big-endian on request.
+//! Writes `float x y z`, then `uchar red green blue` when the soup has colours and `float
+//! quality` when it has a quality (MeshLab's order, without its `alpha`), each only when it
+//! holds one value per position; then `list uchar int vertex_indices` (`list int int` when a
+//! face has more than 255 corners, `uint` indices when one exceeds `i32::MAX`), binary
+//! little-endian by default or ASCII / big-endian on request. A soup without either
+//! attribute gets exactly the plain `x y z` header.
 
 use bevy::math::Vec3;
 use std::fmt::Write as _;
@@ -76,6 +86,10 @@ impl Scalar {
 enum Role {
     /// Coordinate 0, 1 or 2 of a vertex.
     Coordinate(usize),
+    /// A vertex's `quality`.
+    Quality,
+    /// A vertex's `red` (0), `green` (1) or `blue` (2).
+    Color(usize),
     /// The corners of a face.
     Corners,
     /// Read past.
@@ -126,10 +140,17 @@ impl Values for Text<'_> {
         ParseError::line(self.line, message)
     }
 
-    fn next(&mut self, _ty: Scalar, what: &str) -> Result<f64, ParseError> {
+    fn next(&mut self, ty: Scalar, what: &str) -> Result<f64, ParseError> {
         loop {
             if let Some(t) = self.tokens.next() {
-                return t.parse::<f64>().map_err(|_| {
+                // A `float` parsed through `f64` and rounded again could, rarely, land one ulp
+                // off the value the writer printed.
+                let value = if ty == Scalar::F32 {
+                    t.parse::<f32>().map(f64::from)
+                } else {
+                    t.parse::<f64>()
+                };
+                return value.map_err(|_| {
                     ParseError::line(self.line, format!("`{t}` is not a number ({what})"))
                 });
             }
@@ -288,6 +309,10 @@ fn header(bytes: &[u8]) -> Result<(PlyEncoding, Vec<Element>, usize), ParseError
                         ("vertex", "x") => Role::Coordinate(0),
                         ("vertex", "y") => Role::Coordinate(1),
                         ("vertex", "z") => Role::Coordinate(2),
+                        ("vertex", "quality") => Role::Quality,
+                        ("vertex", "red") => Role::Color(0),
+                        ("vertex", "green") => Role::Color(1),
+                        ("vertex", "blue") => Role::Color(2),
                         _ => Role::Skip,
                     };
                     Property::Scalar { name, ty, role }
@@ -340,7 +365,19 @@ fn check_element(element: &Element) -> Result<(), ParseError> {
     }
 }
 
-/// Reads every element's values in header order, keeping positions and faces.
+/// A colour channel as a byte: an integer as it is, a floating-point value as a fraction of
+/// full intensity (scaled by 255 and rounded); clamped to 0–255 (NaN gives 0).
+fn channel(v: f64, ty: Scalar) -> u8 {
+    let v = if ty.is_integer() {
+        v
+    } else {
+        (v * 255.0).round()
+    };
+    v.clamp(0.0, 255.0) as u8
+}
+
+/// Reads every element's values in header order, keeping positions, faces, and the vertices'
+/// quality and colours when the vertex element has them.
 ///
 /// Every value read consumes at least one byte or token, so a huge count in the header makes
 /// the reader run out of input, not memory (an element without properties is not looped over).
@@ -356,17 +393,46 @@ fn body_values(
             continue;
         }
         let is_vertex = element.name == "vertex";
+        let has = |role: Role| {
+            is_vertex
+                && element
+                    .properties
+                    .iter()
+                    .any(|p| matches!(p, Property::Scalar { role: r, .. } if *r == role))
+        };
+        let has_quality = has(Role::Quality);
+        let has_colors = (0..3).all(|k| has(Role::Color(k)));
         if is_vertex {
-            soup.positions.reserve(cap(element.count, len / 12));
+            let n = cap(element.count, len / 12);
+            soup.positions.reserve(n);
+            // Vertices read before (another `vertex` element, in an odd file) get 0 and black,
+            // so that the attributes keep one value per position.
+            if has_quality {
+                let before = soup.positions.len();
+                let q = soup.vertex_quality.get_or_insert_with(|| vec![0.0; before]);
+                q.reserve(n);
+            }
+            if has_colors {
+                let before = soup.positions.len();
+                let c = soup
+                    .vertex_colors
+                    .get_or_insert_with(|| vec![[0; 3]; before]);
+                c.reserve(n);
+            }
         }
         for _ in 0..element.count {
             let mut p = [0.0f32; 3];
+            let mut quality = 0.0f32;
+            let mut color = [0u8; 3];
             for property in &element.properties {
                 match property {
                     Property::Scalar { name, ty, role } => {
                         let v = values.next(*ty, name)?;
-                        if let Role::Coordinate(k) = role {
-                            p[*k] = v as f32;
+                        match *role {
+                            Role::Coordinate(k) => p[k] = v as f32,
+                            Role::Quality => quality = v as f32,
+                            Role::Color(k) => color[k] = channel(v, *ty),
+                            Role::Corners | Role::Skip => {}
                         }
                     }
                     Property::List {
@@ -398,14 +464,24 @@ fn body_values(
             }
             if is_vertex {
                 soup.positions.push(Vec3::from_array(p));
+                if let Some(q) = &mut soup.vertex_quality {
+                    q.push(quality);
+                }
+                if let Some(c) = &mut soup.vertex_colors {
+                    c.push(color);
+                }
             }
         }
     }
     Ok(soup)
 }
 
-/// Encodes a soup as PLY.
+/// Encodes a soup as PLY: positions, then colours and quality when the soup carries them (one
+/// per position; an attribute of another length is left out), then faces.
 pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
+    let n = soup.positions.len();
+    let quality = soup.vertex_quality.as_deref().filter(|q| q.len() == n);
+    let colors = soup.vertex_colors.as_deref().filter(|c| c.len() == n);
     let count_type = if soup.faces().any(|f| f.len() > 255) {
         Scalar::I32
     } else {
@@ -429,10 +505,18 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
     let mut header = String::new();
     let _ = write!(
         header,
-        "ply\nformat {format} 1.0\ncomment written by Pappus\nelement vertex {}\n\
-         property float x\nproperty float y\nproperty float z\nelement face {}\n\
-         property list {} {} vertex_indices\nend_header\n",
-        soup.positions.len(),
+        "ply\nformat {format} 1.0\ncomment written by Pappus\nelement vertex {n}\n\
+         property float x\nproperty float y\nproperty float z\n",
+    );
+    if colors.is_some() {
+        header.push_str("property uchar red\nproperty uchar green\nproperty uchar blue\n");
+    }
+    if quality.is_some() {
+        header.push_str("property float quality\n");
+    }
+    let _ = write!(
+        header,
+        "element face {}\nproperty list {} {} vertex_indices\nend_header\n",
         soup.face_count(),
         type_name(count_type),
         type_name(index_type),
@@ -440,10 +524,17 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
     let mut out = header.into_bytes();
     match encoding {
         PlyEncoding::Ascii => {
-            let mut body =
-                String::with_capacity(soup.positions.len() * 32 + soup.indices.len() * 8);
-            for p in &soup.positions {
-                let _ = writeln!(body, "{} {} {}", p.x, p.y, p.z);
+            let mut body = String::with_capacity(n * 48 + soup.indices.len() * 8);
+            for (i, p) in soup.positions.iter().enumerate() {
+                let _ = write!(body, "{} {} {}", p.x, p.y, p.z);
+                if let Some(colors) = colors {
+                    let [r, g, b] = colors[i];
+                    let _ = write!(body, " {r} {g} {b}");
+                }
+                if let Some(quality) = quality {
+                    let _ = write!(body, " {}", quality[i]);
+                }
+                body.push('\n');
             }
             for face in soup.faces() {
                 let _ = write!(body, "{}", face.len());
@@ -463,10 +554,16 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
                     out.extend_from_slice(&bytes);
                 }
             };
-            out.reserve(soup.positions.len() * 12 + soup.indices.len() * 4 + soup.face_count() * 4);
-            for p in &soup.positions {
+            out.reserve(n * 19 + soup.indices.len() * 4 + soup.face_count() * 4);
+            for (i, p) in soup.positions.iter().enumerate() {
                 for c in [p.x, p.y, p.z] {
                     put(c.to_le_bytes(), &mut out);
+                }
+                if let Some(colors) = colors {
+                    out.extend_from_slice(&colors[i]);
+                }
+                if let Some(quality) = quality {
+                    put(quality[i].to_le_bytes(), &mut out);
                 }
             }
             for face in soup.faces() {
@@ -503,6 +600,172 @@ mod tests {
                 same_bits(&read(&write(&mixed(), e)).unwrap(), &mixed()),
                 "{e:?}"
             );
+        }
+    }
+
+    /// `mixed()` with a quality and a colour on each of its five vertices: a third, a
+    /// negative zero, a subnormal, the most negative `f32`, infinity.
+    fn attributed() -> PolygonSoup {
+        let mut soup = mixed();
+        soup.vertex_quality = Some(vec![1.0 / 3.0, -0.0, 1.0e-40, f32::MIN, f32::INFINITY]);
+        soup.vertex_colors = Some(vec![
+            [0, 0, 0],
+            [255, 255, 255],
+            [255, 0, 128],
+            [1, 2, 3],
+            [200, 100, 50],
+        ]);
+        soup
+    }
+
+    fn quality_bits(soup: &PolygonSoup) -> Option<Vec<u32>> {
+        let q = soup.vertex_quality.as_ref()?;
+        Some(q.iter().map(|q| q.to_bits()).collect())
+    }
+
+    #[test]
+    fn quality_and_colours_round_trip_bit_for_bit() {
+        let soup = attributed();
+        for e in [
+            PlyEncoding::Ascii,
+            PlyEncoding::BinaryLittleEndian,
+            PlyEncoding::BinaryBigEndian,
+        ] {
+            let bytes = write(&soup, e);
+            let header = String::from_utf8_lossy(&bytes);
+            assert!(
+                header.contains(
+                    "property float z\nproperty uchar red\nproperty uchar green\n\
+                     property uchar blue\nproperty float quality\nelement face 2\n"
+                ),
+                "{e:?}: {header}"
+            );
+            let back = read(&bytes).unwrap();
+            assert!(same_bits(&back, &soup), "{e:?}");
+            assert_eq!(quality_bits(&back), quality_bits(&soup), "{e:?}");
+            assert_eq!(back.vertex_colors, soup.vertex_colors, "{e:?}");
+        }
+    }
+
+    #[test]
+    fn ascii_with_attributes_is_as_meshlab_lays_it_out() {
+        let soup = PolygonSoup {
+            vertex_quality: Some(vec![0.5, -2.0, 0.1]),
+            vertex_colors: Some(vec![[255, 0, 0], [0, 255, 0], [0, 0, 255]]),
+            ..PolygonSoup::from_faces(vec![Vec3::ZERO, Vec3::X, Vec3::Y], &[[0, 1, 2]])
+        };
+        let text = String::from_utf8(write(&soup, PlyEncoding::Ascii)).unwrap();
+        assert_eq!(
+            text,
+            format!(
+                "ply\nformat ascii 1.0\ncomment written by Pappus\nelement vertex 3\n{XYZ}\
+                 property uchar red\nproperty uchar green\nproperty uchar blue\n\
+                 property float quality\nelement face 1\nproperty list uchar int vertex_indices\n\
+                 end_header\n0 0 0 255 0 0 0.5\n1 0 0 0 255 0 -2\n0 1 0 0 0 255 0.1\n3 0 1 2\n"
+            )
+        );
+    }
+
+    #[test]
+    fn colours_alone_round_trip() {
+        let mut soup = attributed();
+        soup.vertex_quality = None;
+        for e in [PlyEncoding::Ascii, PlyEncoding::BinaryLittleEndian] {
+            let bytes = write(&soup, e);
+            let header = String::from_utf8_lossy(&bytes);
+            assert!(
+                header.contains("property uchar blue\nelement face"),
+                "{e:?}"
+            );
+            assert!(!header.contains("quality"), "{e:?}");
+            let back = read(&bytes).unwrap();
+            assert!(same_bits(&back, &soup), "{e:?}");
+            assert_eq!(back.vertex_quality, None, "{e:?}");
+            assert_eq!(back.vertex_colors, soup.vertex_colors, "{e:?}");
+        }
+        // A quality alone, likewise.
+        let mut soup = attributed();
+        soup.vertex_colors = None;
+        let back = read(&write(&soup, PlyEncoding::BinaryLittleEndian)).unwrap();
+        assert_eq!(quality_bits(&back), quality_bits(&soup));
+        assert_eq!(back.vertex_colors, None);
+    }
+
+    #[test]
+    fn a_soup_without_attributes_writes_the_plain_header() {
+        let plain = format!(
+            "comment written by Pappus\nelement vertex 5\n{XYZ}element face 2\n\
+             property list uchar int vertex_indices\nend_header\n"
+        );
+        for (e, format) in [
+            (PlyEncoding::Ascii, "ascii"),
+            (PlyEncoding::BinaryLittleEndian, "binary_little_endian"),
+            (PlyEncoding::BinaryBigEndian, "binary_big_endian"),
+        ] {
+            let bytes = write(&mixed(), e);
+            let header = format!("ply\nformat {format} 1.0\n{plain}");
+            assert!(bytes.starts_with(header.as_bytes()), "{e:?}");
+            let back = read(&bytes).unwrap();
+            assert_eq!((back.vertex_quality, back.vertex_colors), (None, None));
+        }
+        // Attributes that do not hold one value per position are left out.
+        let mut soup = mixed();
+        soup.vertex_quality = Some(vec![1.0; 4]);
+        soup.vertex_colors = Some(vec![[1, 2, 3]; 6]);
+        assert_eq!(
+            write(&soup, PlyEncoding::Ascii),
+            write(&mixed(), PlyEncoding::Ascii)
+        );
+    }
+
+    #[test]
+    fn reads_meshlab_quality_and_float_colours() {
+        // As pymeshlab's `save_current_mesh(binary=False)` writes it: double quality after
+        // an `alpha` this reader skips.
+        let meshlab = b"ply\nformat ascii 1.0\ncomment VCGLIB generated\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\nproperty double quality\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 255 0 0 255 0.5 \n1 0 0 0 255 0 255 1.5 \n0 1 0 0 0 255 255 -2 \n3 0 1 2 \n";
+        let soup = read(meshlab).unwrap();
+        assert_eq!(soup.vertex_quality, Some(vec![0.5, 1.5, -2.0]));
+        assert_eq!(
+            soup.vertex_colors,
+            Some(vec![[255, 0, 0], [0, 255, 0], [0, 0, 255]])
+        );
+        // Float channels are fractions; out-of-range integers are clamped; a lone `red` is no
+        // colour.
+        let floats = format!(
+            "ply\nformat ascii 1.0\nelement vertex 2\n{XYZ}property float blue\nproperty float green\nproperty double red\nend_header\n0 0 0 0.5 1 0\n1 0 0 2 -1 0.1\n"
+        );
+        let soup = read(floats.as_bytes()).unwrap();
+        assert_eq!(soup.vertex_colors, Some(vec![[0, 255, 128], [26, 0, 255]]));
+        assert_eq!(soup.vertex_quality, None);
+        let ints = format!(
+            "ply\nformat ascii 1.0\nelement vertex 1\n{XYZ}property short red\nproperty int green\nproperty uchar blue\nend_header\n0 0 0 -4 300 7\n"
+        );
+        assert_eq!(
+            read(ints.as_bytes()).unwrap().vertex_colors,
+            Some(vec![[0, 255, 7]])
+        );
+        let lone = format!(
+            "ply\nformat ascii 1.0\nelement vertex 1\n{XYZ}property uchar red\nend_header\n0 0 0 9\n"
+        );
+        assert_eq!(read(lone.as_bytes()).unwrap().vertex_colors, None);
+    }
+
+    #[test]
+    fn truncated_files_with_attributes_never_panic() {
+        for e in [
+            PlyEncoding::Ascii,
+            PlyEncoding::BinaryLittleEndian,
+            PlyEncoding::BinaryBigEndian,
+        ] {
+            let bytes = write(&attributed(), e);
+            for cut in 0..bytes.len() {
+                let result = read(&bytes[..cut]);
+                // An ASCII file may lose only its final newline and still read.
+                assert!(
+                    result.is_err() || cut + 1 == bytes.len(),
+                    "{e:?} cut at {cut}"
+                );
+            }
         }
     }
 
