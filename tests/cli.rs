@@ -276,6 +276,12 @@ fn a_quantity_is_exported_to_ply_and_summarised() {
         assert!((q[key].as_f64().unwrap() - 1.0).abs() < 0.01, "{q}");
     }
     assert!(q["ms"].as_f64().unwrap() >= 0.0);
+    // The PLY carries the value and its colour at every vertex.
+    let soup = pappus::io::read(&out_path).unwrap();
+    let quality = soup.vertex_quality.expect("quality written");
+    assert_eq!(quality.len(), 642);
+    assert!(quality.iter().all(|h| (h - 1.0).abs() < 0.01));
+    assert_eq!(soup.vertex_colors.map(|c| c.len()), Some(642));
     // Only PLY holds per-vertex quality: anything else is refused before any work.
     let out = pappus(&["process", "shape:cube", "-o", "x.obj", "--quantity", "mean"]);
     assert_eq!(out.status.code(), Some(1));
