@@ -8,6 +8,8 @@ use egui_plot::{Bar, BarChart, Plot};
 
 use crate::mesh::MeshId;
 use crate::mesh::tables::extract;
+use crate::ops::geometry::Quantity;
+use crate::ops::geometry::quantity::corner_angles_deg;
 
 use super::colouring::VertexValues;
 
@@ -52,23 +54,9 @@ impl Histogram {
 /// edge lengths (30 bins up to the 99th percentile), and `shown`'s values over its colour range.
 pub fn histograms(world: &World, mesh: MeshId, shown: Option<&VertexValues>) -> Vec<Histogram> {
     let t = extract(world, mesh).tables;
-    let valence: Vec<f64> = t
-        .vertices()
-        .map(|v| t.vertex_outgoing(v).count() as f64)
-        .collect();
+    let valence = Quantity::Valence.per_vertex(&t);
     let most = valence.iter().copied().fold(3.0, f64::max).min(16.0);
-    let mut angles = Vec::with_capacity(t.halfedge_count());
-    for f in t.faces() {
-        let corners: Vec<_> = t
-            .face_halfedges(f)
-            .map(|h| t.position(t.to_vertex(h)))
-            .collect();
-        let k = corners.len();
-        for i in 0..k {
-            let (p, a, b) = (corners[i], corners[(i + k - 1) % k], corners[(i + 1) % k]);
-            angles.push(f64::from((a - p).angle_between(b - p).to_degrees()));
-        }
-    }
+    let angles: Vec<f64> = t.faces().flat_map(|f| corner_angles_deg(&t, f)).collect();
     let mut lengths: Vec<f64> = t
         .edges()
         .map(|e| {

@@ -234,15 +234,8 @@ fn principal_directions(s: &Surface, normal: &[DVec3], c: &mut Curvature) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::tables::extract;
-    use crate::mesh::{MeshInfo, build_mesh, shapes};
-    use bevy::prelude::World;
-
-    fn surface(soup: &crate::mesh::PolygonSoup) -> Surface {
-        let mut world = World::new();
-        let built = build_mesh(&mut world, soup, MeshInfo::default()).unwrap();
-        Surface::from_tables(&extract(&world, built.mesh).tables)
-    }
+    use crate::mesh::shapes;
+    use crate::ops::geometry::surface::of_soup as surface;
 
     #[test]
     fn the_unit_icosphere_has_mean_curvature_one_and_total_gaussian_four_pi() {

@@ -110,13 +110,8 @@ mod tests {
     use super::*;
     use crate::mesh::tables::extract;
     use crate::mesh::{MeshInfo, build_mesh, shapes};
+    use crate::ops::geometry::surface::of_soup as surface;
     use bevy::prelude::World;
-
-    fn surface(soup: &crate::mesh::PolygonSoup) -> Surface {
-        let mut world = World::new();
-        let built = build_mesh(&mut world, soup, MeshInfo::default()).unwrap();
-        Surface::from_tables(&extract(&world, built.mesh).tables)
-    }
 
     #[test]
     fn a_cube_corner_normal_points_along_the_diagonal_either_way() {

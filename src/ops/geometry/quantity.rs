@@ -6,7 +6,7 @@
 //! triangles are); the edge length is the mean length of the vertex's edges.
 
 use crate::colormap::ColorMap;
-use crate::mesh::tables::Connectivity;
+use crate::mesh::tables::{Connectivity, FaceRow};
 
 use super::curvature::curvature;
 use super::surface::Surface;
@@ -109,20 +109,10 @@ impl Quantity {
             Quantity::MinAngle => {
                 let mut smallest = vec![f64::INFINITY; t.vertex_count()];
                 for f in t.faces() {
-                    let corners: Vec<_> = t
-                        .face_halfedges(f)
-                        .map(|h| t.position(t.to_vertex(h)).as_dvec3())
-                        .collect();
-                    let k = corners.len();
-                    let mut least = f64::INFINITY;
-                    for i in 0..k {
-                        let (p, a, b) =
-                            (corners[i], corners[(i + k - 1) % k], corners[(i + 1) % k]);
-                        let angle = (a - p).angle_between(b - p).to_degrees();
-                        if angle.is_finite() {
-                            least = least.min(angle);
-                        }
-                    }
+                    let least = corner_angles_deg(t, f)
+                        .into_iter()
+                        .filter(|a| a.is_finite())
+                        .fold(f64::INFINITY, f64::min);
                     for h in t.face_halfedges(f) {
                         let v = t.to_vertex(h).index();
                         smallest[v] = smallest[v].min(least);
@@ -135,6 +125,22 @@ impl Quantity {
             }
         }
     }
+}
+
+/// The corner angles of face `f` in degrees, one per corner in the face's order (NaN at a
+/// corner with a zero-length side).
+pub fn corner_angles_deg(t: &Connectivity, f: FaceRow) -> Vec<f64> {
+    let corners: Vec<_> = t
+        .face_halfedges(f)
+        .map(|h| t.position(t.to_vertex(h)).as_dvec3())
+        .collect();
+    let k = corners.len();
+    (0..k)
+        .map(|i| {
+            let (p, a, b) = (corners[i], corners[(i + k - 1) % k], corners[(i + 1) % k]);
+            (a - p).angle_between(b - p).to_degrees()
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -69,6 +69,15 @@ impl Surface {
     }
 }
 
+/// The surface of `soup` built into a fresh world (for the tests of this module's siblings).
+#[cfg(test)]
+pub(crate) fn of_soup(soup: &crate::mesh::PolygonSoup) -> Surface {
+    let mut world = bevy::prelude::World::new();
+    let built = crate::mesh::build_mesh(&mut world, soup, crate::mesh::MeshInfo::default())
+        .expect("a test shape builds");
+    Surface::from_tables(&crate::mesh::tables::extract(&world, built.mesh).tables)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
