@@ -18,9 +18,8 @@ use crate::mesh::{MeshInfo, build_mesh, despawn_mesh, to_soup};
 use super::finish::{Finished, finish_edit, report};
 use super::history::{self, Redraw};
 use super::jobs::{self, Jobs};
-use super::render_sync::DirtyFaces;
 use super::requests::{ConfirmDiscard, Declined, PendingDiscard, Request};
-use super::selection::{ActiveMesh, MeshDirty, Selection, exists, navigate};
+use super::selection::{ActiveMesh, DirtyFaces, MeshDirty, Selection, exists, navigate};
 use super::session::{Modified, SimplificationHistory, is_modified};
 
 /// Applies every request written since the last run, in order (the `Apply` set).

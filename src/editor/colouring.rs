@@ -18,8 +18,7 @@ use crate::mesh::ids::{MeshId, VertexId};
 use crate::mesh::tables::extract;
 use crate::ops::geometry::Quantity;
 
-use super::render_sync::DirtyFaces;
-use super::selection::MeshDirty;
+use super::selection::{DirtyFaces, MeshDirty};
 
 /// The quantity the meshes are coloured by, if any (set by the panel).
 #[derive(Resource, Debug, Default, Clone, Copy, PartialEq, Eq)]

@@ -16,9 +16,8 @@ use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
 
 use super::history::{self, Pending};
-use super::render_sync::DirtyFaces;
 use super::requests::{Declined, EditOutcome, OutcomeLog};
-use super::selection::{MeshDirty, Selection, exists};
+use super::selection::{DirtyFaces, MeshDirty, Selection, exists};
 use super::session::{Modified, SimplificationHistory};
 
 /// An edit that has run, with what its bookkeeping needs.

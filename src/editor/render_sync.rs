@@ -7,7 +7,7 @@
 //! wireframe of the *real* edges (a quad shows 4 edges, not 5; boundary edges red).
 //!
 //! In the `Sync` set, a mesh marked [`MeshDirty`] (opened, globally edited) is redrawn whole; a
-//! mesh carrying [`DirtyFaces`] (a local edit) has only the chunks holding those faces redrawn,
+//! mesh carrying [`DirtyFaces`](super::selection::DirtyFaces) (a local edit) has only the chunks holding those faces redrawn,
 //! new faces joining the last chunk. A 1M-face mesh thus re-renders an edit in milliseconds,
 //! and meshes that did not change cost nothing per frame.
 
@@ -24,7 +24,7 @@ use crate::mesh::ids::{FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 
 use super::colouring::VertexValues;
-use super::selection::MeshDirty;
+use super::selection::{DirtyFaces, MeshDirty};
 
 /// The render entity of a mesh: carries its [`Mesh3d`] and [`TriangleFaces`].
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
@@ -115,12 +115,6 @@ pub struct RenderChunks {
 #[derive(Component, Debug, Clone, Default)]
 pub struct ChunkFaces(pub Vec<FaceId>);
 
-/// Faces whose drawing must be redone (set by local edits; the render sync rebuilds only the
-/// chunks holding them). Dead faces are dropped from their chunks.
-#[derive(Component, Debug, Clone, Default)]
-#[component(storage = "SparseSet")]
-pub struct DirtyFaces(pub Vec<FaceId>);
-
 /// Builds the render data of `faces`: each face fanned from its first corner.
 pub fn render_data(world: &World, faces: &[FaceId], smooth: bool) -> RenderData {
     let m = MeshRef::new(world);
@@ -199,7 +193,7 @@ pub fn edge_lines(world: &World, faces: &[FaceId]) -> Vec<(Vec3, Vec3, Color)> {
 }
 
 /// Rebuilds render copies (the `Sync` set): every chunk of a mesh marked [`MeshDirty`], and
-/// only the chunks holding [`DirtyFaces`] otherwise. Render copies of meshes that are gone are
+/// only the chunks holding [`DirtyFaces`](super::selection::DirtyFaces) otherwise. Render copies of meshes that are gone are
 /// removed.
 pub fn sync_render_meshes(world: &mut World) {
     remove_orphans(world);

@@ -1,8 +1,9 @@
-//! What is selected, what is under the pointer, and walking the halfedge relations.
+//! What is selected, what is under the pointer, walking the halfedge relations, and the marks
+//! an edit leaves on a mesh for the render sync ([`MeshDirty`], [`DirtyFaces`]).
 
 use bevy::prelude::{Component, Resource};
 
-use crate::mesh::ids::{EdgeId, ElementId, MeshId};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId};
 use crate::mesh::topology::MeshRef;
 
 use super::requests::Relation;
@@ -59,6 +60,12 @@ pub struct ActiveMesh(pub Option<MeshId>);
 #[derive(Component, Default, Debug, Clone, Copy)]
 #[component(storage = "SparseSet")]
 pub struct MeshDirty;
+
+/// Faces whose drawing must be redone (set by local edits; the render sync rebuilds only the
+/// chunks holding them). Dead faces are dropped from their chunks.
+#[derive(Component, Debug, Clone, Default)]
+#[component(storage = "SparseSet")]
+pub struct DirtyFaces(pub Vec<FaceId>);
 
 /// Whether `element` is alive in the world behind `m`.
 pub fn exists(m: &MeshRef<'_>, element: ElementId) -> bool {
