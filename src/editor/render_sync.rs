@@ -7,8 +7,9 @@
 //! wireframe of the *real* edges (a quad shows 4 edges, not 5; boundary edges red).
 //!
 //! In the `Sync` set, a mesh marked [`MeshDirty`] (opened, globally edited) is redrawn whole; a
-//! mesh carrying [`DirtyFaces`](super::selection::DirtyFaces) (a local edit) has only the chunks holding those faces redrawn,
-//! new faces joining the last chunk. A 1M-face mesh thus re-renders an edit in milliseconds,
+//! mesh carrying [`DirtyFaces`](super::selection::DirtyFaces) (a local edit) has only the
+//! chunks holding those faces redrawn, new faces joining the last chunk. A mesh coloured by a
+//! quantity ([`VertexValues`]) gets vertex colours. A 1M-face mesh thus re-renders an edit in milliseconds,
 //! and meshes that did not change cost nothing per frame.
 
 use bevy::asset::RenderAssetUsages;
