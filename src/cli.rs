@@ -24,7 +24,9 @@ use crate::edit::{STEP_SYNTAX, Step};
 use crate::io;
 use crate::mesh::tables::extract;
 use crate::mesh::{BuiltMesh, MeshId, RepairReport, build_mesh, mesh_stats, to_soup, validate};
-use crate::ops::geometry::{Quantity, Surface, curvature, face_normals};
+use crate::ops::geometry::{
+    NormalWeighting, Quantity, Surface, curvature, face_normals, vertex_normals,
+};
 use bevy::math::DVec3;
 
 /// Writes to stdout; a reader that has gone away (`pappus info … | head`) ends the output
@@ -101,6 +103,10 @@ pub enum Command {
         /// valence, min-angle, edge-length.
         #[arg(long, value_parser = parse_quantity, value_name = "NAME")]
         quantity: Option<Quantity>,
+        /// Write vertex normals of the result into OUT (OBJ `vn`, PLY `nx ny nz`), weighted by
+        /// the faces' angles at the vertex (Thürmer & Wüthrich) or by their areas.
+        #[arg(long, value_parser = parse_weighting, value_name = "angle|area")]
+        normals: Option<NormalWeighting>,
         /// The steps, in order.
         #[arg(value_parser = Step::parse, value_name = "STEP")]
         steps: Vec<Step>,
@@ -328,7 +334,19 @@ fn execute(command: Command) -> Result<(), String> {
             steps,
             json,
             quantity,
+            normals,
         } => {
+            if normals.is_some()
+                && !matches!(
+                    io::Format::from_path(&output),
+                    Ok(io::Format::Ply | io::Format::Obj)
+                )
+            {
+                return Err(format!(
+                    "--normals writes vertex normals, which OBJ and PLY hold: {} is neither",
+                    output.display()
+                ));
+            }
             if quantity.is_some() && !matches!(io::Format::from_path(&output), Ok(io::Format::Ply))
             {
                 return Err(format!(
@@ -372,6 +390,12 @@ fn execute(command: Command) -> Result<(), String> {
             }
             let mut soup = to_soup(&loaded.world, mesh);
             let quantity = quantity.map(|q| attach_quantity(&loaded.world, mesh, q, &mut soup));
+            if let Some(weighting) = normals {
+                // The soup's vertices are the mesh's table rows (see `to_soup`).
+                let surface = Surface::from_tables(&extract(&loaded.world, mesh).tables);
+                let n = vertex_normals(&surface, weighting);
+                soup.vertex_normals = Some(n.iter().map(|v| v.as_vec3()).collect());
+            }
             io::write(&output, &soup).map_err(|e| e.to_string())?;
             let result = info_json(&loaded.world, mesh, &loaded.built.report);
             if json {
@@ -389,6 +413,15 @@ fn execute(command: Command) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// Parses a `--normals` weighting.
+fn parse_weighting(name: &str) -> Result<NormalWeighting, String> {
+    match name {
+        "angle" => Ok(NormalWeighting::Angle),
+        "area" => Ok(NormalWeighting::Area),
+        _ => Err(format!("unknown weighting `{name}`; known: angle, area")),
+    }
 }
 
 /// Parses a `--quantity` name.
@@ -469,6 +502,7 @@ mod tests {
                 steps: vec![Step::Edit(crate::edit::Edit::Triangulate), Step::Validate],
                 json: true,
                 quantity: None,
+                normals: None,
             })
         );
         assert!(parse("process a.obj triangulate").is_err());

@@ -316,3 +316,36 @@ fn smooth_steps_run_every_method() {
         assert_eq!(v["result"]["vertices"], 642);
     }
 }
+
+#[test]
+fn vertex_normals_are_exported_on_request() {
+    for (file, weighting) in [("normals.obj", "angle"), ("normals.ply", "area")] {
+        let out_path = tmp(file);
+        let out = pappus(&[
+            "process",
+            "shape:cube",
+            "-o",
+            out_path.to_str().unwrap(),
+            "--normals",
+            weighting,
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = std::fs::read(&out_path).unwrap();
+        if file.ends_with(".obj") {
+            let text = String::from_utf8(text).unwrap();
+            assert_eq!(text.lines().filter(|l| l.starts_with("vn ")).count(), 8);
+        } else {
+            // A cube's corner normal points along its diagonal, either way.
+            let soup = pappus::io::read(&out_path).unwrap();
+            for (p, n) in soup.positions.iter().zip(soup.vertex_normals.unwrap()) {
+                assert!((n - p.normalize()).length() < 1e-6, "{n} at {p}");
+            }
+        }
+    }
+    let out = pappus(&["process", "shape:cube", "-o", "x.stl", "--normals", "angle"]);
+    assert_eq!(out.status.code(), Some(1));
+}

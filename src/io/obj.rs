@@ -165,17 +165,34 @@ fn parse_with_tobj(
     Ok(out)
 }
 
-/// Writes OBJ text: `v` lines (shortest exact decimal form), then `f` lines (1-based).
+/// Writes OBJ text: `v` lines (shortest exact decimal form), `vn` lines when the soup carries
+/// vertex normals (one per position, numbered as the positions), then `f` lines (1-based; `v//vn`
+/// with normals).
 pub fn write(soup: &PolygonSoup) -> Vec<u8> {
-    let mut out = String::with_capacity(soup.positions.len() * 32 + soup.indices.len() * 8);
+    let normals = soup
+        .vertex_normals
+        .as_deref()
+        .filter(|v| v.len() == soup.positions.len());
+    let mut out = String::with_capacity(soup.positions.len() * 64 + soup.indices.len() * 16);
     out.push_str("# written by Pappus\n");
     for p in &soup.positions {
         let _ = writeln!(out, "v {} {} {}", p.x, p.y, p.z);
     }
+    for n in normals.into_iter().flatten() {
+        let _ = writeln!(out, "vn {} {} {}", n.x, n.y, n.z);
+    }
     for face in soup.faces() {
         out.push('f');
         for &i in face {
-            let _ = write!(out, " {}", u64::from(i) + 1);
+            let i = u64::from(i) + 1;
+            match normals {
+                Some(_) => {
+                    let _ = write!(out, " {i}//{i}");
+                }
+                None => {
+                    let _ = write!(out, " {i}");
+                }
+            }
         }
         out.push('\n');
     }
@@ -185,6 +202,19 @@ pub fn write(soup: &PolygonSoup) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn vertex_normals_are_written_as_vn_with_matching_indices() {
+        let mut soup = PolygonSoup::from_faces(vec![Vec3::ZERO, Vec3::X, Vec3::Y], &[[0u32, 1, 2]]);
+        soup.vertex_normals = Some(vec![Vec3::Z; 3]);
+        let text = String::from_utf8(write(&soup)).unwrap();
+        assert_eq!(text.matches("vn 0 0 1").count(), 3);
+        assert!(text.contains("f 1//1 2//2 3//3"), "{text}");
+        // It reads back as the same mesh.
+        let back = read(text.as_bytes()).unwrap();
+        assert_eq!(back.positions, soup.positions);
+        assert_eq!(back.face(0), &[0, 1, 2]);
+    }
 
     #[test]
     fn keeps_file_order_and_unreferenced_vertices() {

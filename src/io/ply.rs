@@ -88,6 +88,8 @@ enum Role {
     Coordinate(usize),
     /// A vertex's `quality`.
     Quality,
+    /// A vertex's `nx` (0), `ny` (1) or `nz` (2).
+    Normal(usize),
     /// A vertex's `red` (0), `green` (1) or `blue` (2).
     Color(usize),
     /// The corners of a face.
@@ -310,6 +312,9 @@ fn header(bytes: &[u8]) -> Result<(PlyEncoding, Vec<Element>, usize), ParseError
                         ("vertex", "y") => Role::Coordinate(1),
                         ("vertex", "z") => Role::Coordinate(2),
                         ("vertex", "quality") => Role::Quality,
+                        ("vertex", "nx") => Role::Normal(0),
+                        ("vertex", "ny") => Role::Normal(1),
+                        ("vertex", "nz") => Role::Normal(2),
                         ("vertex", "red") => Role::Color(0),
                         ("vertex", "green") => Role::Color(1),
                         ("vertex", "blue") => Role::Color(2),
@@ -402,6 +407,7 @@ fn body_values(
         };
         let has_quality = has(Role::Quality);
         let has_colors = (0..3).all(|k| has(Role::Color(k)));
+        let has_normals = (0..3).all(|k| has(Role::Normal(k)));
         if is_vertex {
             let n = cap(element.count, len / 12);
             soup.positions.reserve(n);
@@ -411,6 +417,13 @@ fn body_values(
                 let before = soup.positions.len();
                 let q = soup.vertex_quality.get_or_insert_with(|| vec![0.0; before]);
                 q.reserve(n);
+            }
+            if has_normals {
+                let before = soup.positions.len();
+                let v = soup
+                    .vertex_normals
+                    .get_or_insert_with(|| vec![Vec3::ZERO; before]);
+                v.reserve(n);
             }
             if has_colors {
                 let before = soup.positions.len();
@@ -424,6 +437,7 @@ fn body_values(
             let mut p = [0.0f32; 3];
             let mut quality = 0.0f32;
             let mut color = [0u8; 3];
+            let mut normal = [0.0f32; 3];
             for property in &element.properties {
                 match property {
                     Property::Scalar { name, ty, role } => {
@@ -432,6 +446,7 @@ fn body_values(
                             Role::Coordinate(k) => p[k] = v as f32,
                             Role::Quality => quality = v as f32,
                             Role::Color(k) => color[k] = channel(v, *ty),
+                            Role::Normal(k) => normal[k] = v as f32,
                             Role::Corners | Role::Skip => {}
                         }
                     }
@@ -470,6 +485,9 @@ fn body_values(
                 if let Some(c) = &mut soup.vertex_colors {
                     c.push(color);
                 }
+                if let Some(v) = &mut soup.vertex_normals {
+                    v.push(Vec3::from_array(normal));
+                }
             }
         }
     }
@@ -482,6 +500,7 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
     let n = soup.positions.len();
     let quality = soup.vertex_quality.as_deref().filter(|q| q.len() == n);
     let colors = soup.vertex_colors.as_deref().filter(|c| c.len() == n);
+    let normals = soup.vertex_normals.as_deref().filter(|v| v.len() == n);
     let count_type = if soup.faces().any(|f| f.len() > 255) {
         Scalar::I32
     } else {
@@ -508,6 +527,9 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
         "ply\nformat {format} 1.0\ncomment written by Pappus\nelement vertex {n}\n\
          property float x\nproperty float y\nproperty float z\n",
     );
+    if normals.is_some() {
+        header.push_str("property float nx\nproperty float ny\nproperty float nz\n");
+    }
     if colors.is_some() {
         header.push_str("property uchar red\nproperty uchar green\nproperty uchar blue\n");
     }
@@ -527,6 +549,10 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
             let mut body = String::with_capacity(n * 48 + soup.indices.len() * 8);
             for (i, p) in soup.positions.iter().enumerate() {
                 let _ = write!(body, "{} {} {}", p.x, p.y, p.z);
+                if let Some(normals) = normals {
+                    let v = normals[i];
+                    let _ = write!(body, " {} {} {}", v.x, v.y, v.z);
+                }
                 if let Some(colors) = colors {
                     let [r, g, b] = colors[i];
                     let _ = write!(body, " {r} {g} {b}");
@@ -554,10 +580,15 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
                     out.extend_from_slice(&bytes);
                 }
             };
-            out.reserve(n * 19 + soup.indices.len() * 4 + soup.face_count() * 4);
+            out.reserve(n * 31 + soup.indices.len() * 4 + soup.face_count() * 4);
             for (i, p) in soup.positions.iter().enumerate() {
                 for c in [p.x, p.y, p.z] {
                     put(c.to_le_bytes(), &mut out);
+                }
+                if let Some(normals) = normals {
+                    for c in normals[i].to_array() {
+                        put(c.to_le_bytes(), &mut out);
+                    }
                 }
                 if let Some(colors) = colors {
                     out.extend_from_slice(&colors[i]);
@@ -621,6 +652,38 @@ mod tests {
     fn quality_bits(soup: &PolygonSoup) -> Option<Vec<u32>> {
         let q = soup.vertex_quality.as_ref()?;
         Some(q.iter().map(|q| q.to_bits()).collect())
+    }
+
+    #[test]
+    fn normals_round_trip_bit_for_bit_before_colours() {
+        let mut soup = attributed();
+        soup.vertex_normals = Some(
+            (0..soup.positions.len())
+                .map(|i| Vec3::new(1.0 / (i as f32 + 3.0), -0.0, 1.0))
+                .collect(),
+        );
+        for e in [
+            PlyEncoding::Ascii,
+            PlyEncoding::BinaryLittleEndian,
+            PlyEncoding::BinaryBigEndian,
+        ] {
+            let bytes = write(&soup, e);
+            let header = String::from_utf8_lossy(&bytes);
+            assert!(
+                header.contains("property float z\nproperty float nx\nproperty float ny\nproperty float nz\nproperty uchar red\n"),
+                "{e:?}: {header}"
+            );
+            let back = read(&bytes).unwrap();
+            let bits = |s: &PolygonSoup| {
+                s.vertex_normals.as_ref().map(|v| {
+                    v.iter()
+                        .flat_map(|n| n.to_array().map(f32::to_bits))
+                        .collect::<Vec<u32>>()
+                })
+            };
+            assert_eq!(bits(&back), bits(&soup), "{e:?}");
+            assert_eq!(quality_bits(&back), quality_bits(&soup), "{e:?}");
+        }
     }
 
     #[test]

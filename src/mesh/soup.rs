@@ -27,6 +27,8 @@ pub struct PolygonSoup {
     pub vertex_quality: Option<Vec<f32>>,
     /// A colour per vertex (8-bit sRGB), when the soup carries one. One per position.
     pub vertex_colors: Option<Vec<[u8; 3]>>,
+    /// A unit normal per vertex, when the soup carries one. One per position.
+    pub vertex_normals: Option<Vec<Vec3>>,
 }
 
 impl PolygonSoup {
@@ -40,6 +42,7 @@ impl PolygonSoup {
             face_starts,
             vertex_quality: None,
             vertex_colors: None,
+            vertex_normals: None,
         }
     }
 
