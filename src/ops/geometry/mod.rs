@@ -5,6 +5,7 @@
 //! table row, and returns one value per vertex (or face) row: the caller maps rows back to
 //! entities through the tables' members.
 
+pub mod closest;
 pub mod curvature;
 pub mod normals;
 pub mod quantity;

@@ -26,7 +26,7 @@ use crate::ops::local::split_edge;
 
 use super::distance_to_segment;
 use super::flip::{flip_thin, quad_corners, thin_triangle_edges};
-use super::reference::Reference;
+use crate::ops::geometry::closest::Reference;
 use super::relax::relax_thin_corners;
 
 /// How far from the input (times the target length) the finished remesh may leave an input

@@ -13,7 +13,7 @@
 //! 4. move every free vertex 1/5 of the way to its one-ring centroid, within its tangent plane
 //!    (all new positions computed first, then committed), and project it back onto the input
 //!    surface (closest point on the input triangles, found through a uniform grid:
-//!    [`reference`]); the smoothing is repeated [`RemeshParams::smoothing_steps`] times (10, as
+//!    [`crate::ops::geometry::closest`]); the smoothing is repeated [`RemeshParams::smoothing_steps`] times (10, as
 //!    in Scotty3D), the projection done after the last ([`relax`]).
 //!
 //! After the last iteration ([`finish`]), the detail that triangles of length L cannot follow
@@ -54,7 +54,6 @@ mod collapse;
 mod features;
 mod finish;
 mod flip;
-mod reference;
 mod relax;
 mod split;
 
@@ -73,7 +72,7 @@ use collapse::collapse_short;
 use features::{is_feature, without_noise};
 use finish::{DETAIL_TOLERANCE, clean_up_thin, fill_grooves, restore_tips};
 use flip::flip_to_valence;
-use reference::Reference;
+use crate::ops::geometry::closest::Reference;
 use relax::Smoother;
 use split::split_long;
 

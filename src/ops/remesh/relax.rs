@@ -21,7 +21,7 @@ use crate::mesh::tables::{MeshTables, extract};
 use crate::mesh::topology::MeshRef;
 
 use super::distance_to_segment;
-use super::reference::Reference;
+use crate::ops::geometry::closest::Reference;
 
 /// The free vertices' one-rings and fans as flat arrays. Smoothing takes many steps over one
 /// connectivity, so the world is read once before them and written once after, and each step

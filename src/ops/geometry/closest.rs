@@ -1,21 +1,21 @@
-//! The input surface the remesh is projected back onto (Botsch & Kobbelt 2004 project each
-//! relaxed vertex onto the original surface).
+//! Closest points on a surface: what the remesher projects its vertices back onto (Botsch &
+//! Kobbelt 2004 project each relaxed vertex onto the original surface), and what measures how
+//! far a mesh moved from the one before (the editor's distance colouring).
 //!
 //! [`Reference`] holds a surface's triangles in a uniform grid and answers the exact closest
 //! point of all its triangles ([`Reference::closest`]: rings of cells are searched outwards
 //! until nothing unscanned can be nearer) and whether some triangle lies within a distance
-//! ([`Reference::is_near`]). The input's is built once, before the first pass; the finishing
-//! passes also build one of the remesh, to find the input's vertices it left behind.
+//! ([`Reference::is_near`]).
 
 use bevy::math::Vec3;
 
 use crate::mesh::members::MeshMembers;
 use crate::mesh::topology::MeshRef;
 
-/// The input surface, for closest-point queries: its triangles in a uniform grid of cells
+/// A surface, for closest-point queries: its triangles in a uniform grid of cells
 /// about half a triangle across, stored flat (the triangles of cell `c` are
 /// `cell_triangles[cell_start[c]..cell_start[c + 1]]`).
-pub(super) struct Reference {
+pub struct Reference {
     triangles: Vec<[Vec3; 3]>,
     origin: Vec3,
     cell: f32,
@@ -25,8 +25,8 @@ pub(super) struct Reference {
 }
 
 impl Reference {
-    /// The grid of `members`' faces (triangles all).
-    pub(super) fn new(m: &MeshRef<'_>, members: &MeshMembers) -> Self {
+    /// The grid of `members`' faces (triangles all; the first three corners of any other).
+    pub fn new(m: &MeshRef<'_>, members: &MeshMembers) -> Self {
         let triangles: Vec<[Vec3; 3]> = members
             .faces
             .iter()
@@ -35,6 +35,11 @@ impl Reference {
                 [v[0], v[1], v[2]]
             })
             .collect();
+        Self::from_triangles(triangles)
+    }
+
+    /// The grid of these triangles (the row of each is its index here).
+    pub fn from_triangles(triangles: Vec<[Vec3; 3]>) -> Self {
         let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
         for t in &triangles {
             for p in t {
@@ -105,15 +110,15 @@ impl Reference {
         &self.cell_triangles[self.cell_start[i] as usize..self.cell_start[i + 1] as usize]
     }
 
-    /// The closest point of the input surface to `p` (searching rings of cells outwards).
-    pub(super) fn closest(&self, p: Vec3) -> Vec3 {
+    /// The closest point of the surface to `p` (searching rings of cells outwards).
+    pub fn closest(&self, p: Vec3) -> Vec3 {
         self.closest_on(p).0
     }
 
     /// Whether some triangle lies within `r` of `p`: the cells the ball around `p` touches,
     /// stopping at the first triangle found within reach (far cheaper than
     /// [`Reference::closest`] where most points are near, as the remesh's are).
-    pub(super) fn is_near(&self, p: Vec3, r: f32) -> bool {
+    pub fn is_near(&self, p: Vec3, r: f32) -> bool {
         let cell_of = |q: Vec3| ((q - self.origin) / self.cell).floor().as_ivec3();
         let (lo, hi) = (cell_of(p - Vec3::splat(r)), cell_of(p + Vec3::splat(r)));
         (lo.z..=hi.z).any(|z| {
@@ -130,7 +135,7 @@ impl Reference {
 
     /// [`Reference::closest`], with the row of the triangle it lies on (the row of its face
     /// in the members the reference was made from).
-    pub(super) fn closest_on(&self, p: Vec3) -> (Vec3, usize) {
+    pub fn closest_on(&self, p: Vec3) -> (Vec3, usize) {
         let local = (p - self.origin) / self.cell;
         let c = local.floor().as_ivec3();
         // How far `p` is from the nearest wall of its own cell, in cells: after scanning the
