@@ -24,6 +24,7 @@ use crate::edit::{STEP_SYNTAX, Step};
 use crate::io;
 use crate::mesh::tables::extract;
 use crate::mesh::{BuiltMesh, MeshId, RepairReport, build_mesh, mesh_stats, to_soup, validate};
+use crate::ops::geometry::closest::Reference;
 use crate::ops::geometry::{
     NormalWeighting, Quantity, Surface, curvature, face_normals, vertex_normals,
 };
@@ -100,7 +101,7 @@ pub enum Command {
         json: bool,
         /// Write this per-vertex quantity of the result into OUT (a PLY file) as `quality`,
         /// and as vertex colours: mean, gaussian, angle-defect, max-curvature, min-curvature,
-        /// valence, min-angle, edge-length.
+        /// valence, min-angle, edge-length, distance (to the input).
         #[arg(long, value_parser = parse_quantity, value_name = "NAME")]
         quantity: Option<Quantity>,
         /// Write vertex normals of the result into OUT (OBJ `vn`, PLY `nx ny nz`), weighted by
@@ -356,6 +357,9 @@ fn execute(command: Command) -> Result<(), String> {
             }
             let mut loaded = load(&input)?;
             let mesh = loaded.built.mesh;
+            // The distance quantity measures how far the steps moved the mesh from the input.
+            let input = (quantity == Some(Quantity::Distance))
+                .then(|| Reference::of_tables(&extract(&loaded.world, mesh).tables));
             let mut records = Vec::new();
             let mut history = None;
             for step in &steps {
@@ -389,7 +393,8 @@ fn execute(command: Command) -> Result<(), String> {
                 records.push(Value::Object(record));
             }
             let mut soup = to_soup(&loaded.world, mesh);
-            let quantity = quantity.map(|q| attach_quantity(&loaded.world, mesh, q, &mut soup));
+            let quantity = quantity
+                .map(|q| attach_quantity(&loaded.world, mesh, q, input.as_ref(), &mut soup));
             if let Some(weighting) = normals {
                 // The soup's vertices are the mesh's table rows (see `to_soup`).
                 let surface = Surface::from_tables(&extract(&loaded.world, mesh).tables);
@@ -432,16 +437,18 @@ fn parse_quantity(name: &str) -> Result<Quantity, String> {
     })
 }
 
-/// Computes `quantity` on `mesh` and puts it into `soup` (whose vertices are the mesh's table
-/// rows, as [`to_soup`] writes them) as quality and colours. Returns its JSON summary.
+/// Computes `quantity` on `mesh` (a distance to `input`) and puts it into `soup` (whose vertices
+/// are the mesh's table rows, as [`to_soup`] writes them) as quality and colours. Returns its
+/// JSON summary.
 fn attach_quantity(
     world: &World,
     mesh: MeshId,
     quantity: Quantity,
+    input: Option<&Reference>,
     soup: &mut crate::mesh::PolygonSoup,
 ) -> Map<String, Value> {
     let start = Instant::now();
-    let values = quantity.per_vertex(&extract(world, mesh).tables);
+    let values = quantity.per_vertex(&extract(world, mesh).tables, input);
     let ms = ms_since(start);
     let map = quantity.colormap();
     let range = Range::robust(&values, 1.0, map);

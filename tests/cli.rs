@@ -349,3 +349,21 @@ fn vertex_normals_are_exported_on_request() {
     let out = pappus(&["process", "shape:cube", "-o", "x.stl", "--normals", "angle"]);
     assert_eq!(out.status.code(), Some(1));
 }
+
+#[test]
+fn the_distance_quantity_measures_how_far_the_steps_moved_the_mesh() {
+    let out_path = tmp("distance.ply");
+    let v = json(&pappus(&[
+        "process",
+        "shape:icosphere",
+        "-o",
+        out_path.to_str().unwrap(),
+        "--json",
+        "--quantity",
+        "distance",
+        "simplify:0.25",
+    ]));
+    let q = &v["quantity"];
+    let (min, max) = (q["min"].as_f64().unwrap(), q["max"].as_f64().unwrap());
+    assert!(min >= 0.0 && max > 1e-4 && max < 0.05, "{q}");
+}

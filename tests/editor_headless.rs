@@ -760,3 +760,24 @@ fn colouring_by_a_quantity_paints_the_render_copy_and_goes_away() {
     assert!(app.world().get::<VertexValues>(mesh(&app).0).is_none());
     assert!(!has_colours(&mut app));
 }
+
+#[test]
+fn the_distance_colouring_measures_against_the_mesh_before_a_whole_mesh_edit() {
+    use pappus::editor::colouring::{ColorBy, VertexValues};
+    use pappus::ops::geometry::Quantity;
+    let mut app = app();
+    open(&mut app, "shape:icosphere");
+    app.world_mut().resource_mut::<ColorBy>().0 = Some(Quantity::Distance);
+    app.update();
+    // No whole-mesh edit yet: nothing to measure against (grey).
+    let values = app.world().get::<VertexValues>(mesh(&app).0).unwrap();
+    assert!(values.values.values().all(|d| d.is_nan()));
+    app.world_mut()
+        .write_message(Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.25))));
+    app.update();
+    let values = app.world().get::<VertexValues>(mesh(&app).0).unwrap();
+    let most = values.values.values().copied().fold(0.0, f64::max);
+    assert!(values.values.values().all(|d| d.is_finite() && *d >= 0.0));
+    // Collapses moved vertices off the sphere, never far (a unit sphere of 1280 faces).
+    assert!(most > 1e-4 && most < 0.05, "{most}");
+}

@@ -17,8 +17,10 @@ use crate::mesh::MeshInfo;
 use crate::mesh::ids::{MeshId, VertexId};
 use crate::mesh::tables::extract;
 use crate::ops::geometry::Quantity;
+use crate::ops::geometry::closest::Reference;
 
 use super::selection::{DirtyFaces, MeshDirty};
+use super::session::PreviousShape;
 
 /// The quantity the meshes are coloured by, if any (set by the panel).
 #[derive(Resource, Debug, Default, Clone, Copy, PartialEq, Eq)]
@@ -69,7 +71,14 @@ pub fn vertex_values(
     range: Option<Range>,
 ) -> VertexValues {
     let read = extract(world, mesh);
-    let values = quantity.per_vertex(&read.tables);
+    // The distance is to the mesh before its last whole-mesh edit, where there was one.
+    let before = (quantity == Quantity::Distance)
+        .then(|| world.get_resource::<PreviousShape>())
+        .flatten()
+        .and_then(|p| p.shape.as_ref())
+        .filter(|(m, _)| *m == mesh)
+        .map(|(_, triangles)| Reference::from_triangles(triangles.clone()));
+    let values = quantity.per_vertex(&read.tables, before.as_ref());
     let map = quantity.colormap();
     let range = range.unwrap_or_else(|| Range::robust(&values, CLAMP_PERCENTILE, map));
     VertexValues {

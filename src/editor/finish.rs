@@ -18,7 +18,7 @@ use crate::ops::Refusal;
 use super::history::{self, Pending};
 use super::requests::{Declined, EditOutcome, OutcomeLog};
 use super::selection::{DirtyFaces, MeshDirty, Selection, exists};
-use super::session::{Modified, SimplificationHistory};
+use super::session::{Modified, PreviousShape, SimplificationHistory};
 
 /// An edit that has run, with what its bookkeeping needs.
 pub struct Finished {
@@ -45,6 +45,13 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
         pending,
     } = finished;
     let applied = result?;
+    if let Some(before) = pending.as_ref().and_then(Pending::tables) {
+        let s = crate::ops::geometry::Surface::from_tables(&before.tables);
+        let triangles = (0..s.triangles.len())
+            .map(|i| s.corners(i).map(|p| p.as_vec3()))
+            .collect();
+        world.resource_mut::<PreviousShape>().shape = Some((mesh, triangles));
+    }
     if let Some(pending) = pending {
         history::commit(world, pending, edit.label());
     }

@@ -70,6 +70,7 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<ActiveMesh>()
             .init_resource::<OutcomeLog>()
             .init_resource::<session::SimplificationHistory>()
+            .init_resource::<session::PreviousShape>()
             .init_resource::<history::UndoHistory>()
             .init_resource::<jobs::Jobs>()
             .init_resource::<jobs::JobSettings>()

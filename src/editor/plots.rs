@@ -54,7 +54,7 @@ impl Histogram {
 /// edge lengths (30 bins up to the 99th percentile), and `shown`'s values over its colour range.
 pub fn histograms(world: &World, mesh: MeshId, shown: Option<&VertexValues>) -> Vec<Histogram> {
     let t = extract(world, mesh).tables;
-    let valence = Quantity::Valence.per_vertex(&t);
+    let valence = Quantity::Valence.per_vertex(&t, None);
     let most = valence.iter().copied().fold(3.0, f64::max).min(16.0);
     let angles: Vec<f64> = t.faces().flat_map(|f| corner_angles_deg(&t, f)).collect();
     let mut lengths: Vec<f64> = t

@@ -31,6 +31,14 @@ impl SimplificationHistory {
     }
 }
 
+/// The triangles of the mesh as it was before the last whole-mesh edit, which the distance
+/// colouring measures against (how far simplification or remeshing moved the surface).
+#[derive(Resource, Default)]
+pub struct PreviousShape {
+    /// The mesh, and its triangles before the edit.
+    pub shape: Option<(MeshId, Vec<[bevy::math::Vec3; 3]>)>,
+}
+
 /// Whether `mesh` has changes that are not saved.
 pub fn is_modified(world: &World, mesh: MeshId) -> bool {
     world.get::<Modified>(mesh.0).is_some()

@@ -10,6 +10,9 @@
 use bevy::math::Vec3;
 
 use crate::mesh::members::MeshMembers;
+use crate::mesh::tables::Connectivity;
+
+use super::surface::Surface;
 use crate::mesh::topology::MeshRef;
 
 /// A surface, for closest-point queries: its triangles in a uniform grid of cells
@@ -36,6 +39,16 @@ impl Reference {
             })
             .collect();
         Self::from_triangles(triangles)
+    }
+
+    /// The grid of the fanned triangles of the mesh in `t` (polygons too).
+    pub fn of_tables(t: &Connectivity) -> Self {
+        let s = Surface::from_tables(t);
+        Self::from_triangles(
+            (0..s.triangles.len())
+                .map(|i| s.corners(i).map(|p| p.as_vec3()))
+                .collect(),
+        )
     }
 
     /// The grid of these triangles (the row of each is its index here).

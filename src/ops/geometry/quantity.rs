@@ -8,6 +8,7 @@
 use crate::colormap::ColorMap;
 use crate::mesh::tables::{Connectivity, FaceRow};
 
+use super::closest::Reference;
 use super::curvature::curvature;
 use super::surface::Surface;
 
@@ -30,11 +31,14 @@ pub enum Quantity {
     MinAngle,
     /// The mean length of the vertex's edges.
     EdgeLength,
+    /// The distance from the vertex to another surface: the mesh before the last whole-mesh
+    /// edit in the editor, the input on the command line (MeshLab's Hausdorff colouring).
+    Distance,
 }
 
 impl Quantity {
     /// Every quantity, with its name on the command line.
-    pub const ALL: [(Quantity, &'static str); 8] = [
+    pub const ALL: [(Quantity, &'static str); 9] = [
         (Quantity::Mean, "mean"),
         (Quantity::Gaussian, "gaussian"),
         (Quantity::AngleDefect, "angle-defect"),
@@ -43,6 +47,7 @@ impl Quantity {
         (Quantity::Valence, "valence"),
         (Quantity::MinAngle, "min-angle"),
         (Quantity::EdgeLength, "edge-length"),
+        (Quantity::Distance, "distance"),
     ];
 
     /// Its name on the command line.
@@ -69,19 +74,23 @@ impl Quantity {
             Quantity::Valence => "valence",
             Quantity::MinAngle => "smallest corner angle (°)",
             Quantity::EdgeLength => "edge length",
+            Quantity::Distance => "distance to the mesh before",
         }
     }
 
     /// The colour map that shows it: diverging for signed quantities.
     pub fn colormap(self) -> ColorMap {
         match self {
-            Quantity::Valence | Quantity::MinAngle | Quantity::EdgeLength => ColorMap::Viridis,
+            Quantity::Valence | Quantity::MinAngle | Quantity::EdgeLength | Quantity::Distance => {
+                ColorMap::Viridis
+            }
             _ => ColorMap::Diverging,
         }
     }
 
-    /// Its value at every vertex of the mesh in `t`, by row.
-    pub fn per_vertex(self, t: &Connectivity) -> Vec<f64> {
+    /// Its value at every vertex of the mesh in `t`, by row. [`Quantity::Distance`] measures to
+    /// `other` (NaN everywhere without one); the others ignore it.
+    pub fn per_vertex(self, t: &Connectivity, other: Option<&Reference>) -> Vec<f64> {
         let curvature_of = || curvature(&Surface::from_tables(t));
         match self {
             Quantity::Mean => curvature_of().mean,
@@ -89,6 +98,11 @@ impl Quantity {
             Quantity::AngleDefect => curvature_of().angle_defect,
             Quantity::MaxCurvature => curvature_of().max,
             Quantity::MinCurvature => curvature_of().min,
+            Quantity::Distance => t
+                .positions
+                .iter()
+                .map(|&p| other.map_or(f64::NAN, |r| f64::from(p.distance(r.closest(p)))))
+                .collect(),
             Quantity::Valence => t
                 .vertices()
                 .map(|v| t.vertex_outgoing(v).count() as f64)
@@ -155,21 +169,42 @@ mod tests {
         let mut world = World::new();
         let built = build_mesh(&mut world, &shapes::cube(), MeshInfo::default()).unwrap();
         let t = extract(&world, built.mesh).tables;
-        assert!(Quantity::Valence.per_vertex(&t).iter().all(|&v| v == 3.0));
+        assert!(
+            Quantity::Valence
+                .per_vertex(&t, None)
+                .iter()
+                .all(|&v| v == 3.0)
+        );
         assert!(
             Quantity::MinAngle
-                .per_vertex(&t)
+                .per_vertex(&t, None)
                 .iter()
                 .all(|&a| (a - 90.0).abs() < 1e-9)
         );
         // Three right angles at each corner: the defect is π/2.
-        for d in Quantity::AngleDefect.per_vertex(&t) {
+        for d in Quantity::AngleDefect.per_vertex(&t, None) {
             assert!((d - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
         }
         let side = 2.0 * f64::from(shapes::cube().positions[0].x.abs());
-        for l in Quantity::EdgeLength.per_vertex(&t) {
+        for l in Quantity::EdgeLength.per_vertex(&t, None) {
             assert!((l - side).abs() < 1e-6, "{l}");
         }
+        // Distances to the plane z = 0 are the corners' heights.
+        let plane = Reference::from_triangles(vec![[
+            bevy::math::Vec3::new(-10.0, -10.0, 0.0),
+            bevy::math::Vec3::new(10.0, -10.0, 0.0),
+            bevy::math::Vec3::new(0.0, 10.0, 0.0),
+        ]]);
+        let d = Quantity::Distance.per_vertex(&t, Some(&plane));
+        for (d, p) in d.iter().zip(&t.positions) {
+            assert_eq!(*d, f64::from(p.z.abs()));
+        }
+        assert!(
+            Quantity::Distance
+                .per_vertex(&t, None)
+                .iter()
+                .all(|d| d.is_nan())
+        );
         for (q, name) in Quantity::ALL {
             assert_eq!(Quantity::from_name(name), Some(q));
             assert_eq!(q.name(), name);

@@ -26,8 +26,8 @@ use crate::ops::local::split_edge;
 
 use super::distance_to_segment;
 use super::flip::{flip_thin, quad_corners, thin_triangle_edges};
-use crate::ops::geometry::closest::Reference;
 use super::relax::relax_thin_corners;
+use crate::ops::geometry::closest::Reference;
 
 /// How far from the input (times the target length) the finished remesh may leave an input
 /// vertex or the middle of one of its edges before [`restore_tips`] and [`fill_grooves`] put

@@ -68,11 +68,11 @@ use crate::mesh::tables::{MeshTables, extract};
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
+use crate::ops::geometry::closest::Reference;
 use collapse::collapse_short;
 use features::{is_feature, without_noise};
 use finish::{DETAIL_TOLERANCE, clean_up_thin, fill_grooves, restore_tips};
 use flip::flip_to_valence;
-use crate::ops::geometry::closest::Reference;
 use relax::Smoother;
 use split::split_long;
 
