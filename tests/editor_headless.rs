@@ -276,12 +276,22 @@ fn each_operation_key_applies_its_operation() {
         last_outcome(&app).result.is_err(),
         "remeshing quads is refused"
     );
+    // O smooths the quads in place: the counts stay.
+    let before = counts(&app);
+    press(&mut app, KeyCode::KeyO);
+    assert!(last_outcome(&app).request.starts_with("smooth"));
+    assert!(
+        last_outcome(&app).result.is_ok(),
+        "{:?}",
+        last_outcome(&app)
+    );
+    assert_eq!(counts(&app), before);
     let history = app
         .world()
         .resource::<pappus::editor::history::UndoHistory>()
         .undo_entries()
         .len();
-    assert_eq!(history, 10, "one undo step per applied edit");
+    assert_eq!(history, 11, "one undo step per applied edit");
     validate(app.world(), m).unwrap();
 }
 

@@ -18,6 +18,7 @@ use pappus::mesh::ids::{EdgeId, ElementId, FaceId, VertexId};
 use pappus::mesh::{MeshMembers, MeshRef, to_soup, validate};
 use pappus::ops::remesh::RemeshParams;
 use pappus::ops::simplify::SimplifyParams;
+use pappus::ops::smooth::{SmoothMethod, SmoothParams};
 
 /// How many requests the session makes.
 const REQUESTS: usize = 10_000;
@@ -97,13 +98,17 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
             iterations: 1,
             ..RemeshParams::default()
         })),
+        61 => Some(Edit::Smooth(SmoothParams {
+            iterations: 2,
+            ..SmoothParams::new(SmoothMethod::ALL[rng.below(4)].0)
+        })),
         _ => None,
     };
     if let Some(edit) = edit {
         return Request::Edit(edit);
     }
     match roll {
-        61..=74 => Request::Undo,
+        62..=74 => Request::Undo,
         75..=81 => Request::Redo,
         82..=85 => Request::Select(rng.pick(stale)),
         86..=91 => Request::Select(edge(rng).map(ElementId::Edge)),
