@@ -26,7 +26,7 @@ use crate::mesh::tables::extract;
 use crate::mesh::{BuiltMesh, MeshId, RepairReport, build_mesh, mesh_stats, to_soup, validate};
 use crate::ops::geometry::closest::Reference;
 use crate::ops::geometry::{
-    NormalWeighting, Quantity, Surface, curvature, face_normals, vertex_normals,
+    NormalWeighting, Quantity, Surface, face_normals, scalar_curvature, vertex_normals,
 };
 use bevy::math::DVec3;
 
@@ -211,7 +211,7 @@ fn geometry_json(
 ) -> (Map<String, Value>, Map<String, Value>) {
     let tables = extract(world, mesh).tables;
     let surface = Surface::from_tables(&tables);
-    let c = curvature(&surface);
+    let c = scalar_curvature(&surface);
     let summary = |values: &[f64]| {
         let mut sorted: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
         sorted.sort_unstable_by(f64::total_cmp);

@@ -26,7 +26,6 @@
 use bevy::math::DVec3;
 use std::f64::consts::PI;
 
-use super::normals::vertex_normals_by_angle;
 use super::surface::Surface;
 
 /// Per-vertex curvature, by table row.
@@ -54,85 +53,116 @@ pub struct Curvature {
     pub normal: Vec<DVec3>,
 }
 
-/// The cotangent of the angle between `u` and `v` (0 for a degenerate pair).
+/// The cotangent weights `½ cot θ` of a triangle's sides, opposite corners 0, 1, 2 (the side
+/// opposite corner 0 joins corners 1 and 2), its three angles, and twice its area. One cross
+/// product serves all three corners (`|u × v|` is twice the area whichever corner it is taken
+/// at); a degenerate triangle has zero weights and angles.
 #[inline]
-fn cot(u: DVec3, v: DVec3) -> f64 {
-    let sin = u.cross(v).length();
-    if sin > 0.0 { u.dot(v) / sin } else { 0.0 }
-}
-
-/// The cotangent weights `½ cot θ` of each triangle's sides, opposite corners 0, 1, 2 (the side
-/// opposite corner 0 joins corners 1 and 2), and its three angles.
-#[inline]
-fn triangle_weights(p: [DVec3; 3]) -> ([f64; 3], [f64; 3]) {
+fn triangle_weights(p: [DVec3; 3]) -> ([f64; 3], [f64; 3], f64) {
+    let twice_area = (p[1] - p[0]).cross(p[2] - p[0]).length();
+    if twice_area <= 0.0 || !twice_area.is_finite() {
+        return ([0.0; 3], [0.0; 3], 0.0);
+    }
     let mut weights = [0.0; 3];
     let mut angles = [0.0; 3];
     for k in 0..3 {
         let (a, b, c) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
-        let (u, v) = (b - a, c - a);
-        weights[k] = 0.5 * cot(u, v);
-        angles[k] = u.angle_between(v);
-        if !angles[k].is_finite() {
-            angles[k] = 0.0;
-        }
+        let dot = (b - a).dot(c - a);
+        weights[k] = 0.5 * dot / twice_area;
+        angles[k] = twice_area.atan2(dot);
     }
-    (weights, angles)
+    (weights, angles, twice_area)
 }
 
-/// The mixed Voronoi areas of Meyer et al. (fig. 4), by vertex.
+/// The mixed Voronoi area a triangle gives corner `k` (Meyer et al., fig. 4).
+#[inline]
+fn mixed_share(p: [DVec3; 3], k: usize, w: [f64; 3], angles: [f64; 3], twice_area: f64) -> f64 {
+    let whole = 0.5 * twice_area;
+    match angles.iter().position(|&a| a > PI / 2.0) {
+        Some(o) if o == k => whole / 2.0,
+        Some(_) => whole / 4.0,
+        // Voronoi: ¼ Σ over the two sides at k of |side|² · ½ cot(opposite angle).
+        None => {
+            let (a, b, c) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
+            0.25 * (w[(k + 2) % 3] * (b - a).length_squared()
+                + w[(k + 1) % 3] * (c - a).length_squared())
+        }
+    }
+}
+
+/// The mixed Voronoi areas of Meyer et al. (fig. 4), by vertex. They sum to the mesh's area.
 pub fn mixed_areas(s: &Surface) -> Vec<f64> {
     let mut area = vec![0.0; s.vertex_count()];
     for (t, tri) in s.triangles.iter().enumerate() {
         let p = s.corners(t);
-        let whole = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length();
-        if whole <= 0.0 {
-            continue;
-        }
-        let (w, angles) = triangle_weights(p);
-        let obtuse = angles.iter().position(|&a| a > PI / 2.0);
+        let (w, angles, twice_area) = triangle_weights(p);
         for k in 0..3 {
-            let share = match obtuse {
-                Some(o) if o == k => whole / 2.0,
-                Some(_) => whole / 4.0,
-                // Voronoi: ¼ Σ over the two sides at k of |side|² · ½ cot(opposite angle).
-                None => {
-                    let (a, b, c) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
-                    0.25 * (w[(k + 2) % 3] * (b - a).length_squared()
-                        + w[(k + 1) % 3] * (c - a).length_squared())
-                }
-            };
-            area[tri[k] as usize] += share;
+            area[tri[k] as usize] += mixed_share(p, k, w, angles, twice_area);
         }
     }
     area
 }
 
-/// The cotangent Laplacian applied to the positions, `Σ_j w_ij (x_j − x_i)` for each vertex
-/// (not yet divided by the area), and the angle sums.
-fn laplacian_and_angles(s: &Surface) -> (Vec<DVec3>, Vec<f64>) {
-    let mut lap = vec![DVec3::ZERO; s.vertex_count()];
-    let mut angle_sum = vec![0.0; s.vertex_count()];
-    for (t, tri) in s.triangles.iter().enumerate() {
-        let p = s.corners(t);
-        let (w, angles) = triangle_weights(p);
-        for k in 0..3 {
-            // The side opposite corner k joins i and j.
-            let (i, j) = (tri[(k + 1) % 3] as usize, tri[(k + 2) % 3] as usize);
-            let d = w[k] * (s.positions[j] - s.positions[i]);
-            lap[i] += d;
-            lap[j] -= d;
-            angle_sum[tri[k] as usize] += angles[k];
-        }
-    }
-    (lap, angle_sum)
+/// What one pass over the triangles gives: mixed areas, the cotangent Laplacian of the
+/// positions `Σ_j w_ij (x_j − x_i)` (not yet over the area), angle sums, and angle-weighted
+/// normals (Thürmer & Wüthrich, each face's normal times its angle at the vertex).
+struct Accumulated {
+    area: Vec<f64>,
+    laplacian: Vec<DVec3>,
+    angle_sum: Vec<f64>,
+    normal: Vec<DVec3>,
 }
 
-/// Every curvature of the module doc, by vertex.
-pub fn curvature(s: &Surface) -> Curvature {
+fn accumulate(s: &Surface) -> Accumulated {
     let n = s.vertex_count();
-    let area = mixed_areas(s);
-    let normal = vertex_normals_by_angle(s);
-    let (lap, angle_sum) = laplacian_and_angles(s);
+    let faces = s.triangle_face.iter().max().map_or(0, |&f| f as usize + 1);
+    let mut face_area = vec![DVec3::ZERO; faces];
+    let mut corner_angles = Vec::with_capacity(s.triangles.len());
+    let mut acc = Accumulated {
+        area: vec![0.0; n],
+        laplacian: vec![DVec3::ZERO; n],
+        angle_sum: vec![0.0; n],
+        normal: vec![DVec3::ZERO; n],
+    };
+    for (t, (tri, &f)) in s.triangles.iter().zip(&s.triangle_face).enumerate() {
+        let p = s.corners(t);
+        face_area[f as usize] += (p[1] - p[0]).cross(p[2] - p[0]);
+        let (w, angles, twice_area) = triangle_weights(p);
+        for k in 0..3 {
+            let (i, j) = (tri[(k + 1) % 3] as usize, tri[(k + 2) % 3] as usize);
+            let d = w[k] * (s.positions[j] - s.positions[i]);
+            acc.laplacian[i] += d;
+            acc.laplacian[j] -= d;
+            acc.angle_sum[tri[k] as usize] += angles[k];
+            acc.area[tri[k] as usize] += mixed_share(p, k, w, angles, twice_area);
+        }
+        corner_angles.push(angles);
+    }
+    let face_normal: Vec<DVec3> = face_area
+        .into_iter()
+        .map(DVec3::normalize_or_zero)
+        .collect();
+    for ((tri, &f), angles) in s.triangles.iter().zip(&s.triangle_face).zip(&corner_angles) {
+        for k in 0..3 {
+            acc.normal[tri[k] as usize] += angles[k] * face_normal[f as usize];
+        }
+    }
+    for n in &mut acc.normal {
+        *n = n.normalize_or_zero();
+    }
+    acc
+}
+
+/// Mean, Gaussian and principal curvature values (no directions: those are
+/// [`curvature`]'s), by vertex: one pass over the triangles, one over the vertices.
+pub fn scalar_curvature(s: &Surface) -> Curvature {
+    let n = s.vertex_count();
+    let Accumulated {
+        area,
+        laplacian,
+        angle_sum,
+        normal,
+    } = accumulate(s);
     let mut c = Curvature {
         mean: vec![0.0; n],
         angle_defect: vec![0.0; n],
@@ -147,15 +177,23 @@ pub fn curvature(s: &Surface) -> Curvature {
         let full = if s.boundary[i] { PI } else { 2.0 * PI };
         c.angle_defect[i] = full - angle_sum[i];
         if area[i] > 0.0 {
-            c.mean[i] = -0.5 * lap[i].dot(normal[i]) / area[i];
+            c.mean[i] = -0.5 * laplacian[i].dot(normal[i]) / area[i];
             c.gaussian[i] = c.angle_defect[i] / area[i];
         }
         let root = (c.mean[i] * c.mean[i] - c.gaussian[i]).max(0.0).sqrt();
         c.max[i] = c.mean[i] + root;
         c.min[i] = c.mean[i] - root;
     }
-    principal_directions(s, &normal, &mut c);
     c.area = area;
+    c.normal = normal;
+    c
+}
+
+/// Every curvature of the module doc, principal directions included, by vertex.
+pub fn curvature(s: &Surface) -> Curvature {
+    let mut c = scalar_curvature(s);
+    let normal = std::mem::take(&mut c.normal);
+    principal_directions(s, &normal, &mut c);
     c.normal = normal;
     c
 }
@@ -202,7 +240,7 @@ fn principal_directions(s: &Surface, normal: &[DVec3], c: &mut Curvature) {
         }
     };
     for (t, tri) in s.triangles.iter().enumerate() {
-        let (w, _) = triangle_weights(s.corners(t));
+        let (w, _, _) = triangle_weights(s.corners(t));
         for k in 0..3 {
             let (i, j) = (tri[(k + 1) % 3] as usize, tri[(k + 2) % 3] as usize);
             let weight = w[k].abs().max(1e-3);

@@ -11,7 +11,7 @@ pub mod normals;
 pub mod quantity;
 pub mod surface;
 
-pub use curvature::{Curvature, curvature, mixed_areas};
+pub use curvature::{Curvature, curvature, mixed_areas, scalar_curvature};
 pub use normals::{NormalWeighting, face_normals, vertex_normals, vertex_normals_by_angle};
 pub use quantity::Quantity;
 pub use surface::Surface;

@@ -9,7 +9,7 @@ use crate::colormap::ColorMap;
 use crate::mesh::tables::{Connectivity, FaceRow};
 
 use super::closest::Reference;
-use super::curvature::curvature;
+use super::curvature::scalar_curvature;
 use super::surface::Surface;
 
 /// A per-vertex quantity.
@@ -91,7 +91,7 @@ impl Quantity {
     /// Its value at every vertex of the mesh in `t`, by row. [`Quantity::Distance`] measures to
     /// `other` (NaN everywhere without one); the others ignore it.
     pub fn per_vertex(self, t: &Connectivity, other: Option<&Reference>) -> Vec<f64> {
-        let curvature_of = || curvature(&Surface::from_tables(t));
+        let curvature_of = || scalar_curvature(&Surface::from_tables(t));
         match self {
             Quantity::Mean => curvature_of().mean,
             Quantity::Gaussian => curvature_of().gaussian,
