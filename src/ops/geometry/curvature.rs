@@ -56,19 +56,23 @@ pub struct Curvature {
 /// The cotangent weights `½ cot θ` of a triangle's sides, opposite corners 0, 1, 2 (the side
 /// opposite corner 0 joins corners 1 and 2), its three angles, and twice its area. One cross
 /// product serves all three corners (`|u × v|` is twice the area whichever corner it is taken
-/// at); a degenerate triangle has zero weights and angles.
+/// at); a flat triangle has zero weights, and angles 0 or π.
 #[inline]
 fn triangle_weights(p: [DVec3; 3]) -> ([f64; 3], [f64; 3], f64) {
-    let twice_area = (p[1] - p[0]).cross(p[2] - p[0]).length();
-    if twice_area <= 0.0 || !twice_area.is_finite() {
-        return ([0.0; 3], [0.0; 3], 0.0);
+    let mut twice_area = (p[1] - p[0]).cross(p[2] - p[0]).length();
+    if !twice_area.is_finite() {
+        twice_area = 0.0;
     }
     let mut weights = [0.0; 3];
     let mut angles = [0.0; 3];
     for k in 0..3 {
         let (a, b, c) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
         let dot = (b - a).dot(c - a);
-        weights[k] = 0.5 * dot / twice_area;
+        if twice_area > 0.0 {
+            weights[k] = 0.5 * dot / twice_area;
+        }
+        // A flat triangle still has angles (0, 0 and π where its corners are in a row), which
+        // the angle defects must count for Gauss–Bonnet to hold.
         angles[k] = twice_area.atan2(dot);
     }
     (weights, angles, twice_area)
