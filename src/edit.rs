@@ -460,8 +460,14 @@ impl Edit {
             Edit::Triangulate => {
                 let s = triangulate(world, mesh);
                 (context.progress)(1.0);
+                let left = match s.left {
+                    0 => String::new(),
+                    n => format!(
+                        "; {n} polygon(s) left whole: any cut would make an edge that exists"
+                    ),
+                };
                 whole(format!(
-                    "{} polygon(s) cut into triangles, {} face(s) added",
+                    "{} polygon(s) cut into triangles, {} face(s) added{left}",
                     s.polygons, s.added_faces
                 ))
             }

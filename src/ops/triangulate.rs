@@ -4,8 +4,12 @@
 //! normal: at every step the ear (a convex corner whose triangle contains no other corner) with
 //! the largest smallest angle is cut off, so convex quads get their better diagonal and a
 //! non-convex ("dart") quad gets the diagonal from its reflex corner. A polygon with no ear (it
-//! crosses itself or is degenerate) is cut as a fan from its first corner, which is always
-//! valid topologically.
+//! crosses itself or is degenerate) is cut as a fan from a corner.
+//!
+//! A diagonal must not join two corners that an edge outside the face already joins (a polygon
+//! left by a dissolve or a bisection can have such a pair): that would make the edge twice. Ears
+//! and fans that would are passed over; a polygon that no ear clipping and no fan can cut
+//! without one is left whole, and counted in [`TriangulateSummary::left`].
 //!
 //! The face's own halfedges, edges and vertices are kept; each cut adds one edge (two
 //! halfedges) and one face, and the original face entity becomes the first triangle. Ids of
@@ -26,6 +30,8 @@ pub struct TriangulateSummary {
     pub polygons: usize,
     /// Triangles added (each cut adds one).
     pub added_faces: usize,
+    /// Polygons left whole: every way to cut them would join two corners already joined.
+    pub left: usize,
 }
 
 /// Triangulates every face of `mesh` with more than three sides. Never refuses: a mesh of
@@ -34,27 +40,32 @@ pub fn triangulate(world: &mut World, mesh: MeshId) -> TriangulateSummary {
     let faces = of_kind::<Face, _>(world, mesh, FaceId);
     let mut summary = TriangulateSummary::default();
     for f in faces {
-        let added = triangulate_face(world, mesh, f);
-        if added > 0 {
-            summary.polygons += 1;
-            summary.added_faces += added;
+        match triangulate_face(world, mesh, f) {
+            Some(0) => {}
+            Some(added) => {
+                summary.polygons += 1;
+                summary.added_faces += added;
+            }
+            None => summary.left += 1,
         }
     }
     summary
 }
 
-/// Cuts one face into triangles (see the module doc) and returns how many faces were added.
-pub fn triangulate_face(world: &mut World, mesh: MeshId, f: FaceId) -> usize {
+/// Cuts one face into triangles (see the module doc) and returns how many faces were added;
+/// `None` when every cut would join two corners already joined (the face is left whole).
+pub fn triangulate_face(world: &mut World, mesh: MeshId, f: FaceId) -> Option<usize> {
     let m = MeshRef::new(world);
     let ring: Vec<HalfedgeId> = m.loop_from(m.prev(m.face_halfedge(f))).collect();
     let k = ring.len();
     if k <= 3 {
-        return 0;
+        return Some(0);
     }
     // ring[i] runs from corner i to corner i + 1.
     let points: Vec<Vec3> = ring.iter().map(|&h| m.position(m.from_vertex(h))).collect();
     let vertices: Vec<_> = ring.iter().map(|&h| m.from_vertex(h)).collect();
-    let triangles = ear_clip(&points);
+    let free = |i: usize, j: usize| m.find_halfedge(vertices[i], vertices[j]).is_none();
+    let triangles = ear_clip_avoiding(&points, free)?;
 
     // Halfedge for each directed side (i, j) of a triangle: the ring's own, or a new diagonal.
     let allocator = world.entity_allocator();
@@ -133,7 +144,7 @@ pub fn triangulate_face(world: &mut World, mesh: MeshId, f: FaceId) -> usize {
     for (e, h, _, _) in edges {
         spawn(world, e.0, (Edge { halfedge: h }, member));
     }
-    triangles.len() - 1
+    Some(triangles.len() - 1)
 }
 
 fn spawn<B: bevy::prelude::Bundle>(world: &mut World, e: bevy::prelude::Entity, bundle: B) {
@@ -145,13 +156,22 @@ fn spawn<B: bevy::prelude::Bundle>(world: &mut World, e: bevy::prelude::Entity, 
 /// Triangles (as corner indices, counter-clockwise) covering a polygon given by its corners.
 /// See the module doc for the rule.
 pub fn ear_clip(points: &[Vec3]) -> Vec<[usize; 3]> {
+    ear_clip_avoiding(points, |_, _| true).unwrap_or_default()
+}
+
+/// [`ear_clip`], making a diagonal between corners `i` and `j` only where `free(i, j)`; `None`
+/// when no ear clipping and no fan can.
+pub fn ear_clip_avoiding(
+    points: &[Vec3],
+    free: impl Fn(usize, usize) -> bool,
+) -> Option<Vec<[usize; 3]>> {
     let k = points.len();
     let normal = newell_area_vector(points);
     if k < 3 {
-        return Vec::new();
+        return Some(Vec::new());
     }
     let Some(n) = normal.try_normalize() else {
-        return fan(k);
+        return fan_avoiding(k, &free);
     };
     let u = n.any_orthonormal_vector();
     let v = n.cross(u);
@@ -167,7 +187,7 @@ pub fn ear_clip(points: &[Vec3]) -> Vec<[usize; 3]> {
         let mut best: Option<(usize, f32)> = None;
         for i in 0..m {
             let (a, b, c) = (left[(i + m - 1) % m], left[i], left[(i + 1) % m]);
-            if !is_ear(&flat, &left, a, b, c) {
+            if !free(a, c) || !is_ear(&flat, &left, a, b, c) {
                 continue;
             }
             let quality = min_angle(flat[a], flat[b], flat[c]);
@@ -176,17 +196,23 @@ pub fn ear_clip(points: &[Vec3]) -> Vec<[usize; 3]> {
             }
         }
         let Some((i, _)) = best else {
-            return fan(k);
+            return fan_avoiding(k, &free);
         };
         out.push([left[(i + m - 1) % m], left[i], left[(i + 1) % m]]);
         left.remove(i);
     }
     out.push([left[0], left[1], left[2]]);
-    out
+    Some(out)
 }
 
-fn fan(k: usize) -> Vec<[usize; 3]> {
-    (1..k - 1).map(|i| [0, i, i + 1]).collect()
+/// A fan from the first corner whose diagonals are all free, if any.
+fn fan_avoiding(k: usize, free: &impl Fn(usize, usize) -> bool) -> Option<Vec<[usize; 3]>> {
+    let apex = (0..k).find(|&r| (2..k - 1).all(|d| free(r, (r + d) % k)))?;
+    Some(
+        (1..k - 1)
+            .map(|i| [apex, (apex + i) % k, (apex + i + 1) % k])
+            .collect(),
+    )
 }
 
 fn cross(o: Vec2, a: Vec2, b: Vec2) -> f32 {
@@ -226,6 +252,48 @@ pub fn non_triangle_faces(world: &World, mesh: MeshId) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_dissolved_tetrahedron_is_cut_back_along_the_dissolved_edge() {
+        // Dissolving an edge of a tetrahedron leaves a quad whose other diagonal is an edge
+        // already: the only valid cut is the one the dissolve removed.
+        use crate::mesh::{MeshInfo, build_mesh, shapes, validate};
+        for (a, b) in [(0usize, 1usize), (0, 2), (1, 3)] {
+            let mut world = World::new();
+            let built =
+                build_mesh(&mut world, &shapes::tetrahedron(), MeshInfo::default()).unwrap();
+            let (va, vb) = (
+                built.input_vertices[a].unwrap(),
+                built.input_vertices[b].unwrap(),
+            );
+            let m = MeshRef::new(&world);
+            let e = m.edge(m.find_halfedge(va, vb).unwrap());
+            crate::ops::local::dissolve_edge(&mut world, e).unwrap();
+            let s = triangulate(&mut world, built.mesh);
+            assert_eq!((s.polygons, s.added_faces, s.left), (1, 1, 0));
+            validate(&world, built.mesh).unwrap();
+            assert_eq!(non_triangle_faces(&world, built.mesh), 0);
+            assert!(MeshRef::new(&world).find_halfedge(va, vb).is_some());
+        }
+    }
+
+    #[test]
+    fn diagonals_that_are_not_free_are_avoided_or_the_polygon_is_left() {
+        let square = [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        ];
+        // 0–2 taken: the cut is 1–3.
+        let t = ear_clip_avoiding(&square, |i, j| (i.min(j), i.max(j)) != (0, 2)).unwrap();
+        assert!(
+            t.iter().all(|tri| tri.contains(&1) && tri.contains(&3)),
+            "{t:?}"
+        );
+        // Both taken: no cut.
+        assert_eq!(ear_clip_avoiding(&square, |_, _| false), None);
+    }
 
     #[test]
     fn convex_quad_takes_the_diagonal_with_better_angles() {
