@@ -28,6 +28,15 @@ fn tmp(name: &str) -> PathBuf {
     dir.join(name)
 }
 
+/// Runs `pappus process INPUT -o <tmp OUT> --json ARGS…` and returns its JSON and the output
+/// path.
+fn process_json(input: &str, out: &str, args: &[&str]) -> (Value, PathBuf) {
+    let out_path = tmp(out);
+    let mut all = vec!["process", input, "-o", out_path.to_str().unwrap(), "--json"];
+    all.extend_from_slice(args);
+    (json(&pappus(&all)), out_path)
+}
+
 const INFO_KEYS: [&str; 18] = [
     "vertices",
     "edges",
@@ -126,17 +135,11 @@ fn broken_files_are_reported_not_panicked_on() {
 
 #[test]
 fn process_runs_steps_in_order_and_reports_json() {
-    let out_path = tmp("cube-tri.off");
-    let v = json(&pappus(&[
-        "process",
+    let (v, out_path) = process_json(
         "shape:cube",
-        "-o",
-        out_path.to_str().unwrap(),
-        "--json",
-        "validate",
-        "triangulate",
-        "validate",
-    ]));
+        "cube-tri.off",
+        &["validate", "triangulate", "validate"],
+    );
     let steps = v["steps"].as_array().unwrap();
     assert_eq!(steps.len(), 3);
     assert_eq!(steps[1]["step"], "triangulate");
@@ -178,19 +181,17 @@ fn a_refused_step_is_reported_and_the_run_goes_on() {
 
 #[test]
 fn local_steps_name_edges_by_input_vertices() {
-    let out_path = tmp("ico.ply");
-    let v = json(&pappus(&[
-        "process",
+    let (v, _) = process_json(
         "shape:icosahedron",
-        "-o",
-        out_path.to_str().unwrap(),
-        "--json",
-        "split:0,11",
-        "flip:0,5",
-        "collapse:1,5",
-        "bisect:2,3",
-        "validate",
-    ]));
+        "ico.ply",
+        &[
+            "split:0,11",
+            "flip:0,5",
+            "collapse:1,5",
+            "bisect:2,3",
+            "validate",
+        ],
+    );
     let steps = v["steps"].as_array().unwrap();
     for s in steps {
         assert_eq!(s["outcome"], "applied", "{s}");
@@ -228,19 +229,11 @@ fn convert_round_trips_between_formats() {
 
 #[test]
 fn simplify_then_refine_gives_back_the_input() {
-    let out_path = tmp("refined.ply");
-    let v = json(&pappus(&[
-        "process",
+    let (v, _) = process_json(
         "shape:icosphere:3",
-        "-o",
-        out_path.to_str().unwrap(),
-        "--json",
-        "refine",
-        "simplify:0.1",
-        "refine:640",
-        "refine",
-        "validate",
-    ]));
+        "refined.ply",
+        &["refine", "simplify:0.1", "refine:640", "refine", "validate"],
+    );
     let steps = v["steps"].as_array().unwrap();
     assert_eq!(
         steps[0]["outcome"], "refused",
@@ -259,16 +252,7 @@ fn simplify_then_refine_gives_back_the_input() {
 
 #[test]
 fn a_quantity_is_exported_to_ply_and_summarised() {
-    let out_path = tmp("curvature.ply");
-    let v = json(&pappus(&[
-        "process",
-        "shape:icosphere",
-        "-o",
-        out_path.to_str().unwrap(),
-        "--json",
-        "--quantity",
-        "mean",
-    ]));
+    let (v, out_path) = process_json("shape:icosphere", "curvature.ply", &["--quantity", "mean"]);
     // The unit sphere's mean curvature is 1, within the discretisation's error.
     let q = &v["quantity"];
     assert_eq!(q["name"], "mean");
@@ -300,16 +284,8 @@ fn a_quantity_is_exported_to_ply_and_summarised() {
 #[test]
 fn smooth_steps_run_every_method() {
     for method in ["uniform", "cotan", "implicit", "taubin"] {
-        let out_path = tmp(&format!("smooth-{method}.obj"));
-        let v = json(&pappus(&[
-            "process",
-            "shape:icosphere",
-            "-o",
-            out_path.to_str().unwrap(),
-            "--json",
-            &format!("smooth:{method}:2"),
-            "validate",
-        ]));
+        let step = format!("smooth:{method}:2");
+        let (v, _) = process_json("shape:icosphere", "smooth.obj", &[&step, "validate"]);
         for s in v["steps"].as_array().unwrap() {
             assert_eq!(s["outcome"], "applied", "{s}");
         }
@@ -352,17 +328,11 @@ fn vertex_normals_are_exported_on_request() {
 
 #[test]
 fn the_distance_quantity_measures_how_far_the_steps_moved_the_mesh() {
-    let out_path = tmp("distance.ply");
-    let v = json(&pappus(&[
-        "process",
+    let (v, _) = process_json(
         "shape:icosphere",
-        "-o",
-        out_path.to_str().unwrap(),
-        "--json",
-        "--quantity",
-        "distance",
-        "simplify:0.25",
-    ]));
+        "distance.ply",
+        &["--quantity", "distance", "simplify:0.25"],
+    );
     let q = &v["quantity"];
     let (min, max) = (q["min"].as_f64().unwrap(), q["max"].as_f64().unwrap());
     assert!(min >= 0.0 && max > 1e-4 && max < 0.05, "{q}");
