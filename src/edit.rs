@@ -28,7 +28,8 @@ use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::{InMesh, MeshInfo, MeshRef, validate};
 use crate::ops::Refusal;
 use crate::ops::local::{
-    CollapseOptions, bisect_edge, collapse_edge, dissolve_edge, flip_edge, split_edge, split_face,
+    CollapseOptions, bisect_edge, collapse_edge, dissolve_edge, fill_hole, flip_edge, split_edge,
+    split_face,
 };
 use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::remesh::{RemeshParams, remesh_with_progress};
@@ -79,6 +80,8 @@ pub enum Edit {
     Collapse(EdgeId),
     /// Merge the two faces of an edge into one.
     Dissolve(EdgeId),
+    /// Fill the hole beside a boundary edge: its boundary loop becomes one face.
+    FillHole(EdgeId),
     /// Split a face between two of its corners.
     SplitFace(FaceId, VertexId, VertexId),
     /// Move a vertex.
@@ -166,6 +169,7 @@ impl Edit {
             Edit::Bisect(e) => format!("bisect {e}"),
             Edit::Collapse(e) => format!("collapse {e}"),
             Edit::Dissolve(e) => format!("dissolve {e}"),
+            Edit::FillHole(e) => format!("fill the hole at {e}"),
             Edit::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
             Edit::MoveVertex(v, _) => format!("move {v}"),
             Edit::SplitVertex(v) => format!("split {v} back"),
@@ -219,6 +223,13 @@ impl Edit {
                 m.try_face(*f)?;
                 local(vec![*a, *b])
             }
+            // Every halfedge of the loop takes the face: its vertices are the seeds.
+            Edit::FillHole(e) => {
+                let h = m.edge_halfedge(*e);
+                m.try_halfedge(h)?;
+                let h = if m.is_boundary(h) { h } else { m.twin(h) };
+                local(m.loop_from(h).map(|x| m.from_vertex(x)).collect())
+            }
             Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => {
                 m.try_vertex(*v)?;
                 local(vec![*v])
@@ -243,7 +254,8 @@ impl Edit {
             | Edit::Split(e)
             | Edit::Bisect(e)
             | Edit::Collapse(e)
-            | Edit::Dissolve(e) => Some(ElementId::Edge(*e)),
+            | Edit::Dissolve(e)
+            | Edit::FillHole(e) => Some(ElementId::Edge(*e)),
             Edit::SplitFace(f, ..) => Some(ElementId::Face(*f)),
             Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => Some(ElementId::Vertex(*v)),
             _ => None,
@@ -389,6 +401,16 @@ impl Edit {
                 Applied {
                     summary: format!("merged into {f}"),
                     redraw: near(world, before, ends),
+                    made: Some(ElementId::Face(f)),
+                }
+            }
+            Edit::FillHole(e) => {
+                let f = fill_hole(world, *e)?;
+                let m = MeshRef::new(world);
+                let ring: Vec<VertexId> = m.face_vertices(f).collect();
+                Applied {
+                    summary: format!("new face {f} of {} sides", ring.len()),
+                    redraw: near(world, Vec::new(), ring),
                     made: Some(ElementId::Face(f)),
                 }
             }
@@ -563,18 +585,21 @@ pub enum LocalKind {
     Collapse,
     /// `dissolve:A,B`.
     Dissolve,
+    /// `fill-hole:A,B`: the hole beside the boundary edge.
+    FillHole,
     /// `split-face:A,B`: the face the two vertices share, between them.
     SplitFace,
 }
 
 impl LocalKind {
     /// Every kind, with its step name.
-    pub const ALL: [(LocalKind, &'static str); 6] = [
+    pub const ALL: [(LocalKind, &'static str); 7] = [
         (LocalKind::Flip, "flip"),
         (LocalKind::Split, "split"),
         (LocalKind::Bisect, "bisect"),
         (LocalKind::Collapse, "collapse"),
         (LocalKind::Dissolve, "dissolve"),
+        (LocalKind::FillHole, "fill-hole"),
         (LocalKind::SplitFace, "split-face"),
     ];
 
@@ -622,6 +647,7 @@ impl LocalKind {
             LocalKind::Bisect => Edit::Bisect(e),
             LocalKind::Collapse => Edit::Collapse(e),
             LocalKind::Dissolve => Edit::Dissolve(e),
+            LocalKind::FillHole => Edit::FillHole(e),
             LocalKind::SplitFace => return None,
         })
     }
@@ -641,7 +667,8 @@ pub enum Step {
 /// The step syntax, for usage texts.
 pub const STEP_SYNTAX: &str = "\
 validate | triangulate | flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
-dissolve:A,B | split-face:A,B | loop[:N] | catmull-clark[:N] | simplify:RATIO | simplify-faces:N |
+dissolve:A,B | split-face:A,B | fill-hole:A,B | loop[:N] | catmull-clark[:N] |
+simplify:RATIO | simplify-faces:N |
 refine[:FACES]   (split simplify's collapses back, up to FACES faces or all) |
 remesh[:ITERATIONS[:LENGTH]]   (isotropic; LENGTH defaults to the mean edge length) |
 smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held)
@@ -847,6 +874,7 @@ mod tests {
             "bisect:0,1",
             "collapse:1,2",
             "dissolve:4,5",
+            "fill-hole:0,1",
             "split-face:0,2",
             "loop:1",
             "catmull-clark:2",

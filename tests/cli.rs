@@ -337,3 +337,24 @@ fn the_distance_quantity_measures_how_far_the_steps_moved_the_mesh() {
     let (min, max) = (q["min"].as_f64().unwrap(), q["max"].as_f64().unwrap());
     assert!(min >= 0.0 && max > 1e-4 && max < 0.05, "{q}");
 }
+
+#[test]
+fn fill_hole_closes_a_grid_through_its_step() {
+    // The grid's corner 0 and its neighbour 1 are on its border.
+    let (v, _) = process_json("shape:grid:3", "filled.obj", &["fill-hole:0,1", "validate"]);
+    for s in v["steps"].as_array().unwrap() {
+        assert_eq!(s["outcome"], "applied", "{s}");
+    }
+    assert_eq!(v["result"]["closed"], true);
+    assert_eq!(v["result"]["faces"], 19);
+    assert_eq!(v["result"]["face_sizes"]["12"], 1);
+    // An interior edge has no hole beside it.
+    let (v, _) = process_json("shape:icosahedron", "x.obj", &["fill-hole:0,11"]);
+    assert_eq!(v["steps"][0]["outcome"], "refused");
+    assert!(
+        v["steps"][0]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("not on the boundary")
+    );
+}

@@ -69,7 +69,8 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
         12..=18 => edge(rng).map(Edit::Split),
         19..=21 => edge(rng).map(Edit::Bisect),
         22..=35 => edge(rng).map(Edit::Collapse),
-        36..=41 => edge(rng).map(Edit::Dissolve),
+        36..=40 => edge(rng).map(Edit::Dissolve),
+        41 => edge(rng).map(Edit::FillHole),
         42..=45 => face(rng).map(|f| {
             let corners: Vec<VertexId> = r.face_vertices(f).collect();
             let a = rng.below(corners.len());

@@ -159,6 +159,13 @@ fn every_local_edit_undoes_and_redoes_exactly() {
                 "{shape}: split"
             );
             assert!(round_trip_some(&mut app, pick, Edit::Collapse), "{shape}");
+            // Last: filling the hole may leave no boundary for later picks.
+            if !interior {
+                assert!(
+                    round_trip_some(&mut app, pick, Edit::FillHole),
+                    "{shape}: fill hole"
+                );
+            }
         }
         // Cut a polygon (the dissolve's, or a quad) between two corners.
         let (f, a, b) = {

@@ -156,6 +156,14 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::OnEdge(LocalKind::Dissolve),
         "dissolve the selected edge (merge its two faces)",
     ),
+    Shortcut {
+        key: KeyCode::KeyF,
+        ctrl: false,
+        shift: true,
+        action: Action::OnEdge(LocalKind::FillHole),
+        keys: "Shift+F",
+        description: "fill the hole beside the selected boundary edge (one polygon face)",
+    },
     key(
         KeyCode::KeyJ,
         "J",

@@ -689,6 +689,7 @@ fn operations_section(
             (Action::OnEdge(LocalKind::Bisect), "Bisect"),
             (Action::OnEdge(LocalKind::Collapse), "Collapse"),
             (Action::OnEdge(LocalKind::Dissolve), "Dissolve"),
+            (Action::OnEdge(LocalKind::FillHole), "Fill hole"),
             (Action::CutCorner, "Split face"),
             (Action::SplitVertex, "Split vertex back"),
             (Action::Triangulate, "Triangulate"),

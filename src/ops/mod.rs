@@ -62,6 +62,9 @@ pub enum Refusal {
     /// The operation needs triangles.
     #[error("{0} is not a triangle (triangulate first)")]
     NotTriangle(ElementId),
+    /// The operation needs a boundary edge (a hole beside it).
+    #[error("{0} is not on the boundary")]
+    NotBoundary(ElementId),
     /// There is no mesh to act on.
     #[error("there is no mesh")]
     NoMesh,

@@ -1,5 +1,6 @@
 //! Local operations: edge flip, edge split, edge collapse, and their companions (edge
-//! bisection, edge dissolve, face split, vertex split — the exact inverse of a collapse).
+//! bisection, edge dissolve, face split, hole fill, vertex split — the exact inverse of a
+//! collapse).
 //!
 //! The contract, stated once: **if the result of an operation would not be a valid mesh, the
 //! operation changes nothing and returns a [`Refusal`] that says why.** Each operation is a
@@ -21,6 +22,7 @@
 mod bisect;
 mod collapse;
 mod dissolve;
+mod fill_hole;
 mod flip;
 mod split;
 mod split_face;
@@ -33,6 +35,7 @@ pub use collapse::{
 };
 pub(crate) use collapse::{apply_collapse_deferred, plan_collapse_in};
 pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};
+pub use fill_hole::{FillHolePlan, apply_fill_hole, fill_hole, plan_fill_hole};
 pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
 pub use split::{SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint};
 pub use split_face::{SplitFacePlan, apply_split_face, plan_split_face, split_face};
