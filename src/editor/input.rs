@@ -378,6 +378,8 @@ pub struct UiState {
     pub subdivision_levels: u32,
     /// Smoothing: method, iterations, step, whether the boundary is held.
     pub smooth: SmoothParams,
+    /// Show the histograms even when the mesh is not coloured by a quantity.
+    pub histograms: bool,
 }
 
 impl Default for UiState {
@@ -389,6 +391,7 @@ impl Default for UiState {
             remesh: RemeshParams::default(),
             subdivision_levels: 1,
             smooth: SmoothParams::default(),
+            histograms: false,
         }
     }
 }

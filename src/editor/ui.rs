@@ -355,7 +355,7 @@ pub fn panels(
                 file_section(ui, &mut fields, &mut ui_state, &mut requests);
                 ui.separator();
                 mesh_section(ui, &view);
-                colour_section(ui, &view, &mut colour_by);
+                colour_section(ui, &view, &mut colour_by, &mut ui_state.histograms);
                 ui.separator();
                 selection_section(ui, &view, &mut fields, &mut requests);
                 ui.separator();
@@ -424,6 +424,8 @@ pub fn panels(
                 });
             });
     }
+
+    histogram_window(&ctx, &view, ui_state.histograms);
 
     if ui_state.show_help {
         let mut open = true;
@@ -847,9 +849,14 @@ fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
     });
 }
 
-/// Colour by a quantity: the choice, the legend (the map from its low to its high value, as
-/// clamped) and the histograms.
-fn colour_section(ui: &mut egui::Ui, view: &InspectorView, colour_by: &mut ColorBy) {
+/// Colour by a quantity: the choice, and the legend (the map from its low to its high value, as
+/// clamped).
+fn colour_section(
+    ui: &mut egui::Ui,
+    view: &InspectorView,
+    colour_by: &mut ColorBy,
+    histograms: &mut bool,
+) {
     ui.horizontal(|ui| {
         ui.label("colour by");
         let shown = colour_by.0.map_or("nothing", Quantity::label);
@@ -861,19 +868,28 @@ fn colour_section(ui: &mut egui::Ui, view: &InspectorView, colour_by: &mut Color
                     ui.selectable_value(&mut colour_by.0, Some(q), q.label());
                 }
             });
+        ui.checkbox(histograms, "histograms");
     });
     if let Some((label, map, range)) = &view.colour {
         legend(ui, label, *map, *range);
     }
-    if !view.histograms.is_empty() {
-        egui::CollapsingHeader::new("Histograms")
-            .default_open(true)
-            .show(ui, |ui| {
-                for h in &view.histograms {
-                    super::plots::draw(ui, h);
-                }
-            });
+}
+
+/// The histograms, in a window beside the mesh: while it is coloured by a quantity, or when
+/// asked for.
+fn histogram_window(ctx: &egui::Context, view: &InspectorView, asked: bool) {
+    if (view.colour.is_none() && !asked) || view.histograms.is_empty() {
+        return;
     }
+    egui::Window::new("Histograms")
+        .anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0])
+        .default_width(260.0)
+        .resizable(false)
+        .show(ctx, |ui| {
+            for h in &view.histograms {
+                super::plots::draw(ui, h);
+            }
+        });
 }
 
 /// The colour map as a bar from its low to its high value, with both ends labelled.
