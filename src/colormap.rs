@@ -88,7 +88,10 @@ impl Range {
         let at = |p: f64| sorted[((p / 100.0) * (sorted.len() - 1) as f64).round() as usize];
         let (mut low, mut high) = (at(percentile), at(100.0 - percentile));
         if map == ColorMap::Diverging {
-            let reach = low.abs().max(high.abs());
+            let mut reach = low.abs().max(high.abs());
+            if reach == 0.0 {
+                reach = 1.0;
+            }
             (low, high) = (-reach, reach);
         }
         if high <= low {
@@ -127,5 +130,8 @@ mod tests {
         assert_eq!((signed.low, signed.high), (-2.0, 2.0));
         assert_eq!(signed.fraction(0.0), 0.5);
         assert_eq!(Range::robust(&[], 5.0, ColorMap::Viridis).high, 1.0);
+        // All zero on a signed map: zero stays in the middle.
+        let flat = Range::robust(&[0.0, 0.0], 1.0, ColorMap::Diverging);
+        assert_eq!(flat.fraction(0.0), 0.5);
     }
 }

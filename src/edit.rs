@@ -225,7 +225,7 @@ impl Edit {
             }
             // Every halfedge of the loop takes the face: its vertices are the seeds.
             Edit::FillHole(e) => {
-                let h = m.edge_halfedge(*e);
+                let h = m.try_edge(*e)?.halfedge;
                 m.try_halfedge(h)?;
                 let h = if m.is_boundary(h) { h } else { m.twin(h) };
                 local(m.loop_from(h).map(|x| m.from_vertex(x)).collect())

@@ -791,3 +791,36 @@ fn the_distance_colouring_measures_against_the_mesh_before_a_whole_mesh_edit() {
     // Collapses moved vertices off the sphere, never far (a unit sphere of 1280 faces).
     assert!(most > 1e-4 && most < 0.05, "{most}");
 }
+
+#[test]
+fn smoothing_as_a_job_holds_the_vertex_the_editor_named() {
+    use pappus::editor::jobs::{JobSettings, Jobs};
+    use pappus::ops::smooth::{SmoothMethod, SmoothParams};
+    let mut app = app();
+    app.world_mut().resource_mut::<JobSettings>().min_faces = 100;
+    open(&mut app, "shape:icosphere");
+    let members = pappus::mesh::MeshMembers::collect(app.world(), mesh(&app));
+    let (held, free) = (members.vertices[7], members.vertices[8]);
+    let at = |app: &App, v| MeshRef::new(app.world()).position(v);
+    let (held_at, free_at) = (at(&app, held), at(&app, free));
+    let params = SmoothParams {
+        held: vec![held],
+        iterations: 3,
+        ..SmoothParams::new(SmoothMethod::Uniform)
+    };
+    app.world_mut()
+        .write_message(Request::Edit(Edit::Smooth(params)));
+    app.update();
+    assert!(app.world().resource::<Jobs>().running.is_some() || last_outcome(&app).result.is_ok());
+    while app.world().resource::<Jobs>().running.is_some() {
+        std::thread::sleep(std::time::Duration::from_millis(2));
+        app.update();
+    }
+    assert!(
+        last_outcome(&app).result.is_ok(),
+        "{:?}",
+        last_outcome(&app)
+    );
+    assert_eq!(at(&app, held), held_at, "the held vertex stayed");
+    assert_ne!(at(&app, free), free_at, "the others moved");
+}

@@ -17,7 +17,6 @@ use crate::mesh::MeshInfo;
 use crate::mesh::ids::{MeshId, VertexId};
 use crate::mesh::tables::extract;
 use crate::ops::geometry::Quantity;
-use crate::ops::geometry::closest::Reference;
 
 use super::selection::{DirtyFaces, MeshDirty};
 use super::session::PreviousShape;
@@ -77,8 +76,8 @@ pub fn vertex_values(
         .flatten()
         .and_then(|p| p.shape.as_ref())
         .filter(|(m, _)| *m == mesh)
-        .map(|(_, triangles)| Reference::from_triangles(triangles.clone()));
-    let values = quantity.per_vertex(&read.tables, before.as_ref());
+        .map(|(_, surface)| surface);
+    let values = quantity.per_vertex(&read.tables, before);
     let map = quantity.colormap();
     let range = range.unwrap_or_else(|| Range::robust(&values, CLAMP_PERCENTILE, map));
     VertexValues {

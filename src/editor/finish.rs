@@ -46,11 +46,8 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
     } = finished;
     let applied = result?;
     if let Some(before) = pending.as_ref().and_then(Pending::tables) {
-        let s = crate::ops::geometry::Surface::from_tables(&before.tables);
-        let triangles = (0..s.triangles.len())
-            .map(|i| s.corners(i).map(|p| p.as_vec3()))
-            .collect();
-        world.resource_mut::<PreviousShape>().shape = Some((mesh, triangles));
+        let surface = crate::ops::geometry::closest::Reference::of_tables(&before.tables);
+        world.resource_mut::<PreviousShape>().shape = Some((mesh, surface));
     }
     if let Some(pending) = pending {
         history::commit(world, pending, edit.label());

@@ -144,12 +144,28 @@ pub fn start(
     let label = edit.label();
     let progress = Arc::new(Progress::default());
     let shared = Arc::clone(&progress);
-    let job = edit.clone();
+    let mut job = edit.clone();
+    // Vertices an edit names (the smoothing's held ones) by row, to be named again by the
+    // scratch copy's entities.
+    let named_rows: Vec<usize> = match &edit {
+        Edit::Smooth(params) => {
+            let rows = members.vertex_rows();
+            params
+                .held
+                .iter()
+                .filter_map(|v| rows.get(&v.0).map(|&r| r as usize))
+                .collect()
+        }
+        _ => Vec::new(),
+    };
     let thread = std::thread::Builder::new()
         .name(format!("pappus job: {label}"))
         .spawn(move || {
             let mut scratch = World::new();
             let (copy, input) = spawn_connectivity(&mut scratch, &tables, MeshInfo::default());
+            if let Edit::Smooth(params) = &mut job {
+                params.held = named_rows.iter().map(|&r| input.vertices[r]).collect();
+            }
             let mut history = None;
             let applied = job.run(
                 &mut scratch,

@@ -31,12 +31,13 @@ impl SimplificationHistory {
     }
 }
 
-/// The triangles of the mesh as it was before the last whole-mesh edit, which the distance
-/// colouring measures against (how far simplification or remeshing moved the surface).
+/// The surface of the mesh as it was before the last whole-mesh edit, ready for closest-point
+/// queries: what the distance colouring measures against (how far simplification or remeshing
+/// moved the surface). Built once, when the edit is recorded.
 #[derive(Resource, Default)]
 pub struct PreviousShape {
-    /// The mesh, and its triangles before the edit.
-    pub shape: Option<(MeshId, Vec<[bevy::math::Vec3; 3]>)>,
+    /// The mesh, and its surface before the edit.
+    pub shape: Option<(MeshId, crate::ops::geometry::closest::Reference)>,
 }
 
 /// Whether `mesh` has changes that are not saved.

@@ -272,8 +272,10 @@ fn implicit_step(
     // Free vertices get columns 0..free; held ones none.
     let mut column = vec![u32::MAX; n];
     let mut free = 0usize;
+    // A vertex with no area (only on flat triangles, as a bisection's new vertex on a straight
+    // edge) would make an empty row: it stays, like a held one.
     for i in 0..n {
-        if !held[i] {
+        if !held[i] && area[i] > 0.0 {
             column[i] = free as u32;
             free += 1;
         }
@@ -365,6 +367,26 @@ mod tests {
                 assert!(a.distance(b) < 1e-5, "{method:?}: {a} -> {b}");
             }
         }
+    }
+
+    #[test]
+    fn a_vertex_on_a_straight_bisected_edge_does_not_stop_the_implicit_flow() {
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &shapes::grid(4, 4), MeshInfo::default()).unwrap();
+        let m = MeshRef::new(&world);
+        // An interior, axis-aligned edge: its midpoint has only flat fan triangles.
+        let e = MeshMembers::collect(&world, built.mesh)
+            .edges
+            .into_iter()
+            .find(|&e| {
+                let (a, b) = m.edge_vertices(e);
+                !m.is_boundary_edge(e) && (m.position(a).x == m.position(b).x)
+            })
+            .unwrap();
+        crate::ops::local::bisect_edge(&mut world, e, 0.5).unwrap();
+        let params = SmoothParams::new(SmoothMethod::Implicit);
+        smooth(&mut world, built.mesh, &params).unwrap();
+        validate(&world, built.mesh).unwrap();
     }
 
     #[test]

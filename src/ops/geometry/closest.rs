@@ -163,7 +163,8 @@ impl Reference {
             .max()
             .unwrap_or(0);
         let max_ring = self.dims.iter().copied().max().unwrap_or(1) + outside;
-        for ring in 0..=max_ring {
+        // Rings nearer than `outside` hold no cell of the grid: start where the grid begins.
+        for ring in outside..=max_ring {
             for x in -ring..=ring {
                 for y in -ring..=ring {
                     for z in -ring..=ring {
