@@ -134,6 +134,13 @@ pub fn load(input: &str) -> Result<Loaded, String> {
     let start = Instant::now();
     let (soup, info) = crate::source::read_source(Path::new(input))?;
     let read_ms = ms_since(start);
+    let dropped = soup.vertex_attributes();
+    if !dropped.is_empty() {
+        eprintln!(
+            "pappus: {input}: the file's vertex {} are not kept (outputs carry positions and faces, and what --quantity or --normals adds)",
+            dropped.join(", ")
+        );
+    }
     let start = Instant::now();
     let mut world = World::new();
     let built = build_mesh(&mut world, &soup, info).map_err(|e| format!("{input}: {e}"))?;

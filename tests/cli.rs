@@ -266,6 +266,11 @@ fn a_quantity_is_exported_to_ply_and_summarised() {
     assert_eq!(quality.len(), 642);
     assert!(quality.iter().all(|h| (h - 1.0).abs() < 0.01));
     assert_eq!(soup.vertex_colors.map(|c| c.len()), Some(642));
+    // Opening that file says what the mesh does not keep, never silently.
+    let out = pappus(&["info", out_path.to_str().unwrap()]);
+    assert!(out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("quality, colours are not kept"), "{stderr}");
     // Only PLY holds per-vertex quality: anything else is refused before any work.
     let out = pappus(&["process", "shape:cube", "-o", "x.obj", "--quantity", "mean"]);
     assert_eq!(out.status.code(), Some(1));

@@ -233,8 +233,16 @@ fn open(world: &mut World, path: &Path) -> Result<String, Declined> {
         history::commit(world, pending, format!("open {}", path.display()));
     }
     let stats = crate::mesh::mesh_stats(world, built.mesh);
+    let dropped = soup.vertex_attributes();
+    let dropped = match dropped.is_empty() {
+        true => String::new(),
+        false => format!(
+            "; the file's vertex {} are not kept (saving writes positions and faces)",
+            dropped.join(", ")
+        ),
+    };
     Ok(format!(
-        "{}: {} vertices, {} faces; {}",
+        "{}: {} vertices, {} faces; {}{dropped}",
         path.display(),
         stats.vertices,
         stats.faces,

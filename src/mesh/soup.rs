@@ -66,6 +66,19 @@ impl PolygonSoup {
         self.face_starts.push(self.indices.len() as u32);
     }
 
+    /// The per-vertex attributes the soup carries, by name (`quality`, `colours`, `normals`):
+    /// what a mesh built from it does not keep yet, for a message.
+    pub fn vertex_attributes(&self) -> Vec<&'static str> {
+        [
+            ("quality", self.vertex_quality.is_some()),
+            ("colours", self.vertex_colors.is_some()),
+            ("normals", self.vertex_normals.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(name, has)| has.then_some(name))
+        .collect()
+    }
+
     /// Number of faces.
     pub fn face_count(&self) -> usize {
         self.face_starts.len().saturating_sub(1)
