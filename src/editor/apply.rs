@@ -19,7 +19,7 @@ use super::finish::{Finished, finish_edit, report};
 use super::history::{self, Redraw};
 use super::jobs::{self, Jobs};
 use super::requests::{ConfirmDiscard, Declined, PendingDiscard, Request};
-use super::selection::{ActiveMesh, DirtyFaces, MeshDirty, Selection, exists, navigate};
+use super::selection::{ActiveMesh, MeshDirty, Selection, exists, mark_faces_dirty, navigate};
 use super::session::{Modified, SimplificationHistory, is_modified};
 
 /// Applies every request written since the last run, in order (the `Apply` set).
@@ -185,14 +185,8 @@ fn undo_or_redo(world: &mut World, redo: bool) -> Result<String, Declined> {
             vertices.retain(|&v| m.try_vertex(v).is_some());
             let mut faces: Vec<_> = vertices.iter().flat_map(|&v| m.vertex_faces(v)).collect();
             faces.extend(removed);
-            let mut entity = world.entity_mut(mesh.0);
-            match entity.get_mut::<DirtyFaces>() {
-                Some(mut dirty) => dirty.0.extend(faces),
-                None => {
-                    entity.insert(DirtyFaces(faces));
-                }
-            }
-            entity.insert(Modified);
+            mark_faces_dirty(world, mesh, faces);
+            world.entity_mut(mesh.0).insert(Modified);
         }
         Redraw::Whole(Some(mesh)) => {
             world.entity_mut(mesh.0).insert((MeshDirty, Modified));

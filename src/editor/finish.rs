@@ -17,7 +17,7 @@ use crate::ops::Refusal;
 
 use super::history::{self, Pending};
 use super::requests::{Declined, EditOutcome, OutcomeLog};
-use super::selection::{DirtyFaces, MeshDirty, Selection, exists};
+use super::selection::{MeshDirty, Selection, exists, mark_faces_dirty};
 use super::session::{Modified, PreviousShape, SimplificationHistory};
 
 /// An edit that has run, with what its bookkeeping needs.
@@ -58,18 +58,12 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
     if world.get_entity(mesh.0).is_err() {
         return Ok(applied.summary);
     }
-    let mut entity = world.entity_mut(mesh.0);
-    entity.insert(Modified);
+    world.entity_mut(mesh.0).insert(Modified);
     match applied.redraw {
         Redraw::Whole => {
-            entity.insert(MeshDirty);
+            world.entity_mut(mesh.0).insert(MeshDirty);
         }
-        Redraw::Near { faces, .. } => match entity.get_mut::<DirtyFaces>() {
-            Some(mut dirty) => dirty.0.extend(faces),
-            None => {
-                entity.insert(DirtyFaces(faces));
-            }
-        },
+        Redraw::Near { faces, .. } => mark_faces_dirty(world, mesh, faces),
     }
     let kept = edit.keeps_ids();
     let selection = applied.made.or_else(|| {

@@ -67,6 +67,17 @@ pub struct MeshDirty;
 #[component(storage = "SparseSet")]
 pub struct DirtyFaces(pub Vec<FaceId>);
 
+/// Marks `faces` of `mesh` for redrawing (adding to those already marked).
+pub fn mark_faces_dirty(world: &mut bevy::prelude::World, mesh: MeshId, faces: Vec<FaceId>) {
+    let mut entity = world.entity_mut(mesh.0);
+    match entity.get_mut::<DirtyFaces>() {
+        Some(mut dirty) => dirty.0.extend(faces),
+        None => {
+            entity.insert(DirtyFaces(faces));
+        }
+    }
+}
+
 /// Whether `element` is alive in the world behind `m`.
 pub fn exists(m: &MeshRef<'_>, element: ElementId) -> bool {
     match element {
