@@ -74,9 +74,7 @@ pub fn vertex_values(
     let before = (quantity == Quantity::Distance)
         .then(|| world.get_resource::<PreviousShape>())
         .flatten()
-        .and_then(|p| p.shape.as_ref())
-        .filter(|(m, _)| *m == mesh)
-        .map(|(_, surface)| surface);
+        .and_then(|p| p.surface(mesh));
     let values = quantity.per_vertex(&read.tables, before);
     let map = quantity.colormap();
     let range = range.unwrap_or_else(|| Range::robust(&values, CLAMP_PERCENTILE, map));

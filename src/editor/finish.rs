@@ -46,8 +46,8 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
     } = finished;
     let applied = result?;
     if let Some(before) = pending.as_ref().and_then(Pending::tables) {
-        let surface = crate::ops::geometry::closest::Reference::of_tables(&before.tables);
-        world.resource_mut::<PreviousShape>().shape = Some((mesh, surface));
+        let tables = before.tables.clone();
+        world.resource_mut::<PreviousShape>().set(mesh, tables);
     }
     if let Some(pending) = pending {
         history::commit(world, pending, edit.label());
