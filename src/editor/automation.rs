@@ -66,6 +66,8 @@ pub struct Script {
     waiting: u32,
     shots_pending: usize,
     measuring: Option<(u32, std::time::Instant)>,
+    /// The process's CPU time when the measurement began.
+    measuring_cpu: Option<f64>,
     /// Keys to release at the next step (so a held modifier is seen with its key).
     release: Vec<KeyCode>,
 }
@@ -75,6 +77,16 @@ pub struct Script {
 pub struct PendingShots(pub std::sync::Arc<std::sync::atomic::AtomicUsize>);
 
 impl Script {
+    /// Whether steps, waits or screenshots are still to come (the editor then draws every
+    /// frame instead of waiting for input).
+    pub fn is_running(&self) -> bool {
+        !self.steps.is_empty()
+            || self.waiting > 0
+            || self.shots_pending > 0
+            || self.measuring.is_some()
+            || !self.release.is_empty()
+    }
+
     /// Parses a script (see the module doc).
     ///
     /// # Errors
@@ -120,6 +132,7 @@ impl Script {
             waiting: 0,
             shots_pending: 0,
             measuring: None,
+            measuring_cpu: None,
             release: Vec::new(),
         })
     }
@@ -202,6 +215,13 @@ pub fn run_script(world: &mut World) {
         if let Some((frames, start)) = script.measuring.take() {
             let ms = start.elapsed().as_secs_f64() * 1000.0 / f64::from(frames.max(1));
             bevy::log::info!("measure: mean frame time {ms:.1} ms over {frames} frames");
+            if let (Some(now), Some(then)) =
+                (super::frame_stats::process_cpu_ms(), script.measuring_cpu)
+            {
+                let cpu = (now - then) / f64::from(frames.max(1));
+                bevy::log::info!("measure: process CPU {cpu:.1} ms a frame (all threads)");
+            }
+            super::frame_stats::log_breakdown(world);
         }
         if script.shots_pending > 0 && pending.load(std::sync::atomic::Ordering::SeqCst) > 0 {
             break;
@@ -215,6 +235,8 @@ pub fn run_script(world: &mut World) {
             ScriptStep::Measure(n) => {
                 script.waiting = n;
                 script.measuring = Some((n, std::time::Instant::now()));
+                script.measuring_cpu = super::frame_stats::process_cpu_ms();
+                super::frame_stats::clear_history(world);
             }
             ScriptStep::Key(modifier, key) => {
                 // This frame: the modifier and the key go down; next step: both come up.

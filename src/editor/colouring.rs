@@ -131,32 +131,6 @@ pub fn update_vertex_values(world: &mut World, mut shown: bevy::prelude::Local<O
             e.insert(MeshDirty);
         }
     }
-    if switched {
-        set_surface_white(world, wanted.is_some());
-    }
-}
-
-/// Vertex colours multiply the material's base colour: it turns white while a quantity is shown
-/// (so the map's colours are true), back to the surface colour after.
-fn set_surface_white(world: &mut World, white: bool) {
-    let Some(handle) = world
-        .get_resource::<super::scene::SceneMaterials>()
-        .map(|m| m.surface.clone())
-    else {
-        return;
-    };
-    let Some(mut materials) =
-        world.get_resource_mut::<bevy::prelude::Assets<bevy::pbr::StandardMaterial>>()
-    else {
-        return;
-    };
-    if let Some(mut material) = materials.get_mut(&handle) {
-        material.base_color = if white {
-            bevy::color::Color::WHITE
-        } else {
-            super::scene::SURFACE_COLOR
-        };
-    }
 }
 
 #[cfg(test)]

@@ -27,6 +27,13 @@ pub struct OpenDialog {
     pending: Option<(PathPurpose, Answer)>,
 }
 
+impl OpenDialog {
+    /// Whether a dialog is open and its answer not yet received.
+    pub fn is_open(&self) -> bool {
+        self.pending.is_some()
+    }
+}
+
 /// The extensions Pappus reads and writes.
 const EXTENSIONS: [&str; 4] = ["obj", "off", "ply", "stl"];
 

@@ -18,17 +18,21 @@ pub mod colouring;
 pub mod dialog;
 pub mod drag;
 pub mod finish;
+pub mod frame_stats;
 pub mod history;
 pub mod input;
 pub mod jobs;
 pub mod overlay;
+pub mod pacing;
 pub mod picking;
 pub mod plots;
+pub mod readability;
 pub mod render_sync;
 pub mod requests;
 pub mod scene;
 pub mod selection;
 pub mod session;
+pub mod surface;
 pub mod ui;
 
 use bevy::prelude::*;
@@ -79,6 +83,7 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<colouring::ColorBy>()
             .init_resource::<render_sync::RenderStats>()
             .init_resource::<overlay::Overlay>()
+            .init_resource::<readability::WireframeDensity>()
             .init_resource::<input::KeyboardCaptured>()
             .init_resource::<input::UiState>()
             .configure_sets(
@@ -140,10 +145,21 @@ impl Plugin for EditorWindowPlugin {
                         .after(EditorSystems::Apply)
                         .before(EditorSystems::Sync),
                     overlay::draw_overlay.after(EditorSystems::Sync),
+                    readability::show_readable_wireframes
+                        .after(EditorSystems::Sync)
+                        .before(EditorSystems::Ui),
                 ),
             )
             .init_resource::<automation::PendingShots>()
             .init_resource::<dialog::OpenDialog>()
+            .insert_resource(pacing::settings(false))
+            .add_systems(Update, pacing::keep_drawing.in_set(EditorSystems::Ui))
+            .add_systems(
+                PreUpdate,
+                pacing::drop_unchanged_modifiers
+                    .after(bevy_egui::EguiPreUpdateSet::ProcessInput)
+                    .before(bevy_egui::EguiPreUpdateSet::BeginPass),
+            )
             .add_systems(Update, apply::close_requested.in_set(EditorSystems::Input))
             .add_systems(Update, dialog::receive.in_set(EditorSystems::Input))
             .init_resource::<drag::VertexDrag>()
@@ -157,6 +173,7 @@ impl Plugin for EditorWindowPlugin {
                     .in_set(EditorSystems::Input)
                     .before(input::keyboard_shortcuts),
             )
+            .add_plugins(surface::SurfacePlugin)
             .add_observer(picking::on_click)
             .add_observer(picking::on_move)
             .add_observer(picking::on_out)
@@ -223,6 +240,9 @@ pub fn run(path: Option<PathBuf>) -> i32 {
         EditorLogicPlugin,
         EditorWindowPlugin { open },
     ));
+    if std::env::var_os("PAPPUS_FRAME_STATS").is_some() {
+        app.add_plugins(frame_stats::FrameStatsPlugin);
+    }
     if let Some(script) = script {
         app.insert_resource(script);
     }

@@ -15,7 +15,8 @@ use crate::mesh::members::{MeshMembers, of_kind};
 use crate::mesh::topology::MeshRef;
 use crate::mesh::{Face, MeshInfo};
 
-use super::render_sync::ViewSettings;
+use super::readability::WireframeDensity;
+use super::render_sync::{EDGE_COLOR, ViewSettings};
 use super::selection::{ActiveMesh, Hover, Selection};
 
 /// Meshes with at most this many faces get arrows and dots everywhere.
@@ -109,6 +110,22 @@ fn element_shapes(m: &MeshRef<'_>, x: ElementId, color: Color, out: &mut Vec<Sha
     }
 }
 
+/// The faces around an element: a vertex's fan, an edge's or a halfedge's sides, a face and its
+/// neighbours. Stale ids give none.
+fn faces_around(m: &MeshRef<'_>, x: ElementId) -> Vec<FaceId> {
+    if !super::selection::exists(m, x) {
+        return Vec::new();
+    }
+    let sides = |h: HalfedgeId| [m.face(h), m.face(m.twin(h))].into_iter().flatten();
+    match x {
+        ElementId::Vertex(v) => m.vertex_faces(v).collect(),
+        ElementId::Edge(e) => sides(m.edge_halfedge(e)).collect(),
+        ElementId::Halfedge(h) => sides(h).collect(),
+        ElementId::Face(f) => m.face_halfedges(f).flat_map(sides).collect(),
+        ElementId::Mesh(_) => Vec::new(),
+    }
+}
+
 fn face_outline(m: &MeshRef<'_>, f: FaceId, color: Color, out: &mut Vec<Shape>) {
     let c = m.face_centroid(f);
     for h in m.face_halfedges(f) {
@@ -172,6 +189,18 @@ pub fn gather_overlay(world: &mut World) {
             for h in near {
                 let (a, b) = halfedge_arrow(&m, h);
                 shapes.push(Shape::Arrow(a, b, ARROW));
+            }
+        }
+        // With the full wireframe hidden as too dense, the faces around the selection keep theirs.
+        let dense = world
+            .get_resource::<WireframeDensity>()
+            .is_some_and(|d| d.hidden);
+        if dense && let Some(x) = world.resource::<Selection>().element {
+            for f in faces_around(&m, x) {
+                for h in m.face_halfedges(f) {
+                    let (a, b) = (m.position(m.from_vertex(h)), m.position(m.to_vertex(h)));
+                    shapes.push(Shape::Line(a, b, EDGE_COLOR));
+                }
             }
         }
         if let Some(x) = world.resource::<Hover>().element

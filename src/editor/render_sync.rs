@@ -1,8 +1,9 @@
 //! Keeps each mesh's render copy in step with its entities, redrawing only what changed.
 //!
 //! A mesh is drawn by chunks of [`CHUNK_FACES`] faces, each a render entity with a Bevy
-//! [`Mesh`] (every polygon fan-triangulated; flat shading: one Newell normal per face; smooth:
-//! area-weighted vertex normals over *all* the vertex's faces, so chunk borders show no seam), a
+//! [`Mesh`] (every polygon fan-triangulated, every vertex once; flat shading: no normals, the
+//! shader derives each face's; smooth: area-weighted vertex normals over *all* the vertex's faces,
+//! so chunk borders show no seam), a
 //! [`TriangleFaces`] table mapping each GPU triangle back to its face for picking, and a retained
 //! wireframe of the *real* edges (a quad shows 4 edges, not 5; boundary edges red).
 //!
@@ -17,7 +18,9 @@ use bevy::color::Color;
 use bevy::ecs::entity::EntityHashMap;
 use bevy::math::Vec3;
 use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology};
-use bevy::prelude::{Assets, Component, Entity, Resource, Transform, Visibility, With, World};
+use bevy::prelude::{
+    Assets, Component, Entity, Handle, Resource, Transform, Visibility, With, World,
+};
 use std::time::Instant;
 
 use crate::mesh::MeshInfo;
@@ -48,6 +51,9 @@ pub struct ViewSettings {
     pub wireframe: bool,
     /// Draw halfedge arrows (always near the selection; everywhere on small meshes).
     pub halfedges: bool,
+    /// Draw the wireframe even where its edges are too dense on screen to be told apart
+    /// (see [`super::readability`]).
+    pub dense_wireframe: bool,
 }
 
 impl Default for ViewSettings {
@@ -56,6 +62,7 @@ impl Default for ViewSettings {
             smooth: false,
             wireframe: true,
             halfedges: true,
+            dense_wireframe: false,
         }
     }
 }
@@ -89,7 +96,7 @@ pub const CHUNK_FACES: usize = 16_384;
 pub struct RenderData {
     /// Vertex positions of the render mesh.
     pub positions: Vec<[f32; 3]>,
-    /// Vertex normals of the render mesh.
+    /// Vertex normals of the render mesh (smooth shading only; empty when flat).
     pub normals: Vec<[f32; 3]>,
     /// Triangle corners.
     pub indices: Vec<u32>,
@@ -110,56 +117,42 @@ pub struct RenderChunks {
     pub face_chunk: EntityHashMap<u32>,
     /// Whether the mesh is small enough for a full wireframe.
     pub wireframe: bool,
+    /// Mean edge length when the mesh was last drawn whole (how dense its wireframe is).
+    pub mean_edge_length: f32,
 }
 
 /// The faces a chunk draws.
 #[derive(Component, Debug, Clone, Default)]
 pub struct ChunkFaces(pub Vec<FaceId>);
 
-/// Builds the render data of `faces`: each face fanned from its first corner.
+/// Builds the render data of `faces`: each face fanned from its first corner, every mesh
+/// vertex once per chunk (indexed). Smooth shading gives each vertex the area-weighted normal of
+/// *all* its faces (so chunk borders show no seam); flat shading gives no normals at all: the
+/// surface shader takes each pixel's face normal from the derivatives of its position, so a
+/// vertex need not be repeated for every face around it (six times fewer vertices to transform
+/// on a triangle mesh, which is what a software rasteriser spends its time on).
 pub fn render_data(world: &World, faces: &[FaceId], smooth: bool) -> RenderData {
     let m = MeshRef::new(world);
     let mut out = RenderData::default();
     let mut corners = Vec::new();
-    if smooth {
-        // Vertex normals from every face around the vertex, so chunk borders show no seam.
-        let mut index: EntityHashMap<u32> = EntityHashMap::default();
-        for &f in faces {
-            corners.clear();
-            for v in m.face_vertices(f) {
-                let next = index.len() as u32;
-                let i = *index.entry(v.0).or_insert_with(|| {
-                    out.positions.push(m.position(v).to_array());
-                    out.vertices.push(v);
+    let mut index: EntityHashMap<u32> = EntityHashMap::default();
+    for &f in faces {
+        corners.clear();
+        for v in m.face_vertices(f) {
+            let next = index.len() as u32;
+            let i = *index.entry(v.0).or_insert_with(|| {
+                out.positions.push(m.position(v).to_array());
+                out.vertices.push(v);
+                if smooth {
                     let n: Vec3 = m.vertex_faces(v).map(|g| m.face_area_vector(g)).sum();
                     out.normals
                         .push(n.try_normalize().unwrap_or(Vec3::Z).to_array());
-                    next
-                });
-                corners.push(i);
-            }
-            fan(&mut out, &corners, f);
+                }
+                next
+            });
+            corners.push(i);
         }
-    } else {
-        for &f in faces {
-            let base = out.positions.len() as u32;
-            let start = out.positions.len();
-            out.positions
-                .extend(m.face_vertices(f).map(|v| m.position(v).to_array()));
-            out.vertices.extend(m.face_vertices(f));
-            let points: Vec<Vec3> = out.positions[start..]
-                .iter()
-                .map(|&p| Vec3::from_array(p))
-                .collect();
-            let n = crate::mesh::topology::newell_area_vector(&points)
-                .try_normalize()
-                .unwrap_or(Vec3::Z)
-                .to_array();
-            out.normals.extend(std::iter::repeat_n(n, points.len()));
-            corners.clear();
-            corners.extend(base..out.positions.len() as u32);
-            fan(&mut out, &corners, f);
-        }
+        fan(&mut out, &corners, f);
     }
     out
 }
@@ -238,6 +231,22 @@ fn record(world: &mut World, mesh: MeshId, triangles: usize, start: Instant) {
     );
 }
 
+/// Mean length of the faces' sides (each interior edge counted twice, which leaves the mean as it
+/// is); 0 for no faces.
+fn mean_edge_length(m: &MeshRef<'_>, faces: &[FaceId]) -> f32 {
+    let (sum, n) =
+        faces
+            .iter()
+            .flat_map(|&f| m.face_halfedges(f))
+            .fold((0.0f64, 0usize), |(sum, n), h| {
+                let length = m
+                    .position(m.from_vertex(h))
+                    .distance(m.position(m.to_vertex(h)));
+                (sum + f64::from(length), n + 1)
+            });
+    if n == 0 { 0.0 } else { (sum / n as f64) as f32 }
+}
+
 /// Drops every chunk of `mesh` and draws it anew. Returns the triangles drawn.
 fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize {
     if let Some(old) = world.entity_mut(mesh.0).take::<RenderChunks>() {
@@ -252,6 +261,7 @@ fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize
     let sides: usize = faces.iter().map(|&f| m.face_degree(f)).sum();
     let mut chunks = RenderChunks {
         wireframe: sides / 2 <= WIREFRAME_MAX_EDGES,
+        mean_edge_length: mean_edge_length(&m, &faces),
         ..Default::default()
     };
     let mut triangles = 0;
@@ -361,7 +371,9 @@ fn draw_chunk(
         RenderAssetUsages::MAIN_WORLD | RenderAssetUsages::RENDER_WORLD,
     );
     render.insert_attribute(Mesh::ATTRIBUTE_POSITION, data.positions);
-    render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, data.normals);
+    if !data.normals.is_empty() {
+        render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, data.normals);
+    }
     let mesh = world.get::<RenderOf>(chunk).map(|r| r.0);
     if let Some(values) = mesh.and_then(|m| world.get::<VertexValues>(m.0)) {
         let colours: Vec<[f32; 4]> = data.vertices.iter().map(|&v| values.colour(v)).collect();
@@ -397,30 +409,47 @@ fn draw_chunk(
             .add(asset);
         world
             .entity_mut(wire)
-            .insert(bevy::gizmos::retained::Gizmo {
-                handle,
-                line_config: bevy::gizmos::config::GizmoLineConfig {
-                    width: 1.0,
-                    ..Default::default()
-                },
-                depth_bias: -0.0005,
-            });
+            .insert((wire_gizmo(handle.clone()), WireLines(handle)));
     }
     triangles
 }
 
-/// Hides or shows every wireframe (the wireframe toggle), rebuilding them when shown.
+/// The lines of a chunk's wireframe, kept while the wireframe is hidden. Bevy draws a retained
+/// [`Gizmo`](bevy::gizmos::retained::Gizmo) whatever its `Visibility`, so hiding a wireframe
+/// removes its `Gizmo` and showing it puts one back from these lines.
+#[derive(Component, Debug, Clone)]
+pub struct WireLines(pub Handle<bevy::gizmos::GizmoAsset>);
+
+/// The retained gizmo that draws a chunk's wireframe lines.
+pub fn wire_gizmo(lines: Handle<bevy::gizmos::GizmoAsset>) -> bevy::gizmos::retained::Gizmo {
+    bevy::gizmos::retained::Gizmo {
+        handle: lines,
+        line_config: bevy::gizmos::config::GizmoLineConfig {
+            width: 1.0,
+            ..Default::default()
+        },
+        depth_bias: -0.0005,
+    }
+}
+
+/// Hides or shows every wireframe (the wireframe toggle). Wireframes not built yet are built by
+/// the caller's redraw.
 pub fn set_wireframes_visible(world: &mut World, visible: bool) {
-    let wires: Vec<Entity> = world
-        .query_filtered::<Entity, With<WireframeOf>>()
+    let wires: Vec<(Entity, Option<Handle<bevy::gizmos::GizmoAsset>>)> = world
+        .query_filtered::<(Entity, Option<&WireLines>), With<WireframeOf>>()
         .iter(world)
+        .map(|(e, lines)| (e, lines.map(|l| l.0.clone())))
         .collect();
-    for e in wires {
-        world.entity_mut(e).insert(if visible {
-            Visibility::Inherited
-        } else {
-            Visibility::Hidden
-        });
+    for (e, lines) in wires {
+        let mut e = world.entity_mut(e);
+        match lines {
+            Some(lines) if visible => {
+                e.insert(wire_gizmo(lines));
+            }
+            _ => {
+                e.remove::<bevy::gizmos::retained::Gizmo>();
+            }
+        }
     }
 }
 

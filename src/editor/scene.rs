@@ -1,9 +1,11 @@
-//! The 3D scene around the meshes: an orbit camera, lights, the surface material.
+//! The 3D scene around the meshes: an orbit camera and the surface material.
 //!
 //! Camera controls follow Blender: middle- or right-drag orbits, Shift + drag pans, the wheel
 //! zooms, `.` or Home frames the selection (or the whole mesh). Nothing moves while egui has
 //! the pointer.
 
+use bevy::camera::CameraOutputMode;
+use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll, MouseButton};
 use bevy::math::{EulerRot, Quat, Vec3};
 use bevy::prelude::*;
@@ -12,6 +14,7 @@ use crate::mesh::ids::ElementId;
 use crate::mesh::topology::MeshRef;
 
 use super::selection::{ActiveMesh, Selection};
+use super::surface::SurfaceMaterial;
 
 /// The orbit camera's state: it looks at `focus` from `radius` away, turned by `yaw`/`pitch`.
 #[derive(Component, Debug, Clone, Copy, PartialEq)]
@@ -48,44 +51,39 @@ impl OrbitCamera {
 
 /// The surface colour of meshes (when no quantity is shown).
 pub const SURFACE_COLOR: Color = Color::srgb(0.78, 0.74, 0.66);
+/// The colour of back faces (seen through holes, or on faces turned the wrong way).
+pub const BACK_COLOR: Color = Color::srgb(0.42, 0.47, 0.58);
 
 /// Materials shared by every mesh.
 #[derive(Resource, Debug, Clone)]
 pub struct SceneMaterials {
     /// The surface of meshes.
-    pub surface: Handle<StandardMaterial>,
+    pub surface: Handle<SurfaceMaterial>,
 }
 
-/// Spawns the camera and lights, and makes the materials.
-pub fn setup_scene(mut commands: Commands, mut materials: ResMut<Assets<StandardMaterial>>) {
+/// Spawns the camera and makes the materials. There are no lights: the surface material
+/// carries its own, fixed to the camera (see [`super::surface`]). No tonemapping or dithering
+/// either: colours (and colour maps) show as given, and a full-window pass is saved.
+pub fn setup_scene(mut commands: Commands, mut materials: ResMut<Assets<SurfaceMaterial>>) {
     let orbit = OrbitCamera::default();
-    commands.spawn((Camera3d::default(), orbit.transform(), orbit, Msaa::Off));
     commands.spawn((
-        DirectionalLight {
-            illuminance: 6000.0,
+        Camera3d::default(),
+        // The panels' camera (order 1) draws over this one's picture and writes the window once.
+        Camera {
+            output_mode: CameraOutputMode::Skip,
             ..default()
         },
-        Transform::from_xyz(2.0, 4.0, 3.0).looking_at(Vec3::ZERO, Vec3::Y),
+        orbit.transform(),
+        orbit,
+        Msaa::Off,
+        Tonemapping::None,
+        DebandDither::Disabled,
     ));
-    commands.spawn((
-        DirectionalLight {
-            illuminance: 2000.0,
-            ..default()
-        },
-        Transform::from_xyz(-3.0, -1.0, -2.0).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
-    commands.insert_resource(GlobalAmbientLight {
-        brightness: 400.0,
-        ..default()
-    });
     commands.insert_resource(ClearColor(Color::srgb(0.32, 0.34, 0.38)));
     commands.insert_resource(SceneMaterials {
-        surface: materials.add(StandardMaterial {
-            base_color: SURFACE_COLOR,
-            perceptual_roughness: 0.8,
-            double_sided: true,
-            cull_mode: None,
-            ..default()
+        surface: materials.add(SurfaceMaterial {
+            color: SURFACE_COLOR.into(),
+            back_color: BACK_COLOR.into(),
         }),
     });
 }

@@ -60,16 +60,21 @@ impl Plugin for UiPlugin {
 }
 
 /// The camera egui draws with: after the 3D view, clearing nothing, seeing no mesh (its own
-/// render layer).
+/// render layer). A 2D camera without multisampling: a second 3D camera would run the whole 3D
+/// pipeline again for nothing. It shares the 3D camera's picture (which skips its own output)
+/// and writes the window once.
 fn spawn_ui_camera(mut commands: Commands) {
     commands.spawn((
-        Camera3d::default(),
+        Camera2d,
         Camera {
             order: 1,
             clear_color: ClearColorConfig::None,
             ..default()
         },
         bevy::camera::visibility::RenderLayers::layer(31),
+        Msaa::Off,
+        bevy::core_pipeline::tonemapping::Tonemapping::None,
+        bevy::core_pipeline::tonemapping::DebandDither::Disabled,
         bevy_egui::PrimaryEguiContext,
     ));
 }
@@ -313,7 +318,8 @@ pub fn panels(
     mut fields: ResMut<UiFields>,
     mut ui_state: ResMut<UiState>,
     mut mode: ResMut<SelectMode>,
-    settings: Res<ViewSettings>,
+    mut settings: ResMut<ViewSettings>,
+    density: Res<super::readability::WireframeDensity>,
     mut captured: ResMut<KeyboardCaptured>,
     mut pointer: ResMut<super::drag::PointerCaptured>,
     mut insets: ResMut<super::scene::PanelInsets>,
@@ -359,7 +365,15 @@ pub fn panels(
                 ui.separator();
                 selection_section(ui, &view, &mut fields, &mut requests);
                 ui.separator();
-                operations_section(ui, &mut mode, &settings, &mut pending, &mut ui_state);
+                let mut view_settings = *settings;
+                operations_section(
+                    ui,
+                    &mut mode,
+                    (&mut view_settings, &density),
+                    &mut pending,
+                    &mut ui_state,
+                );
+                settings.set_if_neq(view_settings);
                 if let Some((label, fraction, seconds)) = &view.job {
                     ui.horizontal(|ui| {
                         let text = format!("{label}: {:.0} % ({seconds:.1} s)", fraction * 100.0);
@@ -679,7 +693,7 @@ fn history_section(ui: &mut egui::Ui, view: &InspectorView, pending: &mut Pendin
 fn operations_section(
     ui: &mut egui::Ui,
     mode: &mut SelectMode,
-    settings: &ViewSettings,
+    (settings, density): (&mut ViewSettings, &super::readability::WireframeDensity),
     pending: &mut PendingActions,
     ui_state: &mut UiState,
 ) {
@@ -733,6 +747,16 @@ fn operations_section(
             }
         }
     });
+    if density.hidden || settings.dense_wireframe {
+        ui.horizontal_wrapped(|ui| {
+            if let Some(px) = density.edge_px.filter(|_| density.hidden) {
+                ui.label(format!(
+                    "wireframe hidden: edges {px:.1} px apart, zoom in or"
+                ));
+            }
+            ui.checkbox(&mut settings.dense_wireframe, "draw dense wireframe");
+        });
+    }
 }
 
 /// The whole-mesh edits with their parameters: the same structs and defaults as the command
