@@ -22,6 +22,7 @@ use std::time::Instant;
 use crate::colormap::Range;
 use crate::edit::{STEP_SYNTAX, Step};
 use crate::io;
+use crate::mesh::attributes::MeshAttributes;
 use crate::mesh::tables::extract;
 use crate::mesh::{BuiltMesh, MeshId, RepairReport, build_mesh, mesh_stats, to_soup, validate};
 use crate::ops::geometry::closest::Reference;
@@ -137,9 +138,12 @@ pub fn load(input: &str) -> Result<Loaded, String> {
     let dropped = soup.vertex_attributes();
     if !dropped.is_empty() {
         eprintln!(
-            "pappus: {input}: the file's vertex {} are not kept (outputs carry positions and faces, and what --quantity or --normals adds)",
+            "pappus: {input}: the file's vertex {} is not kept (outputs carry positions, faces, UVs, normals and colours, and what --quantity or --normals adds)",
             dropped.join(", ")
         );
+    }
+    for note in &soup.notes {
+        eprintln!("pappus: {input}: {note}");
     }
     let start = Instant::now();
     let mut world = World::new();
@@ -202,6 +206,11 @@ pub fn info_json(world: &World, mesh: MeshId, report: &RepairReport) -> Map<Stri
     if let Err(e) = validation {
         out.insert("validation_error".into(), json!(e.to_string()));
     }
+    let has = MeshAttributes::of(world, mesh);
+    out.insert(
+        "attributes".into(),
+        json!({ "uv": has.uv, "normals": has.normals, "colors": has.colors }),
+    );
     let (curvature, normals) = geometry_json(world, mesh, s.euler_characteristic);
     out.insert("curvature".into(), Value::Object(curvature));
     out.insert("normals".into(), Value::Object(normals));

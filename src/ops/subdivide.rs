@@ -206,7 +206,7 @@ fn subdivide(
         }
         t
     });
-    write_links(world, &result, &rows);
+    write_links(world, &result, mesh, &rows);
     Ok(SubdivisionSummary {
         levels,
         vertices: result.vertex_count(),
