@@ -380,6 +380,7 @@ fn execute(command: Command) -> Result<(), String> {
             let mut history = None;
             for step in &steps {
                 let start = Instant::now();
+                let had = MeshAttributes::of(&loaded.world, mesh);
                 let outcome = step.run(
                     &mut loaded.world,
                     mesh,
@@ -387,6 +388,13 @@ fn execute(command: Command) -> Result<(), String> {
                     &mut history,
                 );
                 let ms = round(ms_since(start), 3);
+                let lost = had.lost_in(MeshAttributes::of(&loaded.world, mesh));
+                if !lost.is_empty() {
+                    eprintln!(
+                        "pappus: {step}: {} dropped (the output will not have them)",
+                        lost.describe()
+                    );
+                }
                 let mut record = Map::new();
                 record.insert("step".into(), json!(step.to_string()));
                 match &outcome {
