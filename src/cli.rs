@@ -22,6 +22,7 @@ use std::time::Instant;
 use crate::colormap::Range;
 use crate::edit::{STEP_SYNTAX, Step};
 use crate::io;
+use crate::mesh::attributes::MeshAttributes;
 use crate::mesh::tables::extract;
 use crate::mesh::{BuiltMesh, MeshId, RepairReport, build_mesh, mesh_stats, to_soup, validate};
 use crate::ops::geometry::closest::Reference;
@@ -137,9 +138,12 @@ pub fn load(input: &str) -> Result<Loaded, String> {
     let dropped = soup.vertex_attributes();
     if !dropped.is_empty() {
         eprintln!(
-            "pappus: {input}: the file's vertex {} are not kept (outputs carry positions and faces, and what --quantity or --normals adds)",
+            "pappus: {input}: the file's vertex {} is not kept (outputs carry positions, faces, UVs, normals and colours, and what --quantity or --normals adds)",
             dropped.join(", ")
         );
+    }
+    for note in &soup.notes {
+        eprintln!("pappus: {input}: {note}");
     }
     let start = Instant::now();
     let mut world = World::new();
@@ -202,6 +206,11 @@ pub fn info_json(world: &World, mesh: MeshId, report: &RepairReport) -> Map<Stri
     if let Err(e) = validation {
         out.insert("validation_error".into(), json!(e.to_string()));
     }
+    let has = MeshAttributes::of(world, mesh);
+    out.insert(
+        "attributes".into(),
+        json!({ "uv": has.uv, "normals": has.normals, "colors": has.colors }),
+    );
     let (curvature, normals) = geometry_json(world, mesh, s.euler_characteristic);
     out.insert("curvature".into(), Value::Object(curvature));
     out.insert("normals".into(), Value::Object(normals));
@@ -371,6 +380,7 @@ fn execute(command: Command) -> Result<(), String> {
             let mut history = None;
             for step in &steps {
                 let start = Instant::now();
+                let had = MeshAttributes::of(&loaded.world, mesh);
                 let outcome = step.run(
                     &mut loaded.world,
                     mesh,
@@ -378,6 +388,13 @@ fn execute(command: Command) -> Result<(), String> {
                     &mut history,
                 );
                 let ms = round(ms_since(start), 3);
+                let lost = had.lost_in(MeshAttributes::of(&loaded.world, mesh));
+                if !lost.is_empty() {
+                    eprintln!(
+                        "pappus: {step}: {} dropped (the output will not have them)",
+                        lost.describe()
+                    );
+                }
                 let mut record = Map::new();
                 record.insert("step".into(), json!(step.to_string()));
                 match &outcome {

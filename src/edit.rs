@@ -24,6 +24,7 @@
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
+use crate::mesh::attributes::{MeshAttributes, drop_attributes};
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::{InMesh, MeshInfo, MeshRef, validate};
 use crate::ops::Refusal;
@@ -305,6 +306,29 @@ impl Edit {
         )
     }
 
+    /// Whether the edit carries the mesh's attributes (UVs, normals, colours) through; those
+    /// that do not (remeshing, simplification, moves along the simplification history) drop
+    /// them, and [`Edit::run`] says so in the summary. Subdivision carries UVs and colours and
+    /// drops normals (see [`crate::ops::subdivide`]).
+    pub fn carries_attributes(&self) -> bool {
+        !matches!(
+            self,
+            Edit::Remesh(_) | Edit::Simplify(_) | Edit::LevelOfDetail(_) | Edit::SplitVertex(_)
+        )
+    }
+
+    /// Why the edit dropped attributes, for the summary's note.
+    fn why_dropped(&self) -> String {
+        match self {
+            Edit::Remesh(_) => "remeshing does not carry attributes".into(),
+            Edit::Simplify(_) | Edit::LevelOfDetail(_) | Edit::SplitVertex(_) => {
+                "simplification does not carry attributes".into()
+            }
+            Edit::Subdivide(_) => "subdivision moves the surface; recompute them".into(),
+            _ => format!("{} does not carry them", self.label()),
+        }
+    }
+
     /// Edits with the same key merge into one undo step while one mouse press lasts (the
     /// frames of a vertex drag, a drag of the level-of-detail slider).
     pub fn merge_key(&self) -> Option<MergeKey> {
@@ -331,7 +355,18 @@ impl Edit {
         mesh: MeshId,
         context: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
-        let applied = self.apply(world, mesh, context)?;
+        // Every edit either carries the mesh's attributes or drops them; a drop is said.
+        let had = MeshAttributes::of(world, mesh);
+        let mut applied = self.apply(world, mesh, context)?;
+        if !had.is_empty() {
+            if !self.carries_attributes() {
+                drop_attributes(world, mesh);
+            }
+            let lost = had.lost_in(MeshAttributes::of(world, mesh));
+            applied
+                .summary
+                .push_str(&lost.dropped_note(&self.why_dropped()));
+        }
         #[cfg(debug_assertions)]
         if let Err(e) = validate(world, mesh) {
             panic!("{} left an invalid mesh: {e}", self.label());

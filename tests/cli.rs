@@ -270,7 +270,8 @@ fn a_quantity_is_exported_to_ply_and_summarised() {
     let out = pappus(&["info", out_path.to_str().unwrap()]);
     assert!(out.status.success());
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("quality, colours are not kept"), "{stderr}");
+    assert!(stderr.contains("vertex quality is not kept"), "{stderr}");
+    assert!(!stderr.contains("colours is not kept"), "{stderr}");
     // Only PLY holds per-vertex quality: anything else is refused before any work.
     let out = pappus(&["process", "shape:cube", "-o", "x.obj", "--quantity", "mean"]);
     assert_eq!(out.status.code(), Some(1));
@@ -362,4 +363,69 @@ fn fill_hole_closes_a_grid_through_its_step() {
             .unwrap()
             .contains("not on the boundary")
     );
+}
+
+/// A quad and a triangle with UVs (a seam at vertex 4), normals and colours.
+const ATTRIBUTED: &str = "v 0 0 0 0.2 0.4 1\nv 1 0 0 0 0 0\nv 1 1 0 1 1 1\nv 0 1 0 0.5 0.1 0.9\nv 0.5 2 0 0.3 0.3 0.3\n\
+vt -0 0.33333334\nvt 1 1e-7\nvt 1 1\nvt 0 1\nvt 2.5 -3\nvt 0.25 0.75\n\
+vn 0 0 1\nvn -0 0.6 0.8\nvn 1e-20 0 -1\nvn 0.5773503 0.5773503 0.5773503\nvn 0 0 2\n\
+f 1/1/1 2/2/2 3/3/3 4/4/4\nf 4/6/4 3/3/3 5/5/5\n";
+
+#[test]
+fn info_reports_attributes_and_files_keep_them() {
+    let input = tmp("attributed.obj");
+    std::fs::write(&input, ATTRIBUTED).unwrap();
+    let out = pappus(&["info", input.to_str().unwrap(), "--json"]);
+    assert!(
+        !String::from_utf8_lossy(&out.stderr).contains("not kept"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v = json(&out);
+    assert_eq!(
+        v["attributes"],
+        serde_json::json!({ "uv": true, "normals": true, "colors": true })
+    );
+    let v = json(&pappus(&["info", "shape:cube", "--json"]));
+    assert_eq!(
+        v["attributes"],
+        serde_json::json!({ "uv": false, "normals": false, "colors": false })
+    );
+    // OBJ → PLY → OBJ keeps every value; saving over the file writes the same bytes again.
+    let ply = tmp("attributed.ply");
+    let back = tmp("attributed-back.obj");
+    for (from, to) in [(&input, &ply), (&ply, &back)] {
+        let out = pappus(&["convert", from.to_str().unwrap(), to.to_str().unwrap()]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let (a, b) = (
+        pappus::io::read(&input).unwrap(),
+        pappus::io::read(&back).unwrap(),
+    );
+    let bits = |s: &pappus::mesh::PolygonSoup| {
+        let uv: Vec<[u32; 2]> = s
+            .corner_uvs
+            .as_ref()
+            .unwrap()
+            .iter()
+            .map(|u| u.to_array().map(f32::to_bits))
+            .collect();
+        let n: Vec<[u32; 3]> = s
+            .vertex_normals
+            .as_ref()
+            .unwrap()
+            .iter()
+            .map(|u| u.to_array().map(f32::to_bits))
+            .collect();
+        (uv, n, s.vertex_colors.clone())
+    };
+    assert_eq!(bits(&a), bits(&b));
+    let first = std::fs::read(&back).unwrap();
+    let out = pappus(&["convert", back.to_str().unwrap(), back.to_str().unwrap()]);
+    assert!(out.status.success());
+    assert_eq!(std::fs::read(&back).unwrap(), first);
 }

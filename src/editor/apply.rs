@@ -228,13 +228,17 @@ fn open(world: &mut World, path: &Path) -> Result<String, Declined> {
     }
     let stats = crate::mesh::mesh_stats(world, built.mesh);
     let dropped = soup.vertex_attributes();
-    let dropped = match dropped.is_empty() {
+    let mut dropped = match dropped.is_empty() {
         true => String::new(),
         false => format!(
-            "; the file's vertex {} are not kept (saving writes positions and faces)",
+            "; the file's vertex {} is not kept (saving writes positions, faces, UVs, normals and colours)",
             dropped.join(", ")
         ),
     };
+    for note in &soup.notes {
+        dropped.push_str("; ");
+        dropped.push_str(note);
+    }
     Ok(format!(
         "{}: {} vertices, {} faces; {}{dropped}",
         path.display(),

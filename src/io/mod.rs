@@ -242,7 +242,7 @@ pub fn write(path: &Path, soup: &PolygonSoup) -> Result<(), IoError> {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use bevy::math::Vec3;
+    use bevy::math::{Vec2, Vec3};
 
     /// A quad and a triangle sharing an edge, with awkward coordinates (a negative zero, a
     /// third, a subnormal-adjacent value, a large one).
@@ -409,5 +409,160 @@ pub(crate) mod tests {
             Err(IoError::Io { .. })
         ));
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// Reads `bytes`, builds the mesh, and turns it back into a soup (what saving writes).
+    fn through_mesh(format: Format, bytes: &[u8]) -> PolygonSoup {
+        let soup = read_bytes(format, bytes, name()).unwrap();
+        let mut world = bevy::prelude::World::new();
+        let built = crate::mesh::build_mesh(&mut world, &soup, Default::default()).unwrap();
+        crate::mesh::to_soup(&world, built.mesh)
+    }
+
+    fn uv_bits(s: &PolygonSoup) -> Option<Vec<[u32; 2]>> {
+        let u = s.corner_uvs.as_ref()?;
+        Some(u.iter().map(|v| v.to_array().map(f32::to_bits)).collect())
+    }
+
+    fn normal_bits(s: &PolygonSoup) -> Option<Vec<[u32; 3]>> {
+        let n = s.vertex_normals.as_ref()?;
+        Some(n.iter().map(|v| v.to_array().map(f32::to_bits)).collect())
+    }
+
+    /// A quad and a triangle with a UV seam at vertex 3 (two corners, two UVs), awkward UVs
+    /// (a negative zero, a third, a tiny value, one outside 0–1), unnormalised and signed-zero
+    /// normals, and colours off the 1/255 grid.
+    const ATTRIBUTED_OBJ: &[u8] = b"# hand-written\n\
+v 0 0 0 0.2 0.4 1\nv 1 0 0 0 0 0\nv 1 1 0 1 1 1\nv 0 1 0 0.5 0.123 0.999\nv 0.5 2 0 0.3 0.3 0.3\n\
+vt -0 0.33333334\nvt 1 1e-7\nvt 1 1\nvt 0 1\nvt 2.5 -3\nvt 0.25 0.75\n\
+vn 0 0 1\nvn -0 0.6 0.8\nvn 1e-20 0 -1\nvn 0.5773503 0.5773503 0.5773503\nvn 0 0 2\n\
+f 1/1/1 2/2/2 3/3/3 4/4/4\nf 4/6/4 3/3/3 5/5/5\n";
+
+    #[test]
+    fn obj_attributes_survive_the_mesh_bit_for_bit() {
+        let input = read_bytes(Format::Obj, ATTRIBUTED_OBJ, name()).unwrap();
+        assert!(input.notes.is_empty(), "{:?}", input.notes);
+        let back = through_mesh(Format::Obj, ATTRIBUTED_OBJ);
+        assert!(same_bits(&back, &input));
+        assert_eq!(uv_bits(&back), uv_bits(&input));
+        assert_eq!(normal_bits(&back), normal_bits(&input));
+        assert_eq!(
+            back.vertex_colors,
+            Some(vec![
+                [51, 102, 255],
+                [0, 0, 0],
+                [255, 255, 255],
+                [128, 31, 255],
+                [77, 77, 77]
+            ])
+        );
+        // The seam: vertex 3 (index 3) has UV (0, 1) in the quad and (0.25, 0.75) in the triangle.
+        let uvs = back.corner_uvs.as_ref().unwrap();
+        assert_eq!(
+            (uvs[3], uvs[4]),
+            (Vec2::new(0.0, 1.0), Vec2::new(0.25, 0.75))
+        );
+        // Written and read again: the same file, byte for byte, and the same values.
+        let once = write_bytes(Format::Obj, &back);
+        let twice = write_bytes(Format::Obj, &through_mesh(Format::Obj, &once));
+        assert_eq!(
+            String::from_utf8_lossy(&once),
+            String::from_utf8_lossy(&twice)
+        );
+        let text = String::from_utf8(once).unwrap();
+        assert!(text.contains("vt -0 0.33333334\n"), "{text}");
+        assert!(text.contains("f 4/5/4 3/3/3 5/6/5\n"), "{text}");
+        assert_eq!(
+            text.matches("vt ").count(),
+            6,
+            "identical UVs are written once"
+        );
+    }
+
+    #[test]
+    fn ply_attributes_survive_the_mesh_bit_for_bit() {
+        let obj = read_bytes(Format::Obj, ATTRIBUTED_OBJ, name()).unwrap();
+        // With the seam: per-face `texcoord`; without it, per-vertex `u v`.
+        let mut seamless = obj.clone();
+        seamless.corner_uvs.as_mut().unwrap()[4] = Vec2::new(0.0, 1.0);
+        for (soup, layout) in [(&obj, "texcoord"), (&seamless, "property float u\n")] {
+            for encoding in [
+                PlyEncoding::Ascii,
+                PlyEncoding::BinaryLittleEndian,
+                PlyEncoding::BinaryBigEndian,
+            ] {
+                let bytes = write_ply(soup, encoding);
+                assert!(
+                    String::from_utf8_lossy(&bytes).contains(layout),
+                    "{encoding:?}"
+                );
+                let back = through_mesh(Format::Ply, &bytes);
+                assert!(same_bits(&back, soup), "{encoding:?}");
+                assert_eq!(uv_bits(&back), uv_bits(soup), "{encoding:?} {layout}");
+                assert_eq!(normal_bits(&back), normal_bits(soup), "{encoding:?}");
+                assert_eq!(back.vertex_colors, soup.vertex_colors, "{encoding:?}");
+                assert_eq!(write_ply(&back, encoding), bytes, "{encoding:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn obj_colours_round_trip_every_byte() {
+        let soup = PolygonSoup {
+            vertex_colors: Some((0..=255u8).map(|c| [c, 255 - c, c / 3]).collect()),
+            ..PolygonSoup::from_faces(vec![Vec3::ZERO; 256], &[[0u32, 1, 2]])
+        };
+        let back = read_bytes(Format::Obj, &write_bytes(Format::Obj, &soup), name()).unwrap();
+        assert_eq!(back.vertex_colors, soup.vertex_colors);
+    }
+
+    #[test]
+    fn broken_attribute_references_name_the_line() {
+        let cases: [(&[u8], &str, &str); 4] = [
+            (
+                b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n\nf 1/1 2/9 3/1\n",
+                "line 6",
+                "texture coordinate 9 does not exist (the file defines 1)",
+            ),
+            (
+                b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//-2 3//1\n",
+                "line 5",
+                "normal -2 does not exist (the file defines 1)",
+            ),
+            (
+                b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/0 2/1 3/1\nvt 0 0\n",
+                "line 4",
+                "`1/0` names texture coordinate 0 (they are numbered from 1)",
+            ),
+            (
+                b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/a 2/1 3/1\n",
+                "line 5",
+                "`1/a`: `a` is not a texture coordinate reference",
+            ),
+        ];
+        for (text, location, message) in cases {
+            let err = read_bytes(Format::Obj, text, Path::new("m.obj")).unwrap_err();
+            assert_eq!(err.to_string(), format!("m.obj: {location}: {message}"));
+        }
+        // A `vt` defined after the face that names it is fine.
+        let soup = read_bytes(
+            Format::Obj,
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/2\nvt 0 0\nvt 1 1\n",
+            name(),
+        )
+        .unwrap();
+        assert_eq!(soup.corner_uvs.unwrap()[2], Vec2::ONE);
+    }
+
+    #[test]
+    fn differing_corner_normals_are_averaged_and_said() {
+        let text = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\nvn 1 0 0\nf 1//1 2//1 3//1\nf 2//2 4//2 3//1\n";
+        let soup = read_bytes(Format::Obj, text, name()).unwrap();
+        let n = soup.vertex_normals.unwrap();
+        assert_eq!(n[0], Vec3::Z);
+        assert_eq!(n[1], Vec3::new(1.0, 0.0, 1.0).normalize());
+        assert_eq!(n[3], Vec3::X);
+        assert_eq!(soup.notes.len(), 1, "{:?}", soup.notes);
+        assert!(soup.notes[0].starts_with("1 vertex(es) had different normals"));
     }
 }

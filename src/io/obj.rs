@@ -13,15 +13,23 @@
 //! left out), and its first-use numbering is mapped back to the file's and checked against
 //! the first pass.
 //!
-//! Ignored: texture coordinates, normals, materials (no `.mtl` is opened), groups and objects
-//! (all merged into one mesh), points and lines, a vertex's `w` or colour. A malformed `v` or
-//! `f` line is an error naming its line.
+//! Attributes, read in the same first pass: `vt u v` (a `w` is ignored) named by the corners
+//! (`f v/vt`, `v/vt/vn`) become the soup's corner UVs; `vn` named by the corners (`v//vn`,
+//! `v/vt/vn`) become vertex normals (a vertex whose corners name different normals takes their
+//! normalised mean, and the soup's notes say how many did); `v x y z r g b` gives a vertex
+//! colour (0–1 per channel, rounded to 8 bits: see [`crate::mesh::attributes`]). A corner that
+//! names a `vt` or `vn` the file does not define (or number 0) is an error naming its line.
+//!
+//! Ignored: materials (no `.mtl` is opened), groups and objects (all merged into one mesh),
+//! points and lines, a vertex's `w`. A malformed `v`, `vt`, `vn` or `f` line is an error naming
+//! its line.
 
-use bevy::math::Vec3;
+use bevy::math::{Vec2, Vec3};
+use std::collections::HashMap;
 use std::fmt::Write as _;
 
 use super::ParseError;
-use super::text::{cap, check_text, lines, position};
+use super::text::{cap, check_text, float, lines, position};
 use crate::mesh::soup::PolygonSoup;
 
 /// One `f` line: where it was, and its corners as 0-based numbers, not yet range-checked
@@ -31,28 +39,148 @@ struct RawFace {
     corners: Vec<Option<u64>>,
 }
 
+/// A corner's texture coordinate or normal reference, resolved to a 0-based number but not yet
+/// range-checked (a positive number may name a `vt`/`vn` defined later).
+#[derive(Clone, Copy)]
+struct Reference {
+    index: i64,
+    /// The number as written.
+    written: i64,
+    line: usize,
+}
+
+/// The `vt`, `vn` and vertex colours of a file, and what each corner names.
+#[derive(Default)]
+struct Extras {
+    uvs: Vec<Vec2>,
+    normals: Vec<Vec3>,
+    /// One per `v` line; `None` for a vertex given without a colour.
+    colors: Vec<Option<[u8; 3]>>,
+    any_color: bool,
+    /// Per corner, in file order.
+    corner_uv: Vec<Option<Reference>>,
+    corner_normal: Vec<Option<Reference>>,
+}
+
+/// An OBJ colour channel (a fraction of full intensity, 0–1) as a byte: rounded to the nearest
+/// 1/255 and clamped (NaN gives 0). `c / 255` written in the shortest form reads back as `c`.
+fn channel(v: f32) -> u8 {
+    (v * 255.0).round().clamp(0.0, 255.0) as u8
+}
+
+/// Parses a `v` line's tokens after the position: nothing, a `w`, or a colour `r g b`.
+fn vertex_color<'a>(
+    tokens: impl Iterator<Item = &'a str>,
+    line: usize,
+) -> Result<Option<[u8; 3]>, ParseError> {
+    let rest: Vec<&str> = tokens.collect();
+    if rest.len() < 3 {
+        return Ok(None);
+    }
+    let mut c = [0u8; 3];
+    for (k, slot) in c.iter_mut().enumerate() {
+        *slot = channel(float(Some(rest[k]), line, ["red", "green", "blue"][k])?);
+    }
+    Ok(Some(c))
+}
+
+/// Parses a reference to a `vt` or `vn` (`what`) in corner `token`: 1-based, or negative and
+/// relative to the `defined` ones so far.
+fn reference(
+    part: Option<&str>,
+    token: &str,
+    defined: usize,
+    line: usize,
+    what: &str,
+) -> Result<Option<Reference>, ParseError> {
+    let Some(part) = part.filter(|p| !p.is_empty()) else {
+        return Ok(None);
+    };
+    let n: i64 = part.parse().map_err(|_| {
+        ParseError::line(
+            line,
+            format!("`{token}`: `{part}` is not a {what} reference"),
+        )
+    })?;
+    if n == 0 {
+        return Err(ParseError::line(
+            line,
+            format!("`{token}` names {what} 0 (they are numbered from 1)"),
+        ));
+    }
+    let index = if n < 0 { defined as i64 + n } else { n - 1 };
+    Ok(Some(Reference {
+        index,
+        written: n,
+        line,
+    }))
+}
+
+/// Checks a corner's reference against the `count` defined in the whole file.
+fn resolve(r: Reference, count: usize, what: &str) -> Result<usize, ParseError> {
+    usize::try_from(r.index)
+        .ok()
+        .filter(|&i| i < count)
+        .ok_or_else(|| {
+            ParseError::line(
+                r.line,
+                format!(
+                    "{what} {} does not exist (the file defines {count})",
+                    r.written
+                ),
+            )
+        })
+}
+
 /// Parses OBJ text.
 pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     check_text(bytes)?;
     let mut positions = Vec::new();
     let mut faces: Vec<RawFace> = Vec::new();
+    let mut extras = Extras::default();
     for (line, text) in lines(bytes) {
         let mut tokens = text.split_whitespace();
         match tokens.next() {
-            Some("v") => positions.push(position(&mut tokens, line)?),
+            Some("v") => {
+                positions.push(position(&mut tokens, line)?);
+                let color = vertex_color(tokens, line)?;
+                extras.any_color |= color.is_some();
+                extras.colors.push(color);
+            }
+            Some("vt") => {
+                let u = float(tokens.next(), line, "u")?;
+                // `v` is optional in the format (a 1-D texture): 0.
+                let v = match tokens.next() {
+                    Some(t) => float(Some(t), line, "v")?,
+                    None => 0.0,
+                };
+                extras.uvs.push(Vec2::new(u, v));
+            }
+            Some("vn") => extras.normals.push(position(&mut tokens, line)?),
             Some("f") => {
                 let defined = positions.len() as i64;
-                let corners = tokens
-                    .map(|token| {
-                        let number = token.split('/').next().unwrap_or("");
-                        let n: i64 = number.parse().map_err(|_| {
-                            ParseError::line(line, format!("`{token}` is not a vertex reference"))
-                        })?;
-                        // 1-based, or negative: relative to the vertices defined so far.
-                        let i = if n < 0 { defined + n } else { n - 1 };
-                        Ok(u64::try_from(i).ok())
-                    })
-                    .collect::<Result<Vec<_>, ParseError>>()?;
+                let mut corners = Vec::new();
+                for token in tokens {
+                    let mut parts = token.split('/');
+                    let number = parts.next().unwrap_or("");
+                    let n: i64 = number.parse().map_err(|_| {
+                        ParseError::line(line, format!("`{token}` is not a vertex reference"))
+                    })?;
+                    // 1-based, or negative: relative to the vertices defined so far.
+                    let i = if n < 0 { defined + n } else { n - 1 };
+                    corners.push(u64::try_from(i).ok());
+                    let uv = reference(
+                        parts.next(),
+                        token,
+                        extras.uvs.len(),
+                        line,
+                        "texture coordinate",
+                    )?;
+                    let normal =
+                        reference(parts.next(), token, extras.normals.len(), line, "normal")?;
+                    extras.corner_uv.push(uv);
+                    extras.corner_normal.push(normal);
+                }
                 faces.push(RawFace { line, corners });
             }
             _ => {}
@@ -84,7 +212,93 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
             soup.push_face(&corners);
         }
     }
+    attach_extras(&mut soup, extras)?;
     Ok(soup)
+}
+
+/// Puts the file's UVs, normals and colours on the soup: UVs per corner; a normal given per
+/// corner becomes its vertex's normal (exactly, when every corner of the vertex names the same
+/// one; the normalised mean of its corners' normals, with a note, when they differ); colours
+/// per vertex (black, with a note, for a vertex given without one). A corner without a UV in a
+/// file with UVs gets (0, 0), with a note.
+fn attach_extras(soup: &mut PolygonSoup, extras: Extras) -> Result<(), ParseError> {
+    let Extras {
+        uvs,
+        normals,
+        colors,
+        any_color,
+        corner_uv,
+        corner_normal,
+    } = extras;
+    if corner_uv.iter().any(Option::is_some) {
+        let mut missing = 0usize;
+        let mut out = Vec::with_capacity(corner_uv.len());
+        for r in &corner_uv {
+            match r {
+                Some(r) => out.push(uvs[resolve(*r, uvs.len(), "texture coordinate")?]),
+                None => {
+                    missing += 1;
+                    out.push(Vec2::ZERO);
+                }
+            }
+        }
+        if missing > 0 {
+            soup.notes.push(format!(
+                "{missing} face corner(s) name no texture coordinate: given (0, 0)"
+            ));
+        }
+        soup.corner_uvs = Some(out);
+    }
+    if corner_normal.iter().any(Option::is_some) {
+        let n = soup.positions.len();
+        let mut first: Vec<Option<usize>> = vec![None; n];
+        let mut sum = vec![Vec3::ZERO; n];
+        let mut differ = vec![false; n];
+        for (k, r) in corner_normal.iter().enumerate() {
+            let Some(r) = r else { continue };
+            let i = resolve(*r, normals.len(), "normal")?;
+            // A corner naming a missing vertex (a face the builder drops) gives none.
+            let Some(v) = soup.indices.get(k).map(|&v| v as usize).filter(|&v| v < n) else {
+                continue;
+            };
+            sum[v] += normals[i];
+            match first[v] {
+                None => first[v] = Some(i),
+                Some(j)
+                    if normals[j].to_array().map(f32::to_bits)
+                        != normals[i].to_array().map(f32::to_bits) =>
+                {
+                    differ[v] = true;
+                }
+                Some(_) => {}
+            }
+        }
+        let differing = differ.iter().filter(|&&d| d).count();
+        if differing > 0 {
+            soup.notes.push(format!(
+                "{differing} vertex(es) had different normals at different corners: each takes their normalised mean"
+            ));
+        }
+        soup.vertex_normals = Some(
+            (0..n)
+                .map(|v| match first[v] {
+                    Some(_) if differ[v] => sum[v].normalize_or_zero(),
+                    Some(j) => normals[j],
+                    None => Vec3::ZERO,
+                })
+                .collect(),
+        );
+    }
+    if any_color {
+        let missing = colors.iter().filter(|c| c.is_none()).count();
+        if missing > 0 {
+            soup.notes.push(format!(
+                "{missing} vertex(es) given without a colour in a file with colours: black"
+            ));
+        }
+        soup.vertex_colors = Some(colors.into_iter().map(|c| c.unwrap_or([0; 3])).collect());
+    }
+    Ok(())
 }
 
 /// Runs `tobj` on the vertices and the well-formed faces, and returns those faces in the
@@ -165,34 +379,60 @@ fn parse_with_tobj(
     Ok(out)
 }
 
-/// Writes OBJ text: `v` lines (shortest exact decimal form), `vn` lines when the soup carries
-/// vertex normals (one per position, numbered as the positions), then `f` lines (1-based; `v//vn`
-/// with normals).
+/// Writes OBJ text: `v` lines (shortest exact decimal form; `v x y z r g b` with colours, each
+/// channel `c / 255`), `vt` lines when the soup has corner UVs (each distinct UV once, in order
+/// of first use), `vn` lines when it has vertex normals (one per position, numbered as the
+/// positions), then `f` lines (1-based; `v/vt`, `v//vn` or `v/vt/vn`). Every number is written
+/// in the shortest form that reads back to the same `f32`, so a file Pappus wrote reads back
+/// bit for bit.
 pub fn write(soup: &PolygonSoup) -> Vec<u8> {
-    let normals = soup
-        .vertex_normals
+    let n = soup.positions.len();
+    let normals = soup.vertex_normals.as_deref().filter(|v| v.len() == n);
+    let colors = soup.vertex_colors.as_deref().filter(|v| v.len() == n);
+    let uvs = soup
+        .corner_uvs
         .as_deref()
-        .filter(|v| v.len() == soup.positions.len());
-    let mut out = String::with_capacity(soup.positions.len() * 64 + soup.indices.len() * 16);
+        .filter(|u| u.len() == soup.indices.len());
+    let mut out = String::with_capacity(n * 64 + soup.indices.len() * 16);
     out.push_str("# written by Pappus\n");
-    for p in &soup.positions {
-        let _ = writeln!(out, "v {} {} {}", p.x, p.y, p.z);
+    for (i, p) in soup.positions.iter().enumerate() {
+        let _ = write!(out, "v {} {} {}", p.x, p.y, p.z);
+        if let Some(colors) = colors {
+            let [r, g, b] = colors[i].map(|c| f32::from(c) / 255.0);
+            let _ = write!(out, " {r} {g} {b}");
+        }
+        out.push('\n');
     }
+    // Each corner's `vt` number (1-based), identical UVs (bit for bit) sharing one.
+    let corner_vt: Option<Vec<usize>> = uvs.map(|uvs| {
+        let mut number: HashMap<[u32; 2], usize> = HashMap::new();
+        uvs.iter()
+            .map(|uv| {
+                let key = uv.to_array().map(f32::to_bits);
+                let next = number.len() + 1;
+                *number.entry(key).or_insert_with(|| {
+                    let _ = writeln!(out, "vt {} {}", uv.x, uv.y);
+                    next
+                })
+            })
+            .collect()
+    });
     for n in normals.into_iter().flatten() {
         let _ = writeln!(out, "vn {} {} {}", n.x, n.y, n.z);
     }
+    let mut corner = 0usize;
     for face in soup.faces() {
         out.push('f');
         for &i in face {
             let i = u64::from(i) + 1;
-            match normals {
-                Some(_) => {
-                    let _ = write!(out, " {i}//{i}");
-                }
-                None => {
-                    let _ = write!(out, " {i}");
-                }
-            }
+            let vt = corner_vt.as_ref().map(|c| c[corner]);
+            corner += 1;
+            let _ = match (vt, normals) {
+                (None, None) => write!(out, " {i}"),
+                (Some(t), None) => write!(out, " {i}/{t}"),
+                (None, Some(_)) => write!(out, " {i}//{i}"),
+                (Some(t), Some(_)) => write!(out, " {i}/{t}/{i}"),
+            };
         }
         out.push('\n');
     }

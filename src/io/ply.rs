@@ -7,21 +7,27 @@
 //! [`vertex_quality`](PolygonSoup::vertex_quality), and `red green blue` (all three, else
 //! none) its [`vertex_colors`](PolygonSoup::vertex_colors): integer channels are taken as
 //! they are, clamped to 0–255, floating-point ones as fractions of full intensity (0–1,
-//! scaled by 255 and rounded). Every other property (scalar or list, `alpha` included) and
+//! scaled by 255 and rounded). `nx ny nz` become vertex normals. Texture coordinates: per
+//! vertex as `u v`, `s t`, `texture_u texture_v` or `texture_s texture_t` (every corner of the
+//! vertex takes it), or per corner as a face's `texcoord` list of `u v` pairs (MeshLab's
+//! convention; it wins over per-vertex ones), both becoming the soup's
+//! [`corner_uvs`](PolygonSoup::corner_uvs). Every other property (scalar or list, `alpha` included) and
 //! every other element is read past, in the order the header declares them. The vertex
 //! element must have `x`, `y` and `z`, and a face element must have the index list. Indices
 //! must be non-negative integers; out-of-range ones are kept for the builder to drop. In an
 //! ASCII body a `float` property is parsed as an `f32` directly (not through `f64`), so what
 //! the writer prints reads back bit for bit.
 //!
-//! Writes `float x y z`, then `uchar red green blue` when the soup has colours and `float
-//! quality` when it has a quality (MeshLab's order, without its `alpha`), each only when it
-//! holds one value per position; then `list uchar int vertex_indices` (`list int int` when a
+//! Writes `float x y z`, then `float nx ny nz` with normals, `uchar red green blue` with
+//! colours, `float quality` with a quality (MeshLab's order, without its `alpha`), and `float u
+//! v` when the soup's corner UVs agree at every vertex, each only when it holds one value per
+//! position; then `list uchar int vertex_indices` (`list int int` when a
 //! face has more than 255 corners, `uint` indices when one exceeds `i32::MAX`), binary
-//! little-endian by default or ASCII / big-endian on request. A soup without either
-//! attribute gets exactly the plain `x y z` header.
+//! little-endian by default or ASCII / big-endian on request, followed by `list uchar float
+//! texcoord` when the corner UVs differ at some vertex (a seam). A soup without attributes gets
+//! exactly the plain `x y z` header.
 
-use bevy::math::Vec3;
+use bevy::math::{Vec2, Vec3};
 use std::fmt::Write as _;
 
 use super::ParseError;
@@ -92,6 +98,11 @@ enum Role {
     Normal(usize),
     /// A vertex's `red` (0), `green` (1) or `blue` (2).
     Color(usize),
+    /// A vertex's texture coordinate `u` (0) or `v` (1) (also `s t`, `texture_u texture_v`,
+    /// `texture_s texture_t`).
+    Uv(usize),
+    /// A face's `texcoord` list: `u v` per corner (MeshLab's per-corner UVs).
+    TexCoord,
     /// The corners of a face.
     Corners,
     /// Read past.
@@ -297,7 +308,13 @@ fn header(bytes: &[u8]) -> Result<(PlyEncoding, Vec<Element>, usize), ParseError
                     let name = t.next().unwrap_or("").to_string();
                     let corners = element.name == "face"
                         && (name == "vertex_indices" || name == "vertex_index");
-                    let role = if corners { Role::Corners } else { Role::Skip };
+                    let role = if corners {
+                        Role::Corners
+                    } else if element.name == "face" && name == "texcoord" && !item.is_integer() {
+                        Role::TexCoord
+                    } else {
+                        Role::Skip
+                    };
                     Property::List {
                         name,
                         count,
@@ -318,6 +335,8 @@ fn header(bytes: &[u8]) -> Result<(PlyEncoding, Vec<Element>, usize), ParseError
                         ("vertex", "red") => Role::Color(0),
                         ("vertex", "green") => Role::Color(1),
                         ("vertex", "blue") => Role::Color(2),
+                        ("vertex", "u" | "s" | "texture_u" | "texture_s") => Role::Uv(0),
+                        ("vertex", "v" | "t" | "texture_v" | "texture_t") => Role::Uv(1),
                         _ => Role::Skip,
                     };
                     Property::Scalar { name, ty, role }
@@ -393,9 +412,27 @@ fn body_values(
 ) -> Result<PolygonSoup, ParseError> {
     let mut soup = PolygonSoup::default();
     let mut face = Vec::new();
+    // Per-vertex UVs (one per position when any vertex element has them), and per-corner ones
+    // from faces' `texcoord` lists (one per corner of every face read, when any face has one).
+    let mut vertex_uv: Option<Vec<Vec2>> = None;
+    let mut face_uv: Option<Vec<Vec2>> = None;
+    let mut bad_texcoords = 0usize;
+    let mut texcoord = Vec::new();
     for element in elements {
         if element.properties.is_empty() {
             continue;
+        }
+        let has_texcoord = element.properties.iter().any(|p| {
+            matches!(
+                p,
+                Property::List {
+                    role: Role::TexCoord,
+                    ..
+                }
+            )
+        });
+        if has_texcoord && face_uv.is_none() {
+            face_uv = Some(vec![Vec2::ZERO; soup.indices.len()]);
         }
         let is_vertex = element.name == "vertex";
         let has = |role: Role| {
@@ -408,7 +445,12 @@ fn body_values(
         let has_quality = has(Role::Quality);
         let has_colors = (0..3).all(|k| has(Role::Color(k)));
         let has_normals = (0..3).all(|k| has(Role::Normal(k)));
+        let has_uv = (0..2).all(|k| has(Role::Uv(k)));
         if is_vertex {
+            if has_uv {
+                let before = soup.positions.len();
+                vertex_uv.get_or_insert_with(|| vec![Vec2::ZERO; before]);
+            }
             let n = cap(element.count, len / 12);
             soup.positions.reserve(n);
             // Vertices read before (another `vertex` element, in an odd file) get 0 and black,
@@ -438,6 +480,9 @@ fn body_values(
             let mut quality = 0.0f32;
             let mut color = [0u8; 3];
             let mut normal = [0.0f32; 3];
+            let mut uv = [0.0f32; 2];
+            let corners_before = soup.indices.len();
+            texcoord.clear();
             for property in &element.properties {
                 match property {
                     Property::Scalar { name, ty, role } => {
@@ -447,7 +492,8 @@ fn body_values(
                             Role::Quality => quality = v as f32,
                             Role::Color(k) => color[k] = channel(v, *ty),
                             Role::Normal(k) => normal[k] = v as f32,
-                            Role::Corners | Role::Skip => {}
+                            Role::Uv(k) => uv[k] = v as f32,
+                            Role::Corners | Role::TexCoord | Role::Skip => {}
                         }
                     }
                     Property::List {
@@ -461,9 +507,13 @@ fn body_values(
                             return Err(values.error(format!("`{name}` has {n} items")));
                         }
                         let corners = *role == Role::Corners;
+                        let uvs = *role == Role::TexCoord;
                         face.clear();
                         for _ in 0..n as u64 {
                             let v = values.next(*item, name)?;
+                            if uvs {
+                                texcoord.push(v as f32);
+                            }
                             if corners {
                                 if v < 0.0 || v.fract() != 0.0 || v > f64::from(u32::MAX) {
                                     return Err(values.error(format!("bad vertex index {v}")));
@@ -488,19 +538,70 @@ fn body_values(
                 if let Some(v) = &mut soup.vertex_normals {
                     v.push(Vec3::from_array(normal));
                 }
+                if let Some(v) = &mut vertex_uv {
+                    v.push(Vec2::from_array(uv));
+                }
+            }
+            if let Some(face_uv) = &mut face_uv {
+                let corners = soup.indices.len() - corners_before;
+                if has_texcoord && texcoord.len() == 2 * corners {
+                    face_uv.extend(texcoord.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])));
+                } else {
+                    if has_texcoord && corners > 0 {
+                        bad_texcoords += 1;
+                    }
+                    face_uv.extend(std::iter::repeat_n(Vec2::ZERO, corners));
+                }
             }
         }
     }
+    if bad_texcoords > 0 {
+        soup.notes.push(format!(
+            "{bad_texcoords} face(s) whose `texcoord` list does not hold 2 values per corner: their UVs are (0, 0)"
+        ));
+    }
+    // Per-face UVs win; per-vertex ones give every corner of a vertex the same UV.
+    soup.corner_uvs = face_uv.or_else(|| {
+        vertex_uv.map(|uv| {
+            let at = |&i: &u32| uv.get(i as usize).copied().unwrap_or(Vec2::ZERO);
+            soup.indices.iter().map(at).collect()
+        })
+    });
     Ok(soup)
 }
 
-/// Encodes a soup as PLY: positions, then colours and quality when the soup carries them (one
-/// per position; an attribute of another length is left out), then faces.
+/// The UV of each vertex when every corner of every vertex has the same one (bit for bit;
+/// a vertex no face uses gets (0, 0)), else `None`.
+fn per_vertex_uv(soup: &PolygonSoup, uvs: &[Vec2]) -> Option<Vec<Vec2>> {
+    let mut out: Vec<Option<Vec2>> = vec![None; soup.positions.len()];
+    let bits = |uv: Vec2| uv.to_array().map(f32::to_bits);
+    for (&i, &uv) in soup.indices.iter().zip(uvs) {
+        let slot = out.get_mut(i as usize)?;
+        match slot {
+            Some(seen) if bits(*seen) != bits(uv) => return None,
+            Some(_) => {}
+            None => *slot = Some(uv),
+        }
+    }
+    Some(out.into_iter().map(|uv| uv.unwrap_or(Vec2::ZERO)).collect())
+}
+
+/// Encodes a soup as PLY: positions, then normals, colours, quality and UVs when the soup
+/// carries them (one per position; an attribute of another length is left out), then faces
+/// (with a `texcoord` list per face when the UVs differ between corners of one vertex).
 pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
     let n = soup.positions.len();
     let quality = soup.vertex_quality.as_deref().filter(|q| q.len() == n);
     let colors = soup.vertex_colors.as_deref().filter(|c| c.len() == n);
     let normals = soup.vertex_normals.as_deref().filter(|v| v.len() == n);
+    let corner_uvs = soup
+        .corner_uvs
+        .as_deref()
+        .filter(|u| u.len() == soup.indices.len());
+    // Per vertex when every corner of each vertex has the same UV (bit for bit), else per
+    // corner in the faces' `texcoord` lists: never one UV lost.
+    let vertex_uv = corner_uvs.and_then(|uvs| per_vertex_uv(soup, uvs));
+    let face_uv = corner_uvs.filter(|_| vertex_uv.is_none());
     let count_type = if soup.faces().any(|f| f.len() > 255) {
         Scalar::I32
     } else {
@@ -536,13 +637,30 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
     if quality.is_some() {
         header.push_str("property float quality\n");
     }
+    if vertex_uv.is_some() {
+        header.push_str("property float u\nproperty float v\n");
+    }
     let _ = write!(
         header,
-        "element face {}\nproperty list {} {} vertex_indices\nend_header\n",
+        "element face {}\nproperty list {} {} vertex_indices\n",
         soup.face_count(),
         type_name(count_type),
         type_name(index_type),
     );
+    // Two values a corner: a count above 255 needs `int`.
+    let texcoord_count = if soup.faces().any(|f| 2 * f.len() > 255) {
+        Scalar::I32
+    } else {
+        Scalar::U8
+    };
+    if face_uv.is_some() {
+        let _ = writeln!(
+            header,
+            "property list {} float texcoord",
+            type_name(texcoord_count)
+        );
+    }
+    header.push_str("end_header\n");
     let mut out = header.into_bytes();
     match encoding {
         PlyEncoding::Ascii => {
@@ -560,12 +678,22 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
                 if let Some(quality) = quality {
                     let _ = write!(body, " {}", quality[i]);
                 }
+                if let Some(uv) = &vertex_uv {
+                    let _ = write!(body, " {} {}", uv[i].x, uv[i].y);
+                }
                 body.push('\n');
             }
-            for face in soup.faces() {
+            for (f, face) in soup.faces().enumerate() {
                 let _ = write!(body, "{}", face.len());
                 for &i in face {
                     let _ = write!(body, " {i}");
+                }
+                if let Some(uvs) = face_uv {
+                    let start = soup.face_starts[f] as usize;
+                    let _ = write!(body, " {}", 2 * face.len());
+                    for uv in &uvs[start..start + face.len()] {
+                        let _ = write!(body, " {} {}", uv.x, uv.y);
+                    }
                 }
                 body.push('\n');
             }
@@ -596,8 +724,12 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
                 if let Some(quality) = quality {
                     put(quality[i].to_le_bytes(), &mut out);
                 }
+                if let Some(uv) = &vertex_uv {
+                    put(uv[i].x.to_le_bytes(), &mut out);
+                    put(uv[i].y.to_le_bytes(), &mut out);
+                }
             }
-            for face in soup.faces() {
+            for (f, face) in soup.faces().enumerate() {
                 if count_type == Scalar::U8 {
                     out.push(face.len() as u8);
                 } else {
@@ -606,6 +738,18 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
                 // An index fits `int` unless `uint` was chosen; the bytes are the same.
                 for &i in face {
                     put(i.to_le_bytes(), &mut out);
+                }
+                if let Some(uvs) = face_uv {
+                    let start = soup.face_starts[f] as usize;
+                    if texcoord_count == Scalar::U8 {
+                        out.push((2 * face.len()) as u8);
+                    } else {
+                        put((2 * face.len() as u32).to_le_bytes(), &mut out);
+                    }
+                    for uv in &uvs[start..start + face.len()] {
+                        put(uv.x.to_le_bytes(), &mut out);
+                        put(uv.y.to_le_bytes(), &mut out);
+                    }
                 }
             }
         }

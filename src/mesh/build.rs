@@ -6,13 +6,15 @@
 //! element is ever seen half-built. The flat tables, and the passes between them and the
 //! entities, live in [`super::tables`]; this module only joins the soup to them.
 
+use bevy::math::{Vec2, Vec3};
 use bevy::prelude::World;
 use thiserror::Error;
 
+use super::attributes::{AttributeColumns, CornerUv, MeshAttributes, VertexColor, VertexNormal};
 use super::elements::MeshInfo;
 use super::ids::{MeshId, VertexId};
 use super::members::MeshMembers;
-use super::repair::{RepairReport, repair};
+use super::repair::{RepairReport, RepairedFaces, repair};
 use super::soup::PolygonSoup;
 use super::tables::{Connectivity, NONE, spawn_connectivity};
 use super::topology::MeshRef;
@@ -64,7 +66,8 @@ pub fn build_mesh(
             report,
         });
     }
-    let connectivity = Connectivity::from_corners(faces.corners());
+    let mut connectivity = Connectivity::from_corners(faces.corners());
+    connectivity.attributes = attribute_columns(soup, &faces, &connectivity);
     let (mesh, rows) = spawn_connectivity(world, &connectivity, info);
     let vertices = rows.vertices;
     let input_vertices = faces
@@ -79,9 +82,54 @@ pub fn build_mesh(
     })
 }
 
-/// The mesh as a polygon soup: vertices in table order, faces as vertex cycles. The inverse of
+/// The soup's corner UVs, normals and colours as table columns for the repaired faces laid out
+/// as `c` (halfedge `k < corners` is corner `k`, whose corner in the UV sense is the next
+/// corner's vertex). Only the attributes the soup holds completely ([`PolygonSoup::attributes`]).
+fn attribute_columns(
+    soup: &PolygonSoup,
+    faces: &RepairedFaces,
+    c: &Connectivity,
+) -> AttributeColumns {
+    let has = soup.attributes();
+    let mut columns = AttributeColumns::default();
+    if has.is_empty() {
+        return columns;
+    }
+    let source = &faces.source_corner;
+    if let Some(uvs) = soup.corner_uvs.as_deref().filter(|_| has.uv) {
+        let mut uv = vec![Vec2::ZERO; c.twin.len()];
+        for (k, slot) in uv.iter_mut().enumerate().take(source.len()) {
+            *slot = uvs[source[c.next[k] as usize] as usize];
+        }
+        columns.uv = Some(uv);
+    }
+    // Each repaired vertex takes the values of the input vertex of any of its corners.
+    let input_of = |vertex_count: usize| {
+        let mut input = vec![0u32; vertex_count];
+        for (k, &v) in faces.indices.iter().enumerate() {
+            input[v as usize] = soup.indices[source[k] as usize];
+        }
+        input
+    };
+    let input = (has.normals || has.colors).then(|| input_of(c.positions.len()));
+    if let (Some(normals), Some(input)) = (soup.vertex_normals.as_deref(), &input)
+        && has.normals
+    {
+        columns.normals = Some(input.iter().map(|&i| normals[i as usize]).collect());
+    }
+    if let (Some(colors), Some(input)) = (soup.vertex_colors.as_deref(), &input)
+        && has.colors
+    {
+        columns.colors = Some(input.iter().map(|&i| colors[i as usize]).collect());
+    }
+    columns
+}
+
+/// The mesh as a polygon soup: vertices in table order, faces as vertex cycles, with the
+/// attributes the mesh has (corner UVs, vertex normals and colours). The inverse of
 /// [`build_mesh`] up to the repairs.
 pub fn to_soup(world: &World, mesh: MeshId) -> PolygonSoup {
+    let has = MeshAttributes::of(world, mesh);
     let members = MeshMembers::collect(world, mesh);
     let m = MeshRef::new(world);
     let index = members.vertex_rows();
@@ -93,12 +141,28 @@ pub fn to_soup(world: &World, mesh: MeshId) -> PolygonSoup {
     soup.positions
         .extend(members.vertices.iter().map(|&v| m.position(v)));
     let mut face = Vec::new();
+    let mut uvs = has.uv.then(|| Vec::with_capacity(members.halfedges.len()));
     for &f in &members.faces {
         face.clear();
         // Start one halfedge back so the face lists its vertices in the order it was built from.
         let first = m.prev(m.face_halfedge(f));
         face.extend(m.loop_from(first).map(|h| index[&m.to_vertex(h).0]));
+        if let Some(uvs) = &mut uvs {
+            uvs.extend(
+                m.loop_from(first)
+                    .map(|h| world.get::<CornerUv>(h.0).map_or(Vec2::ZERO, |c| c.0)),
+            );
+        }
         soup.push_face(&face);
+    }
+    soup.corner_uvs = uvs;
+    if has.normals {
+        let n = |v: &VertexId| world.get::<VertexNormal>(v.0).map_or(Vec3::ZERO, |x| x.0);
+        soup.vertex_normals = Some(members.vertices.iter().map(n).collect());
+    }
+    if has.colors {
+        let c = |v: &VertexId| world.get::<VertexColor>(v.0).map_or([0; 3], |x| x.0);
+        soup.vertex_colors = Some(members.vertices.iter().map(c).collect());
     }
     soup
 }

@@ -18,11 +18,15 @@
 //! those ids must be passed through it ([`Change::remap`], [`SavedContents::remap`]).
 //!
 //! States are compared bitwise (`-0.0` is not `0.0`), so an undo restores positions exactly.
+//! Attributes travel with their elements: a local record holds each element's UV, normal and
+//! colour beside its links, and the whole-mesh records hold the tables' attribute columns, whose
+//! writer also restores the mesh's [`crate::mesh::attributes::MeshAttributes`] record.
 
 use bevy::ecs::entity::{EntityHashMap, EntityHashSet};
-use bevy::math::Vec3;
+use bevy::math::{Vec2, Vec3};
 use bevy::prelude::{Component, Entity, World};
 
+use super::attributes::{CornerUv, VertexColor, VertexNormal};
 use super::elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
 use super::ids::{FaceId, MeshId, VertexId};
 use super::members::MeshMembers;
@@ -40,13 +44,38 @@ pub fn remapped(map: &Remap, e: Entity) -> Entity {
     map.get(&e).copied().unwrap_or(e)
 }
 
-/// The components of one element: what an undo writes back.
+/// A vertex's attributes (see [`crate::mesh::attributes`]), where it has them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct VertexAttributes {
+    /// Its normal.
+    pub normal: Option<Vec3>,
+    /// Its colour.
+    pub color: Option<[u8; 3]>,
+}
+
+impl VertexAttributes {
+    fn of(r: &bevy::ecs::world::EntityRef<'_>) -> Self {
+        Self {
+            normal: r.get::<VertexNormal>().map(|n| n.0),
+            color: r.get::<VertexColor>().map(|c| c.0),
+        }
+    }
+
+    fn bits(&self) -> (Option<[u32; 3]>, Option<[u8; 3]>) {
+        (
+            self.normal.map(|n| n.to_array().map(f32::to_bits)),
+            self.color,
+        )
+    }
+}
+
+/// The components of one element, attributes included: what an undo writes back.
 #[derive(Clone, Copy, Debug)]
 pub enum ElementState {
-    /// A vertex and its position.
-    Vertex(Vertex, Vec3),
-    /// A halfedge.
-    Halfedge(Halfedge),
+    /// A vertex, its position and its attributes.
+    Vertex(Vertex, Vec3, VertexAttributes),
+    /// A halfedge and its corner's UV.
+    Halfedge(Halfedge, Option<Vec2>),
     /// An edge.
     Edge(Edge),
     /// A face.
@@ -58,9 +87,13 @@ impl ElementState {
     pub fn of(world: &World, e: Entity) -> Option<Self> {
         let r = world.get_entity(e).ok()?;
         if let Some(h) = r.get::<Halfedge>() {
-            Some(Self::Halfedge(*h))
+            Some(Self::Halfedge(*h, r.get::<CornerUv>().map(|c| c.0)))
         } else if let Some(v) = r.get::<Vertex>() {
-            Some(Self::Vertex(*v, r.get::<Position>()?.0))
+            Some(Self::Vertex(
+                *v,
+                r.get::<Position>()?.0,
+                VertexAttributes::of(&r),
+            ))
         } else if let Some(x) = r.get::<Edge>() {
             Some(Self::Edge(*x))
         } else {
@@ -68,13 +101,19 @@ impl ElementState {
         }
     }
 
-    /// Equal links and bitwise-equal position.
+    /// Equal links and bitwise-equal position and attributes.
     pub fn same(&self, other: &Self) -> bool {
         match (self, other) {
-            (Self::Vertex(a, p), Self::Vertex(b, q)) => {
-                a == b && p.to_array().map(f32::to_bits) == q.to_array().map(f32::to_bits)
+            (Self::Vertex(a, p, x), Self::Vertex(b, q, y)) => {
+                a == b
+                    && p.to_array().map(f32::to_bits) == q.to_array().map(f32::to_bits)
+                    && x.bits() == y.bits()
             }
-            (Self::Halfedge(a), Self::Halfedge(b)) => a == b,
+            (Self::Halfedge(a, x), Self::Halfedge(b, y)) => {
+                a == b
+                    && x.map(|u| u.to_array().map(f32::to_bits))
+                        == y.map(|u| u.to_array().map(f32::to_bits))
+            }
             (Self::Edge(a), Self::Edge(b)) => a == b,
             (Self::Face(a), Self::Face(b)) => a == b,
             _ => false,
@@ -89,8 +128,8 @@ impl ElementState {
     /// Passes every link through `map`.
     pub fn remap(&mut self, map: &mut Remap) {
         match self {
-            Self::Vertex(v, _) => Component::map_entities(v, map),
-            Self::Halfedge(h) => Component::map_entities(h, map),
+            Self::Vertex(v, ..) => Component::map_entities(v, map),
+            Self::Halfedge(h, _) => Component::map_entities(h, map),
             Self::Edge(x) => Component::map_entities(x, map),
             Self::Face(f) => Component::map_entities(f, map),
         }
@@ -102,17 +141,41 @@ impl ElementState {
             return;
         };
         match self {
-            Self::Vertex(v, p) => {
+            Self::Vertex(v, p, a) => {
                 if let Some(mut x) = r.get_mut::<Vertex>() {
                     *x = v;
                 }
                 if let Some(mut x) = r.get_mut::<Position>() {
                     x.0 = p;
                 }
+                match a.normal {
+                    Some(n) => {
+                        r.insert(VertexNormal(n));
+                    }
+                    None => {
+                        r.remove::<VertexNormal>();
+                    }
+                }
+                match a.color {
+                    Some(c) => {
+                        r.insert(VertexColor(c));
+                    }
+                    None => {
+                        r.remove::<VertexColor>();
+                    }
+                }
             }
-            Self::Halfedge(h) => {
+            Self::Halfedge(h, uv) => {
                 if let Some(mut x) = r.get_mut::<Halfedge>() {
                     *x = h;
+                }
+                match uv {
+                    Some(uv) => {
+                        r.insert(CornerUv(uv));
+                    }
+                    None => {
+                        r.remove::<CornerUv>();
+                    }
                 }
             }
             Self::Edge(edge) => {
@@ -132,8 +195,19 @@ impl ElementState {
     fn spawn_at(self, world: &mut World, e: Entity, mesh: MeshId) {
         let member = InMesh(mesh);
         let spawned = match self {
-            Self::Vertex(v, p) => world.spawn_at(e, (v, Position(p), member)).map(|_| ()),
-            Self::Halfedge(h) => world.spawn_at(e, (h, member)).map(|_| ()),
+            Self::Vertex(v, p, a) => world.spawn_at(e, (v, Position(p), member)).map(|mut x| {
+                if let Some(n) = a.normal {
+                    x.insert(VertexNormal(n));
+                }
+                if let Some(c) = a.color {
+                    x.insert(VertexColor(c));
+                }
+            }),
+            Self::Halfedge(h, uv) => world.spawn_at(e, (h, member)).map(|mut x| {
+                if let Some(uv) = uv {
+                    x.insert(CornerUv(uv));
+                }
+            }),
             Self::Edge(x) => world.spawn_at(e, (x, member)).map(|_| ()),
             Self::Face(f) => world.spawn_at(e, (f, member)).map(|_| ()),
         };

@@ -20,6 +20,7 @@
 //!
 //! This module knows nothing of operations, files or rendering.
 
+pub mod attributes;
 pub mod build;
 pub mod change;
 pub mod elements;

@@ -117,6 +117,10 @@ pub struct RepairedFaces {
     /// For every input vertex, the vertex it became ([`NONE`] if dropped). A split vertex maps
     /// to its first fan.
     pub input_vertex: Vec<u32>,
+    /// For every corner, the input corner (index into the soup's `indices`) it is: what carries
+    /// the soup's corner and vertex attributes through the repairs (a reversed face's corners
+    /// are reversed with it; a detached or split vertex's corners still name the input's).
+    pub source_corner: Vec<u32>,
 }
 
 impl RepairedFaces {
@@ -156,6 +160,7 @@ pub fn repair(soup: &PolygonSoup) -> (RepairedFaces, RepairReport) {
         face_starts: faces.starts,
         twin,
         input_vertex,
+        source_corner: faces.source,
     };
     (repaired, report)
 }
@@ -165,6 +170,8 @@ struct WorkFaces {
     indices: Vec<u32>,
     starts: Vec<u32>,
     detached: Vec<bool>,
+    /// Each corner's input corner.
+    source: Vec<u32>,
 }
 
 impl WorkFaces {
@@ -201,10 +208,11 @@ fn keep_well_formed_faces(soup: &PolygonSoup, report: &mut RepairReport) -> Work
     let n = soup.positions.len();
     let finite: Vec<bool> = soup.positions.iter().map(|p| p.is_finite()).collect();
     let mut indices = Vec::with_capacity(soup.indices.len());
+    let mut source = Vec::with_capacity(soup.indices.len());
     let mut starts = Vec::with_capacity(soup.face_count() + 1);
     starts.push(0u32);
     let mut scratch = Vec::new();
-    for face in soup.faces() {
+    for (f, face) in soup.faces().enumerate() {
         if face.len() < 3 {
             report.too_few_corners += 1;
         } else if face.iter().any(|&i| i as usize >= n) {
@@ -215,6 +223,8 @@ fn keep_well_formed_faces(soup: &PolygonSoup, report: &mut RepairReport) -> Work
             report.non_finite_faces += 1;
         } else {
             indices.extend_from_slice(face);
+            let first = soup.face_starts[f];
+            source.extend(first..first + face.len() as u32);
             starts.push(indices.len() as u32);
         }
     }
@@ -223,6 +233,7 @@ fn keep_well_formed_faces(soup: &PolygonSoup, report: &mut RepairReport) -> Work
         indices,
         starts,
         detached: vec![false; count],
+        source,
     }
 }
 
@@ -381,7 +392,8 @@ fn orient_consistently(
         for i in 0..k {
             moved[s + i] = (s + (2 * k - 2 - i) % k) as u32;
         }
-        faces.indices[range].reverse();
+        faces.indices[range.clone()].reverse();
+        faces.source[range].reverse();
     }
     if report.reoriented_faces > 0 {
         let mut new_twin = vec![NONE; corners];

@@ -9,7 +9,9 @@
 //! indices may be out of range, faces may repeat vertices, positions may be NaN. The builder is
 //! what checks and repairs.
 
-use bevy::math::Vec3;
+use bevy::math::{Vec2, Vec3};
+
+use super::attributes::MeshAttributes;
 
 /// Positions and polygonal faces, unchecked.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -27,8 +29,15 @@ pub struct PolygonSoup {
     pub vertex_quality: Option<Vec<f32>>,
     /// A colour per vertex (8-bit sRGB), when the soup carries one. One per position.
     pub vertex_colors: Option<Vec<[u8; 3]>>,
-    /// A unit normal per vertex, when the soup carries one. One per position.
+    /// A normal per vertex, when the soup carries one. One per position.
     pub vertex_normals: Option<Vec<Vec3>>,
+    /// A texture coordinate per face corner, when the soup carries them: parallel to
+    /// `indices` (`corner_uvs[k]` is the UV of vertex `indices[k]` inside its face), so two
+    /// faces may give one vertex different UVs (a seam).
+    pub corner_uvs: Option<Vec<Vec2>>,
+    /// What a reader had to approximate, one sentence each (corners of one vertex that gave it
+    /// different normals, corners without a UV in a file with UVs), for the load message.
+    pub notes: Vec<String>,
 }
 
 impl PolygonSoup {
@@ -43,6 +52,8 @@ impl PolygonSoup {
             vertex_quality: None,
             vertex_colors: None,
             vertex_normals: None,
+            corner_uvs: None,
+            notes: Vec::new(),
         }
     }
 
@@ -66,17 +77,27 @@ impl PolygonSoup {
         self.face_starts.push(self.indices.len() as u32);
     }
 
-    /// The per-vertex attributes the soup carries, by name (`quality`, `colours`, `normals`):
-    /// what a mesh built from it does not keep yet, for a message.
+    /// The per-vertex attributes the soup carries that a mesh built from it does not keep, by
+    /// name (only `quality`: UVs, normals and colours are kept), for a message.
     pub fn vertex_attributes(&self) -> Vec<&'static str> {
-        [
-            ("quality", self.vertex_quality.is_some()),
-            ("colours", self.vertex_colors.is_some()),
-            ("normals", self.vertex_normals.is_some()),
-        ]
-        .into_iter()
-        .filter_map(|(name, has)| has.then_some(name))
-        .collect()
+        [("quality", self.vertex_quality.is_some())]
+            .into_iter()
+            .filter_map(|(name, has)| has.then_some(name))
+            .collect()
+    }
+
+    /// The attributes of the soup a mesh keeps: which of corner UVs, vertex normals and vertex
+    /// colours it carries with one value per corner / position.
+    pub fn attributes(&self) -> MeshAttributes {
+        let n = self.positions.len();
+        MeshAttributes {
+            uv: self
+                .corner_uvs
+                .as_ref()
+                .is_some_and(|u| u.len() == self.indices.len()),
+            normals: self.vertex_normals.as_ref().is_some_and(|v| v.len() == n),
+            colors: self.vertex_colors.as_ref().is_some_and(|v| v.len() == n),
+        }
     }
 
     /// Number of faces.

@@ -372,7 +372,7 @@ impl ProgressiveMesh {
             });
         // A refusal left fewer rows than were reserved: the surplus goes.
         release_rows(world, &mut written, tables.row_counts());
-        write_links(world, &tables, &written);
+        write_links(world, &tables, self.mesh, &written);
         for (slot, &row) in self.slots.iter_mut().zip(&rows) {
             *slot = (!row.is_none()).then(|| written.vertices[row.index()]);
         }

@@ -26,10 +26,17 @@
 //! valence n: `(Q + 2 R + (n − 3) P) / n` with Q the mean of its face points and R of its edge
 //! midpoints; on the boundary the cubic B-spline rule `3/4 P + 1/8 (a + b)`, and a vertex with a
 //! single face stays put.
+//!
+//! **Attributes**: UVs are interpolated linearly per corner, the standard choice: an old vertex's
+//! corners keep their UVs, an edge point's corners take the midpoint of the edge's UVs inside
+//! each face (so a seam stays a seam), a face point the centroid of its face's UVs. Colours are
+//! kept at old vertices and averaged at new ones (edge ends, face corners). Normals are
+//! dropped (the surface moved; the edit's outcome says so).
 
-use bevy::math::Vec3;
+use bevy::math::{Vec2, Vec3};
 use bevy::prelude::World;
 
+use crate::mesh::attributes::{AttributeColumns, mean_color};
 use crate::mesh::ids::{ElementId, FaceId, MeshId};
 use crate::mesh::tables::write::{reserve_rows_while, write_links};
 use crate::mesh::tables::{
@@ -206,7 +213,7 @@ fn subdivide(
         }
         t
     });
-    write_links(world, &result, &rows);
+    write_links(world, &result, mesh, &rows);
     Ok(SubdivisionSummary {
         levels,
         vertices: result.vertex_count(),
@@ -279,12 +286,81 @@ pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, FaceRow> {
         }
     }
     let face_starts: Vec<u32> = (0..=4 * nf as u32).map(|i| 3 * i).collect();
-    Ok(Connectivity::from_corners(FaceCorners {
+    let mut c = Connectivity::from_corners(FaceCorners {
         positions: &positions,
         indices: &indices,
         face_starts: &face_starts,
         twin: &twin,
-    }))
+    });
+    // The attributes, by the same layout: per old face, per corner i `(v_i, m_i, m_{i−1})`,
+    // then `(m0, m1, m2)`.
+    c.attributes = subdivided_attributes(t, &c, 3, |uv, out| {
+        for f in t.faces() {
+            let hs = rings.face(f);
+            // The UV at v_i inside f: the corner of the halfedge into it.
+            let at = |i: usize| uv[hs[(i + 2) % 3].index()];
+            let mid = |i: usize| (at(i) + at(i + 1)) * 0.5;
+            for i in 0..3 {
+                out.extend([at(i), mid(i), mid(i + 2)]);
+            }
+            out.extend([mid(0), mid(1), mid(2)]);
+        }
+    });
+    Ok(c)
+}
+
+/// The attribute columns of a subdivided mesh `c` (faces of `sides` corners each) from those
+/// of `t`: UVs from `corner_uvs`, which pushes the UV at every new corner's vertex in `c`'s
+/// corner order; colours kept at old vertices, the mean of the edge's ends at edge points and
+/// of the face's corners at face points; normals dropped (the surface moved).
+fn subdivided_attributes(
+    t: &Connectivity,
+    c: &Connectivity,
+    sides: usize,
+    corner_uvs: impl FnOnce(&[Vec2], &mut Vec<Vec2>),
+) -> AttributeColumns {
+    let mut out = AttributeColumns::default();
+    if let Some(uv) = t
+        .attributes
+        .uv
+        .as_deref()
+        .filter(|u| u.len() == t.twin.len())
+    {
+        let mut corners = Vec::with_capacity(c.face_halfedge.len() * sides);
+        corner_uvs(uv, &mut corners);
+        // Halfedge k (corner k) holds the UV at its tip, the next corner's vertex.
+        let mut table = vec![Vec2::ZERO; c.twin.len()];
+        for (k, slot) in table.iter_mut().enumerate().take(corners.len()) {
+            let base = k - k % sides;
+            *slot = corners[base + (k % sides + 1) % sides];
+        }
+        out.uv = Some(table);
+    }
+    if let Some(colors) = t
+        .attributes
+        .colors
+        .as_deref()
+        .filter(|x| x.len() == t.positions.len())
+    {
+        let mut new = colors.to_vec();
+        new.extend(t.edges().map(|e| {
+            let h = t.edge_halfedge(e);
+            mean_color([
+                colors[t.from_vertex(h).index()],
+                colors[t.to_vertex(h).index()],
+            ])
+        }));
+        // Catmull–Clark adds one vertex per face after the edge points.
+        if c.positions.len() > new.len() {
+            new.extend(
+                t.faces().map(|f| {
+                    mean_color(t.face_halfedges(f).map(|h| colors[t.to_vertex(h).index()]))
+                }),
+            );
+        }
+        out.colors = Some(new);
+    }
+    out
 }
 
 /// One level of Catmull–Clark subdivision on tables.
@@ -361,12 +437,27 @@ pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
         }
     }
     let face_starts: Vec<u32> = (0..=corners as u32).map(|i| 4 * i).collect();
-    Connectivity::from_corners(FaceCorners {
+    let mut c = Connectivity::from_corners(FaceCorners {
         positions: &positions,
         indices: &indices,
         face_starts: &face_starts,
         twin: &twin,
-    })
+    });
+    // The attributes, by the same layout: per old face, per corner i
+    // `(v_i, e_i, face point, e_{i−1})`.
+    c.attributes = subdivided_attributes(t, &c, 4, |uv, out| {
+        for f in t.faces() {
+            let hs = rings.face(f);
+            let k = hs.len();
+            let at = |i: usize| uv[hs[(i + k - 1) % k].index()];
+            let mid = |i: usize| (at(i) + at(i + 1)) * 0.5;
+            let centre = (0..k).map(at).sum::<Vec2>() / k as f32;
+            for i in 0..k {
+                out.extend([at(i), mid(i), centre, mid(i + k - 1)]);
+            }
+        }
+    });
+    c
 }
 
 /// Faces of `mesh` that are not triangles (the first few), for refusals that offer to

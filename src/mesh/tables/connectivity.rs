@@ -20,6 +20,7 @@
 use bevy::math::Vec3;
 
 use super::rows::{EdgeRow, FaceRow, HalfedgeRow, NONE, RowCounts, VertexRow};
+use crate::mesh::attributes::AttributeColumns;
 use crate::mesh::topology::MAX_LOOP;
 
 /// Halfedge connectivity as flat tables, one row per element, with the positions.
@@ -48,6 +49,10 @@ pub struct Connectivity {
     pub edge_halfedge: Vec<u32>,
     /// Each face's first halfedge, by face row.
     pub face_halfedge: Vec<u32>,
+    /// The attribute columns (corner UVs by halfedge row, normals and colours by vertex row),
+    /// where the mesh has them: carried by `extract` and the writers; tables an operation lays
+    /// out afresh have none unless it fills them (see [`crate::mesh::attributes`]).
+    pub attributes: AttributeColumns,
 }
 
 /// Faces given by their corners, each corner paired with its twin: what
@@ -117,6 +122,7 @@ impl Connectivity {
             face: Vec::with_capacity(nh),
             edge_halfedge: Vec::with_capacity(nh / 2),
             face_halfedge: Vec::with_capacity(nf),
+            attributes: AttributeColumns::default(),
         };
 
         for f in 0..nf {

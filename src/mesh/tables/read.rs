@@ -8,17 +8,20 @@
 //! undo record holds ([`crate::mesh::change`]).
 
 use bevy::ecs::query::ReadOnlyQueryData;
-use bevy::math::Vec3;
+use bevy::math::{Vec2, Vec3};
 use bevy::prelude::{Entity, World};
 
 use super::connectivity::Connectivity;
 use super::rows::NONE;
+use crate::mesh::attributes::{
+    AttributeColumns, CornerUv, MeshAttributes, VertexColor, VertexNormal,
+};
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
 use crate::mesh::ids::{HalfedgeId, MeshId, slot, slots_for};
 use crate::mesh::members::MeshMembers;
 
 /// A mesh read into tables, with the entity behind every table row: a snapshot of its whole
-/// contents (about 32 bytes a halfedge).
+/// contents (about 32 bytes a halfedge), attributes included (the tables' attribute columns).
 #[derive(Clone, Debug, Default)]
 pub struct MeshTables {
     /// The tables.
@@ -49,6 +52,7 @@ impl MeshTables {
             + u32s * 4
             + t.positions.capacity() * std::mem::size_of::<Vec3>()
             + ids * std::mem::size_of::<Entity>()
+            + t.attributes.bytes()
     }
 }
 
@@ -102,6 +106,7 @@ pub fn extract(world: &World, mesh: MeshId) -> MeshTables {
         face: vec![NONE; nh],
         edge_halfedge: vec![NONE; members.edges.len()],
         face_halfedge: vec![NONE; members.faces.len()],
+        attributes: AttributeColumns::default(),
     };
     for_each_element::<(&Vertex, &Position)>(world, mesh, |e, (v, p)| {
         let i = row(e);
@@ -119,6 +124,23 @@ pub fn extract(world: &World, mesh: MeshId) -> MeshTables {
     });
     for_each_element::<&Edge>(world, mesh, |e, x| t.edge_halfedge[row(e)] = h(x.halfedge));
     for_each_element::<&Face>(world, mesh, |e, x| t.face_halfedge[row(e)] = h(x.halfedge));
+    // A mesh without attributes pays this one lookup.
+    let has = MeshAttributes::of(world, mesh);
+    if has.uv {
+        let mut uv = vec![Vec2::ZERO; nh];
+        for_each_element::<&CornerUv>(world, mesh, |e, x| uv[row(e)] = x.0);
+        t.attributes.uv = Some(uv);
+    }
+    if has.normals {
+        let mut normals = vec![Vec3::ZERO; nv];
+        for_each_element::<&VertexNormal>(world, mesh, |e, x| normals[row(e)] = x.0);
+        t.attributes.normals = Some(normals);
+    }
+    if has.colors {
+        let mut colors = vec![[0u8; 3]; nv];
+        for_each_element::<&VertexColor>(world, mesh, |e, x| colors[row(e)] = x.0);
+        t.attributes.colors = Some(colors);
+    }
     MeshTables { tables: t, members }
 }
 

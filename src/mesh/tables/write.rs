@@ -17,8 +17,13 @@
 use bevy::math::Vec3;
 use bevy::prelude::{Entity, World};
 
+use bevy::prelude::Component;
+
 use super::connectivity::Connectivity;
-use super::rows::{HalfedgeRow, RowCounts};
+use super::rows::{HalfedgeRow, NONE, RowCounts};
+use crate::mesh::attributes::{
+    CornerUv, MeshAttributes, VertexColor, VertexNormal, remove_attributes, set_record,
+};
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
 use crate::mesh::ids::{EdgeId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
@@ -62,7 +67,7 @@ pub(crate) fn write_tables(
     old: Option<&MeshMembers>,
 ) -> MeshMembers {
     let rows = reserve_rows(world, c.row_counts(), mesh, old);
-    write_links(world, c, &rows);
+    write_links(world, c, mesh, &rows);
     rows
 }
 
@@ -172,11 +177,12 @@ pub(crate) fn release_rows(world: &mut World, rows: &mut MeshMembers, keep: RowC
 }
 
 /// Writes every link of the tables `c` into the rows `rows` (from [`reserve_rows`] with
-/// `c.row_counts()`; 12–18 ns an entity, a lookup and a change tick each).
+/// `c.row_counts()`; 12–18 ns an entity, a lookup and a change tick each), and the attribute
+/// columns the tables carry ([`write_attributes`]) into `mesh`.
 ///
 /// # Panics
 /// If the row counts differ from the tables' (a bug in the caller).
-pub(crate) fn write_links(world: &mut World, c: &Connectivity, rows: &MeshMembers) {
+pub(crate) fn write_links(world: &mut World, c: &Connectivity, mesh: MeshId, rows: &MeshMembers) {
     assert_eq!(
         c.row_counts(),
         RowCounts::of_rows(rows),
@@ -214,6 +220,93 @@ pub(crate) fn write_links(world: &mut World, c: &Connectivity, rows: &MeshMember
         if let Ok(mut x) = q.get_mut(world, e.0) {
             x.halfedge = h(c.face_halfedge(i));
         }
+    }
+    write_attributes(world, c, mesh, rows);
+}
+
+/// Makes the attributes of `mesh` be the columns of `c` (see [`crate::mesh::attributes`]): a
+/// column of the right length is written into its components (UVs on face halfedges only) and
+/// recorded on the mesh; an attribute the mesh had and the tables do not carry is removed from
+/// every element and from the record. A mesh that had none, written from tables that carry
+/// none, costs one lookup.
+pub(crate) fn write_attributes(
+    world: &mut World,
+    c: &Connectivity,
+    mesh: MeshId,
+    rows: &MeshMembers,
+) {
+    let before = MeshAttributes::of(world, mesh);
+    let columns = &c.attributes;
+    if before.is_empty() && columns.is_empty() {
+        return;
+    }
+    let uv = columns
+        .uv
+        .as_deref()
+        .filter(|v| v.len() == rows.halfedges.len());
+    let normals = columns
+        .normals
+        .as_deref()
+        .filter(|v| v.len() == rows.vertices.len());
+    let colors = columns
+        .colors
+        .as_deref()
+        .filter(|v| v.len() == rows.vertices.len());
+    let now = MeshAttributes {
+        uv: uv.is_some(),
+        normals: normals.is_some(),
+        colors: colors.is_some(),
+    };
+    remove_attributes(world, mesh, before.lost_in(now));
+    if let Some(uv) = uv {
+        let corners = rows
+            .halfedges
+            .iter()
+            .zip(&c.face)
+            .zip(uv)
+            .map(|((h, &f), &uv)| (h.0, (f != NONE).then_some(uv)));
+        write_column(world, corners.collect(), CornerUv);
+    }
+    if let Some(normals) = normals {
+        let values = rows
+            .vertices
+            .iter()
+            .zip(normals)
+            .map(|(v, &n)| (v.0, Some(n)));
+        write_column(world, values.collect(), VertexNormal);
+    }
+    if let Some(colors) = colors {
+        let values = rows
+            .vertices
+            .iter()
+            .zip(colors)
+            .map(|(v, &x)| (v.0, Some(x)));
+        write_column(world, values.collect(), VertexColor);
+    }
+    set_record(world, mesh, now);
+}
+
+/// Gives each entity its value as component `C` (overwritten where it has one, inserted in one
+/// batch where it has none), or removes `C` where its value is `None`.
+fn write_column<T: Copy, C: Component<Mutability = bevy::ecs::component::Mutable>>(
+    world: &mut World,
+    values: Vec<(Entity, Option<T>)>,
+    wrap: fn(T) -> C,
+) {
+    let mut missing: Vec<(Entity, C)> = Vec::new();
+    let mut extra: Vec<Entity> = Vec::new();
+    let mut q = world.query::<Option<&mut C>>();
+    for (e, value) in values {
+        match (q.get_mut(world, e), value) {
+            (Ok(Some(mut x)), Some(v)) => *x = wrap(v),
+            (Ok(Some(_)), None) => extra.push(e),
+            (Ok(None), Some(v)) => missing.push((e, wrap(v))),
+            _ => {}
+        }
+    }
+    world.insert_batch(missing);
+    for e in extra {
+        world.entity_mut(e).remove::<C>();
     }
 }
 

@@ -26,6 +26,7 @@
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
+use crate::mesh::attributes;
 use crate::mesh::elements::{Edge, Halfedge, InMesh, Position, Vertex};
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
 use crate::mesh::topology::MeshRef;
@@ -108,6 +109,14 @@ pub fn apply_bisect(world: &mut World, p: BisectPlan) -> VertexId {
         b,
         ..
     } = p;
+    // The corners' UVs before: each side's corner at a and at b.
+    let has = attributes::MeshAttributes::of(world, p.mesh);
+    let uvs = has.uv.then(|| {
+        let m = MeshRef::new(world);
+        let uv = |x: HalfedgeId| attributes::corner_uv(world, x).unwrap_or_default();
+        // (at a, at b) inside f, and inside g.
+        ((uv(m.prev(h)), uv(h)), (uv(t), uv(m.prev(t))))
+    });
     let member = InMesh(p.mesh);
     let alloc = world.entity_allocator();
     let (mid, h2, t2, e2) = (
@@ -187,6 +196,19 @@ pub fn apply_bisect(world: &mut World, p: BisectPlan) -> VertexId {
             member,
         ),
     );
+    // The new corners: at `mid` interpolated along each side; `h2` and `t2` take the corners
+    // `h` and `t` had (at b inside f, at a inside g).
+    if let Some(((fa, fb), (ga, gb))) = uvs {
+        if f.is_some() {
+            attributes::set_corner_uv(world, h, fa.lerp(fb, p.param));
+            attributes::set_corner_uv(world, h2, fb);
+        }
+        if g.is_some() {
+            attributes::set_corner_uv(world, t, ga.lerp(gb, p.param));
+            attributes::set_corner_uv(world, t2, ga);
+        }
+    }
+    attributes::interpolate_vertex(world, has, mid, (a, b), p.param);
     mid
 }
 

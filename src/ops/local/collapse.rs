@@ -30,6 +30,10 @@
 //!      x ----- y                 x --- y
 //! ```
 //!
+//! Attributes follow the position: the merged vertex sits at `s` along a → b (½ for the
+//! midpoint), and so do its corners' UVs between the UVs a face beside the edge has at a and b
+//! (a corner across a seam keeps its own), its normal (renormalised) and its colour.
+//!
 //! Afterwards `a` points at an outgoing halfedge that still exists, its boundary one if it is
 //! on the boundary; so does every opposite vertex `c`, `d`; each surviving edge names an
 //! interior halfedge where it has one.
@@ -59,7 +63,7 @@
 //!   around `a` or `b` (polygon sides included) whose normal would turn by more than that angle,
 //!   or would vanish.
 
-use bevy::math::Vec3;
+use bevy::math::{Vec2, Vec3};
 use bevy::prelude::{Entity, World};
 
 use crate::mesh::elements::{Edge, Face, Halfedge, Position, Vertex};
@@ -582,14 +586,124 @@ impl Merge {
     }
 }
 
-/// Carries out a collapse planned by [`plan_collapse`] on the unchanged world.
+/// Carries out a collapse planned by [`plan_collapse`] on the unchanged world, attributes
+/// included: UVs, normals and colours follow the position rule (see the module doc).
 pub fn apply_collapse(world: &mut World, p: CollapsePlan) -> CollapseResult {
+    let carry = CarryCollapse::read(world, &p);
     let mut removed = Vec::new();
     let (result, _) = apply_collapse_deferred(world, p, &mut removed);
     for e in removed {
         world.despawn(e);
     }
+    if let Some(carry) = carry {
+        carry_collapse(world, carry);
+    }
     result
+}
+
+/// What a collapse needs to carry the mesh's attributes: the merged vertex's position as a
+/// parameter `s` along a → b, each edge face's UVs at a and at b, and the corners of both ends.
+struct CarryCollapse {
+    has: crate::mesh::attributes::MeshAttributes,
+    kept: VertexId,
+    s: f32,
+    /// Per face beside the edge: (UV at a, UV at b).
+    sides: Vec<(Vec2, Vec2)>,
+    /// Every corner at a or b before the collapse (halfedges into either, with a face), with its
+    /// UV and whether it was at b.
+    corners: Vec<(HalfedgeId, Vec2, bool)>,
+    normal: Option<Vec3>,
+    color: Option<[u8; 3]>,
+}
+
+impl CarryCollapse {
+    fn read(world: &World, p: &CollapsePlan) -> Option<Self> {
+        let has = crate::mesh::attributes::of_element(world, p.a.0);
+        if has.is_empty() {
+            return None;
+        }
+        let m = MeshRef::new(world);
+        let (pa, pb) = (m.position(p.a), m.position(p.b));
+        let d = pb - pa;
+        let s = if d.length_squared() > 0.0 {
+            ((p.position - pa).dot(d) / d.length_squared()).clamp(0.0, 1.0)
+        } else {
+            0.5
+        };
+        let uv = |h: HalfedgeId| crate::mesh::attributes::corner_uv(world, h).unwrap_or_default();
+        let mut sides = Vec::new();
+        let mut corners = Vec::new();
+        if has.uv {
+            let t = m.twin(p.h);
+            if m.face(p.h).is_some() {
+                sides.push((uv(m.prev(p.h)), uv(p.h)));
+            }
+            if m.face(t).is_some() {
+                sides.push((uv(t), uv(m.prev(t))));
+            }
+            for (v, at_b) in [(p.a, false), (p.b, true)] {
+                for out in m.vertex_outgoing(v) {
+                    let into = m.twin(out);
+                    if m.face(into).is_some() {
+                        corners.push((into, uv(into), at_b));
+                    }
+                }
+            }
+        }
+        let normal = has.normals.then(|| {
+            let n = |v: VertexId| {
+                world
+                    .get::<crate::mesh::attributes::VertexNormal>(v.0)
+                    .map_or(Vec3::ZERO, |n| n.0)
+            };
+            n(p.a).lerp(n(p.b), s).normalize_or_zero()
+        });
+        let color = has.colors.then(|| {
+            let c = |v: VertexId| {
+                world
+                    .get::<crate::mesh::attributes::VertexColor>(v.0)
+                    .map_or([0; 3], |c| c.0)
+            };
+            crate::mesh::attributes::lerp_color(c(p.a), c(p.b), s)
+        });
+        Some(Self {
+            has,
+            kept: p.a,
+            s,
+            sides,
+            corners,
+            normal,
+            color,
+        })
+    }
+}
+
+/// The attribute rule of a collapse, matching its position rule: the merged vertex sits at
+/// `s` along a → b, so a corner of either end whose UV is that end's UV in a face beside the
+/// edge moves to the same point between that face's UVs at a and b; a corner across a seam
+/// (another UV) keeps its own. The normal is interpolated at `s` (renormalised), the colour
+/// too (rounded).
+fn carry_collapse(world: &mut World, c: CarryCollapse) {
+    use crate::mesh::attributes::{VertexColor, VertexNormal, set_corner_uv};
+    let bits = |u: Vec2| u.to_array().map(f32::to_bits);
+    for &(h, uv, at_b) in &c.corners {
+        if world.get::<Halfedge>(h.0).is_none_or(|x| x.face.is_none()) {
+            continue;
+        }
+        let matched = c.sides.iter().find(|(ua, ub)| {
+            let own = if at_b { *ub } else { *ua };
+            bits(own) == bits(uv)
+        });
+        if let Some(&(ua, ub)) = matched {
+            set_corner_uv(world, h, ua.lerp(ub, c.s));
+        }
+    }
+    if let Some(n) = c.normal.filter(|_| c.has.normals) {
+        world.entity_mut(c.kept.0).insert(VertexNormal(n));
+    }
+    if let Some(x) = c.color.filter(|_| c.has.colors) {
+        world.entity_mut(c.kept.0).insert(VertexColor(x));
+    }
 }
 
 impl Side {

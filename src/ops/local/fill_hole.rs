@@ -60,9 +60,25 @@ pub fn plan_fill_hole(world: &World, e: EdgeId) -> Result<FillHolePlan, Refusal>
 
 /// Carries out a fill planned by [`plan_fill_hole`]. Returns the new face.
 pub fn apply_fill_hole(world: &mut World, plan: FillHolePlan) -> FaceId {
+    // Each new corner takes the UV its vertex has in the face across the boundary edge (the
+    // corner before the twin): the fill continues the texture of its rim.
+    let uvs: Option<Vec<_>> = crate::mesh::attributes::MeshAttributes::of(world, plan.mesh)
+        .uv
+        .then(|| {
+            let m = MeshRef::new(world);
+            plan.ring
+                .iter()
+                .map(|&h| {
+                    crate::mesh::attributes::corner_uv(world, m.prev(m.twin(h))).unwrap_or_default()
+                })
+                .collect()
+        });
     let face = FaceId(world.entity_allocator().alloc());
     for &h in &plan.ring {
         he(world, h).face = Some(face);
+    }
+    for (&h, uv) in plan.ring.iter().zip(uvs.into_iter().flatten()) {
+        crate::mesh::attributes::set_corner_uv(world, h, uv);
     }
     spawn_at(
         world,

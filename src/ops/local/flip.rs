@@ -120,6 +120,15 @@ pub fn plan_flip(world: &World, e: EdgeId) -> Result<FlipPlan, Refusal> {
 /// same entity, now joining the other two vertices).
 pub fn apply_flip(world: &mut World, p: FlipPlan) -> EdgeId {
     debug_assert_eq!(plan_flip(world, p.edge), Ok(p), "stale flip plan");
+    // `h` comes to point at c inside f and `t` at d inside g: they take the UVs of those
+    // corners, which `hn` (at c in f) and `tn` (at d in g) hold; every other corner keeps its own.
+    let uvs = crate::mesh::attributes::of_element(world, p.edge.0)
+        .uv
+        .then(|| {
+            let uv =
+                |x: HalfedgeId| crate::mesh::attributes::corner_uv(world, x).unwrap_or_default();
+            (uv(p.hn), uv(p.tn))
+        });
     let hnn = MeshRef::new(world).next(p.hn);
     let tnn = MeshRef::new(world).next(p.tn);
     // h: d → c in f; t: c → d in g. hn moves to g, tn moves to f.
@@ -149,6 +158,10 @@ pub fn apply_flip(world: &mut World, p: FlipPlan) -> EdgeId {
         if x.halfedge == lost {
             x.halfedge = replacement;
         }
+    }
+    if let Some((at_c, at_d)) = uvs {
+        crate::mesh::attributes::set_corner_uv(world, p.h, at_c);
+        crate::mesh::attributes::set_corner_uv(world, p.t, at_d);
     }
     p.edge
 }

@@ -109,6 +109,12 @@ pub(crate) fn cut(
         }
         list
     };
+    // The new corners are copies of the face's corners at the same vertices: `n1` at `vq`
+    // (as `q`), `n2` at `vp` (as `p`).
+    let uvs = crate::mesh::attributes::of_element(world, f.0).uv.then(|| {
+        let uv = |x: HalfedgeId| crate::mesh::attributes::corner_uv(world, x).unwrap_or_default();
+        (uv(q), uv(p))
+    });
     let alloc = world.entity_allocator();
     let (n1, n2, edge, f2) = (
         HalfedgeId(alloc.alloc()),
@@ -157,5 +163,9 @@ pub(crate) fn cut(
     spawn_at(world, edge.0, (Edge { halfedge: n1 }, member));
     spawn_at(world, f2.0, (Face { halfedge: n2 }, member));
     world.get_mut::<Face>(f.0).expect("planned").halfedge = n1;
+    if let Some((at_q, at_p)) = uvs {
+        crate::mesh::attributes::set_corner_uv(world, n1, at_q);
+        crate::mesh::attributes::set_corner_uv(world, n2, at_p);
+    }
     Some(edge)
 }
