@@ -65,7 +65,11 @@ fn bunny_disk_every_method() {
     assert!(harmonic.report.triangles > 30_000);
     assert!(harmonic.report.angle_distortion_deg.is_finite());
     let lscm = run("bunny-disk", &t, ParamMethod::Lscm);
-    assert!(lscm.report.flipped <= LSCM_FLIP_ALLOWANCE, "{:?}", lscm.report);
+    assert!(
+        lscm.report.flipped <= LSCM_FLIP_ALLOWANCE,
+        "{:?}",
+        lscm.report
+    );
     // LSCM is the most conformal of the four.
     assert!(lscm.report.conformal_energy <= harmonic.report.conformal_energy);
 }
@@ -79,7 +83,10 @@ fn the_bunny_with_five_holes_keeps_its_holes_out_of_the_layout() {
         let p = run("stanford-bunny", &t, method);
         assert_eq!(p.report.boundary_loops, 5);
         assert_eq!(p.report.filled_holes, 4);
-        assert_eq!(p.report.flipped, 0, "{method}: Tutte's theorem with the holes filled");
+        assert_eq!(
+            p.report.flipped, 0,
+            "{method}: Tutte's theorem with the holes filled"
+        );
     }
     let harmonic = run("stanford-bunny", &t, ParamMethod::Harmonic);
     assert!(harmonic.report.angle_distortion_deg.is_finite());

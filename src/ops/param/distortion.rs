@@ -8,7 +8,7 @@
 //!   |angle in UV − angle in 3D|, in degrees (0 for a conformal map).
 //! - **conformal energy** (the LSCM energy, Lévy et al. 2002): `Σ_T (E_D − A_uv)` over the total
 //!   UV area (unsigned), scale-free, 0 exactly for a conformal map, ≥ 0.
-//! - **area distortion**: the 3D-area-weighted mean of |ln r_T|, `r_T` the triangle's share of
+//! - **area distortion**: the 3D-area-weighted mean of `|ln r_T|`, `r_T` the triangle's share of
 //!   the UV area over its share of the 3D area, over unflipped triangles (0 when every triangle
 //!   keeps its share of the area).
 
@@ -89,8 +89,8 @@ mod tests {
     fn a_similarity_has_no_distortion_and_a_mirror_flips() {
         let p = [DVec3::ZERO, DVec3::X, DVec3::new(0.3, 0.8, 0.0)];
         let tri = [[0, 1, 2]];
-        // Rotated by 30°, scaled by 2, moved.
-        let r = DVec2::from_angle(0.5236) * 2.0;
+        // Rotated by 0.5 rad, scaled by 2, moved.
+        let r = DVec2::from_angle(0.5) * 2.0;
         let uv: Vec<DVec2> = p
             .iter()
             .map(|x| r.rotate(x.truncate()) + DVec2::new(3.0, -1.0))

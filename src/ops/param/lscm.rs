@@ -55,7 +55,7 @@ pub fn lscm(
     }
     let value = |r: usize| -> f64 {
         let p = pinned[r / 2].unwrap_or(DVec2::ZERO);
-        if r % 2 == 0 { p.x } else { p.y }
+        if r.is_multiple_of(2) { p.x } else { p.y }
     };
     let mut rhs = Mat::<f64>::zeros(free, 1);
     let mut triplets: Vec<Triplet<usize, usize, f64>> =
