@@ -15,7 +15,7 @@
 
 use bevy::math::{DVec2, DVec3};
 
-use super::{BoundaryShape, ParamError};
+use super::params::{BoundaryShape, ParamError};
 
 /// The positions of the loop `vertices` (cut-vertex indices into `positions`), in order, on
 /// `shape` by arc length.

@@ -30,7 +30,7 @@ use bevy::math::DVec3;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
-use super::ParamError;
+use super::params::ParamError;
 use crate::mesh::tables::{Connectivity, EdgeRow, FaceRow, HalfedgeRow, NONE, VertexRow};
 
 /// A mesh cut open along its seams, as fanned triangles over cut vertices (see the module doc).

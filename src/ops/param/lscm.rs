@@ -24,7 +24,7 @@ use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
 
-use super::ParamError;
+use super::params::ParamError;
 use super::weights::cotangents;
 
 /// The LSCM of the triangles over `positions` with the boundary `loops` (surface on the left)

@@ -23,7 +23,7 @@ use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
 
-use super::ParamError;
+use super::params::ParamError;
 use super::weights::Weight;
 
 /// Which factorization solved a system.

@@ -22,7 +22,7 @@
 
 use bevy::math::DVec3;
 
-use super::ParamMethod;
+use super::params::ParamMethod;
 
 /// One directed weight: row `i`, column `j`, `w_ij`. Duplicates (the two triangles beside an
 /// edge) are meant to be summed.
