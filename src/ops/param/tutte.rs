@@ -1,0 +1,217 @@
+//! The barycentric (Tutte) mapping: the outer boundary fixed on a convex polygon, every other
+//! vertex at the weighted mean of its neighbours (Tutte 1963; Floater 1997, 2003).
+//!
+//! For the free vertices `i`, `Σ_j w_ij (u_i − u_j) = 0` with the fixed vertices' terms moved to
+//! the right-hand side: one sparse solve with two right-hand sides (u and v). With symmetric
+//! weights (uniform, harmonic) the matrix is symmetric, and positive definite when the weights
+//! are positive: faer's sparse Cholesky (falling back to LU when harmonic weights make it
+//! indefinite); mean-value weights are not symmetric: sparse LU.
+//!
+//! **Several boundary loops.** The longest loop is the outer boundary. Every other loop (a hole)
+//! is filled *virtually* for the solve: a virtual vertex at the loop's centroid, fanned to the
+//! loop's vertices. The graph is then a triangulated disk, so with positive weights (uniform,
+//! mean-value: the virtual triangles get their weights from their own geometry like every
+//! triangle) Tutte's theorem still guarantees an embedding without flips. The virtual vertices
+//! and triangles are dropped from the output: the hole becomes a star-shaped gap in the layout.
+//!
+//! [`solve_fixed`] is the entry point with the boundary fixed to any given positions: a planar
+//! mesh with a convex boundary fixed at its own positions is reproduced exactly by weights with
+//! linear precision (mean-value, harmonic) — what the tests check.
+
+use bevy::math::{DVec2, DVec3};
+use faer::linalg::solvers::Solve;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, Side};
+
+use super::params::ParamError;
+use super::weights::Weight;
+
+/// Which factorization solved a system.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Solver {
+    /// Sparse Cholesky (symmetric positive definite).
+    #[default]
+    Cholesky,
+    /// Sparse LU with partial pivoting.
+    Lu,
+}
+
+impl Solver {
+    /// Its name in a report.
+    pub fn name(self) -> &'static str {
+        match self {
+            Solver::Cholesky => "cholesky",
+            Solver::Lu => "lu",
+        }
+    }
+}
+
+/// The triangles of the virtual fills of `holes` (each loop fanned to a new vertex at its
+/// centroid), appended to `positions` and `triangles`. Returns how many vertices were added.
+pub fn fill_holes(
+    positions: &mut Vec<DVec3>,
+    triangles: &mut Vec<[u32; 3]>,
+    holes: &[Vec<u32>],
+) -> usize {
+    for hole in holes {
+        let centre = positions.len() as u32;
+        let centroid =
+            hole.iter().map(|&c| positions[c as usize]).sum::<DVec3>() / hole.len() as f64;
+        positions.push(centroid);
+        // The loop runs with the surface on its left, so the fill goes the other way round.
+        for k in 0..hole.len() {
+            let (a, b) = (hole[k], hole[(k + 1) % hole.len()]);
+            triangles.push([b, a, centre]);
+        }
+    }
+    holes.len()
+}
+
+/// Solves the barycentric mapping over `n` vertices with `weights` (directed entries, summed):
+/// `fixed[i]` is `Some(position)` for a fixed vertex, `None` for a free one. `symmetric` says the
+/// weights are (then Cholesky is tried first). Returns every vertex's position.
+///
+/// # Errors
+/// [`ParamError::Solve`] when the system is singular (a free vertex connected to no fixed
+/// one, or zero weights everywhere around a vertex).
+pub fn solve_fixed(
+    n: usize,
+    weights: &[Weight],
+    fixed: &[Option<DVec2>],
+    symmetric: bool,
+) -> Result<(Vec<DVec2>, Solver), ParamError> {
+    let mut column = vec![u32::MAX; n];
+    let mut free = 0usize;
+    for i in 0..n {
+        if fixed[i].is_none() {
+            column[i] = free as u32;
+            free += 1;
+        }
+    }
+    let mut uv: Vec<DVec2> = fixed.iter().map(|f| f.unwrap_or(DVec2::ZERO)).collect();
+    if free == 0 {
+        return Ok((uv, Solver::Cholesky));
+    }
+    let mut rhs = Mat::<f64>::zeros(free, 2);
+    let mut triplets: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(weights.len() + free);
+    for &(i, j, w) in weights {
+        let ci = column[i as usize];
+        if ci == u32::MAX {
+            continue;
+        }
+        let ci = ci as usize;
+        triplets.push(Triplet::new(ci, ci, w));
+        let cj = column[j as usize];
+        if cj == u32::MAX {
+            let p = uv[j as usize];
+            rhs[(ci, 0)] += w * p.x;
+            rhs[(ci, 1)] += w * p.y;
+        } else if !symmetric || ci > cj as usize {
+            // Row ci is free vertex i's equation; Cholesky reads the lower triangle only.
+            triplets.push(Triplet::new(ci, cj as usize, -w));
+        }
+    }
+    let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(free, free, &triplets)
+        .map_err(|e| ParamError::Solve(format!("the matrix: {e:?}")))?;
+    let mut solver = Solver::Lu;
+    let mut x = rhs.clone();
+    let mut done = false;
+    if symmetric && let Ok(llt) = matrix.sp_cholesky(Side::Lower) {
+        llt.solve_in_place(x.as_mut());
+        done = x.col_iter().all(|c| c.iter().all(|v| v.is_finite()));
+        solver = Solver::Cholesky;
+    }
+    if !done {
+        let full = if symmetric {
+            // LU needs both triangles.
+            let mut both = triplets.clone();
+            both.extend(
+                triplets
+                    .iter()
+                    .filter(|t| t.row != t.col)
+                    .map(|t| Triplet::new(t.col, t.row, t.val)),
+            );
+            SparseColMat::<usize, f64>::try_new_from_triplets(free, free, &both)
+                .map_err(|e| ParamError::Solve(format!("the matrix: {e:?}")))?
+        } else {
+            matrix
+        };
+        let lu = full
+            .sp_lu()
+            .map_err(|e| ParamError::Solve(format!("the sparse LU failed: {e:?}")))?;
+        x = rhs;
+        lu.solve_in_place(x.as_mut());
+        solver = Solver::Lu;
+    }
+    for i in 0..n {
+        let c = column[i];
+        if c != u32::MAX {
+            let p = DVec2::new(x[(c as usize, 0)], x[(c as usize, 1)]);
+            if !p.is_finite() {
+                return Err(ParamError::Solve(
+                    "the system is singular (a degenerate mesh?)".into(),
+                ));
+            }
+            uv[i] = p;
+        }
+    }
+    Ok((uv, solver))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes;
+    use crate::ops::param::test_tables;
+    use crate::ops::param::{ParamMethod, cut::cut, weights::weights};
+
+    /// A planar grid with its interior vertices jittered (deterministically), its boundary
+    /// fixed at its own positions, is reproduced by the weights with linear precision.
+    #[test]
+    fn a_planar_mesh_with_its_own_boundary_is_reproduced() {
+        let mut soup = shapes::grid(7, 6);
+        for (k, p) in soup.positions.iter_mut().enumerate() {
+            let inside = p.x > 1e-6 && p.x < 1.0 - 1e-6 && p.y > 1e-6 && p.y < 1.0 - 1e-6;
+            if inside {
+                let a = k as f32 * 2.399;
+                p.x += 0.04 * a.cos();
+                p.y += 0.04 * a.sin();
+            }
+        }
+        let t = test_tables(&soup);
+        let c = cut(&t, &[], false).unwrap();
+        let mut fixed = vec![None; c.vertex_count()];
+        for &b in &c.loops[0] {
+            fixed[b as usize] = Some(c.positions[b as usize].truncate());
+        }
+        for (method, symmetric) in [
+            (ParamMethod::MeanValue, false),
+            (ParamMethod::Harmonic, true),
+        ] {
+            let w = weights(method, &c.positions, &c.triangles);
+            let (uv, _) = solve_fixed(c.vertex_count(), &w, &fixed, symmetric).unwrap();
+            for (q, p) in uv.iter().zip(&c.positions) {
+                assert!(q.distance(p.truncate()) < 1e-9, "{method:?}: {q} vs {p}");
+            }
+        }
+    }
+
+    #[test]
+    fn uniform_weights_on_a_regular_grid_give_the_grid() {
+        // The fan-split grid: each interior vertex has 6 neighbours, symmetric in pairs, so
+        // the regular grid is their mean.
+        let t = test_tables(&shapes::grid(5, 5));
+        let c = cut(&t, &[], false).unwrap();
+        let mut fixed = vec![None; c.vertex_count()];
+        for &b in &c.loops[0] {
+            fixed[b as usize] = Some(c.positions[b as usize].truncate());
+        }
+        let w = weights(ParamMethod::Uniform, &c.positions, &c.triangles);
+        let (uv, solver) = solve_fixed(c.vertex_count(), &w, &fixed, true).unwrap();
+        assert_eq!(solver, Solver::Cholesky);
+        for (q, p) in uv.iter().zip(&c.positions) {
+            // The grid's f32 positions are regular to f32 rounding.
+            assert!(q.distance(p.truncate()) < 1e-7, "{q} vs {p}");
+        }
+    }
+}
