@@ -32,6 +32,7 @@ use crate::ops::local::{
     CollapseOptions, bisect_edge, collapse_edge, dissolve_edge, fill_hole, flip_edge, split_edge,
     split_face,
 };
+use crate::ops::param::{BoundaryShape, ParamMethod, ParamParams, parameterize_in_place};
 use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::remesh::{RemeshParams, remesh_with_progress};
 use crate::ops::simplify::{SimplifyParams, SimplifyTarget};
@@ -102,6 +103,9 @@ pub enum Edit {
     Remesh(RemeshParams),
     /// Smoothing: vertices move, the connectivity stays.
     Smooth(SmoothParams),
+    /// A UV layout for every corner (Tutte with uniform, mean-value or harmonic weights, or
+    /// LSCM), cutting a closed genus-0 mesh open automatically. Only UVs change.
+    Parameterize(ParamParams),
 }
 
 /// What an edit may change, so that an undo record can capture it first.
@@ -201,6 +205,10 @@ impl Edit {
                 p.iterations,
                 p.step
             ),
+            Edit::Parameterize(p) => match p.method.fixed_boundary() {
+                true => format!("parameterize ({}, {})", p.method, p.boundary),
+                false => format!("parameterize ({})", p.method),
+            },
         }
     }
 
@@ -240,7 +248,8 @@ impl Edit {
             | Edit::Simplify(_)
             | Edit::Subdivide(_)
             | Edit::Remesh(_)
-            | Edit::Smooth(_) => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
+            | Edit::Smooth(_)
+            | Edit::Parameterize(_) => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
         }
     }
 
@@ -286,6 +295,7 @@ impl Edit {
                 | Edit::Subdivide(_)
                 | Edit::Remesh(_)
                 | Edit::Smooth(_)
+                | Edit::Parameterize(_)
         )
     }
 
@@ -572,6 +582,24 @@ impl Edit {
                     s.free, s.mean_move
                 ))
             }
+            Edit::Parameterize(params) => {
+                let r = parameterize_in_place(world, mesh, params)?;
+                (context.progress)(1.0);
+                let cut = match (r.seam_edges, r.filled_holes) {
+                    (0, 0) => String::new(),
+                    (0, h) => format!(", {h} inner holes filled for the solve"),
+                    (s, _) => format!(", cut along {s} edges"),
+                };
+                whole(format!(
+                    "{} flipped of {} triangles, angle distortion {:.2}°, area distortion {:.3}, \
+                     conformal energy {:.4}{cut}",
+                    r.flipped,
+                    r.triangles,
+                    r.angle_distortion_deg,
+                    r.area_distortion,
+                    r.conformal_energy
+                ))
+            }
         })
     }
 }
@@ -706,7 +734,8 @@ dissolve:A,B | split-face:A,B | fill-hole:A,B | loop[:N] | catmull-clark[:N] |
 simplify:RATIO | simplify-faces:N |
 refine[:FACES]   (split simplify's collapses back, up to FACES faces or all) |
 remesh[:ITERATIONS[:LENGTH]]   (isotropic; LENGTH defaults to the mean edge length) |
-smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held)
+smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held) |
+param:uniform|mean-value|harmonic|lscm[:circle|square]   (UVs; written as OBJ vt / PLY u v)
 A, B: 0-based indices of the input file's vertices (the edge between them)";
 
 impl Step {
@@ -791,6 +820,11 @@ impl Step {
                     "step `{text}`: expected smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]"
                 )
             })?),
+            "param" => Edit::Parameterize(parse_param(args).map_err(|why| {
+                format!(
+                    "step `{text}`: {why}; expected param:uniform|mean-value|harmonic|lscm[:circle|square]"
+                )
+            })?),
             _ => {
                 return Err(format!(
                     "unknown step `{text}` (see `pappus process --help`)"
@@ -847,6 +881,24 @@ impl Step {
     }
 }
 
+/// `METHOD[:SHAPE]` of a `param` step.
+fn parse_param(args: &str) -> Result<ParamParams, String> {
+    let mut parts = args.split(':');
+    let method: ParamMethod = parts
+        .next()
+        .unwrap_or("")
+        .parse()
+        .map_err(|e| format!("{e}"))?;
+    let mut params = ParamParams::new(method);
+    if let Some(shape) = parts.next() {
+        params.boundary = shape.parse::<BoundaryShape>().map_err(|e| format!("{e}"))?;
+    }
+    match parts.next() {
+        Some(extra) => Err(format!("unexpected `{extra}`")),
+        None => Ok(params),
+    }
+}
+
 /// `METHOD[:ITERATIONS[:STEP]]` of a `smooth` step.
 fn parse_smooth(args: &str) -> Option<SmoothParams> {
     let mut parts = args.split(':');
@@ -889,6 +941,7 @@ impl std::fmt::Display for Step {
                 Edit::Smooth(p) => {
                     write!(f, "smooth:{}:{}:{}", p.method.name(), p.iterations, p.step)
                 }
+                Edit::Parameterize(p) => write!(f, "param:{}:{}", p.method, p.boundary),
                 other => write!(f, "{}", other.label()),
             },
         }
@@ -921,12 +974,18 @@ mod tests {
             "remesh:3:0.5",
             "smooth:taubin:10:0.5",
             "smooth:implicit:1:2",
+            "param:harmonic:circle",
+            "param:lscm:square",
         ] {
             let step = Step::parse(text).unwrap();
             assert_eq!(step.to_string(), text);
             assert_eq!(Step::parse(&step.to_string()).unwrap(), step);
         }
         assert_eq!(Step::parse("loop").unwrap().to_string(), "loop:1");
+        assert_eq!(
+            Step::parse("param:mean-value").unwrap().to_string(),
+            "param:mean-value:circle"
+        );
         assert_eq!(Step::parse("remesh").unwrap().to_string(), "remesh:5");
         assert_eq!(
             Step::parse("smooth:cotan").unwrap().to_string(),
@@ -947,6 +1006,12 @@ mod tests {
             ("refine:lots", "face count"),
             ("smooth:gaussian", "uniform|cotan"),
             ("smooth:uniform:0", "ITERATIONS"),
+            (
+                "param:spectral",
+                "unknown parameterization method `spectral`",
+            ),
+            ("param:harmonic:hexagon", "unknown boundary shape"),
+            ("param:harmonic:circle:x", "unexpected `x`"),
         ] {
             let e = Step::parse(text).unwrap_err();
             assert!(e.contains(expected), "{text}: {e}");

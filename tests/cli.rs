@@ -429,3 +429,51 @@ fn info_reports_attributes_and_files_keep_them() {
     assert!(out.status.success());
     assert_eq!(std::fs::read(&back).unwrap(), first);
 }
+
+#[test]
+fn a_param_step_writes_uvs_and_reports_its_distortion() {
+    // A closed genus-0 sphere is cut open automatically; a disk with holes gets them filled for
+    // the solve; both come out with a UV at every corner.
+    for (input, step) in [
+        ("shape:icosphere", "param:lscm"),
+        ("shape:grid-with-holes", "param:mean-value:square"),
+        ("shape:quad-grid", "param:harmonic"),
+    ] {
+        let (v, out) = process_json(input, "param.obj", &[step, "validate"]);
+        let steps = v["steps"].as_array().unwrap();
+        assert_eq!(steps[0]["outcome"], "applied", "{step}: {}", steps[0]);
+        let summary = steps[0]["summary"].as_str().unwrap();
+        assert!(summary.contains("0 flipped of"), "{step}: {summary}");
+        assert!(summary.contains("angle distortion"), "{step}: {summary}");
+        assert_eq!(v["result"]["attributes"]["uv"], true, "{step}");
+        let text = std::fs::read_to_string(&out).unwrap();
+        let faces: Vec<&str> = text.lines().filter(|l| l.starts_with("f ")).collect();
+        assert!(!faces.is_empty());
+        assert!(
+            faces
+                .iter()
+                .all(|f| f.split_whitespace().skip(1).all(|c| c.contains('/'))),
+            "{step}: every corner names its vt"
+        );
+        for vt in text.lines().filter(|l| l.starts_with("vt ")) {
+            let uv: Vec<f32> = vt[3..]
+                .split_whitespace()
+                .map(|x| x.parse().unwrap())
+                .collect();
+            assert!(
+                uv.iter().all(|x| (-1e-6..=1.0 + 1e-6).contains(x)),
+                "{step}: {vt}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_torus_is_refused_a_layout_with_its_genus_named() {
+    let (v, _) = process_json("shape:torus", "torus-param.obj", &["param:harmonic"]);
+    let step = &v["steps"][0];
+    assert_eq!(step["outcome"], "refused");
+    let reason = step["reason"].as_str().unwrap();
+    assert!(reason.contains("genus 1"), "{reason}");
+    assert_eq!(v["result"]["attributes"]["uv"], false);
+}

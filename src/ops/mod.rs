@@ -113,6 +113,9 @@ pub enum Refusal {
     /// A `process` step names two input vertices that share no edge.
     #[error("input vertices {0} and {1} share no edge")]
     NoEdgeBetween(u32, u32),
+    /// The mesh cannot be parameterized as it is (the text says why and how to fix it).
+    #[error(transparent)]
+    Param(#[from] crate::ops::param::ParamError),
     /// A `process` step names two input vertices that share no face.
     #[error("input vertices {0} and {1} share no face")]
     NoSharedFace(u32, u32),

@@ -35,6 +35,8 @@
 //!   [`Parameterization`] (UVs and a [`ParamReport`]) or [`ParamError`]. Seams are edge rows of
 //!   those same tables (map `EdgeId`s to rows through `MeshTables::members`).
 //! - [`parameterize_mesh`]: the same, from a mesh in a `World` (reads it, writes nothing).
+//! - [`parameterize_in_place`]: the same, writing the layout onto the mesh as corner UVs (what
+//!   the edit layer's `Edit::Parameterize` runs).
 //! - [`tutte::solve_fixed`]: the barycentric solve with any fixed boundary positions (what the
 //!   exact reproduction tests use).
 
@@ -51,6 +53,7 @@ use std::time::Instant;
 use bevy::math::{DVec2, Vec2};
 use bevy::prelude::World;
 
+use crate::mesh::attributes::{CornerUv, MeshAttributes, set_record};
 use crate::mesh::ids::MeshId;
 use crate::mesh::tables::{Connectivity, MeshTables, NONE, extract};
 
@@ -186,6 +189,36 @@ pub fn parameterize_mesh(
     let tables = extract(world, mesh);
     let p = parameterize(&tables.tables, params)?;
     Ok((tables, p))
+}
+
+/// Parameterizes `mesh` and stores the layout on it: a [`CornerUv`] on every face halfedge, and
+/// UVs in the mesh's attribute record (its other attributes stay). UVs the mesh had before are
+/// replaced. On a refusal the world is not changed.
+///
+/// # Errors
+/// As [`parameterize`].
+pub fn parameterize_in_place(
+    world: &mut World,
+    mesh: MeshId,
+    params: &ParamParams,
+) -> Result<ParamReport, ParamError> {
+    let (tables, p) = parameterize_mesh(world, mesh, params)?;
+    let t = &tables.tables;
+    let corners: Vec<_> = t
+        .halfedges()
+        .filter(|&h| !t.is_boundary(h))
+        .map(|h| {
+            (
+                tables.members.halfedges[h.index()].0,
+                CornerUv(p.uv[h.index()]),
+            )
+        })
+        .collect();
+    world.insert_batch(corners);
+    let mut has = MeshAttributes::of(world, mesh);
+    has.uv = true;
+    set_record(world, mesh, has);
+    Ok(p.report)
 }
 
 /// Solves on the cut mesh: UV per cut vertex, the factorization, milliseconds, holes filled.
