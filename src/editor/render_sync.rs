@@ -19,7 +19,7 @@ use bevy::ecs::entity::EntityHashMap;
 use bevy::math::Vec3;
 use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology};
 use bevy::prelude::{
-    Assets, Component, Entity, Handle, Resource, Transform, Visibility, With, World,
+    Assets, Component, Entity, Handle, Or, Resource, Transform, Visibility, With, World,
 };
 use std::time::Instant;
 
@@ -454,8 +454,10 @@ pub fn set_wireframes_visible(world: &mut World, visible: bool) {
 }
 
 fn remove_orphans(world: &mut World) {
+    // Filtered to render entities: an unfiltered query would visit every element of every
+    // mesh each frame (8 M entities, 30 ms, on a 1.3M-face mesh).
     let orphans: Vec<Entity> = world
-        .query::<(Entity, Option<&RenderOf>, Option<&WireframeOf>)>()
+        .query_filtered::<(Entity, Option<&RenderOf>, Option<&WireframeOf>), Or<(With<RenderOf>, With<WireframeOf>)>>()
         .iter(world)
         .filter_map(|(e, r, w)| {
             let mesh = r.map(|r| r.0).or(w.map(|w| w.0))?;

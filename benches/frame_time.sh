@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# Frame time and idle CPU of the editor as a person sees it: a real window under Xvfb, drawn by
+# Mesa's software Vulkan (lavapipe) when there is no GPU, at 1280x800, driven by PAPPUS_SCRIPT.
+#
+#   benches/frame_time.sh [BINARY ...]
+#
+# With several binaries (say the build before a change and after it), every measurement
+# alternates between them, run after run, so both see the same machine in the same minutes.
+# Default: the release build in $CARGO_TARGET_DIR (or target/).
+#
+# For each mesh — the default torus (288 quads), the Stanford bunny (69k triangles, from
+# ../shared/models) and a 1.3M-triangle icosphere (`shape:icosphere:8`) — it prints the mean
+# frame time over FRAMES frames after WAIT frames of settling (the script's `measure:N` step,
+# which the editor logs), the process's CPU time per frame (all threads, lavapipe's included),
+# and, with PAPPUS_FRAME_STATS=1 set by this script, the per-pass breakdown on stderr when
+# VERBOSE=1. Then the idle CPU: the editor opened on the torus and left alone for 10 s once its
+# script is done, as a percentage of one core (from /proc/PID/stat).
+#
+# Median of REPEAT runs (default 3) for each figure. Needs xvfb-run and mesa-vulkan-drivers
+# (`.ci/run` installs them).
+set -euo pipefail
+
+cd "$(dirname "$0")/.."
+FRAMES=${FRAMES:-40}
+WAIT=${WAIT:-15}
+REPEAT=${REPEAT:-3}
+BINARIES=("$@")
+if [ ${#BINARIES[@]} -eq 0 ]; then
+  BINARIES=("${CARGO_TARGET_DIR:-target}/release/pappus")
+fi
+MODELS=../shared/models
+TICK=$(getconf CLK_TCK)
+
+median() { sort -g | awk '{a[NR]=$1} END {if (NR) print a[int((NR+1)/2)]; else print "-"}'; }
+
+# One run: prints "FRAME_MS CPU_MS" for BINARY on SOURCE.
+frame_run() {
+  local out
+  out=$(PAPPUS_FRAME_STATS=1 PAPPUS_SCRIPT="wait:$WAIT;measure:$FRAMES;exit" \
+    timeout 900 xvfb-run -a -s "-screen 0 1280x800x24" "$1" "$2" 2>&1 || true)
+  if [ "${VERBOSE:-0}" = 1 ]; then
+    grep -a "frame-stats:" <<<"$out" | sed 's/.*frame-stats: /    /' >&2 || true
+  fi
+  local ms cpu
+  ms=$(grep -ao "mean frame time [0-9.]* ms" <<<"$out" | awk '{print $4}' | tail -1)
+  cpu=$(grep -ao "process CPU [0-9.]* ms" <<<"$out" | awk '{print $3}' | tail -1)
+  echo "${ms:-nan} ${cpu:-nan}"
+}
+
+# One run: prints the CPU percentage of one core the editor used over 10 s of idling.
+idle_run() {
+  local log pid t0 t1
+  log=$(mktemp)
+  PAPPUS_SCRIPT="wait:$WAIT" xvfb-run -a -s "-screen 0 1280x800x24" "$1" assets/torus.obj \
+    >"$log" 2>&1 &
+  local runner=$!
+  # The editor is the newest process running this binary.
+  for _ in $(seq 1 100); do
+    pid=$(pgrep -n -f "^$1" || true)
+    [ -n "$pid" ] && grep -qa "render sync" "$log" && break
+    sleep 0.2
+  done
+  sleep 5 # the script's frames, then quiet
+  t0=$(awk '{print $14 + $15}' "/proc/$pid/stat")
+  sleep 10
+  t1=$(awk '{print $14 + $15}' "/proc/$pid/stat")
+  kill "$pid" 2>/dev/null || true
+  wait "$runner" 2>/dev/null || true
+  rm -f "$log"
+  awk -v a="$t0" -v b="$t1" -v t="$TICK" 'BEGIN {printf "%.1f\n", (b - a) / t / 10 * 100}'
+}
+
+declare -A FRAME CPU IDLE
+SOURCES=("assets/torus.obj" "$MODELS/stanford-bunny.obj" "shape:icosphere:8")
+NAMES=("torus (288 quads)" "bunny (69k triangles)" "icosphere:8 (1.3M triangles)")
+for r in $(seq 1 "$REPEAT"); do
+  for i in "${!SOURCES[@]}"; do
+    for b in "${!BINARIES[@]}"; do
+      read -r ms cpu < <(frame_run "${BINARIES[$b]}" "${SOURCES[$i]}")
+      FRAME[$b,$i]+="$ms "
+      CPU[$b,$i]+="$cpu "
+      echo "run $r: ${BINARIES[$b]} ${NAMES[$i]}: $ms ms a frame, $cpu ms CPU" >&2
+    done
+  done
+  for b in "${!BINARIES[@]}"; do
+    IDLE[$b]+="$(idle_run "${BINARIES[$b]}") "
+  done
+done
+
+echo "| mesh (1280x800, lavapipe) | binary | frame ms (median of $REPEAT) | CPU ms a frame |"
+echo "|---|---|---|---|"
+for i in "${!SOURCES[@]}"; do
+  for b in "${!BINARIES[@]}"; do
+    f=$(tr ' ' '\n' <<<"${FRAME[$b,$i]}" | grep -v '^$' | median)
+    c=$(tr ' ' '\n' <<<"${CPU[$b,$i]}" | grep -v '^$' | median)
+    echo "| ${NAMES[$i]} | ${BINARIES[$b]} | $f | $c |"
+  done
+done
+for b in "${!BINARIES[@]}"; do
+  d=$(tr ' ' '\n' <<<"${IDLE[$b]}" | grep -v '^$' | median)
+  echo "| idle 10 s, torus | ${BINARIES[$b]} | — | $d % of a core |"
+done
