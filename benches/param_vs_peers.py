@@ -7,11 +7,12 @@ a Markdown table, ready for a README.
 Every time is the median of 5 runs (7 for Pappus), in milliseconds, of the computation alone (no
 loading, no writing):
 
-- Pappus: `cargo bench --bench param` (the release profile), which times
-  `pappus::ops::param::parameterize` on tables already extracted: the cut and topology check,
-  the weights, the boundary on the circle by arc length (harmonic) or the two pins (LSCM), the
-  sparse factorization and solve (faer's Cholesky), the distortion report and the per-corner
-  output. The integration step will time the CLI's `process in.obj param:harmonic` instead.
+- Pappus: the command line's own step time (`pappus process IN -o OUT.obj --json
+  param:METHOD`, the JSON's `ms`; the release build, or the binary named by `PAPPUS`): reading
+  the mesh into tables, the cut and topology check, the weights, the boundary on the circle by
+  arc length (harmonic) or the two pins (LSCM), the sparse factorization and solve (faer's
+  Cholesky), the distortion report, and writing a UV onto every corner of the mesh.
+  (`cargo bench --bench param` times the library call alone.)
 - libigl (Python package `libigl`): harmonic = `boundary_loop` + `map_vertices_to_circle` +
   `harmonic(V, F, bnd, bnd_uv, 1)` (the cotangent Laplacian, boundary on the circle by arc
   length, as Pappus's); LSCM = `boundary_loop` + two pins (the loop's first vertex and the one
@@ -29,7 +30,7 @@ Euler characteristic 1); otherwise the height moves down a little and it tries a
 to a temporary OBJ with full-precision positions.
 
 Usage: python3 benches/param_vs_peers.py [--peers-only]
-Needs: pip install libigl pymeshlab numpy; cargo (the release profile of the bench builds once).
+Needs: pip install libigl pymeshlab numpy; the release build (`cargo build --release`).
 """
 import argparse
 import json
@@ -178,18 +179,43 @@ def meshlab_side(path):
     return out
 
 
+def pappus_binary():
+    """The release build (or the binary named by `PAPPUS`)."""
+    if os.environ.get("PAPPUS"):
+        return os.environ["PAPPUS"]
+    target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
+    return os.path.join(target, "release", "pappus")
+
+
 def pappus_side(paths):
-    """Runs the release bench on `paths`: {(path, method): record}."""
-    env = dict(os.environ, PAPPUS_PARAM_MESHES=":".join(paths))
-    command = ["cargo", "bench", "--bench", "param"]
-    result = subprocess.run(command, cwd=ROOT, env=env, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit(f"`{' '.join(command)}` failed:\n{result.stderr[-4000:]}")
+    """Times the command line's own `param:METHOD` step on each of `paths` (median of 7 runs of
+    `pappus process PATH -o OUT.obj --json param:METHOD`, the step's `ms`: reading the mesh's
+    tables, cutting, weights, solve, report, and writing a UV onto every corner):
+    {(path, method): record}."""
+    binary = pappus_binary()
     records = {}
-    for line in result.stdout.splitlines():
-        if line.startswith("PARAM_JSON "):
-            r = json.loads(line[len("PARAM_JSON "):])
-            records[(r["mesh"], r["method"])] = r
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "out.obj")
+        for path in paths:
+            for method in ("harmonic", "lscm", "uniform", "mean-value"):
+                times, summary = [], ""
+                for _ in range(7):
+                    result = subprocess.run(
+                        [binary, "process", path, "-o", out, "--json", f"param:{method}"],
+                        capture_output=True, text=True)
+                    if result.returncode != 0:
+                        sys.exit(f"{binary} failed:\n{result.stderr[-4000:]}")
+                    step = json.loads(result.stdout)["steps"][0]
+                    if step["outcome"] != "applied":
+                        sys.exit(f"param:{method} on {path}: {step}")
+                    times.append(step["ms"])
+                    summary = step["summary"]
+                times.sort()
+                records[(path, method)] = {
+                    "median_ms": times[len(times) // 2],
+                    "flipped": int(summary.split(" flipped")[0]),
+                    "summary": summary,
+                }
     return records
 
 
@@ -221,8 +247,7 @@ def main():
             meshlab = meshlab_side(path)
             for method in ("harmonic", "lscm"):
                 p = pappus.get((path, method)) if pappus else None
-                pappus_cell = (f"{p['median_ms']:.1f} (solve {p['solve_ms']:.1f}; "
-                               f"{p['flipped']} flips)" if p else "—")
+                pappus_cell = f"{p['median_ms']:.1f} ({p['flipped']} flips)" if p else "—"
                 rows.append([label, str(faces), method, pappus_cell,
                              f"{libigl[method][0]:.1f} ({libigl[method][1]} flips)",
                              f"{meshlab[method][0]:.1f} ({meshlab[method][1]} flips)"])
@@ -231,10 +256,9 @@ def main():
                     p = pappus.get((path, method))
                     if p:
                         rows.append([label, str(faces), method,
-                                     f"{p['median_ms']:.1f} (solve {p['solve_ms']:.1f}; "
-                                     f"{p['flipped']} flips)", "—", "—"])
+                                     f"{p['median_ms']:.1f} ({p['flipped']} flips)", "—", "—"])
 
-    print(f"Median of {RUNS} runs (Pappus 7), ms; {platform.processor() or platform.machine()}, "
+    print(f"Median of {RUNS} runs (Pappus 7, the step's own time), ms; {platform.processor() or platform.machine()}, "
           f"{os.cpu_count()} logical CPUs. libigl {version('libigl')}, pymeshlab "
           f"{version('pymeshlab')}, NumPy {np.__version__}.")
     print()

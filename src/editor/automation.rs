@@ -11,6 +11,7 @@
 //! | `select:ID` | select an element by id (`f12v0`) |
 //! | `open:PATH` | open a file (or `shape:NAME`) as Ctrl+O would |
 //! | `lod:FACES` | move the level-of-detail slider (after a simplification) |
+//! | `zoom:F` | multiply the camera's distance to what it looks at by F (`zoom:0.5` comes twice as close) |
 //! | `colour:NAME` | colour the mesh by a quantity (`colour:mean`, names as `process --quantity`; `colour:none`) |
 //! | `shot:PATH` | save a screenshot of the window to PATH (PNG) and wait until it is written |
 //! | `measure:N` | let N frames pass and log their mean frame time |
@@ -49,6 +50,8 @@ pub enum ScriptStep {
     Open(PathBuf),
     /// Move the level-of-detail slider.
     Lod(usize),
+    /// Multiply the camera's distance to its focus (below 1: closer).
+    Zoom(f32),
     /// Colour by a quantity (or by nothing).
     Colour(Option<Quantity>),
     /// Save a screenshot.
@@ -121,6 +124,12 @@ impl Script {
                 "shot" => ScriptStep::Shot(PathBuf::from(arg)),
                 "open" => ScriptStep::Open(PathBuf::from(arg)),
                 "lod" => ScriptStep::Lod(arg.parse().map_err(|_| bad())?),
+                "zoom" => ScriptStep::Zoom(
+                    arg.parse()
+                        .ok()
+                        .filter(|f: &f32| *f > 0.0 && f.is_finite())
+                        .ok_or_else(bad)?,
+                ),
                 "colour" if arg == "none" => ScriptStep::Colour(None),
                 "colour" => ScriptStep::Colour(Some(Quantity::from_name(arg).ok_or_else(bad)?)),
                 "exit" => ScriptStep::Exit,
@@ -259,6 +268,14 @@ pub fn run_script(world: &mut World) {
             ScriptStep::Lod(faces) => {
                 world.write_message(Request::Edit(Edit::LevelOfDetail(faces)));
                 script.waiting = 2;
+            }
+            ScriptStep::Zoom(factor) => {
+                let mut cameras = world.query::<(&mut super::scene::OrbitCamera, &mut Transform)>();
+                for (mut orbit, mut transform) in cameras.iter_mut(world) {
+                    orbit.radius *= factor;
+                    *transform = orbit.transform();
+                }
+                script.waiting = 1;
             }
             ScriptStep::Colour(quantity) => {
                 world.resource_mut::<super::colouring::ColorBy>().0 = quantity;
