@@ -209,7 +209,7 @@ pub fn info_json(world: &World, mesh: MeshId, report: &RepairReport) -> Map<Stri
     let has = MeshAttributes::of(world, mesh);
     out.insert(
         "attributes".into(),
-        json!({ "uv": has.uv, "normals": has.normals, "colors": has.colors }),
+        json!({ "uv": has.uv, "normals": has.normals, "colors": has.colors, "seams": has.seams }),
     );
     let (curvature, normals) = geometry_json(world, mesh, s.euler_characteristic);
     out.insert("curvature".into(), Value::Object(curvature));
@@ -426,6 +426,13 @@ fn execute(command: Command) -> Result<(), String> {
                 soup.vertex_normals = Some(n.iter().map(|v| v.as_vec3()).collect());
             }
             io::write(&output, &soup).map_err(|e| e.to_string())?;
+            if MeshAttributes::of(&loaded.world, mesh).seams {
+                eprintln!(
+                    "pappus: {}: seam marks are not written (the format has no place for them; \
+                     a param step after them keeps the cut in the UVs)",
+                    output.display()
+                );
+            }
             let result = info_json(&loaded.world, mesh, &loaded.built.report);
             if json {
                 let mut report = json!({ "steps": records, "result": Value::Object(result) });

@@ -24,7 +24,7 @@
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::attributes::{MeshAttributes, drop_attributes};
+use crate::mesh::attributes::{MeshAttributes, Seam, drop_attributes, set_record};
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::{InMesh, MeshInfo, MeshRef, validate};
 use crate::ops::Refusal;
@@ -82,6 +82,8 @@ pub enum Edit {
     Collapse(EdgeId),
     /// Merge the two faces of an edge into one.
     Dissolve(EdgeId),
+    /// Mark an edge as a seam the parameterization cuts along, or unmark it.
+    ToggleSeam(EdgeId),
     /// Fill the hole beside a boundary edge: its boundary loop becomes one face.
     FillHole(EdgeId),
     /// Split a face between two of its corners.
@@ -174,6 +176,7 @@ impl Edit {
             Edit::Bisect(e) => format!("bisect {e}"),
             Edit::Collapse(e) => format!("collapse {e}"),
             Edit::Dissolve(e) => format!("dissolve {e}"),
+            Edit::ToggleSeam(e) => format!("seam mark on {e}"),
             Edit::FillHole(e) => format!("fill the hole at {e}"),
             Edit::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
             Edit::MoveVertex(v, _) => format!("move {v}"),
@@ -223,7 +226,8 @@ impl Edit {
             | Edit::Split(e)
             | Edit::Bisect(e)
             | Edit::Collapse(e)
-            | Edit::Dissolve(e) => {
+            | Edit::Dissolve(e)
+            | Edit::ToggleSeam(e) => {
                 m.try_edge(*e)?;
                 let (a, b) = m.edge_vertices(*e);
                 local(vec![a, b])
@@ -265,6 +269,7 @@ impl Edit {
             | Edit::Bisect(e)
             | Edit::Collapse(e)
             | Edit::Dissolve(e)
+            | Edit::ToggleSeam(e)
             | Edit::FillHole(e) => Some(ElementId::Edge(*e)),
             Edit::SplitFace(f, ..) => Some(ElementId::Face(*f)),
             Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => Some(ElementId::Vertex(*v)),
@@ -449,6 +454,18 @@ impl Edit {
                     made: Some(ElementId::Face(f)),
                 }
             }
+            Edit::ToggleSeam(e) => {
+                let marked = toggle_seam(world, *e)?;
+                Applied {
+                    summary: if marked {
+                        format!("{e} is a seam")
+                    } else {
+                        format!("{e} is no longer a seam")
+                    },
+                    redraw: near(world, Vec::new(), edge_ends(world, *e)),
+                    made: None,
+                }
+            }
             Edit::FillHole(e) => {
                 let f = fill_hole(world, *e)?;
                 let m = MeshRef::new(world);
@@ -613,6 +630,29 @@ pub enum MergeKey {
     LevelOfDetail,
 }
 
+/// Marks `e` as a seam, or unmarks it; returns whether it is one now. The mesh's attribute
+/// record says it may have seam marks from the first one on.
+fn toggle_seam(world: &mut World, e: EdgeId) -> Result<bool, Refusal> {
+    let Some(mesh) = world
+        .get::<crate::mesh::Edge>(e.0)
+        .and_then(|_| world.get::<InMesh>(e.0))
+        .map(|m| m.0)
+    else {
+        return Err(Refusal::Stale(ElementId::Edge(e)));
+    };
+    let mut edge = world.entity_mut(e.0);
+    let marked = !edge.contains::<Seam>();
+    if marked {
+        edge.insert(Seam);
+        let mut has = MeshAttributes::of(world, mesh);
+        has.seams = true;
+        set_record(world, mesh, has);
+    } else {
+        edge.remove::<Seam>();
+    }
+    Ok(marked)
+}
+
 /// The two ends of an edge (none if it is gone).
 fn edge_ends(world: &World, e: EdgeId) -> Vec<VertexId> {
     let m = MeshRef::new(world);
@@ -652,11 +692,13 @@ pub enum LocalKind {
     FillHole,
     /// `split-face:A,B`: the face the two vertices share, between them.
     SplitFace,
+    /// `seam:A,B`: mark the edge a seam (or unmark it).
+    Seam,
 }
 
 impl LocalKind {
     /// Every kind, with its step name.
-    pub const ALL: [(LocalKind, &'static str); 7] = [
+    pub const ALL: [(LocalKind, &'static str); 8] = [
         (LocalKind::Flip, "flip"),
         (LocalKind::Split, "split"),
         (LocalKind::Bisect, "bisect"),
@@ -664,6 +706,7 @@ impl LocalKind {
         (LocalKind::Dissolve, "dissolve"),
         (LocalKind::FillHole, "fill-hole"),
         (LocalKind::SplitFace, "split-face"),
+        (LocalKind::Seam, "seam"),
     ];
 
     /// Its step name.
@@ -711,6 +754,7 @@ impl LocalKind {
             LocalKind::Collapse => Edit::Collapse(e),
             LocalKind::Dissolve => Edit::Dissolve(e),
             LocalKind::FillHole => Edit::FillHole(e),
+            LocalKind::Seam => Edit::ToggleSeam(e),
             LocalKind::SplitFace => return None,
         })
     }
@@ -730,7 +774,8 @@ pub enum Step {
 /// The step syntax, for usage texts.
 pub const STEP_SYNTAX: &str = "\
 validate | triangulate | flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
-dissolve:A,B | split-face:A,B | fill-hole:A,B | loop[:N] | catmull-clark[:N] |
+dissolve:A,B | split-face:A,B | fill-hole:A,B | seam:A,B (mark, for param) |
+loop[:N] | catmull-clark[:N] |
 simplify:RATIO | simplify-faces:N |
 refine[:FACES]   (split simplify's collapses back, up to FACES faces or all) |
 remesh[:ITERATIONS[:LENGTH]]   (isotropic; LENGTH defaults to the mean edge length) |
@@ -964,6 +1009,7 @@ mod tests {
             "dissolve:4,5",
             "fill-hole:0,1",
             "split-face:0,2",
+            "seam:0,1",
             "loop:1",
             "catmull-clark:2",
             "simplify:0.25",

@@ -6,7 +6,7 @@ mod common;
 use bevy::math::{Vec2, Vec3};
 use bevy::prelude::World;
 use pappus::edit::{Edit, EditContext, Scheme, Subdivision};
-use pappus::mesh::attributes::{CornerUv, MeshAttributes, VertexColor, VertexNormal};
+use pappus::mesh::attributes::{CornerUv, MeshAttributes, Seam, VertexColor, VertexNormal};
 use pappus::mesh::change::{LocalRecorder, SavedContents};
 use pappus::mesh::{MeshId, MeshMembers, MeshRef, PolygonSoup, VertexId, shapes, to_soup};
 use pappus::ops::remesh::RemeshParams;
@@ -298,8 +298,43 @@ fn undo_restores_attributes_exactly() {
         MeshAttributes {
             uv: true,
             normals: true,
-            colors: true
+            colors: true,
+            seams: false,
         }
     );
     assert_every_corner_has_a_uv(&world, mesh);
+}
+
+#[test]
+fn a_seam_mark_undoes_and_survives_a_whole_mesh_record() {
+    let (mut world, built) = common::build(&square());
+    let mesh = built.mesh;
+    let v = |i: usize| built.input_vertices[i].unwrap();
+    let diagonal = edge_between(&world, v(0), v(2));
+    let recorder = LocalRecorder::begin(&world, mesh, &[v(0), v(2)]);
+    let summary = run(&mut world, mesh, &Edit::ToggleSeam(diagonal));
+    assert!(summary.ends_with("is a seam"), "{summary}");
+    assert!(world.get::<Seam>(diagonal.0).is_some());
+    assert!(MeshAttributes::of(&world, mesh).seams);
+    let undo = recorder.finish(&world);
+    let (redo, _, _) = undo.apply(&mut world);
+    assert!(world.get::<Seam>(diagonal.0).is_none(), "undo unmarks");
+    redo.apply(&mut world);
+    assert!(world.get::<Seam>(diagonal.0).is_some(), "redo marks again");
+    // The whole-mesh record carries the marks: a remesh drops them (and says so), undo brings
+    // them back on the same edge.
+    let saved = SavedContents::capture(&world, mesh);
+    let summary = run(&mut world, mesh, &Edit::Remesh(RemeshParams::default()));
+    assert!(summary.contains("seam marks"), "{summary}");
+    assert!(!MeshAttributes::of(&world, mesh).seams);
+    saved.apply(&mut world);
+    let marked: Vec<_> = world
+        .query_filtered::<bevy::prelude::Entity, bevy::prelude::With<Seam>>()
+        .iter(&world)
+        .collect();
+    assert_eq!(marked.len(), 1);
+    let m = MeshRef::new(&world);
+    let (a, b) = m.edge_vertices(pappus::mesh::EdgeId(marked[0]));
+    let ends = [m.position(a), m.position(b)];
+    assert!(ends.contains(&Vec3::ZERO) && ends.contains(&Vec3::new(1.0, 1.0, 0.0)));
 }

@@ -477,3 +477,31 @@ fn a_torus_is_refused_a_layout_with_its_genus_named() {
     assert!(reason.contains("genus 1"), "{reason}");
     assert_eq!(v["result"]["attributes"]["uv"], false);
 }
+
+#[test]
+fn seams_marked_by_steps_cut_the_layout() {
+    // A closed sphere cut along marked seams instead of the automatic cut: the icosphere's
+    // vertices 0-11 are the icosahedron's, and a path of marked edges from one to another
+    // opens it into a disk. Marking an edge twice unmarks it.
+    let path = ["seam:0,11", "seam:11,5", "seam:11,5", "seam:11,5"];
+    let mut args: Vec<&str> = path.to_vec();
+    args.push("param:mean-value");
+    let (v, out) = process_json("shape:icosahedron", "seams.obj", &args);
+    let steps = v["steps"].as_array().unwrap();
+    for s in steps {
+        assert_eq!(s["outcome"], "applied", "{s}");
+    }
+    assert!(
+        steps[2]["summary"]
+            .as_str()
+            .unwrap()
+            .contains("no longer a seam")
+    );
+    let summary = steps[4]["summary"].as_str().unwrap();
+    assert!(summary.contains("cut along 2 edges"), "{summary}");
+    assert!(summary.contains("0 flipped"), "{summary}");
+    assert_eq!(v["result"]["attributes"]["seams"], true);
+    // The three vertices on the cut have two UVs each except its two ends: 12 + 1 vt.
+    let text = std::fs::read_to_string(out).unwrap();
+    assert_eq!(text.lines().filter(|l| l.starts_with("vt ")).count(), 13);
+}

@@ -263,5 +263,13 @@ fn save(world: &mut World, path: Option<&Path>) -> Result<String, Declined> {
         info.path = Some(target.clone());
     }
     world.entity_mut(mesh.0).remove::<Modified>();
-    Ok(format!("saved {}", target.display()))
+    // Files have no place for seam marks: say so rather than drop them silently.
+    let seams = crate::mesh::attributes::MeshAttributes::of(world, mesh).seams;
+    let note = if seams {
+        " (seam marks are not saved: OBJ and PLY have no place for them; parameterize first and \
+         the UVs keep the cut)"
+    } else {
+        ""
+    };
+    Ok(format!("saved {}{note}", target.display()))
 }

@@ -60,6 +60,12 @@ pub struct VertexNormal(pub Vec3);
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
 pub struct VertexColor(pub [u8; 3]);
 
+/// A seam mark on an edge: the parameterization cuts the surface open along it, so the corners
+/// on its two sides get UVs of their own. Marked by hand (`Edit::ToggleSeam`); files have no
+/// place for it (a parameterized mesh's seams are where its corner UVs differ).
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Seam;
+
 /// Which attributes a mesh has: a component on the mesh entity (absent: none).
 #[derive(Component, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct MeshAttributes {
@@ -69,6 +75,8 @@ pub struct MeshAttributes {
     pub normals: bool,
     /// Every vertex has a [`VertexColor`].
     pub colors: bool,
+    /// Edges may carry a [`Seam`] mark (when false, none does; when true, some may).
+    pub seams: bool,
 }
 
 impl MeshAttributes {
@@ -77,6 +85,7 @@ impl MeshAttributes {
         uv: false,
         normals: false,
         colors: false,
+        seams: false,
     };
 
     /// The record of `mesh` (none if it has no record or is gone).
@@ -95,6 +104,7 @@ impl MeshAttributes {
             uv: self.uv && !now.uv,
             normals: self.normals && !now.normals,
             colors: self.colors && !now.colors,
+            seams: self.seams && !now.seams,
         }
     }
 
@@ -104,6 +114,7 @@ impl MeshAttributes {
             ("UVs", self.uv),
             ("normals", self.normals),
             ("colours", self.colors),
+            ("seam marks", self.seams),
         ]
         .into_iter()
         .filter_map(|(n, has)| has.then_some(n))
@@ -142,6 +153,8 @@ pub struct AttributeColumns {
     pub normals: Option<Vec<Vec3>>,
     /// Colours, by vertex row.
     pub colors: Option<Vec<[u8; 3]>>,
+    /// Seam marks, by edge row.
+    pub seams: Option<Vec<bool>>,
 }
 
 impl AttributeColumns {
@@ -151,6 +164,7 @@ impl AttributeColumns {
             uv: self.uv.is_some(),
             normals: self.normals.is_some(),
             colors: self.colors.is_some(),
+            seams: self.seams.is_some(),
         }
     }
 
@@ -164,6 +178,7 @@ impl AttributeColumns {
         self.uv.as_ref().map_or(0, |v| v.capacity() * 8)
             + self.normals.as_ref().map_or(0, |v| v.capacity() * 12)
             + self.colors.as_ref().map_or(0, |v| v.capacity() * 3)
+            + self.seams.as_ref().map_or(0, Vec::capacity)
     }
 }
 
@@ -260,6 +275,18 @@ pub fn remove_attributes(world: &mut World, mesh: MeshId, which: MeshAttributes)
     for e in gone.drain(..) {
         world.entity_mut(e).remove::<CornerUv>();
     }
+    if which.seams
+        && let Some(mut q) = world.try_query::<(Entity, &InMesh, &Seam)>()
+    {
+        gone.extend(
+            q.iter(world)
+                .filter(|(_, m, _)| m.0 == mesh)
+                .map(|(e, ..)| e),
+        );
+    }
+    for e in gone.drain(..) {
+        world.entity_mut(e).remove::<Seam>();
+    }
     if which.normals || which.colors {
         if let Some(mut q) = world.try_query::<(Entity, &InMesh, &Vertex)>() {
             gone.extend(
@@ -312,8 +339,11 @@ mod tests {
             uv: true,
             normals: true,
             colors: true,
+            seams: false,
         };
         assert_eq!(all.describe(), "UVs, normals and colours");
+        let marked = MeshAttributes { seams: true, ..all };
+        assert_eq!(marked.describe(), "UVs, normals, colours and seam marks");
         let two = MeshAttributes {
             colors: false,
             ..all

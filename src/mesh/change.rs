@@ -19,14 +19,14 @@
 //!
 //! States are compared bitwise (`-0.0` is not `0.0`), so an undo restores positions exactly.
 //! Attributes travel with their elements: a local record holds each element's UV, normal and
-//! colour beside its links, and the whole-mesh records hold the tables' attribute columns, whose
+//! colour beside its links (and an edge its seam mark), and the whole-mesh records hold the tables' attribute columns, whose
 //! writer also restores the mesh's [`crate::mesh::attributes::MeshAttributes`] record.
 
 use bevy::ecs::entity::{EntityHashMap, EntityHashSet};
 use bevy::math::{Vec2, Vec3};
 use bevy::prelude::{Component, Entity, World};
 
-use super::attributes::{CornerUv, VertexColor, VertexNormal};
+use super::attributes::{CornerUv, Seam, VertexColor, VertexNormal};
 use super::elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
 use super::ids::{FaceId, MeshId, VertexId};
 use super::members::MeshMembers;
@@ -76,8 +76,8 @@ pub enum ElementState {
     Vertex(Vertex, Vec3, VertexAttributes),
     /// A halfedge and its corner's UV.
     Halfedge(Halfedge, Option<Vec2>),
-    /// An edge.
-    Edge(Edge),
+    /// An edge and whether it is marked a seam.
+    Edge(Edge, bool),
     /// A face.
     Face(Face),
 }
@@ -95,7 +95,7 @@ impl ElementState {
                 VertexAttributes::of(&r),
             ))
         } else if let Some(x) = r.get::<Edge>() {
-            Some(Self::Edge(*x))
+            Some(Self::Edge(*x, r.contains::<Seam>()))
         } else {
             r.get::<Face>().map(|f| Self::Face(*f))
         }
@@ -114,7 +114,7 @@ impl ElementState {
                     && x.map(|u| u.to_array().map(f32::to_bits))
                         == y.map(|u| u.to_array().map(f32::to_bits))
             }
-            (Self::Edge(a), Self::Edge(b)) => a == b,
+            (Self::Edge(a, x), Self::Edge(b, y)) => a == b && x == y,
             (Self::Face(a), Self::Face(b)) => a == b,
             _ => false,
         }
@@ -130,7 +130,7 @@ impl ElementState {
         match self {
             Self::Vertex(v, ..) => Component::map_entities(v, map),
             Self::Halfedge(h, _) => Component::map_entities(h, map),
-            Self::Edge(x) => Component::map_entities(x, map),
+            Self::Edge(x, _) => Component::map_entities(x, map),
             Self::Face(f) => Component::map_entities(f, map),
         }
     }
@@ -178,9 +178,14 @@ impl ElementState {
                     }
                 }
             }
-            Self::Edge(edge) => {
+            Self::Edge(edge, seam) => {
                 if let Some(mut x) = r.get_mut::<Edge>() {
                     *x = edge;
+                }
+                if seam {
+                    r.insert(Seam);
+                } else {
+                    r.remove::<Seam>();
                 }
             }
             Self::Face(f) => {
@@ -208,7 +213,11 @@ impl ElementState {
                     x.insert(CornerUv(uv));
                 }
             }),
-            Self::Edge(x) => world.spawn_at(e, (x, member)).map(|_| ()),
+            Self::Edge(x, seam) => world.spawn_at(e, (x, member)).map(|mut x| {
+                if seam {
+                    x.insert(Seam);
+                }
+            }),
             Self::Face(f) => world.spawn_at(e, (f, member)).map(|_| ()),
         };
         // The entity was allocated just before: spawning it cannot fail.

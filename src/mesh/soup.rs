@@ -97,6 +97,7 @@ impl PolygonSoup {
                 .is_some_and(|u| u.len() == self.indices.len()),
             normals: self.vertex_normals.as_ref().is_some_and(|v| v.len() == n),
             colors: self.vertex_colors.as_ref().is_some_and(|v| v.len() == n),
+            seams: false,
         }
     }
 

@@ -14,7 +14,7 @@ use bevy::prelude::{Entity, World};
 use super::connectivity::Connectivity;
 use super::rows::NONE;
 use crate::mesh::attributes::{
-    AttributeColumns, CornerUv, MeshAttributes, VertexColor, VertexNormal,
+    AttributeColumns, CornerUv, MeshAttributes, Seam, VertexColor, VertexNormal,
 };
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
 use crate::mesh::ids::{HalfedgeId, MeshId, slot, slots_for};
@@ -140,6 +140,11 @@ pub fn extract(world: &World, mesh: MeshId) -> MeshTables {
         let mut colors = vec![[0u8; 3]; nv];
         for_each_element::<&VertexColor>(world, mesh, |e, x| colors[row(e)] = x.0);
         t.attributes.colors = Some(colors);
+    }
+    if has.seams {
+        let mut seams = vec![false; t.edge_halfedge.len()];
+        for_each_element::<&Seam>(world, mesh, |e, _| seams[row(e)] = true);
+        t.attributes.seams = Some(seams);
     }
     MeshTables { tables: t, members }
 }

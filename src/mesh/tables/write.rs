@@ -22,7 +22,7 @@ use bevy::prelude::Component;
 use super::connectivity::Connectivity;
 use super::rows::{HalfedgeRow, NONE, RowCounts};
 use crate::mesh::attributes::{
-    CornerUv, MeshAttributes, VertexColor, VertexNormal, remove_attributes, set_record,
+    CornerUv, MeshAttributes, Seam, VertexColor, VertexNormal, remove_attributes, set_record,
 };
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
 use crate::mesh::ids::{EdgeId, FaceId, HalfedgeId, MeshId, VertexId};
@@ -252,10 +252,15 @@ pub(crate) fn write_attributes(
         .colors
         .as_deref()
         .filter(|v| v.len() == rows.vertices.len());
+    let seams = columns
+        .seams
+        .as_deref()
+        .filter(|v| v.len() == rows.edges.len());
     let now = MeshAttributes {
         uv: uv.is_some(),
         normals: normals.is_some(),
         colors: colors.is_some(),
+        seams: seams.is_some(),
     };
     remove_attributes(world, mesh, before.lost_in(now));
     if let Some(uv) = uv {
@@ -282,6 +287,14 @@ pub(crate) fn write_attributes(
             .zip(colors)
             .map(|(v, &x)| (v.0, Some(x)));
         write_column(world, values.collect(), VertexColor);
+    }
+    if let Some(seams) = seams {
+        let values = rows
+            .edges
+            .iter()
+            .zip(seams)
+            .map(|(e, &seam)| (e.0, seam.then_some(())));
+        write_column(world, values.collect(), |()| Seam);
     }
     set_record(world, mesh, now);
 }

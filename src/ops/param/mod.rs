@@ -55,7 +55,7 @@ use bevy::prelude::World;
 
 use crate::mesh::attributes::{CornerUv, MeshAttributes, set_record};
 use crate::mesh::ids::MeshId;
-use crate::mesh::tables::{Connectivity, MeshTables, NONE, extract};
+use crate::mesh::tables::{Connectivity, EdgeRow, MeshTables, NONE, extract};
 
 pub use cut::CutMesh;
 pub use distortion::Distortion;
@@ -193,7 +193,8 @@ pub fn parameterize_mesh(
 
 /// Parameterizes `mesh` and stores the layout on it: a [`CornerUv`] on every face halfedge, and
 /// UVs in the mesh's attribute record (its other attributes stay). UVs the mesh had before are
-/// replaced. On a refusal the world is not changed.
+/// replaced. Without seams in `params`, the edges the mesh marks with
+/// [`crate::mesh::attributes::Seam`] are the seams. On a refusal the world is not changed.
 ///
 /// # Errors
 /// As [`parameterize`].
@@ -202,7 +203,19 @@ pub fn parameterize_in_place(
     mesh: MeshId,
     params: &ParamParams,
 ) -> Result<ParamReport, ParamError> {
-    let (tables, p) = parameterize_mesh(world, mesh, params)?;
+    let tables = extract(world, mesh);
+    let mut params = params.clone();
+    if params.seams.is_empty()
+        && let Some(marks) = &tables.tables.attributes.seams
+    {
+        params.seams = marks
+            .iter()
+            .enumerate()
+            .filter(|&(_, &seam)| seam)
+            .map(|(row, _)| EdgeRow::new(row as u32))
+            .collect();
+    }
+    let p = parameterize(&tables.tables, &params)?;
     let t = &tables.tables;
     let corners: Vec<_> = t
         .halfedges()
