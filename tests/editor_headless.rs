@@ -824,3 +824,116 @@ fn smoothing_as_a_job_holds_the_vertex_the_editor_named() {
     assert_eq!(at(&app, held), held_at, "the held vertex stayed");
     assert_ne!(at(&app, free), free_at, "the others moved");
 }
+
+/// Whether every render chunk of the active mesh has texture coordinates.
+fn renders_uvs(app: &mut App) -> bool {
+    let meshes: Vec<Handle<Mesh>> = app
+        .world_mut()
+        .query_filtered::<&Mesh3d, With<RenderOf>>()
+        .iter(app.world())
+        .map(|m| m.0.clone())
+        .collect();
+    let assets = app.world().resource::<Assets<Mesh>>();
+    !meshes.is_empty()
+        && meshes.iter().all(|h| {
+            assets
+                .get(h)
+                .unwrap()
+                .attribute(Mesh::ATTRIBUTE_UV_0)
+                .is_some()
+        })
+}
+
+#[test]
+fn shift_u_parameterizes_as_a_job_draws_a_checker_and_undo_removes_the_uvs() {
+    use pappus::editor::jobs::{JobSettings, Jobs};
+    use pappus::editor::render_sync::ViewSettings;
+    use pappus::editor::uv_view::UvLayout;
+    use pappus::mesh::attributes::MeshAttributes;
+    let mut app = app();
+    app.world_mut().resource_mut::<JobSettings>().min_faces = 100;
+    open(&mut app, "shape:icosphere");
+    assert!(!MeshAttributes::of(app.world(), mesh(&app)).uv);
+    assert!(!renders_uvs(&mut app));
+    // Shift+U: the panel's method (mean-value, circle); the closed sphere is cut automatically.
+    app.world_mut()
+        .resource_mut::<ButtonInput<KeyCode>>()
+        .press(KeyCode::ShiftLeft);
+    app.world_mut().write_message(KeyboardInput {
+        key_code: KeyCode::ShiftLeft,
+        logical_key: Key::Shift,
+        state: ButtonState::Pressed,
+        text: None,
+        repeat: false,
+        window: Entity::PLACEHOLDER,
+    });
+    press(&mut app, KeyCode::KeyU);
+    while app.world().resource::<Jobs>().running.is_some() {
+        std::thread::sleep(std::time::Duration::from_millis(2));
+        app.update();
+    }
+    let outcome = last_outcome(&app);
+    assert!(
+        outcome
+            .request
+            .starts_with("parameterize (mean-value, circle)"),
+        "{outcome:?}"
+    );
+    let summary = outcome.result.clone().unwrap();
+    assert!(summary.contains("flip"), "{summary}");
+    let m = mesh(&app);
+    assert!(MeshAttributes::of(app.world(), m).uv);
+    validate(app.world(), m).unwrap();
+    // The checkerboard (on by default) gives the render copy UVs; a seam splits render vertices.
+    assert!(renders_uvs(&mut app));
+    let vertices: usize = {
+        let handles: Vec<Handle<Mesh>> = app
+            .world_mut()
+            .query_filtered::<&Mesh3d, With<RenderOf>>()
+            .iter(app.world())
+            .map(|h| h.0.clone())
+            .collect();
+        let assets = app.world().resource::<Assets<Mesh>>();
+        handles
+            .iter()
+            .map(|h| assets.get(h).unwrap().count_vertices())
+            .sum()
+    };
+    assert!(vertices > 642, "the cut's corners are split: {vertices}");
+    // The UV view opened by itself and holds the layout; clicking a face's UV centroid picks it.
+    assert!(
+        app.world()
+            .resource::<pappus::editor::input::UiState>()
+            .uv_view
+    );
+    {
+        let layout = app.world().resource::<UvLayout>();
+        assert_eq!(layout.faces.len(), 1280);
+        assert!(!layout.seams.is_empty());
+        let centroid = layout.face_corners(5).iter().copied().sum::<Vec2>() / 3.0;
+        assert_eq!(
+            pappus::editor::uv_view::face_at(layout, centroid),
+            Some(layout.faces[5])
+        );
+    }
+    // Checker off: no UVs drawn; on again: back.
+    app.world_mut().resource_mut::<ViewSettings>().checker = false;
+    app.world_mut()
+        .entity_mut(m.0)
+        .insert(pappus::editor::selection::MeshDirty);
+    app.update();
+    assert!(!renders_uvs(&mut app));
+    app.world_mut().resource_mut::<ViewSettings>().checker = true;
+    app.world_mut()
+        .entity_mut(m.0)
+        .insert(pappus::editor::selection::MeshDirty);
+    app.update();
+    assert!(renders_uvs(&mut app));
+    // Undo takes the UVs away, from the mesh, the render copy and the UV view.
+    app.world_mut().write_message(Request::Undo);
+    app.update();
+    let m = mesh(&app);
+    assert!(!MeshAttributes::of(app.world(), m).uv);
+    assert!(!renders_uvs(&mut app));
+    assert!(app.world().resource::<UvLayout>().is_empty());
+}

@@ -9,6 +9,7 @@
 //! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:Period`); `key:Shift+S`, `key:Ctrl+T` hold a modifier |
 //! | `select-edge:A,B` | select the edge between the input file's vertices A and B (0-based) |
 //! | `select:ID` | select an element by id (`f12v0`) |
+//! | `uv-select:U,V` | select the face whose UV polygon holds (U, V), as a click in the UV view does (`uv-select:0.5,0.5`) |
 //! | `open:PATH` | open a file (or `shape:NAME`) as Ctrl+O would |
 //! | `lod:FACES` | move the level-of-detail slider (after a simplification) |
 //! | `zoom:F` | multiply the camera's distance to what it looks at by F (`zoom:0.5` comes twice as close) |
@@ -46,6 +47,8 @@ pub enum ScriptStep {
     SelectEdge(u32, u32),
     /// Select an element by id.
     Select(ElementId),
+    /// Select the face at a point of the UV layout.
+    UvSelect(f32, f32),
     /// Open a file.
     Open(PathBuf),
     /// Move the level-of-detail slider.
@@ -121,6 +124,13 @@ impl Script {
                     )
                 }
                 "select" => ScriptStep::Select(parse_element(arg).ok_or_else(bad)?),
+                "uv-select" => {
+                    let (u, v) = arg.split_once(',').ok_or_else(bad)?;
+                    ScriptStep::UvSelect(
+                        u.trim().parse().map_err(|_| bad())?,
+                        v.trim().parse().map_err(|_| bad())?,
+                    )
+                }
                 "shot" => ScriptStep::Shot(PathBuf::from(arg)),
                 "open" => ScriptStep::Open(PathBuf::from(arg)),
                 "lod" => ScriptStep::Lod(arg.parse().map_err(|_| bad())?),
@@ -265,6 +275,16 @@ pub fn run_script(world: &mut World) {
                 }
                 script.waiting = 1;
             }
+            ScriptStep::UvSelect(u, v) => {
+                let layout = world.resource::<super::uv_view::UvLayout>();
+                match super::uv_view::face_at(layout, Vec2::new(u, v)) {
+                    Some(f) => {
+                        world.write_message(Request::Select(Some(ElementId::Face(f))));
+                    }
+                    None => bevy::log::warn!("script: no face at UV ({u}, {v})"),
+                }
+                script.waiting = 1;
+            }
             ScriptStep::Lod(faces) => {
                 world.write_message(Request::Edit(Edit::LevelOfDetail(faces)));
                 script.waiting = 2;
@@ -351,6 +371,9 @@ mod tests {
         assert_eq!(key_code("7"), Some(KeyCode::Digit7));
         assert_eq!(key_code("Escape"), Some(KeyCode::Escape));
         assert_eq!(key_code("MM"), None);
+        let script = Script::parse("uv-select:0.25, 0.5").unwrap();
+        assert_eq!(script.steps[0], ScriptStep::UvSelect(0.25, 0.5));
+        assert!(Script::parse("uv-select:0.25").is_err());
         let script = Script::parse("key:M;key:Ctrl+Z;key:Ctrl+Y").unwrap();
         let keys: Vec<ScriptStep> = script.steps.into_iter().collect();
         assert_eq!(

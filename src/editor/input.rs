@@ -10,6 +10,7 @@ use bevy::prelude::*;
 use crate::edit::{Edit, LocalKind, Scheme, Subdivision};
 use crate::mesh::MeshRef;
 use crate::mesh::ids::ElementId;
+use crate::ops::param::ParamParams;
 use crate::ops::remesh::RemeshParams;
 use crate::ops::simplify::SimplifyParams;
 use crate::ops::smooth::SmoothParams;
@@ -44,6 +45,8 @@ pub enum Action {
     Remesh,
     /// Smooth the active mesh (the panel's method, iterations, step; the selected vertex held).
     Smooth,
+    /// Parameterize the active mesh (the panel's method and boundary): a UV per corner.
+    Parameterize,
     /// Move the selection along a relation.
     Navigate(Relation),
     /// Change what a click selects.
@@ -58,6 +61,8 @@ pub enum Action {
     ToggleWireframe,
     /// Halfedge arrows on / off.
     ToggleHalfedges,
+    /// The UV checkerboard on / off.
+    ToggleChecker,
     /// Delete the active mesh.
     DeleteMesh,
     /// Undo the last edit.
@@ -215,6 +220,14 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::Smooth,
         "smooth with the panel's method (the boundary and the selected vertex held)",
     ),
+    Shortcut {
+        key: KeyCode::KeyU,
+        ctrl: false,
+        shift: true,
+        action: Action::Parameterize,
+        keys: "Shift+U",
+        description: "parameterize (unwrap) with the panel's method: a UV per corner",
+    },
     key(
         KeyCode::KeyH,
         "H",
@@ -323,6 +336,14 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::ToggleHalfedges,
         "halfedge arrows on / off",
     ),
+    Shortcut {
+        key: KeyCode::KeyC,
+        ctrl: false,
+        shift: true,
+        action: Action::ToggleChecker,
+        keys: "Shift+C",
+        description: "UV checkerboard on / off (meshes with UVs)",
+    },
     key(
         KeyCode::Delete,
         "Delete",
@@ -380,6 +401,11 @@ pub struct UiState {
     pub smooth: SmoothParams,
     /// Show the histograms even when the mesh is not coloured by a quantity.
     pub histograms: bool,
+    /// Parameterization: method and boundary shape (no seams; a closed genus-0 mesh is cut
+    /// automatically).
+    pub param: ParamParams,
+    /// The UV layout window is open (it opens by itself when the mesh first gets UVs).
+    pub uv_view: bool,
 }
 
 impl Default for UiState {
@@ -392,6 +418,8 @@ impl Default for UiState {
             subdivision_levels: 1,
             smooth: SmoothParams::default(),
             histograms: false,
+            param: ParamParams::default(),
+            uv_view: false,
         }
     }
 }
@@ -464,6 +492,7 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
         | Action::CatmullClark
         | Action::Remesh
         | Action::Smooth
+        | Action::Parameterize
         | Action::Simplify => {
             if world.resource::<ActiveMesh>().0.is_none() {
                 return Err(Declined::NoMesh);
@@ -474,6 +503,7 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
                 Action::Triangulate => Edit::Triangulate,
                 Action::Remesh => Edit::Remesh(ui.remesh),
                 Action::Simplify => Edit::Simplify(ui.simplify),
+                Action::Parameterize => Edit::Parameterize(ui.param.clone()),
                 Action::Smooth => Edit::Smooth(SmoothParams {
                     held: match selection {
                         Some(ElementId::Vertex(v)) => vec![v],
@@ -523,6 +553,12 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             if visible {
                 mark_all_dirty(world);
             }
+            return Ok(None);
+        }
+        Action::ToggleChecker => {
+            let mut settings = world.resource_mut::<ViewSettings>();
+            settings.checker = !settings.checker;
+            mark_all_dirty(world);
             return Ok(None);
         }
         Action::ToggleHalfedges => {

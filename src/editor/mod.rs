@@ -34,6 +34,7 @@ pub mod selection;
 pub mod session;
 pub mod surface;
 pub mod ui;
+pub mod uv_view;
 
 use bevy::prelude::*;
 use std::path::PathBuf;
@@ -86,6 +87,7 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<readability::WireframeDensity>()
             .init_resource::<input::KeyboardCaptured>()
             .init_resource::<input::UiState>()
+            .init_resource::<uv_view::UvLayout>()
             .configure_sets(
                 Update,
                 (
@@ -111,6 +113,7 @@ impl Plugin for EditorLogicPlugin {
                         colouring::update_vertex_values,
                         render_sync::sync_render_meshes,
                         overlay::gather_overlay,
+                        uv_view::refresh_uv_layout,
                     )
                         .chain()
                         .in_set(EditorSystems::Sync),

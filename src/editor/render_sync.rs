@@ -10,13 +10,15 @@
 //! In the `Sync` set, a mesh marked [`MeshDirty`] (opened, globally edited) is redrawn whole; a
 //! mesh carrying [`DirtyFaces`](super::selection::DirtyFaces) (a local edit) has only the
 //! chunks holding those faces redrawn, new faces joining the last chunk. A mesh coloured by a
-//! quantity ([`VertexValues`]) gets vertex colours. A 1M-face mesh thus re-renders an edit in milliseconds,
+//! quantity ([`VertexValues`]) gets vertex colours; a mesh with UVs, while
+//! [`ViewSettings::checker`] is on, gets texture coordinates (one render vertex per distinct
+//! vertex and UV, so a seam splits them) and the shader draws a checkerboard. A 1M-face mesh thus re-renders an edit in milliseconds,
 //! and meshes that did not change cost nothing per frame.
 
 use bevy::asset::RenderAssetUsages;
 use bevy::color::Color;
 use bevy::ecs::entity::EntityHashMap;
-use bevy::math::Vec3;
+use bevy::math::{Vec2, Vec3};
 use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology};
 use bevy::prelude::{
     Assets, Component, Entity, Handle, Or, Resource, Transform, Visibility, With, World,
@@ -24,6 +26,7 @@ use bevy::prelude::{
 use std::time::Instant;
 
 use crate::mesh::MeshInfo;
+use crate::mesh::attributes::{CornerUv, MeshAttributes};
 use crate::mesh::ids::{FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 
@@ -54,6 +57,9 @@ pub struct ViewSettings {
     /// Draw the wireframe even where its edges are too dense on screen to be told apart
     /// (see [`super::readability`]).
     pub dense_wireframe: bool,
+    /// Draw a checkerboard from the mesh's UVs (when it has them), to show the layout's
+    /// distortion: squares that stay square are conformal, equal ones area-preserving.
+    pub checker: bool,
 }
 
 impl Default for ViewSettings {
@@ -63,6 +69,7 @@ impl Default for ViewSettings {
             wireframe: true,
             halfedges: true,
             dense_wireframe: false,
+            checker: true,
         }
     }
 }
@@ -104,6 +111,9 @@ pub struct RenderData {
     pub triangle_faces: Vec<FaceId>,
     /// The mesh vertex behind each render vertex (for colouring by a quantity).
     pub vertices: Vec<VertexId>,
+    /// The texture coordinate of each render vertex (only when drawn with UVs; empty
+    /// otherwise).
+    pub uvs: Vec<[f32; 2]>,
 }
 
 /// The render chunks of a mesh (a component of the mesh entity).
@@ -131,7 +141,15 @@ pub struct ChunkFaces(pub Vec<FaceId>);
 /// surface shader takes each pixel's face normal from the derivatives of its position, so a
 /// vertex need not be repeated for every face around it (six times fewer vertices to transform
 /// on a triangle mesh, which is what a software rasteriser spends its time on).
-pub fn render_data(world: &World, faces: &[FaceId], smooth: bool) -> RenderData {
+///
+/// With `uvs` (the mesh has [`CornerUv`]s and the checkerboard is on) a render vertex is one
+/// distinct (vertex, UV) pair instead: the corners of a vertex on a seam, whose UVs differ,
+/// become separate render vertices, and [`RenderData::uvs`] is filled. Without it nothing is
+/// hashed by UV, so a mesh without UVs costs what it did.
+pub fn render_data(world: &World, faces: &[FaceId], smooth: bool, uvs: bool) -> RenderData {
+    if uvs {
+        return render_data_with_uvs(world, faces, smooth);
+    }
     let m = MeshRef::new(world);
     let mut out = RenderData::default();
     let mut corners = Vec::new();
@@ -141,13 +159,7 @@ pub fn render_data(world: &World, faces: &[FaceId], smooth: bool) -> RenderData 
         for v in m.face_vertices(f) {
             let next = index.len() as u32;
             let i = *index.entry(v.0).or_insert_with(|| {
-                out.positions.push(m.position(v).to_array());
-                out.vertices.push(v);
-                if smooth {
-                    let n: Vec3 = m.vertex_faces(v).map(|g| m.face_area_vector(g)).sum();
-                    out.normals
-                        .push(n.try_normalize().unwrap_or(Vec3::Z).to_array());
-                }
+                push_vertex(&m, &mut out, v, smooth);
                 next
             });
             corners.push(i);
@@ -155,6 +167,43 @@ pub fn render_data(world: &World, faces: &[FaceId], smooth: bool) -> RenderData 
         fan(&mut out, &corners, f);
     }
     out
+}
+
+/// [`render_data`] with one render vertex per distinct (vertex, corner UV) pair.
+fn render_data_with_uvs(world: &World, faces: &[FaceId], smooth: bool) -> RenderData {
+    let m = MeshRef::new(world);
+    let mut out = RenderData::default();
+    let mut corners = Vec::new();
+    let mut index: bevy::platform::collections::HashMap<(Entity, [u32; 2]), u32> =
+        bevy::platform::collections::HashMap::default();
+    for &f in faces {
+        corners.clear();
+        for h in m.face_halfedges(f) {
+            let v = m.to_vertex(h);
+            let uv = world.get::<CornerUv>(h.0).map_or(Vec2::ZERO, |c| c.0);
+            let key = (v.0, [uv.x.to_bits(), uv.y.to_bits()]);
+            let next = index.len() as u32;
+            let i = *index.entry(key).or_insert_with(|| {
+                push_vertex(&m, &mut out, v, smooth);
+                out.uvs.push(uv.to_array());
+                next
+            });
+            corners.push(i);
+        }
+        fan(&mut out, &corners, f);
+    }
+    out
+}
+
+/// Appends render vertex `v`: its position, its vertex id, and (smooth) its normal.
+fn push_vertex(m: &MeshRef<'_>, out: &mut RenderData, v: VertexId, smooth: bool) {
+    out.positions.push(m.position(v).to_array());
+    out.vertices.push(v);
+    if smooth {
+        let n: Vec3 = m.vertex_faces(v).map(|g| m.face_area_vector(g)).sum();
+        out.normals
+            .push(n.try_normalize().unwrap_or(Vec3::Z).to_array());
+    }
 }
 
 fn fan(out: &mut RenderData, corners: &[u32], f: FaceId) {
@@ -363,7 +412,9 @@ fn draw_chunk(
         .get::<ChunkFaces>(chunk)
         .map(|c| c.0.clone())
         .unwrap_or_default();
-    let data = render_data(world, &faces, settings.smooth);
+    let mesh = world.get::<RenderOf>(chunk).map(|r| r.0);
+    let uvs = settings.checker && mesh.is_some_and(|m| MeshAttributes::of(world, m).uv);
+    let data = render_data(world, &faces, settings.smooth, uvs);
     let triangles = data.triangle_faces.len();
     let mut render = Mesh::new(
         PrimitiveTopology::TriangleList,
@@ -374,7 +425,9 @@ fn draw_chunk(
     if !data.normals.is_empty() {
         render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, data.normals);
     }
-    let mesh = world.get::<RenderOf>(chunk).map(|r| r.0);
+    if !data.uvs.is_empty() {
+        render.insert_attribute(Mesh::ATTRIBUTE_UV_0, data.uvs);
+    }
     if let Some(values) = mesh.and_then(|m| world.get::<VertexValues>(m.0)) {
         let colours: Vec<[f32; 4]> = data.vertices.iter().map(|&v| values.colour(v)).collect();
         render.insert_attribute(Mesh::ATTRIBUTE_COLOR, colours);

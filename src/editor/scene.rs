@@ -178,6 +178,8 @@ pub struct PanelInsets {
     pub left: f32,
     /// Height of the bottom status line.
     pub bottom: f32,
+    /// Width kept free on the right (the UV view, so the mesh is seen beside it).
+    pub right: f32,
 }
 
 /// Renders the 3D view only where the panels are not, so the mesh is centred in what is seen.
@@ -193,9 +195,11 @@ pub fn fit_camera_viewport(
     let (w, h) = (window.physical_width(), window.physical_height());
     let left = ((insets.left * scale) as u32).min(w.saturating_sub(1));
     let bottom = ((insets.bottom * scale) as u32).min(h.saturating_sub(1));
+    // The right inset never takes the view below a quarter of what the left panel leaves.
+    let right = ((insets.right * scale) as u32).min((w - left) * 3 / 4);
     let viewport = bevy::camera::Viewport {
         physical_position: UVec2::new(left, 0),
-        physical_size: UVec2::new((w - left).max(1), (h - bottom).max(1)),
+        physical_size: UVec2::new((w - left - right).max(1), (h - bottom).max(1)),
         ..default()
     };
     for mut camera in &mut cameras {

@@ -7,6 +7,10 @@
 //! workbench do), so every side of the mesh is lit wherever the user orbits, and there are no
 //! lights to cluster. Both sides are drawn (no culling); back faces get their own colour.
 //!
+//! A mesh drawn with texture coordinates (its UVs, while the checkerboard is on) has its base
+//! colour modulated by a 16 × 16 checkerboard in UV space, two soft tones, to show the layout's
+//! distortion.
+//!
 //! While a quantity is shown the mesh's vertex colours replace the base colour, unshaded by any
 //! tonemapping, so the colour map on screen is the one in the legend. A mesh drawn without
 //! normals is shaded flat: the shader takes each face's normal from the screen-space derivatives

@@ -1,7 +1,8 @@
 // The surface shader of Pappus (see `surface.rs`): a light that travels with the camera, and
 // nothing else. Front faces take the material's colour (or the mesh's vertex colours while a
-// quantity is shown); back faces, seen through a hole or on a wrongly oriented face, are tinted
-// blue-grey so a flipped or open surface is visible at a glance.
+// quantity is shown), modulated by a checkerboard when the mesh has UVs; back faces, seen
+// through a hole or on a wrongly oriented face, are tinted blue-grey so a flipped or open
+// surface is visible at a glance.
 
 #import bevy_pbr::{
     forward_io::VertexOutput,
@@ -20,6 +21,13 @@ fn fragment(in: VertexOutput, @builtin(front_facing) front: bool) -> @location(0
     var base = material.color.rgb;
 #ifdef VERTEX_COLORS
     base = in.color.rgb;
+#endif
+#ifdef VERTEX_UVS_A
+    // The checkerboard of a UV layout (16 x 16 squares over [0, 1]^2): squares that stay square
+    // on the surface are conformal, squares of one size area-preserving. Two soft tones.
+    let cell = floor(in.uv * 16.0);
+    let odd = (i32(cell.x) + i32(cell.y)) & 1;
+    base = base * select(1.0, 0.62, odd == 1);
 #endif
     if !front {
         base = material.back_color.rgb;

@@ -16,6 +16,7 @@ use crate::mesh::topology::MeshRef;
 use crate::mesh::{MeshInfo, MeshStats, mesh_stats, validate};
 
 use crate::edit::{Edit, LocalKind, Subdivision};
+use crate::ops::param::{BoundaryShape, ParamMethod};
 use crate::ops::simplify::SimplifyTarget;
 use crate::ops::smooth::SmoothMethod;
 
@@ -55,7 +56,10 @@ impl Plugin for UiPlugin {
                     snapshot.in_set(EditorSystems::Ui),
                 ),
             )
-            .add_systems(EguiPrimaryContextPass, panels);
+            .add_systems(
+                EguiPrimaryContextPass,
+                (panels, super::uv_view::uv_window).chain(),
+            );
     }
 }
 
@@ -409,6 +413,7 @@ pub fn panels(
     let new_insets = super::scene::PanelInsets {
         left: inspector.response.rect.width(),
         bottom: status.response.rect.height(),
+        ..*insets
     };
     if *insets != new_insets {
         *insets = new_insets;
@@ -738,6 +743,7 @@ fn operations_section(
             (Action::ToggleSmooth, "smooth", settings.smooth),
             (Action::ToggleWireframe, "wireframe", settings.wireframe),
             (Action::ToggleHalfedges, "halfedges", settings.halfedges),
+            (Action::ToggleChecker, "checker", settings.checker),
         ] {
             if ui
                 .selectable_label(on, format!("{name} ({})", shortcut_label(action)))
@@ -760,7 +766,8 @@ fn operations_section(
 }
 
 /// The whole-mesh edits with their parameters: the same structs and defaults as the command
-/// line's steps (`simplify:RATIO`, `simplify-faces:N`, `remesh:ITERATIONS:LENGTH`, `loop:N`).
+/// line's steps (`simplify:RATIO`, `simplify-faces:N`, `remesh:ITERATIONS:LENGTH`, `loop:N`,
+/// `param:METHOD:BOUNDARY`).
 fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
     let mut button = |ui: &mut egui::Ui, action: Action, name: &str| {
         if ui
@@ -860,6 +867,28 @@ fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
         );
         ui.checkbox(&mut params.hold_boundary, "hold boundary");
         button(ui, Action::Smooth, "Smooth");
+    });
+    // Parameterization: method, boundary (fixed-boundary methods only), the UV view.
+    ui.horizontal_wrapped(|ui| {
+        let params = &mut state.param;
+        egui::ComboBox::from_id_salt("param method")
+            .selected_text(params.method.name())
+            .show_ui(ui, |ui| {
+                for (method, name) in ParamMethod::ALL {
+                    ui.selectable_value(&mut params.method, method, name);
+                }
+            });
+        ui.add_enabled_ui(params.method.fixed_boundary(), |ui| {
+            egui::ComboBox::from_id_salt("param boundary")
+                .selected_text(params.boundary.name())
+                .show_ui(ui, |ui| {
+                    for (shape, name) in BoundaryShape::ALL {
+                        ui.selectable_value(&mut params.boundary, shape, name);
+                    }
+                });
+        });
+        button(ui, Action::Parameterize, "Parameterize");
+        ui.checkbox(&mut state.uv_view, "UV view");
     });
     // Subdivision: levels per press.
     ui.horizontal(|ui| {
