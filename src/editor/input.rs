@@ -220,6 +220,13 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::Smooth,
         "smooth with the panel's method (the boundary and the selected vertex held)",
     ),
+    ctrl(
+        KeyCode::KeyE,
+        false,
+        "Ctrl+E",
+        Action::OnEdge(LocalKind::Seam),
+        "mark the selected edge as a seam for parameterizing (or unmark it)",
+    ),
     Shortcut {
         key: KeyCode::KeyU,
         ctrl: false,

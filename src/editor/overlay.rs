@@ -1,5 +1,6 @@
 //! What is drawn over the surface each frame: the selection, the hover highlight, vertex dots
-//! and halfedge arrows (offset into their face, as Dandelion and Scotty3D draw them).
+//! and halfedge arrows (offset into their face, as Dandelion and Scotty3D draw them), and the
+//! edges marked as seams.
 //!
 //! An exclusive system gathers the shapes from the mesh ([`gather_overlay`]); a plain system
 //! draws them with gizmos ([`draw_overlay`]). Arrows and dots cover the whole mesh only while it
@@ -10,10 +11,11 @@ use bevy::gizmos::config::GizmoConfigGroup;
 use bevy::math::{Isometry3d, Vec3};
 use bevy::prelude::*;
 
-use crate::mesh::ids::{ElementId, FaceId, HalfedgeId, MeshId, VertexId};
+use crate::mesh::attributes::Seam;
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::{MeshMembers, of_kind};
 use crate::mesh::topology::MeshRef;
-use crate::mesh::{Face, MeshInfo};
+use crate::mesh::{Face, InMesh, MeshInfo};
 
 use super::readability::WireframeDensity;
 use super::render_sync::{EDGE_COLOR, ViewSettings};
@@ -28,6 +30,8 @@ pub const SELECTED: Color = Color::srgb(1.0, 0.62, 0.0);
 pub const HOVERED: Color = Color::srgb(0.35, 0.8, 1.0);
 /// Colour of halfedge arrows.
 pub const ARROW: Color = Color::srgb(0.2, 0.25, 0.55);
+/// Colour of seam marks.
+pub const SEAM: Color = Color::srgb(0.95, 0.2, 0.75);
 /// Colour of vertex dots.
 pub const DOT: Color = Color::srgb(0.05, 0.05, 0.05);
 
@@ -189,6 +193,17 @@ pub fn gather_overlay(world: &mut World) {
             for h in near {
                 let (a, b) = halfedge_arrow(&m, h);
                 shapes.push(Shape::Arrow(a, b, ARROW));
+            }
+        }
+        // Seam marks, over everything: the cut a parameterization will make.
+        if crate::mesh::attributes::MeshAttributes::of(world, mesh).seams {
+            if let Some(mut seams) = world.try_query_filtered::<(Entity, &InMesh), With<Seam>>() {
+                for (e, in_mesh) in seams.iter(world) {
+                    if in_mesh.0 == mesh {
+                        let (a, b) = m.edge_vertices(EdgeId(e));
+                        shapes.push(Shape::Highlight(m.position(a), m.position(b), SEAM));
+                    }
+                }
             }
         }
         // With the full wireframe hidden as too dense, the faces around the selection keep theirs.

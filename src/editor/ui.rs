@@ -887,6 +887,7 @@ fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
                     }
                 });
         });
+        button(ui, Action::OnEdge(LocalKind::Seam), "Seam");
         button(ui, Action::Parameterize, "Parameterize");
         ui.checkbox(&mut state.uv_view, "UV view");
     });
