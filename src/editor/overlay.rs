@@ -196,13 +196,13 @@ pub fn gather_overlay(world: &mut World) {
             }
         }
         // Seam marks, over everything: the cut a parameterization will make.
-        if crate::mesh::attributes::MeshAttributes::of(world, mesh).seams {
-            if let Some(mut seams) = world.try_query_filtered::<(Entity, &InMesh), With<Seam>>() {
-                for (e, in_mesh) in seams.iter(world) {
-                    if in_mesh.0 == mesh {
-                        let (a, b) = m.edge_vertices(EdgeId(e));
-                        shapes.push(Shape::Highlight(m.position(a), m.position(b), SEAM));
-                    }
+        if crate::mesh::attributes::MeshAttributes::of(world, mesh).seams
+            && let Some(mut seams) = world.try_query_filtered::<(Entity, &InMesh), With<Seam>>()
+        {
+            for (e, in_mesh) in seams.iter(world) {
+                if in_mesh.0 == mesh {
+                    let (a, b) = m.edge_vertices(EdgeId(e));
+                    shapes.push(Shape::Highlight(m.position(a), m.position(b), SEAM));
                 }
             }
         }
