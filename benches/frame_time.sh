@@ -42,8 +42,9 @@ frame_run() {
     grep -a "frame-stats:" <<<"$out" | sed 's/.*frame-stats: /    /' >&2 || true
   fi
   local ms cpu
-  ms=$(grep -ao "mean frame time [0-9.]* ms" <<<"$out" | awk '{print $4}' | tail -1)
-  cpu=$(grep -ao "process CPU [0-9.]* ms" <<<"$out" | awk '{print $3}' | tail -1)
+  # An older build may not log every figure: a missing one reads "nan".
+  ms=$(grep -ao "mean frame time [0-9.]* ms" <<<"$out" | awk '{print $4}' | tail -1 || true)
+  cpu=$(grep -ao "process CPU [0-9.]* ms" <<<"$out" | awk '{print $3}' | tail -1 || true)
   echo "${ms:-nan} ${cpu:-nan}"
 }
 
