@@ -50,6 +50,7 @@ use super::ids::{HalfedgeId, MeshId, VertexId};
 /// The texture coordinate of a corner: on a face halfedge `h`, the UV of `to_vertex(h)` inside
 /// `face(h)`.
 #[derive(Component, Clone, Copy, Debug, PartialEq)]
+#[component(storage = "SparseSet")]
 pub struct CornerUv(pub Vec2);
 
 /// A vertex normal, as the file gave it (not renormalised, so it writes back bit for bit).

@@ -19,9 +19,9 @@
 //! area terms cancel, so `B` has entries on the boundary only. Holes need no filling: LSCM works
 //! on any connected surface of genus 0 with a boundary (the cut mesh).
 
+use super::sparse::from_entries;
 use bevy::math::{DVec2, DVec3};
 use faer::linalg::solvers::Solve;
-use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
 
 use super::params::ParamError;
@@ -58,8 +58,7 @@ pub fn lscm(
         if r.is_multiple_of(2) { p.x } else { p.y }
     };
     let mut rhs = Mat::<f64>::zeros(free, 1);
-    let mut triplets: Vec<Triplet<usize, usize, f64>> =
-        Vec::with_capacity(9 * triangles.len() + free);
+    let mut entries: Vec<(u32, u32, f64)> = Vec::with_capacity(12 * triangles.len());
     // Adds Q[r][c] += q, for every entry and its symmetric one alike: a free row keeps the
     // lower triangle, a pinned column goes to the right-hand side.
     let mut add = |r: usize, c: usize, q: f64| {
@@ -71,7 +70,7 @@ pub fn lscm(
         if cc == u32::MAX {
             rhs[(cr as usize, 0)] -= q * value(c);
         } else if cr >= cc {
-            triplets.push(Triplet::new(cr as usize, cc as usize, q));
+            entries.push((cr, cc, q));
         }
     };
     for tri in triangles {
@@ -97,8 +96,7 @@ pub fn lscm(
             add(2 * i + 1, 2 * j, 0.5);
         }
     }
-    let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(free, free, &triplets)
-        .map_err(|e| ParamError::Solve(format!("the LSCM matrix: {e:?}")))?;
+    let matrix = from_entries(free, &entries);
     let llt = matrix.sp_cholesky(Side::Lower).map_err(|e| {
         ParamError::Solve(format!(
             "the LSCM system is not positive definite ({e:?}): degenerate triangles?"

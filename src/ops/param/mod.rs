@@ -45,6 +45,7 @@ pub mod cut;
 pub mod distortion;
 pub mod lscm;
 pub mod params;
+pub mod sparse;
 pub mod tutte;
 pub mod weights;
 

@@ -20,7 +20,9 @@
 
 use bevy::math::{DVec2, DVec3};
 use faer::linalg::solvers::Solve;
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::SparseColMat;
+
+use super::sparse::from_entries;
 use faer::{Mat, Side};
 
 use super::params::ParamError;
@@ -67,6 +69,44 @@ pub fn fill_holes(
     holes.len()
 }
 
+/// The free vertices' system: `column[i]` is vertex `i`'s unknown (`u32::MAX` when fixed, then
+/// `uv[i]` is its position), only the lower triangle when `lower`. Returns the matrix and the
+/// right-hand sides (the fixed neighbours' pull), one column per coordinate.
+fn assemble(
+    weights: &[Weight],
+    column: &[u32],
+    free: usize,
+    uv: &[DVec2],
+    lower: bool,
+) -> (SparseColMat<usize, f64>, Mat<f64>) {
+    let mut rhs = Mat::<f64>::zeros(free, 2);
+    let mut entries = Vec::with_capacity(weights.len() + free);
+    let mut diagonal = vec![0.0f64; free];
+    for &(i, j, w) in weights {
+        let ci = column[i as usize];
+        if ci == u32::MAX {
+            continue;
+        }
+        diagonal[ci as usize] += w;
+        let cj = column[j as usize];
+        if cj == u32::MAX {
+            let p = uv[j as usize];
+            rhs[(ci as usize, 0)] += w * p.x;
+            rhs[(ci as usize, 1)] += w * p.y;
+        } else if !lower || ci > cj {
+            // Row ci is free vertex i's equation; Cholesky reads the lower triangle only.
+            entries.push((ci, cj, -w));
+        }
+    }
+    entries.extend(
+        diagonal
+            .iter()
+            .enumerate()
+            .map(|(c, &d)| (c as u32, c as u32, d)),
+    );
+    (from_entries(free, &entries), rhs)
+}
+
 /// Solves the barycentric mapping over `n` vertices with `weights` (directed entries, summed):
 /// `fixed[i]` is `Some(position)` for a fixed vertex, `None` for a free one. `symmetric` says the
 /// weights are (then Cholesky is tried first). Returns every vertex's position.
@@ -92,27 +132,7 @@ pub fn solve_fixed(
     if free == 0 {
         return Ok((uv, Solver::Cholesky));
     }
-    let mut rhs = Mat::<f64>::zeros(free, 2);
-    let mut triplets: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(weights.len() + free);
-    for &(i, j, w) in weights {
-        let ci = column[i as usize];
-        if ci == u32::MAX {
-            continue;
-        }
-        let ci = ci as usize;
-        triplets.push(Triplet::new(ci, ci, w));
-        let cj = column[j as usize];
-        if cj == u32::MAX {
-            let p = uv[j as usize];
-            rhs[(ci, 0)] += w * p.x;
-            rhs[(ci, 1)] += w * p.y;
-        } else if !symmetric || ci > cj as usize {
-            // Row ci is free vertex i's equation; Cholesky reads the lower triangle only.
-            triplets.push(Triplet::new(ci, cj as usize, -w));
-        }
-    }
-    let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(free, free, &triplets)
-        .map_err(|e| ParamError::Solve(format!("the matrix: {e:?}")))?;
+    let (matrix, rhs) = assemble(weights, &column, free, &uv, symmetric);
     let mut solver = Solver::Lu;
     let mut x = rhs.clone();
     let mut done = false;
@@ -124,15 +144,7 @@ pub fn solve_fixed(
     if !done {
         let full = if symmetric {
             // LU needs both triangles.
-            let mut both = triplets.clone();
-            both.extend(
-                triplets
-                    .iter()
-                    .filter(|t| t.row != t.col)
-                    .map(|t| Triplet::new(t.col, t.row, t.val)),
-            );
-            SparseColMat::<usize, f64>::try_new_from_triplets(free, free, &both)
-                .map_err(|e| ParamError::Solve(format!("the matrix: {e:?}")))?
+            assemble(weights, &column, free, &uv, false).0
         } else {
             matrix
         };
