@@ -12,6 +12,7 @@
 use bevy::prelude::World;
 use pappus::mesh::tables::extract;
 use pappus::mesh::{MeshInfo, build_mesh};
+use pappus::ops::named::Named;
 use pappus::ops::param::{ParamMethod, ParamParams, parameterize};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -43,7 +44,7 @@ fn main() {
         let start = Instant::now();
         let tables = extract(&world, built.mesh).tables;
         let extract_ms = start.elapsed().as_secs_f64() * 1e3;
-        for (method, name) in ParamMethod::ALL {
+        for &(method, name) in ParamMethod::ALL {
             let params = ParamParams::new(method);
             let mut total = Vec::with_capacity(RUNS);
             let mut solve = Vec::with_capacity(RUNS);

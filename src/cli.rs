@@ -29,6 +29,7 @@ use crate::ops::geometry::closest::Reference;
 use crate::ops::geometry::{
     NormalWeighting, Quantity, Surface, face_normals, scalar_curvature, vertex_normals,
 };
+use crate::ops::named::Named;
 use bevy::math::DVec3;
 
 /// Writes to stdout; a reader that has gone away (`pappus info … | head`) ends the output

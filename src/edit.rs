@@ -32,6 +32,7 @@ use crate::ops::local::{
     CollapseOptions, bisect_edge, collapse_edge, dissolve_edge, fill_hole, flip_edge, split_edge,
     split_face,
 };
+use crate::ops::named::Named;
 use crate::ops::param::{BoundaryShape, ParamMethod, ParamParams, parameterize_in_place};
 use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::remesh::{RemeshParams, remesh_with_progress};
@@ -696,9 +697,9 @@ pub enum LocalKind {
     Seam,
 }
 
-impl LocalKind {
+impl Named for LocalKind {
     /// Every kind, with its step name.
-    pub const ALL: [(LocalKind, &'static str); 8] = [
+    const ALL: &'static [(Self, &'static str)] = &[
         (LocalKind::Flip, "flip"),
         (LocalKind::Split, "split"),
         (LocalKind::Bisect, "bisect"),
@@ -708,15 +709,9 @@ impl LocalKind {
         (LocalKind::SplitFace, "split-face"),
         (LocalKind::Seam, "seam"),
     ];
+}
 
-    /// Its step name.
-    pub fn name(self) -> &'static str {
-        Self::ALL
-            .iter()
-            .find(|(k, _)| *k == self)
-            .map_or("", |(_, n)| n)
-    }
-
+impl LocalKind {
     /// The edit on the elements between the live vertices `a` and `b` (the input file's
     /// vertices `ia` and `ib`, named in refusals).
     ///

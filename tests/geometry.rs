@@ -7,6 +7,7 @@ use common::build;
 use pappus::mesh::tables::extract;
 use pappus::mesh::{MeshId, mesh_stats, shapes, validate};
 use pappus::ops::geometry::{Surface, curvature};
+use pappus::ops::named::Named;
 use pappus::ops::smooth::{SmoothMethod, SmoothParams, smooth};
 use std::f64::consts::PI;
 
@@ -93,7 +94,7 @@ fn every_smoothing_takes_noise_off_a_sphere() {
         let mean = radii.iter().sum::<f64>() / radii.len() as f64;
         (radii.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / radii.len() as f64).sqrt() / mean
     };
-    for (method, _) in SmoothMethod::ALL {
+    for &(method, _) in SmoothMethod::ALL {
         let (mut world, built) = build(&noisy_sphere());
         let before = spread(&world, built.mesh);
         let params = SmoothParams {

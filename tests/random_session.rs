@@ -16,6 +16,7 @@ use pappus::editor::requests::{Relation, Request};
 use pappus::editor::selection::ActiveMesh;
 use pappus::mesh::ids::{EdgeId, ElementId, FaceId, VertexId};
 use pappus::mesh::{MeshMembers, MeshRef, to_soup, validate};
+use pappus::ops::named::Named;
 use pappus::ops::remesh::RemeshParams;
 use pappus::ops::simplify::SimplifyParams;
 use pappus::ops::smooth::{SmoothMethod, SmoothParams};

@@ -29,6 +29,7 @@ use std::path::PathBuf;
 
 use crate::mesh::ids::{ElementId, parse_element};
 use crate::mesh::topology::MeshRef;
+use crate::ops::named::Named;
 
 use crate::edit::Edit;
 use crate::ops::geometry::Quantity;

@@ -14,6 +14,7 @@ use std::path::PathBuf;
 use crate::mesh::ids::{ElementId, parse_element};
 use crate::mesh::topology::MeshRef;
 use crate::mesh::{MeshInfo, MeshStats, mesh_stats, validate};
+use crate::ops::named::Named;
 
 use crate::edit::{Edit, LocalKind, Subdivision};
 use crate::ops::param::{BoundaryShape, ParamMethod};
@@ -842,7 +843,7 @@ fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
         egui::ComboBox::from_id_salt("smooth method")
             .selected_text(params.method.name())
             .show_ui(ui, |ui| {
-                for (method, name) in SmoothMethod::ALL {
+                for &(method, name) in SmoothMethod::ALL {
                     ui.selectable_value(&mut params.method, method, name);
                 }
             });
@@ -874,7 +875,7 @@ fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
         egui::ComboBox::from_id_salt("param method")
             .selected_text(params.method.name())
             .show_ui(ui, |ui| {
-                for (method, name) in ParamMethod::ALL {
+                for &(method, name) in ParamMethod::ALL {
                     ui.selectable_value(&mut params.method, method, name);
                 }
             });
@@ -882,7 +883,7 @@ fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
             egui::ComboBox::from_id_salt("param boundary")
                 .selected_text(params.boundary.name())
                 .show_ui(ui, |ui| {
-                    for (shape, name) in BoundaryShape::ALL {
+                    for &(shape, name) in BoundaryShape::ALL {
                         ui.selectable_value(&mut params.boundary, shape, name);
                     }
                 });
@@ -918,7 +919,7 @@ fn colour_section(
             .selected_text(shown)
             .show_ui(ui, |ui| {
                 ui.selectable_value(&mut colour_by.0, None, "nothing");
-                for (q, _) in Quantity::ALL {
+                for &(q, _) in Quantity::ALL {
                     ui.selectable_value(&mut colour_by.0, Some(q), q.label());
                 }
             });

@@ -12,6 +12,7 @@
 pub mod geometry;
 pub mod indexed_heap;
 pub mod local;
+pub mod named;
 pub mod param;
 pub mod progressive;
 pub mod remesh;

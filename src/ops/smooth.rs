@@ -33,6 +33,7 @@ use crate::mesh::{MeshInfo, Position};
 
 use super::Refusal;
 use super::geometry::{Surface, mixed_areas};
+use super::named::Named;
 
 /// Which Laplacian moves the vertices.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -48,23 +49,17 @@ pub enum SmoothMethod {
     Taubin,
 }
 
-impl SmoothMethod {
-    /// Every method, with its name on the command line.
-    pub const ALL: [(SmoothMethod, &'static str); 4] = [
+impl Named for SmoothMethod {
+    /// Every method, with its name on the command line and in the panel.
+    const ALL: &'static [(Self, &'static str)] = &[
         (SmoothMethod::Uniform, "uniform"),
         (SmoothMethod::Cotan, "cotan"),
         (SmoothMethod::Implicit, "implicit"),
         (SmoothMethod::Taubin, "taubin"),
     ];
+}
 
-    /// Its name on the command line and in the panel.
-    pub fn name(self) -> &'static str {
-        Self::ALL
-            .iter()
-            .find(|(m, _)| *m == self)
-            .map_or("", |(_, n)| n)
-    }
-
+impl SmoothMethod {
     /// The step λ it uses by default: 0.5 for the explicit ones, 1 for the implicit flow.
     pub fn default_step(self) -> f64 {
         match self {
@@ -353,7 +348,7 @@ mod tests {
 
     #[test]
     fn a_planar_grid_is_a_fixed_point_of_every_method() {
-        for (method, _) in SmoothMethod::ALL {
+        for &(method, _) in SmoothMethod::ALL {
             let mut world = World::new();
             let built = build_mesh(&mut world, &shapes::grid(6, 6), MeshInfo::default()).unwrap();
             let before = positions(&world, built.mesh);

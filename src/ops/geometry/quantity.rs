@@ -7,6 +7,7 @@
 
 use crate::colormap::ColorMap;
 use crate::mesh::tables::{Connectivity, FaceRow};
+use crate::ops::named::Named;
 
 use super::closest::Reference;
 use super::curvature::scalar_curvature;
@@ -36,9 +37,9 @@ pub enum Quantity {
     Distance,
 }
 
-impl Quantity {
+impl Named for Quantity {
     /// Every quantity, with its name on the command line.
-    pub const ALL: [(Quantity, &'static str); 9] = [
+    const ALL: &'static [(Self, &'static str)] = &[
         (Quantity::Mean, "mean"),
         (Quantity::Gaussian, "gaussian"),
         (Quantity::AngleDefect, "angle-defect"),
@@ -49,20 +50,9 @@ impl Quantity {
         (Quantity::EdgeLength, "edge-length"),
         (Quantity::Distance, "distance"),
     ];
+}
 
-    /// Its name on the command line.
-    pub fn name(self) -> &'static str {
-        Self::ALL
-            .iter()
-            .find(|(q, _)| *q == self)
-            .map_or("", |(_, n)| n)
-    }
-
-    /// The quantity a command-line name stands for.
-    pub fn from_name(name: &str) -> Option<Quantity> {
-        Self::ALL.iter().find(|(_, n)| *n == name).map(|(q, _)| *q)
-    }
-
+impl Quantity {
     /// Its name in the panel and the legend.
     pub fn label(self) -> &'static str {
         match self {
@@ -205,7 +195,7 @@ mod tests {
                 .iter()
                 .all(|d| d.is_nan())
         );
-        for (q, name) in Quantity::ALL {
+        for &(q, name) in Quantity::ALL {
             assert_eq!(Quantity::from_name(name), Some(q));
             assert_eq!(q.name(), name);
         }

@@ -298,15 +298,16 @@ mod tests {
     use super::*;
     use crate::mesh::shapes;
     use crate::mesh::tables::EdgeRow;
+    use crate::ops::named::Named;
 
     #[test]
     fn names_round_trip() {
-        for (m, name) in ParamMethod::ALL {
+        for &(m, name) in ParamMethod::ALL {
             assert_eq!(m.name(), name);
             assert_eq!(name.parse::<ParamMethod>(), Ok(m));
             assert_eq!(m.to_string(), name);
         }
-        for (b, name) in BoundaryShape::ALL {
+        for &(b, name) in BoundaryShape::ALL {
             assert_eq!(b.name(), name);
             assert_eq!(name.parse::<BoundaryShape>(), Ok(b));
         }
@@ -338,8 +339,8 @@ mod tests {
     #[test]
     fn every_method_lays_out_a_grid_with_holes_without_flips() {
         let t = test_tables(&shapes::grid_with_holes(3));
-        for (method, _) in ParamMethod::ALL {
-            for (boundary, _) in BoundaryShape::ALL {
+        for &(method, _) in ParamMethod::ALL {
+            for &(boundary, _) in BoundaryShape::ALL {
                 let p = parameterize(
                     &t,
                     &ParamParams {

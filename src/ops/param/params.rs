@@ -7,6 +7,8 @@ use std::str::FromStr;
 
 use thiserror::Error;
 
+use crate::ops::named::Named;
+
 use crate::mesh::tables::EdgeRow;
 
 /// Which mapping computes the layout.
@@ -24,23 +26,17 @@ pub enum ParamMethod {
     Lscm,
 }
 
-impl ParamMethod {
+impl Named for ParamMethod {
     /// Every method, with its name on the command line (`param:NAME`).
-    pub const ALL: [(ParamMethod, &'static str); 4] = [
+    const ALL: &'static [(Self, &'static str)] = &[
         (ParamMethod::Uniform, "uniform"),
         (ParamMethod::MeanValue, "mean-value"),
         (ParamMethod::Harmonic, "harmonic"),
         (ParamMethod::Lscm, "lscm"),
     ];
+}
 
-    /// Its name on the command line and in reports; [`FromStr`] reads it back.
-    pub fn name(self) -> &'static str {
-        Self::ALL
-            .iter()
-            .find(|(m, _)| *m == self)
-            .map_or("", |(_, n)| n)
-    }
-
+impl ParamMethod {
     /// Whether the boundary is fixed on a convex shape (every method but LSCM).
     pub fn fixed_boundary(self) -> bool {
         self != ParamMethod::Lscm
@@ -57,20 +53,12 @@ pub enum BoundaryShape {
     Square,
 }
 
-impl BoundaryShape {
+impl Named for BoundaryShape {
     /// Every shape, with its name on the command line (`param:METHOD:NAME`).
-    pub const ALL: [(BoundaryShape, &'static str); 2] = [
+    const ALL: &'static [(Self, &'static str)] = &[
         (BoundaryShape::Circle, "circle"),
         (BoundaryShape::Square, "square"),
     ];
-
-    /// Its name on the command line and in reports; [`FromStr`] reads it back.
-    pub fn name(self) -> &'static str {
-        Self::ALL
-            .iter()
-            .find(|(m, _)| *m == self)
-            .map_or("", |(_, n)| n)
-    }
 }
 
 /// A name that is no method or boundary shape; the text lists the names there are.
@@ -85,19 +73,12 @@ pub struct UnknownName {
     pub expected: String,
 }
 
-fn parse_name<T: Copy>(
-    all: &[(T, &'static str)],
-    kind: &'static str,
-    s: &str,
-) -> Result<T, UnknownName> {
-    all.iter()
-        .find(|(_, n)| n.eq_ignore_ascii_case(s))
-        .map(|(m, _)| *m)
-        .ok_or_else(|| UnknownName {
-            kind,
-            name: s.to_string(),
-            expected: all.iter().map(|(_, n)| *n).collect::<Vec<_>>().join("|"),
-        })
+fn parse_name<T: Named>(kind: &'static str, s: &str) -> Result<T, UnknownName> {
+    T::from_name(s).ok_or_else(|| UnknownName {
+        kind,
+        name: s.to_string(),
+        expected: T::names(),
+    })
 }
 
 impl FromStr for ParamMethod {
@@ -105,7 +86,7 @@ impl FromStr for ParamMethod {
 
     /// `uniform`, `mean-value`, `harmonic` or `lscm` (any case).
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        parse_name(&Self::ALL, "parameterization method", s)
+        parse_name("parameterization method", s)
     }
 }
 
@@ -114,7 +95,7 @@ impl FromStr for BoundaryShape {
 
     /// `circle` or `square` (any case).
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        parse_name(&Self::ALL, "boundary shape", s)
+        parse_name("boundary shape", s)
     }
 }
 
