@@ -138,42 +138,67 @@ pub fn parameterize(
     t: &Connectivity,
     params: &ParamParams,
 ) -> Result<Parameterization, ParamError> {
+    parameterize_then(t, params, |_| ()).map(|(p, ())| p)
+}
+
+/// [`parameterize`], handing the corner UVs to `meanwhile` as soon as they are known: it runs
+/// while a second thread measures the distortion for the report (what
+/// [`parameterize_in_place`] uses to write the layout onto the mesh in that time).
+///
+/// # Errors
+/// As [`parameterize`]; `meanwhile` is not called then.
+pub fn parameterize_then<R>(
+    t: &Connectivity,
+    params: &ParamParams,
+    meanwhile: impl FnOnce(&[Vec2]) -> R,
+) -> Result<(Parameterization, R), ParamError> {
     let start = Instant::now();
     let cut = cut::cut(t, &params.seams, params.auto_cut)?;
     let (uv, solver, solve_ms, filled) = solve(&cut, params)?;
-    let d = distortion::measure(&cut.positions, &uv, &cut.triangles);
-    let uv = normalise(&uv);
-    let corner_uv = cut
-        .corner
-        .iter()
-        .map(|&c| {
-            if c == NONE {
-                Vec2::NAN
-            } else {
-                uv[c as usize].as_vec2()
-            }
-        })
-        .collect();
-    Ok(Parameterization {
-        uv: corner_uv,
-        report: ParamReport {
-            method: params.method,
-            boundary: params.method.fixed_boundary().then_some(params.boundary),
-            triangles: cut.triangles.len(),
-            flipped: d.flipped,
-            angle_distortion_deg: d.angle_deg,
-            conformal_energy: d.conformal,
-            area_distortion: d.area,
-            cut_vertices: cut.vertex_count(),
-            seam_edges: cut.seams.len(),
-            auto_seam_edges: cut.auto_seams,
-            boundary_loops: cut.loops.len(),
-            filled_holes: filled,
-            solver,
-            solve_ms,
-            total_ms: start.elapsed().as_secs_f64() * 1e3,
+    let (d, corner_uv, result) = std::thread::scope(|scope| {
+        let distortion = scope.spawn(|| distortion::measure(&cut.positions, &uv, &cut.triangles));
+        let normalised = normalise(&uv);
+        let corner_uv: Vec<Vec2> = cut
+            .corner
+            .iter()
+            .map(|&c| {
+                if c == NONE {
+                    Vec2::NAN
+                } else {
+                    normalised[c as usize].as_vec2()
+                }
+            })
+            .collect();
+        let result = meanwhile(&corner_uv);
+        let d = distortion
+            .join()
+            .expect("measuring the distortion does not panic");
+        (d, corner_uv, result)
+    });
+    let report = ParamReport {
+        method: params.method,
+        boundary: params.method.fixed_boundary().then_some(params.boundary),
+        triangles: cut.triangles.len(),
+        flipped: d.flipped,
+        angle_distortion_deg: d.angle_deg,
+        conformal_energy: d.conformal,
+        area_distortion: d.area,
+        cut_vertices: cut.vertex_count(),
+        seam_edges: cut.seams.len(),
+        auto_seam_edges: cut.auto_seams,
+        boundary_loops: cut.loops.len(),
+        filled_holes: filled,
+        solver,
+        solve_ms,
+        total_ms: start.elapsed().as_secs_f64() * 1e3,
+    };
+    Ok((
+        Parameterization {
+            uv: corner_uv,
+            report,
         },
-    })
+        result,
+    ))
 }
 
 /// Reads `mesh` out of `world` and parameterizes it; the world is not changed. Returns the
@@ -216,19 +241,20 @@ pub fn parameterize_in_place(
             .map(|(row, _)| EdgeRow::new(row as u32))
             .collect();
     }
-    let p = parameterize(&tables.tables, &params)?;
     let t = &tables.tables;
-    let corners: Vec<_> = t
-        .halfedges()
-        .filter(|&h| !t.is_boundary(h))
-        .map(|h| {
-            (
-                tables.members.halfedges[h.index()].0,
-                CornerUv(p.uv[h.index()]),
-            )
-        })
-        .collect();
-    world.insert_batch(corners);
+    let (p, ()) = parameterize_then(t, &params, |uv| {
+        let corners: Vec<_> = t
+            .halfedges()
+            .filter(|&h| !t.is_boundary(h))
+            .map(|h| {
+                (
+                    tables.members.halfedges[h.index()].0,
+                    CornerUv(uv[h.index()]),
+                )
+            })
+            .collect();
+        world.insert_batch(corners);
+    })?;
     let mut has = MeshAttributes::of(world, mesh);
     has.uv = true;
     set_record(world, mesh, has);
@@ -258,14 +284,12 @@ fn solve(
         tutte::fill_holes(&mut positions, &mut triangles, holes);
         (&positions, &triangles)
     };
-    let w = weights::weights(params.method, positions, triangles);
     let mut fixed = vec![None; positions.len()];
     for (&c, &p) in cut.loops[0].iter().zip(&outer) {
         fixed[c as usize] = Some(p);
     }
-    let symmetric = params.method != ParamMethod::MeanValue;
     let start = Instant::now();
-    let (mut uv, solver) = tutte::solve_fixed(positions.len(), &w, &fixed, symmetric)?;
+    let (mut uv, solver) = tutte::solve_triangles(params.method, positions, triangles, &fixed)?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     uv.truncate(n);
     Ok((uv, solver, ms, holes.len()))

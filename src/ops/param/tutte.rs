@@ -19,14 +19,15 @@
 //! linear precision (mean-value, harmonic) — what the tests check.
 
 use bevy::math::{DVec2, DVec3};
+use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::Solve;
 use faer::sparse::SparseColMat;
+use faer::sparse::linalg::cholesky::{SymmetricOrdering, factorize_symbolic_cholesky};
+use faer::{Conj, Mat, Par, Side};
 
+use super::params::{ParamError, ParamMethod};
 use super::sparse::from_entries;
-use faer::{Mat, Side};
-
-use super::params::ParamError;
-use super::weights::Weight;
+use super::weights::{Weight, weights};
 
 /// Which factorization solved a system.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -67,6 +68,114 @@ pub fn fill_holes(
         }
     }
     holes.len()
+}
+
+/// The barycentric mapping of `triangles` with `method`'s weights and the `fixed` positions
+/// (`Some` on the boundary): every vertex's position, and the factorization used.
+///
+/// Which entries the matrix has depends only on which vertices are neighbours, not on the
+/// weights: for the symmetric weights (uniform, harmonic) the fill-reducing ordering and the
+/// symbolic Cholesky factorization — half the solve — run on a second thread while this one
+/// computes the weights and assembles the values. Mean-value weights go to [`solve_fixed`]'s
+/// LU; so do harmonic weights whose matrix is not positive definite.
+///
+/// # Errors
+/// As [`solve_fixed`].
+pub fn solve_triangles(
+    method: ParamMethod,
+    positions: &[DVec3],
+    triangles: &[[u32; 3]],
+    fixed: &[Option<DVec2>],
+) -> Result<(Vec<DVec2>, Solver), ParamError> {
+    if method == ParamMethod::MeanValue {
+        let w = weights(method, positions, triangles);
+        return solve_fixed(positions.len(), &w, fixed, false);
+    }
+    let n = positions.len();
+    let (column, free) = columns(fixed);
+    let mut uv: Vec<DVec2> = fixed.iter().map(|f| f.unwrap_or(DVec2::ZERO)).collect();
+    if free == 0 {
+        return Ok((uv, Solver::Cholesky));
+    }
+    let (symbolic, w, (matrix, rhs)) = std::thread::scope(|scope| {
+        let symbolic = scope.spawn(|| {
+            let mut pattern = Vec::with_capacity(3 * triangles.len() + free);
+            for tri in triangles {
+                for k in 0..3 {
+                    let (i, j) = (tri[k] as usize, tri[(k + 1) % 3] as usize);
+                    let (ci, cj) = (column[i], column[j]);
+                    if ci != u32::MAX && cj != u32::MAX {
+                        pattern.push((ci.max(cj), ci.min(cj), 0.0));
+                    }
+                }
+            }
+            pattern.extend((0..free as u32).map(|c| (c, c, 0.0)));
+            let pattern = from_entries(free, &pattern);
+            factorize_symbolic_cholesky(
+                pattern.symbolic(),
+                Side::Lower,
+                SymmetricOrdering::Amd,
+                Default::default(),
+            )
+        });
+        let w = weights(method, positions, triangles);
+        let system = assemble(&w, &column, free, &uv, true);
+        let symbolic = symbolic
+            .join()
+            .expect("the symbolic factorization does not panic");
+        (symbolic, w, system)
+    });
+    let Ok(symbolic) = symbolic else {
+        return solve_fixed(n, &w, fixed, true);
+    };
+    let mut values = vec![0.0f64; symbolic.len_val()];
+    let par = Par::Seq;
+    let llt = symbolic.factorize_numeric_llt(
+        &mut values,
+        matrix.as_ref(),
+        Side::Lower,
+        Default::default(),
+        par,
+        MemStack::new(&mut MemBuffer::new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+        )),
+        Default::default(),
+    );
+    let Ok(llt) = llt else {
+        // Not positive definite (harmonic weights beside obtuse angles): LU.
+        return solve_fixed(n, &w, fixed, true);
+    };
+    let mut x = rhs;
+    llt.solve_in_place_with_conj(
+        Conj::No,
+        x.as_mut(),
+        par,
+        MemStack::new(&mut MemBuffer::new(
+            llt.solve_in_place_scratch::<f64>(2, par),
+        )),
+    );
+    if !x.col_iter().all(|c| c.iter().all(|v| v.is_finite())) {
+        return solve_fixed(n, &w, fixed, true);
+    }
+    for (i, &c) in column.iter().enumerate() {
+        if c != u32::MAX {
+            uv[i] = DVec2::new(x[(c as usize, 0)], x[(c as usize, 1)]);
+        }
+    }
+    Ok((uv, Solver::Cholesky))
+}
+
+/// Each free vertex's unknown (`u32::MAX` for a fixed one), and how many are free.
+fn columns(fixed: &[Option<DVec2>]) -> (Vec<u32>, usize) {
+    let mut column = vec![u32::MAX; fixed.len()];
+    let mut free = 0usize;
+    for (i, f) in fixed.iter().enumerate() {
+        if f.is_none() {
+            column[i] = free as u32;
+            free += 1;
+        }
+    }
+    (column, free)
 }
 
 /// The free vertices' system: `column[i]` is vertex `i`'s unknown (`u32::MAX` when fixed, then
@@ -120,14 +229,7 @@ pub fn solve_fixed(
     fixed: &[Option<DVec2>],
     symmetric: bool,
 ) -> Result<(Vec<DVec2>, Solver), ParamError> {
-    let mut column = vec![u32::MAX; n];
-    let mut free = 0usize;
-    for i in 0..n {
-        if fixed[i].is_none() {
-            column[i] = free as u32;
-            free += 1;
-        }
-    }
+    let (column, free) = columns(fixed);
     let mut uv: Vec<DVec2> = fixed.iter().map(|f| f.unwrap_or(DVec2::ZERO)).collect();
     if free == 0 {
         return Ok((uv, Solver::Cholesky));
