@@ -608,9 +608,13 @@ impl Edit {
                     (0, h) => format!(", {h} inner holes filled for the solve"),
                     (s, _) => format!(", cut along {s} edges"),
                 };
+                let degenerate = match r.degenerate {
+                    0 => String::new(),
+                    n => format!(" ({n} laid flat)"),
+                };
                 whole(format!(
-                    "{} flipped of {} triangles, angle distortion {:.2}°, area distortion {:.3}, \
-                     conformal energy {:.4}{cut}",
+                    "{} flipped of {} triangles{degenerate}, angle distortion {:.2}°, area \
+                     distortion {:.3}, conformal energy {:.4}{cut}",
                     r.flipped,
                     r.triangles,
                     r.angle_distortion_deg,

@@ -8,7 +8,7 @@
 //! - **square**: four loop vertices become the corners of the unit square, those nearest to the
 //!   arc lengths `0, L/4, L/2, 3L/4` (kept distinct and in order); the vertices between two
 //!   corners are spaced along that side by their arc length. Three boundary vertices on one side
-//!   are collinear, so a triangle with all its corners on one side is flat (counted as flipped):
+//!   are collinear, so a triangle with all its corners on one side is flat (counted as degenerate):
 //!   that is the square's price, and why the circle is the default.
 //!
 //! Also here: the two far-apart boundary vertices LSCM pins ([`far_pair`]).

@@ -3,7 +3,12 @@
 //! Measured on the fanned triangles of the cut mesh (a polygon counts once per fan triangle),
 //! real triangles only (never the virtual hole fills), with the final UVs:
 //!
-//! - **flipped**: signed UV area ≤ 0 for a triangle whose 3D area is > 0.
+//! - **flipped**: signed UV area < 0 for a triangle whose 3D area is > 0 (turned over).
+//! - **degenerate**: UV area zero to rounding (under 1e-9 of its longest UV side squared) though
+//!   the 3D area is not: three corners on one line. Tutte's theorem guarantees an embedding only
+//!   for a 3-connected graph; a vertex with two neighbours (a polygon corner with no other
+//!   face, or three boundary vertices on one side of the square) lands on the line between
+//!   them. Not turned over, but no texture either.
 //! - **angle distortion**: the mean over the corners of non-degenerate triangles of
 //!   |angle in UV − angle in 3D|, in degrees (0 for a conformal map).
 //! - **conformal energy** (the LSCM energy, Lévy et al. 2002): `Σ_T (E_D − A_uv)` over the total
@@ -19,8 +24,10 @@ use super::weights::cotangents;
 /// The figures of [`measure`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Distortion {
-    /// Triangles with signed UV area ≤ 0 (and 3D area > 0).
+    /// Triangles with signed UV area < 0 (and 3D area > 0).
     pub flipped: usize,
+    /// Triangles with UV area zero to rounding (and 3D area > 0).
+    pub degenerate: usize,
     /// Mean |angle in UV − angle in 3D| over corners, degrees.
     pub angle_deg: f64,
     /// Conformal energy over UV area (≥ 0; 0 for a conformal map).
@@ -44,7 +51,13 @@ pub fn measure(positions: &[DVec3], uv: &[DVec2], triangles: &[[u32; 3]]) -> Dis
         if a3 <= 0.0 {
             continue;
         }
-        if auv <= 0.0 {
+        let longest = (q[1] - q[0])
+            .length_squared()
+            .max((q[2] - q[1]).length_squared())
+            .max((q[0] - q[2]).length_squared());
+        if auv.abs() <= 1e-9 * longest {
+            d.degenerate += 1;
+        } else if auv < 0.0 {
             d.flipped += 1;
         }
         area_3d += a3;
@@ -103,7 +116,11 @@ mod tests {
         );
         let mirrored: Vec<DVec2> = p.iter().map(|x| DVec2::new(x.x, -x.y)).collect();
         let m = measure(&p, &mirrored, &tri);
-        assert_eq!(m.flipped, 1);
+        assert_eq!((m.flipped, m.degenerate), (1, 0));
+        // Three corners on one line (up to rounding): degenerate, not turned over.
+        let flat = [DVec2::ZERO, DVec2::new(0.5, 1e-17), DVec2::X];
+        let f = measure(&p, &flat, &tri);
+        assert_eq!((f.flipped, f.degenerate), (0, 1));
         // A mirror keeps the angles but its conformal energy is the whole Dirichlet energy.
         assert!(
             m.angle_deg < 1e-9 && (m.conformal - 2.0).abs() < 1e-9,

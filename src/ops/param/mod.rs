@@ -74,6 +74,9 @@ pub struct ParamReport {
     pub triangles: usize,
     /// Triangles with signed UV area ≤ 0 though their 3D area is > 0.
     pub flipped: usize,
+    /// Triangles laid out with zero area (three corners on one line) though their 3D area is
+    /// not: not turned over, but they get no texture.
+    pub degenerate: usize,
     /// Mean |angle in UV − angle in 3D| over triangle corners, degrees.
     pub angle_distortion_deg: f64,
     /// The conformal (LSCM) energy over the UV area: ≥ 0, 0 for a conformal map.
@@ -180,6 +183,7 @@ pub fn parameterize_then<R>(
         boundary: params.method.fixed_boundary().then_some(params.boundary),
         triangles: cut.triangles.len(),
         flipped: d.flipped,
+        degenerate: d.degenerate,
         angle_distortion_deg: d.angle_deg,
         conformal_energy: d.conformal,
         area_distortion: d.area,
