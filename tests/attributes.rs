@@ -338,3 +338,33 @@ fn a_seam_mark_undoes_and_survives_a_whole_mesh_record() {
     let ends = [m.position(a), m.position(b)];
     assert!(ends.contains(&Vec3::ZERO) && ends.contains(&Vec3::new(1.0, 1.0, 0.0)));
 }
+
+#[test]
+fn splitting_a_seam_leaves_both_halves_seams() {
+    let (mut world, built) = common::build(&square());
+    let mesh = built.mesh;
+    let v = |i: usize| built.input_vertices[i].unwrap();
+    let diagonal = edge_between(&world, v(0), v(2));
+    run(&mut world, mesh, &Edit::ToggleSeam(diagonal));
+    run(&mut world, mesh, &Edit::Split(diagonal));
+    let seams: Vec<bevy::prelude::Entity> = world
+        .query_filtered::<bevy::prelude::Entity, bevy::prelude::With<Seam>>()
+        .iter(&world)
+        .collect();
+    let m = MeshRef::new(&world);
+    let marked: Vec<(Vec3, Vec3)> = seams
+        .into_iter()
+        .map(|e| {
+            let (a, b) = m.edge_vertices(pappus::mesh::EdgeId(e));
+            (m.position(a), m.position(b))
+        })
+        .collect();
+    // The two halves of the diagonal, meeting at its midpoint; the split's cross edges are not.
+    assert_eq!(marked.len(), 2, "{marked:?}");
+    let mid = Vec3::new(0.5, 0.5, 0.0);
+    for (a, b) in marked {
+        assert!(a == mid || b == mid);
+        let other = if a == mid { b } else { a };
+        assert!(other == Vec3::ZERO || other == Vec3::new(1.0, 1.0, 0.0));
+    }
+}

@@ -209,6 +209,10 @@ pub fn apply_bisect(world: &mut World, p: BisectPlan) -> VertexId {
         }
     }
     attributes::interpolate_vertex(world, has, mid, (a, b), p.param);
+    // A seam stays a seam along both halves.
+    if has.seams && world.get::<attributes::Seam>(p.edge.0).is_some() {
+        world.entity_mut(e2.0).insert(attributes::Seam);
+    }
     mid
 }
 
