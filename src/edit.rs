@@ -340,7 +340,9 @@ impl Edit {
             Edit::Simplify(_) | Edit::LevelOfDetail(_) | Edit::SplitVertex(_) => {
                 "simplification does not carry attributes".into()
             }
-            Edit::Subdivide(_) => "subdivision moves the surface; recompute them".into(),
+            Edit::Subdivide(_) => {
+                "subdivision carries UVs and colours, not normals or seam marks".into()
+            }
             _ => format!("{} does not carry them", self.label()),
         }
     }

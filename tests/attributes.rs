@@ -148,7 +148,9 @@ fn one_loop_level_interpolates_uvs_linearly_and_drops_normals() {
         &Edit::Subdivide(Subdivision::once(Scheme::Loop)),
     );
     assert!(
-        summary.ends_with("— normals dropped: subdivision moves the surface; recompute them"),
+        summary.ends_with(
+            "— normals dropped: subdivision carries UVs and colours, not normals or seam marks"
+        ),
         "{summary}"
     );
     assert_every_corner_has_a_uv(&world, built.mesh);
