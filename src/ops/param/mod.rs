@@ -33,8 +33,7 @@
 //! # Entry points
 //! - [`parameterize`]: tables (from [`crate::mesh::tables::extract`]) and [`ParamParams`] →
 //!   [`Parameterization`] (UVs and a [`ParamReport`]) or [`ParamError`]. Seams are edge rows of
-//!   those same tables (map `EdgeId`s to rows through `MeshTables::members`).
-//! - [`parameterize_mesh`]: the same, from a mesh in a `World` (reads it, writes nothing).
+//!   those same tables (map `EdgeId`s to rows through `crate::mesh::tables::MeshTables::members`).
 //! - [`parameterize_in_place`]: the same, writing the layout onto the mesh as corner UVs (what
 //!   the edit layer's `Edit::Parameterize` runs).
 //! - [`tutte::solve_fixed`]: the barycentric solve with any fixed boundary positions (what the
@@ -56,7 +55,7 @@ use bevy::prelude::World;
 
 use crate::mesh::attributes::{CornerUv, MeshAttributes, set_record};
 use crate::mesh::ids::MeshId;
-use crate::mesh::tables::{Connectivity, EdgeRow, MeshTables, NONE, extract};
+use crate::mesh::tables::{Connectivity, EdgeRow, NONE, extract};
 
 pub use cut::CutMesh;
 pub use distortion::Distortion;
@@ -203,22 +202,6 @@ pub fn parameterize_then<R>(
         },
         result,
     ))
-}
-
-/// Reads `mesh` out of `world` and parameterizes it; the world is not changed. Returns the
-/// tables too: their rows are what [`Parameterization::uv`] and [`ParamParams::seams`] index,
-/// and `members` maps them to entities.
-///
-/// # Errors
-/// As [`parameterize`].
-pub fn parameterize_mesh(
-    world: &World,
-    mesh: MeshId,
-    params: &ParamParams,
-) -> Result<(MeshTables, Parameterization), ParamError> {
-    let tables = extract(world, mesh);
-    let p = parameterize(&tables.tables, params)?;
-    Ok((tables, p))
 }
 
 /// Parameterizes `mesh` and stores the layout on it: a [`CornerUv`] on every face halfedge, and

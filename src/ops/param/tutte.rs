@@ -89,9 +89,8 @@ pub fn solve_triangles(
 ) -> Result<(Vec<DVec2>, Solver), ParamError> {
     if method == ParamMethod::MeanValue {
         let w = weights(method, positions, triangles);
-        return solve_fixed(positions.len(), &w, fixed, false);
+        return solve_fixed(&w, fixed, false);
     }
-    let n = positions.len();
     let (column, free) = columns(fixed);
     let mut uv: Vec<DVec2> = fixed.iter().map(|f| f.unwrap_or(DVec2::ZERO)).collect();
     if free == 0 {
@@ -125,8 +124,14 @@ pub fn solve_triangles(
             .expect("the symbolic factorization does not panic");
         (symbolic, w, system)
     });
+    // Not positive definite (harmonic weights beside obtuse angles), or not finite: LU.
+    let by_lu = |mut uv: Vec<DVec2>| -> Result<(Vec<DVec2>, Solver), ParamError> {
+        let x = solve_lu(&w, &column, free, &uv)?;
+        place(&mut uv, &column, &x)?;
+        Ok((uv, Solver::Lu))
+    };
     let Ok(symbolic) = symbolic else {
-        return solve_fixed(n, &w, fixed, true);
+        return by_lu(uv);
     };
     let mut values = vec![0.0f64; symbolic.len_val()];
     let par = Par::Seq;
@@ -142,8 +147,7 @@ pub fn solve_triangles(
         Default::default(),
     );
     let Ok(llt) = llt else {
-        // Not positive definite (harmonic weights beside obtuse angles): LU.
-        return solve_fixed(n, &w, fixed, true);
+        return by_lu(uv);
     };
     let mut x = rhs;
     llt.solve_in_place_with_conj(
@@ -154,15 +158,50 @@ pub fn solve_triangles(
             llt.solve_in_place_scratch::<f64>(2, par),
         )),
     );
-    if !x.col_iter().all(|c| c.iter().all(|v| v.is_finite())) {
-        return solve_fixed(n, &w, fixed, true);
+    if !finite(&x) {
+        return by_lu(uv);
     }
-    for (i, &c) in column.iter().enumerate() {
+    place(&mut uv, &column, &x)?;
+    Ok((uv, Solver::Cholesky))
+}
+
+/// Whether every entry of `x` is finite.
+fn finite(x: &Mat<f64>) -> bool {
+    x.col_iter().all(|c| c.iter().all(|v| v.is_finite()))
+}
+
+/// The unknowns of the full system (both triangles), by sparse LU.
+fn solve_lu(
+    weights: &[Weight],
+    column: &[u32],
+    free: usize,
+    uv: &[DVec2],
+) -> Result<Mat<f64>, ParamError> {
+    let (full, mut x) = assemble(weights, column, free, uv, false);
+    let lu = full
+        .sp_lu()
+        .map_err(|e| ParamError::Solve(format!("the sparse LU failed: {e:?}")))?;
+    lu.solve_in_place(x.as_mut());
+    Ok(x)
+}
+
+/// Writes the solved unknowns `x` into the free vertices' positions.
+///
+/// # Errors
+/// [`ParamError::Solve`] when one is not finite (a singular system).
+fn place(uv: &mut [DVec2], column: &[u32], x: &Mat<f64>) -> Result<(), ParamError> {
+    for (p, &c) in uv.iter_mut().zip(column) {
         if c != u32::MAX {
-            uv[i] = DVec2::new(x[(c as usize, 0)], x[(c as usize, 1)]);
+            let q = DVec2::new(x[(c as usize, 0)], x[(c as usize, 1)]);
+            if !q.is_finite() {
+                return Err(ParamError::Solve(
+                    "the system is singular (a degenerate mesh?)".into(),
+                ));
+            }
+            *p = q;
         }
     }
-    Ok((uv, Solver::Cholesky))
+    Ok(())
 }
 
 /// Each free vertex's unknown (`u32::MAX` for a fixed one), and how many are free.
@@ -216,15 +255,14 @@ fn assemble(
     (from_entries(free, &entries), rhs)
 }
 
-/// Solves the barycentric mapping over `n` vertices with `weights` (directed entries, summed):
-/// `fixed[i]` is `Some(position)` for a fixed vertex, `None` for a free one. `symmetric` says the
+/// Solves the barycentric mapping with `weights` (directed entries, summed) over the vertices of
+/// `fixed`: `fixed[i]` is `Some(position)` for a fixed vertex, `None` for a free one. `symmetric` says the
 /// weights are (then Cholesky is tried first). Returns every vertex's position.
 ///
 /// # Errors
 /// [`ParamError::Solve`] when the system is singular (a free vertex connected to no fixed
 /// one, or zero weights everywhere around a vertex).
 pub fn solve_fixed(
-    n: usize,
     weights: &[Weight],
     fixed: &[Option<DVec2>],
     symmetric: bool,
@@ -234,41 +272,19 @@ pub fn solve_fixed(
     if free == 0 {
         return Ok((uv, Solver::Cholesky));
     }
-    let (matrix, rhs) = assemble(weights, &column, free, &uv, symmetric);
-    let mut solver = Solver::Lu;
-    let mut x = rhs.clone();
-    let mut done = false;
-    if symmetric && let Ok(llt) = matrix.sp_cholesky(Side::Lower) {
-        llt.solve_in_place(x.as_mut());
-        done = x.col_iter().all(|c| c.iter().all(|v| v.is_finite()));
-        solver = Solver::Cholesky;
-    }
-    if !done {
-        let full = if symmetric {
-            // LU needs both triangles.
-            assemble(weights, &column, free, &uv, false).0
-        } else {
-            matrix
-        };
-        let lu = full
-            .sp_lu()
-            .map_err(|e| ParamError::Solve(format!("the sparse LU failed: {e:?}")))?;
-        x = rhs;
-        lu.solve_in_place(x.as_mut());
-        solver = Solver::Lu;
-    }
-    for i in 0..n {
-        let c = column[i];
-        if c != u32::MAX {
-            let p = DVec2::new(x[(c as usize, 0)], x[(c as usize, 1)]);
-            if !p.is_finite() {
-                return Err(ParamError::Solve(
-                    "the system is singular (a degenerate mesh?)".into(),
-                ));
-            }
-            uv[i] = p;
-        }
-    }
+    let cholesky = symmetric
+        .then(|| {
+            let (lower, mut x) = assemble(weights, &column, free, &uv, true);
+            let llt = lower.sp_cholesky(Side::Lower).ok()?;
+            llt.solve_in_place(x.as_mut());
+            finite(&x).then_some(x)
+        })
+        .flatten();
+    let (x, solver) = match cholesky {
+        Some(x) => (x, Solver::Cholesky),
+        None => (solve_lu(weights, &column, free, &uv)?, Solver::Lu),
+    };
+    place(&mut uv, &column, &x)?;
     Ok((uv, solver))
 }
 
@@ -303,7 +319,7 @@ mod tests {
             (ParamMethod::Harmonic, true),
         ] {
             let w = weights(method, &c.positions, &c.triangles);
-            let (uv, _) = solve_fixed(c.vertex_count(), &w, &fixed, symmetric).unwrap();
+            let (uv, _) = solve_fixed(&w, &fixed, symmetric).unwrap();
             for (q, p) in uv.iter().zip(&c.positions) {
                 assert!(q.distance(p.truncate()) < 1e-9, "{method:?}: {q} vs {p}");
             }
@@ -321,7 +337,7 @@ mod tests {
             fixed[b as usize] = Some(c.positions[b as usize].truncate());
         }
         let w = weights(ParamMethod::Uniform, &c.positions, &c.triangles);
-        let (uv, solver) = solve_fixed(c.vertex_count(), &w, &fixed, true).unwrap();
+        let (uv, solver) = solve_fixed(&w, &fixed, true).unwrap();
         assert_eq!(solver, Solver::Cholesky);
         for (q, p) in uv.iter().zip(&c.positions) {
             // The grid's f32 positions are regular to f32 rounding.
