@@ -41,6 +41,13 @@ fn row(name: &str, mut times: Vec<f64>) {
     );
 }
 
+/// Milliseconds to spawn `tables` as a new mesh of `world`.
+fn spawn_ms(world: &mut World, tables: &Connectivity) -> f64 {
+    let start = Instant::now();
+    black_box(spawn_connectivity(world, tables, MeshInfo::default()));
+    start.elapsed().as_secs_f64() * 1e3
+}
+
 fn timed(mut run: impl FnMut() -> f64) -> Vec<f64> {
     (0..RUNS).map(|_| run()).collect()
 }
@@ -66,16 +73,7 @@ fn main() {
     println!("|---|---:|---:|---:|");
     row(
         "spawn the rows, fresh world",
-        timed(|| {
-            let mut world = World::new();
-            let start = Instant::now();
-            black_box(spawn_connectivity(
-                &mut world,
-                &loop_tables,
-                MeshInfo::default(),
-            ));
-            start.elapsed().as_secs_f64() * 1e3
-        }),
+        timed(|| spawn_ms(&mut World::new(), &loop_tables)),
     );
     row(
         "spawn the rows, after a mesh of that size",
@@ -83,13 +81,7 @@ fn main() {
             let mut world = World::new();
             let (mesh, _) = spawn_connectivity(&mut world, &loop_tables, MeshInfo::default());
             despawn_mesh(&mut world, mesh);
-            let start = Instant::now();
-            black_box(spawn_connectivity(
-                &mut world,
-                &loop_tables,
-                MeshInfo::default(),
-            ));
-            start.elapsed().as_secs_f64() * 1e3
+            spawn_ms(&mut world, &loop_tables)
         }),
     );
     row(
