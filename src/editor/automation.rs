@@ -291,11 +291,7 @@ pub fn run_script(world: &mut World) {
                 script.waiting = 2;
             }
             ScriptStep::Zoom(factor) => {
-                let mut cameras = world.query::<(&mut super::scene::OrbitCamera, &mut Transform)>();
-                for (mut orbit, mut transform) in cameras.iter_mut(world) {
-                    orbit.radius *= factor;
-                    *transform = orbit.transform();
-                }
+                super::scene::move_orbit(world, |orbit| orbit.radius *= factor);
                 script.waiting = 1;
             }
             ScriptStep::Colour(quantity) => {

@@ -163,10 +163,17 @@ pub fn frame_selection(world: &mut World) {
     );
     let focus = (lo + hi) / 2.0;
     let radius = ((hi - lo).length() * 1.4).max(0.05);
-    let mut cameras = world.query::<(&mut OrbitCamera, &mut Transform)>();
-    for (mut orbit, mut transform) in cameras.iter_mut(world) {
+    move_orbit(world, |orbit| {
         orbit.focus = focus;
         orbit.radius = radius;
+    });
+}
+
+/// Changes every orbit camera's state with `change` and places the camera where it now says.
+pub fn move_orbit(world: &mut World, change: impl Fn(&mut OrbitCamera)) {
+    let mut cameras = world.query::<(&mut OrbitCamera, &mut Transform)>();
+    for (mut orbit, mut transform) in cameras.iter_mut(world) {
+        change(&mut orbit);
         *transform = orbit.transform();
     }
 }
