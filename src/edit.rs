@@ -91,6 +91,8 @@ pub enum Edit {
     SplitFace(FaceId, VertexId, VertexId),
     /// Move a vertex.
     MoveVertex(VertexId, Vec3),
+    /// Move several vertices at once (a transform of the selection): one undo step.
+    MoveVertices(Vec<(VertexId, Vec3)>),
     /// Split back the last collapse of the simplification history, if it kept this vertex.
     SplitVertex(VertexId),
     /// Move along the simplification history to the level nearest this many faces
@@ -181,6 +183,7 @@ impl Edit {
             Edit::FillHole(e) => format!("fill the hole at {e}"),
             Edit::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
             Edit::MoveVertex(v, _) => format!("move {v}"),
+            Edit::MoveVertices(moves) => format!("move {} vertices", moves.len()),
             Edit::SplitVertex(v) => format!("split {v} back"),
             Edit::LevelOfDetail(usize::MAX) => "full level of detail".into(),
             Edit::LevelOfDetail(n) => format!("level of detail {n} faces"),
@@ -248,6 +251,14 @@ impl Edit {
                 m.try_vertex(*v)?;
                 local(vec![*v])
             }
+            Edit::MoveVertices(moves) => {
+                let seeds: Vec<VertexId> = moves.iter().map(|(v, _)| *v).collect();
+                seeds.iter().try_for_each(|&v| m.try_vertex(v).map(|_| ()))?;
+                if seeds.is_empty() {
+                    return None;
+                }
+                local(seeds)
+            }
             Edit::LevelOfDetail(_)
             | Edit::Triangulate
             | Edit::Simplify(_)
@@ -274,6 +285,7 @@ impl Edit {
             | Edit::FillHole(e) => Some(ElementId::Edge(*e)),
             Edit::SplitFace(f, ..) => Some(ElementId::Face(*f)),
             Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => Some(ElementId::Vertex(*v)),
+            Edit::MoveVertices(moves) => moves.first().map(|(v, _)| ElementId::Vertex(*v)),
             _ => None,
         };
         match named {
@@ -352,6 +364,9 @@ impl Edit {
     pub fn merge_key(&self) -> Option<MergeKey> {
         match self {
             Edit::MoveVertex(v, _) => Some(MergeKey::Move(*v)),
+            Edit::MoveVertices(moves) => moves
+                .first()
+                .map(|(v, _)| MergeKey::MoveMany(*v, moves.len())),
             Edit::LevelOfDetail(_) => Some(MergeKey::LevelOfDetail),
             _ => None,
         }
@@ -489,18 +504,17 @@ impl Edit {
                 }
             }
             Edit::MoveVertex(v, p) => {
-                if !p.is_finite() {
-                    return Err(Refusal::NotFinite(*p));
-                }
-                let Some(mut position) = world.get_mut::<crate::mesh::Position>(v.0) else {
-                    return Err(Refusal::Stale(ElementId::Vertex(*v)));
-                };
-                position.0 = *p;
-                // Smooth normals of the neighbours change too: their faces are redrawn as well.
-                let mut ring: Vec<VertexId> = MeshRef::new(world).vertex_neighbors(*v).collect();
-                ring.push(*v);
+                let ring = move_vertices(world, &[(*v, *p)])?;
                 Applied {
                     summary: format!("{v} at {p}"),
+                    redraw: near(world, Vec::new(), ring),
+                    made: None,
+                }
+            }
+            Edit::MoveVertices(moves) => {
+                let ring = move_vertices(world, moves)?;
+                Applied {
+                    summary: format!("{} vertices moved", moves.len()),
                     redraw: near(world, Vec::new(), ring),
                     made: None,
                 }
@@ -633,6 +647,8 @@ impl Edit {
 pub enum MergeKey {
     /// Moves of this vertex.
     Move(VertexId),
+    /// Moves of this many vertices, the first of them this one (the frames of one transform).
+    MoveMany(VertexId, usize),
     /// Moves along the level-of-detail history.
     LevelOfDetail,
 }
@@ -658,6 +674,34 @@ fn toggle_seam(world: &mut World, e: EdgeId) -> Result<bool, Refusal> {
         edge.remove::<Seam>();
     }
     Ok(marked)
+}
+
+/// Moves vertices; returns them with their neighbours (whose smooth normals change too, so
+/// their faces are redrawn as well).
+///
+/// # Refusals
+/// [`Refusal::NotFinite`] for a position that is not finite, [`Refusal::Stale`] for a vertex
+/// that is gone; both before anything moves.
+fn move_vertices(world: &mut World, moves: &[(VertexId, Vec3)]) -> Result<Vec<VertexId>, Refusal> {
+    let m = MeshRef::new(world);
+    for &(v, p) in moves {
+        if !p.is_finite() {
+            return Err(Refusal::NotFinite(p));
+        }
+        m.try_vertex(v).ok_or(Refusal::Stale(ElementId::Vertex(v)))?;
+    }
+    let mut ring: Vec<VertexId> = moves
+        .iter()
+        .flat_map(|&(v, _)| m.vertex_neighbors(v).chain([v]))
+        .collect();
+    ring.sort_unstable();
+    ring.dedup();
+    for &(v, p) in moves {
+        if let Some(mut position) = world.get_mut::<crate::mesh::Position>(v.0) {
+            position.0 = p;
+        }
+    }
+    Ok(ring)
 }
 
 /// The two ends of an edge (none if it is gone).

@@ -16,8 +16,9 @@ use crate::mesh::topology::MeshRef;
 use crate::mesh::{MeshInfo, build_mesh, despawn_mesh, to_soup};
 
 use super::finish::{Finished, finish_edit, report};
-use super::history::{self, Redraw};
+use super::history::{self, Redraw, UndoHistory};
 use super::jobs::{self, Jobs};
+use super::select_many::apply_selection_edit;
 use super::requests::{ConfirmDiscard, Declined, PendingDiscard, Request};
 use super::selection::{ActiveMesh, MeshDirty, Selection, exists, mark_faces_dirty, navigate};
 use super::session::{Modified, SimplificationHistory, is_modified};
@@ -74,6 +75,17 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
     match request {
         Request::Edit(edit) => apply_edit(world, edit),
         Request::Undo => undo_or_redo(world, false),
+        Request::Retract(keep) => {
+            let mut taken = Vec::new();
+            while world.resource::<UndoHistory>().undo_entries().len() > *keep {
+                taken.push(undo_or_redo(world, false)?);
+                world.resource_mut::<UndoHistory>().forget_undone();
+            }
+            Ok(match taken.is_empty() {
+                true => "nothing to take back".into(),
+                false => taken.join(", "),
+            })
+        }
         Request::Redo => undo_or_redo(world, true),
         Request::CancelJob => jobs::cancel(world),
         Request::Select(element) => {
@@ -82,9 +94,10 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
             {
                 return Err(Declined::NoSuchElement(*x));
             }
-            world.resource_mut::<Selection>().element = *element;
+            world.resource_mut::<Selection>().select_only(*element);
             Ok(element.map_or("nothing selected".into(), |x| format!("{x} selected")))
         }
+        Request::Selection(edit) => apply_selection_edit(world, edit),
         Request::Navigate(relation) => {
             let from = world
                 .resource::<Selection>()
@@ -92,7 +105,7 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
                 .ok_or(Declined::SelectFirst("an element"))?;
             let to = navigate(&MeshRef::new(world), from, *relation)
                 .ok_or(Declined::NoRelation(from, relation.name()))?;
-            world.resource_mut::<Selection>().element = Some(to);
+            world.resource_mut::<Selection>().select_only(Some(to));
             Ok(format!("{to}"))
         }
         Request::Open(path) => {
@@ -127,7 +140,7 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
             let pending = history::begin_replace(world);
             let count = despawn_mesh(world, mesh);
             world.resource_mut::<ActiveMesh>().0 = None;
-            world.resource_mut::<Selection>().element = None;
+            world.resource_mut::<Selection>().select_only(None);
             world.resource_mut::<SimplificationHistory>().pm = None;
             if let Some(pending) = pending {
                 history::commit(world, pending, request.label());
@@ -220,7 +233,7 @@ fn open(world: &mut World, path: &Path) -> Result<String, Declined> {
         despawn_mesh(world, old);
     }
     world.resource_mut::<ActiveMesh>().0 = Some(built.mesh);
-    world.resource_mut::<Selection>().element = None;
+    world.resource_mut::<Selection>().select_only(None);
     world.resource_mut::<SimplificationHistory>().pm = None;
     world.entity_mut(built.mesh.0).insert(MeshDirty);
     if let Some(pending) = pending {

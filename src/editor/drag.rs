@@ -57,7 +57,13 @@ pub fn drive_vertex_drag(world: &mut World) {
         return;
     };
     if just_pressed {
-        if world.get_resource::<PointerCaptured>().is_some_and(|p| p.0) {
+        let busy = world
+            .get_resource::<super::transform::Gestures>()
+            .is_some_and(|g| g.active.is_some() || g.swallow_click)
+            || world
+                .get_resource::<super::box_select::BoxSelect>()
+                .is_some_and(|b| b.armed);
+        if busy || world.get_resource::<PointerCaptured>().is_some_and(|p| p.0) {
             return;
         }
         let Some(ElementId::Vertex(v)) = world.resource::<Selection>().element else {

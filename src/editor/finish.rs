@@ -12,12 +12,11 @@ use bevy::prelude::World;
 use crate::edit::{Applied, Edit, IdsKept, Redraw};
 use crate::mesh::MeshId;
 use crate::mesh::ids::ElementId;
-use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
 
 use super::history::{self, Pending};
 use super::requests::{Declined, EditOutcome, OutcomeLog};
-use super::selection::{MeshDirty, Selection, exists, mark_faces_dirty};
+use super::selection::{MeshDirty, Selection, keep_live_selection, mark_faces_dirty};
 use super::session::{Modified, PreviousShape, SimplificationHistory};
 
 /// An edit that has run, with what its bookkeeping needs.
@@ -65,14 +64,15 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
         }
         Redraw::Near { faces, .. } => mark_faces_dirty(world, mesh, faces),
     }
-    let kept = edit.keeps_ids();
-    let selection = applied.made.or_else(|| {
-        world.resource::<Selection>().element.filter(|&x| {
-            (kept == IdsKept::All || matches!(x, ElementId::Vertex(_)))
-                && exists(&MeshRef::new(world), x)
-        })
-    });
-    world.resource_mut::<Selection>().element = selection;
+    match applied.made {
+        Some(made) => world.resource_mut::<Selection>().select_only(Some(made)),
+        None => {
+            let kept = edit.keeps_ids();
+            keep_live_selection(world, |x| {
+                kept == IdsKept::All || matches!(x, ElementId::Vertex(_))
+            });
+        }
+    }
     Ok(applied.summary)
 }
 

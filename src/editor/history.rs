@@ -31,7 +31,7 @@ use crate::mesh::topology::MeshRef;
 
 use crate::edit::{Edit, MergeKey, Reach};
 
-use super::selection::{ActiveMesh, Selection, exists};
+use super::selection::{ActiveMesh, Selection, exists, keep_live_selection};
 
 /// What an entry puts back.
 enum Record {
@@ -180,6 +180,8 @@ pub struct UndoHistory {
     /// Counts presses of the left mouse button; edits within one press may merge.
     press: u64,
     pressed: bool,
+    /// A gesture (a keyboard-driven transform) is under way: its edits may merge as a drag's.
+    gesture: bool,
 }
 
 impl Default for UndoHistory {
@@ -190,6 +192,7 @@ impl Default for UndoHistory {
             limit_bytes: Self::DEFAULT_LIMIT_BYTES,
             press: 0,
             pressed: false,
+            gesture: false,
         }
     }
 }
@@ -235,8 +238,25 @@ impl UndoHistory {
         self.undo.drain(..drop);
     }
 
+    /// Starts a gesture: its edits merge into one entry as the frames of a drag do (and never
+    /// into an entry from before it).
+    pub fn begin_gesture(&mut self) {
+        self.press += 1;
+        self.gesture = true;
+    }
+
+    /// Ends the gesture.
+    pub fn end_gesture(&mut self) {
+        self.gesture = false;
+    }
+
+    /// Forgets the entry undone last (a cancelled gesture leaves nothing to redo).
+    pub fn forget_undone(&mut self) {
+        self.redo.pop();
+    }
+
     fn can_merge(&self, key: MergeKey) -> bool {
-        self.pressed
+        (self.pressed || self.gesture)
             && self.redo.is_empty()
             && self
                 .undo
@@ -376,7 +396,10 @@ pub fn step(world: &mut World, redo: bool) -> Option<Stepped> {
     } else {
         history.redo.push(back);
     }
-    world.resource_mut::<Selection>().element = selection;
+    keep_live_selection(world, |_| true);
+    if let Some(x) = selection {
+        world.resource_mut::<Selection>().add(x);
+    }
     Some(Stepped {
         label: entry.label,
         redraw,

@@ -20,7 +20,10 @@ use super::finish::report;
 use super::jobs::Jobs;
 use super::render_sync::{ViewSettings, set_wireframes_visible};
 use super::requests::{Declined, Relation, Request};
+use super::box_select::BoxSelect;
+use super::select_many::SelectionEdit;
 use super::selection::{ActiveMesh, MeshDirty, SelectMode, Selection, selected_edge};
+use super::transform::{GestureKind, Gestures};
 
 /// What a shortcut does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,6 +56,20 @@ pub enum Action {
     Mode(SelectMode),
     /// Select nothing.
     ClearSelection,
+    /// Select every element of the click mode's kind.
+    SelectAll,
+    /// One ring more.
+    Grow,
+    /// One ring less.
+    Shrink,
+    /// Drag a box to select what is inside.
+    BoxSelect,
+    /// Move the selection with the pointer (G).
+    Grab,
+    /// Rotate the selection (R).
+    Rotate,
+    /// Scale the selection (S).
+    Scale,
     /// Frame the selection (or the mesh).
     Frame,
     /// Flat / smooth shading.
@@ -88,6 +105,8 @@ pub struct Shortcut {
     pub ctrl: bool,
     /// Shift must be held.
     pub shift: bool,
+    /// Alt must be held.
+    pub alt: bool,
     /// The action.
     pub action: Action,
     /// How the help overlay writes the key.
@@ -106,6 +125,41 @@ const fn key(
         key,
         ctrl: false,
         shift: false,
+        alt: false,
+        action,
+        keys,
+        description,
+    }
+}
+
+const fn shift(
+    key: KeyCode,
+    keys: &'static str,
+    action: Action,
+    description: &'static str,
+) -> Shortcut {
+    Shortcut {
+        key,
+        ctrl: false,
+        shift: true,
+        alt: false,
+        action,
+        keys,
+        description,
+    }
+}
+
+const fn alt(
+    key: KeyCode,
+    keys: &'static str,
+    action: Action,
+    description: &'static str,
+) -> Shortcut {
+    Shortcut {
+        key,
+        ctrl: false,
+        shift: false,
+        alt: true,
         action,
         keys,
         description,
@@ -123,6 +177,7 @@ const fn ctrl(
         key,
         ctrl: true,
         shift,
+        alt: false,
         action,
         keys,
         description,
@@ -132,14 +187,59 @@ const fn ctrl(
 /// Every shortcut of the editor.
 pub const SHORTCUTS: &[Shortcut] = &[
     key(
+        KeyCode::KeyG,
+        "G",
+        Action::Grab,
+        "move the selection (then X/Y/Z, a typed value, Enter or click; Esc cancels)",
+    ),
+    key(
         KeyCode::KeyR,
         "R",
-        Action::OnEdge(LocalKind::Flip),
-        "flip (rotate) the selected edge",
+        Action::Rotate,
+        "rotate the selection about its centre (as G)",
     ),
     key(
         KeyCode::KeyS,
         "S",
+        Action::Scale,
+        "scale the selection about its centre (as G)",
+    ),
+    key(
+        KeyCode::KeyA,
+        "A",
+        Action::SelectAll,
+        "select all (vertices, or the click mode's kind)",
+    ),
+    alt(KeyCode::KeyA, "Alt+A", Action::ClearSelection, "select nothing"),
+    key(
+        KeyCode::KeyB,
+        "B",
+        Action::BoxSelect,
+        "box select: drag a rectangle (Shift at release adds)",
+    ),
+    ctrl(
+        KeyCode::Equal,
+        false,
+        "Ctrl+=",
+        Action::Grow,
+        "select more: one ring around the selection",
+    ),
+    ctrl(
+        KeyCode::Minus,
+        false,
+        "Ctrl+-",
+        Action::Shrink,
+        "select less: one ring off the selection",
+    ),
+    alt(
+        KeyCode::KeyR,
+        "Alt+R",
+        Action::OnEdge(LocalKind::Flip),
+        "flip (rotate) the selected edge",
+    ),
+    alt(
+        KeyCode::KeyS,
+        "Alt+S",
         Action::OnEdge(LocalKind::Split),
         "split the selected edge at its midpoint",
     ),
@@ -161,14 +261,12 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::OnEdge(LocalKind::Dissolve),
         "dissolve the selected edge (merge its two faces)",
     ),
-    Shortcut {
-        key: KeyCode::KeyF,
-        ctrl: false,
-        shift: true,
-        action: Action::OnEdge(LocalKind::FillHole),
-        keys: "Shift+F",
-        description: "fill the hole beside the selected boundary edge (one polygon face)",
-    },
+    shift(
+        KeyCode::KeyF,
+        "Shift+F",
+        Action::OnEdge(LocalKind::FillHole),
+        "fill the hole beside the selected boundary edge (one polygon face)",
+    ),
     key(
         KeyCode::KeyJ,
         "J",
@@ -188,14 +286,12 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::SplitVertex,
         "split the selected vertex back (after Shift+S: undoes its collapse)",
     ),
-    Shortcut {
-        key: KeyCode::KeyS,
-        ctrl: false,
-        shift: true,
-        action: Action::Simplify,
-        keys: "Shift+S",
-        description: "simplify (QEM) to the target set in the panel",
-    },
+    shift(
+        KeyCode::KeyS,
+        "Shift+S",
+        Action::Simplify,
+        "simplify (QEM) to the target set in the panel",
+    ),
     key(
         KeyCode::KeyL,
         "L",
@@ -227,14 +323,12 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::OnEdge(LocalKind::Seam),
         "mark the selected edge as a seam for parameterizing (or unmark it)",
     ),
-    Shortcut {
-        key: KeyCode::KeyU,
-        ctrl: false,
-        shift: true,
-        action: Action::Parameterize,
-        keys: "Shift+U",
-        description: "parameterize (unwrap) with the panel's method: a UV per corner",
-    },
+    shift(
+        KeyCode::KeyU,
+        "Shift+U",
+        Action::Parameterize,
+        "parameterize (unwrap) with the panel's method: a UV per corner",
+    ),
     key(
         KeyCode::KeyH,
         "H",
@@ -337,23 +431,22 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::ToggleWireframe,
         "wireframe on / off",
     ),
-    key(
-        KeyCode::KeyA,
-        "A",
+    shift(
+        KeyCode::KeyW,
+        "Shift+W",
         Action::ToggleHalfedges,
         "halfedge arrows on / off",
     ),
-    Shortcut {
-        key: KeyCode::KeyC,
-        ctrl: false,
-        shift: true,
-        action: Action::ToggleChecker,
-        keys: "Shift+C",
-        description: "UV checkerboard on / off (meshes with UVs)",
-    },
-    key(
+    shift(
+        KeyCode::KeyC,
+        "Shift+C",
+        Action::ToggleChecker,
+        "UV checkerboard on / off (meshes with UVs)",
+    ),
+    ctrl(
         KeyCode::Delete,
-        "Delete",
+        false,
+        "Ctrl+Delete",
         Action::DeleteMesh,
         "delete the mesh",
     ),
@@ -376,14 +469,12 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "save as",
     ),
     key(KeyCode::F1, "F1", Action::Help, "show / hide this help"),
-    Shortcut {
-        key: KeyCode::Slash,
-        ctrl: false,
-        shift: true,
-        action: Action::Help,
-        keys: "?",
-        description: "show / hide this help",
-    },
+    shift(
+        KeyCode::Slash,
+        "?",
+        Action::Help,
+        "show / hide this help",
+    ),
 ];
 
 /// Whether egui is using the keyboard this frame (set by the UI; shortcuts then stay quiet).
@@ -431,27 +522,32 @@ impl Default for UiState {
     }
 }
 
-/// The shortcut matching a key press with the given modifiers, if any.
-pub fn shortcut_for(key: KeyCode, ctrl: bool, shift: bool) -> Option<&'static Shortcut> {
-    SHORTCUTS.iter().find(|s| {
-        s.key == key && s.ctrl == ctrl && (s.shift == shift || (!s.ctrl && !s.shift && !shift))
-    })
+/// The shortcut matching a key press with exactly the given modifiers, if any.
+pub fn shortcut_for(key: KeyCode, ctrl: bool, shift: bool, alt: bool) -> Option<&'static Shortcut> {
+    SHORTCUTS
+        .iter()
+        .find(|s| s.key == key && s.ctrl == ctrl && s.shift == shift && s.alt == alt)
 }
 
 /// Reads key presses and performs their actions (the `Input` set).
 pub fn keyboard_shortcuts(world: &mut World) {
-    if world
-        .get_resource::<KeyboardCaptured>()
-        .is_some_and(|k| k.0)
+    let gesture = world
+        .get_resource::<Gestures>()
+        .is_some_and(|g| g.active.is_some() || g.keys_taken);
+    if gesture
+        || world
+            .get_resource::<KeyboardCaptured>()
+            .is_some_and(|k| k.0)
     {
         return;
     }
     let keys = world.resource::<ButtonInput<KeyCode>>();
     let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
     let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
+    let alt = keys.any_pressed([KeyCode::AltLeft, KeyCode::AltRight]);
     let pressed: Vec<KeyCode> = keys.get_just_pressed().copied().collect();
     for key in pressed {
-        if let Some(shortcut) = shortcut_for(key, ctrl, shift) {
+        if let Some(shortcut) = shortcut_for(key, ctrl, shift, alt) {
             perform(world, shortcut.action);
         }
     }
@@ -534,6 +630,25 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             return Ok(Some(Request::CancelJob));
         }
         Action::ClearSelection => return Ok(Some(Request::Select(None))),
+        Action::SelectAll => return Ok(Some(SelectionEdit::All.into())),
+        Action::Grow => return Ok(Some(SelectionEdit::Grow.into())),
+        Action::Shrink => return Ok(Some(SelectionEdit::Shrink.into())),
+        Action::BoxSelect => {
+            world.resource_mut::<BoxSelect>().armed = true;
+            return Ok(None);
+        }
+        Action::Grab | Action::Rotate | Action::Scale => {
+            let kind = match action {
+                Action::Grab => GestureKind::Grab,
+                Action::Rotate => GestureKind::Rotate,
+                _ => GestureKind::Scale,
+            };
+            if world.resource::<Selection>().is_empty() {
+                return Err(Declined::SelectFirst("something to transform"));
+            }
+            super::transform::start(world, kind, None);
+            return Ok(None);
+        }
         Action::DeleteMesh => return Ok(Some(Request::DeleteMesh)),
         Action::Undo => return Ok(Some(Request::Undo)),
         Action::Redo => return Ok(Some(Request::Redo)),

@@ -266,7 +266,8 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
         let x = x.with_entity(*now);
         exists(&MeshRef::new(world), x).then_some(x)
     });
-    world.resource_mut::<Selection>().element = selection;
+    // The set is not followed through the job's rows: the active element alone stays selected.
+    world.resource_mut::<Selection>().select_only(selection);
     finish_edit(
         world,
         Finished {

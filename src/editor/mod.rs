@@ -14,6 +14,7 @@
 
 pub mod apply;
 pub mod automation;
+pub mod box_select;
 pub mod colouring;
 pub mod dialog;
 pub mod drag;
@@ -30,9 +31,11 @@ pub mod readability;
 pub mod render_sync;
 pub mod requests;
 pub mod scene;
+pub mod select_many;
 pub mod selection;
 pub mod session;
 pub mod surface;
+pub mod transform;
 pub mod ui;
 pub mod uv_view;
 
@@ -88,6 +91,8 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<input::KeyboardCaptured>()
             .init_resource::<input::UiState>()
             .init_resource::<uv_view::UvLayout>()
+            .init_resource::<transform::Gestures>()
+            .init_resource::<box_select::BoxSelect>()
             .configure_sets(
                 Update,
                 (
@@ -102,7 +107,11 @@ impl Plugin for EditorLogicPlugin {
             .add_systems(
                 Update,
                 (
-                    (history::track_presses, input::keyboard_shortcuts)
+                    (
+                        history::track_presses,
+                        transform::drive_gesture,
+                        input::keyboard_shortcuts,
+                    )
                         .chain()
                         .in_set(EditorSystems::Input),
                     picking::resolve_picks.in_set(EditorSystems::Request),
@@ -169,7 +178,14 @@ impl Plugin for EditorWindowPlugin {
             .init_resource::<scene::PanelInsets>()
             .add_systems(Update, scene::fit_camera_viewport.in_set(EditorSystems::Ui))
             .init_resource::<drag::PointerCaptured>()
-            .add_systems(Update, drag::drive_vertex_drag.in_set(EditorSystems::Input))
+            .add_systems(
+                Update,
+                (box_select::drive_box_select, drag::drive_vertex_drag)
+                    .chain()
+                    .after(transform::drive_gesture)
+                    .in_set(EditorSystems::Input),
+            )
+            .add_systems(bevy_egui::EguiPrimaryContextPass, box_select::draw_box)
             .add_systems(
                 Update,
                 automation::run_script

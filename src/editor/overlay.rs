@@ -26,6 +26,10 @@ pub const SMALL_MESH_FACES: usize = 3000;
 
 /// Colour of the selection.
 pub const SELECTED: Color = Color::srgb(1.0, 0.62, 0.0);
+/// Colour of the other elements of the selected set.
+pub const IN_SET: Color = Color::srgb(1.0, 0.85, 0.3);
+/// The most elements of the selected set drawn one by one (the panel counts them all).
+pub const MAX_SET_DRAWN: usize = 20_000;
 /// Colour of the hover highlight.
 pub const HOVERED: Color = Color::srgb(0.35, 0.8, 1.0);
 /// Colour of halfedge arrows.
@@ -223,7 +227,13 @@ pub fn gather_overlay(world: &mut World) {
         {
             element_shapes(&m, x, HOVERED, &mut shapes);
         }
-        if let Some(x) = world.resource::<Selection>().element {
+        let selection = world.resource::<Selection>();
+        for &x in selection.elements().iter().take(MAX_SET_DRAWN) {
+            if Some(x) != selection.element {
+                element_shapes(&m, x, IN_SET, &mut shapes);
+            }
+        }
+        if let Some(x) = selection.element {
             element_shapes(&m, x, SELECTED, &mut shapes);
         }
     }

@@ -18,6 +18,7 @@ use crate::mesh::topology::MeshRef;
 
 use super::render_sync::{RenderOf, TriangleFaces};
 use super::requests::Request;
+use super::select_many::SelectionEdit;
 use super::selection::{Hover, SelectMode};
 
 /// Screen distance (pixels) within which a click picks a vertex in auto mode.
@@ -48,8 +49,16 @@ pub fn on_click(
     mut ray_cast: MeshRayCast,
     mut picks: MessageWriter<PickRequest>,
     mut requests: MessageWriter<Request>,
+    keys: Option<Res<ButtonInput<KeyCode>>>,
+    gestures: Option<ResMut<super::transform::Gestures>>,
 ) {
     if click.event.button != PointerButton::Primary {
+        return;
+    }
+    // The release of a click that confirmed a transform or ended a box selects nothing.
+    if let Some(mut gestures) = gestures
+        && std::mem::take(&mut gestures.swallow_click)
+    {
         return;
     }
     let target = click.entity;
@@ -73,9 +82,11 @@ pub fn on_click(
                 select: true,
             });
         }
-        None => {
+        // A click on the background selects nothing, unless Shift adds to the selection.
+        None if !held(&keys, Modifier::Shift) => {
             requests.write(Request::Select(None));
         }
+        None => {}
     }
 }
 
@@ -142,17 +153,51 @@ pub fn resolve_picks(
         .read(world.resource::<Messages<PickRequest>>())
         .copied()
         .collect();
+    let keys = world.get_resource::<ButtonInput<KeyCode>>();
+    let (shift, ctrl, alt) = (
+        held(&keys, Modifier::Shift),
+        held(&keys, Modifier::Ctrl),
+        held(&keys, Modifier::Alt),
+    );
     for pick in picks {
-        let mode = *world.resource::<SelectMode>();
+        // Alt+click picks an edge whatever the mode: the loop (or, with Ctrl, the ring) through it.
+        let mode = match pick.select && alt {
+            true => SelectMode::Edge,
+            false => *world.resource::<SelectMode>(),
+        };
         let Some(element) = resolve(world, &pick, mode) else {
             continue;
         };
-        if pick.select {
-            world.write_message(Request::Select(Some(element)));
-        } else {
-            world.resource_mut::<Hover>().element = Some(element);
-        }
+        let request = match (element, pick.select) {
+            (_, false) => {
+                world.resource_mut::<Hover>().element = Some(element);
+                continue;
+            }
+            (ElementId::Edge(e), true) if alt && ctrl => SelectionEdit::Ring(e, shift).into(),
+            (ElementId::Edge(e), true) if alt => SelectionEdit::Loop(e, shift).into(),
+            (x, true) if shift => SelectionEdit::Toggle(x).into(),
+            (x, true) => Request::Select(Some(x)),
+        };
+        world.write_message(request);
     }
+}
+
+/// A modifier key, either side.
+#[derive(Clone, Copy)]
+enum Modifier {
+    Shift,
+    Ctrl,
+    Alt,
+}
+
+/// Whether `modifier` is held (never, without a keyboard).
+fn held(keys: &Option<impl std::ops::Deref<Target = ButtonInput<KeyCode>>>, modifier: Modifier) -> bool {
+    let pair = match modifier {
+        Modifier::Shift => [KeyCode::ShiftLeft, KeyCode::ShiftRight],
+        Modifier::Ctrl => [KeyCode::ControlLeft, KeyCode::ControlRight],
+        Modifier::Alt => [KeyCode::AltLeft, KeyCode::AltRight],
+    };
+    keys.as_ref().is_some_and(|k| k.any_pressed(pair))
 }
 
 fn resolve(world: &mut World, pick: &PickRequest, mode: SelectMode) -> Option<ElementId> {

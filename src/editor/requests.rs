@@ -14,6 +14,8 @@ use crate::edit::Edit;
 use crate::mesh::ids::ElementId;
 use crate::ops::Refusal;
 
+use super::select_many::SelectionEdit;
+
 /// A step along a halfedge relation, from the selected element.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Relation {
@@ -65,8 +67,10 @@ impl Relation {
 pub enum Request {
     /// Apply an edit: to the elements it names, or to the active mesh.
     Edit(Edit),
-    /// Select an element (or nothing).
+    /// Select an element alone (or nothing).
     Select(Option<ElementId>),
+    /// Change the selected set (toggle, all, grow, shrink, loops, a box).
+    Selection(SelectionEdit),
     /// Move the selection along a relation.
     Navigate(Relation),
     /// Open a mesh file (or `shape:NAME`), replacing the current mesh.
@@ -79,6 +83,8 @@ pub enum Request {
     CancelJob,
     /// Undo the last edit.
     Undo,
+    /// Take back the undo entries past this many, leaving no redo: a cancelled transform.
+    Retract(usize),
     /// Redo the last undone edit.
     Redo,
     /// Answer the unsaved-changes question: `true` discards the changes and goes on with what
@@ -92,6 +98,12 @@ impl From<Edit> for Request {
     }
 }
 
+impl From<SelectionEdit> for Request {
+    fn from(edit: SelectionEdit) -> Self {
+        Request::Selection(edit)
+    }
+}
+
 impl Request {
     /// A short label for logs.
     pub fn label(&self) -> String {
@@ -99,6 +111,7 @@ impl Request {
             Request::Edit(edit) => edit.label(),
             Request::Select(Some(x)) => format!("select {x}"),
             Request::Select(None) => "select nothing".into(),
+            Request::Selection(edit) => edit.label(),
             Request::Navigate(r) => format!("go to {}", r.name()),
             Request::Open(p) => format!("open {}", p.display()),
             Request::Save(Some(p)) => format!("save as {}", p.display()),
@@ -106,6 +119,7 @@ impl Request {
             Request::DeleteMesh => "delete mesh".into(),
             Request::CancelJob => "cancel".into(),
             Request::Undo => "undo".into(),
+            Request::Retract(_) => "cancel".into(),
             Request::Redo => "redo".into(),
             Request::ConfirmDiscard(true) => "discard changes".into(),
             Request::ConfirmDiscard(false) => "keep changes".into(),
@@ -120,6 +134,7 @@ impl Request {
                 | Request::Open(_)
                 | Request::DeleteMesh
                 | Request::Undo
+                | Request::Retract(_)
                 | Request::Redo
                 | Request::ConfirmDiscard(true)
         )

@@ -1,18 +1,121 @@
 //! What is selected, what is under the pointer, walking the halfedge relations, and the marks
 //! an edit leaves on a mesh for the render sync ([`MeshDirty`], [`DirtyFaces`]).
 
-use bevy::prelude::{Component, Resource};
+use bevy::ecs::entity::EntityHashSet;
+use bevy::prelude::{Component, Resource, World};
 
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId};
 use crate::mesh::topology::MeshRef;
 
 use super::requests::Relation;
 
-/// The selected element, if any.
-#[derive(Resource, Default, Debug, Clone, Copy, PartialEq, Eq)]
+/// What is selected: the active element (the one the inspector shows and relations walk
+/// from) and the selected set that operations act on.
+///
+/// The active element, when there is one, is always in the set. The set keeps the order
+/// elements were added in (welding takes the first two edges). Ids of elements an edit removed
+/// drop out of the set after the edit ([`Selection::retain`]).
+#[derive(Resource, Default, Debug, Clone)]
 pub struct Selection {
-    /// The element.
+    /// The active element.
     pub element: Option<ElementId>,
+    set: Vec<ElementId>,
+    members: EntityHashSet,
+}
+
+impl Selection {
+    /// Selects `element` alone (or nothing).
+    pub fn select_only(&mut self, element: Option<ElementId>) {
+        self.set.clear();
+        self.members.clear();
+        self.element = None;
+        if let Some(x) = element {
+            self.add(x);
+        }
+    }
+
+    /// Adds `x` to the set and makes it active.
+    pub fn add(&mut self, x: ElementId) {
+        if self.members.insert(x.entity()) {
+            self.set.push(x);
+        }
+        self.element = Some(x);
+    }
+
+    /// Adds elements to the set; the last one added becomes active if none is.
+    pub fn extend(&mut self, elements: impl IntoIterator<Item = ElementId>) {
+        for x in elements {
+            if self.members.insert(x.entity()) {
+                self.set.push(x);
+            }
+        }
+        if self.element.is_none() {
+            self.element = self.set.last().copied();
+        }
+    }
+
+    /// Shift-click, as in Blender: an element outside the set joins it and becomes active; a
+    /// selected element that is not active becomes active; the active element leaves the set
+    /// (the most recently added one left becomes active).
+    pub fn toggle(&mut self, x: ElementId) {
+        if !self.contains(x) || self.element != Some(x) {
+            self.add(x);
+            return;
+        }
+        self.members.remove(&x.entity());
+        self.set.retain(|&y| y != x);
+        self.element = self.set.last().copied();
+    }
+
+    /// Whether `x` is in the set.
+    pub fn contains(&self, x: ElementId) -> bool {
+        self.members.contains(&x.entity())
+    }
+
+    /// The selected elements, in the order they were added.
+    pub fn elements(&self) -> &[ElementId] {
+        &self.set
+    }
+
+    /// How many elements are selected.
+    pub fn len(&self) -> usize {
+        self.set.len()
+    }
+
+    /// Whether nothing is selected.
+    pub fn is_empty(&self) -> bool {
+        self.set.is_empty()
+    }
+
+    /// Keeps the elements for which `keep` holds (the active one too, or it is cleared and the
+    /// most recently added survivor takes its place).
+    pub fn retain(&mut self, mut keep: impl FnMut(ElementId) -> bool) {
+        let members = &mut self.members;
+        self.set.retain(|&x| {
+            let kept = keep(x);
+            if !kept {
+                members.remove(&x.entity());
+            }
+            kept
+        });
+        if self.element.is_some_and(|x| !self.members.contains(&x.entity())) {
+            self.element = self.set.last().copied();
+        }
+    }
+
+    /// Counts of the set by kind: vertices, edges (halfedges count as their edges), faces.
+    pub fn counts(&self) -> [usize; 3] {
+        let mut counts = [0; 3];
+        for x in &self.set {
+            match x {
+                ElementId::Vertex(_) => counts[0] += 1,
+                ElementId::Edge(_) | ElementId::Halfedge(_) => counts[1] += 1,
+                ElementId::Face(_) => counts[2] += 1,
+                ElementId::Mesh(_) => {}
+            }
+        }
+        counts
+    }
 }
 
 /// The element under the pointer, if any.
@@ -68,7 +171,7 @@ pub struct MeshDirty;
 pub struct DirtyFaces(pub Vec<FaceId>);
 
 /// Marks `faces` of `mesh` for redrawing (adding to those already marked).
-pub fn mark_faces_dirty(world: &mut bevy::prelude::World, mesh: MeshId, faces: Vec<FaceId>) {
+pub fn mark_faces_dirty(world: &mut World, mesh: MeshId, faces: Vec<FaceId>) {
     let mut entity = world.entity_mut(mesh.0);
     match entity.get_mut::<DirtyFaces>() {
         Some(mut dirty) => dirty.0.extend(faces),
@@ -76,6 +179,14 @@ pub fn mark_faces_dirty(world: &mut bevy::prelude::World, mesh: MeshId, faces: V
             entity.insert(DirtyFaces(faces));
         }
     }
+}
+
+/// Drops from the selection every element that is gone or that `keep` rejects (after an edit).
+pub fn keep_live_selection(world: &mut World, keep: impl Fn(ElementId) -> bool) {
+    let mut selection = std::mem::take(&mut *world.resource_mut::<Selection>());
+    let m = MeshRef::new(world);
+    selection.retain(|x| keep(x) && exists(&m, x));
+    *world.resource_mut::<Selection>() = selection;
 }
 
 /// Whether `element` is alive in the world behind `m`.
@@ -137,7 +248,6 @@ pub fn selected_edge(m: &MeshRef<'_>, selection: Option<ElementId>) -> Option<Ed
 mod tests {
     use super::*;
     use crate::mesh::{MeshInfo, build_mesh, shapes};
-    use bevy::prelude::World;
 
     #[test]
     fn relations_follow_the_halfedge_links() {

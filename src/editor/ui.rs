@@ -91,6 +91,10 @@ pub struct InspectorView {
     pub mesh: Option<MeshView>,
     /// The selected element, if any.
     pub selected: Option<SelectedView>,
+    /// The selected set, counted ("3 faces selected"); empty when at most one is selected.
+    pub selected_set: String,
+    /// The transform under way, as the status line says it.
+    pub gesture: Option<String>,
     /// Rebuild count at the last statistics refresh.
     pub stats_generation: usize,
     /// The simplification history: (coarsest, current, full) face counts.
@@ -226,6 +230,12 @@ pub fn snapshot(world: &mut World) {
                 j.started.elapsed().as_secs_f32(),
             )
         });
+    let selection = world.resource::<Selection>();
+    view.selected_set = match selection.len() > 1 {
+        true => super::select_many::describe(selection),
+        false => String::new(),
+    };
+    view.gesture = world.resource::<super::transform::Gestures>().hint();
     let m = MeshRef::new(world);
     view.selected = world
         .resource::<Selection>()
@@ -344,6 +354,10 @@ pub fn panels(
 
     let status = egui::Panel::bottom("status").show(&mut root, |ui| {
         ui.horizontal(|ui| {
+            if let Some(hint) = &view.gesture {
+                ui.colored_label(egui::Color32::from_rgb(255, 190, 90), hint);
+                return;
+            }
             match log.entries.last() {
                 Some(last) => match &last.result {
                     Ok(s) => ui.label(format!("✔ {}: {s}", last.request)),
@@ -605,8 +619,11 @@ fn selection_section(
             }
         }
     });
+    if !view.selected_set.is_empty() {
+        ui.label(egui::RichText::new(&view.selected_set).strong());
+    }
     let Some(sel) = &view.selected else {
-        ui.label("Nothing selected: click the mesh.");
+        ui.label("Nothing selected: click the mesh (Shift-click adds, B draws a box, A selects all).");
         return;
     };
     let kind = match sel.id {

@@ -25,6 +25,7 @@ pub mod build;
 pub mod change;
 pub mod elements;
 pub mod ids;
+pub mod loops;
 pub mod members;
 pub mod repair;
 pub mod shapes;

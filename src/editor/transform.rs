@@ -1,0 +1,430 @@
+//! Moving, rotating and scaling the selection, and dragging an extrusion's or an inset's
+//! distance: Blender's modal transforms (G, R, S; E and I then move).
+//!
+//! A [`Gesture`] starts from the selection's vertices (the corners of every selected element)
+//! about their centroid, the pivot. While it lasts, the pointer drives it without a button
+//! held; X, Y or Z constrain it to that world axis (again: free); digits, `.` and `-` type an
+//! exact value (a distance, degrees, a factor); Enter or a left click confirms; Esc cancels. Each
+//! frame in which the positions change writes one [`Edit::MoveVertices`]; the frames of one
+//! gesture merge into one undo step ([`UndoHistory::begin_gesture`]). Cancelling takes back
+//! every undo step the gesture made ([`Request::Retract`]): its moves, and the extrusion or
+//! inset it followed.
+//!
+//! - **Grab**: the pivot follows the pointer in the plane through it that faces the camera; a
+//!   constraint keeps the axis's part of the motion.
+//! - **Rotate**: by the angle the pointer turns about the pivot on screen, about the view axis
+//!   (or the constraint's, signed so that the mesh turns with the pointer).
+//! - **Scale**: by the ratio of the pointer's distances from the pivot on screen, now and at
+//!   the start; a constraint scales along that axis only.
+//! - **Extrude / Inset**: each vertex moves along its own direction (the region's normal at it;
+//!   towards its face's centroid) by one amount: the pointer's travel along the mean direction
+//!   for an extrusion, the fraction by which the pointer came closer to the pivot for an inset.
+
+use bevy::input::mouse::MouseButton;
+use bevy::math::primitives::InfinitePlane3d;
+use bevy::prelude::*;
+use bevy::window::PrimaryWindow;
+
+use crate::edit::Edit;
+use crate::mesh::ids::{ElementId, VertexId};
+use crate::mesh::topology::MeshRef;
+
+use super::history::UndoHistory;
+use super::requests::Request;
+use super::selection::Selection;
+
+/// What a gesture does with the pointer.
+#[derive(Clone, Debug, PartialEq)]
+pub enum GestureKind {
+    /// Move (G).
+    Grab,
+    /// Rotate (R).
+    Rotate,
+    /// Scale (S).
+    Scale,
+    /// Push each vertex along its direction by one distance (after an extrusion).
+    Extrude(Vec<Vec3>),
+    /// Pull each vertex towards its face's centroid by one fraction (after an inset): its
+    /// direction is the whole way there.
+    Inset(Vec<Vec3>),
+}
+
+impl GestureKind {
+    /// Its name in the status line.
+    pub fn name(&self) -> &'static str {
+        match self {
+            GestureKind::Grab => "move",
+            GestureKind::Rotate => "rotate",
+            GestureKind::Scale => "scale",
+            GestureKind::Extrude(_) => "extrude",
+            GestureKind::Inset(_) => "inset",
+        }
+    }
+}
+
+/// One transform under way.
+#[derive(Clone, Debug)]
+pub struct Gesture {
+    /// What it does.
+    pub kind: GestureKind,
+    /// The world axis it is held to (0, 1, 2: X, Y, Z), if any.
+    pub axis: Option<usize>,
+    /// The value typed so far.
+    pub typed: String,
+    /// The vertices and where they were when it started.
+    pub start: Vec<(VertexId, Vec3)>,
+    /// The centroid of the start positions.
+    pub pivot: Vec3,
+    /// The pointer when it started.
+    pub cursor: Vec2,
+    /// The undo steps there were before the edit it follows (the gesture's own merge into one
+    /// more): cancelling takes the history back to this many.
+    pub keep_undo: usize,
+    /// The value the pointer (or the typing) gives now, for the status line.
+    pub value: f32,
+}
+
+/// The gesture under way, and the one to start once the edit it follows has applied.
+#[derive(Resource, Default, Debug)]
+pub struct Gestures {
+    /// The gesture under way.
+    pub active: Option<Gesture>,
+    /// An extrusion or inset asked for: its gesture starts next frame if the edit applied.
+    pub after_edit: Option<FollowUp>,
+    /// A left click that confirmed a gesture: its release must not select.
+    pub swallow_click: bool,
+    /// A gesture had the keyboard this frame (the shortcuts stay quiet).
+    pub keys_taken: bool,
+}
+
+/// A gesture to start after an edit (an extrusion or an inset) has applied.
+#[derive(Clone, Debug)]
+pub struct FollowUp {
+    /// The edit's label (its outcome is looked up by it).
+    pub label: String,
+    /// Which gesture.
+    pub inset: bool,
+    /// Undo steps before the edit.
+    pub keep_undo: usize,
+}
+
+impl Gestures {
+    /// The status line while a gesture runs.
+    pub fn hint(&self) -> Option<String> {
+        let g = self.active.as_ref()?;
+        let axis = g.axis.map_or(String::new(), |a| {
+            format!(" along {}", ["X", "Y", "Z"][a])
+        });
+        let value = match (&g.kind, g.typed.is_empty()) {
+            (_, false) => format!("{}▏", g.typed),
+            (GestureKind::Rotate, true) => format!("{:.1}°", g.value),
+            (_, true) => format!("{:.4}", g.value),
+        };
+        Some(format!(
+            "{}{axis}: {value}   (X/Y/Z constrain, type a value, Enter or click confirms, Esc cancels)",
+            g.kind.name()
+        ))
+    }
+}
+
+/// Starts a gesture on the selection's vertices; `false` (nothing started) if nothing is
+/// selected. `keep_undo`: the undo steps to go back to on Esc (by default, those there are now).
+/// Without a pointer over the window (a script), the pointer is taken to be at the pivot's
+/// right, so typed values still work.
+pub fn start(world: &mut World, kind: GestureKind, keep_undo: Option<usize>) -> bool {
+    let vertices = selected_vertices(world);
+    if vertices.is_empty() {
+        return false;
+    }
+    let m = MeshRef::new(world);
+    let start: Vec<(VertexId, Vec3)> = vertices.iter().map(|&v| (v, m.position(v))).collect();
+    let pivot = start.iter().map(|(_, p)| *p).sum::<Vec3>() / start.len() as f32;
+    let cursor = cursor(world)
+        .or_else(|| {
+            let (camera, eye) = camera(world)?;
+            Some(camera.world_to_viewport(&eye, pivot).ok()? + Vec2::new(100.0, 0.0))
+        })
+        .unwrap_or(Vec2::ZERO);
+    let mut history = world.resource_mut::<UndoHistory>();
+    let keep_undo = keep_undo.unwrap_or(history.undo_entries().len());
+    history.begin_gesture();
+    world.resource_mut::<Gestures>().active = Some(Gesture {
+        kind,
+        axis: None,
+        typed: String::new(),
+        start,
+        pivot,
+        cursor,
+        keep_undo,
+        value: 0.0,
+    });
+    true
+}
+
+/// The corners of every selected element, each once, in selection order.
+pub fn selected_vertices(world: &World) -> Vec<VertexId> {
+    let m = MeshRef::new(world);
+    let mut seen = bevy::ecs::entity::EntityHashSet::default();
+    let mut out = Vec::new();
+    for &x in world.resource::<Selection>().elements() {
+        if !super::selection::exists(&m, x) {
+            continue;
+        }
+        let corners: Vec<VertexId> = match x {
+            ElementId::Vertex(v) => vec![v],
+            ElementId::Edge(e) => {
+                let (a, b) = m.edge_vertices(e);
+                vec![a, b]
+            }
+            ElementId::Halfedge(h) => vec![m.from_vertex(h), m.to_vertex(h)],
+            ElementId::Face(f) => m.face_vertices(f).collect(),
+            ElementId::Mesh(_) => Vec::new(),
+        };
+        out.extend(corners.into_iter().filter(|v| seen.insert(v.0)));
+    }
+    out
+}
+
+fn cursor(world: &mut World) -> Option<Vec2> {
+    world
+        .query_filtered::<&Window, With<PrimaryWindow>>()
+        .iter(world)
+        .next()
+        .and_then(Window::cursor_position)
+}
+
+fn camera(world: &mut World) -> Option<(Camera, GlobalTransform)> {
+    world
+        .query_filtered::<(&Camera, &GlobalTransform), With<Camera3d>>()
+        .iter(world)
+        .find(|(c, _)| c.is_active)
+        .map(|(c, t)| (c.clone(), *t))
+}
+
+/// Runs the gesture under way (the `Input` set, before the shortcuts, which it silences):
+/// keys, pointer, and one move per frame in which the positions change.
+pub fn drive_gesture(world: &mut World) {
+    start_follow_up(world);
+    let held = world
+        .get_resource::<ButtonInput<MouseButton>>()
+        .is_some_and(|b| b.pressed(MouseButton::Left));
+    let mut gestures = world.resource_mut::<Gestures>();
+    // The confirming click's release has been seen by picking by now (it runs first).
+    if !held {
+        gestures.swallow_click = false;
+    }
+    gestures.keys_taken = gestures.active.is_some();
+    let Some(mut g) = gestures.active.take() else {
+        return;
+    };
+    let keys = world.resource::<ButtonInput<KeyCode>>();
+    let pressed: Vec<KeyCode> = keys.get_just_pressed().copied().collect();
+    let clicked = world
+        .get_resource::<ButtonInput<MouseButton>>()
+        .is_some_and(|b| b.just_pressed(MouseButton::Left));
+    for key in pressed {
+        match key {
+            KeyCode::Escape => {
+                world.resource_mut::<UndoHistory>().end_gesture();
+                world.write_message(Request::Retract(g.keep_undo));
+                return;
+            }
+            KeyCode::Enter | KeyCode::NumpadEnter => return end(world, false),
+            KeyCode::KeyX | KeyCode::KeyY | KeyCode::KeyZ => {
+                let a = match key {
+                    KeyCode::KeyX => 0,
+                    KeyCode::KeyY => 1,
+                    _ => 2,
+                };
+                g.axis = if g.axis == Some(a) { None } else { Some(a) };
+            }
+            KeyCode::Backspace => {
+                g.typed.pop();
+            }
+            _ => {
+                if let Some(c) = typed_char(key) {
+                    g.typed.push(c);
+                }
+            }
+        }
+    }
+    if clicked {
+        // Apply this frame's position, then stop.
+        if let Some(moves) = positions(world, &mut g) {
+            world.write_message(Request::Edit(Edit::MoveVertices(moves)));
+        }
+        return end(world, true);
+    }
+    if let Some(moves) = positions(world, &mut g) {
+        let m = MeshRef::new(world);
+        let changed = moves
+            .iter()
+            .any(|&(v, p)| m.try_position(v).is_some_and(|q| q != p));
+        if changed {
+            world.write_message(Request::Edit(Edit::MoveVertices(moves)));
+        }
+    }
+    world.resource_mut::<Gestures>().active = Some(g);
+}
+
+fn end(world: &mut World, by_click: bool) {
+    world.resource_mut::<UndoHistory>().end_gesture();
+    let mut gestures = world.resource_mut::<Gestures>();
+    gestures.active = None;
+    gestures.swallow_click = by_click;
+}
+
+/// Starts the gesture an extrusion or inset asked for, once its outcome is in.
+fn start_follow_up(world: &mut World) {
+    let Some(follow) = world.resource_mut::<Gestures>().after_edit.take() else {
+        return;
+    };
+    let applied = world
+        .resource::<super::requests::OutcomeLog>()
+        .entries
+        .last()
+        .is_some_and(|o| o.request == follow.label && o.result.is_ok());
+    if !applied {
+        return;
+    }
+    let kind = match follow.inset {
+        false => GestureKind::Extrude(Vec::new()),
+        true => GestureKind::Inset(Vec::new()),
+    };
+    if start(world, kind, Some(follow.keep_undo)) {
+        let directions = directions(world, follow.inset);
+        if let Some(GestureKind::Extrude(d) | GestureKind::Inset(d)) = world
+            .resource_mut::<Gestures>()
+            .active
+            .as_mut()
+            .map(|g| &mut g.kind)
+        {
+            *d = directions;
+        }
+    }
+}
+
+/// Each gesture vertex's direction: the extrusion's (the mean normal of the selected faces
+/// around it) or the inset's (to its selected face's centroid).
+fn directions(world: &World, inset: bool) -> Vec<Vec3> {
+    let m = MeshRef::new(world);
+    let faces: Vec<_> = world
+        .resource::<Selection>()
+        .elements()
+        .iter()
+        .filter_map(|x| match x {
+            ElementId::Face(f) if m.try_face(*f).is_some() => Some(*f),
+            _ => None,
+        })
+        .collect();
+    let start = &world.resource::<Gestures>().active.as_ref().expect("started").start;
+    start
+        .iter()
+        .map(|&(v, p)| {
+            let around = faces.iter().filter(|&&f| m.face_vertices(f).any(|x| x == v));
+            match inset {
+                true => around.map(|&f| m.face_centroid(f) - p).next().unwrap_or(Vec3::ZERO),
+                false => around
+                    .map(|&f| m.face_area_vector(f).normalize_or_zero())
+                    .sum::<Vec3>()
+                    .normalize_or_zero(),
+            }
+        })
+        .collect()
+}
+
+fn typed_char(key: KeyCode) -> Option<char> {
+    Some(match key {
+        KeyCode::Digit0 | KeyCode::Numpad0 => '0',
+        KeyCode::Digit1 | KeyCode::Numpad1 => '1',
+        KeyCode::Digit2 | KeyCode::Numpad2 => '2',
+        KeyCode::Digit3 | KeyCode::Numpad3 => '3',
+        KeyCode::Digit4 | KeyCode::Numpad4 => '4',
+        KeyCode::Digit5 | KeyCode::Numpad5 => '5',
+        KeyCode::Digit6 | KeyCode::Numpad6 => '6',
+        KeyCode::Digit7 | KeyCode::Numpad7 => '7',
+        KeyCode::Digit8 | KeyCode::Numpad8 => '8',
+        KeyCode::Digit9 | KeyCode::Numpad9 => '9',
+        KeyCode::Period | KeyCode::NumpadDecimal => '.',
+        KeyCode::Minus | KeyCode::NumpadSubtract => '-',
+        _ => return None,
+    })
+}
+
+/// Where the gesture puts its vertices now (`None` without a pointer or camera). Sets
+/// `g.value`.
+fn positions(world: &mut World, g: &mut Gesture) -> Option<Vec<(VertexId, Vec3)>> {
+    let typed: Option<f32> = g.typed.parse().ok().filter(|x: &f32| x.is_finite());
+    let (camera, eye) = camera(world)?;
+    let now = cursor(world).unwrap_or(g.cursor);
+    let on_screen = |p: Vec3| camera.world_to_viewport(&eye, p).ok();
+    let on_plane = |c: Vec2| {
+        let ray = camera.viewport_to_world(&eye, c).ok()?;
+        ray.plane_intersection_point(g.pivot, InfinitePlane3d::new(eye.forward()))
+    };
+    let axis = g.axis.map(|a| Vec3::AXES[a]);
+    let pivot_px = on_screen(g.pivot)?;
+    let transform: Box<dyn Fn(usize, Vec3) -> Vec3> = match &g.kind {
+        GestureKind::Grab => {
+            let pointer = on_plane(now)? - on_plane(g.cursor)?;
+            let delta = match (typed, axis) {
+                (Some(x), a) => a.unwrap_or(Vec3::X) * x,
+                (None, Some(a)) => a * pointer.dot(a),
+                (None, None) => pointer,
+            };
+            g.value = delta.length();
+            Box::new(move |_, p| p + delta)
+        }
+        GestureKind::Rotate => {
+            let (a, b) = (g.cursor - pivot_px, now - pivot_px);
+            let turned = a.perp_dot(b).atan2(a.dot(b));
+            let forward = *eye.forward();
+            let (about, angle) = match axis {
+                // The turn is seen along the view: an axis pointing away turns with it.
+                Some(x) => (x, turned * if x.dot(forward) < 0.0 { -1.0 } else { 1.0 }),
+                None => (forward, turned),
+            };
+            let angle = typed.map_or(angle, f32::to_radians);
+            g.value = angle.to_degrees();
+            let q = Quat::from_axis_angle(about, angle);
+            let pivot = g.pivot;
+            Box::new(move |_, p| pivot + q * (p - pivot))
+        }
+        GestureKind::Scale => {
+            let from = (g.cursor - pivot_px).length().max(1.0);
+            let factor = typed.unwrap_or((now - pivot_px).length() / from);
+            g.value = factor;
+            let pivot = g.pivot;
+            Box::new(move |_, p| {
+                let d = p - pivot;
+                match axis {
+                    Some(a) => p + a * d.dot(a) * (factor - 1.0),
+                    None => pivot + d * factor,
+                }
+            })
+        }
+        GestureKind::Extrude(dirs) => {
+            let mean = dirs.iter().sum::<Vec3>().normalize_or(Vec3::Z);
+            let distance =
+                typed.unwrap_or_else(|| (on_plane(now).unwrap_or(g.pivot) - on_plane(g.cursor).unwrap_or(g.pivot)).dot(mean));
+            g.value = distance;
+            let dirs = dirs.clone();
+            Box::new(move |i, p| p + dirs[i] * distance)
+        }
+        GestureKind::Inset(dirs) => {
+            let from = (g.cursor - pivot_px).length().max(1.0);
+            let closer = (1.0 - (now - pivot_px).length() / from).clamp(0.0, 0.95);
+            let fraction = typed.map_or(closer, |x| x.clamp(0.0, 0.95));
+            g.value = fraction;
+            let dirs = dirs.clone();
+            Box::new(move |i, p| p + dirs[i] * fraction)
+        }
+    };
+    Some(
+        g.start
+            .iter()
+            .enumerate()
+            .map(|(i, &(v, p))| (v, transform(i, p)))
+            .collect(),
+    )
+}
