@@ -18,8 +18,8 @@ use crate::mesh::{MeshInfo, build_mesh, despawn_mesh, to_soup};
 use super::finish::{Finished, finish_edit, report};
 use super::history::{self, Redraw, UndoHistory};
 use super::jobs::{self, Jobs};
-use super::select_many::apply_selection_edit;
 use super::requests::{ConfirmDiscard, Declined, PendingDiscard, Request};
+use super::select_many::apply_selection_edit;
 use super::selection::{ActiveMesh, MeshDirty, Selection, exists, mark_faces_dirty, navigate};
 use super::session::{Modified, SimplificationHistory, is_modified};
 

@@ -15,12 +15,12 @@ use crate::ops::remesh::RemeshParams;
 use crate::ops::simplify::SimplifyParams;
 use crate::ops::smooth::SmoothParams;
 
+use super::box_select::BoxSelect;
 use super::dialog::{OpenDialog, PathPurpose};
 use super::finish::report;
 use super::jobs::Jobs;
 use super::render_sync::{ViewSettings, set_wireframes_visible};
 use super::requests::{Declined, Relation, Request};
-use super::box_select::BoxSelect;
 use super::select_many::SelectionEdit;
 use super::selection::{ActiveMesh, MeshDirty, SelectMode, Selection, selected_edge};
 use super::transform::{GestureKind, Gestures};
@@ -210,7 +210,12 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::SelectAll,
         "select all (vertices, or the click mode's kind)",
     ),
-    alt(KeyCode::KeyA, "Alt+A", Action::ClearSelection, "select nothing"),
+    alt(
+        KeyCode::KeyA,
+        "Alt+A",
+        Action::ClearSelection,
+        "select nothing",
+    ),
     key(
         KeyCode::KeyB,
         "B",
@@ -469,12 +474,7 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "save as",
     ),
     key(KeyCode::F1, "F1", Action::Help, "show / hide this help"),
-    shift(
-        KeyCode::Slash,
-        "?",
-        Action::Help,
-        "show / hide this help",
-    ),
+    shift(KeyCode::Slash, "?", Action::Help, "show / hide this help"),
 ];
 
 /// Whether egui is using the keyboard this frame (set by the UI; shortcuts then stay quiet).

@@ -191,7 +191,10 @@ enum Modifier {
 }
 
 /// Whether `modifier` is held (never, without a keyboard).
-fn held(keys: &Option<impl std::ops::Deref<Target = ButtonInput<KeyCode>>>, modifier: Modifier) -> bool {
+fn held(
+    keys: &Option<impl std::ops::Deref<Target = ButtonInput<KeyCode>>>,
+    modifier: Modifier,
+) -> bool {
     let pair = match modifier {
         Modifier::Shift => [KeyCode::ShiftLeft, KeyCode::ShiftRight],
         Modifier::Ctrl => [KeyCode::ControlLeft, KeyCode::ControlRight],

@@ -123,11 +123,15 @@ pub fn apply_selection_edit(world: &mut World, edit: &SelectionEdit) -> Result<S
 /// "3 vertices, 2 faces selected", or "nothing selected".
 pub fn describe(selection: &Selection) -> String {
     let [v, e, f] = selection.counts();
-    let parts: Vec<String> = [(v, "vertex", "vertices"), (e, "edge", "edges"), (f, "face", "faces")]
-        .into_iter()
-        .filter(|(n, ..)| *n > 0)
-        .map(|(n, one, many)| format!("{n} {}", if n == 1 { one } else { many }))
-        .collect();
+    let parts: Vec<String> = [
+        (v, "vertex", "vertices"),
+        (e, "edge", "edges"),
+        (f, "face", "faces"),
+    ]
+    .into_iter()
+    .filter(|(n, ..)| *n > 0)
+    .map(|(n, one, many)| format!("{n} {}", if n == 1 { one } else { many }))
+    .collect();
     match parts.is_empty() {
         true => "nothing selected".into(),
         false => format!("{} selected", parts.join(", ")),
@@ -139,9 +143,11 @@ pub fn describe(selection: &Selection) -> String {
 fn all_of_kind(world: &World, mesh: MeshId, mode: SelectMode) -> Vec<ElementId> {
     let members = MeshMembers::collect(world, mesh);
     match mode {
-        SelectMode::Auto | SelectMode::Vertex => {
-            members.vertices.iter().map(|&v| ElementId::Vertex(v)).collect()
-        }
+        SelectMode::Auto | SelectMode::Vertex => members
+            .vertices
+            .iter()
+            .map(|&v| ElementId::Vertex(v))
+            .collect(),
         SelectMode::Edge | SelectMode::Halfedge => {
             members.edges.iter().map(|&e| ElementId::Edge(e)).collect()
         }
@@ -209,8 +215,7 @@ pub fn shrink(m: &MeshRef<'_>, set: &[ElementId]) -> Vec<ElementId> {
         .filter(|&x| exists(m, x))
         .filter(|&x| {
             corners(m, x).into_iter().all(|v| {
-                let vertex_inside =
-                    !matches!(x, ElementId::Vertex(_)) || !m.is_boundary_vertex(v);
+                let vertex_inside = !matches!(x, ElementId::Vertex(_)) || !m.is_boundary_vertex(v);
                 vertex_inside
                     && touching(m, v, x)
                         .into_iter()
@@ -298,7 +303,11 @@ mod tests {
         let (world, vs) = grid();
         let m = MeshRef::new(&world);
         let f = m.face(m.find_halfedge(vs[6], vs[7]).unwrap()).unwrap();
-        assert_eq!(grow(&m, &[ElementId::Face(f)]).len(), 8, "a 3×3 block of quads");
+        assert_eq!(
+            grow(&m, &[ElementId::Face(f)]).len(),
+            8,
+            "a 3×3 block of quads"
+        );
         assert!(shrink(&m, &[ElementId::Face(f)]).is_empty());
     }
 
@@ -312,9 +321,17 @@ mod tests {
         s.toggle(b);
         assert_eq!((s.len(), s.element), (2, Some(b)));
         s.toggle(a);
-        assert_eq!((s.len(), s.element), (2, Some(a)), "a selected element becomes active");
+        assert_eq!(
+            (s.len(), s.element),
+            (2, Some(a)),
+            "a selected element becomes active"
+        );
         s.toggle(a);
-        assert_eq!((s.len(), s.element), (1, Some(b)), "the active one leaves the set");
+        assert_eq!(
+            (s.len(), s.element),
+            (1, Some(b)),
+            "the active one leaves the set"
+        );
         assert_eq!(describe(&s), "1 vertex selected");
     }
 }

@@ -98,7 +98,10 @@ impl Selection {
             }
             kept
         });
-        if self.element.is_some_and(|x| !self.members.contains(&x.entity())) {
+        if self
+            .element
+            .is_some_and(|x| !self.members.contains(&x.entity()))
+        {
             self.element = self.set.last().copied();
         }
     }

@@ -112,9 +112,9 @@ impl Gestures {
     /// The status line while a gesture runs.
     pub fn hint(&self) -> Option<String> {
         let g = self.active.as_ref()?;
-        let axis = g.axis.map_or(String::new(), |a| {
-            format!(" along {}", ["X", "Y", "Z"][a])
-        });
+        let axis = g
+            .axis
+            .map_or(String::new(), |a| format!(" along {}", ["X", "Y", "Z"][a]));
         let value = match (&g.kind, g.typed.is_empty()) {
             (_, false) => format!("{}▏", g.typed),
             (GestureKind::Rotate, true) => format!("{:.1}°", g.value),
@@ -317,13 +317,23 @@ fn directions(world: &World, inset: bool) -> Vec<Vec3> {
             _ => None,
         })
         .collect();
-    let start = &world.resource::<Gestures>().active.as_ref().expect("started").start;
+    let start = &world
+        .resource::<Gestures>()
+        .active
+        .as_ref()
+        .expect("started")
+        .start;
     start
         .iter()
         .map(|&(v, p)| {
-            let around = faces.iter().filter(|&&f| m.face_vertices(f).any(|x| x == v));
+            let around = faces
+                .iter()
+                .filter(|&&f| m.face_vertices(f).any(|x| x == v));
             match inset {
-                true => around.map(|&f| m.face_centroid(f) - p).next().unwrap_or(Vec3::ZERO),
+                true => around
+                    .map(|&f| m.face_centroid(f) - p)
+                    .next()
+                    .unwrap_or(Vec3::ZERO),
                 false => around
                     .map(|&f| m.face_area_vector(f).normalize_or_zero())
                     .sum::<Vec3>()
@@ -405,8 +415,9 @@ fn positions(world: &mut World, g: &mut Gesture) -> Option<Vec<(VertexId, Vec3)>
         }
         GestureKind::Extrude(dirs) => {
             let mean = dirs.iter().sum::<Vec3>().normalize_or(Vec3::Z);
-            let distance =
-                typed.unwrap_or_else(|| (on_plane(now).unwrap_or(g.pivot) - on_plane(g.cursor).unwrap_or(g.pivot)).dot(mean));
+            let distance = typed.unwrap_or_else(|| {
+                (on_plane(now).unwrap_or(g.pivot) - on_plane(g.cursor).unwrap_or(g.pivot)).dot(mean)
+            });
             g.value = distance;
             let dirs = dirs.clone();
             Box::new(move |i, p| p + dirs[i] * distance)

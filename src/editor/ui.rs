@@ -623,7 +623,9 @@ fn selection_section(
         ui.label(egui::RichText::new(&view.selected_set).strong());
     }
     let Some(sel) = &view.selected else {
-        ui.label("Nothing selected: click the mesh (Shift-click adds, B draws a box, A selects all).");
+        ui.label(
+            "Nothing selected: click the mesh (Shift-click adds, B draws a box, A selects all).",
+        );
         return;
     };
     let kind = match sel.id {

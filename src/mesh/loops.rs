@@ -121,14 +121,16 @@ mod tests {
         let m = MeshRef::new(&world);
         let ring = edge_ring(&m, e).unwrap();
         assert_eq!(ring[0], e);
-        assert_eq!(ends(&m, &ring, &vs), vec![[1, 2], [6, 7], [11, 12], [16, 17]]);
+        assert_eq!(
+            ends(&m, &ring, &vs),
+            vec![[1, 2], [6, 7], [11, 12], [16, 17]]
+        );
     }
 
     #[test]
     fn a_loop_on_a_closed_torus_closes() {
         let mut world = World::new();
-        let built = build_mesh(&mut world, &shapes::torus(12, 8), MeshInfo::default())
-            .unwrap();
+        let built = build_mesh(&mut world, &shapes::torus(12, 8), MeshInfo::default()).unwrap();
         let m = MeshRef::new(&world);
         let v = built.input_vertices[0].unwrap();
         let h = m.vertex_halfedge(v);

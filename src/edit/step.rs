@@ -1,0 +1,405 @@
+//! The steps of `pappus process`: text in, [`Edit`] out.
+//!
+//! Whole-mesh steps name their parameters (`simplify:0.25`, `remesh:3:0.5`); local steps name
+//! their elements by the input file's vertex numbers (0-based), so a script written against a
+//! file keeps working whatever ids the elements get: `A` is a vertex, `A,B` the edge between
+//! two vertices, `A,B,C` the face with those three consecutive corners (either way round), and
+//! several elements are separated by `/` (`extrude:0,1,2/1,2,3:0.5`).
+
+use bevy::prelude::World;
+
+use crate::mesh::ids::{EdgeId, ElementId, VertexId};
+use crate::mesh::{MeshId, MeshRef, validate};
+use crate::ops::Refusal;
+use crate::ops::named::Named;
+use crate::ops::param::{BoundaryShape, ParamMethod, ParamParams};
+use crate::ops::progressive::ProgressiveMesh;
+use crate::ops::remesh::RemeshParams;
+use crate::ops::simplify::{SimplifyParams, SimplifyTarget};
+use crate::ops::smooth::{SmoothMethod, SmoothParams};
+
+use super::{Edit, EditContext, Scheme, Subdivision};
+
+/// A local edit as a `process` step writes it: by the input file's vertex numbers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LocalKind {
+    /// `flip:A,B`.
+    Flip,
+    /// `split:A,B`.
+    Split,
+    /// `bisect:A,B`.
+    Bisect,
+    /// `collapse:A,B`.
+    Collapse,
+    /// `dissolve:A,B`.
+    Dissolve,
+    /// `fill-hole:A,B`: the hole beside the boundary edge.
+    FillHole,
+    /// `split-face:A,B`: the face the two vertices share, between them.
+    SplitFace,
+    /// `seam:A,B`: mark the edge a seam (or unmark it).
+    Seam,
+}
+
+impl Named for LocalKind {
+    /// Every kind, with its step name.
+    const ALL: &'static [(Self, &'static str)] = &[
+        (LocalKind::Flip, "flip"),
+        (LocalKind::Split, "split"),
+        (LocalKind::Bisect, "bisect"),
+        (LocalKind::Collapse, "collapse"),
+        (LocalKind::Dissolve, "dissolve"),
+        (LocalKind::FillHole, "fill-hole"),
+        (LocalKind::SplitFace, "split-face"),
+        (LocalKind::Seam, "seam"),
+    ];
+}
+
+impl LocalKind {
+    /// The edit on the elements between the live vertices `a` and `b` (the input file's
+    /// vertices `ia` and `ib`, named in refusals).
+    ///
+    /// # Refusals
+    /// [`Refusal::NoEdgeBetween`] / [`Refusal::NoSharedFace`] when the two share none.
+    pub fn between(
+        self,
+        world: &World,
+        (a, b): (VertexId, VertexId),
+        (ia, ib): (u32, u32),
+    ) -> Result<Edit, Refusal> {
+        let m = MeshRef::new(world);
+        if self == LocalKind::SplitFace {
+            let face = m
+                .vertex_faces(a)
+                .find(|&f| m.face_vertices(f).any(|v| v == b))
+                .ok_or(Refusal::NoSharedFace(ia, ib))?;
+            return Ok(Edit::SplitFace(face, a, b));
+        }
+        let e = m
+            .find_halfedge(a, b)
+            .map(|h| m.edge(h))
+            .ok_or(Refusal::NoEdgeBetween(ia, ib))?;
+        Ok(self
+            .on_edge(e)
+            .expect("every kind but split-face acts on an edge"))
+    }
+
+    /// The edit of this kind on edge `e`; `None` for the kinds that do not act on an edge.
+    pub fn on_edge(self, e: EdgeId) -> Option<Edit> {
+        Some(match self {
+            LocalKind::Flip => Edit::Flip(e),
+            LocalKind::Split => Edit::Split(e),
+            LocalKind::Bisect => Edit::Bisect(e),
+            LocalKind::Collapse => Edit::Collapse(e),
+            LocalKind::Dissolve => Edit::Dissolve(e),
+            LocalKind::FillHole => Edit::FillHole(e),
+            LocalKind::Seam => Edit::ToggleSeam(e),
+            LocalKind::SplitFace => return None,
+        })
+    }
+}
+
+/// One step of `pappus process`, as parsed from its text (`simplify:0.25`, `flip:3,17`, …).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Step {
+    /// Check every invariant; refused (with the broken rule) if one fails.
+    Validate,
+    /// An edit that names no element (a whole-mesh edit, or a move along the history).
+    Edit(Edit),
+    /// A local edit on the elements between two of the input file's vertices.
+    Local(LocalKind, u32, u32),
+}
+
+/// The step syntax, for usage texts.
+pub const STEP_SYNTAX: &str = "\
+validate | triangulate | flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
+dissolve:A,B | split-face:A,B | fill-hole:A,B | seam:A,B (mark, for param) |
+loop[:N] | catmull-clark[:N] |
+simplify:RATIO | simplify-faces:N |
+refine[:FACES]   (split simplify's collapses back, up to FACES faces or all) |
+remesh[:ITERATIONS[:LENGTH]]   (isotropic; LENGTH defaults to the mean edge length) |
+smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held) |
+param:uniform|mean-value|harmonic|lscm[:circle|square]   (UVs; written as OBJ vt / PLY u v)
+A, B: 0-based indices of the input file's vertices (the edge between them)";
+
+impl Step {
+    /// Parses a step as written on the command line.
+    ///
+    /// # Errors
+    /// A message naming the step when it is unknown or its arguments are malformed.
+    pub fn parse(text: &str) -> Result<Step, String> {
+        let (name, args) = text.split_once(':').unwrap_or((text, ""));
+        let pair = || -> Result<(u32, u32), String> {
+            let bad = || format!("step `{text}`: expected two vertex numbers, as in `{name}:3,17`");
+            let (a, b) = args.split_once(',').ok_or_else(bad)?;
+            Ok((
+                a.trim().parse().map_err(|_| bad())?,
+                b.trim().parse().map_err(|_| bad())?,
+            ))
+        };
+        let levels = |scheme| -> Result<Step, String> {
+            let levels = match args {
+                "" => 1,
+                _ => args
+                    .parse::<u32>()
+                    .ok()
+                    .filter(|n| (1..=Subdivision::MAX_LEVELS).contains(n))
+                    .ok_or_else(|| {
+                        format!(
+                            "step `{text}`: levels must be a number from 1 to {}",
+                            Subdivision::MAX_LEVELS
+                        )
+                    })?,
+            };
+            Ok(Step::Edit(Edit::Subdivide(Subdivision { scheme, levels })))
+        };
+        if let Some(&(kind, _)) = LocalKind::ALL.iter().find(|(_, n)| *n == name) {
+            return pair().map(|(a, b)| Step::Local(kind, a, b));
+        }
+        let edit = match name {
+            "validate" => return Ok(Step::Validate),
+            "loop" => return levels(Scheme::Loop),
+            "catmull-clark" => return levels(Scheme::CatmullClark),
+            "triangulate" => Edit::Triangulate,
+            "simplify" => match args.parse::<f64>() {
+                Ok(r) if r > 0.0 && r <= 1.0 => Edit::Simplify(SimplifyParams::ratio(r)),
+                _ => {
+                    return Err(format!(
+                        "step `{text}`: the ratio must be in (0, 1], as in `simplify:0.25`"
+                    ));
+                }
+            },
+            "simplify-faces" => Edit::Simplify(SimplifyParams::faces(
+                args.parse::<usize>().map_err(|_| {
+                    format!("step `{text}`: expected a face count, as in `simplify-faces:1000`")
+                })?,
+            )),
+            "refine" if args.is_empty() => Edit::LevelOfDetail(usize::MAX),
+            "refine" => Edit::LevelOfDetail(args.parse::<usize>().map_err(|_| {
+                format!("step `{text}`: expected a face count, as in `refine:5000`")
+            })?),
+            "remesh" => {
+                let bad = || format!("step `{text}`: expected remesh[:ITERATIONS[:LENGTH]]");
+                let mut parts = args.split(':').filter(|p| !p.is_empty());
+                let mut params = RemeshParams::default();
+                if let Some(n) = parts.next() {
+                    params.iterations = n
+                        .parse::<u32>()
+                        .ok()
+                        .filter(|n| (1..=100).contains(n))
+                        .ok_or_else(bad)?;
+                }
+                if let Some(l) = parts.next() {
+                    params.target_length = Some(
+                        l.parse::<f32>()
+                            .ok()
+                            .filter(|l| *l > 0.0 && l.is_finite())
+                            .ok_or_else(bad)?,
+                    );
+                }
+                Edit::Remesh(params)
+            }
+            "smooth" => Edit::Smooth(parse_smooth(args).ok_or_else(|| {
+                format!(
+                    "step `{text}`: expected smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]"
+                )
+            })?),
+            "param" => Edit::Parameterize(parse_param(args).map_err(|why| {
+                format!(
+                    "step `{text}`: {why}; expected param:uniform|mean-value|harmonic|lscm[:circle|square]"
+                )
+            })?),
+            _ => {
+                return Err(format!(
+                    "unknown step `{text}` (see `pappus process --help`)"
+                ));
+            }
+        };
+        Ok(Step::Edit(edit))
+    }
+
+    /// Runs the step on `mesh`. `input_vertices` maps the input file's vertex numbers to the
+    /// vertices they became; `history` is the simplification history a `refine` moves along.
+    ///
+    /// # Refusals
+    /// As [`Edit::run`]; a local step naming vertices the input lacks or that share no
+    /// edge (face); `validate` on an invalid mesh.
+    pub fn run(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        input_vertices: &[Option<VertexId>],
+        history: &mut Option<ProgressiveMesh>,
+    ) -> Result<String, Refusal> {
+        let edit = match self {
+            Step::Validate => {
+                return validate(world, mesh)
+                    .map(|()| "valid".to_string())
+                    .map_err(|e| Refusal::Invalid(e.to_string()));
+            }
+            Step::Edit(edit) => edit.clone(),
+            Step::Local(kind, a, b) => {
+                let live = |i: u32| -> Result<VertexId, Refusal> {
+                    let v = input_vertices
+                        .get(i as usize)
+                        .copied()
+                        .flatten()
+                        .ok_or(Refusal::NoInputVertex(i))?;
+                    MeshRef::new(world)
+                        .try_vertex(v)
+                        .map(|_| v)
+                        .ok_or(Refusal::Stale(ElementId::Vertex(v)))
+                };
+                kind.between(world, (live(*a)?, live(*b)?), (*a, *b))?
+            }
+        };
+        let mut context = EditContext {
+            history,
+            progress: &mut |_| true,
+        };
+        let applied = edit.run(world, mesh, &mut context)?;
+        if !edit.keeps_history() {
+            *history = None;
+        }
+        Ok(applied.summary)
+    }
+}
+
+/// `METHOD[:SHAPE]` of a `param` step.
+fn parse_param(args: &str) -> Result<ParamParams, String> {
+    let mut parts = args.split(':');
+    let method: ParamMethod = parts
+        .next()
+        .unwrap_or("")
+        .parse()
+        .map_err(|e| format!("{e}"))?;
+    let mut params = ParamParams::new(method);
+    if let Some(shape) = parts.next() {
+        params.boundary = shape.parse::<BoundaryShape>().map_err(|e| format!("{e}"))?;
+    }
+    match parts.next() {
+        Some(extra) => Err(format!("unexpected `{extra}`")),
+        None => Ok(params),
+    }
+}
+
+/// `METHOD[:ITERATIONS[:STEP]]` of a `smooth` step.
+fn parse_smooth(args: &str) -> Option<SmoothParams> {
+    let mut parts = args.split(':');
+    let method = parts.next()?;
+    let (method, _) = SmoothMethod::ALL.iter().find(|(_, n)| *n == method)?;
+    let mut params = SmoothParams::new(*method);
+    if let Some(n) = parts.next() {
+        params.iterations = n.parse().ok().filter(|n| (1..=10_000).contains(n))?;
+    }
+    if let Some(step) = parts.next() {
+        params.step = step
+            .parse()
+            .ok()
+            .filter(|s: &f64| *s > 0.0 && s.is_finite())?;
+    }
+    parts.next().is_none().then_some(params)
+}
+
+impl std::fmt::Display for Step {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Step::Validate => write!(f, "validate"),
+            Step::Local(kind, a, b) => write!(f, "{}:{a},{b}", kind.name()),
+            Step::Edit(edit) => match edit {
+                Edit::Triangulate => write!(f, "triangulate"),
+                Edit::Simplify(p) => match p.target {
+                    SimplifyTarget::Ratio(r) => write!(f, "simplify:{r}"),
+                    SimplifyTarget::Faces(n) => write!(f, "simplify-faces:{n}"),
+                },
+                Edit::LevelOfDetail(usize::MAX) => write!(f, "refine"),
+                Edit::LevelOfDetail(n) => write!(f, "refine:{n}"),
+                Edit::Subdivide(s) => match s.scheme {
+                    Scheme::Loop => write!(f, "loop:{}", s.levels),
+                    Scheme::CatmullClark => write!(f, "catmull-clark:{}", s.levels),
+                },
+                Edit::Remesh(p) => match p.target_length {
+                    None => write!(f, "remesh:{}", p.iterations),
+                    Some(l) => write!(f, "remesh:{}:{l}", p.iterations),
+                },
+                Edit::Smooth(p) => {
+                    write!(f, "smooth:{}:{}:{}", p.method.name(), p.iterations, p.step)
+                }
+                Edit::Parameterize(p) => write!(f, "param:{}:{}", p.method, p.boundary),
+                other => write!(f, "{}", other.label()),
+            },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_step_prints_as_it_parses() {
+        for text in [
+            "validate",
+            "triangulate",
+            "flip:3,17",
+            "split:0,1",
+            "bisect:0,1",
+            "collapse:1,2",
+            "dissolve:4,5",
+            "fill-hole:0,1",
+            "split-face:0,2",
+            "seam:0,1",
+            "loop:1",
+            "catmull-clark:2",
+            "simplify:0.25",
+            "simplify-faces:1000",
+            "refine",
+            "refine:5000",
+            "remesh:5",
+            "remesh:3:0.5",
+            "smooth:taubin:10:0.5",
+            "smooth:implicit:1:2",
+            "param:harmonic:circle",
+            "param:lscm:square",
+        ] {
+            let step = Step::parse(text).unwrap();
+            assert_eq!(step.to_string(), text);
+            assert_eq!(Step::parse(&step.to_string()).unwrap(), step);
+        }
+        assert_eq!(Step::parse("loop").unwrap().to_string(), "loop:1");
+        assert_eq!(
+            Step::parse("param:mean-value").unwrap().to_string(),
+            "param:mean-value:circle"
+        );
+        assert_eq!(Step::parse("remesh").unwrap().to_string(), "remesh:5");
+        assert_eq!(
+            Step::parse("smooth:cotan").unwrap().to_string(),
+            "smooth:cotan:1:0.5"
+        );
+    }
+
+    #[test]
+    fn malformed_steps_say_what_is_expected() {
+        for (text, expected) in [
+            ("frobnicate", "unknown step"),
+            ("flip:3", "two vertex numbers"),
+            ("loop:9", "from 1 to 8"),
+            ("simplify:0", "(0, 1]"),
+            ("simplify:1.5", "(0, 1]"),
+            ("remesh:0", "ITERATIONS"),
+            ("remesh:3:-1", "LENGTH"),
+            ("refine:lots", "face count"),
+            ("smooth:gaussian", "uniform|cotan"),
+            ("smooth:uniform:0", "ITERATIONS"),
+            (
+                "param:spectral",
+                "unknown parameterization method `spectral`",
+            ),
+            ("param:harmonic:hexagon", "unknown boundary shape"),
+            ("param:harmonic:circle:x", "unexpected `x`"),
+        ] {
+            let e = Step::parse(text).unwrap_err();
+            assert!(e.contains(expected), "{text}: {e}");
+        }
+    }
+}
