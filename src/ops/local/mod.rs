@@ -19,6 +19,7 @@
 //! Each operation's module doc has a before/after picture and its refusals, in the order they
 //! are checked.
 
+mod bevel;
 mod bisect;
 mod collapse;
 mod dissolve;
@@ -28,6 +29,10 @@ mod split;
 mod split_face;
 mod vertex_split;
 
+pub use bevel::{
+    BevelEdgePlan, BevelVertexPlan, apply_bevel_edge, apply_bevel_vertex, bevel_edge, bevel_vertex,
+    plan_bevel_edge, plan_bevel_vertex,
+};
 pub use bisect::{BisectPlan, apply_bisect, bisect_edge, plan_bisect};
 pub use collapse::{
     CollapseOptions, CollapsePlan, CollapseRecord, CollapseResult, apply_collapse, collapse_edge,
