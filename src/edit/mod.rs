@@ -29,8 +29,10 @@ use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::{InMesh, MeshInfo, MeshRef, validate};
 use crate::ops::Refusal;
 use crate::ops::local::{
-    CollapseOptions, bisect_edge, collapse_edge, dissolve_edge, fill_hole, flip_edge, split_edge,
-    split_face,
+    CollapseOptions, bevel_edge, bevel_vertex, bisect_edge, collapse_edge, collapse_face,
+    dissolve_edge, dissolve_vertex, erase_faces, extrude_faces, fill_hole, flip_edge,
+    inset_faces, plan_bevel_edge, plan_bevel_vertex, plan_collapse_face, plan_dissolve_vertex,
+    plan_erase, plan_extrude, plan_inset, plan_weld, split_edge, split_face, weld_edges,
 };
 use crate::ops::named::Named;
 use crate::ops::param::{ParamParams, parameterize_in_place};
@@ -92,6 +94,25 @@ pub enum Edit {
     FillHole(EdgeId),
     /// Split a face between two of its corners.
     SplitFace(FaceId, VertexId, VertexId),
+    /// Extrude faces as one region (a wall of quads along its rim) and push it this distance
+    /// along the region's normals.
+    Extrude(Vec<FaceId>, f32),
+    /// Inset each face: a ring of quads inside it, its corners moved `amount` (0–1) of the way
+    /// to its centroid and `depth` along its normal (with a depth: Scotty3D's bevel face).
+    Inset(Vec<FaceId>, f32, f32),
+    /// Replace a vertex by a face whose corners lie `amount` (0–0.5) along its edges.
+    BevelVertex(VertexId, f32),
+    /// Replace an interior edge by a face whose corners lie `amount` (0–0.5) along the edges
+    /// of its ends.
+    BevelEdge(EdgeId, f32),
+    /// Erase faces: they become holes; edges and vertices left with no face go too.
+    Erase(Vec<FaceId>),
+    /// Merge the faces around a vertex into one and remove the vertex.
+    DissolveVertex(VertexId),
+    /// Collapse a face to its centroid.
+    CollapseFace(FaceId),
+    /// Glue the second boundary edge onto the first; their ends merge at the midpoints.
+    Weld(EdgeId, EdgeId),
     /// Move a vertex.
     MoveVertex(VertexId, Vec3),
     /// Move several vertices at once (a transform of the selection): one undo step.
@@ -185,6 +206,19 @@ impl Edit {
             Edit::ToggleSeam(e) => format!("seam mark on {e}"),
             Edit::FillHole(e) => format!("fill the hole at {e}"),
             Edit::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
+            Edit::Extrude(faces, d) => format!("extrude {} by {d}", count(faces.len(), "face")),
+            Edit::Inset(faces, t, d) if *d == 0.0 => {
+                format!("inset {} by {t}", count(faces.len(), "face"))
+            }
+            Edit::Inset(faces, t, d) => {
+                format!("bevel {} by {t}, depth {d}", count(faces.len(), "face"))
+            }
+            Edit::BevelVertex(v, t) => format!("bevel {v} by {t}"),
+            Edit::BevelEdge(e, t) => format!("bevel {e} by {t}"),
+            Edit::Erase(faces) => format!("erase {}", count(faces.len(), "face")),
+            Edit::DissolveVertex(v) => format!("dissolve {v}"),
+            Edit::CollapseFace(f) => format!("collapse {f}"),
+            Edit::Weld(a, b) => format!("weld {b} to {a}"),
             Edit::MoveVertex(v, _) => format!("move {v}"),
             Edit::MoveVertices(moves) => format!("move {} vertices", moves.len()),
             Edit::SplitVertex(v) => format!("split {v} back"),
@@ -254,6 +288,14 @@ impl Edit {
                 m.try_vertex(*v)?;
                 local(vec![*v])
             }
+            Edit::Extrude(..)
+            | Edit::Inset(..)
+            | Edit::BevelVertex(..)
+            | Edit::BevelEdge(..)
+            | Edit::Erase(_)
+            | Edit::DissolveVertex(_)
+            | Edit::CollapseFace(_)
+            | Edit::Weld(..) => local(self.planned_seeds(world)?.ok()?),
             Edit::MoveVertices(moves) => {
                 let seeds: Vec<VertexId> = moves.iter().map(|(v, _)| *v).collect();
                 seeds
@@ -291,6 +333,12 @@ impl Edit {
             Edit::SplitFace(f, ..) => Some(ElementId::Face(*f)),
             Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => Some(ElementId::Vertex(*v)),
             Edit::MoveVertices(moves) => moves.first().map(|(v, _)| ElementId::Vertex(*v)),
+            Edit::Extrude(faces, _) | Edit::Inset(faces, ..) | Edit::Erase(faces) => Some(
+                ElementId::Face(*faces.first().ok_or(Refusal::BadParameter("no faces".into()))?),
+            ),
+            Edit::BevelVertex(v, _) | Edit::DissolveVertex(v) => Some(ElementId::Vertex(*v)),
+            Edit::BevelEdge(e, _) | Edit::Weld(e, _) => Some(ElementId::Edge(*e)),
+            Edit::CollapseFace(f) => Some(ElementId::Face(*f)),
             _ => None,
         };
         match named {
@@ -306,6 +354,22 @@ impl Edit {
                     .ok_or(Refusal::Stale(ElementId::Mesh(mesh)))
             }
         }
+    }
+
+    /// The seeds of the undo record of an edit planned by its operation's `plan_*` (whose
+    /// refusal it passes on); `None` for the other edits.
+    fn planned_seeds(&self, world: &World) -> Option<Result<Vec<VertexId>, Refusal>> {
+        Some(match self {
+            Edit::Extrude(faces, _) => plan_extrude(world, faces).map(|p| p.seeds()),
+            Edit::Inset(faces, ..) => plan_inset(world, faces).map(|p| p.seeds()),
+            Edit::BevelVertex(v, t) => plan_bevel_vertex(world, *v, *t).map(|p| p.seeds()),
+            Edit::BevelEdge(e, t) => plan_bevel_edge(world, *e, *t).map(|p| p.seeds()),
+            Edit::Erase(faces) => plan_erase(world, faces).map(|p| p.seeds()),
+            Edit::DissolveVertex(v) => plan_dissolve_vertex(world, *v).map(|p| p.seeds()),
+            Edit::CollapseFace(f) => plan_collapse_face(world, *f).map(|p| p.seeds()),
+            Edit::Weld(a, b) => plan_weld(world, *a, *b).map(|p| p.seeds()),
+            _ => return None,
+        })
     }
 
     /// Whether the edit may run as a job (on a copy of the mesh, on a thread of its own) when
@@ -508,6 +572,28 @@ impl Edit {
                     made: Some(ElementId::Edge(e)),
                 }
             }
+            Edit::Extrude(..)
+            | Edit::Inset(..)
+            | Edit::BevelVertex(..)
+            | Edit::BevelEdge(..)
+            | Edit::Erase(_)
+            | Edit::DissolveVertex(_)
+            | Edit::CollapseFace(_)
+            | Edit::Weld(..) => {
+                let seeds = self.planned_seeds(world).expect("a planned edit")?;
+                let before = faces_around(world, &seeds);
+                let (summary, made) = self.apply_planned(world)?;
+                // What is new lies around the seeds that survive and what the edit made.
+                let mut after = seeds;
+                if let Some(x) = made {
+                    after.extend(element_corners(world, x));
+                }
+                Applied {
+                    summary,
+                    redraw: near(world, before, after),
+                    made,
+                }
+            }
             Edit::MoveVertex(v, p) => {
                 let ring = move_vertices(world, &[(*v, *p)])?;
                 Applied {
@@ -679,6 +765,83 @@ fn toggle_seam(world: &mut World, e: EdgeId) -> Result<bool, Refusal> {
         edge.remove::<Seam>();
     }
     Ok(marked)
+}
+
+impl Edit {
+    /// Runs one of the edits [`Edit::planned_seeds`] knows: its summary, and what to select.
+    fn apply_planned(&self, world: &mut World) -> Result<(String, Option<ElementId>), Refusal> {
+        Ok(match self {
+            Edit::Extrude(faces, d) => {
+                let done = extrude_faces(world, faces, *d)?;
+                let summary = format!(
+                    "{} lifted on {}",
+                    count(done.top.len(), "face"),
+                    count(done.sides.len(), "side face")
+                );
+                (summary, None)
+            }
+            Edit::Inset(faces, t, d) => {
+                let done = inset_faces(world, faces, *t, *d)?;
+                let summary = format!(
+                    "{} inset, {} around them",
+                    count(done.top.len(), "face"),
+                    count(done.sides.len(), "new face")
+                );
+                (summary, None)
+            }
+            Edit::BevelVertex(v, t) => {
+                let f = bevel_vertex(world, *v, *t)?;
+                (format!("new face {f}"), Some(ElementId::Face(f)))
+            }
+            Edit::BevelEdge(e, t) => {
+                let f = bevel_edge(world, *e, *t)?;
+                (format!("new face {f}"), Some(ElementId::Face(f)))
+            }
+            Edit::Erase(faces) => {
+                let gone = erase_faces(world, faces)?;
+                let summary = format!(
+                    "removed {}, {}, {}",
+                    count(gone.faces, "face"),
+                    count(gone.edges, "edge"),
+                    count(gone.vertices, "vertex")
+                );
+                (summary, None)
+            }
+            Edit::DissolveVertex(v) => {
+                let f = dissolve_vertex(world, *v)?;
+                (format!("merged into {f}"), Some(ElementId::Face(f)))
+            }
+            Edit::CollapseFace(f) => {
+                let v = collapse_face(world, *f)?;
+                (format!("collapsed to {v}"), Some(ElementId::Vertex(v)))
+            }
+            Edit::Weld(a, b) => {
+                let e = weld_edges(world, *a, *b)?;
+                (format!("welded into {e}"), Some(ElementId::Edge(e)))
+            }
+            _ => unreachable!("{} is not a planned edit", self.label()),
+        })
+    }
+}
+
+/// "1 face", "3 faces" ("vertex" → "vertices").
+fn count(n: usize, what: &str) -> String {
+    match (n, what) {
+        (1, _) => format!("1 {what}"),
+        (_, "vertex") => format!("{n} vertices"),
+        _ => format!("{n} {what}s"),
+    }
+}
+
+/// The corners of a live element (none if it is gone).
+fn element_corners(world: &World, x: ElementId) -> Vec<VertexId> {
+    let m = MeshRef::new(world);
+    match x {
+        ElementId::Vertex(v) if m.try_vertex(v).is_some() => vec![v],
+        ElementId::Edge(e) => edge_ends(world, e),
+        ElementId::Face(f) if m.try_face(f).is_some() => m.face_vertices(f).collect(),
+        _ => Vec::new(),
+    }
 }
 
 /// Moves vertices; returns them with their neighbours (whose smooth normals change too, so

@@ -11,6 +11,7 @@ use bevy::prelude::World;
 use crate::mesh::ids::{EdgeId, ElementId, VertexId};
 use crate::mesh::{MeshId, MeshRef, validate};
 use crate::ops::Refusal;
+use crate::ops::local::{faces_of_edge, faces_of_vertex};
 use crate::ops::named::Named;
 use crate::ops::param::{BoundaryShape, ParamMethod, ParamParams};
 use crate::ops::progressive::ProgressiveMesh;
@@ -108,6 +109,150 @@ pub enum Step {
     Edit(Edit),
     /// A local edit on the elements between two of the input file's vertices.
     Local(LocalKind, u32, u32),
+    /// An edit of elements named by vertex numbers (`A`, `A,B`, `A,B,C`, several joined by
+    /// `/`), with its numbers (a distance, an amount).
+    Elements(ElementStep, Vec<Vec<u32>>, Vec<f32>),
+}
+
+/// The steps that name elements of any kind, and how many numbers follow them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ElementStep {
+    /// `extrude:FACES:DISTANCE`: the faces as one region.
+    Extrude,
+    /// `inset:FACES:AMOUNT[:DEPTH]`: each face (AMOUNT of the way to its centre, 0–1).
+    Inset,
+    /// `bevel:ELEMENT[:AMOUNT[:DEPTH]]`: a vertex or an edge (AMOUNT along its edges, 0–0.5,
+    /// default 0.25), or a face (an inset by AMOUNT with DEPTH).
+    Bevel,
+    /// `erase:ELEMENTS`: the faces (of the vertices, edges) become holes.
+    Erase,
+    /// `dissolve:A`: merge the faces around a vertex.
+    Dissolve,
+    /// `collapse:A,B,C`: a face to its centroid.
+    Collapse,
+    /// `weld:A,B/C,D`: two boundary edges into one.
+    Weld,
+}
+
+impl Named for ElementStep {
+    const ALL: &'static [(Self, &'static str)] = &[
+        (ElementStep::Extrude, "extrude"),
+        (ElementStep::Inset, "inset"),
+        (ElementStep::Bevel, "bevel"),
+        (ElementStep::Erase, "erase"),
+        (ElementStep::Dissolve, "dissolve"),
+        (ElementStep::Collapse, "collapse"),
+        (ElementStep::Weld, "weld"),
+    ];
+}
+
+impl ElementStep {
+    /// Checks the shape of the step's arguments: the kinds of elements it names and its
+    /// numbers. Returns what is wrong.
+    fn check(self, targets: &[Vec<u32>], numbers: &[f32]) -> Result<(), &'static str> {
+        let all = |n: std::ops::RangeFrom<usize>| targets.iter().all(|t| n.contains(&t.len()));
+        let (shape, numbers_ok) = match self {
+            ElementStep::Extrude => (all(3..), numbers.len() == 1),
+            ElementStep::Inset => (all(3..), (1..=2).contains(&numbers.len())),
+            ElementStep::Bevel => (targets.len() == 1, numbers.len() <= 2),
+            ElementStep::Erase => (true, numbers.is_empty()),
+            ElementStep::Dissolve => (targets.len() == 1 && targets[0].len() == 1, numbers.is_empty()),
+            ElementStep::Collapse => (targets.len() == 1 && targets[0].len() >= 3, numbers.is_empty()),
+            ElementStep::Weld => (
+                targets.len() == 2 && targets.iter().all(|t| t.len() == 2),
+                numbers.is_empty(),
+            ),
+        };
+        match (shape && !targets.is_empty(), numbers_ok) {
+            (true, true) => Ok(()),
+            _ => Err(match self {
+                ElementStep::Extrude => "expected faces and a distance, as in `extrude:0,1,2/1,2,3:0.5`",
+                ElementStep::Inset => "expected faces and an amount, as in `inset:0,1,2:0.3[:DEPTH]`",
+                ElementStep::Bevel => "expected one element, as in `bevel:4:0.25` or `bevel:0,1`",
+                ElementStep::Erase => "expected elements, as in `erase:4` or `erase:0,1,2/5,6`",
+                ElementStep::Dissolve => "expected a vertex (`dissolve:A`) or an edge (`dissolve:A,B`)",
+                ElementStep::Collapse => "expected an edge (`collapse:A,B`) or a face (`collapse:A,B,C`)",
+                ElementStep::Weld => "expected two boundary edges, as in `weld:0,1/7,8`",
+            }),
+        }
+    }
+
+    /// The edit on the named live elements.
+    fn edit(self, world: &World, elements: &[ElementId], numbers: &[f32]) -> Result<Edit, Refusal> {
+        let faces = || -> Result<Vec<crate::mesh::FaceId>, Refusal> {
+            let mut out = Vec::new();
+            for &x in elements {
+                match x {
+                    ElementId::Face(f) => out.push(f),
+                    ElementId::Vertex(v) => out.extend(faces_of_vertex(world, v)?),
+                    ElementId::Edge(e) => out.extend(faces_of_edge(world, e)?),
+                    _ => {}
+                }
+            }
+            out.sort_unstable();
+            out.dedup();
+            Ok(out)
+        };
+        let number = |i: usize, default: f32| numbers.get(i).copied().unwrap_or(default);
+        Ok(match (self, elements) {
+            (ElementStep::Extrude, _) => Edit::Extrude(faces()?, number(0, 0.0)),
+            (ElementStep::Inset, _) => Edit::Inset(faces()?, number(0, 0.0), number(1, 0.0)),
+            (ElementStep::Bevel, [ElementId::Vertex(v)]) => Edit::BevelVertex(*v, number(0, 0.25)),
+            (ElementStep::Bevel, [ElementId::Edge(e)]) => Edit::BevelEdge(*e, number(0, 0.25)),
+            (ElementStep::Bevel, [ElementId::Face(f)]) => {
+                Edit::Inset(vec![*f], number(0, 0.25), number(1, 0.0))
+            }
+            (ElementStep::Erase, _) => Edit::Erase(faces()?),
+            (ElementStep::Dissolve, [ElementId::Vertex(v)]) => Edit::DissolveVertex(*v),
+            (ElementStep::Collapse, [ElementId::Face(f)]) => Edit::CollapseFace(*f),
+            (ElementStep::Weld, [ElementId::Edge(a), ElementId::Edge(b)]) => Edit::Weld(*a, *b),
+            _ => unreachable!("checked when parsed"),
+        })
+    }
+}
+
+/// `A,B,C/D,E` → `[[A, B, C], [D, E]]`.
+fn parse_targets(text: &str) -> Option<Vec<Vec<u32>>> {
+    text.split('/')
+        .map(|t| t.split(',').map(|i| i.trim().parse().ok()).collect())
+        .collect()
+}
+
+/// The element named by input vertex numbers: a vertex, the edge between two, the face with
+/// three consecutive corners (either way round).
+fn element_at(
+    world: &World,
+    input_vertices: &[Option<VertexId>],
+    target: &[u32],
+) -> Result<ElementId, Refusal> {
+    let m = MeshRef::new(world);
+    let live = |i: u32| -> Result<VertexId, Refusal> {
+        let v = input_vertices
+            .get(i as usize)
+            .copied()
+            .flatten()
+            .ok_or(Refusal::NoInputVertex(i))?;
+        m.try_vertex(v)
+            .map(|_| v)
+            .ok_or(Refusal::Stale(ElementId::Vertex(v)))
+    };
+    let corners: Vec<VertexId> = target.iter().map(|&i| live(i)).collect::<Result<_, _>>()?;
+    match corners[..] {
+        [v] => Ok(ElementId::Vertex(v)),
+        [a, b] => m
+            .find_halfedge(a, b)
+            .map(|h| ElementId::Edge(m.edge(h)))
+            .ok_or(Refusal::NoEdgeBetween(target[0], target[1])),
+        [a, b, c, ..] => [(a, b, c), (c, b, a)]
+            .into_iter()
+            .find_map(|(a, b, c)| {
+                let h = m.find_halfedge(a, b)?;
+                (m.to_vertex(m.next(h)) == c).then_some(m.face(h)?)
+            })
+            .map(ElementId::Face)
+            .ok_or(Refusal::NoSharedFace(target[0], target[2])),
+        [] => unreachable!("targets are never empty"),
+    }
 }
 
 /// The step syntax, for usage texts.
@@ -120,7 +265,10 @@ refine[:FACES]   (split simplify's collapses back, up to FACES faces or all) |
 remesh[:ITERATIONS[:LENGTH]]   (isotropic; LENGTH defaults to the mean edge length) |
 smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held) |
 param:uniform|mean-value|harmonic|lscm[:circle|square]   (UVs; written as OBJ vt / PLY u v)
-A, B: 0-based indices of the input file's vertices (the edge between them)";
+extrude:FACES:DISTANCE | inset:FACES:AMOUNT[:DEPTH] | bevel:ELEMENT[:AMOUNT[:DEPTH]] |
+erase:ELEMENTS | dissolve:A | collapse:A,B,C | weld:A,B/C,D
+A, B, C: 0-based indices of the input file's vertices: A a vertex, A,B the edge between two,
+A,B,C the face with those consecutive corners; several elements joined by /";
 
 impl Step {
     /// Parses a step as written on the command line.
@@ -153,8 +301,26 @@ impl Step {
             };
             Ok(Step::Edit(Edit::Subdivide(Subdivision { scheme, levels })))
         };
+        let element_step = ElementStep::ALL.iter().find(|(_, n)| *n == name).map(|x| x.0);
         if let Some(&(kind, _)) = LocalKind::ALL.iter().find(|(_, n)| *n == name) {
-            return pair().map(|(a, b)| Step::Local(kind, a, b));
+            // `dissolve` and `collapse` name an edge here, a vertex or a face below.
+            let is_pair = args.split(',').count() == 2 && !args.contains([':', '/']);
+            if element_step.is_none() || is_pair {
+                return pair().map(|(a, b)| Step::Local(kind, a, b));
+            }
+        }
+        if let Some(op) = element_step {
+            let mut parts = args.split(':');
+            let targets = parts.next().and_then(parse_targets);
+            let numbers: Option<Vec<f32>> = parts
+                .map(|x| x.parse::<f32>().ok().filter(|x| x.is_finite()))
+                .collect();
+            let bad = |why: &str| format!("step `{text}`: {why}");
+            let (Some(targets), Some(numbers)) = (targets, numbers) else {
+                return Err(bad(op.check(&[], &[]).expect_err("empty targets")));
+            };
+            op.check(&targets, &numbers).map_err(bad)?;
+            return Ok(Step::Elements(op, targets, numbers));
         }
         let edit = match name {
             "validate" => return Ok(Step::Validate),
@@ -252,6 +418,13 @@ impl Step {
                 };
                 kind.between(world, (live(*a)?, live(*b)?), (*a, *b))?
             }
+            Step::Elements(op, targets, numbers) => {
+                let elements: Vec<ElementId> = targets
+                    .iter()
+                    .map(|t| element_at(world, input_vertices, t))
+                    .collect::<Result<_, _>>()?;
+                op.edit(world, &elements, numbers)?
+            }
         };
         let mut context = EditContext {
             history,
@@ -306,6 +479,14 @@ impl std::fmt::Display for Step {
         match self {
             Step::Validate => write!(f, "validate"),
             Step::Local(kind, a, b) => write!(f, "{}:{a},{b}", kind.name()),
+            Step::Elements(op, targets, numbers) => {
+                let targets: Vec<String> = targets
+                    .iter()
+                    .map(|t| t.iter().map(u32::to_string).collect::<Vec<_>>().join(","))
+                    .collect();
+                write!(f, "{}:{}", op.name(), targets.join("/"))?;
+                numbers.iter().try_for_each(|x| write!(f, ":{x}"))
+            }
             Step::Edit(edit) => match edit {
                 Edit::Triangulate => write!(f, "triangulate"),
                 Edit::Simplify(p) => match p.target {
@@ -361,6 +542,16 @@ mod tests {
             "smooth:implicit:1:2",
             "param:harmonic:circle",
             "param:lscm:square",
+            "extrude:0,1,2/1,2,3:0.5",
+            "inset:0,1,2:0.3",
+            "inset:0,1,2:0.3:-0.1",
+            "bevel:4:0.25",
+            "bevel:0,1:0.1",
+            "bevel:0,1,2:0.2:0.1",
+            "erase:4/0,1/0,1,2",
+            "dissolve:4",
+            "collapse:0,1,2",
+            "weld:0,1/7,8",
         ] {
             let step = Step::parse(text).unwrap();
             assert_eq!(step.to_string(), text);
@@ -397,6 +588,12 @@ mod tests {
             ),
             ("param:harmonic:hexagon", "unknown boundary shape"),
             ("param:harmonic:circle:x", "unexpected `x`"),
+            ("extrude:0,1,2", "a distance"),
+            ("extrude:0,1:0.5", "faces and a distance"),
+            ("weld:0,1", "two boundary edges"),
+            ("bevel:0/1", "one element"),
+            ("dissolve:1,2,3", "a vertex"),
+            ("erase:x", "expected elements"),
         ] {
             let e = Step::parse(text).unwrap_err();
             assert!(e.contains(expected), "{text}: {e}");

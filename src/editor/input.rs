@@ -10,6 +10,7 @@ use bevy::prelude::*;
 use crate::edit::{Edit, LocalKind, Scheme, Subdivision};
 use crate::mesh::MeshRef;
 use crate::mesh::ids::ElementId;
+use crate::ops::local::{faces_of_edge, faces_of_vertex};
 use crate::ops::param::ParamParams;
 use crate::ops::remesh::RemeshParams;
 use crate::ops::simplify::SimplifyParams;
@@ -34,6 +35,23 @@ pub enum Action {
     /// Cut a corner off the selected halfedge's face: join its tip to the vertex two corners
     /// ahead.
     CutCorner,
+    /// Extrude the selected faces as one region, then drag the distance (with a halfedge
+    /// active: go to its edge, as in Scotty3D).
+    Extrude,
+    /// Inset each selected face, then drag the amount.
+    Inset,
+    /// Bevel the active vertex or edge, or the selected faces (the panel's amount and depth).
+    Bevel,
+    /// Erase the selected elements: their faces become holes.
+    Erase,
+    /// Fill the hole beside the selected boundary edge (with a halfedge active: go to its face).
+    Fill,
+    /// Dissolve the active vertex (merge its faces) or edge (merge its two faces).
+    Dissolve,
+    /// Collapse the active edge or face.
+    Collapse,
+    /// Weld the first two selected boundary edges.
+    Weld,
     /// Triangulate the active mesh.
     Triangulate,
     /// Simplify the active mesh (QEM) with the panel's parameters.
@@ -257,20 +275,57 @@ pub const SHORTCUTS: &[Shortcut] = &[
     key(
         KeyCode::KeyC,
         "C",
-        Action::OnEdge(LocalKind::Collapse),
-        "collapse the selected edge to its midpoint",
+        Action::Collapse,
+        "collapse the active edge (to its midpoint) or face (to its centroid)",
     ),
     key(
         KeyCode::KeyD,
         "D",
-        Action::OnEdge(LocalKind::Dissolve),
-        "dissolve the selected edge (merge its two faces)",
+        Action::Dissolve,
+        "dissolve the active edge (merge its two faces) or vertex (merge its faces)",
     ),
-    shift(
+    key(
+        KeyCode::KeyE,
+        "E",
+        Action::Extrude,
+        "extrude the selected faces as one region, then drag (halfedge active: go to edge)",
+    ),
+    key(
+        KeyCode::KeyI,
+        "I",
+        Action::Inset,
+        "inset each selected face, then drag the amount",
+    ),
+    ctrl(
+        KeyCode::KeyB,
+        false,
+        "Ctrl+B",
+        Action::Bevel,
+        "bevel the active vertex or edge, or the selected faces (amount in the panel)",
+    ),
+    key(
+        KeyCode::KeyX,
+        "X",
+        Action::Erase,
+        "erase the selection: its faces become holes",
+    ),
+    key(
+        KeyCode::Delete,
+        "Delete",
+        Action::Erase,
+        "erase the selection: its faces become holes",
+    ),
+    key(
         KeyCode::KeyF,
-        "Shift+F",
-        Action::OnEdge(LocalKind::FillHole),
-        "fill the hole beside the selected boundary edge (one polygon face)",
+        "F",
+        Action::Fill,
+        "fill the hole beside the selected boundary edge (halfedge active: go to face)",
+    ),
+    alt(
+        KeyCode::KeyM,
+        "Alt+M",
+        Action::Weld,
+        "weld the first two selected boundary edges",
     ),
     key(
         KeyCode::KeyJ,
@@ -364,18 +419,7 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::Navigate(Relation::Vertex),
         "go to vertex (tip)",
     ),
-    key(
-        KeyCode::KeyE,
-        "E",
-        Action::Navigate(Relation::Edge),
-        "go to edge",
-    ),
-    key(
-        KeyCode::KeyF,
-        "F",
-        Action::Navigate(Relation::Face),
-        "go to face",
-    ),
+
     key(
         KeyCode::Digit1,
         "1",
@@ -504,6 +548,11 @@ pub struct UiState {
     pub param: ParamParams,
     /// The UV layout window is open (it opens by itself when the mesh first gets UVs).
     pub uv_view: bool,
+    /// Bevel: how far along the edges the new corners go (0–0.5), or for faces how far
+    /// towards the centre (0–1).
+    pub bevel_amount: f32,
+    /// Bevel of faces: how far the inset face moves along its normal.
+    pub bevel_depth: f32,
 }
 
 impl Default for UiState {
@@ -518,6 +567,8 @@ impl Default for UiState {
             histograms: false,
             param: ParamParams::default(),
             uv_view: false,
+            bevel_amount: 0.25,
+            bevel_depth: 0.0,
         }
     }
 }
@@ -583,6 +634,102 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             };
             let (f, a, b) = target.ok_or(Declined::SelectFirst("a halfedge of a face (mode 4)"))?;
             Edit::SplitFace(f, a, b)
+        }
+        Action::Extrude | Action::Fill
+            if matches!(selection, Some(ElementId::Halfedge(_)))
+                && world.resource::<Selection>().len() == 1 =>
+        {
+            let to = match action {
+                Action::Extrude => Relation::Edge,
+                _ => Relation::Face,
+            };
+            return Ok(Some(Request::Navigate(to)));
+        }
+        Action::Fill => {
+            let edge = selected_edge(&m, selection).ok_or(Declined::SelectFirst("a boundary edge"))?;
+            Edit::FillHole(edge)
+        }
+        Action::Extrude | Action::Inset => {
+            let faces = selected_faces(world);
+            if faces.is_empty() {
+                return Err(Declined::SelectFirst("faces (mode 3)"));
+            }
+            let edit = match action {
+                Action::Extrude => Edit::Extrude(faces, 0.0),
+                _ => Edit::Inset(faces, 0.0, 0.0),
+            };
+            let keep_undo = world
+                .resource::<super::history::UndoHistory>()
+                .undo_entries()
+                .len();
+            world.resource_mut::<Gestures>().after_edit = Some(super::transform::FollowUp {
+                label: edit.label(),
+                inset: action == Action::Inset,
+                keep_undo,
+            });
+            edit
+        }
+        Action::Bevel => {
+            let ui = world.resource::<UiState>();
+            let (amount, depth) = (ui.bevel_amount, ui.bevel_depth);
+            match selection {
+                Some(ElementId::Vertex(v)) => Edit::BevelVertex(v, amount),
+                Some(ElementId::Face(_)) => Edit::Inset(selected_faces(world), amount, depth),
+                _ => match selected_edge(&m, selection) {
+                    Some(e) => Edit::BevelEdge(e, amount.min(0.5)),
+                    None => return Err(Declined::SelectFirst("a vertex, an edge or faces")),
+                },
+            }
+        }
+        Action::Erase => {
+            let mut faces = Vec::new();
+            for &x in world.resource::<Selection>().elements() {
+                let around = match x {
+                    ElementId::Face(f) => Ok(vec![f]),
+                    ElementId::Vertex(v) => faces_of_vertex(world, v),
+                    ElementId::Edge(e) => faces_of_edge(world, e),
+                    ElementId::Halfedge(h) => match m.try_halfedge(h) {
+                        Some(x) => faces_of_edge(world, x.edge),
+                        None => Ok(Vec::new()),
+                    },
+                    ElementId::Mesh(_) => Ok(Vec::new()),
+                };
+                faces.extend(around.unwrap_or_default());
+            }
+            faces.sort_unstable();
+            faces.dedup();
+            if faces.is_empty() {
+                return Err(Declined::SelectFirst("elements to erase"));
+            }
+            Edit::Erase(faces)
+        }
+        Action::Dissolve | Action::Collapse => match (action, selection) {
+            (Action::Dissolve, Some(ElementId::Vertex(v))) => Edit::DissolveVertex(v),
+            (Action::Collapse, Some(ElementId::Face(f))) => Edit::CollapseFace(f),
+            _ => {
+                let edge = selected_edge(&m, selection).ok_or(Declined::SelectFirst(
+                    match action {
+                        Action::Dissolve => "a vertex or an edge",
+                        _ => "an edge or a face",
+                    },
+                ))?;
+                match action {
+                    Action::Dissolve => Edit::Dissolve(edge),
+                    _ => Edit::Collapse(edge),
+                }
+            }
+        },
+        Action::Weld => {
+            let edges: Vec<_> = world
+                .resource::<Selection>()
+                .elements()
+                .iter()
+                .filter_map(|&x| selected_edge(&m, Some(x)))
+                .collect();
+            match edges[..] {
+                [a, b, ..] => Edit::Weld(a, b),
+                _ => return Err(Declined::SelectFirst("two boundary edges (Shift-click)")),
+            }
         }
         Action::OnEdge(kind) => {
             let edge = selected_edge(&m, selection)
@@ -715,6 +862,20 @@ fn mark_all_dirty(world: &mut World) {
     for m in meshes {
         world.entity_mut(m.0).insert(MeshDirty);
     }
+}
+
+/// The live faces of the selected set, in selection order.
+pub fn selected_faces(world: &World) -> Vec<crate::mesh::FaceId> {
+    let m = MeshRef::new(world);
+    world
+        .resource::<Selection>()
+        .elements()
+        .iter()
+        .filter_map(|&x| match x {
+            ElementId::Face(f) if m.try_face(f).is_some() => Some(f),
+            _ => None,
+        })
+        .collect()
 }
 
 /// The selected element, for the UI.

@@ -725,17 +725,50 @@ fn operations_section(
     ui.label(egui::RichText::new("Operations").strong());
     ui.horizontal_wrapped(|ui| {
         for (action, name) in [
+            (Action::Grab, "Move"),
+            (Action::Rotate, "Rotate"),
+            (Action::Scale, "Scale"),
+            (Action::Extrude, "Extrude"),
+            (Action::Inset, "Inset"),
+            (Action::Bevel, "Bevel"),
+            (Action::Erase, "Erase"),
+            (Action::Fill, "Fill hole"),
+            (Action::Weld, "Weld"),
             (Action::OnEdge(LocalKind::Flip), "Flip"),
             (Action::OnEdge(LocalKind::Split), "Split"),
             (Action::OnEdge(LocalKind::Bisect), "Bisect"),
-            (Action::OnEdge(LocalKind::Collapse), "Collapse"),
-            (Action::OnEdge(LocalKind::Dissolve), "Dissolve"),
-            (Action::OnEdge(LocalKind::FillHole), "Fill hole"),
+            (Action::Collapse, "Collapse"),
+            (Action::Dissolve, "Dissolve"),
             (Action::CutCorner, "Split face"),
             (Action::SplitVertex, "Split vertex back"),
             (Action::Triangulate, "Triangulate"),
             (Action::Frame, "Frame"),
             (Action::DeleteMesh, "Delete mesh"),
+        ] {
+            if ui
+                .button(format!("{name} ({})", shortcut_label(action)))
+                .clicked()
+            {
+                pending.0.push(action);
+            }
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.label("bevel");
+        ui.add(egui::Slider::new(&mut ui_state.bevel_amount, 0.01..=0.5).text("amount"));
+        ui.add(
+            egui::DragValue::new(&mut ui_state.bevel_depth)
+                .speed(0.005)
+                .prefix("depth "),
+        );
+    });
+    ui.horizontal_wrapped(|ui| {
+        for (action, name) in [
+            (Action::SelectAll, "All"),
+            (Action::ClearSelection, "None"),
+            (Action::Grow, "More"),
+            (Action::Shrink, "Less"),
+            (Action::BoxSelect, "Box"),
         ] {
             if ui
                 .button(format!("{name} ({})", shortcut_label(action)))
