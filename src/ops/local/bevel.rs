@@ -25,8 +25,8 @@
 //!
 //! **On the boundary** (Scotty3D allows it too) the new face sits at the border: it still has
 //! `k` corners, one per edge of `v`, and its side between the new vertices on `v`'s two
-//! boundary edges lies on the boundary. The boundary loop that ran `… w0 → v → w1 …` now runs
-//! `… w0 → u0 → u1 → w1 …` (one side longer); no loop is split or merged.
+//! boundary edges lies on the boundary. The boundary loop that ran `… w1 → v → w0 …` now runs
+//! `… w1 → u1 → u0 → w0 …` (one side longer); no loop is split or merged.
 //!
 //! ```text
 //!      w3       w2                 w3       w2
@@ -67,10 +67,10 @@
 //!
 //! # Attributes
 //! A new corner's UV is interpolated along its old edge inside its face (`uv_v + amount ·
-//! (uv_w − uv_v)`, the corner of `v` and of `w` in that face). A corner of `F` copies the UV its
-//! vertex got in the face across that side of `F` (where that side is on the boundary, in the
-//! face of the vertex's own edge). A new vertex copies the normal and colour of the vertex it
-//! came from.
+//! (uv_w − uv_v)`, the corners of `v` and of `w` in that face), so across a seam each face
+//! keeps its own chart. A corner of `F` copies the UV its vertex got in the face across that
+//! side of `F` (where that side is on the boundary, the UV it got in the one face beside its
+//! old edge). A new vertex copies the normal and colour of the vertex it came from.
 //!
 //! # Refusals
 //! Each leaves the world untouched. [`plan_bevel_vertex`], in this order:
@@ -85,9 +85,10 @@
 //! - `BoundaryEdge`: `e` is on the boundary (it has a face on one side only);
 //! - `BadParameter`: `amount` is not in `(0, 0.5]` (NaN included);
 //! - `DegenerateFace` (naming `e`): both ends have only 2 edges, so the face would have 2 sides
-//!   (and its two sides would be duplicate edges). Nothing else can go wrong: every new
-//!   vertex, edge and corner is new, so no face repeats a vertex and no edge is made twice,
-//!   triangles around valence-3 ends included;
+//!   (and its two sides would be duplicate edges). Nothing else can go wrong: each face keeps
+//!   its old corners and gains only new vertices, and every new edge joins two new vertices
+//!   that no other edge joins, so no face repeats a vertex and no edge is made twice
+//!   (triangles around valence-3 ends included: a tetrahedron edge gives a prism-like shape);
 //! - `NotFinite`: a new position would not be finite.
 
 use bevy::math::{Vec2, Vec3};
@@ -234,7 +235,9 @@ pub fn plan_bevel_vertex(
     })
 }
 
-/// Carries out a bevel planned by [`plan_bevel_vertex`]. Returns the new face.
+/// Carries out a bevel planned by [`plan_bevel_vertex`] and returns the new face. It cannot fail
+/// on a fresh plan (one made on the world as it is): the mesh then passes
+/// [`crate::mesh::validate()`]. In debug builds it plans again and asserts the plan is unchanged.
 pub fn apply_bevel_vertex(world: &mut World, plan: BevelVertexPlan) -> FaceId {
     debug_assert_eq!(
         plan_bevel_vertex(world, plan.v, plan.amount).as_ref(),
@@ -301,7 +304,9 @@ pub fn plan_bevel_edge(world: &World, e: EdgeId, amount: f32) -> Result<BevelEdg
     })
 }
 
-/// Carries out a bevel planned by [`plan_bevel_edge`]. Returns the new face.
+/// Carries out a bevel planned by [`plan_bevel_edge`] and returns the new face. It cannot fail
+/// on a fresh plan (one made on the world as it is): the mesh then passes
+/// [`crate::mesh::validate()`]. In debug builds it plans again and asserts the plan is unchanged.
 pub fn apply_bevel_edge(world: &mut World, plan: BevelEdgePlan) -> FaceId {
     debug_assert_eq!(
         plan_bevel_edge(world, plan.edge, plan.amount).as_ref(),
@@ -1095,10 +1100,8 @@ mod tests {
         // Every cube face its own chart: UV = (x + z / 2, y − z / 4) + (8 i, 0) for face i.
         let mut soup = cube_with_attributes();
         let uvs = soup.corner_uvs.as_mut().unwrap();
-        for i in 0..6 {
-            for k in 4 * i..4 * i + 4 {
-                uvs[k].x += 8.0 * i as f32;
-            }
+        for (k, uv) in uvs.iter_mut().enumerate() {
+            uv.x += 8.0 * (k / 4) as f32;
         }
         let linear = |p: Vec3| Vec2::new(p.x + 0.5 * p.z, p.y - 0.25 * p.z);
         for (bevel_an_edge, amount) in [(false, 0.25), (true, 0.5)] {
