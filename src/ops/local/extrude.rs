@@ -66,7 +66,7 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, spawn_at};
 
-/// What an extrusion (or an inset, [`super::inset`]) made.
+/// What an extrusion (or an inset, [`super::inset_faces`]) made.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Extruded {
     /// The region's faces, the same ids as given, now on the top.
@@ -74,7 +74,8 @@ pub struct Extruded {
     /// The new side faces, one per rim edge.
     pub sides: Vec<FaceId>,
     /// Every vertex of the top, each once (copies and vertices inside the region), in the order
-    /// they first appear around `top`'s faces: the vertices to transform further.
+    /// they first appear around `top`'s faces (each face's corners from its halfedge, as
+    /// [`MeshRef::face_vertices`] lists them): the vertices to transform further.
     pub moved: Vec<VertexId>,
 }
 

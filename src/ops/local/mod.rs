@@ -25,6 +25,7 @@ mod dissolve;
 mod extrude;
 mod fill_hole;
 mod flip;
+mod inset;
 mod split;
 mod split_face;
 mod vertex_split;
@@ -41,6 +42,7 @@ pub use extrude::{
 };
 pub use fill_hole::{FillHolePlan, apply_fill_hole, fill_hole, plan_fill_hole};
 pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
+pub use inset::{InsetPlan, apply_inset, inset_faces, plan_inset};
 pub use split::{SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint};
 pub use split_face::{SplitFacePlan, apply_split_face, plan_split_face, split_face};
 pub use vertex_split::vertex_split;
