@@ -120,4 +120,8 @@ pub enum Refusal {
     /// A `process` step names two input vertices that share no face.
     #[error("input vertices {0} and {1} share no face")]
     NoSharedFace(u32, u32),
+    /// The selected faces around the named one make up a whole closed surface: an extrusion
+    /// needs a rim (an edge with a selected face on one side only) to raise its walls from.
+    #[error("the selection around {0} is a whole closed surface: there is no rim to extrude from")]
+    ClosedRegion(ElementId),
 }

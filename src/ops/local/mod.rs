@@ -23,8 +23,10 @@ mod bevel;
 mod bisect;
 mod collapse;
 mod dissolve;
+mod extrude;
 mod fill_hole;
 mod flip;
+mod inset;
 mod split;
 mod split_face;
 mod vertex_split;
@@ -40,8 +42,12 @@ pub use collapse::{
 };
 pub(crate) use collapse::{apply_collapse_deferred, plan_collapse_in};
 pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};
+pub use extrude::{
+    ExtrudePlan, Extruded, apply_extrude, extrude_directions, extrude_faces, plan_extrude,
+};
 pub use fill_hole::{FillHolePlan, apply_fill_hole, fill_hole, plan_fill_hole};
 pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
+pub use inset::{InsetPlan, apply_inset, inset_faces, plan_inset};
 pub use split::{SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint};
 pub use split_face::{SplitFacePlan, apply_split_face, plan_split_face, split_face};
 pub use vertex_split::vertex_split;
