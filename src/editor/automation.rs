@@ -9,6 +9,7 @@
 //! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:Period`); `key:Shift+S`, `key:Ctrl+T` hold a modifier |
 //! | `select-edge:A,B` | select the edge between the input file's vertices A and B (0-based) |
 //! | `select:ID` | select an element by id (`f12v0`) |
+//! | `box:X0,Y0,X1,Y1` | box select the rectangle between these fractions of the window (0–1, from the top left), as B and a drag would; the box stays drawn until the next `key:Escape` |
 //! | `uv-select:U,V` | select the face whose UV polygon holds (U, V), as a click in the UV view does (`uv-select:0.5,0.5`) |
 //! | `open:PATH` | open a file (or `shape:NAME`) as Ctrl+O would |
 //! | `lod:FACES` | move the level-of-detail slider (after a simplification) |
@@ -48,6 +49,8 @@ pub enum ScriptStep {
     SelectEdge(u32, u32),
     /// Select an element by id.
     Select(ElementId),
+    /// Box select between two corners, as fractions of the window.
+    Box(Vec2, Vec2),
     /// Select the face at a point of the UV layout.
     UvSelect(f32, f32),
     /// Open a file.
@@ -111,6 +114,7 @@ impl Script {
                         let modifier = match modifier {
                             "Shift" => KeyCode::ShiftLeft,
                             "Ctrl" => KeyCode::ControlLeft,
+                            "Alt" => KeyCode::AltLeft,
                             _ => return Err(bad()),
                         };
                         ScriptStep::Key(Some(modifier), key_code(k).ok_or_else(bad)?)
@@ -125,6 +129,17 @@ impl Script {
                     )
                 }
                 "select" => ScriptStep::Select(parse_element(arg).ok_or_else(bad)?),
+                "box" => {
+                    let v: Vec<f32> = arg
+                        .split(',')
+                        .map(|x| x.trim().parse().ok().filter(|x: &f32| (0.0..=1.0).contains(x)))
+                        .collect::<Option<_>>()
+                        .ok_or_else(bad)?;
+                    match v[..] {
+                        [x0, y0, x1, y1] => ScriptStep::Box(Vec2::new(x0, y0), Vec2::new(x1, y1)),
+                        _ => return Err(bad()),
+                    }
+                }
                 "uv-select" => {
                     let (u, v) = arg.split_once(',').ok_or_else(bad)?;
                     ScriptStep::UvSelect(
@@ -305,6 +320,25 @@ pub fn run_script(world: &mut World) {
             ScriptStep::Select(id) => {
                 world.write_message(Request::Select(Some(id)));
                 script.waiting = 1;
+            }
+            ScriptStep::Box(from, to) => {
+                let size = world
+                    .query_filtered::<&Window, With<PrimaryWindow>>()
+                    .iter(world)
+                    .next()
+                    .map(|w| Vec2::new(w.width(), w.height()))
+                    .unwrap_or(Vec2::ONE);
+                let (a, b) = (from * size, to * size);
+                let elements = super::box_select::elements_in(world, a, b);
+                *world.resource_mut::<super::box_select::BoxSelect>() =
+                    super::box_select::BoxSelect {
+                        armed: true,
+                        drag: Some((a, b)),
+                    };
+                world.write_message(Request::Selection(
+                    super::select_many::SelectionEdit::Replace(elements),
+                ));
+                script.waiting = 2;
             }
             ScriptStep::Shot(path) => {
                 pending.fetch_add(1, std::sync::atomic::Ordering::SeqCst);

@@ -74,7 +74,7 @@ pub fn drive_box_select(world: &mut World) {
 }
 
 /// The elements inside the rectangle with corners `a` and `b` (viewport pixels).
-fn elements_in(world: &mut World, a: Vec2, b: Vec2) -> Vec<crate::mesh::ElementId> {
+pub fn elements_in(world: &mut World, a: Vec2, b: Vec2) -> Vec<crate::mesh::ElementId> {
     let Some(mesh) = world.resource::<ActiveMesh>().0 else {
         return Vec::new();
     };

@@ -183,6 +183,7 @@ impl Plugin for EditorWindowPlugin {
                 (box_select::drive_box_select, drag::drive_vertex_drag)
                     .chain()
                     .after(transform::drive_gesture)
+                    .before(input::keyboard_shortcuts)
                     .in_set(EditorSystems::Input),
             )
             .add_systems(bevy_egui::EguiPrimaryContextPass, box_select::draw_box)
