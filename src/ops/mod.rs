@@ -120,4 +120,15 @@ pub enum Refusal {
     /// A `process` step names two input vertices that share no face.
     #[error("input vertices {0} and {1} share no face")]
     NoSharedFace(u32, u32),
+    /// The vertex would touch the boundary twice (two boundary gaps in its fan): the surface
+    /// would be pinched there, a non-manifold vertex.
+    #[error("{0} would touch the boundary twice (the surface would be pinched there)")]
+    PinchedVertex(ElementId),
+    /// The operation would leave the mesh without a face.
+    #[error("the mesh would be left with no faces")]
+    NoFacesLeft,
+    /// A boundary vertex with a single face: dissolving it has no faces to merge and would only
+    /// cut that face's corner off.
+    #[error("{0} is the corner of a single face: there are no faces around it to merge")]
+    SingleFace(ElementId),
 }

@@ -22,6 +22,7 @@
 mod bisect;
 mod collapse;
 mod dissolve;
+mod erase;
 mod fill_hole;
 mod flip;
 mod split;
@@ -35,6 +36,9 @@ pub use collapse::{
 };
 pub(crate) use collapse::{apply_collapse_deferred, plan_collapse_in};
 pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};
+pub use erase::{
+    ErasePlan, Erased, apply_erase, erase_faces, faces_of_edge, faces_of_vertex, plan_erase,
+};
 pub use fill_hole::{FillHolePlan, apply_fill_hole, fill_hole, plan_fill_hole};
 pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
 pub use split::{SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint};
