@@ -22,6 +22,7 @@
 mod bisect;
 mod collapse;
 mod dissolve;
+mod dissolve_vertex;
 mod erase;
 mod fill_hole;
 mod flip;
@@ -36,6 +37,9 @@ pub use collapse::{
 };
 pub(crate) use collapse::{apply_collapse_deferred, plan_collapse_in};
 pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};
+pub use dissolve_vertex::{
+    DissolveVertexPlan, apply_dissolve_vertex, dissolve_vertex, plan_dissolve_vertex,
+};
 pub use erase::{
     ErasePlan, Erased, apply_erase, erase_faces, faces_of_edge, faces_of_vertex, plan_erase,
 };
