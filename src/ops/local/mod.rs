@@ -29,6 +29,7 @@ mod flip;
 mod split;
 mod split_face;
 mod vertex_split;
+mod weld;
 
 pub use bisect::{BisectPlan, apply_bisect, bisect_edge, plan_bisect};
 pub use collapse::{
@@ -48,6 +49,7 @@ pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
 pub use split::{SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint};
 pub use split_face::{SplitFacePlan, apply_split_face, plan_split_face, split_face};
 pub use vertex_split::vertex_split;
+pub use weld::{WeldPlan, apply_weld, plan_weld, weld_edges};
 
 use bevy::prelude::{Entity, World};
 
