@@ -21,6 +21,7 @@
 
 mod bisect;
 mod collapse;
+mod collapse_face;
 mod dissolve;
 mod dissolve_vertex;
 mod erase;
@@ -37,6 +38,7 @@ pub use collapse::{
     plan_collapse, plan_collapse_halfedge,
 };
 pub(crate) use collapse::{apply_collapse_deferred, plan_collapse_in};
+pub use collapse_face::{CollapseFacePlan, apply_collapse_face, collapse_face, plan_collapse_face};
 pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};
 pub use dissolve_vertex::{
     DissolveVertexPlan, apply_dissolve_vertex, dissolve_vertex, plan_dissolve_vertex,
