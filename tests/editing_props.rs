@@ -13,8 +13,7 @@ use bevy::prelude::World;
 use pappus::edit::{Edit, EditContext, Reach};
 use pappus::mesh::change::LocalRecorder;
 use pappus::mesh::{
-    EdgeId, FaceId, MeshId, MeshMembers, MeshRef, PolygonSoup, VertexId, shapes, to_soup,
-    validate,
+    EdgeId, FaceId, MeshId, MeshMembers, MeshRef, PolygonSoup, VertexId, shapes, to_soup, validate,
 };
 use proptest::prelude::*;
 
@@ -41,14 +40,18 @@ fn random_edit(world: &World, mesh: MeshId, kind: u8, pick: u32, t: f32) -> Opti
     let members = MeshMembers::collect(world, mesh);
     let m = MeshRef::new(world);
     let nth = |n: usize| pick as usize % n.max(1);
-    let vertex = || -> Option<VertexId> { members.vertices.get(nth(members.vertices.len())).copied() };
+    let vertex =
+        || -> Option<VertexId> { members.vertices.get(nth(members.vertices.len())).copied() };
     let edge = || -> Option<EdgeId> { members.edges.get(nth(members.edges.len())).copied() };
     let face = || -> Option<FaceId> { members.faces.get(nth(members.faces.len())).copied() };
     // A face and the faces around one of its corners: a small region.
     let region = || -> Option<Vec<FaceId>> {
         let f = face()?;
         let v = m.face_vertices(f).nth(pick as usize % 3)?;
-        let mut faces: Vec<FaceId> = m.vertex_faces(v).take(1 + (pick as usize >> 8) % 4).collect();
+        let mut faces: Vec<FaceId> = m
+            .vertex_faces(v)
+            .take(1 + (pick as usize >> 8) % 4)
+            .collect();
         faces.push(f);
         faces.sort_unstable();
         faces.dedup();

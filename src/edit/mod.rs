@@ -30,9 +30,9 @@ use crate::mesh::{InMesh, MeshInfo, MeshRef, validate};
 use crate::ops::Refusal;
 use crate::ops::local::{
     CollapseOptions, bevel_edge, bevel_vertex, bisect_edge, collapse_edge, collapse_face,
-    dissolve_edge, dissolve_vertex, erase_faces, extrude_faces, fill_hole, flip_edge,
-    inset_faces, plan_bevel_edge, plan_bevel_vertex, plan_collapse_face, plan_dissolve_vertex,
-    plan_erase, plan_extrude, plan_inset, plan_weld, split_edge, split_face, weld_edges,
+    dissolve_edge, dissolve_vertex, erase_faces, extrude_faces, fill_hole, flip_edge, inset_faces,
+    plan_bevel_edge, plan_bevel_vertex, plan_collapse_face, plan_dissolve_vertex, plan_erase,
+    plan_extrude, plan_inset, plan_weld, split_edge, split_face, weld_edges,
 };
 use crate::ops::named::Named;
 use crate::ops::param::{ParamParams, parameterize_in_place};
@@ -333,9 +333,13 @@ impl Edit {
             Edit::SplitFace(f, ..) => Some(ElementId::Face(*f)),
             Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => Some(ElementId::Vertex(*v)),
             Edit::MoveVertices(moves) => moves.first().map(|(v, _)| ElementId::Vertex(*v)),
-            Edit::Extrude(faces, _) | Edit::Inset(faces, ..) | Edit::Erase(faces) => Some(
-                ElementId::Face(*faces.first().ok_or(Refusal::BadParameter("no faces".into()))?),
-            ),
+            Edit::Extrude(faces, _) | Edit::Inset(faces, ..) | Edit::Erase(faces) => {
+                Some(ElementId::Face(
+                    *faces
+                        .first()
+                        .ok_or(Refusal::BadParameter("no faces".into()))?,
+                ))
+            }
             Edit::BevelVertex(v, _) | Edit::DissolveVertex(v) => Some(ElementId::Vertex(*v)),
             Edit::BevelEdge(e, _) | Edit::Weld(e, _) => Some(ElementId::Edge(*e)),
             Edit::CollapseFace(f) => Some(ElementId::Face(*f)),

@@ -156,8 +156,14 @@ impl ElementStep {
             ElementStep::Inset => (all(3..), (1..=2).contains(&numbers.len())),
             ElementStep::Bevel => (targets.len() == 1, numbers.len() <= 2),
             ElementStep::Erase => (true, numbers.is_empty()),
-            ElementStep::Dissolve => (targets.len() == 1 && targets[0].len() == 1, numbers.is_empty()),
-            ElementStep::Collapse => (targets.len() == 1 && targets[0].len() >= 3, numbers.is_empty()),
+            ElementStep::Dissolve => (
+                targets.len() == 1 && targets[0].len() == 1,
+                numbers.is_empty(),
+            ),
+            ElementStep::Collapse => (
+                targets.len() == 1 && targets[0].len() >= 3,
+                numbers.is_empty(),
+            ),
             ElementStep::Weld => (
                 targets.len() == 2 && targets.iter().all(|t| t.len() == 2),
                 numbers.is_empty(),
@@ -166,12 +172,20 @@ impl ElementStep {
         match (shape && !targets.is_empty(), numbers_ok) {
             (true, true) => Ok(()),
             _ => Err(match self {
-                ElementStep::Extrude => "expected faces and a distance, as in `extrude:0,1,2/1,2,3:0.5`",
-                ElementStep::Inset => "expected faces and an amount, as in `inset:0,1,2:0.3[:DEPTH]`",
+                ElementStep::Extrude => {
+                    "expected faces and a distance, as in `extrude:0,1,2/1,2,3:0.5`"
+                }
+                ElementStep::Inset => {
+                    "expected faces and an amount, as in `inset:0,1,2:0.3[:DEPTH]`"
+                }
                 ElementStep::Bevel => "expected one element, as in `bevel:4:0.25` or `bevel:0,1`",
                 ElementStep::Erase => "expected elements, as in `erase:4` or `erase:0,1,2/5,6`",
-                ElementStep::Dissolve => "expected a vertex (`dissolve:A`) or an edge (`dissolve:A,B`)",
-                ElementStep::Collapse => "expected an edge (`collapse:A,B`) or a face (`collapse:A,B,C`)",
+                ElementStep::Dissolve => {
+                    "expected a vertex (`dissolve:A`) or an edge (`dissolve:A,B`)"
+                }
+                ElementStep::Collapse => {
+                    "expected an edge (`collapse:A,B`) or a face (`collapse:A,B,C`)"
+                }
                 ElementStep::Weld => "expected two boundary edges, as in `weld:0,1/7,8`",
             }),
         }
@@ -301,7 +315,10 @@ impl Step {
             };
             Ok(Step::Edit(Edit::Subdivide(Subdivision { scheme, levels })))
         };
-        let element_step = ElementStep::ALL.iter().find(|(_, n)| *n == name).map(|x| x.0);
+        let element_step = ElementStep::ALL
+            .iter()
+            .find(|(_, n)| *n == name)
+            .map(|x| x.0);
         if let Some(&(kind, _)) = LocalKind::ALL.iter().find(|(_, n)| *n == name) {
             // `dissolve` and `collapse` name an edge here, a vertex or a face below.
             let is_pair = args.split(',').count() == 2 && !args.contains([':', '/']);

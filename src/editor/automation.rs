@@ -132,7 +132,12 @@ impl Script {
                 "box" => {
                     let v: Vec<f32> = arg
                         .split(',')
-                        .map(|x| x.trim().parse().ok().filter(|x: &f32| (0.0..=1.0).contains(x)))
+                        .map(|x| {
+                            x.trim()
+                                .parse()
+                                .ok()
+                                .filter(|x: &f32| (0.0..=1.0).contains(x))
+                        })
                         .collect::<Option<_>>()
                         .ok_or_else(bad)?;
                     match v[..] {

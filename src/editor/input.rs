@@ -419,7 +419,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::Navigate(Relation::Vertex),
         "go to vertex (tip)",
     ),
-
     key(
         KeyCode::Digit1,
         "1",
@@ -646,7 +645,8 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             return Ok(Some(Request::Navigate(to)));
         }
         Action::Fill => {
-            let edge = selected_edge(&m, selection).ok_or(Declined::SelectFirst("a boundary edge"))?;
+            let edge =
+                selected_edge(&m, selection).ok_or(Declined::SelectFirst("a boundary edge"))?;
             Edit::FillHole(edge)
         }
         Action::Extrude | Action::Inset => {
@@ -707,12 +707,11 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             (Action::Dissolve, Some(ElementId::Vertex(v))) => Edit::DissolveVertex(v),
             (Action::Collapse, Some(ElementId::Face(f))) => Edit::CollapseFace(f),
             _ => {
-                let edge = selected_edge(&m, selection).ok_or(Declined::SelectFirst(
-                    match action {
+                let edge =
+                    selected_edge(&m, selection).ok_or(Declined::SelectFirst(match action {
                         Action::Dissolve => "a vertex or an edge",
                         _ => "an edge or a face",
-                    },
-                ))?;
+                    }))?;
                 match action {
                     Action::Dissolve => Edit::Dissolve(edge),
                     _ => Edit::Collapse(edge),

@@ -124,4 +124,15 @@ pub enum Refusal {
     /// needs a rim (an edge with a selected face on one side only) to raise its walls from.
     #[error("the selection around {0} is a whole closed surface: there is no rim to extrude from")]
     ClosedRegion(ElementId),
+    /// The vertex would touch the boundary twice (two boundary gaps in its fan): the surface
+    /// would be pinched there, a non-manifold vertex.
+    #[error("{0} would touch the boundary twice (the surface would be pinched there)")]
+    PinchedVertex(ElementId),
+    /// The operation would leave the mesh without a face.
+    #[error("the mesh would be left with no faces")]
+    NoFacesLeft,
+    /// A boundary vertex with a single face: dissolving it has no faces to merge and would only
+    /// cut that face's corner off.
+    #[error("{0} is the corner of a single face: there are no faces around it to merge")]
+    SingleFace(ElementId),
 }

@@ -22,7 +22,10 @@
 mod bevel;
 mod bisect;
 mod collapse;
+mod collapse_face;
 mod dissolve;
+mod dissolve_vertex;
+mod erase;
 mod extrude;
 mod fill_hole;
 mod flip;
@@ -30,6 +33,7 @@ mod inset;
 mod split;
 mod split_face;
 mod vertex_split;
+mod weld;
 
 pub use bevel::{
     BevelEdgePlan, BevelVertexPlan, apply_bevel_edge, apply_bevel_vertex, bevel_edge, bevel_vertex,
@@ -41,7 +45,14 @@ pub use collapse::{
     plan_collapse, plan_collapse_halfedge,
 };
 pub(crate) use collapse::{apply_collapse_deferred, plan_collapse_in};
+pub use collapse_face::{CollapseFacePlan, apply_collapse_face, collapse_face, plan_collapse_face};
 pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};
+pub use dissolve_vertex::{
+    DissolveVertexPlan, apply_dissolve_vertex, dissolve_vertex, plan_dissolve_vertex,
+};
+pub use erase::{
+    ErasePlan, Erased, apply_erase, erase_faces, faces_of_edge, faces_of_vertex, plan_erase,
+};
 pub use extrude::{
     ExtrudePlan, Extruded, apply_extrude, extrude_directions, extrude_faces, plan_extrude,
 };
@@ -51,6 +62,7 @@ pub use inset::{InsetPlan, apply_inset, inset_faces, plan_inset};
 pub use split::{SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint};
 pub use split_face::{SplitFacePlan, apply_split_face, plan_split_face, split_face};
 pub use vertex_split::vertex_split;
+pub use weld::{WeldPlan, apply_weld, plan_weld, weld_edges};
 
 use bevy::prelude::{Entity, World};
 
