@@ -49,8 +49,10 @@ pub fn on_click(
     mut ray_cast: MeshRayCast,
     mut picks: MessageWriter<PickRequest>,
     mut requests: MessageWriter<Request>,
-    keys: Option<Res<ButtonInput<KeyCode>>>,
-    gestures: Option<ResMut<super::transform::Gestures>>,
+    (keys, gestures): (
+        Option<Res<ButtonInput<KeyCode>>>,
+        Option<ResMut<super::transform::Gestures>>,
+    ),
 ) {
     if click.event.button != PointerButton::Primary {
         return;
