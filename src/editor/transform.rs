@@ -112,11 +112,15 @@ impl Gestures {
     /// The status line while a gesture runs.
     pub fn hint(&self) -> Option<String> {
         let g = self.active.as_ref()?;
-        let axis = g
-            .axis
-            .map_or(String::new(), |a| format!(" along {}", ["X", "Y", "Z"][a]));
+        let axis = g.axis.map_or(String::new(), |a| {
+            let along = match g.kind {
+                GestureKind::Rotate => "about",
+                _ => "along",
+            };
+            format!(" {along} {}", ["X", "Y", "Z"][a])
+        });
         let value = match (&g.kind, g.typed.is_empty()) {
-            (_, false) => format!("{}▏", g.typed),
+            (_, false) => format!("{}|", g.typed),
             (GestureKind::Rotate, true) => format!("{:.1}°", g.value),
             (_, true) => format!("{:.4}", g.value),
         };
