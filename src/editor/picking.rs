@@ -18,7 +18,7 @@ use crate::mesh::topology::MeshRef;
 
 use super::render_sync::{RenderOf, TriangleFaces};
 use super::requests::Request;
-use super::select_many::SelectionEdit;
+use super::requests::SelectionEdit;
 use super::selection::{Hover, SelectMode};
 
 /// Screen distance (pixels) within which a click picks a vertex in auto mode.

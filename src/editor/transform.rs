@@ -28,9 +28,9 @@ use bevy::window::PrimaryWindow;
 use bevy::ecs::entity::EntityHashMap;
 
 use crate::edit::Edit;
-use crate::ops::local::extrude_directions;
 use crate::mesh::ids::{ElementId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::local::extrude_directions;
 
 use super::history::UndoHistory;
 use super::requests::Request;
@@ -315,7 +315,7 @@ fn start_follow_up(world: &mut World) {
 /// distance along them is the extrusion by that distance, bit for bit), or the inset's (the way
 /// to its face's centroid). One pass over the selected faces.
 fn directions(world: &World, inset: bool) -> Vec<Vec3> {
-    let faces = super::input::selected_faces(world);
+    let faces = super::selection::selected_faces(world);
     let m = MeshRef::new(world);
     let towards: EntityHashMap<Vec3> = match inset {
         false => extrude_directions(world, &faces)
