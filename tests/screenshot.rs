@@ -40,8 +40,9 @@ fn flip_through_its_shortcut_changes_the_picture() {
     std::fs::create_dir_all(&dir).unwrap();
     let (before, after) = (dir.join("before.png"), dir.join("after.png"));
     // The icosphere's input vertices 0 and 11 share an interior edge (a face of the icosahedron).
+    // 30 frames first: under load, the first frames can come before the pipelines are ready.
     let script = format!(
-        "wait:10;select-edge:0,11;wait:3;shot:{};key:Alt+R;wait:4;shot:{};exit",
+        "wait:30;select-edge:0,11;wait:3;shot:{};key:Alt+R;wait:4;shot:{};exit",
         before.display(),
         after.display()
     );
@@ -86,7 +87,7 @@ fn a_box_selection_extrudes_through_the_keys_with_a_typed_height() {
         return;
     }
     // Face mode, a box over the torus's right side, E, 0.3 typed, Enter.
-    let script = "wait:10;key:3;box:0.70,0.30,0.80,0.55;wait:3;key:Escape;wait:2;\
+    let script = "wait:30;key:3;box:0.70,0.30,0.80,0.55;wait:3;key:Escape;wait:2;\
                   key:E;wait:3;key:0;key:.;key:3;wait:2;key:Enter;wait:3;exit";
     let output = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1024x700x24"])

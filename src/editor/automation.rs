@@ -21,7 +21,7 @@
 //! | `measure:N` | let N frames pass and log their mean frame time |
 //! | `exit` | quit |
 //!
-//! Example: `PAPPUS_SCRIPT='wait:5;select-edge:0,1;shot:before.png;key:R;wait:3;shot:after.png;exit'`.
+//! Example: `PAPPUS_SCRIPT='wait:5;select-edge:0,1;shot:before.png;key:Alt+R;wait:3;shot:after.png;exit'`.
 
 use bevy::input::ButtonState;
 use bevy::input::keyboard::{Key, KeyboardInput};
