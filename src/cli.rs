@@ -218,6 +218,22 @@ pub fn info_json(world: &World, mesh: MeshId, report: &RepairReport) -> Map<Stri
     out
 }
 
+/// The whole object `pappus info --json` prints: [`info_json`] plus `read_ms`, `build_ms` and
+/// `load_ms` (their sum), what reading and building the mesh took, rounded to 3 decimals.
+pub fn info_with_load_times(
+    world: &World,
+    mesh: MeshId,
+    report: &RepairReport,
+    read_ms: f64,
+    build_ms: f64,
+) -> Map<String, Value> {
+    let mut object = info_json(world, mesh, report);
+    object.insert("read_ms".into(), json!(round(read_ms, 3)));
+    object.insert("build_ms".into(), json!(round(build_ms, 3)));
+    object.insert("load_ms".into(), json!(round(read_ms + build_ms, 3)));
+    object
+}
+
 /// The curvature and normal summaries of `info --json`: each curvature's min, median and max
 /// over the vertices; the total angle defect beside 2πχ (Gauss–Bonnet: equal); faces and
 /// vertices whose normal is undefined (zero area).
@@ -319,12 +335,12 @@ fn execute(command: Command) -> Result<(), String> {
     match command {
         Command::Info { input, json } => {
             let loaded = load(&input)?;
-            let mut object = info_json(&loaded.world, loaded.built.mesh, &loaded.built.report);
-            object.insert("read_ms".into(), json!(round(loaded.read_ms, 3)));
-            object.insert("build_ms".into(), json!(round(loaded.build_ms, 3)));
-            object.insert(
-                "load_ms".into(),
-                json!(round(loaded.read_ms + loaded.build_ms, 3)),
+            let object = info_with_load_times(
+                &loaded.world,
+                loaded.built.mesh,
+                &loaded.built.report,
+                loaded.read_ms,
+                loaded.build_ms,
             );
             if json {
                 outln!("{}", Value::Object(object));
