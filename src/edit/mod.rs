@@ -26,7 +26,7 @@ use bevy::prelude::World;
 
 use crate::mesh::attributes::{MeshAttributes, Seam, drop_attributes, set_record};
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
-use crate::mesh::{InMesh, MeshInfo, MeshRef, validate};
+use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::local::{
     CollapseOptions, bevel_edge, bevel_vertex, bisect_edge, collapse_edge, collapse_face,
@@ -474,7 +474,7 @@ impl Edit {
                 .push_str(&lost.dropped_note(&self.why_dropped()));
         }
         #[cfg(debug_assertions)]
-        if let Err(e) = validate(world, mesh) {
+        if let Err(e) = crate::mesh::validate(world, mesh) {
             panic!("{} left an invalid mesh: {e}", self.label());
         }
         Ok(applied)

@@ -6,13 +6,15 @@
 //! | step | meaning |
 //! |---|---|
 //! | `wait:N` | let N frames pass |
-//! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:Period`); `key:Shift+S`, `key:Ctrl+T` hold a modifier |
+//! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:3`, `key:.`, `key:Period`, `key:Enter`, `key:Escape`, `key:Delete`, `key:Backspace`, `key:Minus`, `key:Equal`); `key:Shift+S`, `key:Ctrl+T`, `key:Alt+M` hold a modifier |
 //! | `select-edge:A,B` | select the edge between the input file's vertices A and B (0-based) |
+//! | `select-vertex:A` | select the input file's vertex A |
 //! | `select:ID` | select an element by id (`f12v0`) |
 //! | `box:X0,Y0,X1,Y1` | box select the rectangle between these fractions of the window (0–1, from the top left), as B and a drag would; the box stays drawn until the next `key:Escape` |
 //! | `uv-select:U,V` | select the face whose UV polygon holds (U, V), as a click in the UV view does (`uv-select:0.5,0.5`) |
 //! | `open:PATH` | open a file (or `shape:NAME`) as Ctrl+O would |
 //! | `lod:FACES` | move the level-of-detail slider (after a simplification) |
+//! | `orbit:YAW,PITCH` | turn the camera about what it looks at by these degrees (`orbit:180,-60` looks from behind and below) |
 //! | `zoom:F` | multiply the camera's distance to what it looks at by F (`zoom:0.5` comes twice as close) |
 //! | `colour:NAME` | colour the mesh by a quantity (`colour:mean`, names as `process --quantity`; `colour:none`) |
 //! | `shot:PATH` | save a screenshot of the window to PATH (PNG) and wait until it is written |
@@ -47,6 +49,8 @@ pub enum ScriptStep {
     Key(Option<KeyCode>, KeyCode),
     /// Select the edge between two input vertices.
     SelectEdge(u32, u32),
+    /// Select an input vertex.
+    SelectVertex(u32),
     /// Select an element by id.
     Select(ElementId),
     /// Box select between two corners, as fractions of the window.
@@ -59,6 +63,8 @@ pub enum ScriptStep {
     Lod(usize),
     /// Multiply the camera's distance to its focus (below 1: closer).
     Zoom(f32),
+    /// Turn the camera about its focus by these degrees (yaw, pitch).
+    Orbit(f32, f32),
     /// Colour by a quantity (or by nothing).
     Colour(Option<Quantity>),
     /// Save a screenshot.
@@ -129,6 +135,7 @@ impl Script {
                     )
                 }
                 "select" => ScriptStep::Select(parse_element(arg).ok_or_else(bad)?),
+                "select-vertex" => ScriptStep::SelectVertex(arg.trim().parse().map_err(|_| bad())?),
                 "box" => {
                     let v: Vec<f32> = arg
                         .split(',')
@@ -155,6 +162,13 @@ impl Script {
                 "shot" => ScriptStep::Shot(PathBuf::from(arg)),
                 "open" => ScriptStep::Open(PathBuf::from(arg)),
                 "lod" => ScriptStep::Lod(arg.parse().map_err(|_| bad())?),
+                "orbit" => {
+                    let (yaw, pitch) = arg.split_once(',').ok_or_else(bad)?;
+                    ScriptStep::Orbit(
+                        yaw.trim().parse().map_err(|_| bad())?,
+                        pitch.trim().parse().map_err(|_| bad())?,
+                    )
+                }
                 "zoom" => ScriptStep::Zoom(
                     arg.parse()
                         .ok()
@@ -233,6 +247,10 @@ fn key_code(name: &str) -> Option<KeyCode> {
         "Escape" => Some(KeyCode::Escape),
         "F1" => Some(KeyCode::F1),
         "Delete" => Some(KeyCode::Delete),
+        "Enter" => Some(KeyCode::Enter),
+        "Backspace" => Some(KeyCode::Backspace),
+        "Minus" | "-" => Some(KeyCode::Minus),
+        "Equal" | "=" => Some(KeyCode::Equal),
         _ if name.chars().count() == 1 => single(name.chars().next()?),
         _ => None,
     }
@@ -296,6 +314,15 @@ pub fn run_script(world: &mut World) {
                 }
                 script.waiting = 1;
             }
+            ScriptStep::SelectVertex(a) => {
+                match input_vertex(world, a) {
+                    Some(v) => {
+                        world.write_message(Request::Select(Some(ElementId::Vertex(v))));
+                    }
+                    None => bevy::log::warn!("script: no input vertex {a}"),
+                }
+                script.waiting = 1;
+            }
             ScriptStep::UvSelect(u, v) => {
                 let layout = world.resource::<super::uv_view::UvLayout>();
                 match super::uv_view::face_at(layout, Vec2::new(u, v)) {
@@ -309,6 +336,13 @@ pub fn run_script(world: &mut World) {
             ScriptStep::Lod(faces) => {
                 world.write_message(Request::Edit(Edit::LevelOfDetail(faces)));
                 script.waiting = 2;
+            }
+            ScriptStep::Orbit(yaw, pitch) => {
+                super::scene::move_orbit(world, |orbit| {
+                    orbit.yaw += yaw.to_radians();
+                    orbit.pitch = (orbit.pitch + pitch.to_radians()).clamp(-1.55, 1.55);
+                });
+                script.waiting = 1;
             }
             ScriptStep::Zoom(factor) => {
                 super::scene::move_orbit(world, |orbit| orbit.radius *= factor);
@@ -385,6 +419,13 @@ fn send_key(world: &mut World, key: KeyCode, state: ButtonState) {
 
 /// The edge between two vertices named by their index in the input file: vertices are listed
 /// in file order by a freshly built mesh, so the index is the position in that list.
+fn input_vertex(world: &World, a: u32) -> Option<crate::mesh::VertexId> {
+    let mesh = world.resource::<ActiveMesh>().0?;
+    let vertices =
+        crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(world, mesh, crate::mesh::VertexId);
+    vertices.get(a as usize).copied()
+}
+
 fn input_edge(world: &World, a: u32, b: u32) -> Option<ElementId> {
     let mesh = world.resource::<ActiveMesh>().0?;
     let vertices =

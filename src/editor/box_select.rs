@@ -43,6 +43,7 @@ pub fn drive_box_select(world: &mut World) {
         buttons.just_pressed(MouseButton::Left),
         buttons.just_released(MouseButton::Left),
     );
+    let buttons = buttons.clone();
     let add = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
     let Some(cursor) = world
         .query_filtered::<&Window, With<PrimaryWindow>>()
@@ -67,8 +68,10 @@ pub fn drive_box_select(world: &mut World) {
             world.write_message(Request::Selection(edit));
             return;
         }
-        Some((from, _)) => state.drag = Some((from, cursor)),
-        None => {}
+        Some((from, _)) if buttons.pressed(MouseButton::Left) => {
+            state.drag = Some((from, cursor));
+        }
+        _ => {}
     }
     *world.resource_mut::<BoxSelect>() = state;
 }

@@ -1,6 +1,8 @@
 //! Local operations: edge flip, edge split, edge collapse, and their companions (edge
 //! bisection, edge dissolve, face split, hole fill, vertex split — the exact inverse of a
-//! collapse).
+//! collapse), and the modelling operations of Blender's edit mode and Scotty3D: extrude a
+//! region of faces, inset faces, bevel a vertex or an edge, erase faces (make them holes),
+//! dissolve a vertex, collapse a face, weld two boundary edges.
 //!
 //! The contract, stated once: **if the result of an operation would not be a valid mesh, the
 //! operation changes nothing and returns a [`Refusal`] that says why.** Each operation is a
