@@ -315,6 +315,48 @@ fn vec2_array<'py>(py: Python<'py>, points: &[Vec2]) -> PyResult<Bound<'py, PyAn
         .into_any())
 }
 
+/// The mesh's positions and faces as [`to_soup`] lists them (vertices in table order, each face
+/// starting one halfedge back), without its attributes, and faster: vertex rows are found in a
+/// table indexed by entity index rather than a hash map, and each halfedge is read once.
+fn positions_and_faces(world: &World, mesh: MeshId) -> (Vec<Vec3>, Vec<u32>, Vec<u32>) {
+    let members = MeshMembers::collect(world, mesh);
+    let m = pappus::mesh::MeshRef::new(world);
+    let positions: Vec<Vec3> = members.vertices.iter().map(|&v| m.position(v)).collect();
+    let top = members
+        .vertices
+        .iter()
+        .map(|v| v.0.index_u32() as usize + 1)
+        .max()
+        .unwrap_or(0);
+    let mut row = vec![u32::MAX; top];
+    for (r, v) in members.vertices.iter().enumerate() {
+        row[v.0.index_u32() as usize] = r as u32;
+    }
+    let mut indices = Vec::with_capacity(members.halfedges.len());
+    let mut starts = Vec::with_capacity(members.faces.len() + 1);
+    starts.push(0);
+    let link = |h: pappus::mesh::HalfedgeId| {
+        world
+            .get::<pappus::mesh::Halfedge>(h.0)
+            .expect("a face's halfedges are live")
+    };
+    for &f in &members.faces {
+        let start = link(m.face_halfedge(f)).prev;
+        let mut h = start;
+        // A face's loop closes (the mesh validates); the bound only keeps a broken one finite.
+        for _ in 0..members.halfedges.len() {
+            let he = link(h);
+            indices.push(row[he.vertex.0.index_u32() as usize]);
+            h = he.next;
+            if h == start {
+                break;
+            }
+        }
+        starts.push(indices.len() as u32);
+    }
+    (positions, indices, starts)
+}
+
 /// Reads an `N×k` array-like of floats as `k`-vectors (`ValueError` for another shape).
 fn float_rows(
     array: &PyArrayLike2<'_, f32, AllowTypeChange>,
@@ -469,13 +511,17 @@ impl Mesh {
     /// list of int64 arrays (one per face). A copy.
     #[getter]
     fn faces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        faces_array(py, &self.soup())
+        let (_, indices, starts) = positions_and_faces(&self.world, self.mesh);
+        faces_array(py, &indices, &starts)
     }
 
     /// `(vertices, faces)` in one pass over the mesh: what the two properties give.
     fn arrays<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-        let soup = self.soup();
-        Ok((vec3_array(py, &soup.positions)?, faces_array(py, &soup)?))
+        let (positions, indices, starts) = positions_and_faces(&self.world, self.mesh);
+        Ok((
+            vec3_array(py, &positions)?,
+            faces_array(py, &indices, &starts)?,
+        ))
     }
 
     /// The texture coordinates per face corner, K×2 float32 in the order of the faces' corners
@@ -936,19 +982,28 @@ fn report_from(counts: &[usize]) -> RepairReport {
     report
 }
 
-/// The faces of `soup` as `faces` returns them.
-fn faces_array<'py>(py: Python<'py>, soup: &PolygonSoup) -> PyResult<Bound<'py, PyAny>> {
-    let mut sizes = soup.faces().map(<[u32]>::len);
-    let first = sizes.next().unwrap_or(3);
-    if sizes.all(|k| k == first) {
-        let flat: Vec<i64> = soup.indices.iter().map(|&i| i64::from(i)).collect();
+/// Faces stored flat (`indices`, with `starts` as in [`PolygonSoup`]) as `faces` returns
+/// them: one M×k int64 array when every face has k sides, else a list of int64 arrays.
+fn faces_array<'py>(
+    py: Python<'py>,
+    indices: &[u32],
+    starts: &[u32],
+) -> PyResult<Bound<'py, PyAny>> {
+    let count = starts.len().saturating_sub(1);
+    let size = |i: usize| (starts[i + 1] - starts[i]) as usize;
+    let first = if count > 0 { size(0) } else { 3 };
+    if (0..count).all(|i| size(i) == first) {
+        let flat: Vec<i64> = indices.iter().map(|&i| i64::from(i)).collect();
         return Ok(PyArray1::from_vec(py, flat)
-            .reshape([soup.face_count(), first])?
+            .reshape([count, first])?
             .into_any());
     }
     let list = PyList::empty(py);
-    for face in soup.faces() {
-        let face: Vec<i64> = face.iter().map(|&i| i64::from(i)).collect();
+    for w in starts.windows(2) {
+        let face: Vec<i64> = indices[w[0] as usize..w[1] as usize]
+            .iter()
+            .map(|&i| i64::from(i))
+            .collect();
         list.append(PyArray1::from_vec(py, face))?;
     }
     Ok(list.into_any())
