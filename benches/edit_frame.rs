@@ -43,82 +43,96 @@ fn frame(app: &mut App, request: Request) -> Duration {
     took
 }
 
+/// Interior faces, vertices and edges of the active mesh, spread over it.
+struct Candidates {
+    faces: Vec<pappus::mesh::FaceId>,
+    vertices: Vec<pappus::mesh::VertexId>,
+    edges: Vec<pappus::mesh::EdgeId>,
+}
+
+impl Candidates {
+    fn of(app: &App) -> Self {
+        let mesh = app.world().resource::<ActiveMesh>().0.expect("open");
+        let members = MeshMembers::collect(app.world(), mesh);
+        let m = MeshRef::new(app.world());
+        Self {
+            faces: members
+                .faces
+                .iter()
+                .copied()
+                .filter(|&f| m.face_halfedges(f).all(|h| !m.is_boundary(m.twin(h))))
+                .step_by(997)
+                .collect(),
+            vertices: members
+                .vertices
+                .iter()
+                .copied()
+                .filter(|&v| !m.is_boundary_vertex(v))
+                .step_by(997)
+                .collect(),
+            edges: members
+                .edges
+                .iter()
+                .copied()
+                .filter(|&e| !m.is_boundary_edge(e))
+                .step_by(997)
+                .collect(),
+        }
+    }
+}
+
+/// The operations timed, each on the `i`-th candidate of its kind.
+const CASES: [&str; 7] = [
+    "extrude a face",
+    "inset a face",
+    "bevel a vertex",
+    "bevel an edge",
+    "erase a face",
+    "dissolve a vertex",
+    "collapse a face",
+];
+
+fn edit(case: usize, c: &Candidates, i: usize) -> Edit {
+    let face = || c.faces[i % c.faces.len()];
+    let vertex = || c.vertices[i % c.vertices.len()];
+    match case {
+        0 => Edit::Extrude(vec![face()], 0.001),
+        1 => Edit::Inset(vec![face()], 0.3, 0.0),
+        2 => Edit::BevelVertex(vertex(), 0.25),
+        3 => Edit::BevelEdge(c.edges[i % c.edges.len()], 0.25),
+        4 => Edit::Erase(vec![face()]),
+        5 => Edit::DissolveVertex(vertex()),
+        _ => Edit::CollapseFace(face()),
+    }
+}
+
 fn edit_frame(c: &mut Criterion) {
     let mut app = editor();
     let mesh = app.world().resource::<ActiveMesh>().0.expect("open");
-    let members = MeshMembers::collect(app.world(), mesh);
-    let m = MeshRef::new(app.world());
-    // Interior elements only, spread over the grid.
-    let faces: Vec<_> = members
-        .faces
-        .iter()
-        .copied()
-        .filter(|&f| m.face_halfedges(f).all(|h| !m.is_boundary(m.twin(h))))
-        .step_by(997)
-        .collect();
-    let vertices: Vec<_> = members
-        .vertices
-        .iter()
-        .copied()
-        .filter(|&v| !m.is_boundary_vertex(v))
-        .step_by(997)
-        .collect();
-    let edges: Vec<_> = members
-        .edges
-        .iter()
-        .copied()
-        .filter(|&e| !m.is_boundary_edge(e))
-        .step_by(997)
-        .collect();
-    type MakeEdit = Box<dyn Fn(usize) -> Edit>;
-    let cases: Vec<(&str, MakeEdit)> = vec![
-        ("extrude a face", {
-            let faces = faces.clone();
-            Box::new(move |i| Edit::Extrude(vec![faces[i % faces.len()]], 0.001))
-        }),
-        ("inset a face", {
-            let faces = faces.clone();
-            Box::new(move |i| Edit::Inset(vec![faces[i % faces.len()]], 0.3, 0.0))
-        }),
-        ("bevel a vertex", {
-            let vertices = vertices.clone();
-            Box::new(move |i| Edit::BevelVertex(vertices[i % vertices.len()], 0.25))
-        }),
-        ("bevel an edge", {
-            let edges = edges.clone();
-            Box::new(move |i| Edit::BevelEdge(edges[i % edges.len()], 0.25))
-        }),
-        ("erase a face", {
-            let faces = faces.clone();
-            Box::new(move |i| Edit::Erase(vec![faces[i % faces.len()]]))
-        }),
-        ("dissolve a vertex", {
-            let vertices = vertices.clone();
-            Box::new(move |i| Edit::DissolveVertex(vertices[i % vertices.len()]))
-        }),
-        ("collapse a face", {
-            let faces = faces.clone();
-            Box::new(move |i| Edit::CollapseFace(faces[i % faces.len()]))
-        }),
-    ];
-    for (name, make) in cases {
+    let mut candidates = Candidates::of(&app);
+    for (case, name) in CASES.iter().enumerate() {
         let mut i = 0;
         c.bench_function(&format!("{name}, op + render update (1M faces)"), |b| {
             b.iter_custom(|iters| {
                 let mut total = Duration::ZERO;
                 for _ in 0..iters {
-                    // Elements the op removed come back from the undo under new ids: skip the
-                    // stale ones.
+                    // An element the op removed comes back from the undo under a new id: stale
+                    // candidates are skipped, and the lists are made anew once they run out.
+                    let mut misses = 0;
                     let edit = loop {
-                        let edit = make(i);
+                        let edit = edit(case, &candidates, i);
                         i += 1;
                         if edit.reach(app.world(), mesh).is_some() {
                             break edit;
                         }
+                        misses += 1;
+                        if misses > candidates.faces.len() {
+                            candidates = Candidates::of(&app);
+                            misses = 0;
+                        }
                     };
                     total += frame(&mut app, Request::Edit(edit));
-                    // The undo keeps the mesh as it was (ids of restored elements change, but
-                    // the elements operated on next are others).
+                    // The undo keeps the mesh the same size for the next frame.
                     frame(&mut app, Request::Undo);
                 }
                 total

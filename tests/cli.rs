@@ -204,6 +204,100 @@ fn local_steps_name_edges_by_input_vertices() {
 }
 
 #[test]
+fn modelling_steps_name_vertices_edges_and_faces_by_input_vertices() {
+    // The cube's input: faces 0 3 2 1 (−z), 4 5 6 7 (+z), 0 1 5 4 (−y), 2 3 7 6 (+y), … .
+    let (v, out) = process_json(
+        "shape:cube",
+        "modelled.obj",
+        &[
+            "extrude:4,5,6:0.5", // the +z face rises 0.5: V 12, E 20, F 10
+            "inset:0,3,2:0.25",  // the −z face gets a ring: V 16, E 28, F 14
+            "bevel:1",           // the corner (1,−1,−1): V 18, E 31, F 15
+            "bevel:2,3",         // the −z/+y edge 2–3: its ends have 4 edges each
+            "erase:0,4,7",       // the −x face (three consecutive corners) becomes a hole
+            "collapse:4,5,6",    // refused: the top is made of new vertices now
+            "validate",
+        ],
+    );
+    let steps = v["steps"].as_array().unwrap();
+    let outcomes: Vec<&str> = steps
+        .iter()
+        .map(|s| s["outcome"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        outcomes,
+        [
+            "applied", "applied", "applied", "applied", "applied", "refused", "applied"
+        ],
+        "{steps:?}"
+    );
+    assert_eq!(steps[0]["summary"], "1 face lifted on 4 side faces");
+    assert!(
+        steps[5]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("share no face"),
+        "{steps:?}"
+    );
+    assert_eq!(v["result"]["boundary_loops"], 1);
+    assert_eq!(v["result"]["valid"], true);
+    // The extruded top sits at z = 1.5.
+    let text = std::fs::read_to_string(out).unwrap();
+    assert_eq!(
+        text.lines()
+            .filter(|l| l.starts_with("v ") && l.ends_with(" 1.5"))
+            .count(),
+        4
+    );
+    // Arity mistakes are usage errors, named.
+    let bad = pappus(&["process", "shape:cube", "-o", "/dev/null", "weld:0,1"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("two boundary edges"));
+}
+
+#[test]
+fn weld_and_dissolve_steps_on_open_strips() {
+    // A 3 × 1 strip of quads (vertices 0–3 along the bottom, 4–7 along the top): welding its
+    // two end edges closes it into a tube of three quads with two boundary loops.
+    let (v, _) = process_json(
+        "shape:quad-grid:3:1",
+        "tube.obj",
+        &["weld:0,4/3,7", "validate"],
+    );
+    assert_eq!(v["steps"][0]["outcome"], "applied", "{v}");
+    let r = &v["result"];
+    assert_eq!(
+        (
+            &r["vertices"],
+            &r["edges"],
+            &r["faces"],
+            &r["boundary_loops"]
+        ),
+        (&6.into(), &9.into(), &3.into(), &2.into())
+    );
+    assert_eq!(r["euler_characteristic"], 0);
+    // On a 2 × 1 strip the same weld would join the two quads along two edges: refused.
+    let (v, _) = process_json("shape:quad-grid:2:1", "short.obj", &["weld:0,3/2,5"]);
+    assert_eq!(v["steps"][0]["outcome"], "refused");
+    assert!(
+        v["steps"][0]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("duplicate"),
+        "{v}"
+    );
+    // Dissolving the border vertex between the two quads leaves one pentagon.
+    let (v, _) = process_json(
+        "shape:quad-grid:2:1",
+        "merged.obj",
+        &["dissolve:1", "validate"],
+    );
+    assert_eq!(v["steps"][0]["outcome"], "applied", "{v}");
+    assert_eq!(v["result"]["face_sizes"]["5"], 1);
+    assert_eq!(v["result"]["vertices"], 5);
+}
+
+#[test]
 fn convert_round_trips_between_formats() {
     let mut previous = None;
     for ext in ["obj", "off", "ply", "stl"] {

@@ -129,10 +129,23 @@ fn fingerprint(world: &World, mesh: MeshId) -> u64 {
     let m = MeshRef::new(world);
     let mut h = std::collections::hash_map::DefaultHasher::new();
     for &v in &members.vertices {
-        (v, m.vertex_halfedge(v), m.position(v).to_array().map(f32::to_bits)).hash(&mut h);
+        (
+            v,
+            m.vertex_halfedge(v),
+            m.position(v).to_array().map(f32::to_bits),
+        )
+            .hash(&mut h);
     }
     for &x in &members.halfedges {
-        (x, m.next(x), m.twin(x), m.to_vertex(x), m.edge(x), m.face(x)).hash(&mut h);
+        (
+            x,
+            m.next(x),
+            m.twin(x),
+            m.to_vertex(x),
+            m.edge(x),
+            m.face(x),
+        )
+            .hash(&mut h);
     }
     for &f in &members.faces {
         (f, m.face_halfedge(f)).hash(&mut h);
@@ -201,7 +214,9 @@ fn every_kind_of_edit_is_applied_in_random_runs() {
     let mut applied = [0usize; KINDS as usize];
     let mut state = 0x2545_f491_4f6c_dd1du64;
     let mut next = || {
-        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1);
         (state >> 33) as u32
     };
     for case in 0..2 * SHAPES {
@@ -219,6 +234,9 @@ fn every_kind_of_edit_is_applied_in_random_runs() {
     }
     println!("applied, by kind: {applied:?}");
     for (kind, n) in applied.iter().enumerate() {
-        assert!(*n >= 3, "edit kind {kind} applied only {n} times: {applied:?}");
+        assert!(
+            *n >= 3,
+            "edit kind {kind} applied only {n} times: {applied:?}"
+        );
     }
 }

@@ -31,18 +31,33 @@ fn open(app: &mut App, source: &str) {
     );
 }
 
+fn key_event(key: KeyCode, state: ButtonState) -> KeyboardInput {
+    KeyboardInput {
+        key_code: key,
+        logical_key: Key::Unidentified(NativeKey::Unidentified),
+        state,
+        text: None,
+        repeat: false,
+        window: Entity::PLACEHOLDER,
+    }
+}
+
 fn press(app: &mut App, key: KeyCode) {
     for state in [ButtonState::Pressed, ButtonState::Released] {
-        app.world_mut().write_message(KeyboardInput {
-            key_code: key,
-            logical_key: Key::Unidentified(NativeKey::Unidentified),
-            state,
-            text: None,
-            repeat: false,
-            window: Entity::PLACEHOLDER,
-        });
+        app.world_mut().write_message(key_event(key, state));
         app.update();
     }
+}
+
+/// Presses `key` while `modifier` is held.
+fn press_with(app: &mut App, modifier: KeyCode, key: KeyCode) {
+    app.world_mut()
+        .write_message(key_event(modifier, ButtonState::Pressed));
+    app.update();
+    press(app, key);
+    app.world_mut()
+        .write_message(key_event(modifier, ButtonState::Released));
+    app.update();
 }
 
 fn last_outcome(app: &App) -> EditOutcome {
@@ -143,6 +158,10 @@ fn navigation_keys_walk_the_relations() {
     app.update();
     press(&mut app, KeyCode::KeyV);
     assert_eq!(selection(&app), Some(ElementId::Vertex(tip)));
+    // E goes to the edge from a halfedge (as in Scotty3D); from anything else it extrudes.
+    app.world_mut()
+        .write_message(Request::Select(Some(ElementId::Halfedge(h))));
+    app.update();
     press(&mut app, KeyCode::KeyE);
     assert!(matches!(selection(&app), Some(ElementId::Edge(_))));
     press(&mut app, KeyCode::Escape);
@@ -168,13 +187,30 @@ fn mode_keys_change_what_a_click_selects() {
 fn operation_keys_without_an_edge_are_refused_with_a_reason() {
     let mut app = app();
     open(&mut app, "shape:torus");
-    for key in [KeyCode::KeyR, KeyCode::KeyS, KeyCode::KeyC] {
-        press(&mut app, key);
+    for (modifier, key, why) in [
+        (
+            Some(KeyCode::AltLeft),
+            KeyCode::KeyR,
+            "select an edge (or halfedge) first",
+        ),
+        (
+            Some(KeyCode::AltLeft),
+            KeyCode::KeyS,
+            "select an edge (or halfedge) first",
+        ),
+        (None, KeyCode::KeyK, "select an edge (or halfedge) first"),
+        (None, KeyCode::KeyC, "select an edge or a face first"),
+        (None, KeyCode::KeyD, "select a vertex or an edge first"),
+        (None, KeyCode::KeyE, "select faces (mode 3) first"),
+        (None, KeyCode::KeyX, "select elements to erase first"),
+        (None, KeyCode::KeyG, "select something to transform first"),
+    ] {
+        match modifier {
+            Some(m) => press_with(&mut app, m, key),
+            None => press(&mut app, key),
+        }
         let outcome = last_outcome(&app);
-        assert_eq!(
-            outcome.result.unwrap_err().to_string(),
-            "select an edge (or halfedge) first"
-        );
+        assert_eq!(outcome.result.unwrap_err().to_string(), why, "{key:?}");
     }
 }
 
@@ -192,12 +228,12 @@ fn each_operation_key_applies_its_operation() {
     // Local edits on the selected edge: each changes the counts as its formula says, and the
     // selection moves to what it made.
     let mut quad = None;
-    for (key, verb, (dv, de, df)) in [
-        (KeyCode::KeyR, "flip", (0, 0, 0)),
-        (KeyCode::KeyS, "split", (1, 3, 2)),
-        (KeyCode::KeyC, "collapse", (-1, -3, -2)),
-        (KeyCode::KeyD, "dissolve", (0, -1, -1)),
-        (KeyCode::KeyK, "bisect", (1, 1, 0)),
+    for (alt, key, verb, (dv, de, df)) in [
+        (true, KeyCode::KeyR, "flip", (0, 0, 0)),
+        (true, KeyCode::KeyS, "split", (1, 3, 2)),
+        (false, KeyCode::KeyC, "collapse", (-1, -3, -2)),
+        (false, KeyCode::KeyD, "dissolve", (0, -1, -1)),
+        (false, KeyCode::KeyK, "bisect", (1, 1, 0)),
     ] {
         let e = some_interior_edge(&app);
         let ends = MeshRef::new(app.world()).edge_vertices(e);
@@ -205,7 +241,10 @@ fn each_operation_key_applies_its_operation() {
             .write_message(Request::Select(Some(ElementId::Edge(e))));
         app.update();
         let (v, ed, f) = counts(&app);
-        press(&mut app, key);
+        match alt {
+            true => press_with(&mut app, KeyCode::AltLeft, key),
+            false => press(&mut app, key),
+        }
         let outcome = last_outcome(&app);
         assert_eq!(outcome.request, format!("{verb} {}", ElementId::Edge(e)));
         assert!(outcome.result.is_ok(), "{outcome:?}");

@@ -41,7 +41,7 @@ fn flip_through_its_shortcut_changes_the_picture() {
     let (before, after) = (dir.join("before.png"), dir.join("after.png"));
     // The icosphere's input vertices 0 and 11 share an interior edge (a face of the icosahedron).
     let script = format!(
-        "wait:10;select-edge:0,11;wait:3;shot:{};key:R;wait:4;shot:{};exit",
+        "wait:10;select-edge:0,11;wait:3;shot:{};key:Alt+R;wait:4;shot:{};exit",
         before.display(),
         after.display()
     );
@@ -76,5 +76,40 @@ fn flip_through_its_shortcut_changes_the_picture() {
     assert!(
         changed > 100,
         "the flip changed only {changed} viewport pixels"
+    );
+}
+
+#[test]
+fn a_box_selection_extrudes_through_the_keys_with_a_typed_height() {
+    if Command::new("xvfb-run").arg("--help").output().is_err() {
+        println!("NOTICE: xvfb-run is not installed; skipping the windowed extrusion test");
+        return;
+    }
+    // Face mode, a box over the torus's right side, E, 0.3 typed, Enter.
+    let script = "wait:10;key:3;box:0.70,0.30,0.80,0.55;wait:3;key:Escape;wait:2;\
+                  key:E;wait:3;key:0;key:.;key:3;wait:2;key:Enter;wait:3;exit";
+    let output = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1024x700x24"])
+        .arg(env!("CARGO_BIN_EXE_pappus"))
+        .arg("shape:torus")
+        .env("PAPPUS_SCRIPT", script)
+        .output()
+        .expect("runs the editor");
+    let log = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "editor failed: {log}");
+    let selected = log
+        .split("faces selected")
+        .next()
+        .and_then(|s| s.rsplit(": ").next())
+        .and_then(|n| n.trim().parse::<usize>().ok())
+        .unwrap_or(0);
+    assert!(selected > 0, "the box selected faces: {log}");
+    assert!(
+        log.contains(&format!("{selected} faces lifted on")),
+        "the selected faces were extruded: {log}"
+    );
+    assert!(
+        log.contains("vertices moved"),
+        "the typed height moved the top: {log}"
     );
 }

@@ -374,9 +374,9 @@ pub fn run_script(world: &mut World) {
                         armed: true,
                         drag: Some((a, b)),
                     };
-                world.write_message(Request::Selection(
-                    super::select_many::SelectionEdit::Replace(elements),
-                ));
+                world.write_message(Request::Selection(super::requests::SelectionEdit::Replace(
+                    elements,
+                )));
                 script.waiting = 2;
             }
             ScriptStep::Shot(path) => {

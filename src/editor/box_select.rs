@@ -10,8 +10,8 @@ use bevy_egui::{EguiContexts, egui};
 use crate::mesh::MeshMembers;
 use crate::mesh::topology::MeshRef;
 
-use super::requests::Request;
-use super::select_many::{SelectionEdit, inside_box};
+use super::requests::{Request, SelectionEdit};
+use super::select_many::inside_box;
 use super::selection::{ActiveMesh, SelectMode};
 use super::transform::Gestures;
 

@@ -21,9 +21,11 @@ use super::dialog::{OpenDialog, PathPurpose};
 use super::finish::report;
 use super::jobs::Jobs;
 use super::render_sync::{ViewSettings, set_wireframes_visible};
+use super::requests::SelectionEdit;
 use super::requests::{Declined, Relation, Request};
-use super::select_many::SelectionEdit;
-use super::selection::{ActiveMesh, MeshDirty, SelectMode, Selection, selected_edge};
+use super::selection::{
+    ActiveMesh, MeshDirty, SelectMode, Selection, selected_edge, selected_faces,
+};
 use super::transform::{GestureKind, Gestures};
 
 /// What a shortcut does.
@@ -861,20 +863,6 @@ fn mark_all_dirty(world: &mut World) {
     for m in meshes {
         world.entity_mut(m.0).insert(MeshDirty);
     }
-}
-
-/// The live faces of the selected set, in selection order.
-pub fn selected_faces(world: &World) -> Vec<crate::mesh::FaceId> {
-    let m = MeshRef::new(world);
-    world
-        .resource::<Selection>()
-        .elements()
-        .iter()
-        .filter_map(|&x| match x {
-            ElementId::Face(f) if m.try_face(f).is_some() => Some(f),
-            _ => None,
-        })
-        .collect()
 }
 
 /// The selected element, for the UI.

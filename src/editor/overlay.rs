@@ -29,7 +29,13 @@ pub const SELECTED: Color = Color::srgb(1.0, 0.62, 0.0);
 /// Colour of the other elements of the selected set.
 pub const IN_SET: Color = Color::srgb(1.0, 0.85, 0.3);
 /// The most elements of the selected set drawn one by one (the panel counts them all).
-pub const MAX_SET_DRAWN: usize = 20_000;
+pub const MAX_SET_DRAWN: usize = 5_000;
+/// Colours of the X, Y and Z axes (a transform's constraint), as Blender draws them.
+pub const AXIS_COLORS: [Color; 3] = [
+    Color::srgb(0.9, 0.25, 0.3),
+    Color::srgb(0.45, 0.75, 0.2),
+    Color::srgb(0.25, 0.5, 0.95),
+];
 /// Colour of the hover highlight.
 pub const HOVERED: Color = Color::srgb(0.35, 0.8, 1.0);
 /// Colour of halfedge arrows.
@@ -229,12 +235,28 @@ pub fn gather_overlay(world: &mut World) {
         }
         let selection = world.resource::<Selection>();
         for &x in selection.elements().iter().take(MAX_SET_DRAWN) {
-            if Some(x) != selection.element {
-                element_shapes(&m, x, IN_SET, &mut shapes);
+            match x {
+                _ if Some(x) == selection.element => {}
+                // A plain dot: thousands of selected vertices stay cheap to draw.
+                ElementId::Vertex(v) if m.try_vertex(v).is_some() => {
+                    let r = mean_edge_near(&m, v) * 0.08;
+                    shapes.push(Shape::Dot(m.position(v), r, IN_SET));
+                }
+                _ => element_shapes(&m, x, IN_SET, &mut shapes),
             }
         }
         if let Some(x) = selection.element {
             element_shapes(&m, x, SELECTED, &mut shapes);
+        }
+        // The axis a transform is held to, through its pivot, in Blender's colours.
+        if let Some(gesture) = world
+            .get_resource::<super::transform::Gestures>()
+            .and_then(|g| g.active.as_ref())
+            && let Some(axis) = gesture.axis
+        {
+            let reach = Vec3::AXES[axis] * 1e3;
+            let p = gesture.pivot;
+            shapes.push(Shape::Line(p - reach, p + reach, AXIS_COLORS[axis]));
         }
     }
     world.resource_mut::<Overlay>().shapes = shapes;

@@ -18,7 +18,7 @@ use crate::mesh::topology::MeshRef;
 
 use super::render_sync::{RenderOf, TriangleFaces};
 use super::requests::Request;
-use super::select_many::SelectionEdit;
+use super::requests::SelectionEdit;
 use super::selection::{Hover, SelectMode};
 
 /// Screen distance (pixels) within which a click picks a vertex in auto mode.
@@ -49,8 +49,10 @@ pub fn on_click(
     mut ray_cast: MeshRayCast,
     mut picks: MessageWriter<PickRequest>,
     mut requests: MessageWriter<Request>,
-    keys: Option<Res<ButtonInput<KeyCode>>>,
-    gestures: Option<ResMut<super::transform::Gestures>>,
+    (keys, gestures): (
+        Option<Res<ButtonInput<KeyCode>>>,
+        Option<ResMut<super::transform::Gestures>>,
+    ),
 ) {
     if click.event.button != PointerButton::Primary {
         return;

@@ -11,10 +11,9 @@ use std::path::PathBuf;
 use thiserror::Error;
 
 use crate::edit::Edit;
+use crate::mesh::ids::EdgeId;
 use crate::mesh::ids::ElementId;
 use crate::ops::Refusal;
-
-use super::select_many::SelectionEdit;
 
 /// A step along a halfedge relation, from the selected element.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -138,6 +137,44 @@ impl Request {
                 | Request::Redo
                 | Request::ConfirmDiscard(true)
         )
+    }
+}
+
+/// A change of the selected set.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SelectionEdit {
+    /// Shift-click: see [`Selection::toggle`].
+    Toggle(ElementId),
+    /// Add these elements (a box with Shift held).
+    Add(Vec<ElementId>),
+    /// Select exactly these elements (a box).
+    Replace(Vec<ElementId>),
+    /// Every element of the active mesh of the kind the click mode picks (vertices in auto
+    /// mode).
+    All,
+    /// One ring more, each kind by itself.
+    Grow,
+    /// One ring less, each kind by itself.
+    Shrink,
+    /// The edge loop through an edge (Alt+click), added to the set with Shift.
+    Loop(EdgeId, bool),
+    /// The edge ring through an edge (Ctrl+Alt+click), added to the set with Shift.
+    Ring(EdgeId, bool),
+}
+
+impl SelectionEdit {
+    /// A short label for logs.
+    pub fn label(&self) -> String {
+        match self {
+            SelectionEdit::Toggle(x) => format!("toggle {x}"),
+            SelectionEdit::Add(xs) => format!("add {} to the selection", xs.len()),
+            SelectionEdit::Replace(xs) => format!("select {}", xs.len()),
+            SelectionEdit::All => "select all".into(),
+            SelectionEdit::Grow => "select more".into(),
+            SelectionEdit::Shrink => "select less".into(),
+            SelectionEdit::Loop(e, _) => format!("select the loop through {e}"),
+            SelectionEdit::Ring(e, _) => format!("select the ring through {e}"),
+        }
     }
 }
 

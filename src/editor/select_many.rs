@@ -10,50 +10,12 @@ use bevy::ecs::entity::EntityHashSet;
 use bevy::prelude::{Vec2, Vec3, World};
 
 use crate::mesh::MeshMembers;
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
+use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::loops::{edge_loop, edge_ring};
 use crate::mesh::topology::MeshRef;
 
-use super::requests::Declined;
+use super::requests::{Declined, SelectionEdit};
 use super::selection::{ActiveMesh, SelectMode, Selection, exists};
-
-/// A change of the selected set.
-#[derive(Clone, Debug, PartialEq)]
-pub enum SelectionEdit {
-    /// Shift-click: see [`Selection::toggle`].
-    Toggle(ElementId),
-    /// Add these elements (a box with Shift held).
-    Add(Vec<ElementId>),
-    /// Select exactly these elements (a box).
-    Replace(Vec<ElementId>),
-    /// Every element of the active mesh of the kind the click mode picks (vertices in auto
-    /// mode).
-    All,
-    /// One ring more, each kind by itself.
-    Grow,
-    /// One ring less, each kind by itself.
-    Shrink,
-    /// The edge loop through an edge (Alt+click), added to the set with Shift.
-    Loop(EdgeId, bool),
-    /// The edge ring through an edge (Ctrl+Alt+click), added to the set with Shift.
-    Ring(EdgeId, bool),
-}
-
-impl SelectionEdit {
-    /// A short label for logs.
-    pub fn label(&self) -> String {
-        match self {
-            SelectionEdit::Toggle(x) => format!("toggle {x}"),
-            SelectionEdit::Add(xs) => format!("add {} to the selection", xs.len()),
-            SelectionEdit::Replace(xs) => format!("select {}", xs.len()),
-            SelectionEdit::All => "select all".into(),
-            SelectionEdit::Grow => "select more".into(),
-            SelectionEdit::Shrink => "select less".into(),
-            SelectionEdit::Loop(e, _) => format!("select the loop through {e}"),
-            SelectionEdit::Ring(e, _) => format!("select the ring through {e}"),
-        }
-    }
-}
 
 /// Applies a selection change; the summary counts the set.
 ///

@@ -184,6 +184,20 @@ pub fn mark_faces_dirty(world: &mut World, mesh: MeshId, faces: Vec<FaceId>) {
     }
 }
 
+/// The live faces of the selected set, in selection order.
+pub fn selected_faces(world: &World) -> Vec<FaceId> {
+    let m = MeshRef::new(world);
+    world
+        .resource::<Selection>()
+        .elements()
+        .iter()
+        .filter_map(|&x| match x {
+            ElementId::Face(f) if m.try_face(f).is_some() => Some(f),
+            _ => None,
+        })
+        .collect()
+}
+
 /// Drops from the selection every element that is gone or that `keep` rejects (after an edit).
 pub fn keep_live_selection(world: &mut World, keep: impl Fn(ElementId) -> bool) {
     let mut selection = std::mem::take(&mut *world.resource_mut::<Selection>());

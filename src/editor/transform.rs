@@ -25,9 +25,12 @@ use bevy::math::primitives::InfinitePlane3d;
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
 
+use bevy::ecs::entity::EntityHashMap;
+
 use crate::edit::Edit;
 use crate::mesh::ids::{ElementId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::local::extrude_directions;
 
 use super::history::UndoHistory;
 use super::requests::Request;
@@ -112,11 +115,15 @@ impl Gestures {
     /// The status line while a gesture runs.
     pub fn hint(&self) -> Option<String> {
         let g = self.active.as_ref()?;
-        let axis = g
-            .axis
-            .map_or(String::new(), |a| format!(" along {}", ["X", "Y", "Z"][a]));
+        let axis = g.axis.map_or(String::new(), |a| {
+            let along = match g.kind {
+                GestureKind::Rotate => "about",
+                _ => "along",
+            };
+            format!(" {along} {}", ["X", "Y", "Z"][a])
+        });
         let value = match (&g.kind, g.typed.is_empty()) {
-            (_, false) => format!("{}▏", g.typed),
+            (_, false) => format!("{}|", g.typed),
             (GestureKind::Rotate, true) => format!("{:.1}°", g.value),
             (_, true) => format!("{:.4}", g.value),
         };
@@ -304,19 +311,25 @@ fn start_follow_up(world: &mut World) {
     }
 }
 
-/// Each gesture vertex's direction: the extrusion's (the mean normal of the selected faces
-/// around it) or the inset's (to its selected face's centroid).
+/// Each gesture vertex's direction: the extrusion's own ([`extrude_directions`]: moving by a
+/// distance along them is the extrusion by that distance, bit for bit), or the inset's (the way
+/// to its face's centroid). One pass over the selected faces.
 fn directions(world: &World, inset: bool) -> Vec<Vec3> {
+    let faces = super::selection::selected_faces(world);
     let m = MeshRef::new(world);
-    let faces: Vec<_> = world
-        .resource::<Selection>()
-        .elements()
-        .iter()
-        .filter_map(|x| match x {
-            ElementId::Face(f) if m.try_face(*f).is_some() => Some(*f),
-            _ => None,
-        })
-        .collect();
+    let towards: EntityHashMap<Vec3> = match inset {
+        false => extrude_directions(world, &faces)
+            .into_iter()
+            .map(|(v, d)| (v.0, d))
+            .collect(),
+        true => faces
+            .iter()
+            .flat_map(|&f| {
+                let c = m.face_centroid(f);
+                m.face_vertices(f).map(move |v| (v.0, c - m.position(v)))
+            })
+            .collect(),
+    };
     let start = &world
         .resource::<Gestures>()
         .active
@@ -325,21 +338,7 @@ fn directions(world: &World, inset: bool) -> Vec<Vec3> {
         .start;
     start
         .iter()
-        .map(|&(v, p)| {
-            let around = faces
-                .iter()
-                .filter(|&&f| m.face_vertices(f).any(|x| x == v));
-            match inset {
-                true => around
-                    .map(|&f| m.face_centroid(f) - p)
-                    .next()
-                    .unwrap_or(Vec3::ZERO),
-                false => around
-                    .map(|&f| m.face_area_vector(f).normalize_or_zero())
-                    .sum::<Vec3>()
-                    .normalize_or_zero(),
-            }
-        })
+        .map(|(v, _)| towards.get(&v.0).copied().unwrap_or(Vec3::ZERO))
         .collect()
 }
 

@@ -231,9 +231,14 @@ pub fn snapshot(world: &mut World) {
             )
         });
     let selection = world.resource::<Selection>();
-    view.selected_set = match selection.len() > 1 {
-        true => super::select_many::describe(selection),
-        false => String::new(),
+    let drawn = super::overlay::MAX_SET_DRAWN;
+    view.selected_set = match selection.len() {
+        0 | 1 => String::new(),
+        n if n > drawn => format!(
+            "{} (the first {drawn} drawn)",
+            super::select_many::describe(selection)
+        ),
+        _ => super::select_many::describe(selection),
     };
     view.gesture = world.resource::<super::transform::Gestures>().hint();
     let m = MeshRef::new(world);

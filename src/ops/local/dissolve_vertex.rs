@@ -240,10 +240,9 @@ pub fn dissolve_vertex(world: &mut World, v: VertexId) -> Result<FaceId, Refusal
 
 #[cfg(test)]
 mod tests {
-    use super::super::erase::testkit::*;
     use super::*;
-    use crate::mesh::attributes::CornerUv;
     use crate::mesh::{MeshMembers, PolygonSoup, shapes, validate};
+    use crate::ops::local::testkit::*;
     use bevy::math::Vec3;
 
     #[test]
@@ -294,7 +293,7 @@ mod tests {
         let v = MeshMembers::collect(&world, built.mesh).vertices[0];
         let f = dissolve_vertex(&mut world, v).unwrap();
         validate(&world, built.mesh).unwrap();
-        assert_eq!(counts(&world, built.mesh), (11, 25, 16, 0, 2));
+        assert_eq!(counts(&world, built.mesh), (11, 25, 16, 2, 0));
         assert_eq!(MeshRef::new(&world).face_degree(f), 5);
     }
 
@@ -403,12 +402,12 @@ mod tests {
         let m = MeshRef::new(&world);
         let corner = m.to_vertex(m.face_halfedge(f));
         super::super::erase_faces(&mut world, &[f]).unwrap();
-        let before = snapshot(&world, built.mesh);
-        assert!(matches!(
-            dissolve_vertex(&mut world, corner),
-            Err(Refusal::WouldDuplicateEdge(..))
-        ));
-        assert_eq!(snapshot(&world, built.mesh), before);
+        assert_refused_like(
+            &mut world,
+            built.mesh,
+            |r| matches!(r, Refusal::WouldDuplicateEdge(..)),
+            |w| dissolve_vertex(w, corner),
+        );
         // Two faces around v that share the corner (0, 0) away from v: it would be visited
         // twice.
         let (mut world, built) = build(&square_with_a_two_edge_vertex());
@@ -423,26 +422,20 @@ mod tests {
 
     #[test]
     fn corners_keep_their_uvs_and_the_new_side_takes_its_neighbours() {
-        let (mut world, built) = build(&with_attributes(shapes::grid(2, 2)));
+        let (mut world, built) = build(&with_attributes(shapes::grid(2, 2), Uvs::Continuous));
         // The middle of the bottom border (boundary, three triangles), then the centre.
         for i in [1, 4] {
             dissolve_vertex(&mut world, vertex(&built, i)).unwrap();
             validate(&world, built.mesh).unwrap();
             assert_attributes_complete(&world, built.mesh);
         }
-        // Every corner's UV is still 2 (x, y) + (1, 0) of its vertex.
-        let m = MeshRef::new(&world);
-        for h in MeshMembers::collect(&world, built.mesh).halfedges {
-            if let Some(uv) = world.get::<CornerUv>(h.0) {
-                let p = m.position(m.to_vertex(h));
-                assert_eq!(uv.0, bevy::math::Vec2::new(2.0 * p.x + 1.0, 2.0 * p.y));
-            }
-        }
+        // Every corner's UV is still `uv_at` of its vertex: 2 (x, y) + (1, 0) in the plane.
+        assert_uvs_follow_positions(&world, built.mesh);
     }
 
     #[test]
     fn undo_and_redo_restore_both_meshes() {
-        let (mut world, built) = build(&with_attributes(shapes::grid(3, 3)));
+        let (mut world, built) = build(&with_attributes(shapes::grid(3, 3), Uvs::Continuous));
         for i in [5, 2] {
             let plan = plan_dissolve_vertex(&world, vertex(&built, i)).unwrap();
             let seeds = plan.seeds();

@@ -288,266 +288,11 @@ pub fn faces_of_edge(world: &World, e: EdgeId) -> Result<Vec<FaceId>, Refusal> {
         .collect())
 }
 
-/// Helpers shared by the tests of the operations in this folder: building shapes, full
-/// snapshots, faces up to relabelling, meshes with attributes, and the undo round trip.
-#[cfg(test)]
-pub(crate) mod testkit {
-    use bevy::math::{Vec2, Vec3};
-    use bevy::prelude::World;
-
-    use crate::mesh::attributes::{CornerUv, MeshAttributes, Seam, VertexColor, VertexNormal};
-    use crate::mesh::change::LocalRecorder;
-    use crate::mesh::elements::{Edge, Face, Halfedge, Position, Vertex};
-    use crate::mesh::ids::{FaceId, MeshId, VertexId};
-    use crate::mesh::{BuiltMesh, MeshInfo, MeshMembers, MeshRef, PolygonSoup, build_mesh};
-    use crate::mesh::{mesh_stats, validate};
-
-    /// Builds `soup` into a fresh world; the mesh must validate.
-    pub fn build(soup: &PolygonSoup) -> (World, BuiltMesh) {
-        let mut world = World::new();
-        let built = build_mesh(&mut world, soup, MeshInfo::default()).expect("builds");
-        validate(&world, built.mesh).expect("a valid mesh");
-        (world, built)
-    }
-
-    /// The vertex built from input vertex `i`.
-    pub fn vertex(built: &BuiltMesh, i: usize) -> VertexId {
-        built.input_vertices[i].expect("kept")
-    }
-
-    /// The face whose corners are exactly the input vertices `corners` (any order).
-    pub fn face_of(world: &World, built: &BuiltMesh, corners: &[usize]) -> FaceId {
-        let m = MeshRef::new(world);
-        let mut want: Vec<VertexId> = corners.iter().map(|&i| vertex(built, i)).collect();
-        want.sort_unstable();
-        MeshMembers::collect(world, built.mesh)
-            .faces
-            .into_iter()
-            .find(|&f| {
-                let mut got: Vec<VertexId> = m.face_vertices(f).collect();
-                got.sort_unstable();
-                got == want
-            })
-            .unwrap_or_else(|| panic!("no face {corners:?}"))
-    }
-
-    /// Every component of every element (links, positions and attributes, bitwise), sorted:
-    /// equal snapshots mean an untouched mesh.
-    pub fn snapshot(world: &World, mesh: MeshId) -> Vec<String> {
-        let members = MeshMembers::collect(world, mesh);
-        let bits3 = |p: Vec3| p.to_array().map(f32::to_bits);
-        let mut out = Vec::new();
-        for v in &members.vertices {
-            out.push(format!(
-                "{v:?} {:?} {:?} {:?} {:?}",
-                world.get::<Vertex>(v.0),
-                world.get::<Position>(v.0).map(|p| bits3(p.0)),
-                world.get::<VertexNormal>(v.0).map(|n| bits3(n.0)),
-                world.get::<VertexColor>(v.0),
-            ));
-        }
-        for h in &members.halfedges {
-            out.push(format!(
-                "{h:?} {:?} {:?}",
-                world.get::<Halfedge>(h.0),
-                world
-                    .get::<CornerUv>(h.0)
-                    .map(|u| u.0.to_array().map(f32::to_bits)),
-            ));
-        }
-        for e in &members.edges {
-            out.push(format!(
-                "{e:?} {:?} {}",
-                world.get::<Edge>(e.0),
-                world.get::<Seam>(e.0).is_some()
-            ));
-        }
-        for f in &members.faces {
-            out.push(format!("{f:?} {:?}", world.get::<Face>(f.0)));
-        }
-        out.push(format!("{:?}", MeshAttributes::of(world, mesh)));
-        out.sort();
-        out
-    }
-
-    /// Each face as the cycle of its corners (position, UV, normal and colour, bitwise),
-    /// rotated to start at its smallest corner, sorted: the mesh up to relabelling.
-    pub fn faces(world: &World, mesh: MeshId) -> Vec<Vec<String>> {
-        let m = MeshRef::new(world);
-        let bits3 = |p: Vec3| p.to_array().map(f32::to_bits);
-        let mut out: Vec<Vec<String>> = MeshMembers::collect(world, mesh)
-            .faces
-            .into_iter()
-            .map(|f| {
-                let corners: Vec<String> = m
-                    .face_halfedges(f)
-                    .map(|h| {
-                        let v = m.to_vertex(h);
-                        format!(
-                            "{:?} {:?} {:?} {:?}",
-                            bits3(m.position(v)),
-                            world
-                                .get::<CornerUv>(h.0)
-                                .map(|u| u.0.to_array().map(f32::to_bits)),
-                            world.get::<VertexNormal>(v.0).map(|n| bits3(n.0)),
-                            world.get::<VertexColor>(v.0).map(|c| c.0),
-                        )
-                    })
-                    .collect();
-                let start = (0..corners.len())
-                    .min_by(|&a, &b| corners[a].cmp(&corners[b]))
-                    .expect("a face has corners");
-                corners[start..]
-                    .iter()
-                    .chain(&corners[..start])
-                    .cloned()
-                    .collect()
-            })
-            .collect();
-        out.sort();
-        out
-    }
-
-    /// Each face as the cycle of its corners' positions, rotated to start at the smallest.
-    pub fn position_cycles(world: &World, mesh: MeshId) -> Vec<Vec<[f32; 3]>> {
-        let m = MeshRef::new(world);
-        let mut out: Vec<Vec<[f32; 3]>> = MeshMembers::collect(world, mesh)
-            .faces
-            .into_iter()
-            .map(|f| {
-                let c: Vec<[f32; 3]> = m
-                    .face_vertices(f)
-                    .map(|v| m.position(v).to_array())
-                    .collect();
-                let key = |p: &[f32; 3]| p.map(f32::to_bits);
-                let start = (0..c.len()).min_by_key(|&i| key(&c[i])).expect("corners");
-                c[start..].iter().chain(&c[..start]).copied().collect()
-            })
-            .collect();
-        out.sort_by(|a, b| {
-            let k = |x: &Vec<[f32; 3]>| x.iter().map(|p| p.map(f32::to_bits)).collect::<Vec<_>>();
-            k(a).cmp(&k(b))
-        });
-        out
-    }
-
-    /// The expected faces as position cycles, in the form of [`position_cycles`].
-    pub fn cycles(faces: &[&[[f32; 3]]]) -> Vec<Vec<[f32; 3]>> {
-        let key = |p: &[f32; 3]| p.map(f32::to_bits);
-        let mut out: Vec<Vec<[f32; 3]>> = faces
-            .iter()
-            .map(|c| {
-                let start = (0..c.len()).min_by_key(|&i| key(&c[i])).expect("corners");
-                c[start..].iter().chain(&c[..start]).copied().collect()
-            })
-            .collect();
-        out.sort_by(|a, b| {
-            let k = |x: &Vec<[f32; 3]>| x.iter().map(key).collect::<Vec<_>>();
-            k(a).cmp(&k(b))
-        });
-        out
-    }
-
-    /// (vertices, edges, faces, boundary loops, χ).
-    pub fn counts(world: &World, mesh: MeshId) -> (usize, usize, usize, usize, i64) {
-        let s = mesh_stats(world, mesh);
-        (
-            s.vertices,
-            s.edges,
-            s.faces,
-            s.boundary_loops,
-            s.euler_characteristic,
-        )
-    }
-
-    /// `soup` with a UV at every corner (`2 (x, y) + (1, 0)`), a normal and a colour at every
-    /// vertex, all computed from the position.
-    pub fn with_attributes(mut soup: PolygonSoup) -> PolygonSoup {
-        let uv = |p: Vec3| Vec2::new(2.0 * p.x + 1.0, 2.0 * p.y);
-        soup.corner_uvs = Some(
-            soup.indices
-                .iter()
-                .map(|&i| uv(soup.positions[i as usize]))
-                .collect(),
-        );
-        soup.vertex_normals = Some(
-            soup.positions
-                .iter()
-                .map(|p| Vec3::new(p.x, p.y, 1.0).normalize())
-                .collect(),
-        );
-        soup.vertex_colors = Some(
-            soup.positions
-                .iter()
-                .map(|p| [(p.x * 60.0) as u8, (p.y * 60.0) as u8, 7])
-                .collect(),
-        );
-        soup
-    }
-
-    /// The attribute invariant: the mesh has UVs, normals and colours; every face halfedge has
-    /// a UV and no boundary halfedge has one; every vertex has a normal and a colour.
-    pub fn assert_attributes_complete(world: &World, mesh: MeshId) {
-        let has = MeshAttributes::of(world, mesh);
-        assert!(has.uv && has.normals && has.colors, "{has:?}");
-        let m = MeshRef::new(world);
-        let members = MeshMembers::collect(world, mesh);
-        for h in members.halfedges {
-            assert_eq!(
-                world.get::<CornerUv>(h.0).is_some(),
-                m.face(h).is_some(),
-                "{h}"
-            );
-        }
-        for v in members.vertices {
-            assert!(world.get::<VertexNormal>(v.0).is_some(), "{v}");
-            assert!(world.get::<VertexColor>(v.0).is_some(), "{v}");
-        }
-    }
-
-    /// Records `edit` as the editor does (a local recorder begun on `seeds`), then checks that
-    /// undoing it gives the original mesh back and redoing it the edited one, both valid.
-    pub fn assert_undo_redo(
-        world: &mut World,
-        mesh: MeshId,
-        seeds: &[VertexId],
-        edit: impl FnOnce(&mut World),
-    ) {
-        let before = (faces(world, mesh), counts(world, mesh));
-        let recorder = LocalRecorder::begin(world, mesh, seeds);
-        edit(world);
-        validate(world, mesh).expect("valid after the edit");
-        let undo = recorder.finish(world);
-        let after = (faces(world, mesh), counts(world, mesh));
-        assert_ne!(before, after, "the edit changed nothing");
-        let (redo, _, _) = undo.apply(world);
-        validate(world, mesh).expect("valid after undo");
-        assert_eq!((faces(world, mesh), counts(world, mesh)), before, "undo");
-        redo.apply(world);
-        validate(world, mesh).expect("valid after redo");
-        assert_eq!((faces(world, mesh), counts(world, mesh)), after, "redo");
-    }
-
-    /// Runs `op` and checks that it is refused with `expected` and leaves the mesh exactly as
-    /// it was.
-    pub fn assert_refused<T: std::fmt::Debug>(
-        world: &mut World,
-        mesh: MeshId,
-        expected: crate::ops::Refusal,
-        op: impl FnOnce(&mut World) -> Result<T, crate::ops::Refusal>,
-    ) {
-        let before = snapshot(world, mesh);
-        let got = op(world);
-        assert_eq!(got.map(|_| ()), Err(expected));
-        assert_eq!(snapshot(world, mesh), before, "a refusal changed the mesh");
-    }
-}
-
 #[cfg(test)]
 mod tests {
-    use super::testkit::*;
     use super::*;
     use crate::mesh::{MeshMembers, mesh_stats, shapes, validate};
+    use crate::ops::local::testkit::*;
 
     #[test]
     fn an_inner_quad_becomes_a_hole() {
@@ -564,7 +309,7 @@ mod tests {
                 vertices: 0
             }
         );
-        assert_eq!(counts(&world, built.mesh), (16, 24, 8, 2, 0));
+        assert_eq!(counts(&world, built.mesh), (16, 24, 8, 0, 2));
         let m = MeshRef::new(&world);
         for i in [5, 6, 10, 9] {
             assert!(m.is_boundary_vertex(vertex(&built, i)));
@@ -639,7 +384,7 @@ mod tests {
         let erased = erase_faces(&mut world, &given).unwrap();
         validate(&world, built.mesh).unwrap();
         assert_eq!((erased.faces, erased.edges, erased.vertices), (4, 4, 1));
-        assert_eq!(counts(&world, built.mesh), (24, 36, 12, 2, 0));
+        assert_eq!(counts(&world, built.mesh), (24, 36, 12, 0, 2));
     }
 
     #[test]
@@ -651,7 +396,7 @@ mod tests {
         let erased = erase_faces(&mut world, &[second]).unwrap();
         validate(&world, built.mesh).unwrap();
         assert_eq!((erased.faces, erased.edges, erased.vertices), (1, 1, 0));
-        assert_eq!(counts(&world, built.mesh), (25, 39, 14, 2, 0));
+        assert_eq!(counts(&world, built.mesh), (25, 39, 14, 0, 2));
         // The hole is one loop of six sides around the two cells.
         let m = MeshRef::new(&world);
         let v7 = vertex(&built, 7);
@@ -670,7 +415,7 @@ mod tests {
         // A 3 × 3 grid of quads with the centre missing: erasing the right middle quad opens
         // the hole onto the border (one loop left, a disc again).
         let (mut world, built) = build(&shapes::grid_with_holes(1));
-        assert_eq!(counts(&world, built.mesh), (16, 24, 8, 2, 0));
+        assert_eq!(counts(&world, built.mesh), (16, 24, 8, 0, 2));
         let f = face_of(&world, &built, &[6, 7, 11, 10]);
         let erased = erase_faces(&mut world, &[f]).unwrap();
         validate(&world, built.mesh).unwrap();
@@ -781,28 +526,23 @@ mod tests {
             Err(Refusal::Stale(ElementId::Vertex(v)))
         );
         // Faces of two meshes.
-        let other = crate::mesh::build_mesh(
-            &mut world,
-            &shapes::tetrahedron(),
-            crate::mesh::MeshInfo::default(),
-        )
-        .unwrap();
+        let other = build_into(&mut world, &shapes::tetrahedron());
         let there = MeshMembers::collect(&world, other.mesh).faces[0];
         let here = MeshMembers::collect(&world, built.mesh).faces[0];
-        let before = snapshot(&world, other.mesh);
-        assert!(matches!(
-            erase_faces(&mut world, &[here, there]),
-            Err(Refusal::BadParameter(_))
-        ));
-        assert_eq!(snapshot(&world, other.mesh), before);
+        assert_refused_like(
+            &mut world,
+            other.mesh,
+            |r| matches!(r, Refusal::BadParameter(_)),
+            |w| erase_faces(w, &[here, there]),
+        );
     }
 
     #[test]
     fn corner_uvs_leave_the_new_boundary_and_stay_elsewhere() {
-        let (mut world, built) = build(&with_attributes(shapes::quad_grid(3, 3)));
+        let (mut world, built) = build(&with_attributes(shapes::quad_grid(3, 3), Uvs::Continuous));
         assert_attributes_complete(&world, built.mesh);
         let f = face_of(&world, &built, &[5, 6, 10, 9]);
-        let kept_before: Vec<Vec<String>> = faces(&world, built.mesh)
+        let kept_before: Vec<Vec<Corner>> = faces(&world, built.mesh)
             .into_iter()
             .filter(|c| c.len() == 4)
             .collect();
@@ -817,7 +557,7 @@ mod tests {
 
     #[test]
     fn undo_and_redo_restore_both_meshes() {
-        let (mut world, built) = build(&with_attributes(shapes::grid(3, 3)));
+        let (mut world, built) = build(&with_attributes(shapes::grid(3, 3), Uvs::Continuous));
         let mesh = built.mesh;
         // A vertex on the border: its faces reach the boundary on both sides.
         let faces = faces_of_vertex(&world, vertex(&built, 1)).unwrap();

@@ -560,152 +560,16 @@ pub fn extrude_directions(world: &World, faces: &[FaceId]) -> Vec<(VertexId, Vec
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use super::*;
-    use crate::mesh::change::{ElementState, LocalRecorder};
-    use crate::mesh::{
-        BuiltMesh, MeshInfo, MeshMembers, PolygonSoup, build_mesh, mesh_stats, shapes, to_soup,
-        validate,
-    };
-    use bevy::prelude::Entity;
-
-    /// A corner of a face cycle: its position's bits and its UV's.
-    pub(crate) type Corner = ([u32; 3], Option<[u32; 2]>);
-
-    pub(crate) fn bits(p: Vec3) -> [u32; 3] {
-        p.to_array().map(f32::to_bits)
-    }
-
-    pub(crate) fn build(soup: &PolygonSoup) -> (World, BuiltMesh) {
-        let mut world = World::new();
-        let built = build_mesh(&mut world, soup, MeshInfo::default()).unwrap();
-        (world, built)
-    }
-
-    /// The face of the input vertices `corners` (in any order).
-    pub(crate) fn face_at(world: &World, built: &BuiltMesh, corners: &[u32]) -> FaceId {
-        let m = MeshRef::new(world);
-        let vs: Vec<VertexId> = corners
-            .iter()
-            .map(|&i| built.input_vertices[i as usize].unwrap())
-            .collect();
-        m.vertex_faces(vs[0])
-            .find(|&f| {
-                let fv: Vec<VertexId> = m.face_vertices(f).collect();
-                fv.len() == vs.len() && vs.iter().all(|v| fv.contains(v))
-            })
-            .unwrap()
-    }
-
-    /// The quad of cell (i, j) of `shapes::quad_grid(nx, _)`.
-    pub(crate) fn cell(nx: u32, i: u32, j: u32) -> [u32; 4] {
-        let at = |i: u32, j: u32| j * (nx + 1) + i;
-        [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]
-    }
-
-    /// A face's corners from its halfedge, rotated to start at the least.
-    pub(crate) fn cycle(world: &World, f: FaceId) -> Vec<Corner> {
-        let m = MeshRef::new(world);
-        let mut c: Vec<Corner> = m
-            .face_halfedges(f)
-            .map(|h| {
-                let uv = attributes::corner_uv(world, h).map(|u| u.to_array().map(f32::to_bits));
-                (bits(m.position(m.to_vertex(h))), uv)
-            })
-            .collect();
-        let first = (0..c.len()).min_by_key(|&i| c[i]).unwrap();
-        c.rotate_left(first);
-        c
-    }
-
-    /// A cycle of positions (no UVs), rotated to start at the least.
-    pub(crate) fn cycle_of(points: &[Vec3]) -> Vec<Corner> {
-        let mut c: Vec<Corner> = points.iter().map(|&p| (bits(p), None)).collect();
-        let first = (0..c.len()).min_by_key(|&i| c[i]).unwrap();
-        c.rotate_left(first);
-        c
-    }
-
-    /// A face's positions, rotated to start at the least.
-    pub(crate) fn position_cycle(world: &World, f: FaceId) -> Vec<Corner> {
-        let m = MeshRef::new(world);
-        let points: Vec<Vec3> = m.face_vertices(f).map(|v| m.position(v)).collect();
-        cycle_of(&points)
-    }
-
-    /// The mesh up to relabelling: edge count, positions, face cycles with UVs, all bitwise.
-    pub(crate) type Shape = (usize, Vec<[u32; 3]>, Vec<Vec<Corner>>);
-
-    pub(crate) fn shape(world: &World, mesh: MeshId) -> Shape {
-        let members = MeshMembers::collect(world, mesh);
-        let m = MeshRef::new(world);
-        let mut positions: Vec<[u32; 3]> = members
-            .vertices
-            .iter()
-            .map(|&v| bits(m.position(v)))
-            .collect();
-        positions.sort_unstable();
-        let mut faces: Vec<Vec<Corner>> = members.faces.iter().map(|&f| cycle(world, f)).collect();
-        faces.sort_unstable();
-        (members.edges.len(), positions, faces)
-    }
-
-    /// Every element of the mesh with all its components.
-    pub(crate) fn snapshot(world: &World, mesh: MeshId) -> Vec<(Entity, ElementState)> {
-        let mut all: Vec<Entity> = MeshMembers::collect(world, mesh).entities().collect();
-        all.sort_unstable();
-        all.into_iter()
-            .map(|e| (e, ElementState::of(world, e).unwrap()))
-            .collect()
-    }
-
-    pub(crate) fn assert_untouched(world: &World, mesh: MeshId, before: &[(Entity, ElementState)]) {
-        let now = snapshot(world, mesh);
-        assert_eq!(now.len(), before.len());
-        for ((e, x), (f, y)) in now.iter().zip(before) {
-            assert_eq!(e, f);
-            assert!(x.same(y), "{e} changed");
-        }
-    }
-
-    /// Records `edit` with `seeds` as the editor does, undoes it and checks the mesh is the
-    /// original, redoes it and checks it is the edited one.
-    pub(crate) fn assert_undo_redo(
-        world: &mut World,
-        mesh: MeshId,
-        seeds: &[VertexId],
-        edit: impl FnOnce(&mut World),
-    ) {
-        let before = shape(world, mesh);
-        let recorder = LocalRecorder::begin(world, mesh, seeds);
-        edit(world);
-        let undo = recorder.finish(world);
-        validate(world, mesh).unwrap();
-        let after = shape(world, mesh);
-        assert_ne!(after, before);
-        let (redo, _, _) = undo.apply(world);
-        validate(world, mesh).unwrap();
-        assert_eq!(shape(world, mesh), before, "undo gives the original back");
-        let _ = redo.apply(world);
-        validate(world, mesh).unwrap();
-        assert_eq!(shape(world, mesh), after, "redo gives the edit back");
-    }
-
-    fn counts(world: &World, mesh: MeshId) -> (usize, usize, usize, i64, usize) {
-        let s = mesh_stats(world, mesh);
-        (
-            s.vertices,
-            s.edges,
-            s.faces,
-            s.euler_characteristic,
-            s.boundary_loops,
-        )
-    }
+    use crate::mesh::validate;
+    use crate::mesh::{MeshMembers, PolygonSoup, mesh_stats, shapes, to_soup};
+    use crate::ops::local::testkit::*;
 
     /// The side quads expected for a flat face with corners `p` (counter-clockwise) lifted by
     /// `d`: `a b b' a'` for each side `a b`.
-    fn walls(p: &[Vec3], d: Vec3) -> Vec<Vec<Corner>> {
-        let mut out: Vec<Vec<Corner>> = (0..p.len())
+    fn walls(p: &[Vec3], d: Vec3) -> Vec<Vec<Key>> {
+        let mut out: Vec<Vec<Key>> = (0..p.len())
             .map(|k| {
                 let (a, b) = (p[k], p[(k + 1) % p.len()]);
                 cycle_of(&[a, b, b + d, a + d])
@@ -715,16 +579,11 @@ pub(super) mod tests {
         out
     }
 
-    fn sorted(mut x: Vec<Vec<Corner>>) -> Vec<Vec<Corner>> {
-        x.sort_unstable();
-        x
-    }
-
     #[test]
     fn one_quad_of_a_grid_rises_on_four_walls() {
         let (mut world, built) = build(&shapes::quad_grid(3, 3));
         let mesh = built.mesh;
-        let f = face_at(&world, &built, &cell(3, 1, 1));
+        let f = face_of(&world, &built, &cell(3, 1, 1));
         let old: Vec<VertexId> = MeshRef::new(&world).face_vertices(f).collect();
         let corners: Vec<Vec3> = {
             let m = MeshRef::new(&world);
@@ -764,7 +623,7 @@ pub(super) mod tests {
         let mesh = built.mesh;
         let faces: Vec<FaceId> = [(1, 1), (2, 1), (1, 2), (2, 2)]
             .iter()
-            .map(|&(i, j)| face_at(&world, &built, &cell(4, i, j)))
+            .map(|&(i, j)| face_of(&world, &built, &cell(4, i, j)))
             .collect();
         let centre = built.input_vertices[12].unwrap();
         assert_eq!(counts(&world, mesh), (25, 40, 16, 1, 1));
@@ -790,7 +649,7 @@ pub(super) mod tests {
     fn a_face_of_a_cube_keeps_the_surface_closed() {
         let (mut world, built) = build(&shapes::cube());
         let mesh = built.mesh;
-        let f = face_at(&world, &built, &[4, 5, 6, 7]);
+        let f = face_of(&world, &built, &[4, 5, 6, 7]);
         let made = extrude_faces(&mut world, &[f], 1.0).unwrap();
         validate(&world, mesh).unwrap();
         assert_eq!(counts(&world, mesh), (12, 20, 10, 2, 0));
@@ -814,7 +673,7 @@ pub(super) mod tests {
         soup.positions.iter_mut().for_each(|p| *p *= 3.0);
         let (mut world, built) = build(&soup);
         let mesh = built.mesh;
-        let f = face_at(&world, &built, &cell(3, 0, 0));
+        let f = face_of(&world, &built, &cell(3, 0, 0));
         let corner = built.input_vertices[0].unwrap();
         let boundary_halfedges = |world: &World| {
             let m = MeshRef::new(world);
@@ -874,7 +733,7 @@ pub(super) mod tests {
     fn a_triangle_of_a_tetrahedron_moves_along_its_normal() {
         let (mut world, built) = build(&shapes::tetrahedron());
         let mesh = built.mesh;
-        let f = face_at(&world, &built, &[0, 1, 2]);
+        let f = face_of(&world, &built, &[0, 1, 2]);
         let (corners, n) = {
             let m = MeshRef::new(&world);
             let c: Vec<Vec3> = m.face_vertices(f).map(|v| m.position(v)).collect();
@@ -932,8 +791,8 @@ pub(super) mod tests {
     fn two_quads_meeting_at_a_corner_come_apart_there() {
         let (mut world, built) = build(&shapes::quad_grid(3, 3));
         let mesh = built.mesh;
-        let f = face_at(&world, &built, &cell(3, 0, 0));
-        let g = face_at(&world, &built, &cell(3, 1, 1));
+        let f = face_of(&world, &built, &cell(3, 0, 0));
+        let g = face_of(&world, &built, &cell(3, 1, 1));
         let pinch = built.input_vertices[5].unwrap();
         let made = extrude_faces(&mut world, &[f, g], 1.0).unwrap();
         validate(&world, mesh).unwrap();
@@ -954,7 +813,7 @@ pub(super) mod tests {
     fn zero_and_negative_distances_keep_a_valid_mesh() {
         for d in [0.0, -0.5] {
             let (mut world, built) = build(&shapes::cube());
-            let f = face_at(&world, &built, &[4, 5, 6, 7]);
+            let f = face_of(&world, &built, &[4, 5, 6, 7]);
             let made = extrude_faces(&mut world, &[f], d).unwrap();
             validate(&world, built.mesh).unwrap();
             let m = MeshRef::new(&world);
@@ -993,11 +852,10 @@ pub(super) mod tests {
     fn refusals_leave_the_world_untouched() {
         let (mut world, built) = build(&shapes::cube());
         let mesh = built.mesh;
-        let other = build_mesh(&mut world, &shapes::tetrahedron(), MeshInfo::default()).unwrap();
-        let f = face_at(&world, &built, &[4, 5, 6, 7]);
-        let g = face_at(&world, &other, &[0, 1, 2]);
-        let gone = FaceId(world.spawn_empty().id());
-        world.despawn(gone.0);
+        let other = build_into(&mut world, &shapes::tetrahedron());
+        let f = face_of(&world, &built, &[4, 5, 6, 7]);
+        let g = face_of(&world, &other, &[0, 1, 2]);
+        let gone = gone_face(&mut world);
         let all = MeshMembers::collect(&world, mesh).faces;
         let before = snapshot(&world, mesh);
         let cases: Vec<(Vec<FaceId>, f32)> = vec![
@@ -1023,29 +881,23 @@ pub(super) mod tests {
         validate(&world, other.mesh).unwrap();
         // A square far up the z axis: a finite distance that would carry it past the largest
         // float.
-        let h = 3e38;
-        let square =
-            [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(x, y)| Vec3::new(x, y, h));
-        let (mut world, built) = build(&PolygonSoup::from_faces(
-            square.to_vec(),
-            &[[0u32, 1, 2, 3]],
-        ));
-        let f = face_at(&world, &built, &[0, 1, 2, 3]);
-        let before = snapshot(&world, built.mesh);
-        assert!(matches!(
-            extrude_faces(&mut world, &[f], f32::MAX),
-            Err(Refusal::NotFinite(_))
-        ));
-        assert_untouched(&world, built.mesh, &before);
+        let (mut world, built) = build(&far_square());
+        let f = face_of(&world, &built, &[0, 1, 2, 3]);
+        assert_refused_like(
+            &mut world,
+            built.mesh,
+            |r| matches!(r, Refusal::NotFinite(_)),
+            |w| extrude_faces(w, &[f], f32::MAX),
+        );
     }
 
     #[test]
     fn undo_through_the_seeds_restores_the_mesh_and_redo_repeats_it() {
-        let (mut world, built) = build(&with_uvs(shapes::quad_grid(4, 4)));
+        let (mut world, built) = build(&with_attributes(shapes::quad_grid(4, 4), Uvs::PerCorner));
         let mesh = built.mesh;
         let faces: Vec<FaceId> = [(1, 1), (2, 1), (1, 2), (0, 0)]
             .iter()
-            .map(|&(i, j)| face_at(&world, &built, &cell(4, i, j)))
+            .map(|&(i, j)| face_of(&world, &built, &cell(4, i, j)))
             .collect();
         let plan = plan_extrude(&world, &faces).unwrap();
         let seeds = plan.seeds();
@@ -1054,76 +906,18 @@ pub(super) mod tests {
         });
     }
 
-    /// `soup` with corner UVs `(2x + k, 3y)` for corner `k` of each face (so every corner of
-    /// a vertex differs), normals `(x, y, 1)` and colours from the vertex number.
-    pub(crate) fn with_uvs(mut soup: PolygonSoup) -> PolygonSoup {
-        let mut uvs = Vec::new();
-        for face in soup.faces() {
-            for (k, &i) in face.iter().enumerate() {
-                let p = soup.positions[i as usize];
-                uvs.push(Vec2::new(2.0 * p.x + k as f32, 3.0 * p.y));
-            }
-        }
-        soup.corner_uvs = Some(uvs);
-        soup.vertex_normals = Some(
-            soup.positions
-                .iter()
-                .map(|p| Vec3::new(p.x, p.y, 1.0))
-                .collect(),
-        );
-        soup.vertex_colors = Some((0..soup.positions.len()).map(|i| [i as u8, 7, 9]).collect());
-        soup
-    }
-
     #[test]
     fn uvs_normals_and_colours_are_carried() {
-        let (mut world, built) = build(&with_uvs(shapes::quad_grid(2, 2)));
+        let (mut world, built) = build(&with_attributes(shapes::quad_grid(2, 2), Uvs::PerCorner));
         let mesh = built.mesh;
-        let f = face_at(&world, &built, &cell(2, 1, 0));
-        let uv = |world: &World, h: HalfedgeId| attributes::corner_uv(world, h).unwrap();
-        let (halfedges, uvs_before): (Vec<HalfedgeId>, Vec<Vec2>) = {
-            let m = MeshRef::new(&world);
-            m.face_halfedges(f).map(|h| (h, uv(&world, h))).unzip()
-        };
+        let f = face_of(&world, &built, &cell(2, 1, 0));
+        let (rim, uvs) = corner_uvs(&world, f);
         let made = extrude_faces(&mut world, &[f], 1.0).unwrap();
         validate(&world, mesh).unwrap();
-        let m = MeshRef::new(&world);
-        // Every face corner has a UV; the top's corners kept theirs.
-        for h in MeshMembers::collect(&world, mesh).halfedges {
-            assert_eq!(
-                attributes::corner_uv(&world, h).is_some(),
-                m.face(h).is_some()
-            );
-        }
-        for (&h, &u) in halfedges.iter().zip(&uvs_before) {
-            assert_eq!(uv(&world, h), u);
-        }
+        // Every face corner has a UV (and no other halfedge); the top's corners kept theirs.
+        assert_attributes_complete(&world, mesh);
         // Each side a b b' a': corners at b and b' take the UV of the rim corner at b, those at
-        // a and a' the UV of the corner at a.
-        for (k, &h) in halfedges.iter().enumerate() {
-            let side = m.face(m.twin(h)).unwrap();
-            assert!(made.sides.contains(&side));
-            let top = m.twin(h); // b' → a'
-            let fall = m.next(top); // a' → a
-            let bottom = m.next(fall); // a → b
-            let rise = m.next(bottom); // b → b'
-            let at_a = uvs_before[(k + halfedges.len() - 1) % halfedges.len()];
-            let at_b = uvs_before[k];
-            assert_eq!(
-                [bottom, rise, top, fall].map(|x| uv(&world, x)),
-                [at_b, at_b, at_a, at_a]
-            );
-            // The copy at a' has a's normal and colour.
-            let (a_copy, a) = (m.to_vertex(top), m.to_vertex(fall));
-            assert_ne!(a_copy, a);
-            assert_eq!(
-                world.get::<VertexNormal>(a_copy.0),
-                world.get::<VertexNormal>(a.0)
-            );
-            assert_eq!(
-                world.get::<VertexColor>(a_copy.0),
-                world.get::<VertexColor>(a.0)
-            );
-        }
+        // a and a' the UV of the corner at a; the copy at a' has a's normal and colour.
+        assert_sides_carry_rim(&world, &rim, &uvs, &made.sides);
     }
 }

@@ -198,42 +198,20 @@ pub fn inset_faces(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::attributes::{self, VertexColor, VertexNormal};
-    use crate::mesh::ids::HalfedgeId;
     use crate::mesh::validate;
-    use crate::mesh::{MeshId, MeshInfo, MeshMembers, PolygonSoup, build_mesh, mesh_stats, shapes};
-    use crate::ops::local::extrude::tests::{
-        Corner, assert_undo_redo, assert_untouched, bits, build, cell, cycle_of, face_at,
-        position_cycle, snapshot, with_uvs,
-    };
-    use bevy::math::Vec2;
-
-    fn counts(world: &World, mesh: MeshId) -> (usize, usize, usize, i64, usize) {
-        let s = mesh_stats(world, mesh);
-        (
-            s.vertices,
-            s.edges,
-            s.faces,
-            s.euler_characteristic,
-            s.boundary_loops,
-        )
-    }
+    use crate::mesh::{MeshMembers, PolygonSoup, shapes};
+    use crate::ops::local::testkit::*;
 
     fn unit_square() -> PolygonSoup {
         let p = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(x, y)| Vec3::new(x, y, 0.0));
         PolygonSoup::from_faces(p.to_vec(), &[[0u32, 1, 2, 3]])
     }
 
-    fn sorted(mut x: Vec<Vec<Corner>>) -> Vec<Vec<Corner>> {
-        x.sort_unstable();
-        x
-    }
-
     #[test]
     fn a_unit_square_insets_to_the_formula() {
         let (mut world, built) = build(&unit_square());
         let mesh = built.mesh;
-        let f = face_at(&world, &built, &[0, 1, 2, 3]);
+        let f = face_of(&world, &built, &[0, 1, 2, 3]);
         let made = inset_faces(&mut world, &[f], 0.25, 0.5).unwrap();
         validate(&world, mesh).unwrap();
         // V + 4, E + 8, F + 4: χ 1 and one boundary loop, as before.
@@ -288,7 +266,7 @@ mod tests {
             .collect();
         let soup = PolygonSoup::from_faces(points.clone(), &[[0u32, 1, 2, 3, 4]]);
         let (mut world, built) = build(&soup);
-        let f = face_at(&world, &built, &[0, 1, 2, 3, 4]);
+        let f = face_of(&world, &built, &[0, 1, 2, 3, 4]);
         let (c, n) = {
             let m = MeshRef::new(&world);
             (m.face_centroid(f), m.face_area_vector(f).normalize())
@@ -315,7 +293,7 @@ mod tests {
         soup.positions.iter_mut().for_each(|p| *p *= 3.0);
         let (mut world, built) = build(&soup);
         let mesh = built.mesh;
-        let f = face_at(&world, &built, &cell(3, 0, 0));
+        let f = face_of(&world, &built, &cell(3, 0, 0));
         let loops_before: Vec<Vec3> = {
             let m = MeshRef::new(&world);
             let mut b: Vec<Vec3> = MeshMembers::collect(&world, mesh)
@@ -349,8 +327,8 @@ mod tests {
     fn neighbouring_faces_are_inset_each_on_its_own() {
         let (mut world, built) = build(&shapes::quad_grid(2, 1));
         let mesh = built.mesh;
-        let f = face_at(&world, &built, &cell(2, 0, 0));
-        let g = face_at(&world, &built, &cell(2, 1, 0));
+        let f = face_of(&world, &built, &cell(2, 0, 0));
+        let g = face_of(&world, &built, &cell(2, 1, 0));
         let (a, b) = (
             built.input_vertices[1].unwrap(),
             built.input_vertices[4].unwrap(),
@@ -379,7 +357,7 @@ mod tests {
     fn a_triangle_of_a_tetrahedron() {
         let (mut world, built) = build(&shapes::tetrahedron());
         let mesh = built.mesh;
-        let f = face_at(&world, &built, &[0, 1, 2]);
+        let f = face_of(&world, &built, &[0, 1, 2]);
         let corners: Vec<Vec3> = {
             let m = MeshRef::new(&world);
             m.face_vertices(f).map(|v| m.position(v)).collect()
@@ -409,11 +387,10 @@ mod tests {
     fn refusals_leave_the_world_untouched() {
         let (mut world, built) = build(&shapes::cube());
         let mesh = built.mesh;
-        let other = build_mesh(&mut world, &shapes::tetrahedron(), MeshInfo::default()).unwrap();
-        let f = face_at(&world, &built, &[4, 5, 6, 7]);
-        let g = face_at(&world, &other, &[0, 1, 2]);
-        let gone = FaceId(world.spawn_empty().id());
-        world.despawn(gone.0);
+        let other = build_into(&mut world, &shapes::tetrahedron());
+        let f = face_of(&world, &built, &[4, 5, 6, 7]);
+        let g = face_of(&world, &other, &[0, 1, 2]);
+        let gone = gone_face(&mut world);
         let before = snapshot(&world, mesh);
         let cases: Vec<(Vec<FaceId>, f32, f32, &str)> = vec![
             (vec![], 0.5, 0.0, "BadParameter"),
@@ -438,29 +415,23 @@ mod tests {
         validate(&world, mesh).unwrap();
         validate(&world, other.mesh).unwrap();
         // A square far up the z axis, inset deep enough to leave the finite range.
-        let h = 3e38;
-        let square =
-            [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(x, y)| Vec3::new(x, y, h));
-        let (mut world, built) = build(&PolygonSoup::from_faces(
-            square.to_vec(),
-            &[[0u32, 1, 2, 3]],
-        ));
-        let f = face_at(&world, &built, &[0, 1, 2, 3]);
-        let before = snapshot(&world, built.mesh);
-        assert!(matches!(
-            inset_faces(&mut world, &[f], 0.5, f32::MAX),
-            Err(Refusal::NotFinite(_))
-        ));
-        assert_untouched(&world, built.mesh, &before);
+        let (mut world, built) = build(&far_square());
+        let f = face_of(&world, &built, &[0, 1, 2, 3]);
+        assert_refused_like(
+            &mut world,
+            built.mesh,
+            |r| matches!(r, Refusal::NotFinite(_)),
+            |w| inset_faces(w, &[f], 0.5, f32::MAX),
+        );
     }
 
     #[test]
     fn undo_through_the_seeds_restores_the_mesh_and_redo_repeats_it() {
-        let (mut world, built) = build(&with_uvs(shapes::cube()));
+        let (mut world, built) = build(&with_attributes(shapes::cube(), Uvs::PerCorner));
         let mesh = built.mesh;
         let faces = [
-            face_at(&world, &built, &[4, 5, 6, 7]),
-            face_at(&world, &built, &[0, 1, 5, 4]),
+            face_of(&world, &built, &[4, 5, 6, 7]),
+            face_of(&world, &built, &[0, 1, 5, 4]),
         ];
         let plan = plan_inset(&world, &faces).unwrap();
         let seeds = plan.seeds();
@@ -471,45 +442,16 @@ mod tests {
 
     #[test]
     fn uvs_normals_and_colours_are_carried() {
-        let (mut world, built) = build(&with_uvs(shapes::quad_grid(2, 2)));
+        let (mut world, built) = build(&with_attributes(shapes::quad_grid(2, 2), Uvs::PerCorner));
         let mesh = built.mesh;
-        let f = face_at(&world, &built, &cell(2, 1, 1));
-        let uv = |world: &World, h: HalfedgeId| attributes::corner_uv(world, h).unwrap();
-        let (halfedges, uvs_before): (Vec<HalfedgeId>, Vec<Vec2>) = {
-            let m = MeshRef::new(&world);
-            m.face_halfedges(f).map(|h| (h, uv(&world, h))).unzip()
-        };
+        let f = face_of(&world, &built, &cell(2, 1, 1));
+        let (rim, uvs) = corner_uvs(&world, f);
         let made = inset_faces(&mut world, &[f], 0.5, 0.0).unwrap();
         validate(&world, mesh).unwrap();
-        let m = MeshRef::new(&world);
-        for h in MeshMembers::collect(&world, mesh).halfedges {
-            assert_eq!(
-                attributes::corner_uv(&world, h).is_some(),
-                m.face(h).is_some()
-            );
-        }
-        let k = halfedges.len();
-        for (i, &h) in halfedges.iter().enumerate() {
-            assert_eq!(uv(&world, h), uvs_before[i], "the inner face keeps its UVs");
-            let top = m.twin(h);
-            assert!(made.sides.contains(&m.face(top).unwrap()));
-            let fall = m.next(top);
-            let bottom = m.next(fall);
-            let rise = m.next(bottom);
-            let (at_a, at_b) = (uvs_before[(i + k - 1) % k], uvs_before[i]);
-            assert_eq!(
-                [bottom, rise, top, fall].map(|x| uv(&world, x)),
-                [at_b, at_b, at_a, at_a]
-            );
-            let (copy, old) = (m.to_vertex(top), m.to_vertex(fall));
-            assert_eq!(
-                world.get::<VertexNormal>(copy.0),
-                world.get::<VertexNormal>(old.0)
-            );
-            assert_eq!(
-                world.get::<VertexColor>(copy.0),
-                world.get::<VertexColor>(old.0)
-            );
-        }
+        // Every face corner has a UV (and no other halfedge); the inner face keeps its UVs,
+        // each ring quad takes its corners' UVs from the rim, each copy its vertex's normal and
+        // colour.
+        assert_attributes_complete(&world, mesh);
+        assert_sides_carry_rim(&world, &rim, &uvs, &made.sides);
     }
 }

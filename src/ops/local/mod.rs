@@ -34,6 +34,8 @@ mod flip;
 mod inset;
 mod split;
 mod split_face;
+#[cfg(test)]
+pub(crate) mod testkit;
 mod vertex_split;
 mod weld;
 
