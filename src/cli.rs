@@ -49,6 +49,8 @@ macro_rules! outln {
     }};
 }
 
+mod batch;
+
 /// The command line.
 #[derive(Parser, Clone, Debug, PartialEq)]
 #[command(
@@ -91,16 +93,21 @@ pub enum Command {
         output: PathBuf,
     },
     /// Run steps in order, then write the result.
-    #[command(after_help = format!("STEP: {STEP_SYNTAX}\n\n{FILE_HELP}"))]
+    #[command(after_help = format!("{PROCESS_HELP}\n\nSTEP: {STEP_SYNTAX}\n\n{FILE_HELP}"))]
     Process {
-        /// Source file (or shape:NAME).
+        /// Source file (or shape:NAME, or a glob pattern such as 'models/*.obj').
         input: String,
-        /// Destination file (format by extension).
+        /// Destination file (format by extension). With several inputs, a pattern: `{stem}`
+        /// stands for each input's file name without its extension (`-o out/{stem}.ply`).
         #[arg(short, long)]
         output: PathBuf,
-        /// One JSON object with a record per step instead of text.
+        /// One JSON object with a record per step instead of text (with several inputs: one
+        /// line per input).
         #[arg(long)]
         json: bool,
+        /// With several inputs: how many to process at once (threads, one World each).
+        #[arg(short = 'j', long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1024))]
+        jobs: u32,
         /// Write this per-vertex quantity of the result into OUT (a PLY file) as `quality`,
         /// and as vertex colours: mean, gaussian, angle-defect, max-curvature, min-curvature,
         /// valence, min-angle, edge-length, distance (to the input).
@@ -110,10 +117,43 @@ pub enum Command {
         /// the faces' angles at the vertex (Thürmer & Wüthrich) or by their areas.
         #[arg(long, value_parser = parse_weighting, value_name = "angle|area")]
         normals: Option<NormalWeighting>,
-        /// The steps, in order.
-        #[arg(value_parser = Step::parse, value_name = "STEP")]
-        steps: Vec<Step>,
+        /// More inputs (files with a mesh extension, shape:NAME, glob patterns), then the
+        /// steps, in order.
+        #[arg(value_parser = ProcessArg::parse, value_name = "STEP")]
+        steps: Vec<ProcessArg>,
     },
+}
+
+/// How `process` takes several inputs.
+const PROCESS_HELP: &str = "Several inputs: `pappus process a.obj b.off 'scans/*.ply' -o out/{stem}.ply -j 2 STEP...`: \
+each input runs the steps in its own World; a failed input is reported and the others go on \
+(exit code 1 if any failed); --json prints one line per input, with `input` and `output` (or \
+`error`) beside the single-file keys.";
+
+/// A positional argument of `process` after the first input: another input, or a step.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ProcessArg {
+    /// A mesh source: `shape:NAME`, a path with a mesh extension, or a glob pattern.
+    Input(String),
+    /// A step.
+    Step(Step),
+}
+
+impl ProcessArg {
+    /// An input when `text` names a mesh source (`shape:…`, a `.obj .off .ply .stl` path, or
+    /// a pattern with `*`, `?` or `[`), else a step.
+    ///
+    /// # Errors
+    /// The step's parse error (an unknown step, malformed arguments).
+    pub fn parse(text: &str) -> Result<ProcessArg, String> {
+        if text.starts_with("shape:")
+            || batch::is_pattern(text)
+            || io::Format::from_path(Path::new(text)).is_ok()
+        {
+            return Ok(ProcessArg::Input(text.to_string()));
+        }
+        Step::parse(text).map(ProcessArg::Step)
+    }
 }
 
 /// A mesh loaded for batch work, with what loading it cost.
@@ -218,6 +258,22 @@ pub fn info_json(world: &World, mesh: MeshId, report: &RepairReport) -> Map<Stri
     out
 }
 
+/// The whole object `pappus info --json` prints: [`info_json`] plus `read_ms`, `build_ms` and
+/// `load_ms` (their sum), what reading and building the mesh took, rounded to 3 decimals.
+pub fn info_with_load_times(
+    world: &World,
+    mesh: MeshId,
+    report: &RepairReport,
+    read_ms: f64,
+    build_ms: f64,
+) -> Map<String, Value> {
+    let mut object = info_json(world, mesh, report);
+    object.insert("read_ms".into(), json!(round(read_ms, 3)));
+    object.insert("build_ms".into(), json!(round(build_ms, 3)));
+    object.insert("load_ms".into(), json!(round(read_ms + build_ms, 3)));
+    object
+}
+
 /// The curvature and normal summaries of `info --json`: each curvature's min, median and max
 /// over the vertices; the total angle defect beside 2πχ (Gauss–Bonnet: equal); faces and
 /// vertices whose normal is undefined (zero area).
@@ -319,12 +375,12 @@ fn execute(command: Command) -> Result<(), String> {
     match command {
         Command::Info { input, json } => {
             let loaded = load(&input)?;
-            let mut object = info_json(&loaded.world, loaded.built.mesh, &loaded.built.report);
-            object.insert("read_ms".into(), json!(round(loaded.read_ms, 3)));
-            object.insert("build_ms".into(), json!(round(loaded.build_ms, 3)));
-            object.insert(
-                "load_ms".into(),
-                json!(round(loaded.read_ms + loaded.build_ms, 3)),
+            let object = info_with_load_times(
+                &loaded.world,
+                loaded.built.mesh,
+                &loaded.built.report,
+                loaded.read_ms,
+                loaded.build_ms,
             );
             if json {
                 outln!("{}", Value::Object(object));
@@ -351,105 +407,155 @@ fn execute(command: Command) -> Result<(), String> {
             output,
             steps,
             json,
+            jobs,
             quantity,
             normals,
         } => {
-            if normals.is_some()
-                && !matches!(
-                    io::Format::from_path(&output),
-                    Ok(io::Format::Ply | io::Format::Obj)
-                )
-            {
-                return Err(format!(
-                    "--normals writes vertex normals, which OBJ and PLY hold: {} is neither",
-                    output.display()
-                ));
-            }
-            if quantity.is_some() && !matches!(io::Format::from_path(&output), Ok(io::Format::Ply))
-            {
-                return Err(format!(
-                    "--quantity writes vertex quality and colours, which only PLY holds: {} is not a .ply file",
-                    output.display()
-                ));
-            }
-            let mut loaded = load(&input)?;
-            let mesh = loaded.built.mesh;
-            // The distance quantity measures how far the steps moved the mesh from the input.
-            let input = (quantity == Some(Quantity::Distance))
-                .then(|| Reference::of_tables(&extract(&loaded.world, mesh).tables));
-            let mut records = Vec::new();
-            let mut history = None;
-            for step in &steps {
-                let start = Instant::now();
-                let had = MeshAttributes::of(&loaded.world, mesh);
-                let outcome = step.run(
-                    &mut loaded.world,
-                    mesh,
-                    &loaded.built.input_vertices,
-                    &mut history,
-                );
-                let ms = round(ms_since(start), 3);
-                let lost = had.lost_in(MeshAttributes::of(&loaded.world, mesh));
-                if !lost.is_empty() {
-                    eprintln!(
-                        "pappus: {step}: {} dropped (the output will not have them)",
-                        lost.describe()
-                    );
-                }
-                let mut record = Map::new();
-                record.insert("step".into(), json!(step.to_string()));
-                match &outcome {
-                    Ok(summary) => {
-                        record.insert("outcome".into(), json!("applied"));
-                        record.insert("summary".into(), json!(summary));
-                        if !json {
-                            outln!("{step}: applied ({summary}) in {ms} ms");
-                        }
-                    }
-                    Err(reason) => {
-                        record.insert("outcome".into(), json!("refused"));
-                        record.insert("reason".into(), json!(reason.to_string()));
-                        if !json {
-                            outln!("{step}: refused: {reason}");
-                        }
-                    }
-                }
-                record.insert("ms".into(), json!(ms));
-                records.push(Value::Object(record));
-            }
-            let mut soup = to_soup(&loaded.world, mesh);
-            let quantity = quantity
-                .map(|q| attach_quantity(&loaded.world, mesh, q, input.as_ref(), &mut soup));
-            if let Some(weighting) = normals {
-                // The soup's vertices are the mesh's table rows (see `to_soup`).
-                let surface = Surface::from_tables(&extract(&loaded.world, mesh).tables);
-                let n = vertex_normals(&surface, weighting);
-                soup.vertex_normals = Some(n.iter().map(|v| v.as_vec3()).collect());
-            }
-            io::write(&output, &soup).map_err(|e| e.to_string())?;
-            if MeshAttributes::of(&loaded.world, mesh).seams {
-                eprintln!(
-                    "pappus: {}: seam marks are not written (the format has no place for them; \
-                     a param step after them keeps the cut in the UVs)",
-                    output.display()
-                );
-            }
-            let result = info_json(&loaded.world, mesh, &loaded.built.report);
-            if json {
-                let mut report = json!({ "steps": records, "result": Value::Object(result) });
-                if let Some(q) = quantity {
-                    report["quantity"] = Value::Object(q);
-                }
-                outln!("{report}");
-            } else {
-                out!(
-                    "{}",
-                    info_text(&output.display().to_string(), &result, &loaded.built.report)
-                );
-            }
+            let job = ProcessJob {
+                json,
+                quantity,
+                normals,
+                steps: Vec::new(),
+            };
+            return batch::process(input, output, steps, jobs as usize, job);
         }
     }
     Ok(())
+}
+
+/// What `process` does to each input: the steps and the output options.
+#[derive(Clone, Debug)]
+struct ProcessJob {
+    /// The steps, in order.
+    steps: Vec<Step>,
+    /// JSON instead of text.
+    json: bool,
+    /// A per-vertex quantity to write into the output.
+    quantity: Option<Quantity>,
+    /// Vertex normals to write into the output.
+    normals: Option<NormalWeighting>,
+}
+
+/// Checks that `output`'s format can hold what `job` writes beside the mesh.
+///
+/// # Errors
+/// `--normals` into a format without normals, `--quantity` into anything but PLY.
+fn check_output(job: &ProcessJob, output: &Path) -> Result<(), String> {
+    if job.normals.is_some()
+        && !matches!(
+            io::Format::from_path(output),
+            Ok(io::Format::Ply | io::Format::Obj)
+        )
+    {
+        return Err(format!(
+            "--normals writes vertex normals, which OBJ and PLY hold: {} is neither",
+            output.display()
+        ));
+    }
+    if job.quantity.is_some() && !matches!(io::Format::from_path(output), Ok(io::Format::Ply)) {
+        return Err(format!(
+            "--quantity writes vertex quality and colours, which only PLY holds: {} is not a .ply file",
+            output.display()
+        ));
+    }
+    Ok(())
+}
+
+/// Runs `job` on one input and writes `output`. Text lines (when not `job.json`) go to
+/// `text` as they come, warnings to `warn` (without the `pappus: ` prefix). Returns the JSON
+/// report: `{"steps": […], "result": {info keys}, "quantity"?: {…}}`.
+///
+/// # Errors
+/// A message naming the file: it could not be read, built or written.
+fn process_file(
+    job: &ProcessJob,
+    input: &str,
+    output: &Path,
+    text: &mut dyn FnMut(&str),
+    warn: &mut dyn FnMut(&str),
+) -> Result<Value, String> {
+    let ProcessJob {
+        steps,
+        json,
+        quantity,
+        normals,
+    } = job;
+    let (json, quantity, normals) = (*json, *quantity, *normals);
+    let mut loaded = load(input)?;
+    let mesh = loaded.built.mesh;
+    // The distance quantity measures how far the steps moved the mesh from the input.
+    let reference = (quantity == Some(Quantity::Distance))
+        .then(|| Reference::of_tables(&extract(&loaded.world, mesh).tables));
+    let mut records = Vec::new();
+    let mut history = None;
+    for step in steps {
+        let start = Instant::now();
+        let had = MeshAttributes::of(&loaded.world, mesh);
+        let outcome = step.run(
+            &mut loaded.world,
+            mesh,
+            &loaded.built.input_vertices,
+            &mut history,
+        );
+        let ms = round(ms_since(start), 3);
+        let lost = had.lost_in(MeshAttributes::of(&loaded.world, mesh));
+        if !lost.is_empty() {
+            warn(&format!(
+                "{step}: {} dropped (the output will not have them)",
+                lost.describe()
+            ));
+        }
+        let mut record = Map::new();
+        record.insert("step".into(), json!(step.to_string()));
+        match &outcome {
+            Ok(summary) => {
+                record.insert("outcome".into(), json!("applied"));
+                record.insert("summary".into(), json!(summary));
+                if !json {
+                    text(&format!("{step}: applied ({summary}) in {ms} ms\n"));
+                }
+            }
+            Err(reason) => {
+                record.insert("outcome".into(), json!("refused"));
+                record.insert("reason".into(), json!(reason.to_string()));
+                if !json {
+                    text(&format!("{step}: refused: {reason}\n"));
+                }
+            }
+        }
+        record.insert("ms".into(), json!(ms));
+        records.push(Value::Object(record));
+    }
+    let mut soup = to_soup(&loaded.world, mesh);
+    let quantity =
+        quantity.map(|q| attach_quantity(&loaded.world, mesh, q, reference.as_ref(), &mut soup));
+    if let Some(weighting) = normals {
+        // The soup's vertices are the mesh's table rows (see `to_soup`).
+        let surface = Surface::from_tables(&extract(&loaded.world, mesh).tables);
+        let n = vertex_normals(&surface, weighting);
+        soup.vertex_normals = Some(n.iter().map(|v| v.as_vec3()).collect());
+    }
+    io::write(output, &soup).map_err(|e| e.to_string())?;
+    if MeshAttributes::of(&loaded.world, mesh).seams {
+        warn(&format!(
+            "{}: seam marks are not written (the format has no place for them; \
+             a param step after them keeps the cut in the UVs)",
+            output.display()
+        ));
+    }
+    let result = info_json(&loaded.world, mesh, &loaded.built.report);
+    if !json {
+        text(&info_text(
+            &output.display().to_string(),
+            &result,
+            &loaded.built.report,
+        ));
+    }
+    let mut report = json!({ "steps": records, "result": Value::Object(result) });
+    if let Some(q) = quantity {
+        report["quantity"] = Value::Object(q);
+    }
+    Ok(report)
 }
 
 /// Parses a `--normals` weighting.
@@ -538,12 +644,33 @@ mod tests {
             Some(Command::Process {
                 input: "a.obj".into(),
                 output: "b.ply".into(),
-                steps: vec![Step::Edit(crate::edit::Edit::Triangulate), Step::Validate],
+                steps: vec![
+                    ProcessArg::Step(Step::Edit(crate::edit::Edit::Triangulate)),
+                    ProcessArg::Step(Step::Validate)
+                ],
                 json: true,
+                jobs: 1,
                 quantity: None,
                 normals: None,
             })
         );
+        let Some(Command::Process { steps, jobs, .. }) =
+            parse("process a.obj m/*.ply shape:cube -o out/{stem}.ply -j 2 loop")
+                .unwrap()
+                .command
+        else {
+            panic!("a process command");
+        };
+        assert_eq!(jobs, 2);
+        assert_eq!(
+            steps,
+            [
+                ProcessArg::Input("m/*.ply".into()),
+                ProcessArg::Input("shape:cube".into()),
+                ProcessArg::Step(Step::parse("loop").unwrap()),
+            ]
+        );
+        assert!(parse("process a.obj -o b.obj -j 0").is_err());
         assert!(parse("process a.obj triangulate").is_err());
         let unknown = parse("process a.obj -o b.obj frobnicate").unwrap_err();
         assert!(unknown.to_string().contains("unknown step"), "{unknown}");

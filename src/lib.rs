@@ -11,11 +11,14 @@
 //! - [`io`]: file formats (OBJ, OFF, PLY, STL), all to and from a [`mesh::soup::PolygonSoup`].
 //! - [`colormap`]: the colour maps quantities on a mesh are shown and exported with.
 //! - [`cli`]: the batch command line (`info`, `convert`, `process`), no window needed.
-//! - [`editor`]: the Bevy application.
+//! - `editor`: the Bevy application (the window, rendering, picking, the panels), behind the
+//!   `editor` cargo feature, on by default. Without it the crate is the core above, built on
+//!   Bevy's ECS and math alone: no window, no GPU, no rendering crates to compile.
 
 pub mod cli;
 pub mod colormap;
 pub mod edit;
+#[cfg(feature = "editor")]
 pub mod editor;
 pub mod io;
 pub mod mesh;

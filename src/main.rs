@@ -1,4 +1,7 @@
 //! The `pappus` program: the editor, or batch mode when given a subcommand.
+//!
+//! Built without the `editor` feature (`--no-default-features`) it is batch mode only: with no
+//! subcommand it says so and exits with 2, as for a usage error.
 
 use clap::Parser;
 use pappus::cli::{self, Cli};
@@ -7,8 +10,24 @@ fn main() {
     // A usage error prints the usage and exits with 2; --help and --version exit with 0.
     let Cli { file, command } = Cli::parse();
     let code = match command {
-        None => pappus::editor::run(file),
+        None => open_editor(file),
         Some(command) => cli::run(command),
     };
     std::process::exit(code);
+}
+
+/// Opens the editor on `file` (or the default model) and returns its exit code.
+#[cfg(feature = "editor")]
+fn open_editor(file: Option<std::path::PathBuf>) -> i32 {
+    pappus::editor::run(file)
+}
+
+/// This build has no editor: says so, and returns 2.
+#[cfg(not(feature = "editor"))]
+fn open_editor(_file: Option<std::path::PathBuf>) -> i32 {
+    eprintln!(
+        "pappus: this build has no editor (built without the `editor` feature); \
+         use a subcommand: info, convert, process (see `pappus --help`)"
+    );
+    2
 }

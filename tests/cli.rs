@@ -599,3 +599,174 @@ fn seams_marked_by_steps_cut_the_layout() {
     let text = std::fs::read_to_string(out).unwrap();
     assert_eq!(text.lines().filter(|l| l.starts_with("vt ")).count(), 13);
 }
+
+/// A fresh empty folder under the test target dir.
+fn fresh_dir(name: &str) -> PathBuf {
+    let dir = tmp(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// stdout as one JSON object per line, sorted by `input`.
+fn json_lines(output: &Output) -> Vec<Value> {
+    let mut lines: Vec<Value> = String::from_utf8_lossy(&output.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("each line is one JSON object"))
+        .collect();
+    lines.sort_by_key(|v| v["input"].as_str().unwrap_or_default().to_string());
+    lines
+}
+
+#[test]
+fn several_inputs_write_one_output_each_by_the_stem_pattern() {
+    let dir = fresh_dir("batch-shapes");
+    let pattern = dir.join("out/{stem}.obj");
+    let output = pappus(&[
+        "process",
+        "shape:cube",
+        "shape:icosphere:2",
+        "-o",
+        pattern.to_str().unwrap(),
+        "-j",
+        "2",
+        "--json",
+        "triangulate",
+        "loop",
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let lines = json_lines(&output);
+    assert_eq!(lines.len(), 2);
+    for (line, (stem, faces)) in lines.iter().zip([("cube", 48), ("icosphere-2", 1280)]) {
+        assert_eq!(line["input"], format!("shape:{}", stem.replace('-', ":")));
+        let out = dir.join(format!("out/{stem}.obj"));
+        assert_eq!(line["output"], out.to_str().unwrap());
+        assert!(out.is_file());
+        assert_eq!(line["result"]["faces"], faces, "{line}");
+        assert_eq!(line["steps"].as_array().unwrap().len(), 2);
+        assert!(line["ms"].as_f64().unwrap() > 0.0);
+    }
+}
+
+#[test]
+fn a_failed_input_is_reported_and_the_others_go_on() {
+    let dir = fresh_dir("batch-failure");
+    let good = dir.join("good.obj");
+    let bad = dir.join("bad.obj");
+    assert!(
+        pappus(&["convert", "shape:icosahedron", good.to_str().unwrap()])
+            .status
+            .success()
+    );
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n").unwrap();
+    let nothing = dir.join("none/*.obj");
+    let pattern = dir.join("out/{stem}.ply");
+    let output = pappus(&[
+        "process",
+        bad.to_str().unwrap(),
+        good.to_str().unwrap(),
+        nothing.to_str().unwrap(),
+        "-o",
+        pattern.to_str().unwrap(),
+        "--json",
+        "simplify:0.5",
+    ]);
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("bad.obj: line 4"), "{stderr}");
+    assert!(stderr.contains("no file matches"), "{stderr}");
+    assert!(stderr.contains("2 of 3 inputs failed"), "{stderr}");
+    let lines = json_lines(&output);
+    assert_eq!(lines.len(), 3);
+    let by_input = |path: &PathBuf| {
+        lines
+            .iter()
+            .find(|l| l["input"] == path.to_str().unwrap())
+            .unwrap()
+    };
+    assert!(by_input(&bad)["error"].as_str().unwrap().contains("line 4"));
+    assert!(by_input(&nothing)["error"].is_string());
+    assert_eq!(by_input(&good)["result"]["faces"], 10);
+    assert!(dir.join("out/good.ply").is_file());
+}
+
+#[test]
+fn a_glob_pattern_is_expanded_and_runs_on_worker_threads() {
+    let dir = fresh_dir("batch-glob");
+    for shape in ["cube", "torus", "icosphere"] {
+        let path = dir.join(format!("in/{shape}.off"));
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        assert!(
+            pappus(&["convert", &format!("shape:{shape}"), path.to_str().unwrap()])
+                .status
+                .success()
+        );
+    }
+    std::fs::write(dir.join("in/notes.txt"), "not a mesh").unwrap();
+    let inputs = dir.join("in/*.off");
+    let pattern = dir.join("out/{stem}.stl");
+    let output = pappus(&[
+        "process",
+        inputs.to_str().unwrap(),
+        "-o",
+        pattern.to_str().unwrap(),
+        "-j",
+        "3",
+        "triangulate",
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let text = String::from_utf8_lossy(&output.stdout);
+    for shape in ["cube", "torus", "icosphere"] {
+        assert!(dir.join(format!("out/{shape}.stl")).is_file());
+        // Each input's report is printed whole, headed by the input and its time.
+        let head = format!("{}: ", dir.join(format!("in/{shape}.off")).display());
+        assert!(
+            text.lines()
+                .any(|l| l.starts_with(&head) && l.ends_with(" ms")),
+            "{text}"
+        );
+    }
+    assert_eq!(text.matches("triangulate: applied").count(), 3, "{text}");
+}
+
+#[test]
+fn several_inputs_need_a_pattern_that_tells_their_outputs_apart() {
+    let out = tmp("same.obj");
+    let output = pappus(&[
+        "process",
+        "shape:cube",
+        "shape:torus",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("{stem}"));
+    let pattern = tmp("{stem}.obj");
+    let twice = pappus(&[
+        "process",
+        "shape:cube",
+        "shape:cube",
+        "-o",
+        pattern.to_str().unwrap(),
+    ]);
+    assert_eq!(twice.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&twice.stderr).contains("would both write"));
+    let late = pappus(&[
+        "process",
+        "shape:cube",
+        "-o",
+        pattern.to_str().unwrap(),
+        "triangulate",
+        "shape:torus",
+    ]);
+    assert_eq!(late.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&late.stderr).contains("the inputs come first"));
+}

@@ -2,7 +2,9 @@
 #![allow(dead_code)]
 
 use bevy::math::Vec3;
-use bevy::prelude::{App, AssetPlugin, MinimalPlugins, World};
+use bevy::prelude::World;
+#[cfg(feature = "editor")]
+use bevy::prelude::{App, AssetPlugin, MinimalPlugins};
 use pappus::mesh::{BuiltMesh, MeshInfo, PolygonSoup, build_mesh, validate};
 use std::path::PathBuf;
 
@@ -56,6 +58,7 @@ pub fn canonical(soup: &PolygonSoup) -> Vec<Vec<Key>> {
     faces
 }
 
+#[cfg(feature = "editor")]
 /// The editor's logic without a window (`MinimalPlugins`, input, assets, meshes), updated once.
 pub fn headless_editor() -> App {
     let mut app = App::new();
@@ -70,6 +73,7 @@ pub fn headless_editor() -> App {
     app
 }
 
+#[cfg(feature = "editor")]
 /// The editor's last outcome (the request's label and what became of it).
 pub fn last_outcome(app: &App) -> pappus::editor::requests::EditOutcome {
     app.world()

@@ -1,0 +1,136 @@
+"""Type stubs for ``pappus``: what each call accepts, returns, and raises."""
+
+import os
+from typing import Callable, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+#: The procedural shapes ``load("shape:NAME")`` knows (sizes after colons: ``"shape:torus:64:32"``).
+SHAPES: List[str]
+
+#: A progress callback: called with the fraction done (0 to 1); return False to stop early.
+Progress = Optional[Callable[[float], Optional[bool]]]
+#: A vertex by its input number; an edge ``(a, b)``; a face ``(a, b, c, ...)`` (consecutive corners).
+Element = Union[int, Sequence[int]]
+#: One element, or several.
+Elements = Union[Element, Sequence[Element]]
+#: Faces as an M×k integer array, or one index sequence per face (polygons of any sizes).
+FacesLike = Union[npt.ArrayLike, Sequence[Sequence[int]]]
+
+class PappusError(Exception):
+    """The base of every error Pappus raises itself."""
+
+class Refused(PappusError):
+    """An operation was refused; the message is the reason. The mesh is exactly as it was."""
+
+class ParseError(PappusError):
+    """A mesh file is malformed or uses a variant Pappus does not read."""
+
+    path: str
+    #: ``"line N"`` (text formats) or ``"byte N"`` (binary, 0-based).
+    location: str
+    #: The 1-based line for text formats, else None.
+    line: Optional[int]
+
+class InvalidMesh(PappusError):
+    """``Mesh.validate`` found a broken invariant; the message names the rule and the element."""
+
+def load(path: Union[str, os.PathLike]) -> "Mesh":
+    """Loads a mesh from .obj/.off/.ply/.stl or ``"shape:NAME"``, repaired as the command line does.
+
+    Raises ParseError (naming the line), FileNotFoundError/OSError, or ValueError (unknown
+    extension or shape, no usable face). The GIL is released while reading and building.
+    """
+
+class Mesh:
+    """One halfedge mesh (polygons allowed).
+
+    Operations name elements by the numbers of the vertices the mesh was made from (the file's
+    vertex numbers or the rows of the constructor's ``vertices``), as ``pappus process`` steps
+    do. Each returns the command line's summary string; a refusal raises :class:`Refused` and
+    leaves the mesh untouched; a parameter out of range raises ValueError.
+    """
+
+    def __init__(self, vertices: npt.ArrayLike, faces: FacesLike) -> None:
+        """From an N×3 float array and M×3 / M×4 integer faces (or a list of polygons).
+
+        Repaired as a file is; ValueError for an index out of range, a wrong shape, or no face
+        left.
+        """
+    @property
+    def vertices(self) -> npt.NDArray[np.float32]:
+        """N×3 float32 positions (a copy), in table order."""
+    @property
+    def faces(self) -> Union[npt.NDArray[np.int64], List[npt.NDArray[np.int64]]]:
+        """M×k int64 rows of ``vertices`` when every face has k sides, else a list of arrays."""
+    @property
+    def corner_uvs(self) -> Optional[npt.NDArray[np.float32]]:
+        """K×2 float32 UVs, one per face corner in the order of ``faces``; None without UVs."""
+    @property
+    def name(self) -> str:
+        """The file name, the shape's name, or ``"arrays"``."""
+    def arrays(
+        self,
+    ) -> Tuple[npt.NDArray[np.float32], Union[npt.NDArray[np.int64], List[npt.NDArray[np.int64]]]]:
+        """``(vertices, faces)`` in one pass."""
+    def info(self) -> dict:
+        """The keys of ``pappus info --json`` (counts, genus, validity, repairs, curvature, …)."""
+    def validate(self) -> None:
+        """Returns None when every invariant holds; raises InvalidMesh otherwise."""
+    def save(self, path: Union[str, os.PathLike]) -> None:
+        """Writes .obj/.off/.ply/.stl (by extension) atomically; ValueError/OSError on failure."""
+    def step(self, step: str, *, progress: Progress = None) -> str:
+        """Runs one ``pappus process`` step written as on the command line (``"flip:3,17"``)."""
+    # Whole-mesh operations: the GIL is released, ``progress`` is called now and then.
+    def simplify(
+        self, ratio: Optional[float] = None, faces: Optional[int] = None, *, progress: Progress = None
+    ) -> str:
+        """QEM to ``ratio`` (0, 1] of the faces or to ``faces`` faces (neither: 0.5)."""
+    def remesh(
+        self, iterations: int = 5, length: Optional[float] = None, *, progress: Progress = None
+    ) -> str:
+        """Isotropic remeshing; ``length`` defaults to the mean edge length."""
+    def loop(self, levels: int = 1, *, progress: Progress = None) -> str:
+        """Loop subdivision (triangles only), 1 to 8 levels."""
+    def catmull_clark(self, levels: int = 1, *, progress: Progress = None) -> str:
+        """Catmull–Clark subdivision (any polygons, gives quads), 1 to 8 levels."""
+    def triangulate(self, *, progress: Progress = None) -> str:
+        """Cuts every polygon into triangles."""
+    def smooth(
+        self,
+        method: str = "uniform",
+        iterations: int = 1,
+        step: Optional[float] = None,
+        *,
+        progress: Progress = None,
+    ) -> str:
+        """``uniform``, ``cotan``, ``implicit`` or ``taubin`` smoothing; the boundary stays."""
+    def parameterize(
+        self, method: str = "mean-value", boundary: str = "circle", *, progress: Progress = None
+    ) -> str:
+        """UVs per corner: ``uniform``, ``mean-value``, ``harmonic`` (``circle``/``square``), ``lscm``."""
+    def refine(self, faces: Optional[int] = None, *, progress: Progress = None) -> str:
+        """Splits the last simplification back (to ``faces`` faces, or all)."""
+    # Local operations, by input vertex numbers.
+    def flip(self, a: int, b: int) -> str: ...
+    def split(self, a: int, b: int) -> str: ...
+    def bisect(self, a: int, b: int) -> str: ...
+    def collapse(self, a: int, b: int) -> str: ...
+    def dissolve(self, a: int, b: int) -> str: ...
+    def fill_hole(self, a: int, b: int) -> str: ...
+    def split_face(self, a: int, b: int) -> str: ...
+    def seam(self, a: int, b: int) -> str: ...
+    def extrude(self, faces: Elements, distance: float) -> str: ...
+    def inset(self, faces: Elements, amount: float, depth: float = 0.0) -> str: ...
+    def bevel(self, element: Element, amount: float = 0.25, depth: float = 0.0) -> str: ...
+    def erase(self, elements: Elements) -> str: ...
+    def dissolve_vertex(self, a: int) -> str: ...
+    def collapse_face(self, face: Sequence[int]) -> str: ...
+    def weld(self, first: Sequence[int], second: Sequence[int]) -> str: ...
+    def copy(self) -> "Mesh":
+        """An independent copy (no simplification history, no seam marks)."""
+    def __copy__(self) -> "Mesh": ...
+    def __deepcopy__(self, memo: object) -> "Mesh": ...
+    def __reduce__(self) -> tuple: ...

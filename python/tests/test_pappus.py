@@ -1,0 +1,376 @@
+"""Tests of the `pappus` Python package: arrays and files in and out, every operation, refusals,
+errors, pickling, and a pool of two processes over the shared models.
+
+Shapes name their vertices by their rows (no repair reorders a procedural shape), so a face's
+row of `mesh.faces` names that face for the operations, as a file's vertex numbers would.
+"""
+
+import copy
+import multiprocessing
+import os
+import pickle
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pappus
+
+MODELS = Path(__file__).resolve().parents[2] / ".." / "shared" / "models"
+
+
+def models():
+    """The shared models (`../shared/models` beside the repository), or a skip."""
+    if not MODELS.is_dir():
+        pytest.skip("../shared/models is absent")
+    return sorted(MODELS.glob("*.obj"))
+
+
+def two_triangles():
+    """A unit square cut along its diagonal 0-2: faces (0, 1, 2) and (0, 2, 3)."""
+    vertices = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=np.float64)
+    return pappus.Mesh(vertices, np.array([[0, 1, 2], [0, 2, 3]]))
+
+
+def face(mesh, i):
+    """Face `i` of a shape as a tuple of its corners' numbers."""
+    return tuple(int(x) for x in mesh.faces[i])
+
+
+# --- Arrays and files -------------------------------------------------------------------------
+
+
+def test_triangles_from_arrays_round_trip():
+    mesh = two_triangles()
+    assert mesh.vertices.dtype == np.float32 and mesh.vertices.shape == (4, 3)
+    assert mesh.faces.dtype == np.int64 and mesh.faces.shape == (2, 3)
+    np.testing.assert_array_equal(mesh.faces, [[0, 1, 2], [0, 2, 3]])
+    info = mesh.info()
+    assert (info["vertices"], info["edges"], info["faces"]) == (4, 5, 2)
+    assert info["boundary_loops"] == 1 and info["valid"]
+    assert mesh.validate() is None
+    assert mesh.name == "arrays"
+
+
+def test_quads_and_polygons_from_arrays():
+    cube = pappus.load("shape:cube")
+    quads = pappus.Mesh(cube.vertices, cube.faces)
+    assert quads.faces.shape == (6, 4)
+    assert quads.info()["face_sizes"] == {"4": 6}
+    # A pentagon beside a triangle: faces come back as a list of arrays.
+    vertices = np.array([[0, 0, 0], [2, 0, 0], [3, 1, 0], [1, 2, 0], [-1, 1, 0], [1, -2, 0]], float)
+    mixed = pappus.Mesh(vertices, [[0, 1, 2, 3, 4], [0, 5, 1]])
+    faces = mixed.faces
+    assert isinstance(faces, list) and [len(f) for f in faces] == [5, 3]
+    assert mixed.info()["face_sizes"] == {"3": 1, "5": 1}
+
+
+def test_arrays_give_what_the_properties_give():
+    mesh = pappus.load("shape:torus")
+    vertices, faces = mesh.arrays()
+    np.testing.assert_array_equal(vertices, mesh.vertices)
+    np.testing.assert_array_equal(faces, mesh.faces)
+
+
+def test_bad_arrays_are_value_errors():
+    vertices = np.zeros((3, 3))
+    with pytest.raises(ValueError, match="names vertex 3"):
+        pappus.Mesh(vertices, [[0, 1, 3]])
+    with pytest.raises(ValueError, match="N×3"):
+        pappus.Mesh(np.zeros((3, 2)), [[0, 1, 2]])
+    with pytest.raises(ValueError, match="integer"):
+        pappus.Mesh(vertices, np.array([[0.0, 1.0, 2.0]]))
+    with pytest.raises(ValueError, match="no usable faces"):
+        pappus.Mesh(vertices, [[0, 0, 1]])
+
+
+def test_files_round_trip(tmp_path):
+    mesh = pappus.load("shape:quad-grid")
+    for ext in ["obj", "off", "ply"]:
+        path = tmp_path / f"grid.{ext}"
+        mesh.save(path)
+        back = pappus.load(path)
+        assert back.name == f"grid.{ext}"
+        np.testing.assert_array_equal(back.vertices, mesh.vertices)
+        np.testing.assert_array_equal(back.faces, mesh.faces)
+    # STL holds triangles only: written fan-triangulated.
+    mesh.save(str(tmp_path / "grid.stl"))
+    assert pappus.load(tmp_path / "grid.stl").info()["faces"] == 2 * mesh.info()["faces"]
+
+
+def test_shared_models_load_with_the_command_lines_counts():
+    paths = models()
+    bunny = pappus.load(MODELS / "stanford-bunny.obj")
+    info = bunny.info()
+    assert (info["vertices"], info["faces"]) == (35947 - info["repairs"]["unreferenced_vertices"], 69451)
+    assert info["load_ms"] == pytest.approx(info["read_ms"] + info["build_ms"], abs=0.01)
+    assert len(paths) >= 9
+
+
+# --- Every operation --------------------------------------------------------------------------
+
+
+def test_whole_mesh_operations():
+    mesh = pappus.load("shape:icosphere:3")
+    assert mesh.simplify(ratio=0.25) == "1280 -> 320 faces in 480 collapses"
+    assert mesh.refine(faces=640).endswith("640 faces")
+    assert mesh.refine().endswith("1280 faces")
+    assert mesh.simplify(faces=500).startswith("1280 -> 500 faces")
+    assert mesh.info()["faces"] == 500
+    assert "splits" in mesh.remesh(iterations=2)
+    assert "splits" in mesh.remesh(1, length=0.2)
+    before = mesh.info()["faces"]
+    assert mesh.loop().startswith("1 level(s)")
+    assert mesh.info()["faces"] == 4 * before
+    for method in ["uniform", "cotan", "implicit", "taubin"]:
+        assert "free vertices moved" in mesh.smooth(method, iterations=2)
+    assert "free vertices moved" in mesh.smooth("taubin", 1, step=0.3)
+    assert "flipped of" in mesh.parameterize("lscm")
+    assert mesh.corner_uvs.shape == (3 * mesh.info()["faces"], 2)
+    mesh.validate()
+
+    quads = pappus.load("shape:cube")
+    assert quads.catmull_clark(levels=2) == "2 level(s): 98 vertices, 96 faces"
+    assert "cut into triangles" in quads.triangulate()
+    assert quads.info()["face_sizes"] == {"3": 192}
+    grid = pappus.load("shape:grid")
+    for method, boundary in [("uniform", "circle"), ("mean-value", "circle"), ("harmonic", "square")]:
+        assert grid.parameterize(method, boundary).startswith("0 flipped")
+
+
+def test_edge_operations_by_input_vertex_numbers():
+    mesh = two_triangles()
+    assert mesh.flip(0, 2).startswith("flipped to")
+    # The diagonal is now 1-3: both faces hold 1 and 3.
+    assert all({1, 3} <= set(f) for f in mesh.faces.tolist())
+    mesh = two_triangles()
+    assert mesh.split(0, 2).startswith("new vertex")
+    assert (mesh.info()["vertices"], mesh.info()["faces"]) == (5, 4)
+    mesh = two_triangles()
+    assert mesh.bisect(0, 2).startswith("new vertex")
+    assert mesh.info()["face_sizes"] == {"4": 2}
+    mesh = two_triangles()
+    assert mesh.dissolve(0, 2).startswith("merged into")
+    assert mesh.info()["face_sizes"] == {"4": 1}
+    mesh = pappus.load("shape:icosphere:1")
+    a, b, _ = face(mesh, 0)
+    assert mesh.collapse(a, b).startswith("kept")
+    assert mesh.info()["vertices"] == 41
+    cube = pappus.load("shape:cube")
+    assert cube.split_face(0, 2).startswith("new edge")
+    assert cube.seam(0, 1).endswith("is a seam")
+    assert cube.seam(0, 1).endswith("no longer a seam")
+    mesh.validate()
+    cube.validate()
+
+
+def test_modelling_operations():
+    cube = pappus.load("shape:cube")
+    assert cube.extrude(face(cube, 1), 0.5) == "1 face lifted on 4 side faces"
+    assert cube.inset([face(cube, 2)], 0.3) == "1 face inset, 4 new faces around them"
+    assert cube.bevel(face(cube, 3), 0.2, depth=0.1).startswith("1 face inset")
+    assert cube.info()["faces"] == 6 + 4 + 4 + 4
+    cube.validate()
+    cube = pappus.load("shape:cube")
+    assert cube.bevel(6).startswith("new face")
+    assert cube.bevel((0, 3), amount=0.1).startswith("new face")
+    cube.validate()
+
+    sphere = pappus.load("shape:icosphere:2")
+    f0, f5 = face(sphere, 0), face(sphere, 5)
+    assert sphere.erase(f0) == "removed 1 face, 0 edges, 0 vertices"
+    assert sphere.info()["boundary_loops"] == 1
+    assert sphere.fill_hole(f0[0], f0[1]).endswith("of 3 sides")
+    assert sphere.info()["closed"]
+    assert sphere.collapse_face(f5).startswith("collapsed to")
+    assert sphere.dissolve_vertex(face(pappus.load("shape:icosphere:2"), 100)[0]).startswith(
+        "merged into"
+    )
+    assert sphere.erase([f0[0], (f0[1], f0[2])]).startswith("removed")
+    sphere.validate()
+
+    # Two triangles a hair apart along their long sides: weld the second side onto the first.
+    vertices = np.array(
+        [[0, 0, 0], [1, 0, 0], [0.5, 1, 0], [0, -0.01, 0], [1, -0.01, 0], [0.5, -1, 0]], float
+    )
+    pair = pappus.Mesh(vertices, [[0, 1, 2], [3, 5, 4]])
+    assert pair.weld((0, 1), (3, 4)).startswith("welded into")
+    assert pair.info()["boundary_loops"] == 1 and pair.info()["vertices"] == 4
+    pair.validate()
+
+
+def test_a_step_written_as_on_the_command_line():
+    mesh = pappus.load("shape:icosphere:2")
+    assert mesh.step("simplify:0.5").startswith("320 -> 160")
+    assert mesh.step("validate") == "valid"
+
+
+def test_progress_is_reported_and_can_stop_an_edit():
+    mesh = pappus.load("shape:icosphere:4")
+    seen = []
+    mesh.simplify(0.1, progress=seen.append)
+    assert seen and all(0.0 <= x <= 1.0 for x in seen)
+    stopped = pappus.load("shape:icosphere:4")
+    summary = stopped.simplify(0.1, progress=lambda fraction: False)
+    assert stopped.info()["faces"] > 0.1 * 5120, summary
+    stopped.validate()
+
+    def fails(fraction):
+        raise KeyError("from the callback")
+
+    with pytest.raises(KeyError, match="from the callback"):
+        pappus.load("shape:icosphere:3").remesh(progress=fails)
+
+
+# --- Refusals and errors ----------------------------------------------------------------------
+
+
+def test_refusals_raise_refused_and_change_nothing():
+    mesh = two_triangles()
+    before = mesh.arrays()
+    with pytest.raises(pappus.Refused, match="boundary"):
+        mesh.flip(0, 1)
+    with pytest.raises(pappus.Refused, match="no edge"):
+        mesh.split(1, 3)
+    with pytest.raises(pappus.Refused):
+        mesh.flip(0, 99)
+    np.testing.assert_array_equal(mesh.vertices, before[0])
+    np.testing.assert_array_equal(mesh.faces, before[1])
+    with pytest.raises(pappus.Refused, match="tetrahedron"):
+        pappus.load("shape:tetrahedron").collapse(0, 1)
+    with pytest.raises(pappus.Refused, match="not a triangle"):
+        pappus.load("shape:cube").loop()
+    with pytest.raises(pappus.Refused):
+        pappus.load("shape:cube").refine()
+    assert issubclass(pappus.Refused, pappus.PappusError)
+
+
+def test_parameters_out_of_range_are_value_errors():
+    mesh = pappus.load("shape:icosphere:2")
+    for call, message in [
+        (lambda: mesh.simplify(ratio=1.5), "(0, 1]"),
+        (lambda: mesh.simplify(ratio=0.5, faces=10), "not both"),
+        (lambda: mesh.loop(levels=9), "from 1 to 8"),
+        (lambda: mesh.remesh(iterations=0), "ITERATIONS"),
+        (lambda: mesh.smooth("gaussian"), "uniform|cotan"),
+        (lambda: mesh.parameterize("spectral"), "spectral"),
+        (lambda: mesh.step("frobnicate"), "unknown step"),
+        (lambda: mesh.extrude([], 1.0), "at least one vertex"),
+        (lambda: mesh.extrude([[0, 1, 2], []], 1.0), "at least one vertex"),
+    ]:
+        with pytest.raises(ValueError, match=message.replace("|", r"\|").replace("(", r"\(")):
+            call()
+
+
+def test_bad_files_raise_parse_error_naming_the_line(tmp_path):
+    obj = tmp_path / "bad.obj"
+    obj.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n")
+    with pytest.raises(pappus.ParseError, match="line 4") as caught:
+        pappus.load(obj)
+    assert caught.value.line == 4 and caught.value.location == "line 4"
+    assert caught.value.path == str(obj)
+    off = tmp_path / "bad.off"
+    off.write_text("OFF\n3 1 0\n0 0 0\n1 0 zz\n0 1 0\n3 0 1 2\n")
+    with pytest.raises(pappus.ParseError, match="line 4"):
+        pappus.load(off)
+    with pytest.raises(FileNotFoundError):
+        pappus.load(tmp_path / "missing.obj")
+    with pytest.raises(ValueError, match="unknown format"):
+        pappus.load(tmp_path / "mesh.abc")
+    with pytest.raises(ValueError, match="unknown shape"):
+        pappus.load("shape:dodecahedron")
+    with pytest.raises(ValueError, match="unknown format"):
+        two_triangles().save(tmp_path / "out.abc")
+    with pytest.raises(OSError):
+        two_triangles().save(tmp_path / "no" / "such" / "dir" / "out.obj")
+
+
+# --- Pickling and processes -------------------------------------------------------------------
+
+
+def test_meshes_pickle_with_their_numbering_and_attributes():
+    mesh = pappus.load("shape:grid")
+    mesh.parameterize("harmonic")
+    a, b, _ = face(mesh, 7)
+    mesh.split(a, b)
+    back = pickle.loads(pickle.dumps(mesh))
+    np.testing.assert_array_equal(back.vertices, mesh.vertices)
+    np.testing.assert_array_equal(back.faces, mesh.faces)
+    np.testing.assert_array_equal(back.corner_uvs, mesh.corner_uvs)
+    assert back.name == mesh.name
+    info, back_info = mesh.info(), back.info()
+    for key in ["vertices", "faces", "genus", "repairs", "attributes"]:
+        assert back_info[key] == info[key]
+    # The input numbering survives: the same operation by the same numbers gives the same mesh.
+    c, d, _ = face(pappus.load("shape:grid"), 20)
+    assert back.flip(c, d).startswith("flipped")
+    mesh.flip(c, d)
+    np.testing.assert_array_equal(back.faces, mesh.faces)
+    twin = copy.deepcopy(mesh)
+    np.testing.assert_array_equal(twin.faces, mesh.faces)
+
+
+def _simplify_model(path):
+    """Pool worker: load a model, triangulate it, simplify it to half its faces, send the mesh
+    back."""
+    mesh = pappus.load(path)
+    mesh.triangulate()
+    faces = mesh.info()["faces"]
+    mesh.simplify(0.5)
+    return str(path), faces, mesh
+
+
+def test_a_pool_of_two_processes_over_the_shared_models():
+    paths = models()
+    context = multiprocessing.get_context("spawn")
+    with context.Pool(2) as pool:
+        results = pool.map(_simplify_model, paths)
+    assert [r[0] for r in results] == [str(p) for p in paths]
+    for path, faces, mesh in results:
+        info = mesh.info()
+        assert info["valid"], path
+        assert abs(info["faces"] - faces / 2) <= max(2, faces * 0.01), (path, faces, info["faces"])
+    # And the other way: meshes sent to the workers, edited there, sent back.
+    with context.Pool(2) as pool:
+        meshes = pool.map(_loop_once, [pappus.load("shape:icosphere:2"), pappus.load("shape:torus")])
+    torus_quads = pappus.load("shape:torus").info()["faces"]
+    assert [m.info()["faces"] for m in meshes] == [4 * 320, 4 * 2 * torus_quads]
+
+
+def _loop_once(mesh):
+    """Pool worker: one level of Loop subdivision on a mesh sent over a pipe."""
+    mesh.triangulate()
+    mesh.loop()
+    return mesh
+
+
+def test_the_gil_is_released_during_long_operations():
+    import threading
+    import time
+
+    mesh = pappus.load("shape:icosphere:5")
+    ticks = []
+    done = threading.Event()
+
+    def tick():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    thread = threading.Thread(target=tick)
+    thread.start()
+    start = time.perf_counter()
+    mesh.remesh(iterations=1)
+    elapsed = time.perf_counter() - start
+    done.set()
+    thread.join()
+    during = [t for t in ticks if start <= t <= start + elapsed]
+    # With the GIL held the other thread could not run at all while the remesh ran.
+    assert elapsed < 0.05 or len(during) >= 5, (elapsed, len(during))
+
+
+def test_the_package_is_typed():
+    package = Path(pappus.__file__).parent
+    assert (package / "py.typed").exists() and (package / "__init__.pyi").exists()
+    assert pappus.SHAPES[0] == "tetrahedron"
+    assert os.fspath(pappus.__version__)
