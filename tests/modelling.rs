@@ -230,3 +230,27 @@ fn a_gesture_is_one_undo_step_and_esc_takes_it_back_with_the_edit_it_followed() 
     assert_eq!(counts(&app), (8, 12, 6));
     assert_eq!(MeshRef::new(app.world()).position(v), p + Vec3::splat(0.3));
 }
+
+#[test]
+fn undoing_a_gesture_restores_vertices_its_first_frame_left_in_place() {
+    // A constraint can keep a vertex still in the first frames and move it in later ones (S on
+    // X, then free): the merged step must still restore it.
+    let mut app = common::headless_editor();
+    open(&mut app, "shape:cube");
+    let vs = members(&app).vertices;
+    let (a, b) = (vs[0], vs[1]);
+    let (pa, pb) = {
+        let m = MeshRef::new(app.world());
+        (m.position(a), m.position(b))
+    };
+    app.world_mut().resource_mut::<UndoHistory>().begin_gesture();
+    send(&mut app, Edit::MoveVertices(vec![(a, pa + Vec3::X), (b, pb)]));
+    send(
+        &mut app,
+        Edit::MoveVertices(vec![(a, pa + Vec3::X), (b, pb + Vec3::Y)]),
+    );
+    app.world_mut().resource_mut::<UndoHistory>().end_gesture();
+    send(&mut app, Request::Undo);
+    let m = MeshRef::new(app.world());
+    assert_eq!((m.position(a), m.position(b)), (pa, pb));
+}

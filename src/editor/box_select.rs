@@ -27,7 +27,10 @@ pub struct BoxSelect {
 /// Drives the box: starts it on a left press while armed, follows the pointer, and selects
 /// on release (the `Input` set).
 pub fn drive_box_select(world: &mut World) {
-    if !world.resource::<BoxSelect>().armed {
+    let gesture = world
+        .get_resource::<Gestures>()
+        .is_some_and(|g| g.active.is_some() || g.swallow_click);
+    if !world.resource::<BoxSelect>().armed || gesture {
         return;
     }
     let (buttons, keys) = (
@@ -45,21 +48,25 @@ pub fn drive_box_select(world: &mut World) {
     );
     let buttons = buttons.clone();
     let add = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
+    let mut state = *world.resource::<BoxSelect>();
+    // A release outside the window ends the box where the pointer last was inside it.
     let Some(cursor) = world
         .query_filtered::<&Window, With<PrimaryWindow>>()
         .iter(world)
         .next()
         .and_then(Window::cursor_position)
+        .or(state.drag.map(|(_, to)| to))
     else {
         return;
     };
-    let mut state = *world.resource::<BoxSelect>();
+    if pressed && state.drag.is_none() {
+        state.drag = Some((cursor, cursor));
+    }
     match state.drag {
-        None if pressed => state.drag = Some((cursor, cursor)),
         Some((from, _)) if released => {
             *world.resource_mut::<BoxSelect>() = BoxSelect::default();
-            // A release over the mesh was also a click; the box's selection, applied after it,
-            // replaces (or adds to) what that click selected.
+            // The release would also be a click on the mesh: picking ignores clicks while a box
+            // is armed (see `picking::on_click`).
             let elements = elements_in(world, from, cursor);
             let edit = match add {
                 true => SelectionEdit::Add(elements),

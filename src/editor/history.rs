@@ -274,7 +274,8 @@ pub fn track_presses(
     let Some(buttons) = buttons else {
         return;
     };
-    if buttons.just_pressed(MouseButton::Left) {
+    // The click that confirms a gesture stays part of it (its last frame merges).
+    if buttons.just_pressed(MouseButton::Left) && !history.gesture {
         history.press += 1;
     }
     history.pressed = buttons.pressed(MouseButton::Left);
@@ -313,9 +314,11 @@ pub fn begin_edit(world: &World, edit: &Edit, mesh: MeshId) -> Option<Pending> {
         PendingKind::Merge
     } else {
         match edit.reach(world, mesh)? {
-            Reach::Local(mesh, seeds) => {
-                PendingKind::Local(LocalRecorder::begin(world, mesh, &seeds))
-            }
+            // An edit that later frames may merge into records every seed even if this frame
+            // leaves it in place: a later frame may move it.
+            Reach::Local(mesh, seeds) => PendingKind::Local(
+                LocalRecorder::begin(world, mesh, &seeds).keeping_seeds(merge.is_some()),
+            ),
             Reach::Whole(mesh) => PendingKind::Whole(SavedContents::capture(world, mesh)),
         }
     };

@@ -76,6 +76,8 @@ pub enum Action {
     Mode(SelectMode),
     /// Select nothing.
     ClearSelection,
+    /// Select nothing (never cancels a job, unlike Esc).
+    SelectNone,
     /// Select every element of the click mode's kind.
     SelectAll,
     /// One ring more.
@@ -230,12 +232,7 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::SelectAll,
         "select all (vertices, or the click mode's kind)",
     ),
-    alt(
-        KeyCode::KeyA,
-        "Alt+A",
-        Action::ClearSelection,
-        "select nothing",
-    ),
+    alt(KeyCode::KeyA, "Alt+A", Action::SelectNone, "select nothing"),
     key(
         KeyCode::KeyB,
         "B",
@@ -599,6 +596,14 @@ pub fn keyboard_shortcuts(world: &mut World) {
     let alt = keys.any_pressed([KeyCode::AltLeft, KeyCode::AltRight]);
     let pressed: Vec<KeyCode> = keys.get_just_pressed().copied().collect();
     for key in pressed {
+        // Once a key starts a transform (or an extrusion whose height one follows), the other
+        // keys of the frame are the gesture's (`X` constrains rather than erases).
+        let gesture = world
+            .get_resource::<Gestures>()
+            .is_some_and(|g| g.active.is_some() || g.after_edit.is_some());
+        if gesture {
+            break;
+        }
         if let Some(shortcut) = shortcut_for(key, ctrl, shift, alt) {
             perform(world, shortcut.action);
         }
@@ -777,7 +782,7 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
         Action::ClearSelection if world.resource::<Jobs>().running.is_some() => {
             return Ok(Some(Request::CancelJob));
         }
-        Action::ClearSelection => return Ok(Some(Request::Select(None))),
+        Action::ClearSelection | Action::SelectNone => return Ok(Some(Request::Select(None))),
         Action::SelectAll => return Ok(Some(SelectionEdit::All.into())),
         Action::Grow => return Ok(Some(SelectionEdit::Grow.into())),
         Action::Shrink => return Ok(Some(SelectionEdit::Shrink.into())),

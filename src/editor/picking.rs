@@ -41,6 +41,13 @@ pub struct PickRequest {
     pub select: bool,
 }
 
+/// What else a click depends on: the modifiers held, the transform and the box select under way.
+type ClickContext<'w> = (
+    Option<Res<'w, ButtonInput<KeyCode>>>,
+    Option<ResMut<'w, super::transform::Gestures>>,
+    Option<Res<'w, super::box_select::BoxSelect>>,
+);
+
 /// Re-casts a click's ray to find the triangle and writes a selecting [`PickRequest`].
 pub fn on_click(
     click: On<Pointer<Click>>,
@@ -49,18 +56,19 @@ pub fn on_click(
     mut ray_cast: MeshRayCast,
     mut picks: MessageWriter<PickRequest>,
     mut requests: MessageWriter<Request>,
-    (keys, gestures): (
-        Option<Res<ButtonInput<KeyCode>>>,
-        Option<ResMut<super::transform::Gestures>>,
-    ),
+    (keys, gestures, box_select): ClickContext<'_>,
 ) {
     if click.event.button != PointerButton::Primary {
         return;
     }
-    // The release of a click that confirmed a transform or ended a box selects nothing.
+    // A click that confirms a transform (or the release of one that did) or ends a box selects
+    // nothing: the gesture or the box has the pointer.
     if let Some(mut gestures) = gestures
-        && std::mem::take(&mut gestures.swallow_click)
+        && (std::mem::take(&mut gestures.swallow_click) || gestures.active.is_some())
     {
+        return;
+    }
+    if box_select.is_some_and(|b| b.armed) {
         return;
     }
     let target = click.entity;

@@ -770,7 +770,7 @@ fn operations_section(
     ui.horizontal_wrapped(|ui| {
         for (action, name) in [
             (Action::SelectAll, "All"),
-            (Action::ClearSelection, "None"),
+            (Action::SelectNone, "None"),
             (Action::Grow, "More"),
             (Action::Shrink, "Less"),
             (Action::BoxSelect, "Box"),

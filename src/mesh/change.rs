@@ -372,6 +372,7 @@ pub struct LocalRecorder {
     mesh: MeshId,
     seeds: Vec<VertexId>,
     before: EntityHashMap<ElementState>,
+    keep_seeds: bool,
 }
 
 impl LocalRecorder {
@@ -386,7 +387,17 @@ impl LocalRecorder {
             mesh,
             seeds: seeds.to_vec(),
             before,
+            keep_seeds: false,
         }
+    }
+
+    /// With `keep`, the change records the seeds' prior state even where the edit left them
+    /// as they were: for an edit that later edits merge into (the frames of a transform, some of
+    /// which move a seed the first frame did not), so that undoing the merged step restores
+    /// every seed.
+    pub fn keeping_seeds(mut self, keep: bool) -> Self {
+        self.keep_seeds = keep;
+        self
     }
 
     /// Compares the neighbourhood (of the seeds still alive, and every element captured) with
@@ -398,10 +409,16 @@ impl LocalRecorder {
             despawn: Vec::new(),
             write: Vec::new(),
         };
+        let kept: EntityHashSet = match self.keep_seeds {
+            true => self.seeds.iter().map(|v| v.0).collect(),
+            false => EntityHashSet::default(),
+        };
         for (&e, state) in &self.before {
             match ElementState::of(world, e) {
                 None => change.spawn.push((e, *state)),
-                Some(now) if !now.same(state) => change.write.push((e, *state)),
+                Some(now) if !now.same(state) || kept.contains(&e) => {
+                    change.write.push((e, *state));
+                }
                 Some(_) => {}
             }
         }
