@@ -174,7 +174,7 @@ pub struct Loaded {
 /// A message naming the file and what is wrong with it.
 pub fn load(input: &str) -> Result<Loaded, String> {
     let start = Instant::now();
-    let (soup, info) = crate::source::read_source(Path::new(input))?;
+    let (soup, info) = crate::source::read_source(Path::new(input)).map_err(|e| e.to_string())?;
     let read_ms = ms_since(start);
     let dropped = soup.vertex_attributes();
     if !dropped.is_empty() {

@@ -3,29 +3,36 @@
 
 use std::path::Path;
 
-use crate::io;
+use crate::io::{self, IoError};
 use crate::mesh::{MeshInfo, PolygonSoup, shapes};
+
+/// Why a source could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum SourceError {
+    /// `shape:NAME` names no shape [`shapes::by_name`] knows.
+    #[error("unknown shape `{0}`; known: {known}", known = shapes::SHAPE_NAMES.join(", "))]
+    UnknownShape(String),
+    /// The file could not be read (the error names it, with the line or offset).
+    #[error(transparent)]
+    Io(#[from] IoError),
+}
 
 /// Reads `source` (a mesh file, or `shape:NAME`) into a soup and the mesh's name and path.
 ///
 /// # Errors
-/// A message naming the file (with line or offset) or the unknown shape.
-pub fn read_source(source: &Path) -> Result<(PolygonSoup, MeshInfo), String> {
+/// [`SourceError`]: the unknown shape, or the file's error (naming it, with the line or offset).
+pub fn read_source(source: &Path) -> Result<(PolygonSoup, MeshInfo), SourceError> {
     let text = source.to_string_lossy();
     if let Some(name) = text.strip_prefix("shape:") {
-        let soup = shapes::by_name(name).ok_or_else(|| {
-            format!(
-                "unknown shape `{name}`; known: {}",
-                shapes::SHAPE_NAMES.join(", ")
-            )
-        })?;
+        let soup =
+            shapes::by_name(name).ok_or_else(|| SourceError::UnknownShape(name.to_string()))?;
         let info = MeshInfo {
             name: name.to_string(),
             path: None,
         };
         return Ok((soup, info));
     }
-    let soup = io::read(source).map_err(|e| e.to_string())?;
+    let soup = io::read(source)?;
     let name = source
         .file_name()
         .map_or_else(|| text.to_string(), |n| n.to_string_lossy().into_owned());

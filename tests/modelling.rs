@@ -243,8 +243,13 @@ fn undoing_a_gesture_restores_vertices_its_first_frame_left_in_place() {
         let m = MeshRef::new(app.world());
         (m.position(a), m.position(b))
     };
-    app.world_mut().resource_mut::<UndoHistory>().begin_gesture();
-    send(&mut app, Edit::MoveVertices(vec![(a, pa + Vec3::X), (b, pb)]));
+    app.world_mut()
+        .resource_mut::<UndoHistory>()
+        .begin_gesture();
+    send(
+        &mut app,
+        Edit::MoveVertices(vec![(a, pa + Vec3::X), (b, pb)]),
+    );
     send(
         &mut app,
         Edit::MoveVertices(vec![(a, pa + Vec3::X), (b, pb + Vec3::Y)]),

@@ -13,7 +13,7 @@
 //! range raises `ValueError` with the command line's message; file-system failures raise
 //! `OSError` (`FileNotFoundError` for a missing file).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use bevy::prelude::World;
@@ -31,10 +31,11 @@ use pappus::cli::info_with_load_times;
 use pappus::edit::{EditContext, Step};
 use pappus::io::{self, IoError};
 use pappus::mesh::{
-    MeshId, MeshInfo, MeshMembers, PolygonSoup, RepairReport, VertexId, build_mesh, shapes,
-    to_soup, validate,
+    MeshId, MeshInfo, MeshMembers, PolygonSoup, RepairReport, VertexId, build_mesh, to_soup,
+    validate,
 };
 use pappus::ops::progressive::ProgressiveMesh;
+use pappus::source::{SourceError, read_source};
 
 create_exception!(
     pappus,
@@ -91,42 +92,6 @@ fn io_error(py: Python<'_>, e: IoError) -> PyErr {
             err
         }
     }
-}
-
-/// Reads `source` (a file, or `shape:NAME`) into a soup and its name. Errors as [`io_error`];
-/// an unknown shape is a `ValueError` listing the known ones.
-fn read(source: &Path) -> Result<(PolygonSoup, MeshInfo), ReadError> {
-    let text = source.to_string_lossy();
-    if let Some(name) = text.strip_prefix("shape:") {
-        let soup = shapes::by_name(name).ok_or_else(|| {
-            ReadError::Value(format!(
-                "unknown shape `{name}`; known: {}",
-                shapes::SHAPE_NAMES.join(", ")
-            ))
-        })?;
-        let info = MeshInfo {
-            name: name.to_string(),
-            path: None,
-        };
-        return Ok((soup, info));
-    }
-    let soup = io::read(source).map_err(ReadError::Io)?;
-    let name = source
-        .file_name()
-        .map_or_else(|| text.to_string(), |n| n.to_string_lossy().into_owned());
-    let info = MeshInfo {
-        name,
-        path: Some(source.to_path_buf()),
-    };
-    Ok((soup, info))
-}
-
-/// Why [`read`] failed, before it becomes a Python exception (which needs the GIL).
-enum ReadError {
-    /// The file could not be read.
-    Io(IoError),
-    /// Anything else, as a `ValueError`.
-    Value(String),
 }
 
 /// One halfedge mesh (polygons allowed), owned by Python.
@@ -1019,9 +984,9 @@ fn faces_array<'py>(
 #[pyfunction]
 fn load(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
     let start = Instant::now();
-    let (soup, info) = py.detach(|| read(&path)).map_err(|e| match e {
-        ReadError::Io(e) => io_error(py, e),
-        ReadError::Value(message) => PyValueError::new_err(message),
+    let (soup, info) = py.detach(|| read_source(&path)).map_err(|e| match e {
+        SourceError::Io(e) => io_error(py, e),
+        unknown @ SourceError::UnknownShape(_) => PyValueError::new_err(unknown.to_string()),
     })?;
     let read_ms = ms_since(start);
     let name = path.display().to_string();

@@ -225,7 +225,8 @@ fn undo_or_redo(world: &mut World, redo: bool) -> Result<String, Declined> {
 
 /// Opens a mesh, replacing the active one only once the new one has been read and built.
 fn open(world: &mut World, path: &Path) -> Result<String, Declined> {
-    let (soup, info) = crate::source::read_source(path).map_err(Declined::File)?;
+    let (soup, info) =
+        crate::source::read_source(path).map_err(|e| Declined::File(e.to_string()))?;
     let pending = history::begin_replace(world);
     let built = build_mesh(world, &soup, info)
         .map_err(|e| Declined::File(format!("{}: {e}", path.display())))?;

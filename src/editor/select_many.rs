@@ -117,8 +117,8 @@ fn all_of_kind(world: &World, mesh: MeshId, mode: SelectMode) -> Vec<ElementId> 
     }
 }
 
-/// The corners of an element (a halfedge's are its edge's).
-fn corners(m: &MeshRef<'_>, x: ElementId) -> Vec<VertexId> {
+/// The corners of a live element (a halfedge's are its edge's; a mesh has none).
+pub fn corners(m: &MeshRef<'_>, x: ElementId) -> Vec<VertexId> {
     match x {
         ElementId::Vertex(v) => vec![v],
         ElementId::Edge(e) => {

@@ -181,16 +181,7 @@ pub fn selected_vertices(world: &World) -> Vec<VertexId> {
         if !super::selection::exists(&m, x) {
             continue;
         }
-        let corners: Vec<VertexId> = match x {
-            ElementId::Vertex(v) => vec![v],
-            ElementId::Edge(e) => {
-                let (a, b) = m.edge_vertices(e);
-                vec![a, b]
-            }
-            ElementId::Halfedge(h) => vec![m.from_vertex(h), m.to_vertex(h)],
-            ElementId::Face(f) => m.face_vertices(f).collect(),
-            ElementId::Mesh(_) => Vec::new(),
-        };
+        let corners = super::select_many::corners(&m, x);
         out.extend(corners.into_iter().filter(|v| seen.insert(v.0)));
     }
     out
