@@ -28,7 +28,7 @@ use bevy::window::PrimaryWindow;
 use bevy::ecs::entity::EntityHashMap;
 
 use crate::edit::Edit;
-use crate::mesh::ids::{ElementId, VertexId};
+use crate::mesh::ids::VertexId;
 use crate::mesh::topology::MeshRef;
 use crate::ops::local::extrude_directions;
 
