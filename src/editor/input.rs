@@ -612,6 +612,14 @@ pub fn keyboard_shortcuts(world: &mut World) {
 
 /// Performs an action: writes the request it stands for, or changes a setting.
 pub fn perform(world: &mut World, action: Action) {
+    // A box armed before a transform (or an extrusion's height) would take its confirming click.
+    if matches!(
+        action,
+        Action::Grab | Action::Rotate | Action::Scale | Action::Extrude | Action::Inset
+    ) && let Some(mut armed) = world.get_resource_mut::<BoxSelect>()
+    {
+        *armed = BoxSelect::default();
+    }
     match request_for(world, action) {
         Ok(Some(request)) => {
             world.write_message(request);

@@ -152,10 +152,6 @@ pub fn start(world: &mut World, kind: GestureKind, keep_undo: Option<usize>) -> 
             Some(camera.world_to_viewport(&eye, pivot).ok()? + Vec2::new(100.0, 0.0))
         })
         .unwrap_or(Vec2::ZERO);
-    // A box armed before the gesture would take the confirming click.
-    if let Some(mut armed) = world.get_resource_mut::<super::box_select::BoxSelect>() {
-        *armed = super::box_select::BoxSelect::default();
-    }
     let mut history = world.resource_mut::<UndoHistory>();
     let keep_undo = keep_undo.unwrap_or(history.undo_entries().len());
     history.begin_gesture();
