@@ -11,7 +11,7 @@ use bevy::prelude::World;
 use crate::mesh::ids::{EdgeId, ElementId, VertexId};
 use crate::mesh::{MeshId, MeshRef, validate};
 use crate::ops::Refusal;
-use crate::ops::local::{faces_of_edge, faces_of_vertex};
+use crate::ops::local::faces_of;
 use crate::ops::named::Named;
 use crate::ops::param::{BoundaryShape, ParamMethod, ParamParams};
 use crate::ops::progressive::ProgressiveMesh;
@@ -193,20 +193,7 @@ impl ElementStep {
 
     /// The edit on the named live elements.
     fn edit(self, world: &World, elements: &[ElementId], numbers: &[f32]) -> Result<Edit, Refusal> {
-        let faces = || -> Result<Vec<crate::mesh::FaceId>, Refusal> {
-            let mut out = Vec::new();
-            for &x in elements {
-                match x {
-                    ElementId::Face(f) => out.push(f),
-                    ElementId::Vertex(v) => out.extend(faces_of_vertex(world, v)?),
-                    ElementId::Edge(e) => out.extend(faces_of_edge(world, e)?),
-                    _ => {}
-                }
-            }
-            out.sort_unstable();
-            out.dedup();
-            Ok(out)
-        };
+        let faces = || faces_of(world, elements);
         let number = |i: usize, default: f32| numbers.get(i).copied().unwrap_or(default);
         Ok(match (self, elements) {
             (ElementStep::Extrude, _) => Edit::Extrude(faces()?, number(0, 0.0)),

@@ -10,7 +10,7 @@ use bevy::prelude::*;
 use crate::edit::{Edit, LocalKind, Scheme, Subdivision};
 use crate::mesh::MeshRef;
 use crate::mesh::ids::ElementId;
-use crate::ops::local::{faces_of_edge, faces_of_vertex};
+use crate::ops::local::faces_of;
 use crate::ops::param::ParamParams;
 use crate::ops::remesh::RemeshParams;
 use crate::ops::simplify::SimplifyParams;
@@ -697,22 +697,8 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             }
         }
         Action::Erase => {
-            let mut faces = Vec::new();
-            for &x in world.resource::<Selection>().elements() {
-                let around = match x {
-                    ElementId::Face(f) => Ok(vec![f]),
-                    ElementId::Vertex(v) => faces_of_vertex(world, v),
-                    ElementId::Edge(e) => faces_of_edge(world, e),
-                    ElementId::Halfedge(h) => match m.try_halfedge(h) {
-                        Some(x) => faces_of_edge(world, x.edge),
-                        None => Ok(Vec::new()),
-                    },
-                    ElementId::Mesh(_) => Ok(Vec::new()),
-                };
-                faces.extend(around.unwrap_or_default());
-            }
-            faces.sort_unstable();
-            faces.dedup();
+            // The set holds live elements only (stale ones drop out after every edit).
+            let faces = faces_of(world, world.resource::<Selection>().elements())?;
             if faces.is_empty() {
                 return Err(Declined::SelectFirst("elements to erase"));
             }

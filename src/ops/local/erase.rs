@@ -288,6 +288,35 @@ pub fn faces_of_edge(world: &World, e: EdgeId) -> Result<Vec<FaceId>, Refusal> {
         .collect())
 }
 
+/// The faces that erasing these elements means, each once in id order: a face itself, a
+/// vertex's faces ([`faces_of_vertex`]), an edge's ([`faces_of_edge`]; a halfedge stands for its
+/// edge). Pass them to [`plan_erase`] or [`erase_faces`].
+///
+/// # Refusals
+/// `Stale` for an element that is not live.
+pub fn faces_of(world: &World, elements: &[ElementId]) -> Result<Vec<FaceId>, Refusal> {
+    let m = MeshRef::new(world);
+    let mut faces = Vec::new();
+    for &x in elements {
+        match x {
+            ElementId::Face(f) => {
+                m.try_face(f).ok_or(Refusal::Stale(x))?;
+                faces.push(f);
+            }
+            ElementId::Vertex(v) => faces.extend(faces_of_vertex(world, v)?),
+            ElementId::Edge(e) => faces.extend(faces_of_edge(world, e)?),
+            ElementId::Halfedge(h) => {
+                let e = m.try_halfedge(h).ok_or(Refusal::Stale(x))?.edge;
+                faces.extend(faces_of_edge(world, e)?);
+            }
+            ElementId::Mesh(_) => {}
+        }
+    }
+    faces.sort_unstable();
+    faces.dedup();
+    Ok(faces)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

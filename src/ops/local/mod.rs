@@ -55,7 +55,8 @@ pub use dissolve_vertex::{
     DissolveVertexPlan, apply_dissolve_vertex, dissolve_vertex, plan_dissolve_vertex,
 };
 pub use erase::{
-    ErasePlan, Erased, apply_erase, erase_faces, faces_of_edge, faces_of_vertex, plan_erase,
+    ErasePlan, Erased, apply_erase, erase_faces, faces_of, faces_of_edge, faces_of_vertex,
+    plan_erase,
 };
 pub use extrude::{
     ExtrudePlan, Extruded, apply_extrude, extrude_directions, extrude_faces, plan_extrude,
