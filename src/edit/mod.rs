@@ -29,10 +29,12 @@ use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::local::{
-    CollapseOptions, bevel_edge, bevel_vertex, bisect_edge, collapse_edge, collapse_face,
-    dissolve_edge, dissolve_vertex, erase_faces, extrude_faces, fill_hole, flip_edge, inset_faces,
-    plan_bevel_edge, plan_bevel_vertex, plan_collapse_face, plan_dissolve_vertex, plan_erase,
-    plan_extrude, plan_inset, plan_weld, split_edge, split_face, weld_edges,
+    BevelEdgePlan, BevelVertexPlan, CollapseFacePlan, CollapseOptions, DissolveVertexPlan,
+    ErasePlan, ExtrudePlan, InsetPlan, WeldPlan, apply_bevel_edge, apply_bevel_vertex,
+    apply_collapse_face, apply_dissolve_vertex, apply_erase, apply_extrude, apply_inset,
+    apply_weld, bisect_edge, collapse_edge, dissolve_edge, fill_hole, flip_edge, plan_bevel_edge,
+    plan_bevel_vertex, plan_collapse_face, plan_dissolve_vertex, plan_erase, plan_extrude,
+    plan_inset, plan_weld, split_edge, split_face,
 };
 use crate::ops::named::Named;
 use crate::ops::param::{ParamParams, parameterize_in_place};
@@ -295,7 +297,7 @@ impl Edit {
             | Edit::Erase(_)
             | Edit::DissolveVertex(_)
             | Edit::CollapseFace(_)
-            | Edit::Weld(..) => local(self.planned_seeds(world)?.ok()?),
+            | Edit::Weld(..) => local(self.plan(world)?.ok()?.seeds()),
             Edit::MoveVertices(moves) => {
                 let seeds: Vec<VertexId> = moves.iter().map(|(v, _)| *v).collect();
                 seeds
@@ -360,20 +362,43 @@ impl Edit {
         }
     }
 
-    /// The seeds of the undo record of an edit planned by its operation's `plan_*` (whose
-    /// refusal it passes on); `None` for the other edits.
-    fn planned_seeds(&self, world: &World) -> Option<Result<Vec<VertexId>, Refusal>> {
-        Some(match self {
-            Edit::Extrude(faces, _) => plan_extrude(world, faces).map(|p| p.seeds()),
-            Edit::Inset(faces, ..) => plan_inset(world, faces).map(|p| p.seeds()),
-            Edit::BevelVertex(v, t) => plan_bevel_vertex(world, *v, *t).map(|p| p.seeds()),
-            Edit::BevelEdge(e, t) => plan_bevel_edge(world, *e, *t).map(|p| p.seeds()),
-            Edit::Erase(faces) => plan_erase(world, faces).map(|p| p.seeds()),
-            Edit::DissolveVertex(v) => plan_dissolve_vertex(world, *v).map(|p| p.seeds()),
-            Edit::CollapseFace(f) => plan_collapse_face(world, *f).map(|p| p.seeds()),
-            Edit::Weld(a, b) => plan_weld(world, *a, *b).map(|p| p.seeds()),
-            _ => return None,
-        })
+    /// The plan of an edit whose operation plans first (its `plan_*` and parameter checks,
+    /// whose refusal it passes on); `None` for the other edits.
+    fn plan(&self, world: &World) -> Option<Result<Planned, Refusal>> {
+        let planned = || -> Result<Planned, Refusal> {
+            Ok(match self {
+                Edit::Extrude(faces, d) => {
+                    let plan = plan_extrude(world, faces)?;
+                    plan.check_distance(*d)?;
+                    Planned::Extrude(plan, *d)
+                }
+                Edit::Inset(faces, t, d) => {
+                    let plan = plan_inset(world, faces)?;
+                    plan.check(*t, *d)?;
+                    Planned::Inset(plan, *t, *d)
+                }
+                Edit::BevelVertex(v, t) => Planned::BevelVertex(plan_bevel_vertex(world, *v, *t)?),
+                Edit::BevelEdge(e, t) => Planned::BevelEdge(plan_bevel_edge(world, *e, *t)?),
+                Edit::Erase(faces) => Planned::Erase(plan_erase(world, faces)?),
+                Edit::DissolveVertex(v) => {
+                    Planned::DissolveVertex(plan_dissolve_vertex(world, *v)?)
+                }
+                Edit::CollapseFace(f) => Planned::CollapseFace(plan_collapse_face(world, *f)?),
+                Edit::Weld(a, b) => Planned::Weld(plan_weld(world, *a, *b)?),
+                _ => unreachable!("checked below"),
+            })
+        };
+        match self {
+            Edit::Extrude(..)
+            | Edit::Inset(..)
+            | Edit::BevelVertex(..)
+            | Edit::BevelEdge(..)
+            | Edit::Erase(_)
+            | Edit::DissolveVertex(_)
+            | Edit::CollapseFace(_)
+            | Edit::Weld(..) => Some(planned()),
+            _ => None,
+        }
     }
 
     /// Whether the edit may run as a job (on a copy of the mesh, on a thread of its own) when
@@ -584,9 +609,10 @@ impl Edit {
             | Edit::DissolveVertex(_)
             | Edit::CollapseFace(_)
             | Edit::Weld(..) => {
-                let seeds = self.planned_seeds(world).expect("a planned edit")?;
+                let plan = self.plan(world).expect("a planned edit")?;
+                let seeds = plan.seeds();
                 let before = faces_around(world, &seeds);
-                let (summary, made) = self.apply_planned(world)?;
+                let (summary, made) = plan.apply(world);
                 // What is new lies around the seeds that survive and what the edit made.
                 let mut after = seeds;
                 if let Some(x) = made {
@@ -771,12 +797,38 @@ fn toggle_seam(world: &mut World, e: EdgeId) -> Result<bool, Refusal> {
     Ok(marked)
 }
 
-impl Edit {
-    /// Runs one of the edits [`Edit::planned_seeds`] knows: its summary, and what to select.
-    fn apply_planned(&self, world: &mut World) -> Result<(String, Option<ElementId>), Refusal> {
-        Ok(match self {
-            Edit::Extrude(faces, d) => {
-                let done = extrude_faces(world, faces, *d)?;
+/// A planned edit of an operation that plans first: its plan and parameters, checked.
+enum Planned {
+    Extrude(ExtrudePlan, f32),
+    Inset(InsetPlan, f32, f32),
+    BevelVertex(BevelVertexPlan),
+    BevelEdge(BevelEdgePlan),
+    Erase(ErasePlan),
+    DissolveVertex(DissolveVertexPlan),
+    CollapseFace(CollapseFacePlan),
+    Weld(WeldPlan),
+}
+
+impl Planned {
+    /// The seeds of its undo record.
+    fn seeds(&self) -> Vec<VertexId> {
+        match self {
+            Planned::Extrude(p, _) => p.seeds(),
+            Planned::Inset(p, ..) => p.seeds(),
+            Planned::BevelVertex(p) => p.seeds(),
+            Planned::BevelEdge(p) => p.seeds(),
+            Planned::Erase(p) => p.seeds(),
+            Planned::DissolveVertex(p) => p.seeds(),
+            Planned::CollapseFace(p) => p.seeds(),
+            Planned::Weld(p) => p.seeds(),
+        }
+    }
+
+    /// Carries it out (it cannot fail): its summary, and what to select.
+    fn apply(self, world: &mut World) -> (String, Option<ElementId>) {
+        match self {
+            Planned::Extrude(plan, d) => {
+                let done = apply_extrude(world, plan, d);
                 let summary = format!(
                     "{} lifted on {}",
                     count(done.top.len(), "face"),
@@ -784,8 +836,8 @@ impl Edit {
                 );
                 (summary, None)
             }
-            Edit::Inset(faces, t, d) => {
-                let done = inset_faces(world, faces, *t, *d)?;
+            Planned::Inset(plan, t, d) => {
+                let done = apply_inset(world, plan, t, d);
                 let summary = format!(
                     "{} inset, {} around them",
                     count(done.top.len(), "face"),
@@ -793,16 +845,16 @@ impl Edit {
                 );
                 (summary, None)
             }
-            Edit::BevelVertex(v, t) => {
-                let f = bevel_vertex(world, *v, *t)?;
+            Planned::BevelVertex(plan) => {
+                let f = apply_bevel_vertex(world, plan);
                 (format!("new face {f}"), Some(ElementId::Face(f)))
             }
-            Edit::BevelEdge(e, t) => {
-                let f = bevel_edge(world, *e, *t)?;
+            Planned::BevelEdge(plan) => {
+                let f = apply_bevel_edge(world, plan);
                 (format!("new face {f}"), Some(ElementId::Face(f)))
             }
-            Edit::Erase(faces) => {
-                let gone = erase_faces(world, faces)?;
+            Planned::Erase(plan) => {
+                let gone = apply_erase(world, plan);
                 let summary = format!(
                     "removed {}, {}, {}",
                     count(gone.faces, "face"),
@@ -811,20 +863,19 @@ impl Edit {
                 );
                 (summary, None)
             }
-            Edit::DissolveVertex(v) => {
-                let f = dissolve_vertex(world, *v)?;
+            Planned::DissolveVertex(plan) => {
+                let f = apply_dissolve_vertex(world, plan);
                 (format!("merged into {f}"), Some(ElementId::Face(f)))
             }
-            Edit::CollapseFace(f) => {
-                let v = collapse_face(world, *f)?;
+            Planned::CollapseFace(plan) => {
+                let v = apply_collapse_face(world, plan);
                 (format!("collapsed to {v}"), Some(ElementId::Vertex(v)))
             }
-            Edit::Weld(a, b) => {
-                let e = weld_edges(world, *a, *b)?;
+            Planned::Weld(plan) => {
+                let e = apply_weld(world, plan);
                 (format!("welded into {e}"), Some(ElementId::Edge(e)))
             }
-            _ => unreachable!("{} is not a planned edit", self.label()),
-        })
+        }
     }
 }
 
