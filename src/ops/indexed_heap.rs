@@ -115,6 +115,33 @@ impl IndexedHeap {
         Some(top)
     }
 
+    /// Every entry, in no particular order.
+    pub fn entries(&self) -> &[u64] {
+        &self.entries
+    }
+
+    /// The `n` smallest entries, smallest first, without taking them out: a best-first walk
+    /// down the tree (a node's children are no smaller than it), O(n · arity · log n).
+    pub fn smallest(&self, n: usize) -> Vec<u64> {
+        use std::cmp::Reverse;
+        let mut out = Vec::with_capacity(n.min(self.entries.len()));
+        let mut frontier = std::collections::BinaryHeap::new();
+        if let Some(&top) = self.entries.first() {
+            frontier.push(Reverse((top, 0usize)));
+        }
+        while out.len() < n {
+            let Some(Reverse((entry, i))) = frontier.pop() else {
+                break;
+            };
+            out.push(entry);
+            let first = ARITY * i + 1;
+            for c in first..(first + ARITY).min(self.entries.len()) {
+                frontier.push(Reverse((self.entries[c], c)));
+            }
+        }
+        out
+    }
+
     fn place(&mut self, i: usize, entry: u64) {
         self.entries[i] = entry;
         self.position[slot_of(entry) as usize] = i as u32;
@@ -223,8 +250,11 @@ mod tests {
         let mut expected = entries.clone();
         expected.sort_unstable();
         let mut heap = IndexedHeap::from_entries(keys.len(), entries);
+        assert_eq!(heap.smallest(25), expected[..25]);
+        assert_eq!(heap.smallest(5000), expected);
         let popped: Vec<u64> = std::iter::from_fn(|| heap.pop()).collect();
         assert_eq!(popped, expected);
+        assert!(heap.smallest(3).is_empty());
         assert!(heap.is_empty());
     }
 }

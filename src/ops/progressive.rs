@@ -85,6 +85,34 @@ pub struct ProgressiveMesh {
     slots: Vec<Option<VertexId>>,
 }
 
+/// Each vertex's history slot, by entity index: one array read a lookup, where hashing cost
+/// more than the rest of recording.
+pub struct SlotIndex(Vec<u32>);
+
+impl SlotIndex {
+    /// The slots of the vertices `pm` holds now.
+    pub fn of(pm: &ProgressiveMesh) -> Self {
+        let live = || pm.slots.iter().flatten().map(|v| v.0);
+        let mut slot_of = vec![u32::MAX; slots_for(live())];
+        for (slot, v) in pm.slots.iter().enumerate() {
+            if let Some(v) = v {
+                slot_of[v.slot()] = slot as u32;
+            }
+        }
+        Self(slot_of)
+    }
+
+    /// `v`'s slot.
+    ///
+    /// # Panics
+    /// When `v` held no slot when the index was taken.
+    pub fn slot(&self, v: VertexId) -> u32 {
+        let slot = self.0.get(v.slot()).copied().unwrap_or(u32::MAX);
+        assert_ne!(slot, u32::MAX, "{v} has no history slot");
+        slot
+    }
+}
+
 impl ProgressiveMesh {
     /// Simplifies `mesh` as [`crate::ops::simplify::simplify`] does and records every collapse.
     ///
@@ -110,55 +138,62 @@ impl ProgressiveMesh {
         params: &SimplifyParams,
         progress: impl FnMut(f32) -> bool,
     ) -> Result<(ProgressiveMesh, SimplifySummary), Refusal> {
-        let vertices = of_kind::<Vertex, _>(world, mesh, VertexId);
-        // Slots by entity index: one array read a lookup, where hashing cost more than the
-        // rest of recording. The collapses only remove vertices, so the table stays valid.
-        let mut slot_of = vec![u32::MAX; slots_for(vertices.iter().map(|v| v.0))];
-        for (i, v) in vertices.iter().enumerate() {
-            slot_of[v.slot()] = i as u32;
-        }
-        let slots = vertices.into_iter().map(Some).collect();
-        let mut records = Vec::new();
-        let summary = simplify_recorded(world, mesh, params, progress, |r: &CollapseResult| {
-            let slot = |v: VertexId| slot_of[v.slot()];
-            let rec = &r.record;
-            records.push(SlotRecord {
-                kept: slot(r.kept),
-                removed: slot(r.removed),
-                merged_position: Vec3::NAN,
-                kept_position: rec.kept_position,
-                removed_position: rec.removed_position,
-                left: rec.left.map(slot),
-                right: rec.right.map(slot),
-                faces: rec.triangles_removed(),
-            });
+        // The face count comes with the summary: counting it here would be a pass of its own.
+        let mut pm = ProgressiveMesh::start(world, mesh, 0);
+        let index = SlotIndex::of(&pm);
+        let summary = simplify_recorded(world, mesh, params, progress, |world, r| {
+            pm.push(world, &index, r)
         })?;
-        let mut pm = ProgressiveMesh {
-            mesh,
-            applied: records.len(),
-            full_faces: summary.faces_before,
-            records,
-            slots,
-        };
-        for r in &pm.records {
-            pm.slots[r.removed as usize] = None;
-        }
-        // The merged positions are the kept vertices' positions right after each collapse: the
-        // final position of a kept vertex unless a later collapse moved it again. Recover them
-        // by walking back: at the coarsest level every live vertex is where its last collapse
-        // put it, and each split restores the earlier position.
-        let m = MeshRef::new(world);
-        let mut current: Vec<Vec3> = pm
-            .slots
-            .iter()
-            .map(|s| s.map_or(Vec3::NAN, |v| m.position(v)))
-            .collect();
-        for r in pm.records.iter_mut().rev() {
-            r.merged_position = current[r.kept as usize];
-            current[r.kept as usize] = r.kept_position;
-            current[r.removed as usize] = r.removed_position;
-        }
+        pm.full_faces = summary.faces_before;
         Ok((pm, summary))
+    }
+
+    /// An empty history of `mesh` at its full level (`faces` faces, every vertex given the
+    /// next slot), for [`Self::push`] to record collapses into as they are made.
+    pub fn start(world: &World, mesh: MeshId, faces: usize) -> Self {
+        ProgressiveMesh {
+            mesh,
+            records: Vec::new(),
+            applied: 0,
+            full_faces: faces,
+            slots: of_kind::<Vertex, _>(world, mesh, |v| Some(VertexId(v))),
+        }
+    }
+
+    /// Records the collapse `r` just made on `world`, which leaves the mesh at the new
+    /// coarsest level; `index` must be this history's [`SlotIndex`] (collapses only remove
+    /// vertices, so one index serves every collapse after it was taken). The merged position
+    /// is where the collapse put the kept vertex.
+    ///
+    /// # Panics
+    /// When the history is not at its coarsest level (a collapse pushed there would not be
+    /// the next one), or `r` names a vertex the history does not hold.
+    pub fn push(&mut self, world: &World, index: &SlotIndex, r: &CollapseResult) {
+        assert_eq!(
+            self.applied,
+            self.records.len(),
+            "a collapse is recorded at the coarsest level"
+        );
+        let slot = |v: VertexId| index.slot(v);
+        let rec = &r.record;
+        let record = SlotRecord {
+            kept: slot(r.kept),
+            removed: slot(r.removed),
+            merged_position: MeshRef::new(world).position(r.kept),
+            kept_position: rec.kept_position,
+            removed_position: rec.removed_position,
+            left: rec.left.map(slot),
+            right: rec.right.map(slot),
+            faces: rec.triangles_removed(),
+        };
+        self.slots[record.removed as usize] = None;
+        self.records.push(record);
+        self.applied += 1;
+    }
+
+    /// The vertex holding each slot now (`None`: collapsed away at this level).
+    pub fn slots(&self) -> &[Option<VertexId>] {
+        &self.slots
     }
 
     /// Moves the history to another world: `mesh` is the mesh there, and `map` takes each

@@ -26,8 +26,10 @@ use crate::mesh::tables::{Connectivity, FaceRow, MeshTables, VertexRow, extract}
 use crate::mesh::topology::{Lookups, MeshRef, newell_area_vector};
 
 use super::Refusal;
-use super::indexed_heap::{IndexedHeap, slot_of};
-use super::local::{CollapseOptions, apply_collapse_deferred, plan_collapse_in};
+use super::indexed_heap::IndexedHeap;
+
+mod run;
+pub use run::{NextCollapse, QemRun, QueuedEdge, Refused};
 
 /// How many faces a simplification keeps.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -186,7 +188,7 @@ impl std::ops::Add for Quadric {
 type Key = u64;
 
 /// Where an edge should collapse to and what it costs.
-struct Candidate {
+struct Placement {
     cost: f64,
     position: Vec3,
 }
@@ -237,11 +239,11 @@ pub fn simplify_with_progress(
     params: &SimplifyParams,
     progress: impl FnMut(f32) -> bool,
 ) -> Result<SimplifySummary, Refusal> {
-    simplify_inner(world, mesh, params, progress, |_| {})
+    simplify_inner(world, mesh, params, progress, |_, _| {})
 }
 
-/// [`simplify_with_progress`], handing every collapse it makes to `record` in order (what
-/// [`crate::ops::progressive`] keeps to split them back).
+/// [`simplify_with_progress`], handing every collapse it makes to `record` in order, with the
+/// world right after it (what [`crate::ops::progressive`] keeps to split them back).
 ///
 /// # Refusals
 /// As [`simplify`].
@@ -250,7 +252,7 @@ pub fn simplify_recorded(
     mesh: MeshId,
     params: &SimplifyParams,
     progress: impl FnMut(f32) -> bool,
-    record: impl FnMut(&super::local::CollapseResult),
+    record: impl FnMut(&World, &super::local::CollapseResult),
 ) -> Result<SimplifySummary, Refusal> {
     simplify_inner(world, mesh, params, progress, record)
 }
@@ -260,80 +262,24 @@ fn simplify_inner(
     mesh: MeshId,
     params: &SimplifyParams,
     mut progress: impl FnMut(f32) -> bool,
-    mut record: impl FnMut(&super::local::CollapseResult),
+    mut record: impl FnMut(&World, &super::local::CollapseResult),
 ) -> Result<SimplifySummary, Refusal> {
-    if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
-        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
-    }
-    let Setup {
-        mut table,
-        mut heap,
-        faces_before,
-    } = setup(world, mesh, params)?;
-    let options = CollapseOptions {
-        position: None,
-        max_normal_change_deg: Some(params.max_normal_change_deg),
-    };
-    let mut faces = faces_before;
-    let mut collapses = 0;
+    let mut run = QemRun::start(world, mesh, params)?;
     // What the collapses removed, despawned together at the end (see `despawn_removed`).
     let mut graveyard: Vec<Entity> = Vec::new();
-    let mut ring = Vec::new();
     let lookups = Lookups::new(world);
-    let target_faces = params.target.faces(faces_before);
-    let to_remove = faces_before.saturating_sub(target_faces).max(1);
-    while faces > target_faces {
-        let Some(slot) = heap.pop().map(slot_of) else {
-            break;
-        };
-        // Edges a collapse removes leave the queue with it, so this one is live.
-        let edge = table.edge[slot as usize];
-        // The target still holds: both ends are as they were when the edge was last keyed.
-        let position = table.target[slot as usize];
-        let Ok(plan) = plan_collapse_in(
-            MeshRef::with_lookups(world, &lookups),
-            edge,
-            CollapseOptions {
-                position: Some(position),
-                ..options
-            },
-        ) else {
-            continue;
-        };
-        // The edges around the merged vertex, read by the plan already.
-        ring.clear();
-        ring.extend(plan.merged_ring());
-        let merged = (plan.kept(), plan.position());
-        let (result, removed_edges) = apply_collapse_deferred(world, plan, &mut graveyard);
-        for e in removed_edges.into_iter().flatten() {
-            heap.remove(table.row(e));
-        }
-        record(&result);
-        faces -= result.record.triangles_removed();
-        collapses += 1;
-        let (a, b) = (result.kept, result.removed);
-        table.quadric[a.slot()] = table.quadric[a.slot()] + table.quadric[b.slot()];
-        debug_assert!(
-            ring_matches(&MeshRef::new(world), a, &ring),
-            "the plan's ring of {a} differs from the mesh after the collapse"
-        );
-        for &(e, tip, at) in &ring {
-            heap.set(keyed_ends(&mut table, e, [merged, (tip, at)]));
-        }
-        if collapses % 512 == 0 {
-            let done = (faces_before - faces) as f32 / to_remove as f32;
+    let to_remove = run.faces_before.saturating_sub(run.target_faces).max(1);
+    while let Some(result) = run.collapse_next_deferred(world, &lookups, &mut graveyard) {
+        record(world, &result);
+        if run.collapses % 512 == 0 {
+            let done = (run.faces_before - run.faces) as f32 / to_remove as f32;
             if !progress(done.min(1.0)) {
                 break;
             }
         }
     }
     despawn_removed(world, graveyard);
-    Ok(SimplifySummary {
-        faces_before,
-        faces_after: faces,
-        collapses,
-        reached_target: faces <= target_faces,
-    })
+    Ok(run.summary())
 }
 
 /// Whether `ring` lists exactly the edges around `v`, with their other ends where they are.
@@ -492,13 +438,13 @@ fn keyed_ends(table: &mut VertexTable, e: EdgeId, mut ends: [(VertexId, Vec3); 2
     // Either order gives the same sum of quadrics; a fixed one makes the fallback's tie
     // between the two ends independent of how the caller reached the edge.
     ends.sort_unstable_by_key(|(v, _)| v.0.to_bits());
-    let c = candidate(table, ends);
+    let c = placement(table, ends);
     let row = table.row(e);
     table.target[row as usize] = c.position;
     (u64::from((c.cost.max(0.0) as f32).to_bits()) << 32) | u64::from(row)
 }
 
-fn candidate(table: &VertexTable, [(a, pa), (b, pb)]: [(VertexId, Vec3); 2]) -> Candidate {
+fn placement(table: &VertexTable, [(a, pa), (b, pb)]: [(VertexId, Vec3); 2]) -> Placement {
     let q = table.quadric[a.slot()] + table.quadric[b.slot()];
     let (pa, pb) = (pa.as_dvec3(), pb.as_dvec3());
     let position = q.optimum().unwrap_or_else(|| {
@@ -507,7 +453,7 @@ fn candidate(table: &VertexTable, [(a, pa), (b, pb)]: [(VertexId, Vec3); 2]) -> 
             .min_by(|x, y| q.error(*x).total_cmp(&q.error(*y)))
             .unwrap_or(pa)
     });
-    Candidate {
+    Placement {
         cost: q.error(position).max(0.0),
         position: position.as_vec3(),
     }

@@ -196,6 +196,11 @@ impl CollapsePlan {
         self.a
     }
 
+    /// The vertex that goes.
+    pub fn removed(&self) -> VertexId {
+        self.b
+    }
+
     /// Where the surviving vertex goes.
     pub fn position(&self) -> Vec3 {
         self.position

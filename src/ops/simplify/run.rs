@@ -1,0 +1,481 @@
+//! A simplification that can stop between any two collapses: the state of the loop in
+//! [`super::simplify`] (quadrics, the queue of edges) kept in a value, so that the editor's
+//! step mode can show the next edge, make one collapse, and go on later.
+//!
+//! Running it to the end in one go and in steps makes the same collapses in the same order,
+//! because every step is the loop's own body: [`QemRun::peek`] pops and plans exactly what the
+//! next [`QemRun::collapse_next`] would, and keeps the popped entry for it.
+//!
+//! **Moving along the history in between.** A stepped run records its collapses in a
+//! [`ProgressiveMesh`], so the mesh can be moved back (vertex splits) and forward again (the
+//! same collapses replayed) while the run waits. The run's tables name vertices and edges by
+//! entity. A split brings back the removed vertex and the edges its collapse removed, as new
+//! entities, and the replayed collapse removes exactly those again: back at the run's coarsest
+//! level, every vertex and queued edge is the entity it was. [`QemRun::reattach`] checks that
+//! before the run goes on, and refuses where it does not hold (the mesh was edited in between).
+
+use bevy::math::Vec3;
+use bevy::prelude::{Entity, World};
+
+use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
+use crate::mesh::topology::{Lookups, MeshRef};
+use crate::ops::Refusal;
+use crate::ops::indexed_heap::{IndexedHeap, slot_of};
+use crate::ops::local::{
+    CollapseOptions, CollapsePlan, CollapseResult, apply_collapse_deferred, plan_collapse_in,
+};
+use crate::ops::progressive::{ProgressiveMesh, SlotIndex};
+
+use super::{
+    Key, Setup, SimplifyParams, SimplifySummary, VertexTable, despawn_removed,
+    keyed_ends, ring_matches, setup,
+};
+
+/// An edge in the queue: where it would collapse to and at what cost.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct QueuedEdge {
+    /// The edge.
+    pub edge: EdgeId,
+    /// The quadric error of its collapse (as queued: an `f32`).
+    pub cost: f32,
+    /// Where its ends would merge.
+    pub position: Vec3,
+}
+
+/// The collapse the next step makes, planned and accepted.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NextCollapse {
+    /// The edge, its cost and where its ends merge.
+    pub queued: QueuedEdge,
+    /// The vertex that stays (and moves to the merged position).
+    pub kept: VertexId,
+    /// The vertex that goes.
+    pub removed: VertexId,
+}
+
+/// An edge taken off the queue whose collapse was refused: it waits until a neighbouring
+/// collapse queues it again.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Refused {
+    /// The edge, as queued.
+    pub queued: QueuedEdge,
+    /// Why (the link condition, a normal that would turn too far, …).
+    pub why: Refusal,
+}
+
+/// A QEM simplification in progress (see the module doc).
+pub struct QemRun {
+    mesh: MeshId,
+    table: VertexTable,
+    heap: IndexedHeap,
+    max_normal_change_deg: f32,
+    pub(super) faces_before: usize,
+    pub(super) faces: usize,
+    pub(super) target_faces: usize,
+    pub(super) collapses: usize,
+    /// The entry [`QemRun::peek`] took off the queue for the next collapse.
+    next: Option<Key>,
+    /// Set between [`QemRun::detach`] and [`QemRun::reattach`].
+    detached: bool,
+    ring: Vec<(EdgeId, VertexId, Vec3)>,
+}
+
+impl QemRun {
+    /// Reads `mesh` and queues every edge: the simplification [`super::simplify`] would run,
+    /// before its first collapse.
+    ///
+    /// # Refusals
+    /// As [`super::simplify`]: a stale mesh, a face that is not a triangle.
+    pub fn start(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Self, Refusal> {
+        if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
+            return Err(Refusal::Stale(ElementId::Mesh(mesh)));
+        }
+        let Setup {
+            table,
+            heap,
+            faces_before,
+        } = setup(world, mesh, params)?;
+        Ok(Self {
+            mesh,
+            table,
+            heap,
+            max_normal_change_deg: params.max_normal_change_deg,
+            faces_before,
+            faces: faces_before,
+            target_faces: params.target.faces(faces_before),
+            collapses: 0,
+            next: None,
+            detached: false,
+            ring: Vec::new(),
+        })
+    }
+
+    /// The mesh being simplified.
+    pub fn mesh(&self) -> MeshId {
+        self.mesh
+    }
+
+    /// Faces now, at the run's coarsest level.
+    pub fn faces(&self) -> usize {
+        self.faces
+    }
+
+    /// The face count the run stops at.
+    pub fn target_faces(&self) -> usize {
+        self.target_faces
+    }
+
+    /// Collapses made so far.
+    pub fn collapses(&self) -> usize {
+        self.collapses
+    }
+
+    /// Edges waiting in the queue (the one [`QemRun::peek`] took counted).
+    pub fn queued(&self) -> usize {
+        self.heap.len() + usize::from(self.next.is_some())
+    }
+
+    /// What the run has done so far, as [`super::simplify`] reports it.
+    pub fn summary(&self) -> SimplifySummary {
+        SimplifySummary {
+            faces_before: self.faces_before,
+            faces_after: self.faces,
+            collapses: self.collapses,
+            reached_target: self.faces <= self.target_faces,
+        }
+    }
+
+    /// The `n` cheapest edges in the queue, cheapest first, as they are queued (the first may
+    /// still be refused when its turn comes; [`QemRun::peek`] says which will not be).
+    pub fn candidates(&self, n: usize) -> Vec<QueuedEdge> {
+        let rest = self.heap.smallest(n.saturating_sub(usize::from(self.next.is_some())));
+        self.next
+            .into_iter()
+            .chain(rest)
+            .map(|key| self.queued_edge(key))
+            .collect()
+    }
+
+    /// The collapse the next [`QemRun::collapse_next`] makes, or `None` when the run is over
+    /// (the target reached, or no edge left whose collapse is allowed). Edges refused on the
+    /// way leave the queue as they would in an unstepped run, each handed to `refused`.
+    ///
+    /// # Panics
+    /// While detached.
+    pub fn peek(&mut self, world: &World, mut refused: impl FnMut(Refused)) -> Option<NextCollapse> {
+        let (key, plan) = self.plan_next(MeshRef::new(world), &mut refused)?;
+        self.next = Some(key);
+        Some(NextCollapse {
+            queued: self.queued_edge(key),
+            kept: plan.kept(),
+            removed: plan.removed(),
+        })
+    }
+
+    /// Makes the next collapse (the one [`QemRun::peek`] shows) and despawns what it removed.
+    /// `None` when the run is over.
+    ///
+    /// # Panics
+    /// While detached.
+    pub fn collapse_next(
+        &mut self,
+        world: &mut World,
+        mut refused: impl FnMut(Refused),
+    ) -> Option<CollapseResult> {
+        let mut gone = Vec::new();
+        let plan = self.plan_next(MeshRef::new(world), &mut refused)?.1;
+        let result = self.apply(world, plan, &mut gone);
+        despawn_removed(world, gone);
+        Some(result)
+    }
+
+    /// [`QemRun::collapse_next`] for the unstepped loop: reads through `lookups` and leaves
+    /// what it removed in `graveyard`, for one despawn at the end.
+    pub(super) fn collapse_next_deferred(
+        &mut self,
+        world: &mut World,
+        lookups: &Lookups,
+        graveyard: &mut Vec<Entity>,
+    ) -> Option<CollapseResult> {
+        let plan = self
+            .plan_next(MeshRef::with_lookups(world, lookups), &mut |_| {})?
+            .1;
+        Some(self.apply(world, plan, graveyard))
+    }
+
+    /// Takes edges off the queue until one may collapse, and plans it.
+    fn plan_next(
+        &mut self,
+        m: MeshRef<'_>,
+        refused: &mut dyn FnMut(Refused),
+    ) -> Option<(Key, CollapsePlan)> {
+        assert!(!self.detached, "a detached run cannot collapse");
+        if self.faces <= self.target_faces {
+            return None;
+        }
+        loop {
+            let key = match self.next.take() {
+                Some(key) => key,
+                None => self.heap.pop()?,
+            };
+            // Edges a collapse removes leave the queue with it, so this one is live; its
+            // target still holds: both ends are as they were when the edge was last keyed.
+            let queued = self.queued_edge(key);
+            let options = CollapseOptions {
+                position: Some(queued.position),
+                max_normal_change_deg: Some(self.max_normal_change_deg),
+            };
+            match plan_collapse_in(m, queued.edge, options) {
+                Ok(plan) => return Some((key, plan)),
+                Err(why) => refused(Refused { queued, why }),
+            }
+        }
+    }
+
+    /// Applies a planned collapse and requeues the edges around the merged vertex.
+    fn apply(
+        &mut self,
+        world: &mut World,
+        plan: CollapsePlan,
+        graveyard: &mut Vec<Entity>,
+    ) -> CollapseResult {
+        // The edges around the merged vertex, read by the plan already.
+        self.ring.clear();
+        self.ring.extend(plan.merged_ring());
+        let merged = (plan.kept(), plan.position());
+        let (result, removed_edges) = apply_collapse_deferred(world, plan, graveyard);
+        for e in removed_edges.into_iter().flatten() {
+            self.heap.remove(self.table.row(e));
+        }
+        self.faces -= result.record.triangles_removed();
+        self.collapses += 1;
+        let (a, b) = (result.kept, result.removed);
+        let quadric = &mut self.table.quadric;
+        quadric[a.slot()] = quadric[a.slot()] + quadric[b.slot()];
+        debug_assert!(
+            ring_matches(&MeshRef::new(world), a, &self.ring),
+            "the plan's ring of {a} differs from the mesh after the collapse"
+        );
+        for &(e, tip, at) in &self.ring {
+            self.heap.set(keyed_ends(&mut self.table, e, [merged, (tip, at)]));
+        }
+        result
+    }
+
+    fn queued_edge(&self, key: Key) -> QueuedEdge {
+        let row = slot_of(key) as usize;
+        QueuedEdge {
+            edge: self.table.edge[row],
+            cost: f32::from_bits((key >> 32) as u32),
+            position: self.table.target[row],
+        }
+    }
+
+    /// Readies the run for the mesh to move along its history: the edge [`QemRun::peek`] took
+    /// goes back in the queue. Until [`QemRun::reattach`], the run makes no collapse.
+    pub fn detach(&mut self) {
+        if let Some(key) = self.next.take() {
+            self.heap.set(key);
+        }
+        self.detached = true;
+    }
+
+    /// Takes up the run again once the mesh is back at its coarsest level. Nothing to do if it
+    /// was not detached.
+    ///
+    /// # Refusals
+    /// [`Refusal::HistoryMismatch`] when `history` is not at its coarsest level, or a vertex
+    /// it holds or an edge in the queue is gone (the mesh was edited in between); the run then
+    /// stays detached.
+    pub fn reattach(&mut self, world: &World, history: &ProgressiveMesh) -> Result<(), Refusal> {
+        if !self.detached {
+            return Ok(());
+        }
+        if history.applied != history.records.len() {
+            return Err(Refusal::HistoryMismatch(
+                "the simplification goes on from its coarsest level".into(),
+            ));
+        }
+        let m = MeshRef::new(world);
+        let gone = history
+            .slots()
+            .iter()
+            .flatten()
+            .map(|&v| ElementId::Vertex(v))
+            .chain(self.heap.entries().iter().map(|&key| {
+                ElementId::Edge(self.table.edge[slot_of(key) as usize])
+            }))
+            .find(|&x| match x {
+                ElementId::Vertex(v) => m.try_vertex(v).is_none(),
+                ElementId::Edge(e) => m.try_edge(e).is_none(),
+                _ => false,
+            });
+        if let Some(x) = gone {
+            return Err(Refusal::HistoryMismatch(format!(
+                "{x} is gone: the mesh changed outside the simplification"
+            )));
+        }
+        self.detached = false;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes::{grid_with_holes, icosphere, torus, triangulate_fans};
+    use crate::mesh::soup::PolygonSoup;
+    use crate::ops::local::testkit::{build, shape, snapshot};
+    use crate::ops::progressive::SlotRecord;
+
+    /// The meshes every test runs on: regular ones, where many edges cost the same and the
+    /// order of ties decides, and one with boundaries and holes.
+    fn inputs() -> Vec<(&'static str, PolygonSoup, SimplifyParams)> {
+        vec![
+            ("icosphere", icosphere(3), SimplifyParams::ratio(0.1)),
+            ("torus", triangulate_fans(&torus(24, 12)), SimplifyParams::ratio(0.2)),
+            ("holes", triangulate_fans(&grid_with_holes(3)), SimplifyParams::ratio(0.25)),
+        ]
+    }
+
+    fn record_bits(r: &SlotRecord) -> impl PartialEq + std::fmt::Debug {
+        let p = |v: Vec3| v.to_array().map(f32::to_bits);
+        (
+            (r.kept, r.removed, r.left, r.right, r.faces),
+            [r.merged_position, r.kept_position, r.removed_position].map(p),
+        )
+    }
+
+    /// Steps `run` `n` times at the coarsest level, recording into `pm`; returns how many it made.
+    fn step(world: &mut World, run: &mut QemRun, pm: &mut ProgressiveMesh, n: usize) -> usize {
+        run.reattach(world, pm).expect("the run goes on");
+        let index = SlotIndex::of(pm);
+        let mut made = 0;
+        while made < n {
+            let Some(next) = run.peek(world, |_| {}) else {
+                break;
+            };
+            let result = run.collapse_next(world, |_| {}).expect("peek promised one");
+            assert_eq!((result.kept, result.removed), (next.kept, next.removed));
+            assert!(MeshRef::new(world).try_edge(next.queued.edge).is_none());
+            pm.push(world, &index, &result);
+            made += 1;
+        }
+        made
+    }
+
+    #[test]
+    fn stepping_to_the_end_makes_the_unstepped_runs_mesh_and_records() {
+        for (name, soup, params) in inputs() {
+            let (mut whole, built) = build(&soup);
+            let (expected, summary) =
+                ProgressiveMesh::simplify(&mut whole, built.mesh, &params).unwrap();
+            let (mut world, built) = build(&soup);
+            let mesh = built.mesh;
+            let mut run = QemRun::start(&world, mesh, &params).unwrap();
+            let mut pm = ProgressiveMesh::start(&world, mesh, run.faces());
+            // Uneven strides, as a user pressing 1, 10 and 100 would.
+            for stride in [1, 10, 100, 1, 7].into_iter().cycle() {
+                if step(&mut world, &mut run, &mut pm, stride) < stride {
+                    break;
+                }
+            }
+            assert_eq!(run.summary(), summary, "{name}");
+            assert!(
+                snapshot(&world, mesh) == snapshot(&whole, built.mesh),
+                "{name}: the stepped mesh differs"
+            );
+            assert_eq!(pm.records.len(), expected.records.len(), "{name}");
+            for (a, b) in pm.records.iter().zip(&expected.records) {
+                assert_eq!(record_bits(a), record_bits(b), "{name}");
+            }
+            crate::mesh::validate(&world, mesh).unwrap();
+        }
+    }
+
+    #[test]
+    fn scrubbing_back_and_forth_gives_the_same_mesh_at_every_step_and_the_same_end() {
+        for (name, soup, params) in inputs() {
+            let (mut whole, reference) = build(&soup);
+            let end = ProgressiveMesh::simplify(&mut whole, reference.mesh, &params).unwrap();
+            let (mut world, built) = build(&soup);
+            let mesh = built.mesh;
+            let mut run = QemRun::start(&world, mesh, &params).unwrap();
+            let mut pm = ProgressiveMesh::start(&world, mesh, run.faces());
+            let mut at_step = vec![shape(&world, mesh)];
+
+            // Go forward in strides, keeping the shape at each stop; after each stride go back
+            // to an earlier stop (a long way: the bulk refine, which renumbers everything) and
+            // forward again, checking the shapes on the way.
+            for (round, stride) in [40, 3, 25, 60].into_iter().cycle().enumerate() {
+                if step(&mut world, &mut run, &mut pm, stride) == 0 {
+                    break;
+                }
+
+                at_step.push(shape(&world, mesh));
+                let back = round % at_step.len();
+                run.detach();
+                let faces = pm.full_faces
+                    - pm.records[..pm.records.len() - stride.min(pm.records.len())]
+                        .iter()
+                        .map(|r| r.faces)
+                        .sum::<usize>();
+                pm.go_to_faces(&mut world, if back == 0 { usize::MAX } else { faces })
+                    .unwrap();
+                if back == 0 {
+                    assert_eq!(shape(&world, mesh), at_step[0], "{name}: the full level");
+                }
+                pm.go_to_faces(&mut world, 0).unwrap();
+                assert_eq!(
+                    shape(&world, mesh),
+                    *at_step.last().unwrap(),
+                    "{name}: back at the run's front"
+                );
+                crate::mesh::validate(&world, mesh).unwrap();
+            }
+            assert_eq!(run.summary(), end.1, "{name}");
+            assert_eq!(shape(&world, mesh), shape(&whole, reference.mesh), "{name}");
+
+        }
+    }
+
+    #[test]
+    fn the_candidates_are_the_queue_cheapest_first_and_peek_is_the_first_allowed() {
+        let (mut world, built) = build(&triangulate_fans(&torus(16, 8)));
+        let mut run = QemRun::start(&world, built.mesh, &SimplifyParams::ratio(0.5)).unwrap();
+        let queued = run.queued();
+        let first = run.candidates(12);
+        assert_eq!(first.len(), 12);
+        assert!(first.windows(2).all(|w| w[0].cost <= w[1].cost));
+        let mut refused = Vec::new();
+        let next = run.peek(&world, |r| refused.push(r)).unwrap();
+        // Refused edges leave the queue; the next one stays counted.
+        assert_eq!(run.queued(), queued - refused.len());
+        assert_eq!(first[refused.len()], next.queued);
+        assert_eq!(run.candidates(1)[0], next.queued);
+        let result = run.collapse_next(&mut world, |_| unreachable!()).unwrap();
+        assert_eq!(result.kept, next.kept);
+        assert_eq!(
+            MeshRef::new(&world).position(result.kept),
+            next.queued.position
+        );
+    }
+
+    #[test]
+    fn a_run_whose_mesh_was_edited_while_it_waited_refuses_to_go_on() {
+        let (mut world, built) = build(&icosphere(2));
+        let params = SimplifyParams::ratio(0.5);
+        let mut run = QemRun::start(&world, built.mesh, &params).unwrap();
+        let mut pm = ProgressiveMesh::start(&world, built.mesh, run.faces());
+        step(&mut world, &mut run, &mut pm, 5);
+        run.detach();
+        let queued = run.candidates(3)[2].edge;
+        crate::ops::local::collapse_edge(&mut world, queued, Default::default()).unwrap();
+        let refusal = run.reattach(&world, &pm).unwrap_err();
+        assert!(
+            matches!(refusal, Refusal::HistoryMismatch(ref why) if why.contains("is gone")),
+            "{refusal}"
+        );
+        assert!(run.detached, "the run stays detached");
+    }
+}
