@@ -22,6 +22,7 @@ use super::requests::{ConfirmDiscard, Declined, PendingDiscard, Request};
 use super::select_many::apply_selection_edit;
 use super::selection::{ActiveMesh, MeshDirty, Selection, exists, mark_faces_dirty, navigate};
 use super::session::{Modified, SimplificationHistory, is_modified};
+use super::stepping;
 
 /// Applies every request written since the last run, in order (the `Apply` set).
 pub fn apply_requests(world: &mut World, mut cursor: Local<MessageCursor<Request>>) {
@@ -72,8 +73,14 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
     {
         return Err(Declined::Busy(job.label.clone()));
     }
+    // Any other edit, undo or file request ends a stepped run first, as one undo entry.
+    if request.edits() && !matches!(request, Request::Step(_)) {
+        stepping::end_run(world)?;
+    }
     match request {
         Request::Edit(edit) => apply_edit(world, edit),
+        Request::StartStepped(edit) => stepping::start(world, edit),
+        Request::Step(movement) => stepping::step(world, *movement),
         Request::Undo => undo_or_redo(world, false),
         Request::Retract(keep) => {
             let mut taken = Vec::new();

@@ -6,7 +6,7 @@
 //! | step | meaning |
 //! |---|---|
 //! | `wait:N` | let N frames pass |
-//! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:3`, `key:.`, `key:Period`, `key:Enter`, `key:Escape`, `key:Delete`, `key:Backspace`, `key:Minus`, `key:Equal`); `key:Shift+S`, `key:Ctrl+T`, `key:Alt+M` hold a modifier |
+//! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:3`, `key:.`, `key:Period`, `key:Enter`, `key:Escape`, `key:Delete`, `key:Backspace`, `key:Minus`, `key:Equal`, `key:F9`, `key:Right`, `key:Left`, `key:End`); `key:Shift+S`, `key:Ctrl+T`, `key:Alt+M` hold a modifier |
 //! | `select-edge:A,B` | select the edge between the input file's vertices A and B (0-based) |
 //! | `select-vertex:A` | select the input file's vertex A |
 //! | `select:ID` | select an element by id (`f12v0`) |
@@ -14,6 +14,7 @@
 //! | `uv-select:U,V` | select the face whose UV polygon holds (U, V), as a click in the UV view does (`uv-select:0.5,0.5`) |
 //! | `open:PATH` | open a file (or `shape:NAME`) as Ctrl+O would |
 //! | `lod:FACES` | move the level-of-detail slider (after a simplification) |
+//! | `step:N`, `step:back:N`, `step:to:K`, `step:end`, `step:finish`, `step:cancel` | move the stepped run in progress (start one with `key:F9;key:Shift+S`) |
 //! | `orbit:YAW,PITCH` | turn the camera about what it looks at by these degrees (`orbit:180,-60` looks from behind and below) |
 //! | `zoom:F` | multiply the camera's distance to what it looks at by F (`zoom:0.5` comes twice as close) |
 //! | `colour:NAME` | colour the mesh by a quantity (`colour:mean`, names as `process --quantity`; `colour:none`) |
@@ -39,6 +40,7 @@ use crate::ops::geometry::Quantity;
 
 use super::requests::Request;
 use super::selection::ActiveMesh;
+use super::stepping::StepMove;
 
 /// One scripted step (see the module doc).
 #[derive(Clone, Debug, PartialEq)]
@@ -61,6 +63,8 @@ pub enum ScriptStep {
     Open(PathBuf),
     /// Move the level-of-detail slider.
     Lod(usize),
+    /// Move the stepped run.
+    Step(StepMove),
     /// Multiply the camera's distance to its focus (below 1: closer).
     Zoom(f32),
     /// Turn the camera about its focus by these degrees (yaw, pitch).
@@ -162,6 +166,15 @@ impl Script {
                 "shot" => ScriptStep::Shot(PathBuf::from(arg)),
                 "open" => ScriptStep::Open(PathBuf::from(arg)),
                 "lod" => ScriptStep::Lod(arg.parse().map_err(|_| bad())?),
+                "step" => ScriptStep::Step(match arg.split_once(':') {
+                    Some(("back", n)) => StepMove::Back(n.parse().map_err(|_| bad())?),
+                    Some(("to", k)) => StepMove::To(k.parse().map_err(|_| bad())?),
+                    None if arg == "end" => StepMove::Forward(usize::MAX),
+                    None if arg == "finish" => StepMove::Finish,
+                    None if arg == "cancel" => StepMove::Cancel,
+                    None => StepMove::Forward(arg.parse().map_err(|_| bad())?),
+                    Some(_) => return Err(bad()),
+                }),
                 "orbit" => {
                     let (yaw, pitch) = arg.split_once(',').ok_or_else(bad)?;
                     ScriptStep::Orbit(
@@ -246,6 +259,10 @@ fn key_code(name: &str) -> Option<KeyCode> {
         "Period" => Some(KeyCode::Period),
         "Escape" => Some(KeyCode::Escape),
         "F1" => Some(KeyCode::F1),
+        "F9" => Some(KeyCode::F9),
+        "Right" => Some(KeyCode::ArrowRight),
+        "Left" => Some(KeyCode::ArrowLeft),
+        "End" => Some(KeyCode::End),
         "Delete" => Some(KeyCode::Delete),
         "Enter" => Some(KeyCode::Enter),
         "Backspace" => Some(KeyCode::Backspace),
@@ -335,6 +352,10 @@ pub fn run_script(world: &mut World) {
             }
             ScriptStep::Lod(faces) => {
                 world.write_message(Request::Edit(Edit::LevelOfDetail(faces)));
+                script.waiting = 2;
+            }
+            ScriptStep::Step(movement) => {
+                world.write_message(Request::Step(movement));
                 script.waiting = 2;
             }
             ScriptStep::Orbit(yaw, pitch) => {

@@ -369,6 +369,21 @@ pub fn commit(world: &mut World, pending: Pending, label: String) {
     history.push(Entry::new(label, record, pending.selection, merge));
 }
 
+/// Puts the mesh back as `pending` captured it and records nothing: an edit taken back before
+/// it was committed (a stepped run cancelled). Only a whole-mesh capture can be put back;
+/// returns whether it was one. The undo and redo entries follow the restored elements' new ids.
+pub fn restore(world: &mut World, pending: Pending) -> bool {
+    let PendingKind::Whole(saved) = pending.kind else {
+        return false;
+    };
+    let (_, mut map) = saved.apply(world);
+    let history = &mut *world.resource_mut::<UndoHistory>();
+    for entry in history.undo.iter_mut().chain(history.redo.iter_mut()) {
+        entry.remap(&mut map);
+    }
+    true
+}
+
 /// What an undo or redo did.
 pub struct Stepped {
     /// The entry's label.

@@ -5,6 +5,7 @@
 //! line's. Shortcuts are ignored while egui wants the keyboard (typing in a text field), which
 //! the UI reports through [`KeyboardCaptured`].
 
+use super::stepping::{StepMove, Stepping};
 use bevy::prelude::*;
 
 use crate::edit::{Edit, LocalKind, Scheme, Subdivision};
@@ -116,6 +117,10 @@ pub enum Action {
     SaveAs,
     /// Show or hide the help overlay.
     Help,
+    /// Step mode on / off: global operations start a stepped run instead of running through.
+    ToggleStepMode,
+    /// Move the stepped run in progress.
+    Step(StepMove),
 }
 
 /// A key with modifiers, and what it does.
@@ -452,7 +457,7 @@ pub const SHORTCUTS: &[Shortcut] = &[
         KeyCode::Escape,
         "Esc",
         Action::ClearSelection,
-        "cancel the running operation, else select nothing",
+        "cancel the running operation or stepped run, else select nothing",
     ),
     key(
         KeyCode::Period,
@@ -514,6 +519,62 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "Ctrl+Shift+S",
         Action::SaveAs,
         "save as",
+    ),
+    key(
+        KeyCode::F9,
+        "F9",
+        Action::ToggleStepMode,
+        "step mode on / off: Shift+S then runs QEM one collapse at a time",
+    ),
+    key(
+        KeyCode::ArrowRight,
+        "Right",
+        Action::Step(StepMove::Forward(1)),
+        "step mode: one step forward",
+    ),
+    shift(
+        KeyCode::ArrowRight,
+        "Shift+Right",
+        Action::Step(StepMove::Forward(10)),
+        "step mode: 10 steps forward",
+    ),
+    ctrl(
+        KeyCode::ArrowRight,
+        false,
+        "Ctrl+Right",
+        Action::Step(StepMove::Forward(100)),
+        "step mode: 100 steps forward",
+    ),
+    key(
+        KeyCode::End,
+        "End",
+        Action::Step(StepMove::Forward(usize::MAX)),
+        "step mode: to the end",
+    ),
+    key(
+        KeyCode::ArrowLeft,
+        "Left",
+        Action::Step(StepMove::Back(1)),
+        "step mode: one step back",
+    ),
+    shift(
+        KeyCode::ArrowLeft,
+        "Shift+Left",
+        Action::Step(StepMove::Back(10)),
+        "step mode: 10 steps back",
+    ),
+    ctrl(
+        KeyCode::ArrowLeft,
+        false,
+        "Ctrl+Left",
+        Action::Step(StepMove::Back(100)),
+        "step mode: 100 steps back",
+    ),
+    key(
+        KeyCode::Enter,
+        "Enter",
+        Action::Step(StepMove::Finish),
+        "step mode: keep the mesh where the run is (one undo step)",
     ),
     key(KeyCode::F1, "F1", Action::Help, "show / hide this help"),
     shift(KeyCode::Slash, "?", Action::Help, "show / hide this help"),
@@ -776,6 +837,20 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
         Action::ClearSelection if world.resource::<Jobs>().running.is_some() => {
             return Ok(Some(Request::CancelJob));
         }
+        Action::ClearSelection if world.resource::<Stepping>().run.is_some() => {
+            return Ok(Some(Request::Step(StepMove::Cancel)));
+        }
+        Action::Step(movement) => {
+            if world.resource::<Stepping>().run.is_none() {
+                return Err(Declined::NoSteppedRun);
+            }
+            return Ok(Some(Request::Step(movement)));
+        }
+        Action::ToggleStepMode => {
+            let mut stepping = world.resource_mut::<Stepping>();
+            stepping.enabled = !stepping.enabled;
+            return Ok(None);
+        }
         Action::ClearSelection | Action::SelectNone => return Ok(Some(Request::Select(None))),
         Action::SelectAll => return Ok(Some(SelectionEdit::All.into())),
         Action::Grow => return Ok(Some(SelectionEdit::Grow.into())),
@@ -854,6 +929,9 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             return Ok(None);
         }
     };
+    if world.resource::<Stepping>().enabled && super::stepping::steppable(&edit) {
+        return Ok(Some(Request::StartStepped(edit)));
+    }
     Ok(Some(Request::Edit(edit)))
 }
 

@@ -34,6 +34,8 @@ pub mod scene;
 pub mod select_many;
 pub mod selection;
 pub mod session;
+pub mod step_view;
+pub mod stepping;
 pub mod surface;
 pub mod transform;
 pub mod ui;
@@ -93,6 +95,8 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<uv_view::UvLayout>()
             .init_resource::<transform::Gestures>()
             .init_resource::<box_select::BoxSelect>()
+            .init_resource::<stepping::Stepping>()
+            .init_resource::<step_view::StepView>()
             .configure_sets(
                 Update,
                 (
@@ -122,6 +126,7 @@ impl Plugin for EditorLogicPlugin {
                         colouring::update_vertex_values,
                         render_sync::sync_render_meshes,
                         overlay::gather_overlay,
+                        step_view::gather_step_overlay,
                         uv_view::refresh_uv_layout,
                     )
                         .chain()

@@ -86,6 +86,10 @@ pub enum Request {
     Retract(usize),
     /// Redo the last undone edit.
     Redo,
+    /// Start a stepped run of a global edit (step mode).
+    StartStepped(Edit),
+    /// Move the stepped run in progress.
+    Step(super::stepping::StepMove),
     /// Answer the unsaved-changes question: `true` discards the changes and goes on with what
     /// was asked (opening another file, quitting), `false` cancels it.
     ConfirmDiscard(bool),
@@ -118,6 +122,8 @@ impl Request {
             Request::DeleteMesh => "delete mesh".into(),
             Request::CancelJob => "cancel".into(),
             Request::Undo => "undo".into(),
+            Request::StartStepped(edit) => format!("step through {}", edit.label()),
+            Request::Step(movement) => movement.label(),
             Request::Retract(_) => "cancel".into(),
             Request::Redo => "redo".into(),
             Request::ConfirmDiscard(true) => "discard changes".into(),
@@ -130,6 +136,8 @@ impl Request {
         matches!(
             self,
             Request::Edit(_)
+                | Request::StartStepped(_)
+                | Request::Step(_)
                 | Request::Open(_)
                 | Request::DeleteMesh
                 | Request::Undo
@@ -202,6 +210,9 @@ pub enum Declined {
     /// Cancel was asked with no job running.
     #[error("no operation is running")]
     NoJob,
+    /// A step was asked with no stepped run in progress.
+    #[error("no operation is being stepped through: turn step mode on (F9) and start one")]
+    NoSteppedRun,
     /// Nothing to undo or redo.
     #[error("nothing to {0}")]
     NothingTo(&'static str),

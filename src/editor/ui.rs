@@ -55,11 +55,17 @@ impl Plugin for UiPlugin {
                 (
                     run_pending_actions.in_set(EditorSystems::Input),
                     snapshot.in_set(EditorSystems::Ui),
+                    super::step_view::snapshot_steps.in_set(EditorSystems::Ui),
                 ),
             )
             .add_systems(
                 EguiPrimaryContextPass,
-                (panels, super::uv_view::uv_window).chain(),
+                (
+                    panels,
+                    super::uv_view::uv_window,
+                    super::step_view::step_window,
+                )
+                    .chain(),
             );
     }
 }
@@ -747,6 +753,7 @@ fn operations_section(
             (Action::CutCorner, "Split face"),
             (Action::SplitVertex, "Split vertex back"),
             (Action::Triangulate, "Triangulate"),
+            (Action::ToggleStepMode, "Step mode"),
             (Action::Frame, "Frame"),
             (Action::DeleteMesh, "Delete mesh"),
         ] {

@@ -313,6 +313,12 @@ fn ring_matches(m: &MeshRef<'_>, v: VertexId, ring: &[(EdgeId, VertexId, Vec3)])
 /// collapse by collapse moved a row and missed the cache for every element. The order comes
 /// from placing each entity at its index in a table and reading the table backwards: one
 /// linear pass, where sorting took a fifth of the despawning.
+///
+/// A stepped run despawns each collapse's elements as it goes, so its mesh is stored in
+/// another order (Bevy fills a despawned row with the table's last), and a saved file lists
+/// the same vertices and faces in another order. Despawning in collapse order here would make
+/// the orders match; measured on the bunny's simplification to 25 %, median of 12, it took 198
+/// ms against 134.
 fn despawn_removed(world: &mut World, gone: Vec<Entity>) {
     let mut by_index = vec![None; slots_for(gone.iter().copied())];
     for e in gone {

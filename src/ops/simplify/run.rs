@@ -24,11 +24,11 @@ use crate::ops::indexed_heap::{IndexedHeap, slot_of};
 use crate::ops::local::{
     CollapseOptions, CollapsePlan, CollapseResult, apply_collapse_deferred, plan_collapse_in,
 };
-use crate::ops::progressive::{ProgressiveMesh, SlotIndex};
+use crate::ops::progressive::ProgressiveMesh;
 
 use super::{
-    Key, Setup, SimplifyParams, SimplifySummary, VertexTable, despawn_removed,
-    keyed_ends, ring_matches, setup,
+    Key, Setup, SimplifyParams, SimplifySummary, VertexTable, despawn_removed, keyed_ends,
+    ring_matches, setup,
 };
 
 /// An edge in the queue: where it would collapse to and at what cost.
@@ -148,7 +148,9 @@ impl QemRun {
     /// The `n` cheapest edges in the queue, cheapest first, as they are queued (the first may
     /// still be refused when its turn comes; [`QemRun::peek`] says which will not be).
     pub fn candidates(&self, n: usize) -> Vec<QueuedEdge> {
-        let rest = self.heap.smallest(n.saturating_sub(usize::from(self.next.is_some())));
+        let rest = self
+            .heap
+            .smallest(n.saturating_sub(usize::from(self.next.is_some())));
         self.next
             .into_iter()
             .chain(rest)
@@ -162,7 +164,11 @@ impl QemRun {
     ///
     /// # Panics
     /// While detached.
-    pub fn peek(&mut self, world: &World, mut refused: impl FnMut(Refused)) -> Option<NextCollapse> {
+    pub fn peek(
+        &mut self,
+        world: &World,
+        mut refused: impl FnMut(Refused),
+    ) -> Option<NextCollapse> {
         let (key, plan) = self.plan_next(MeshRef::new(world), &mut refused)?;
         self.next = Some(key);
         Some(NextCollapse {
@@ -257,7 +263,8 @@ impl QemRun {
             "the plan's ring of {a} differs from the mesh after the collapse"
         );
         for &(e, tip, at) in &self.ring {
-            self.heap.set(keyed_ends(&mut self.table, e, [merged, (tip, at)]));
+            self.heap
+                .set(keyed_ends(&mut self.table, e, [merged, (tip, at)]));
         }
         result
     }
@@ -302,9 +309,12 @@ impl QemRun {
             .iter()
             .flatten()
             .map(|&v| ElementId::Vertex(v))
-            .chain(self.heap.entries().iter().map(|&key| {
-                ElementId::Edge(self.table.edge[slot_of(key) as usize])
-            }))
+            .chain(
+                self.heap
+                    .entries()
+                    .iter()
+                    .map(|&key| ElementId::Edge(self.table.edge[slot_of(key) as usize])),
+            )
             .find(|&x| match x {
                 ElementId::Vertex(v) => m.try_vertex(v).is_none(),
                 ElementId::Edge(e) => m.try_edge(e).is_none(),
@@ -326,15 +336,23 @@ mod tests {
     use crate::mesh::shapes::{grid_with_holes, icosphere, torus, triangulate_fans};
     use crate::mesh::soup::PolygonSoup;
     use crate::ops::local::testkit::{build, shape, snapshot};
-    use crate::ops::progressive::SlotRecord;
+    use crate::ops::progressive::{SlotIndex, SlotRecord};
 
     /// The meshes every test runs on: regular ones, where many edges cost the same and the
     /// order of ties decides, and one with boundaries and holes.
     fn inputs() -> Vec<(&'static str, PolygonSoup, SimplifyParams)> {
         vec![
             ("icosphere", icosphere(3), SimplifyParams::ratio(0.1)),
-            ("torus", triangulate_fans(&torus(24, 12)), SimplifyParams::ratio(0.2)),
-            ("holes", triangulate_fans(&grid_with_holes(3)), SimplifyParams::ratio(0.25)),
+            (
+                "torus",
+                triangulate_fans(&torus(24, 12)),
+                SimplifyParams::ratio(0.2),
+            ),
+            (
+                "holes",
+                triangulate_fans(&grid_with_holes(3)),
+                SimplifyParams::ratio(0.25),
+            ),
         ]
     }
 
@@ -435,7 +453,6 @@ mod tests {
             }
             assert_eq!(run.summary(), end.1, "{name}");
             assert_eq!(shape(&world, mesh), shape(&whole, reference.mesh), "{name}");
-
         }
     }
 

@@ -1,0 +1,322 @@
+//! Step mode in the editor, without a window: F9 then Shift+S runs QEM a collapse at a time;
+//! the drawn next edge is the one the next step collapses; a run stepped to its end leaves the
+//! unstepped edit's mesh element for element (every id, link and position bit; a saved file
+//! lists the same lines, ordered as Bevy stores them) and one undo entry of the same label; scrubbing
+//! back to step k and forward again gives the same mesh at k; the selection follows what an
+//! element became; Esc puts the mesh back; any other edit ends the run first.
+#![cfg(feature = "editor")]
+
+mod common;
+
+use bevy::input::ButtonState;
+use bevy::input::keyboard::{Key, KeyboardInput, NativeKey};
+use bevy::prelude::*;
+use pappus::editor::history::UndoHistory;
+use pappus::editor::overlay::{Overlay, Shape};
+use pappus::editor::requests::{OutcomeLog, Request};
+use pappus::editor::selection::{ActiveMesh, Selection};
+use pappus::editor::step_view::NEXT;
+use pappus::editor::stepping::{StepMove, Stepping};
+use pappus::mesh::ids::ElementId;
+use pappus::mesh::{MeshRef, to_soup, validate};
+
+/// A closed mesh with many equal costs (ties decide the order) and one with boundaries.
+const SHAPES: [&str; 2] = ["shape:icosphere:3", "shape:grid:16"];
+
+fn send(app: &mut App, request: impl Into<Request>) {
+    app.world_mut().write_message(request.into());
+    app.update();
+}
+
+fn key(app: &mut App, key: KeyCode, state: ButtonState) {
+    app.world_mut().write_message(KeyboardInput {
+        key_code: key,
+        logical_key: Key::Unidentified(NativeKey::Unidentified),
+        state,
+        text: None,
+        repeat: false,
+        window: Entity::PLACEHOLDER,
+    });
+    app.update();
+}
+
+fn press(app: &mut App, modifier: Option<KeyCode>, k: KeyCode) {
+    if let Some(m) = modifier {
+        key(app, m, ButtonState::Pressed);
+    }
+    key(app, k, ButtonState::Pressed);
+    key(app, k, ButtonState::Released);
+    if let Some(m) = modifier {
+        key(app, m, ButtonState::Released);
+    }
+}
+
+fn last_ok(app: &App) -> String {
+    let last = app.world().resource::<OutcomeLog>().entries.last().unwrap();
+    match &last.result {
+        Ok(summary) => summary.clone(),
+        Err(why) => panic!("{} was declined: {why}", last.request),
+    }
+}
+
+fn opened(source: &str) -> App {
+    let mut app = common::headless_editor();
+    send(&mut app, Request::Open(source.into()));
+    app
+}
+
+/// The file the editor would save, as bytes.
+fn saved(app: &App) -> Vec<u8> {
+    let mesh = app.world().resource::<ActiveMesh>().0.unwrap();
+    let soup = to_soup(app.world(), mesh);
+    let path = std::env::temp_dir().join(format!(
+        "pappus-step-mode-{}-{:?}.obj",
+        std::process::id(),
+        std::thread::current().id()
+    ));
+    pappus::io::write(&path, &soup).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    std::fs::remove_file(&path).ok();
+    bytes
+}
+
+/// Every vertex (id, position bits) and face (id, its corners' ids from its halfedge), by id.
+fn elements(app: &App) -> (Vec<(u64, [u32; 3])>, Vec<(u64, Vec<u64>)>) {
+    let mesh = active(app);
+    let members = pappus::mesh::MeshMembers::collect(app.world(), mesh);
+    let m = MeshRef::new(app.world());
+    let mut vertices: Vec<_> = members
+        .vertices
+        .iter()
+        .map(|&v| (v.0.to_bits(), m.position(v).to_array().map(f32::to_bits)))
+        .collect();
+    let mut faces: Vec<_> = members
+        .faces
+        .iter()
+        .map(|&f| {
+            let corners = m.face_vertices(f).map(|v| v.0.to_bits()).collect();
+            (f.0.to_bits(), corners)
+        })
+        .collect();
+    vertices.sort_unstable();
+    faces.sort_unstable();
+    (vertices, faces)
+}
+
+/// The saved file's vertex lines, sorted (face lines name vertices by their place in the file).
+fn sorted_lines(app: &App) -> Vec<String> {
+    let text = String::from_utf8(saved(app)).unwrap();
+    let mut lines: Vec<String> = text
+        .lines()
+        .filter(|l| l.starts_with("v "))
+        .map(str::to_owned)
+        .collect();
+    lines.sort_unstable();
+    lines
+}
+
+fn step_at(app: &App) -> (usize, usize) {
+    let run = app
+        .world()
+        .resource::<Stepping>()
+        .run
+        .as_ref()
+        .expect("a run");
+    (run.steps.at(), run.steps.made())
+}
+
+/// The next edge the overlay draws: the thick line in the next-collapse colour.
+fn drawn_next(app: &App) -> Option<(Vec3, Vec3)> {
+    app.world()
+        .resource::<Overlay>()
+        .shapes
+        .iter()
+        .find_map(|s| match *s {
+            Shape::Highlight(a, b, c) if c == NEXT => Some((a, b)),
+            _ => None,
+        })
+}
+
+fn start_stepped(app: &mut App) {
+    press(app, None, KeyCode::F9);
+    press(app, Some(KeyCode::ShiftLeft), KeyCode::KeyS);
+    assert!(
+        last_ok(app).starts_with("stepping simplify"),
+        "{}",
+        last_ok(app)
+    );
+}
+
+#[test]
+fn a_run_stepped_to_its_end_is_the_unstepped_edit_element_for_element_and_one_undo_entry() {
+    for shape in SHAPES {
+        let mut whole = opened(shape);
+        press(&mut whole, Some(KeyCode::ShiftLeft), KeyCode::KeyS);
+        let unstepped = last_ok(&whole);
+        let label = whole.world().resource::<UndoHistory>().undo_entries()[0]
+            .label
+            .clone();
+
+        let mut app = opened(shape);
+        start_stepped(&mut app);
+        press(&mut app, None, KeyCode::ArrowRight);
+        press(&mut app, Some(KeyCode::ShiftLeft), KeyCode::ArrowRight);
+        press(&mut app, Some(KeyCode::ControlLeft), KeyCode::ArrowRight);
+        assert_eq!(step_at(&app), (111, 111), "{shape}");
+        press(&mut app, None, KeyCode::End);
+        assert!(last_ok(&app).contains("the end"), "{}", last_ok(&app));
+        assert!(
+            elements(&app) == elements(&whole),
+            "{shape}: the meshes differ"
+        );
+        assert_eq!(sorted_lines(&app), sorted_lines(&whole), "{shape}");
+        press(&mut app, None, KeyCode::Enter);
+        assert!(app.world().resource::<Stepping>().run.is_none());
+        let history = app.world().resource::<UndoHistory>();
+        assert_eq!(history.undo_entries().len(), 1, "{shape}");
+        assert_eq!(history.undo_entries()[0].label, label, "{shape}");
+        // The level-of-detail history is the run's: moving along it works as after the edit.
+        send(&mut app, pappus::edit::Edit::LevelOfDetail(usize::MAX));
+        assert!(last_ok(&app).contains("faces"), "{}", last_ok(&app));
+        send(&mut app, Request::Undo);
+        let mesh = app.world().resource::<ActiveMesh>().0.unwrap();
+        validate(app.world(), mesh).unwrap();
+        println!("{shape}: {unstepped}");
+    }
+}
+
+#[test]
+fn the_drawn_next_edge_is_the_one_the_next_step_collapses() {
+    let mut app = opened(SHAPES[0]);
+    start_stepped(&mut app);
+    for _ in 0..25 {
+        let (a, b) = drawn_next(&app).expect("the next edge is drawn");
+        let next = app
+            .world()
+            .resource::<Stepping>()
+            .run
+            .as_ref()
+            .unwrap()
+            .steps
+            .next
+            .unwrap();
+        let edge = next.queued.edge;
+        let m = MeshRef::new(app.world());
+        let (p, q) = m.edge_vertices(edge);
+        assert_eq!(
+            [next.kept, next.removed].map(|v| m.position(v)),
+            [a, b],
+            "the drawn edge is the next one's, kept end first"
+        );
+        assert!([p, q].contains(&next.kept) && [p, q].contains(&next.removed));
+        press(&mut app, None, KeyCode::ArrowRight);
+        let m = MeshRef::new(app.world());
+        assert!(m.try_edge(edge).is_none(), "{edge} was not collapsed");
+        assert_eq!(m.position(next.kept), next.queued.position);
+    }
+}
+
+#[test]
+fn scrubbing_back_to_step_k_and_forward_again_gives_the_same_mesh_at_k() {
+    for shape in SHAPES {
+        let mut app = opened(shape);
+        start_stepped(&mut app);
+        let mut at = Vec::new();
+        for k in [0usize, 7, 25, 50, 70] {
+            send(&mut app, Request::Step(StepMove::To(k)));
+            at.push((k, common::canonical(&to_soup(app.world(), active(&app)))));
+        }
+        for &(k, ref expected) in at.iter().rev().chain(at.iter()) {
+            send(&mut app, Request::Step(StepMove::To(k)));
+            assert_eq!(step_at(&app).0, k, "{shape}");
+            assert_eq!(
+                common::canonical(&to_soup(app.world(), active(&app))),
+                *expected,
+                "{shape}: step {k}"
+            );
+            validate(app.world(), active(&app)).unwrap();
+        }
+        // Forward past the front again: new collapses, as an unscrubbed run would make.
+        send(&mut app, Request::Step(StepMove::Forward(usize::MAX)));
+        let mut whole = opened(shape);
+        press(&mut whole, Some(KeyCode::ShiftLeft), KeyCode::KeyS);
+        assert_eq!(
+            common::canonical(&to_soup(app.world(), active(&app))),
+            common::canonical(&to_soup(whole.world(), active(&whole))),
+            "{shape}: the end after scrubbing"
+        );
+    }
+}
+
+fn active(app: &App) -> pappus::mesh::MeshId {
+    app.world().resource::<ActiveMesh>().0.unwrap()
+}
+
+#[test]
+fn a_collapsed_selection_follows_to_what_it_became_and_esc_puts_the_mesh_back() {
+    let mut app = opened(SHAPES[0]);
+    let before = saved(&app);
+    start_stepped(&mut app);
+    let next = app
+        .world()
+        .resource::<Stepping>()
+        .run
+        .as_ref()
+        .unwrap()
+        .steps
+        .next
+        .unwrap();
+    send(
+        &mut app,
+        Request::Select(Some(ElementId::Vertex(next.removed))),
+    );
+    press(&mut app, None, KeyCode::ArrowRight);
+    assert_eq!(
+        app.world().resource::<Selection>().element,
+        Some(ElementId::Vertex(next.kept))
+    );
+    let fate = app
+        .world()
+        .resource::<Stepping>()
+        .run
+        .as_ref()
+        .unwrap()
+        .fate
+        .clone();
+    assert_eq!(
+        fate.as_deref(),
+        Some(format!("{} is gone: collapsed into {}", next.removed, next.kept).as_str())
+    );
+    press(&mut app, None, KeyCode::Escape);
+    assert!(app.world().resource::<Stepping>().run.is_none());
+    assert!(saved(&app) == before, "Esc left a different mesh");
+    assert!(
+        app.world()
+            .resource::<UndoHistory>()
+            .undo_entries()
+            .is_empty()
+    );
+}
+
+#[test]
+fn another_edit_ends_the_run_as_one_undo_entry_first() {
+    let mut app = opened(SHAPES[1]);
+    start_stepped(&mut app);
+    send(&mut app, Request::Step(StepMove::Forward(30)));
+    send(&mut app, Request::Undo);
+    assert!(app.world().resource::<Stepping>().run.is_none());
+    assert_eq!(
+        app.world().resource::<UndoHistory>().redo_entries().len(),
+        1,
+        "the run was recorded, then undone"
+    );
+    send(&mut app, Request::Step(StepMove::Forward(1)));
+    let last = app
+        .world()
+        .resource::<OutcomeLog>()
+        .entries
+        .last()
+        .unwrap()
+        .clone();
+    assert!(last.result.is_err(), "a step with no run is declined");
+}
