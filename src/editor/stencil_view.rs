@@ -131,17 +131,59 @@ pub fn stencil_shapes(m: &MeshRef<'_>, s: &Stencil, out: &mut Vec<Shape>) {
     }
 }
 
-/// The points `which` selects, each with its colour, in the order vertices, edges, faces.
-fn shown(points: &NextLevelPoints, which: PointsShown) -> Vec<(Vec3, Color)> {
-    let mut out = Vec::new();
-    if which.moved_vertices {
-        out.extend(points.vertex.iter().map(|&(_, p)| (p, MOVED_VERTEX)));
+/// The points `which` selects, numbered in the order vertices, edges, faces, read one by one
+/// (the whole list is never copied for [`point_shapes`]).
+struct Shown<'a> {
+    points: &'a NextLevelPoints,
+    vertices: usize,
+    edges: usize,
+    faces: usize,
+}
+
+impl<'a> Shown<'a> {
+    fn new(points: &'a NextLevelPoints, which: PointsShown) -> Self {
+        let (vertices, edges, faces) = (
+            if which.moved_vertices {
+                points.vertex.len()
+            } else {
+                0
+            },
+            if which.new_points {
+                points.edge.len()
+            } else {
+                0
+            },
+            if which.new_points {
+                points.face.len()
+            } else {
+                0
+            },
+        );
+        Self {
+            points,
+            vertices,
+            edges,
+            faces,
+        }
     }
-    if which.new_points {
-        out.extend(points.edge.iter().map(|&(_, p)| (p, NEW_POINT)));
-        out.extend(points.face.iter().map(|&(_, p)| (p, NEW_POINT)));
+
+    fn len(&self) -> usize {
+        self.vertices + self.edges + self.faces
     }
-    out
+
+    /// Point `i` (below [`Shown::len`]) and its colour.
+    fn at(&self, i: usize) -> (Vec3, Color) {
+        if i < self.vertices {
+            (self.points.vertex[i].1, MOVED_VERTEX)
+        } else if i < self.vertices + self.edges {
+            (self.points.edge[i - self.vertices].1, NEW_POINT)
+        } else {
+            (
+                self.points.face[i - self.vertices - self.edges].1,
+                NEW_POINT,
+            )
+        }
+    }
 }
 
 /// A dot radius for the preview: a tenth of the typical spacing of all the next level's points
@@ -191,13 +233,13 @@ pub fn point_shapes(
     out: &mut Vec<Shape>,
     limit: usize,
 ) {
-    let chosen = shown(points, which);
+    let shown = Shown::new(points, which);
     let r = dot_radius(points);
-    let total = chosen.len();
+    let total = shown.len();
     if total <= limit {
-        push_dots(chosen.into_iter(), r, out);
+        push_dots((0..total).map(|i| shown.at(i)), r, out);
     } else {
-        push_dots((0..limit).map(|i| chosen[i * total / limit]), r, out);
+        push_dots((0..limit).map(|i| shown.at(i * total / limit)), r, out);
     }
 }
 
@@ -210,18 +252,24 @@ pub fn point_shapes_near(
     out: &mut Vec<Shape>,
     limit: usize,
 ) {
-    let mut chosen = shown(points, which);
+    let shown = Shown::new(points, which);
     let r = dot_radius(points);
-    if chosen.len() > limit {
-        if limit > 0 {
-            chosen.select_nth_unstable_by(limit - 1, |a, b| {
-                a.0.distance_squared(near)
-                    .total_cmp(&b.0.distance_squared(near))
-            });
-        }
-        chosen.truncate(limit);
+    if shown.len() <= limit {
+        push_dots((0..shown.len()).map(|i| shown.at(i)), r, out);
+        return;
     }
-    push_dots(chosen.into_iter(), r, out);
+    // Each point's squared distance, computed once, with its number.
+    let mut order: Vec<(f32, u32)> = (0..shown.len())
+        .map(|i| (shown.at(i).0.distance_squared(near), i as u32))
+        .collect();
+    if limit > 0 {
+        order.select_nth_unstable_by(limit - 1, |a, b| a.0.total_cmp(&b.0));
+    }
+    push_dots(
+        order[..limit].iter().map(|&(_, i)| shown.at(i as usize)),
+        r,
+        out,
+    );
 }
 
 /// A weight as the panel prints it: a fraction in lowest terms where it is one with a

@@ -32,14 +32,18 @@
 //!
 //! # Guarantees
 //! A stencil's weights sum to 1 (each vertex once, weights merged where a vertex is reached
-//! twice, heaviest first) and its position is `Σ w·p`, summed in `f64`. It agrees with
-//! [`next_level_points`], which reads the same point from the tables one level of
-//! [`super::subdivide::loop_tables`] / [`super::subdivide::catmull_clark_tables`] computes, to
-//! `f32` rounding: the tests check both against the subdivided mesh for every element.
+//! twice, heaviest first) and its position is `Σ w·p`, summed in `f64`. It agrees to `f32`
+//! rounding with [`next_level_points`], whose positions come from the very functions a
+//! committed level takes them from ([`super::subdivide::loop_points`],
+//! [`super::subdivide::catmull_clark_points`]); the tests check both against the subdivided
+//! mesh for every vertex, edge and face of several meshes.
 //!
 //! [`stencil`] walks the few elements around one point through [`MeshRef`] (the selected
 //! element, each frame if need be); [`next_level_points`] computes every new point of the mesh
-//! at once from its tables (the preview of the whole level).
+//! at once from its tables (the preview of the whole level). Measured on the Stanford bunny
+//! (69 451 faces, dev profile): [`next_level_points`] 9 ms under Loop and 10 ms under
+//! Catmull–Clark, about 5 ms of it reading the mesh into tables ([`extract`]); [`stencil`]
+//! about 4 µs for a Catmull–Clark vertex.
 
 use bevy::math::{DVec3, Vec3};
 use bevy::prelude::World;
@@ -49,7 +53,7 @@ use crate::mesh::tables::{MeshTables, extract};
 use crate::mesh::{MeshInfo, MeshRef};
 
 use super::Refusal;
-use super::subdivide::{Scheme, catmull_clark_tables, loop_tables};
+use super::subdivide::{Scheme, catmull_clark_points, loop_points};
 
 /// Which point of the next level: where an old vertex moves, or a point a scheme inserts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -345,11 +349,13 @@ pub struct NextLevelPoints {
 
 /// Every new point of the next level of `scheme` on `mesh`, in the mesh's storage order.
 ///
-/// Runs one level of [`loop_tables`] / [`catmull_clark_tables`] on the mesh's tables, so the
-/// points are exactly those a committed level gets. Their new vertex rows are laid out as the
-/// old vertices (by vertex row), then one edge point per old edge (by edge row), then, for
-/// Catmull–Clark, one face point per old face (by face row); [`extract`]'s members give the
-/// entity behind each row. Nothing in the world changes.
+/// Computes the positions with [`loop_points`] / [`catmull_clark_points`], the functions
+/// [`super::subdivide::loop_tables`] / [`super::subdivide::catmull_clark_tables`] take a
+/// committed level's positions from, so the points are exactly those a committed level gets;
+/// the connectivity is not built. Their rows are laid out as the old vertices (by vertex row),
+/// then one edge point per old edge (by edge row), then, for Catmull–Clark, one face point per
+/// old face (by face row); [`extract`]'s members give the entity behind each row. Nothing in
+/// the world changes. For its cost on a large mesh see the module doc.
 ///
 /// # Refusals
 /// [`Refusal::Stale`] if `mesh` is not a mesh; under Loop [`Refusal::NotTriangle`] naming a
@@ -363,13 +369,12 @@ pub fn next_level_points(
         return Err(Refusal::Stale(ElementId::Mesh(mesh)));
     }
     let MeshTables { tables, members } = extract(world, mesh);
-    let next = match scheme {
-        Scheme::Loop => loop_tables(&tables)
+    let p = match scheme {
+        Scheme::Loop => loop_points(&tables)
             .map_err(|f| Refusal::NotTriangle(ElementId::Face(members.faces[f.index()])))?,
-        Scheme::CatmullClark => catmull_clark_tables(&tables),
+        Scheme::CatmullClark => catmull_clark_points(&tables),
     };
     let (nv, ne) = (members.vertices.len(), members.edges.len());
-    let p = &next.positions;
     let faces = match scheme {
         Scheme::Loop => Vec::new(),
         Scheme::CatmullClark => members

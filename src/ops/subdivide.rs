@@ -230,14 +230,14 @@ fn subdivide(
     })
 }
 
-/// One level of Loop subdivision on tables; `Err(face)` if a face is not a triangle.
-pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, FaceRow> {
+/// The positions of the vertices one level of Loop subdivision makes, by their rows in
+/// [`loop_tables`]' result: the old vertices moved (by vertex row), then one point per old edge
+/// (by edge row). `Err(face)` if a face is not a triangle.
+pub fn loop_points(t: &Connectivity) -> Result<Vec<Vec3>, FaceRow> {
     if let Some(f) = t.first_non_triangle() {
         return Err(f);
     }
-    let rings = FaceRings::new(t);
-    let (nv, ne, nf) = (t.vertex_count(), t.edge_count(), t.face_count());
-    let mut positions = Vec::with_capacity(nv + ne);
+    let mut positions = Vec::with_capacity(t.vertex_count() + t.edge_count());
     for v in t.vertices() {
         let p = t.position(v);
         let n = t.vertex_outgoing(v).count();
@@ -267,6 +267,14 @@ pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, FaceRow> {
             0.375 * (a + b) + 0.125 * (c + d)
         });
     }
+    Ok(positions)
+}
+
+/// One level of Loop subdivision on tables; `Err(face)` if a face is not a triangle.
+pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, FaceRow> {
+    let positions = loop_points(t)?;
+    let rings = FaceRings::new(t);
+    let (nv, nf) = (t.vertex_count(), t.face_count());
 
     // The new faces as corners: vertex rows (the old vertices, then one per old edge) and
     // each corner's twin corner.
@@ -372,15 +380,18 @@ fn subdivided_attributes(
     out
 }
 
-/// One level of Catmull–Clark subdivision on tables.
-pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
-    let rings = FaceRings::new(t);
+/// The positions of the vertices one level of Catmull–Clark subdivision makes, by their rows
+/// in [`catmull_clark_tables`]' result: the old vertices moved (by vertex row), then one point
+/// per old edge (by edge row), then one per old face (by face row).
+pub fn catmull_clark_points(t: &Connectivity) -> Vec<Vec3> {
     let (nv, ne, nf) = (t.vertex_count(), t.edge_count(), t.face_count());
     let face_points: Vec<Vec3> = t
         .faces()
         .map(|f| {
-            let hs = rings.face(f);
-            hs.iter().map(|&h| t.position(t.to_vertex(h))).sum::<Vec3>() / hs.len() as f32
+            let (sum, k) = t.face_halfedges(f).fold((Vec3::ZERO, 0usize), |(s, k), h| {
+                (s + t.position(t.to_vertex(h)), k + 1)
+            });
+            sum / k as f32
         })
         .collect();
     // The face point of the face of `h`, which must have one.
@@ -416,6 +427,14 @@ pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
         });
     }
     positions.extend_from_slice(&face_points);
+    positions
+}
+
+/// One level of Catmull–Clark subdivision on tables.
+pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
+    let positions = catmull_clark_points(t);
+    let rings = FaceRings::new(t);
+    let (nv, ne) = (t.vertex_count(), t.edge_count());
 
     // The new quads as corners: vertex rows (the old vertices, one per old edge, one per old
     // face) and each corner's twin corner.
