@@ -48,14 +48,9 @@ use crate::ops::triangulate::triangulate;
 mod step;
 pub use step::{LocalKind, STEP_SYNTAX, Step};
 
-/// A subdivision scheme.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Scheme {
-    /// Loop (1987): triangles to triangles, approximating.
-    Loop,
-    /// Catmull–Clark (1978): any polygons to quads, approximating.
-    CatmullClark,
-}
+/// A subdivision scheme (defined beside the schemes, in [`crate::ops::subdivide`], so that
+/// `ops` need not import this layer).
+pub use crate::ops::subdivide::Scheme;
 
 /// How to subdivide. The same struct serves the command line, the editor and the tests.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -34,6 +34,7 @@ pub mod scene;
 pub mod select_many;
 pub mod selection;
 pub mod session;
+pub mod stencil_view;
 pub mod step_view;
 pub mod stepping;
 pub mod surface;

@@ -18,6 +18,7 @@ pub mod progressive;
 pub mod remesh;
 pub mod simplify;
 pub mod smooth;
+pub mod stencil;
 pub mod subdivide;
 pub mod table_split;
 pub mod triangulate;

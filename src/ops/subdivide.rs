@@ -46,6 +46,15 @@ use crate::mesh::tables::{
 
 use super::Refusal;
 
+/// A subdivision scheme (the edit layer names it as `crate::edit::Scheme`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scheme {
+    /// Loop (1987): triangles to triangles, approximating.
+    Loop,
+    /// Catmull–Clark (1978): any polygons to quads, approximating.
+    CatmullClark,
+}
+
 /// What a subdivision produced.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SubdivisionSummary {
@@ -120,7 +129,7 @@ pub fn loop_subdivide(
     mesh: MeshId,
     levels: u32,
 ) -> Result<SubdivisionSummary, Refusal> {
-    let scheme = Scheme {
+    let steps = Steps {
         step: |t| loop_tables(t).expect("checked: every face is a triangle"),
         counts: |t, _| {
             let edges = 2 * t.edges + 3 * t.faces;
@@ -132,7 +141,7 @@ pub fn loop_subdivide(
             }
         },
     };
-    subdivide(world, mesh, levels, scheme, |t, members| {
+    subdivide(world, mesh, levels, steps, |t, members| {
         match t.first_non_triangle() {
             Some(f) => Err(Refusal::NotTriangle(ElementId::Face(
                 members.faces[f.index()],
@@ -148,7 +157,7 @@ pub fn catmull_clark(
     mesh: MeshId,
     levels: u32,
 ) -> Result<SubdivisionSummary, Refusal> {
-    let scheme = Scheme {
+    let steps = Steps {
         step: catmull_clark_tables,
         // Every corner becomes a quad, and each adds an edge from its face point.
         counts: |t, corners| {
@@ -161,24 +170,24 @@ pub fn catmull_clark(
             }
         },
     };
-    subdivide(world, mesh, levels, scheme, |_, _| Ok(()))
+    subdivide(world, mesh, levels, steps, |_, _| Ok(()))
 }
 
-/// A subdivision scheme: one level on tables, and the row counts a level makes from the
+/// How a scheme runs: one level on tables, and the row counts a level makes from the
 /// counts before it and the number of face corners, known before the tables are computed.
-struct Scheme {
+struct Steps {
     step: fn(&Connectivity) -> Connectivity,
     counts: fn(RowCounts, usize) -> RowCounts,
 }
 
-/// Runs `levels` levels of `scheme` after `check` passed. The tables are computed on a second
+/// Runs `levels` levels of `steps` after `check` passed. The tables are computed on a second
 /// thread while this one makes the result's entities exist (the two largest costs, overlapped),
 /// and the links are written once both are done.
 fn subdivide(
     world: &mut World,
     mesh: MeshId,
     levels: u32,
-    scheme: Scheme,
+    steps: Steps,
     check: impl Fn(&Connectivity, &crate::mesh::MeshMembers) -> Result<(), Refusal>,
 ) -> Result<SubdivisionSummary, Refusal> {
     if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
@@ -199,7 +208,7 @@ fn subdivide(
         .filter(|&h| !tables.is_boundary(h))
         .count();
     for _ in 0..levels {
-        counts = (scheme.counts)(counts, corners);
+        counts = (steps.counts)(counts, corners);
         corners = 4 * counts.faces;
         if counts.halfedges >= NONE as usize {
             return Err(Refusal::TooLarge(counts.halfedges));
@@ -207,9 +216,9 @@ fn subdivide(
     }
     let tables = &tables;
     let (result, rows) = reserve_rows_while(world, counts, mesh, Some(&members), move || {
-        let mut t = (scheme.step)(tables);
+        let mut t = (steps.step)(tables);
         for _ in 1..levels {
-            t = (scheme.step)(&t);
+            t = (steps.step)(&t);
         }
         t
     });
@@ -221,14 +230,14 @@ fn subdivide(
     })
 }
 
-/// One level of Loop subdivision on tables; `Err(face)` if a face is not a triangle.
-pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, FaceRow> {
+/// The positions of the vertices one level of Loop subdivision makes, by their rows in
+/// [`loop_tables`]' result: the old vertices moved (by vertex row), then one point per old edge
+/// (by edge row). `Err(face)` if a face is not a triangle.
+pub fn loop_points(t: &Connectivity) -> Result<Vec<Vec3>, FaceRow> {
     if let Some(f) = t.first_non_triangle() {
         return Err(f);
     }
-    let rings = FaceRings::new(t);
-    let (nv, ne, nf) = (t.vertex_count(), t.edge_count(), t.face_count());
-    let mut positions = Vec::with_capacity(nv + ne);
+    let mut positions = Vec::with_capacity(t.vertex_count() + t.edge_count());
     for v in t.vertices() {
         let p = t.position(v);
         let n = t.vertex_outgoing(v).count();
@@ -258,6 +267,14 @@ pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, FaceRow> {
             0.375 * (a + b) + 0.125 * (c + d)
         });
     }
+    Ok(positions)
+}
+
+/// One level of Loop subdivision on tables; `Err(face)` if a face is not a triangle.
+pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, FaceRow> {
+    let positions = loop_points(t)?;
+    let rings = FaceRings::new(t);
+    let (nv, nf) = (t.vertex_count(), t.face_count());
 
     // The new faces as corners: vertex rows (the old vertices, then one per old edge) and
     // each corner's twin corner.
@@ -363,15 +380,18 @@ fn subdivided_attributes(
     out
 }
 
-/// One level of Catmull–Clark subdivision on tables.
-pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
-    let rings = FaceRings::new(t);
+/// The positions of the vertices one level of Catmull–Clark subdivision makes, by their rows
+/// in [`catmull_clark_tables`]' result: the old vertices moved (by vertex row), then one point
+/// per old edge (by edge row), then one per old face (by face row).
+pub fn catmull_clark_points(t: &Connectivity) -> Vec<Vec3> {
     let (nv, ne, nf) = (t.vertex_count(), t.edge_count(), t.face_count());
     let face_points: Vec<Vec3> = t
         .faces()
         .map(|f| {
-            let hs = rings.face(f);
-            hs.iter().map(|&h| t.position(t.to_vertex(h))).sum::<Vec3>() / hs.len() as f32
+            let (sum, k) = t.face_halfedges(f).fold((Vec3::ZERO, 0usize), |(s, k), h| {
+                (s + t.position(t.to_vertex(h)), k + 1)
+            });
+            sum / k as f32
         })
         .collect();
     // The face point of the face of `h`, which must have one.
@@ -407,6 +427,14 @@ pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
         });
     }
     positions.extend_from_slice(&face_points);
+    positions
+}
+
+/// One level of Catmull–Clark subdivision on tables.
+pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
+    let positions = catmull_clark_points(t);
+    let rings = FaceRings::new(t);
+    let (nv, ne) = (t.vertex_count(), t.edge_count());
 
     // The new quads as corners: vertex rows (the old vertices, one per old edge, one per old
     // face) and each corner's twin corner.
