@@ -56,6 +56,8 @@ mod finish;
 mod flip;
 mod relax;
 mod split;
+#[cfg(test)]
+mod tests;
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
