@@ -11,10 +11,15 @@
 //!    boundary), or leaves them as close and the edge was not locally Delaunay (the angles
 //!    facing it summed to over 180°: flipping raises the pair's smallest angle) ([`flip`]);
 //! 4. move every free vertex 1/5 of the way to its one-ring centroid, within its tangent plane
-//!    (all new positions computed first, then committed), and project it back onto the input
-//!    surface (closest point on the input triangles, found through a uniform grid:
-//!    [`crate::ops::geometry::closest`]); the smoothing is repeated [`RemeshParams::smoothing_steps`] times (10, as
-//!    in Scotty3D), the projection done after the last ([`relax`]).
+//!    (all new positions computed first, then committed), repeated
+//!    [`RemeshParams::smoothing_steps`] times (10, as in Scotty3D) ([`relax`]);
+//! 5. project the free vertices back onto the input surface (closest point on the input
+//!    triangles, found through a uniform grid: [`crate::ops::geometry::closest`]), once an
+//!    iteration, after the last smoothing step ([`relax::project`]).
+//!
+//! Each of these five is a pass of a [`RemeshRun`], which makes one pass a call and reports
+//! what it touched ([`PassReport`]), for the editor's step mode; [`remesh`] runs one to its
+//! end.
 //!
 //! After the last iteration ([`finish`]), the detail that triangles of length L cannot follow
 //! is put back where the remesh strays from the input by more than
@@ -113,7 +118,7 @@ pub struct RemeshSummary {
     pub flips: usize,
 }
 
-/// Remeshes a triangle mesh in place (see the module doc).
+/// Remeshes a triangle mesh in place (see the module doc): a [`RemeshRun`] run to its end.
 ///
 /// # Refusals
 /// [`Refusal::NotTriangle`] on polygons; a stale mesh. The mesh is then unchanged.

@@ -217,7 +217,9 @@ impl RemeshRun {
         let (mesh, length) = (self.mesh, self.length);
         let tolerance = DETAIL_TOLERANCE * length;
         let (reference, features) = (&self.reference, &self.features);
-        let pinned = restore_tips(world, mesh, &self.tips, reference, features, length, tolerance);
+        let pinned = restore_tips(
+            world, mesh, &self.tips, reference, features, length, tolerance,
+        );
         let grooves = fill_grooves(world, mesh, reference, features, tolerance);
         let flipped = clean_up_thin(world, mesh, features, &pinned, reference, self.low / 16.0);
         let splits = pinned.len() + grooves.len();
@@ -230,5 +232,345 @@ impl RemeshRun {
         touched.edges.sort_unstable();
         touched.edges.dedup();
         splits + flipped.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::elements::{Edge, InMesh, Vertex};
+    use crate::mesh::ids::EdgeId;
+    use crate::mesh::{MeshInfo, build_mesh, shapes, validate};
+    use crate::ops::remesh::remesh_with_progress;
+    use crate::ops::remesh::tests::{Case, built, cases, counts, fingerprint, pinned};
+    use std::collections::HashMap;
+
+    /// Whether `v` is alive and in `mesh`.
+    fn vertex_in(world: &World, mesh: MeshId, v: VertexId) -> bool {
+        world.get::<Vertex>(v.0).is_some() && world.get::<InMesh>(v.0) == Some(&InMesh(mesh))
+    }
+
+    /// Whether `e` is alive and in `mesh`.
+    fn edge_in(world: &World, mesh: MeshId, e: EdgeId) -> bool {
+        world.get::<Edge>(e.0).is_some() && world.get::<InMesh>(e.0) == Some(&InMesh(mesh))
+    }
+
+    /// Every vertex of `mesh` with its position.
+    fn positions(world: &World, mesh: MeshId) -> HashMap<VertexId, Vec3> {
+        let m = MeshRef::new(world);
+        MeshMembers::collect(world, mesh)
+            .vertices
+            .into_iter()
+            .map(|v| (v, m.position(v)))
+            .collect()
+    }
+
+    /// `p` as bits.
+    fn bits(p: Vec3) -> [u32; 3] {
+        p.to_array().map(f32::to_bits)
+    }
+
+    /// `case` run to its end pass by pass, checking each pass against the mesh before and after
+    /// it (see the assertions); returns the world, the mesh, the run and its reports.
+    fn stepped(case: &Case, validate_each: bool) -> (World, MeshId, RemeshRun, Vec<PassReport>) {
+        let (mut world, mesh) = built(case);
+        let mut run = RemeshRun::start(&world, mesh, &case.params).unwrap();
+        let mut reports = Vec::new();
+        loop {
+            let before = positions(&world, mesh);
+            let upcoming = run.upcoming();
+            let Some(report) = run.next_pass(&mut world) else {
+                assert_eq!(upcoming, None);
+                break;
+            };
+            assert_eq!(upcoming, Some((report.pass, report.iteration)));
+            assert_eq!(run.passes_done(), reports.len() + 1);
+            if validate_each {
+                validate(&world, mesh).unwrap();
+            }
+            let name = format!("{}: {:?} {}", case.name, report.pass, report.iteration);
+            let touched = &report.touched;
+            for &v in &touched.vertices {
+                assert!(vertex_in(&world, mesh, v), "{name}: {v:?} is gone");
+            }
+            for &e in &touched.edges {
+                assert!(edge_in(&world, mesh, e), "{name}: {e:?} is gone");
+            }
+            let mut distinct = touched.vertices.clone();
+            distinct.sort_unstable();
+            distinct.dedup();
+            assert_eq!(distinct.len(), touched.vertices.len(), "{name}: twice");
+            let after = positions(&world, mesh);
+            let new: Vec<VertexId> = after
+                .keys()
+                .filter(|v| !before.contains_key(v))
+                .copied()
+                .collect();
+            let moved: Vec<VertexId> = {
+                let mut moved: Vec<VertexId> = after
+                    .iter()
+                    .filter(|(v, p)| before.get(v).is_some_and(|&q| bits(q) != bits(**p)))
+                    .map(|(&v, _)| v)
+                    .collect();
+                moved.sort_unstable();
+                moved
+            };
+            match report.pass {
+                Pass::Split => {
+                    // The new vertices, all of them, and nothing moved.
+                    assert_eq!(report.count, new.len(), "{name}");
+                    assert_eq!(report.count, touched.vertices.len(), "{name}");
+                    assert!(touched.vertices.iter().all(|v| !before.contains_key(v)));
+                    assert!(moved.is_empty(), "{name}");
+                    // Each touched edge has a new end.
+                    let m = MeshRef::new(&world);
+                    for &e in &touched.edges {
+                        let (a, b) = m.edge_vertices(e);
+                        assert!(!before.contains_key(&a) || !before.contains_key(&b));
+                    }
+                }
+                Pass::Collapse => {
+                    // One vertex gone a collapse, none made; the survivors are old ones.
+                    assert!(new.is_empty(), "{name}");
+                    assert_eq!(before.len() - after.len(), report.count, "{name}");
+                    assert!(touched.vertices.len() <= report.count, "{name}");
+                    assert!(touched.vertices.iter().all(|v| before.contains_key(v)));
+                    assert!(touched.edges.is_empty());
+                }
+                Pass::Flip => {
+                    assert!(new.is_empty() && moved.is_empty(), "{name}");
+                    assert_eq!(before.len(), after.len());
+                    assert_eq!(report.count, touched.edges.len(), "{name}");
+                    let mut distinct = touched.edges.clone();
+                    distinct.sort_unstable();
+                    distinct.dedup();
+                    assert_eq!(distinct.len(), touched.edges.len(), "{name}: twice");
+                }
+                Pass::Relax | Pass::Project => {
+                    // Exactly the vertices whose position changed by a bit.
+                    assert!(new.is_empty(), "{name}");
+                    let mut touched = touched.vertices.clone();
+                    touched.sort_unstable();
+                    assert_eq!(touched, moved, "{name}");
+                    assert_eq!(report.count, moved.len(), "{name}");
+                    assert!(report.touched.edges.is_empty());
+                }
+                Pass::Finish => {
+                    // The added vertices, all of them; the flips beside them.
+                    let mut added = touched.vertices.clone();
+                    added.sort_unstable();
+                    let mut new = new.clone();
+                    new.sort_unstable();
+                    assert_eq!(added, new, "{name}");
+                    assert!(report.count >= added.len() + touched.edges.len(), "{name}");
+                    let mut distinct = touched.edges.clone();
+                    distinct.dedup();
+                    assert_eq!(distinct.len(), touched.edges.len(), "{name}: twice");
+                }
+            }
+            reports.push(report);
+        }
+        (world, mesh, run, reports)
+    }
+
+    #[test]
+    fn a_run_stepped_to_its_end_is_the_remesh_to_the_bit() {
+        for case in cases() {
+            // Validating after every pass of the big models is slow in a debug build.
+            let small = case.soup.positions.len() < 1000;
+            let (world, mesh, run, reports) = stepped(&case, small);
+            validate(&world, mesh).unwrap();
+            let print = fingerprint(&world, mesh);
+            assert_eq!(
+                (counts(&run.summary()), print),
+                pinned(case.name),
+                "{}",
+                case.name
+            );
+            let (mut again, mesh) = built(&case);
+            let summary = crate::ops::remesh::remesh(&mut again, mesh, &case.params).unwrap();
+            assert_eq!(summary, run.summary(), "{}", case.name);
+            assert_eq!(fingerprint(&again, mesh), print, "{}", case.name);
+
+            // The passes in order, five an iteration and the finish.
+            let n = case.params.iterations;
+            let mut expected: Vec<(Pass, u32)> = (0..n)
+                .flat_map(|i| Pass::ITERATION.map(|p| (p, i)))
+                .collect();
+            expected.push((Pass::Finish, n));
+            let made: Vec<(Pass, u32)> = reports.iter().map(|r| (r.pass, r.iteration)).collect();
+            assert_eq!(made, expected, "{}", case.name);
+            assert_eq!(run.passes_total(), n as usize * 5 + 1);
+            assert_eq!(run.passes_done(), run.passes_total());
+
+            // The counts add up to the summary: the finish's count is its splits (the
+            // vertices it added) and its flips.
+            let sum = |pass: Pass| -> usize {
+                reports
+                    .iter()
+                    .filter(|r| r.pass == pass)
+                    .map(|r| r.count)
+                    .sum()
+            };
+            let finish = reports.last().unwrap();
+            let finish_splits = finish.touched.vertices.len();
+            let s = run.summary();
+            assert_eq!(sum(Pass::Split) + finish_splits, s.splits, "{}", case.name);
+            assert_eq!(sum(Pass::Collapse), s.collapses, "{}", case.name);
+            assert_eq!(
+                sum(Pass::Flip) + finish.count - finish_splits,
+                s.flips,
+                "{}",
+                case.name
+            );
+            println!(
+                "{}: {}",
+                case.name,
+                reports
+                    .iter()
+                    .map(|r| format!("{}{} {}", r.pass.name(), r.iteration, r.count))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+        }
+    }
+
+    #[test]
+    fn the_cubes_first_iteration_splits_its_diagonals_at_the_face_centres() {
+        // The cube [-1, 1]³ in triangles: edges of 2 (features, 90°) and six diagonals of
+        // 2√2. With L = 1.6, 4/3 L = 2.13: only the diagonals are long, and each splits at its
+        // face's centre into four spokes of √2 (over 4/5 L = 1.28: nothing collapses). A spoke
+        // flip would put the new edge through the centre (refused); and each centre is its
+        // one-ring's centroid, so the relaxation moves nothing.
+        let case = Case {
+            name: "cube",
+            soup: shapes::triangulate_fans(&shapes::cube()),
+            params: RemeshParams {
+                target_length: Some(1.6),
+                iterations: 1,
+                ..Default::default()
+            },
+        };
+        let (mut world, mesh) = built(&case);
+        let mut run = RemeshRun::start(&world, mesh, &case.params).unwrap();
+        assert_eq!(run.passes_total(), 6);
+        let split = run.next_pass(&mut world).unwrap();
+        assert_eq!(
+            (split.pass, split.iteration, split.count),
+            (Pass::Split, 0, 6)
+        );
+        let m = MeshRef::new(&world);
+        let mut centres: Vec<[i32; 3]> = split
+            .touched
+            .vertices
+            .iter()
+            .map(|&v| m.position(v).to_array().map(|c| c as i32))
+            .collect();
+        centres.sort_unstable();
+        assert_eq!(
+            centres,
+            [
+                [-1, 0, 0],
+                [0, -1, 0],
+                [0, 0, -1],
+                [0, 0, 1],
+                [0, 1, 0],
+                [1, 0, 0]
+            ]
+        );
+        for &v in &split.touched.vertices {
+            assert_eq!(m.vertex_neighbors(v).count(), 4);
+            assert_eq!(m.position(v).length(), 1.0);
+        }
+        assert_eq!(split.touched.edges.len(), 24);
+        for &e in &split.touched.edges {
+            let (a, b) = m.edge_vertices(e);
+            assert_eq!(m.position(a).distance(m.position(b)), 2f32.sqrt());
+        }
+        for pass in [Pass::Collapse, Pass::Flip, Pass::Relax] {
+            let report = run.next_pass(&mut world).unwrap();
+            assert_eq!((report.pass, report.count), (pass, 0));
+            assert_eq!(report.touched, Touched::default());
+        }
+        let summary = run.summary();
+        assert_eq!(
+            (summary.splits, summary.collapses, summary.flips),
+            (6, 0, 0)
+        );
+        validate(&world, mesh).unwrap();
+    }
+
+    #[test]
+    fn stopping_early_leaves_the_mesh_the_stepped_run_has_at_that_pass() {
+        let cases = cases();
+        let case = cases.iter().find(|c| c.name == "wavy grid").unwrap();
+        assert_eq!(case.params.iterations, 4);
+        for stop in [3, 4, 9] {
+            let (mut world, mesh) = built(case);
+            let mut calls = 0;
+            let summary = remesh_with_progress(&mut world, mesh, &case.params, |fraction| {
+                calls += 1;
+                assert_eq!(fraction, calls as f32 / 21.0);
+                calls < stop
+            })
+            .unwrap();
+            assert_eq!(calls, stop);
+            validate(&world, mesh).unwrap();
+            let (mut by_hand, hand_mesh) = built(case);
+            let mut run = RemeshRun::start(&by_hand, hand_mesh, &case.params).unwrap();
+            for _ in 0..stop {
+                run.next_pass(&mut by_hand).unwrap();
+            }
+            assert_eq!(summary, run.summary());
+            assert_eq!(fingerprint(&world, mesh), fingerprint(&by_hand, hand_mesh));
+        }
+    }
+
+    #[test]
+    fn polygons_stale_meshes_and_no_iterations() {
+        let mut world = World::new();
+        let quads = build_mesh(&mut world, &shapes::cube(), MeshInfo::default()).unwrap();
+        let before = fingerprint(&world, quads.mesh);
+        let params = RemeshParams::default();
+        assert!(matches!(
+            RemeshRun::start(&world, quads.mesh, &params),
+            Err(Refusal::NotTriangle(_))
+        ));
+        let triangles = shapes::triangulate_fans(&shapes::cube());
+        let cube = build_mesh(&mut world, &triangles, MeshInfo::default()).unwrap();
+        let mut run = RemeshRun::start(&world, cube.mesh, &params).unwrap();
+        crate::mesh::despawn_mesh(&mut world, quads.mesh);
+        assert_eq!(
+            RemeshRun::start(&world, quads.mesh, &params).err(),
+            Some(Refusal::Stale(ElementId::Mesh(quads.mesh)))
+        );
+        // A run whose mesh goes ends.
+        assert!(run.next_pass(&mut world).is_some());
+        crate::mesh::despawn_mesh(&mut world, cube.mesh);
+        assert!(run.next_pass(&mut world).is_none());
+        assert_eq!(run.upcoming(), None);
+
+        let (mut world, mesh) = built(&Case {
+            name: "grid",
+            soup: shapes::grid(3, 3),
+            params,
+        });
+        let still = fingerprint(&world, mesh);
+        let none = RemeshParams {
+            iterations: 0,
+            ..params
+        };
+        let mut run = RemeshRun::start(&world, mesh, &none).unwrap();
+        assert_eq!((run.passes_total(), run.upcoming()), (0, None));
+        assert!(run.next_pass(&mut world).is_none());
+        assert_eq!(fingerprint(&world, mesh), still);
+        assert_ne!(before, still);
+    }
+
+    #[test]
+    fn a_run_can_wait_between_frames() {
+        fn send_sync<T: Send + Sync + 'static>() {}
+        send_sync::<RemeshRun>();
+        send_sync::<PassReport>();
     }
 }

@@ -19,8 +19,11 @@ use super::{RemeshParams, RemeshSummary, remesh};
 /// form (see the module doc).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct Fingerprint {
+    /// The vertex count.
     pub vertices: usize,
+    /// The face count.
     pub faces: usize,
+    /// The hash of the canonical form.
     pub hash: u64,
 }
 
@@ -66,8 +69,11 @@ pub(super) fn fingerprint(world: &World, mesh: MeshId) -> Fingerprint {
 
 /// One pinned input: a name, the soup and the parameters.
 pub(super) struct Case {
+    /// What the pinned results call it.
     pub name: &'static str,
+    /// The input.
     pub soup: PolygonSoup,
+    /// How it is remeshed.
     pub params: RemeshParams,
 }
 
