@@ -11,7 +11,7 @@ use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::ids::{EdgeId, HalfedgeId, MeshId};
+use crate::mesh::ids::{EdgeId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 use crate::ops::local::{CollapseOptions, apply_collapse, plan_collapse_halfedge};
 
@@ -20,14 +20,15 @@ use super::{EdgeTable, distance_to_segment};
 
 /// Collapses the edges of `mesh` shorter than `low` (4/5 L), shortest first, where
 /// [`collapse_choice`] allows and the collapse plan (with a 60° normal bound) accepts.
-/// Returns how many.
+/// Returns how many, and the surviving vertices, each once, less those a later collapse of
+/// the pass removed.
 pub(super) fn collapse_short(
     world: &mut World,
     mesh: MeshId,
     low: f32,
     high: f32,
     features: &EntityHashSet,
-) -> usize {
+) -> (usize, Vec<VertexId>) {
     let table = EdgeTable::read(world, mesh);
     let degree = table.feature_degrees(features);
     // Shortest first: collapsing them early removes the most short edges.
@@ -41,6 +42,7 @@ pub(super) fn collapse_short(
         .collect();
     keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     let mut collapses = 0;
+    let mut survivors = Vec::new();
     for (_, e) in keyed {
         let m = MeshRef::new(world);
         if m.try_edge(e).is_none() {
@@ -54,11 +56,16 @@ pub(super) fn collapse_short(
             max_normal_change_deg: Some(60.0),
         };
         if let Ok(plan) = plan_collapse_halfedge(world, h, options) {
-            apply_collapse(world, plan);
+            survivors.push(apply_collapse(world, plan).kept);
             collapses += 1;
         }
     }
-    collapses
+    // A collapse despawns the vertex it removes (and spawns nothing, so no id comes back).
+    let m = MeshRef::new(world);
+    survivors.retain(|&v| m.try_vertex(v).is_some());
+    survivors.sort_unstable();
+    survivors.dedup();
+    (collapses, survivors)
 }
 
 /// How the short edge `e` may collapse without harming a feature: the halfedge whose start

@@ -103,14 +103,14 @@ pub(super) fn restore_tips(
 /// Splits the edges whose middle the remesh left farther than `tolerance` from the input
 /// (where a groove, or the foot of a spike, narrower than the triangles is bridged), farthest
 /// first, at the input's closest point to their middle ([`split_onto`]); features and the
-/// boundary are left alone. Returns how many.
+/// boundary are left alone. Returns the new vertices.
 pub(super) fn fill_grooves(
     world: &mut World,
     mesh: MeshId,
     input: &Reference,
     features: &EntityHashSet,
     tolerance: f32,
-) -> usize {
+) -> Vec<VertexId> {
     let MeshTables { tables: t, members } = extract(world, mesh);
     let at = |h: u32| t.positions[t.to_vertex[h as usize] as usize];
     let mut far: Vec<(f32, EdgeId, Vec3)> = members
@@ -128,18 +128,18 @@ pub(super) fn fill_grooves(
         })
         .collect();
     far.sort_by(|a, b| b.0.total_cmp(&a.0));
-    let mut splits = 0;
+    let mut added = Vec::new();
     for (gap, e, q) in far {
         let m = MeshRef::new(world);
         if m.try_edge(e).is_none() {
             continue;
         }
         let h = m.edge_halfedge(e);
-        if splittable(&m, h, features) && split_onto(world, h, q, input, gap).is_some() {
-            splits += 1;
+        if splittable(&m, h, features) {
+            added.extend(split_onto(world, h, q, input, gap));
         }
     }
-    splits
+    added
 }
 
 /// The thin-triangle clean-up, after the detail is put back: the sides of the triangles with an
@@ -147,7 +147,8 @@ pub(super) fn fill_grooves(
 /// ([`flip_thin`]); then, for up to [`THIN_ROUNDS`] rounds, the corners of the triangles still
 /// thin move ([`relax_thin_corners`], a feature line counting as straight to within
 /// `tolerance`) and the edges around the corners that moved get the same flips, until a round
-/// moves none. Nothing `pinned` moves or flips. Returns how many flips.
+/// moves none. Nothing `pinned` moves or flips. Returns the flipped edges, one entry a flip
+/// (an edge flipped in two rounds is listed twice).
 pub(super) fn clean_up_thin(
     world: &mut World,
     mesh: MeshId,
@@ -155,17 +156,17 @@ pub(super) fn clean_up_thin(
     pinned: &EntityHashSet,
     reference: &Reference,
     tolerance: f32,
-) -> usize {
+) -> Vec<EdgeId> {
     let mut edges = thin_triangle_edges(world, mesh);
-    let mut flips = flip_thin(world, &edges, features, pinned);
+    let mut flipped = flip_thin(world, &edges, features, pinned);
     for _ in 0..THIN_ROUNDS {
         edges = relax_thin_corners(world, &edges, features, pinned, reference, tolerance);
         if edges.is_empty() {
             break;
         }
-        flips += flip_thin(world, &edges, features, pinned);
+        flipped.extend(flip_thin(world, &edges, features, pinned));
     }
-    flips
+    flipped
 }
 
 /// Whether the edge of `h` may be split off its line: not a feature, not on the boundary.
@@ -305,9 +306,11 @@ mod tests {
         let none = EntityHashSet::default();
         // Only the diagonal is inside (the sides are boundary), and its middle is 0.5 · 2/√5
         // from the groove's walls.
-        assert_eq!(fill_grooves(&mut world, mesh, &input, &none, 0.5), 0);
-        assert_eq!(fill_grooves(&mut world, mesh, &input, &none, 0.1), 1);
+        assert_eq!(fill_grooves(&mut world, mesh, &input, &none, 0.5), vec![]);
+        let added = fill_grooves(&mut world, mesh, &input, &none, 0.1);
+        assert_eq!(added.len(), 1);
         let wall = input.closest(Vec3::ZERO);
+        assert_eq!(MeshRef::new(&world).position(added[0]), wall);
         assert!(
             (wall.length() - 0.5 * 2.0 / 5f32.sqrt()).abs() < 1e-6,
             "{wall}"

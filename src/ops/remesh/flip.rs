@@ -22,8 +22,13 @@ use crate::ops::local::flip_edge;
 
 /// Flips the interior non-feature edges of `mesh` where that brings the valences of their
 /// four vertices closer to 6 (4 on the boundary), or leaves them as close and the edge was
-/// not [`locally_delaunay`]; only flips that [`flip_keeps_shape`]. Returns how many.
-pub(super) fn flip_to_valence(world: &mut World, mesh: MeshId, features: &EntityHashSet) -> usize {
+/// not [`locally_delaunay`]; only flips that [`flip_keeps_shape`]. Returns the flipped edges
+/// (each edge is visited once, and a flip keeps its id).
+pub(super) fn flip_to_valence(
+    world: &mut World,
+    mesh: MeshId,
+    features: &EntityHashSet,
+) -> Vec<EdgeId> {
     let MeshTables { tables: t, members } = extract(world, mesh);
     // Valences and targets by entity index, kept up to date flip by flip (a flip changes only
     // its four vertices' valences, and never which vertices are on the boundary).
@@ -39,7 +44,7 @@ pub(super) fn flip_to_valence(world: &mut World, mesh: MeshId, features: &Entity
             target[v.slot()] = 4;
         }
     }
-    let mut flips = 0;
+    let mut flipped = Vec::new();
     for e in members.edges {
         let m = MeshRef::new(world);
         if m.try_edge(e).is_none() || features.contains(&e.0) || m.is_boundary_edge(e) {
@@ -63,10 +68,10 @@ pub(super) fn flip_to_valence(world: &mut World, mesh: MeshId, features: &Entity
             for k in 0..4 {
                 valence[ends[k]] += change[k];
             }
-            flips += 1;
+            flipped.push(e);
         }
     }
-    flips
+    flipped
 }
 
 /// The sides of the triangles with an angle under [`THIN_ANGLE_DEG`].
@@ -91,14 +96,15 @@ pub(super) fn thin_triangle_edges(world: &World, mesh: MeshId) -> Vec<EdgeId> {
 /// (a tip put back by [`super::finish::restore_tips`], where a flip could bridge the side of
 /// the spike and undo the tip) are not flipped. Smoothing moves
 /// vertices after each iteration's valence flips and leaves a few triangles thin; a flip moves
-/// no vertex, so the surface stays on the input where it was.
+/// no vertex, so the surface stays on the input where it was. Returns the flipped edges (a
+/// flip keeps the edge's id).
 pub(super) fn flip_thin(
     world: &mut World,
     edges: &[EdgeId],
     features: &EntityHashSet,
     pinned: &EntityHashSet,
-) -> usize {
-    let mut flips = 0;
+) -> Vec<EdgeId> {
+    let mut flipped = Vec::new();
     for &e in edges {
         let m = MeshRef::new(world);
         if m.try_edge(e).is_none() || features.contains(&e.0) || m.is_boundary_edge(e) {
@@ -117,10 +123,10 @@ pub(super) fn flip_thin(
             && flip_keeps_shape(&m, h)
             && flip_edge(world, e).is_ok()
         {
-            flips += 1;
+            flipped.push(e);
         }
     }
-    flips
+    flipped
 }
 
 /// The positions of `a b c d` around the edge of `h`, between triangles a b c and b a d.
@@ -197,6 +203,8 @@ mod tests {
     #[test]
     fn thin_triangles_get_the_other_diagonal_unless_it_is_a_feature() {
         let (mut world, mesh, [a, b, c, d]) = thin_kite();
+        let m = MeshRef::new(&world);
+        let diagonal = m.edge(m.find_halfedge(a, b).unwrap());
         let edges = thin_triangle_edges(&world, mesh);
         assert_eq!(edges.len(), 5);
         assert_eq!(
@@ -206,11 +214,12 @@ mod tests {
                 &EntityHashSet::default(),
                 &EntityHashSet::default()
             ),
-            1
+            vec![diagonal]
         );
         let m = MeshRef::new(&world);
         assert!(m.find_halfedge(a, b).is_none());
-        assert!(m.find_halfedge(c, d).is_some());
+        // The flipped edge keeps its id.
+        assert_eq!(m.edge(m.find_halfedge(c, d).unwrap()), diagonal);
         crate::mesh::validate(&world, mesh).unwrap();
 
         let (mut world, mesh, [a, b, ..]) = thin_kite();
@@ -220,7 +229,7 @@ mod tests {
         let edges = thin_triangle_edges(&world, mesh);
         assert_eq!(
             flip_thin(&mut world, &edges, &features, &EntityHashSet::default()),
-            0
+            vec![]
         );
     }
 

@@ -11,10 +11,15 @@
 //!    boundary), or leaves them as close and the edge was not locally Delaunay (the angles
 //!    facing it summed to over 180°: flipping raises the pair's smallest angle) ([`flip`]);
 //! 4. move every free vertex 1/5 of the way to its one-ring centroid, within its tangent plane
-//!    (all new positions computed first, then committed), and project it back onto the input
-//!    surface (closest point on the input triangles, found through a uniform grid:
-//!    [`crate::ops::geometry::closest`]); the smoothing is repeated [`RemeshParams::smoothing_steps`] times (10, as
-//!    in Scotty3D), the projection done after the last ([`relax`]).
+//!    (all new positions computed first, then committed), repeated
+//!    [`RemeshParams::smoothing_steps`] times (10, as in Scotty3D) ([`relax`]);
+//! 5. project the free vertices back onto the input surface (closest point on the input
+//!    triangles, found through a uniform grid: [`crate::ops::geometry::closest`]), once an
+//!    iteration, after the last smoothing step ([`relax::project`]).
+//!
+//! Each of these five is a pass of a [`RemeshRun`], which makes one pass a call and reports
+//! what it touched ([`PassReport`]), for the editor's step mode; [`remesh`] runs one to its
+//! end.
 //!
 //! After the last iteration ([`finish`]), the detail that triangles of length L cannot follow
 //! is put back where the remesh strays from the input by more than
@@ -54,27 +59,25 @@ mod collapse;
 mod features;
 mod finish;
 mod flip;
+mod pass;
 mod relax;
+mod run;
 mod split;
+#[cfg(test)]
+mod tests;
 
-use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::ids::{EdgeId, ElementId, MeshId};
+use crate::mesh::ids::{EdgeId, MeshId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::tables::Connectivity;
 use crate::mesh::tables::{MeshTables, extract};
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
-use crate::ops::geometry::closest::Reference;
-use collapse::collapse_short;
-use features::{is_feature, without_noise};
-use finish::{DETAIL_TOLERANCE, clean_up_thin, fill_grooves, restore_tips};
-use flip::flip_to_valence;
-use relax::Smoother;
-use split::split_long;
+pub use pass::{Pass, PassReport, Touched};
+pub use run::RemeshRun;
 
 /// How to remesh. The same struct serves the command line, the editor and the tests.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -115,7 +118,7 @@ pub struct RemeshSummary {
     pub flips: usize,
 }
 
-/// Remeshes a triangle mesh in place (see the module doc).
+/// Remeshes a triangle mesh in place (see the module doc): a [`RemeshRun`] run to its end.
 ///
 /// # Refusals
 /// [`Refusal::NotTriangle`] on polygons; a stale mesh. The mesh is then unchanged.
@@ -127,8 +130,9 @@ pub fn remesh(
     remesh_with_progress(world, mesh, params, |_| true)
 }
 
-/// [`remesh`], calling `progress(fraction done)` after each split, collapse, flip and smoothing
-/// pass; returning `false` stops after that pass (the mesh is then valid, less remeshed).
+/// [`remesh`], calling `progress(fraction done)` after each pass of a [`RemeshRun`] (split,
+/// collapse, flip, relax, project, finish); returning `false` stops after that pass (the mesh
+/// is then valid, less remeshed). The same as running a [`RemeshRun`] to its end.
 ///
 /// # Refusals
 /// As [`remesh`].
@@ -138,76 +142,14 @@ pub fn remesh_with_progress(
     params: &RemeshParams,
     mut progress: impl FnMut(f32) -> bool,
 ) -> Result<RemeshSummary, Refusal> {
-    if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
-        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
-    }
-    let members = MeshMembers::collect(world, mesh);
-    let m = MeshRef::new(world);
-    if let Some(&f) = members.faces.iter().find(|&&f| m.face_degree(f) != 3) {
-        return Err(Refusal::NotTriangle(ElementId::Face(f)));
-    }
-    let length = params.target_length.unwrap_or_else(|| {
-        let sum: f32 = members.edges.iter().map(|&e| edge_length(&m, e)).sum();
-        sum / members.edges.len().max(1) as f32
-    });
-    let reference = Reference::new(&m, &members);
-    // The input's interior vertices, for [`restore_tips`].
-    let tips: Vec<Vec3> = members
-        .vertices
-        .iter()
-        .filter(|&&v| !m.is_boundary_vertex(v))
-        .map(|&v| m.position(v))
-        .collect();
-    let cos_limit = params.feature_angle_deg.to_radians().cos();
-    let sharp: EntityHashSet = members
-        .edges
-        .iter()
-        .filter(|&&e| is_feature(&m, e, cos_limit))
-        .map(|e| e.0)
-        .collect();
-    let mut features = without_noise(&m, &members, sharp);
-    let mut summary = RemeshSummary {
-        target_length: length,
-        splits: 0,
-        collapses: 0,
-        flips: 0,
-    };
-    let (high, low) = (4.0 / 3.0 * length, 4.0 / 5.0 * length);
-    let passes = params.iterations as f32 * 4.0;
-    let mut done = |pass: u32, i: u32| progress((i as f32 * 4.0 + pass as f32) / passes);
-    for i in 0..params.iterations {
-        summary.splits += split_long(world, mesh, high, &mut features);
-        if !done(1, i) {
-            return Ok(summary);
-        }
-        summary.collapses += collapse_short(world, mesh, low, high, &features);
-        if !done(2, i) {
-            return Ok(summary);
-        }
-        summary.flips += flip_to_valence(world, mesh, &features);
-        if !done(3, i) {
-            return Ok(summary);
-        }
-        // Smooth in small steps, then project back onto the input once per iteration (each
-        // projection searches the input's triangles: the expensive part).
-        let mut smoother = Smoother::new(world, mesh, &features);
-        for step in 0..params.smoothing_steps.max(1) {
-            let last = step + 1 == params.smoothing_steps.max(1);
-            smoother.step(last.then_some(&reference));
-        }
-        smoother.write(world);
-        if !done(4, i) {
-            return Ok(summary);
+    let mut run = RemeshRun::start(world, mesh, params)?;
+    let total = run.passes_total() as f32;
+    while run.next_pass(world).is_some() {
+        if !progress(run.passes_done() as f32 / total) {
+            break;
         }
     }
-    if params.iterations > 0 {
-        let tolerance = DETAIL_TOLERANCE * length;
-        let pinned = restore_tips(world, mesh, &tips, &reference, &features, length, tolerance);
-        summary.splits += pinned.len();
-        summary.splits += fill_grooves(world, mesh, &reference, &features, tolerance);
-        summary.flips += clean_up_thin(world, mesh, &features, &pinned, &reference, low / 16.0);
-    }
-    Ok(summary)
+    Ok(run.summary())
 }
 
 /// The length of `e`.

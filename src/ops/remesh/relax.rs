@@ -3,8 +3,8 @@
 //!
 //! [`Smoother`] moves every free vertex (off the boundary and off the features) 1/5 of the way
 //! to its one-ring centroid within its tangent plane, all new positions from the old ones
-//! (Jacobi), and projects it back onto the input after the last step; vertices on features and
-//! the boundary never move. [`relax_thin_corners`] then moves, one by one, the corners of the
+//! (Jacobi), and [`project`] puts it back onto the input after the last step; vertices on
+//! features and the boundary never move. [`relax_thin_corners`] then moves, one by one, the corners of the
 //! triangles still thin to the candidate point that most raises the smallest angle around them:
 //! a free corner within its tangent plane and back onto the input, a corner on a straight
 //! feature line or boundary along that line, so the line keeps its shape; feature corners and
@@ -89,9 +89,8 @@ impl Smoother {
     }
 
     /// Moves every free vertex 1/5 of the way to its one-ring centroid within its tangent
-    /// plane (the normal: the sum of its triangles' area vectors), projecting onto `reference`
-    /// if given.
-    pub(super) fn step(&mut self, reference: Option<&Reference>) {
+    /// plane (the normal: the sum of its triangles' area vectors).
+    pub(super) fn step(&mut self) {
         let p = &self.positions;
         for (k, &i) in self.free.iter().enumerate() {
             let ring = &self.ring[self.ring_start[k] as usize..self.ring_start[k + 1] as usize];
@@ -108,22 +107,72 @@ impl Smoother {
                 .normalize_or_zero();
             let step = centroid - here;
             let target = here + 0.2 * (step - normal * normal.dot(step));
-            self.next[i as usize] = reference.map_or(target, |r| r.closest(target));
+            self.next[i as usize] = target;
         }
         // Every free vertex is rewritten each step and the others never move, so swapping
         // leaves both buffers right.
         std::mem::swap(&mut self.positions, &mut self.next);
     }
 
-    /// Writes the free vertices' positions into the world.
-    pub(super) fn write(self, world: &mut World) {
+    /// Writes the free vertices' positions into the world. Returns the free vertices, and
+    /// those of them whose position changed.
+    pub(super) fn write(self, world: &mut World) -> Relaxed {
+        let mut relaxed = Relaxed {
+            free: Vec::with_capacity(self.free.len()),
+            moved: Vec::new(),
+        };
         for &i in &self.free {
             let v = self.vertices[i as usize];
             if let Some(mut position) = world.get_mut::<crate::mesh::Position>(v.0) {
-                position.0 = self.positions[i as usize];
+                let to = self.positions[i as usize];
+                if bits(position.0) != bits(to) {
+                    relaxed.moved.push(v);
+                }
+                position.0 = to;
             }
+            relaxed.free.push(v);
+        }
+        relaxed
+    }
+}
+
+/// What [`Smoother::write`] wrote.
+pub(super) struct Relaxed {
+    /// The vertices the smoothing may move (off the boundary and the features), for
+    /// [`project`].
+    pub free: Vec<VertexId>,
+    /// Those whose position changed.
+    pub moved: Vec<VertexId>,
+}
+
+/// Moves each of `vertices` to its closest point on `reference` (the projection after the
+/// relaxation: one search of the input's triangles a vertex, the expensive part, so it is done
+/// once an iteration, after the last smoothing step). Stale ids are skipped. Returns the
+/// vertices that moved.
+///
+/// Projecting after [`Smoother::write`] gives the same bits as projecting inside the last step:
+/// the steps are Jacobi, so no vertex's projection feeds another's step.
+pub(super) fn project(
+    world: &mut World,
+    vertices: &[VertexId],
+    reference: &Reference,
+) -> Vec<VertexId> {
+    let mut moved = Vec::new();
+    for &v in vertices {
+        if let Some(mut position) = world.get_mut::<crate::mesh::Position>(v.0) {
+            let to = reference.closest(position.0);
+            if bits(position.0) != bits(to) {
+                moved.push(v);
+            }
+            position.0 = to;
         }
     }
+    moved
+}
+
+/// `p` as bits: a vertex moved when any bit of its position changed.
+fn bits(p: Vec3) -> [u32; 3] {
+    p.to_array().map(f32::to_bits)
 }
 
 /// How far along the way to its one-ring centroid a thin triangle's free corner is tried, in

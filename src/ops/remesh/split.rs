@@ -14,19 +14,22 @@ use crate::mesh::topology::MeshRef;
 use crate::ops::local::split_edge;
 
 use super::EdgeTable;
+use super::pass::Touched;
 
 /// Splits every edge of `mesh` longer than `high` (4/3 L) at its midpoint, the long edges
 /// listed before the first split; the halves of a split feature edge join `features`.
-/// Returns how many.
+/// Returns the new vertices and the edges around each as its split left them (a split adds
+/// and removes no other element, so all stay alive through the pass); the count of splits is
+/// the count of vertices.
 pub(super) fn split_long(
     world: &mut World,
     mesh: MeshId,
     high: f32,
     features: &mut EntityHashSet,
-) -> usize {
+) -> Touched {
     // A split leaves every other edge as long as it was: the long ones can be listed first.
     let edges = EdgeTable::read(world, mesh).edges_where(|length| length > high);
-    let mut splits = 0;
+    let mut touched = Touched::default();
     for e in edges {
         let m = MeshRef::new(world);
         let feature = features.contains(&e.0);
@@ -35,17 +38,17 @@ pub(super) fn split_long(
         let Ok(v) = split_edge(world, e, 0.5) else {
             continue;
         };
-        splits += 1;
-        if feature {
+        touched.vertices.push(v);
+        let m = MeshRef::new(world);
+        for h in m.vertex_outgoing(v) {
+            let spoke = m.edge(h);
+            touched.edges.push(spoke);
             // Both halves of a feature edge stay features; the cuts across faces do not.
-            let m = MeshRef::new(world);
-            for h in m.vertex_outgoing(v) {
-                let w = m.to_vertex(h);
-                if w == a || w == b {
-                    features.insert(m.edge(h).0);
-                }
+            let w = m.to_vertex(h);
+            if feature && (w == a || w == b) {
+                features.insert(spoke.0);
             }
         }
     }
-    splits
+    touched
 }
