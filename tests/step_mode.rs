@@ -115,6 +115,15 @@ fn sorted_lines(app: &App) -> Vec<String> {
     lines
 }
 
+/// The collapse the QEM run in progress makes next.
+fn qem_next(app: &App) -> pappus::ops::simplify::NextCollapse {
+    let run = app.world().resource::<Stepping>().run.as_ref().expect("a run");
+    match &run.steps {
+        pappus::editor::stepping::Steps::Qem(q) => q.next.expect("a next collapse"),
+        _ => panic!("a QEM run"),
+    }
+}
+
 fn step_at(app: &App) -> (usize, usize) {
     let run = app
         .world()
@@ -191,15 +200,7 @@ fn the_drawn_next_edge_is_the_one_the_next_step_collapses() {
     start_stepped(&mut app);
     for _ in 0..25 {
         let (a, b) = drawn_next(&app).expect("the next edge is drawn");
-        let next = app
-            .world()
-            .resource::<Stepping>()
-            .run
-            .as_ref()
-            .unwrap()
-            .steps
-            .next
-            .unwrap();
+        let next = qem_next(&app);
         let edge = next.queued.edge;
         let m = MeshRef::new(app.world());
         let (p, q) = m.edge_vertices(edge);
@@ -257,15 +258,7 @@ fn a_collapsed_selection_follows_to_what_it_became_and_esc_puts_the_mesh_back() 
     let mut app = opened(SHAPES[0]);
     let before = saved(&app);
     start_stepped(&mut app);
-    let next = app
-        .world()
-        .resource::<Stepping>()
-        .run
-        .as_ref()
-        .unwrap()
-        .steps
-        .next
-        .unwrap();
+    let next = qem_next(&app);
     send(
         &mut app,
         Request::Select(Some(ElementId::Vertex(next.removed))),
@@ -319,4 +312,83 @@ fn another_edit_ends_the_run_as_one_undo_entry_first() {
         .unwrap()
         .clone();
     assert!(last.result.is_err(), "a step with no run is declined");
+}
+
+/// Presses `k` (with `modifier`) in a fresh editor on `shape`, unstepped, and returns it.
+fn unstepped(shape: &str, modifier: Option<KeyCode>, k: KeyCode) -> App {
+    let mut app = opened(shape);
+    press(&mut app, modifier, k);
+    last_ok(&app);
+    app
+}
+
+#[test]
+fn a_remeshing_run_steps_pass_by_pass_highlights_each_and_ends_as_the_unstepped_edit() {
+    let shape = "shape:icosphere:2";
+    let whole = unstepped(shape, None, KeyCode::KeyM);
+    let mut app = opened(shape);
+    press(&mut app, None, KeyCode::F9);
+    press(&mut app, None, KeyCode::KeyM);
+    assert!(last_ok(&app).contains("next: split"), "{}", last_ok(&app));
+    for pass in ["split", "collapse", "flip", "relax", "project"] {
+        press(&mut app, None, KeyCode::ArrowRight);
+        assert!(last_ok(&app).contains(&format!("1 {pass}:")), "{}", last_ok(&app));
+        let run = app.world().resource::<Stepping>().run.as_ref().unwrap();
+        let pappus::editor::stepping::Steps::Remesh(steps) = &run.steps else {
+            panic!("a remeshing run")
+        };
+        let report = steps.last.as_ref().unwrap();
+        // What the pass touched is drawn (green), as far as it touched anything.
+        let drawn = app
+            .world()
+            .resource::<Overlay>()
+            .shapes
+            .iter()
+            .filter(|s| {
+                matches!(s, Shape::Dot(_, _, c) | Shape::Highlight(_, _, c)
+                    if *c == pappus::editor::step_view::TOUCHED)
+            })
+            .count();
+        let touched = report.touched.vertices.len() + report.touched.edges.len();
+        assert_eq!(drawn, touched.min(2 * pappus::editor::step_view::MAX_DRAWN), "{pass}");
+    }
+    press(&mut app, None, KeyCode::ArrowLeft);
+    assert!(app.world().resource::<OutcomeLog>().entries.last().unwrap().result.is_err());
+    press(&mut app, None, KeyCode::End);
+    assert!(elements(&app) == elements(&whole), "the stepped remesh differs");
+    press(&mut app, None, KeyCode::Enter);
+    let label = |a: &App| a.world().resource::<UndoHistory>().undo_entries()[0].label.clone();
+    assert_eq!(label(&app), label(&whole));
+}
+
+#[test]
+fn a_subdivision_run_shows_new_points_then_moved_vertices_then_commits_the_level() {
+    for (shape, k) in [("shape:icosahedron", KeyCode::KeyL), ("shape:cube", KeyCode::KeyQ)] {
+        let whole = unstepped(shape, None, k);
+        let mut app = opened(shape);
+        let before = elements(&app);
+        press(&mut app, None, KeyCode::F9);
+        press(&mut app, None, k);
+        let v = MeshRef::new(app.world())
+            .face_vertices(pappus::mesh::MeshMembers::collect(app.world(), active(&app)).faces[0])
+            .next()
+            .unwrap();
+        send(&mut app, Request::Select(Some(ElementId::Vertex(v))));
+        let view = |app: &App| app.world().resource::<pappus::editor::step_view::StepView>().clone();
+        let stencil = view(&app).stencil.expect("the selected vertex's stencil");
+        let total: f32 = stencil.terms.iter().map(|t| t.1).sum();
+        assert!((total - 1.0).abs() < 1e-6, "{shape}: weights sum to {total}");
+        assert!(elements(&app) == before, "{shape}: the preview changed the mesh");
+        press(&mut app, None, KeyCode::ArrowRight);
+        assert!(last_ok(&app).contains("moved as well"), "{}", last_ok(&app));
+        assert!(elements(&app) == before, "{shape}: the preview changed the mesh");
+        press(&mut app, None, KeyCode::ArrowRight);
+        assert!(elements(&app) == elements(&whole), "{shape}: the level differs");
+        // The old vertex kept its id and went where its stencil said.
+        let m = MeshRef::new(app.world());
+        assert!((m.position(v) - stencil.position).length() < 1e-6, "{shape}");
+        press(&mut app, None, KeyCode::Enter);
+        let label = |a: &App| a.world().resource::<UndoHistory>().undo_entries()[0].label.clone();
+        assert_eq!(label(&app), label(&whole), "{shape}");
+    }
 }

@@ -438,6 +438,25 @@ impl Edit {
         )
     }
 
+    /// After the edit has changed `mesh`, which had the attributes `had`: drops them if the
+    /// edit does not carry them, and returns the note that says what was lost (empty if
+    /// nothing). [`Edit::run`] calls it; a stepped run calls it when it ends.
+    pub fn settle_attributes(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        had: MeshAttributes,
+    ) -> String {
+        if had.is_empty() {
+            return String::new();
+        }
+        if !self.carries_attributes() {
+            drop_attributes(world, mesh);
+        }
+        let lost = had.lost_in(MeshAttributes::of(world, mesh));
+        lost.dropped_note(&self.why_dropped())
+    }
+
     /// Why the edit dropped attributes, for the summary's note.
     fn why_dropped(&self) -> String {
         match self {
@@ -484,15 +503,9 @@ impl Edit {
         // Every edit either carries the mesh's attributes or drops them; a drop is said.
         let had = MeshAttributes::of(world, mesh);
         let mut applied = self.apply(world, mesh, context)?;
-        if !had.is_empty() {
-            if !self.carries_attributes() {
-                drop_attributes(world, mesh);
-            }
-            let lost = had.lost_in(MeshAttributes::of(world, mesh));
-            applied
-                .summary
-                .push_str(&lost.dropped_note(&self.why_dropped()));
-        }
+        applied
+            .summary
+            .push_str(&self.settle_attributes(world, mesh, had));
         #[cfg(debug_assertions)]
         if let Err(e) = crate::mesh::validate(world, mesh) {
             panic!("{} left an invalid mesh: {e}", self.label());

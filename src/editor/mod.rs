@@ -132,6 +132,7 @@ impl Plugin for EditorLogicPlugin {
                     )
                         .chain()
                         .in_set(EditorSystems::Sync),
+                    step_view::snapshot_steps.in_set(EditorSystems::Ui),
                 ),
             );
     }

@@ -1,5 +1,6 @@
-//! What step mode shows: the next collapse drawn on the mesh (the edge, the point its ends merge
-//! at, the runners-up in the queue), and a window that drives the run and lists the queue.
+//! What step mode shows on the mesh — QEM's next collapse (the edge, the point its ends merge
+//! at, the runners-up in the queue), what a remeshing pass touched, a subdivision level's new
+//! points and the selected element's stencil — and a window that drives the run.
 //!
 //! [`gather_step_overlay`] adds shapes to the frame's [`Overlay`] (logic side: headless tests
 //! see them); [`snapshot_steps`] copies what the window shows out of the world once a frame;
@@ -11,11 +12,17 @@ use bevy_egui::{EguiContexts, egui};
 use crate::mesh::ids::{EdgeId, ElementId};
 use crate::mesh::topology::MeshRef;
 
-use super::input::{Action, SHORTCUTS};
+use super::input::{Action, SHORTCUTS, UiState};
 use super::overlay::{Overlay, Shape};
 use super::requests::Request;
-use super::stepping::{StepMove, Stepping};
+use super::selection::Selection;
+use super::stencil_view::{
+    PointsShown, point_shapes, point_shapes_near, stencil_panel, stencil_shapes,
+};
+use super::stepping::{StepMove, Stepping, Steps, describe};
 use super::ui::PendingActions;
+use crate::ops::remesh::Touched;
+use crate::ops::stencil::{Stencil, stencil_of_element};
 
 /// The next edge and the point it collapses to.
 pub const NEXT: Color = Color::srgb(1.0, 0.45, 0.05);
@@ -23,6 +30,10 @@ pub const NEXT: Color = Color::srgb(1.0, 0.45, 0.05);
 pub const QUEUED: Color = Color::srgb(0.95, 0.75, 0.2);
 /// How many of the queue's cheapest edges are drawn and listed.
 pub const CANDIDATES: usize = 10;
+/// What a remeshing pass touched.
+pub const TOUCHED: Color = Color::srgb(0.1, 0.8, 0.35);
+/// The most elements of one kind a step draws (gizmos are redrawn every frame).
+pub const MAX_DRAWN: usize = 3_000;
 
 /// Adds the run's shapes to the frame's overlay (after `overlay::gather_overlay`).
 pub fn gather_step_overlay(world: &mut World) {
@@ -31,24 +42,73 @@ pub fn gather_step_overlay(world: &mut World) {
     };
     let m = MeshRef::new(world);
     let mut shapes = Vec::new();
-    let steps = &run.steps;
-    if steps.at_front() {
-        for queued in steps.candidates(CANDIDATES).iter().skip(1) {
-            if m.try_edge(queued.edge).is_some() {
-                let (a, b) = m.edge_vertices(queued.edge);
-                shapes.push(Shape::Highlight(m.position(a), m.position(b), QUEUED));
+    match &run.steps {
+        Steps::Qem(steps) if steps.at_front() => {
+            for queued in steps.candidates(CANDIDATES).iter().skip(1) {
+                if m.try_edge(queued.edge).is_some() {
+                    let (a, b) = m.edge_vertices(queued.edge);
+                    shapes.push(Shape::Highlight(m.position(a), m.position(b), QUEUED));
+                }
+            }
+            if let Some(next) = &steps.next {
+                let (a, b) = (m.position(next.kept), m.position(next.removed));
+                let at = next.queued.position;
+                shapes.push(Shape::Highlight(a, b, NEXT));
+                shapes.push(Shape::Line(a, at, NEXT));
+                shapes.push(Shape::Line(b, at, NEXT));
+                shapes.push(Shape::HighlightDot(at, a.distance(b) * 0.15, NEXT));
             }
         }
-        if let Some(next) = &steps.next {
-            let (a, b) = (m.position(next.kept), m.position(next.removed));
-            let at = next.queued.position;
-            shapes.push(Shape::Highlight(a, b, NEXT));
-            shapes.push(Shape::Line(a, at, NEXT));
-            shapes.push(Shape::Line(b, at, NEXT));
-            shapes.push(Shape::HighlightDot(at, a.distance(b) * 0.15, NEXT));
+        Steps::Qem(_) => {}
+        Steps::Remesh(steps) => {
+            if let Some(report) = &steps.last {
+                touched_shapes(&m, &report.touched, &mut shapes);
+            }
+        }
+        Steps::Subdivide(steps) => {
+            let selected = world.resource::<Selection>().element;
+            let stencil = selected.and_then(|x| stencil_of_element(&m, steps.scheme, x));
+            if let Some(points) = &steps.points {
+                let which = PointsShown {
+                    new_points: true,
+                    moved_vertices: steps.moved_shown,
+                };
+                let near = stencil.as_ref().map(|s| s.position);
+                match near {
+                    Some(near) => point_shapes_near(points, which, near, &mut shapes, MAX_DRAWN),
+                    None => point_shapes(points, which, &mut shapes, MAX_DRAWN),
+                }
+            }
+            if let Some(stencil) = &stencil {
+                stencil_shapes(&m, stencil, &mut shapes);
+            }
         }
     }
     world.resource_mut::<Overlay>().shapes.extend(shapes);
+}
+
+/// What a remeshing pass touched: its edges as thick lines, its vertices as dots, at most
+/// [`MAX_DRAWN`] of each (an even sample above that).
+fn touched_shapes(m: &MeshRef<'_>, touched: &Touched, out: &mut Vec<Shape>) {
+    let sample = |n: usize| (0..n.min(MAX_DRAWN)).map(move |i| i * n / n.min(MAX_DRAWN).max(1));
+    for i in sample(touched.edges.len()) {
+        let e = touched.edges[i];
+        if m.try_edge(e).is_some() {
+            let (a, b) = m.edge_vertices(e);
+            out.push(Shape::Highlight(m.position(a), m.position(b), TOUCHED));
+        }
+    }
+    for i in sample(touched.vertices.len()) {
+        let v = touched.vertices[i];
+        if m.try_vertex(v).is_some() {
+            let p = m.position(v);
+            let r = m
+                .vertex_neighbors(v)
+                .map(|w| m.position(w).distance(p))
+                .fold(f32::INFINITY, f32::min);
+            out.push(Shape::Dot(p, 0.15 * r.min(1.0e3), TOUCHED));
+        }
+    }
 }
 
 /// One line of the queue in the window.
@@ -67,14 +127,14 @@ pub struct StepView {
     pub enabled: bool,
     /// The run's title (the edit's label), if a run is in progress.
     pub title: Option<String>,
-    /// The step the mesh is at, the steps made, faces now and the target.
+    /// Where the run is, in one line.
+    pub line: String,
+    /// The step the mesh is at.
     pub at: usize,
-    /// Collapses made so far.
+    /// Steps made (QEM) or steps in all (the others).
     pub made: usize,
-    /// Faces at this step.
-    pub faces: usize,
-    /// The face count the run stops at.
-    pub target: usize,
+    /// Whether the slider may scrub back (QEM).
+    pub scrubs: bool,
     /// The next collapse: its edge, cost, and where it is drawn (for the label).
     pub next: Option<(EdgeId, f32, Vec3)>,
     /// The queue's cheapest edges.
@@ -83,7 +143,11 @@ pub struct StepView {
     pub refused: Vec<String>,
     /// What became of the selected element.
     pub fate: Option<String>,
-    /// Whether the run has made its last collapse.
+    /// Each remeshing pass so far.
+    pub passes: Vec<String>,
+    /// The selected element's stencil, under subdivision.
+    pub stencil: Option<Stencil>,
+    /// Whether the run has made its last step.
     pub finished: bool,
 }
 
@@ -95,35 +159,45 @@ pub fn snapshot_steps(world: &mut World) {
         ..default()
     };
     if let Some(run) = &stepping.run {
-        let steps = &run.steps;
         view.title = Some(run.edit.label());
-        view.at = steps.at();
-        view.made = steps.made();
-        view.faces = steps.faces();
-        view.target = steps.target_faces();
-        view.next = steps
-            .next
-            .filter(|_| steps.at_front())
-            .map(|n| (n.queued.edge, n.queued.cost, n.queued.position));
-        view.queue = match steps.at_front() {
-            true => steps
-                .candidates(CANDIDATES)
-                .into_iter()
-                .map(|q| QueueLine {
-                    edge: q.edge,
-                    cost: q.cost,
-                })
-                .collect(),
-            false => Vec::new(),
-        };
-        view.refused = steps
-            .refused
-            .iter()
-            .rev()
-            .map(|r| format!("{} ({:.2e}): {}", r.queued.edge, r.queued.cost, r.why))
-            .collect();
+        view.line = describe(world, &run.steps);
+        view.at = run.steps.at();
+        view.made = run.steps.made();
+        view.finished = run.steps.finished();
         view.fate = run.fate.clone();
-        view.finished = steps.finished();
+        match &run.steps {
+            Steps::Qem(steps) => {
+                view.scrubs = true;
+                if steps.at_front() {
+                    view.next = steps
+                        .next
+                        .map(|n| (n.queued.edge, n.queued.cost, n.queued.position));
+                    view.queue = steps
+                        .candidates(CANDIDATES)
+                        .into_iter()
+                        .map(|q| QueueLine {
+                            edge: q.edge,
+                            cost: q.cost,
+                        })
+                        .collect();
+                }
+                view.refused = steps
+                    .refused
+                    .iter()
+                    .rev()
+                    .map(|r| format!("{} ({:.2e}): {}", r.queued.edge, r.queued.cost, r.why))
+                    .collect();
+            }
+            Steps::Remesh(steps) => view.passes = steps.passes.clone(),
+            Steps::Subdivide(steps) => {
+                let m = MeshRef::new(world);
+                view.stencil = world
+                    .resource::<Selection>()
+                    .element
+                    .filter(|_| steps.points.is_some())
+                    .and_then(|x| stencil_of_element(&m, steps.scheme, x));
+            }
+        }
     }
     *world.resource_mut::<StepView>() = view;
 }
@@ -141,6 +215,7 @@ pub fn step_window(
     view: Res<StepView>,
     mut pending: ResMut<PendingActions>,
     mut requests: MessageWriter<Request>,
+    mut ui_state: ResMut<UiState>,
     camera: Query<(&Camera, &GlobalTransform), With<Camera3d>>,
 ) -> Result {
     let ctx = contexts.ctx_mut()?;
@@ -177,10 +252,7 @@ pub fn step_window(
         .default_pos(egui::pos2(16.0, 16.0))
         .resizable(false)
         .show(ctx, |ui| {
-            ui.label(format!(
-                "step {} of {} made · {} faces (target {})",
-                view.at, view.made, view.faces, view.target
-            ));
+            ui.label(&view.line);
             ui.horizontal(|ui| {
                 for (movement, text) in [
                     (StepMove::Back(100), "−100"),
@@ -197,24 +269,32 @@ pub fn step_window(
                     }
                 }
             });
-            let mut at = view.at;
-            let slider = egui::Slider::new(&mut at, 0..=view.made.max(1)).text("scrub");
-            if ui.add_enabled(view.made > 0, slider).changed() && at != view.at {
-                requests.write(Request::Step(StepMove::To(at)));
+            if view.scrubs {
+                let mut at = view.at;
+                let slider = egui::Slider::new(&mut at, 0..=view.made.max(1)).text("scrub");
+                if ui.add_enabled(view.made > 0, slider).changed() && at != view.at {
+                    requests.write(Request::Step(StepMove::To(at)));
+                }
             }
-            match (&view.next, view.finished) {
-                (Some((edge, cost, _)), _) => {
-                    ui.label(format!("next: collapse {edge}, cost {cost:.3e}"));
+            if view.finished {
+                ui.label("the run is at its end: keep it (Enter) or cancel (Esc)");
+            }
+            if !view.passes.is_empty() {
+                ui.separator();
+                ui.label(egui::RichText::new("passes (green: what the last one touched)").strong());
+                for line in view.passes.iter().rev().take(12) {
+                    ui.monospace(line);
                 }
-                (None, true) => {
-                    ui.label("the run is at its end");
-                }
-                (None, false) => {
-                    ui.label(format!(
-                        "moved back along what has run: {} forward replays it",
-                        keys_of(Action::Step(StepMove::Forward(1)))
-                    ));
-                }
+                ui.checkbox(
+                    &mut ui_state.histograms,
+                    "edge-length and valence histograms",
+                );
+            }
+            if let Some(stencil) = &view.stencil {
+                ui.separator();
+                stencil_panel(ui, stencil);
+            } else if view.passes.is_empty() && view.next.is_none() && !view.scrubs {
+                ui.label("select a vertex, an edge or a face to see its stencil");
             }
             if let Some(fate) = &view.fate {
                 ui.colored_label(egui::Color32::from_rgb(230, 150, 60), fate);

@@ -1,16 +1,25 @@
 //! Step mode: a global operation run a step at a time on the live mesh, so that a student can
 //! watch it work.
 //!
-//! With step mode on (`F9`, or the panel's box), the keys and buttons of simplification start a
-//! [`SteppedRun`] instead of running to the end. The run pauses between the operation's natural
-//! steps — one edge collapse of QEM — and moves on [`StepMove`]s: forward 1, 10, 100 or to the
-//! end, or back and forth along what has run so far.
+//! With step mode on (`F9`, or the panel's button), the keys and buttons of simplification,
+//! remeshing and subdivision start a [`SteppedRun`] instead of running to the end. The run
+//! pauses between the operation's natural steps and moves on [`StepMove`]s: forward 1, 10, 100
+//! or to the end, or back.
 //!
-//! - **QEM** ([`QemRun`]): the next edge to collapse is drawn with the point its ends merge at,
-//!   the panel lists the queue's cheapest edges, and a collapse the queue refused says why.
-//!   Moving back splits collapses back through the run's [`ProgressiveMesh`] (the same history
-//!   the level-of-detail slider moves along), and forward again replays them before the run
-//!   makes new ones.
+//! - **QEM** ([`QemRun`]), a step is one edge collapse: the next edge is drawn with the point
+//!   its ends merge at, the panel lists the queue's cheapest edges, and a collapse the queue
+//!   refused says why. Moving back splits collapses back through the run's
+//!   [`ProgressiveMesh`] (the history the level-of-detail slider moves along), and forward
+//!   again replays them before the run makes new ones; a slider scrubs along them.
+//! - **Isotropic remeshing** ([`RemeshRun`]), a step is one pass (split, collapse, flip, relax,
+//!   project; a finish after the last iteration): what the pass made or moved is highlighted
+//!   and its count listed. A pass rewrites much of the mesh, so a remeshing run does not step
+//!   back; Esc puts the mesh back as it was before the run.
+//! - **Loop and Catmull–Clark**, two steps a level before it is committed: first the new edge
+//!   (and face) points, then the old vertices at their moved positions, each drawn over the
+//!   mesh, and the selected element's stencil (its old vertices and their weights) drawn and
+//!   listed ([`crate::ops::stencil`]); the next step commits the level. Back undoes the preview
+//!   steps of the level not yet committed.
 //!
 //! Every step is the operation's own step on the world, so a run stepped to the end leaves the
 //! same mesh, bit for bit, as the unstepped edit. Ending the run ([`StepMove::Finish`], or any
@@ -23,12 +32,16 @@
 
 use bevy::prelude::{Resource, World};
 
-use crate::edit::{Applied, Edit, Redraw};
+use crate::edit::{Applied, Edit, Redraw, Scheme, Subdivision};
+use crate::mesh::attributes::MeshAttributes;
 use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
 use crate::ops::progressive::{ProgressiveMesh, SlotIndex};
+use crate::ops::remesh::{Pass, PassReport, RemeshRun};
 use crate::ops::simplify::{NextCollapse, QemRun, QueuedEdge, Refused};
+use crate::ops::stencil::{NextLevelPoints, next_level_points};
+use crate::ops::subdivide::{catmull_clark, loop_subdivide};
 
 use super::finish::{Finished, finish_edit};
 use super::history::{self, Pending};
@@ -85,10 +98,89 @@ pub struct SteppedRun {
     pub edit: Edit,
     /// The mesh before the run, for the undo entry or a cancel.
     pending: Option<Pending>,
+    /// The attributes the mesh had before the run: those the edit does not carry are dropped
+    /// when it ends, as after the unstepped edit.
+    had: MeshAttributes,
     /// The operation's own state.
-    pub steps: QemSteps,
+    pub steps: Steps,
     /// What became of the selected element at the last step that removed it.
     pub fate: Option<String>,
+}
+
+/// The state of each kind of stepped run.
+pub enum Steps {
+    /// QEM, a collapse a step.
+    Qem(QemSteps),
+    /// Isotropic remeshing, a pass a step.
+    Remesh(RemeshSteps),
+    /// Subdivision, previewed then committed a level at a time.
+    Subdivide(SubdivideSteps),
+}
+
+impl Steps {
+    /// The step the mesh is at.
+    pub fn at(&self) -> usize {
+        match self {
+            Steps::Qem(q) => q.at(),
+            Steps::Remesh(r) => r.run.passes_done(),
+            Steps::Subdivide(s) => s.at(),
+        }
+    }
+
+    /// The steps made so far (QEM), or the steps the run has in all (the others).
+    pub fn made(&self) -> usize {
+        match self {
+            Steps::Qem(q) => q.made(),
+            Steps::Remesh(r) => r.run.passes_total(),
+            Steps::Subdivide(s) => 2 * s.levels as usize,
+        }
+    }
+
+    /// Whether the run has made its last step.
+    pub fn finished(&self) -> bool {
+        match self {
+            Steps::Qem(q) => q.finished(),
+            Steps::Remesh(r) => r.run.upcoming().is_none(),
+            Steps::Subdivide(s) => s.done == s.levels,
+        }
+    }
+}
+
+/// Isotropic remeshing stepped pass by pass.
+pub struct RemeshSteps {
+    run: RemeshRun,
+    /// What the last pass did.
+    pub last: Option<PassReport>,
+    /// Each pass so far, one line each ("1 split: 5587").
+    pub passes: Vec<String>,
+}
+
+impl RemeshSteps {
+    /// The pass the next step runs, if any.
+    pub fn upcoming(&self) -> Option<(Pass, u32)> {
+        self.run.upcoming()
+    }
+}
+
+/// Subdivision previewed and committed a level at a time.
+pub struct SubdivideSteps {
+    /// The scheme.
+    pub scheme: Scheme,
+    /// Levels asked for.
+    pub levels: u32,
+    /// Levels committed.
+    pub done: u32,
+    /// Whether the moved old vertices are shown (the level's second step) beside the new
+    /// points (its first).
+    pub moved_shown: bool,
+    /// The next level's points, while it is previewed.
+    pub points: Option<NextLevelPoints>,
+}
+
+impl SubdivideSteps {
+    fn at(&self) -> usize {
+        2 * self.done as usize + usize::from(self.moved_shown)
+    }
 }
 
 /// A QEM simplification stepped collapse by collapse.
@@ -158,7 +250,10 @@ impl QemSteps {
 
 /// Whether `edit` can be stepped through.
 pub fn steppable(edit: &Edit) -> bool {
-    matches!(edit, Edit::Simplify(_))
+    matches!(
+        edit,
+        Edit::Simplify(_) | Edit::Remesh(_) | Edit::Subdivide(_)
+    )
 }
 
 /// Starts a stepped run of `edit` on the active mesh (ending the run in progress first).
@@ -168,39 +263,114 @@ pub fn steppable(edit: &Edit) -> bool {
 pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
     end_run(world)?;
     let mesh = edit.target(world, world.resource::<ActiveMesh>().0)?;
-    let Edit::Simplify(params) = edit else {
-        return Err(Declined::Refused(Refusal::BadParameter(format!(
-            "{} cannot be stepped through",
-            edit.label()
-        ))));
+    let steps = match edit {
+        Edit::Simplify(params) => {
+            let run = QemRun::start(world, mesh, params)?;
+            let history = ProgressiveMesh::start(world, mesh, run.faces());
+            let index = SlotIndex::of(&history);
+            let mut steps = QemSteps {
+                run,
+                history,
+                index,
+                next: None,
+                refused: Vec::new(),
+            };
+            steps.look_ahead(world);
+            Steps::Qem(steps)
+        }
+        Edit::Remesh(params) => Steps::Remesh(RemeshSteps {
+            run: RemeshRun::start(world, mesh, params)?,
+            last: None,
+            passes: Vec::new(),
+        }),
+        Edit::Subdivide(subdivision) => Steps::Subdivide(SubdivideSteps {
+            scheme: subdivision.scheme,
+            levels: subdivision.levels,
+            done: 0,
+            moved_shown: false,
+            points: Some(next_level_points(world, mesh, subdivision.scheme)?),
+        }),
+        _ => {
+            return Err(Declined::Refused(Refusal::BadParameter(format!(
+                "{} cannot be stepped through",
+                edit.label()
+            ))));
+        }
     };
     let pending = history::begin_edit(world, edit, mesh);
-    let run = QemRun::start(world, mesh, params)?;
-    let history = ProgressiveMesh::start(world, mesh, run.faces());
-    let index = SlotIndex::of(&history);
-    let mut steps = QemSteps {
-        run,
-        history,
-        index,
-        next: None,
-        refused: Vec::new(),
-    };
-    steps.look_ahead(world);
-    let summary = format!(
-        "stepping {}: {} faces, target {}",
-        edit.label(),
-        steps.history.full_faces,
-        steps.target_faces()
-    );
+    let had = MeshAttributes::of(world, mesh);
+    let summary = format!("stepping {}: {}", edit.label(), describe(world, &steps));
     world.resource_mut::<SimplificationHistory>().pm = None;
     world.resource_mut::<Stepping>().run = Some(SteppedRun {
         mesh,
         edit: edit.clone(),
         pending,
+        had,
         steps,
         fate: None,
     });
     Ok(summary)
+}
+
+/// Where a run is, in one line (the status line's and the step window's).
+pub fn describe(world: &World, steps: &Steps) -> String {
+    match steps {
+        Steps::Qem(q) => match (&q.next, q.at_front()) {
+            (Some(next), true) => format!(
+                "step {}: {} faces, target {}; next {} (cost {:.3e})",
+                q.at(),
+                q.faces(),
+                q.target_faces(),
+                next.queued.edge,
+                next.queued.cost
+            ),
+            (None, true) => format!(
+                "step {}: {} faces, the end ({})",
+                q.at(),
+                q.faces(),
+                match q.run.summary().reached_target {
+                    true => "target reached",
+                    false => "no collapse left that is allowed",
+                }
+            ),
+            (_, false) => format!("step {} of {}: {} faces", q.at(), q.made(), q.faces()),
+        },
+        Steps::Remesh(r) => {
+            let last = r.passes.last().map_or("", String::as_str);
+            match r.upcoming() {
+                Some((pass, i)) => format!(
+                    "pass {} of {}{}; next: {} (iteration {})",
+                    r.run.passes_done(),
+                    r.run.passes_total(),
+                    if last.is_empty() {
+                        String::new()
+                    } else {
+                        format!(", {last}")
+                    },
+                    pass.name(),
+                    i + 1
+                ),
+                None => format!("the end, {last}"),
+            }
+        }
+        Steps::Subdivide(s) => {
+            let faces = world
+                .resource::<ActiveMesh>()
+                .0
+                .map_or(0, |mesh| crate::mesh::mesh_stats(world, mesh).faces);
+            match (s.done == s.levels, s.moved_shown) {
+                (true, _) => format!("{} level(s) committed, {faces} faces", s.done),
+                (false, false) => format!(
+                    "level {}: the new points shown ({faces} faces now)",
+                    s.done + 1
+                ),
+                (false, true) => format!(
+                    "level {}: the old vertices moved as well; the next step commits it",
+                    s.done + 1
+                ),
+            }
+        }
+    }
 }
 
 /// Applies a move to the run in progress.
@@ -226,31 +396,7 @@ pub fn step(world: &mut World, movement: StepMove) -> Result<String, Declined> {
         }
         StepMove::To(k) => go_to(world, &mut run, k),
     };
-    let steps = &run.steps;
-    let summary = result.map(|()| match (&steps.next, steps.at_front()) {
-        (Some(next), true) => format!(
-            "step {}: {} faces; next {} (cost {:.3e})",
-            steps.at(),
-            steps.faces_at(steps.at()),
-            next.queued.edge,
-            next.queued.cost
-        ),
-        (None, true) => format!(
-            "step {}: {} faces, the end ({})",
-            steps.at(),
-            steps.faces_at(steps.at()),
-            match steps.run.summary().reached_target {
-                true => "target reached",
-                false => "no collapse left that is allowed",
-            }
-        ),
-        (_, false) => format!(
-            "step {} of {}: {} faces",
-            steps.at(),
-            steps.made(),
-            steps.faces_at(steps.at())
-        ),
-    });
+    let summary = result.map(|()| describe(world, &run.steps));
     world.entity_mut(run.mesh.0).insert(Modified);
     world.resource_mut::<Stepping>().run = Some(run);
     summary.map_err(Declined::Refused)
@@ -267,10 +413,108 @@ pub fn end_run(world: &mut World) -> Result<(), Declined> {
     }
 }
 
-/// Moves `run` to step `k`: back or forward along what has run, then new collapses.
+/// Moves `run` to step `k`.
 fn go_to(world: &mut World, run: &mut SteppedRun, k: usize) -> Result<(), Refusal> {
-    let steps = &mut run.steps;
     let mesh = run.mesh;
+    match &mut run.steps {
+        Steps::Qem(steps) => qem_go_to(world, mesh, steps, &mut run.fate, k),
+        Steps::Remesh(steps) => remesh_go_to(world, mesh, steps, k),
+        Steps::Subdivide(steps) => {
+            let made = subdivide_go_to(world, mesh, steps, k)?;
+            if made > 0 {
+                run.edit = Edit::Subdivide(Subdivision {
+                    scheme: steps.scheme,
+                    levels: steps.done,
+                });
+            }
+            Ok(())
+        }
+    }
+}
+
+/// Runs passes up to pass `k` (a remeshing run does not go back).
+fn remesh_go_to(
+    world: &mut World,
+    mesh: MeshId,
+    steps: &mut RemeshSteps,
+    k: usize,
+) -> Result<(), Refusal> {
+    if k < steps.run.passes_done() {
+        return Err(Refusal::BadParameter(
+            "a remeshing run does not step back: Esc puts the mesh back as it was before it".into(),
+        ));
+    }
+    while steps.run.passes_done() < k {
+        let Some(report) = steps.run.next_pass(world) else {
+            break;
+        };
+        steps.passes.push(format!(
+            "{} {}: {}",
+            match report.pass {
+                Pass::Finish => "end".to_string(),
+                _ => (report.iteration + 1).to_string(),
+            },
+            report.pass.name(),
+            report.count
+        ));
+        steps.last = Some(report);
+    }
+    world.entity_mut(mesh.0).insert(MeshDirty);
+    follow_selection(world);
+    Ok(())
+}
+
+/// Moves a subdivision run to step `k`: shows the next level's new points, then its moved
+/// vertices, then commits it. Returns the levels committed by this move.
+fn subdivide_go_to(
+    world: &mut World,
+    mesh: MeshId,
+    steps: &mut SubdivideSteps,
+    k: usize,
+) -> Result<u32, Refusal> {
+    if k < 2 * steps.done as usize {
+        return Err(Refusal::BadParameter(
+            "a committed level does not step back: Esc puts the mesh back as it was before \
+             the run"
+                .into(),
+        ));
+    }
+    let mut made = 0;
+    while steps.at() < k && steps.done < steps.levels {
+        if !steps.moved_shown {
+            steps.moved_shown = true;
+            continue;
+        }
+        let level = Subdivision::once(steps.scheme);
+        match steps.scheme {
+            Scheme::Loop => loop_subdivide(world, mesh, level.levels),
+            Scheme::CatmullClark => catmull_clark(world, mesh, level.levels),
+        }?;
+        steps.done += 1;
+        made += 1;
+        steps.moved_shown = false;
+        steps.points = match steps.done < steps.levels {
+            true => Some(next_level_points(world, mesh, steps.scheme)?),
+            false => None,
+        };
+        world.entity_mut(mesh.0).insert(MeshDirty);
+        // Subdivision keeps vertex ids only.
+        super::selection::keep_live_selection(world, |x| matches!(x, ElementId::Vertex(_)));
+    }
+    if k < steps.at() {
+        steps.moved_shown = false;
+    }
+    Ok(made)
+}
+
+/// Moves a QEM run to step `k`: back or forward along what has run, then new collapses.
+fn qem_go_to(
+    world: &mut World,
+    mesh: MeshId,
+    steps: &mut QemSteps,
+    fate_line: &mut Option<String>,
+    k: usize,
+) -> Result<(), Refusal> {
     if k < steps.made() || !steps.at_front() {
         if steps.at_front() {
             steps.run.detach();
@@ -287,7 +531,7 @@ fn go_to(world: &mut World, run: &mut SteppedRun, k: usize) -> Result<(), Refusa
             }
             false => mark_faces_dirty(world, mesh, touched),
         }
-        run.fate = None;
+        *fate_line = None;
     }
     if k <= steps.made() {
         if steps.at_front() {
@@ -321,7 +565,7 @@ fn go_to(world: &mut World, run: &mut SteppedRun, k: usize) -> Result<(), Refusa
         if let (Some(x), Some(ends)) = (selected, before)
             && !exists(&MeshRef::new(world), x)
         {
-            run.fate = Some(fate(world, x, ends, result.kept, result.removed));
+            *fate_line = Some(fate(world, x, ends, result.kept, result.removed));
         }
     }
     steps.look_ahead(world);
@@ -384,25 +628,59 @@ fn follow_selection(world: &mut World) {
     super::selection::keep_live_selection(world, |_| true);
 }
 
-/// Records the run as one undo entry, as the unstepped edit would be, and leaves its
-/// history for the level-of-detail slider.
+/// Records the run as one undo entry, as the unstepped edit would be (a simplification
+/// leaves its history for the level-of-detail slider). A subdivision that committed no level
+/// changed nothing and records nothing.
 fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
     let SteppedRun {
         mesh,
         edit,
         pending,
-        mut steps,
+        had,
+        steps,
         ..
     } = run;
-    let summary = steps.run.summary();
+    let (mut summary, history) = match steps {
+        Steps::Qem(mut q) => {
+            let s = q.run.summary();
+            q.run.detach();
+            let line = format!(
+                "{} -> {} faces in {} collapses (stepped; kept at step {})",
+                s.faces_before,
+                q.faces(),
+                q.made(),
+                q.at()
+            );
+            (line, Some(q.history))
+        }
+        Steps::Remesh(r) => {
+            let s = r.run.summary();
+            let line = format!(
+                "L {:.5}: {} splits, {} collapses, {} flips (stepped; {} of {} passes)",
+                s.target_length,
+                s.splits,
+                s.collapses,
+                s.flips,
+                r.run.passes_done(),
+                r.run.passes_total()
+            );
+            (line, None)
+        }
+        Steps::Subdivide(s) if s.done == 0 => {
+            return Ok("nothing committed: the mesh is as before".into());
+        }
+        Steps::Subdivide(s) => {
+            let stats = crate::mesh::mesh_stats(world, mesh);
+            let line = format!(
+                "{} level(s): {} vertices, {} faces (stepped)",
+                s.done, stats.vertices, stats.faces
+            );
+            (line, None)
+        }
+    };
+    summary.push_str(&edit.settle_attributes(world, mesh, had));
     let applied = Applied {
-        summary: format!(
-            "{} -> {} faces in {} collapses (stepped; at step {})",
-            summary.faces_before,
-            steps.faces_at(steps.at()),
-            steps.made(),
-            steps.at()
-        ),
+        summary,
         // Every step redrew what it changed.
         redraw: Redraw::Near {
             faces: Vec::new(),
@@ -410,7 +688,6 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
         },
         made: None,
     };
-    steps.run.detach();
     let result = finish_edit(
         world,
         Finished {
@@ -420,7 +697,9 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
             pending,
         },
     );
-    world.resource_mut::<SimplificationHistory>().pm = Some(steps.history);
+    if history.is_some() {
+        world.resource_mut::<SimplificationHistory>().pm = history;
+    }
     result
 }
 

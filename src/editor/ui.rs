@@ -55,7 +55,6 @@ impl Plugin for UiPlugin {
                 (
                     run_pending_actions.in_set(EditorSystems::Input),
                     snapshot.in_set(EditorSystems::Ui),
-                    super::step_view::snapshot_steps.in_set(EditorSystems::Ui),
                 ),
             )
             .add_systems(
