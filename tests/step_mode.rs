@@ -4,7 +4,6 @@
 //! lists the same lines, ordered as Bevy stores them) and one undo entry of the same label; scrubbing
 //! back to step k and forward again gives the same mesh at k; the selection follows what an
 //! element became; Esc puts the mesh back; any other edit ends the run first.
-#![cfg(feature = "editor")]
 
 mod common;
 
@@ -117,7 +116,12 @@ fn sorted_lines(app: &App) -> Vec<String> {
 
 /// The collapse the QEM run in progress makes next.
 fn qem_next(app: &App) -> pappus::ops::simplify::NextCollapse {
-    let run = app.world().resource::<Stepping>().run.as_ref().expect("a run");
+    let run = app
+        .world()
+        .resource::<Stepping>()
+        .run
+        .as_ref()
+        .expect("a run");
     match &run.steps {
         pappus::editor::stepping::Steps::Qem(q) => q.next.expect("a next collapse"),
         _ => panic!("a QEM run"),
@@ -332,7 +336,11 @@ fn a_remeshing_run_steps_pass_by_pass_highlights_each_and_ends_as_the_unstepped_
     assert!(last_ok(&app).contains("next: split"), "{}", last_ok(&app));
     for pass in ["split", "collapse", "flip", "relax", "project"] {
         press(&mut app, None, KeyCode::ArrowRight);
-        assert!(last_ok(&app).contains(&format!("1 {pass}:")), "{}", last_ok(&app));
+        assert!(
+            last_ok(&app).contains(&format!("1 {pass}:")),
+            "{}",
+            last_ok(&app)
+        );
         let run = app.world().resource::<Stepping>().run.as_ref().unwrap();
         let pappus::editor::stepping::Steps::Remesh(steps) = &run.steps else {
             panic!("a remeshing run")
@@ -350,20 +358,42 @@ fn a_remeshing_run_steps_pass_by_pass_highlights_each_and_ends_as_the_unstepped_
             })
             .count();
         let touched = report.touched.vertices.len() + report.touched.edges.len();
-        assert_eq!(drawn, touched.min(2 * pappus::editor::step_view::MAX_DRAWN), "{pass}");
+        assert_eq!(
+            drawn,
+            touched.min(2 * pappus::editor::step_view::MAX_DRAWN),
+            "{pass}"
+        );
     }
     press(&mut app, None, KeyCode::ArrowLeft);
-    assert!(app.world().resource::<OutcomeLog>().entries.last().unwrap().result.is_err());
+    assert!(
+        app.world()
+            .resource::<OutcomeLog>()
+            .entries
+            .last()
+            .unwrap()
+            .result
+            .is_err()
+    );
     press(&mut app, None, KeyCode::End);
-    assert!(elements(&app) == elements(&whole), "the stepped remesh differs");
+    assert!(
+        elements(&app) == elements(&whole),
+        "the stepped remesh differs"
+    );
     press(&mut app, None, KeyCode::Enter);
-    let label = |a: &App| a.world().resource::<UndoHistory>().undo_entries()[0].label.clone();
+    let label = |a: &App| {
+        a.world().resource::<UndoHistory>().undo_entries()[0]
+            .label
+            .clone()
+    };
     assert_eq!(label(&app), label(&whole));
 }
 
 #[test]
 fn a_subdivision_run_shows_new_points_then_moved_vertices_then_commits_the_level() {
-    for (shape, k) in [("shape:icosahedron", KeyCode::KeyL), ("shape:cube", KeyCode::KeyQ)] {
+    for (shape, k) in [
+        ("shape:icosahedron", KeyCode::KeyL),
+        ("shape:cube", KeyCode::KeyQ),
+    ] {
         let whole = unstepped(shape, None, k);
         let mut app = opened(shape);
         let before = elements(&app);
@@ -374,21 +404,44 @@ fn a_subdivision_run_shows_new_points_then_moved_vertices_then_commits_the_level
             .next()
             .unwrap();
         send(&mut app, Request::Select(Some(ElementId::Vertex(v))));
-        let view = |app: &App| app.world().resource::<pappus::editor::step_view::StepView>().clone();
+        let view = |app: &App| {
+            app.world()
+                .resource::<pappus::editor::step_view::StepView>()
+                .clone()
+        };
         let stencil = view(&app).stencil.expect("the selected vertex's stencil");
         let total: f32 = stencil.terms.iter().map(|t| t.1).sum();
-        assert!((total - 1.0).abs() < 1e-6, "{shape}: weights sum to {total}");
-        assert!(elements(&app) == before, "{shape}: the preview changed the mesh");
+        assert!(
+            (total - 1.0).abs() < 1e-6,
+            "{shape}: weights sum to {total}"
+        );
+        assert!(
+            elements(&app) == before,
+            "{shape}: the preview changed the mesh"
+        );
         press(&mut app, None, KeyCode::ArrowRight);
         assert!(last_ok(&app).contains("moved as well"), "{}", last_ok(&app));
-        assert!(elements(&app) == before, "{shape}: the preview changed the mesh");
+        assert!(
+            elements(&app) == before,
+            "{shape}: the preview changed the mesh"
+        );
         press(&mut app, None, KeyCode::ArrowRight);
-        assert!(elements(&app) == elements(&whole), "{shape}: the level differs");
+        assert!(
+            elements(&app) == elements(&whole),
+            "{shape}: the level differs"
+        );
         // The old vertex kept its id and went where its stencil said.
         let m = MeshRef::new(app.world());
-        assert!((m.position(v) - stencil.position).length() < 1e-6, "{shape}");
+        assert!(
+            (m.position(v) - stencil.position).length() < 1e-6,
+            "{shape}"
+        );
         press(&mut app, None, KeyCode::Enter);
-        let label = |a: &App| a.world().resource::<UndoHistory>().undo_entries()[0].label.clone();
+        let label = |a: &App| {
+            a.world().resource::<UndoHistory>().undo_entries()[0]
+                .label
+                .clone()
+        };
         assert_eq!(label(&app), label(&whole), "{shape}");
     }
 }

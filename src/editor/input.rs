@@ -463,13 +463,13 @@ pub const SHORTCUTS: &[Shortcut] = &[
         KeyCode::Period,
         ".",
         Action::Frame,
-        "frame the selection (or the mesh)",
+        "frame the selection (or the next collapse while stepping, or the mesh)",
     ),
     key(
         KeyCode::Home,
         "Home",
         Action::Frame,
-        "frame the selection (or the mesh)",
+        "frame the selection (or the next collapse while stepping, or the mesh)",
     ),
     key(
         KeyCode::KeyZ,

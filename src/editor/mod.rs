@@ -163,6 +163,7 @@ impl Plugin for EditorWindowPlugin {
                     frame_new_meshes
                         .after(EditorSystems::Apply)
                         .before(EditorSystems::Sync),
+                    scene::fit_near_plane.after(frame_new_meshes),
                     overlay::draw_overlay.after(EditorSystems::Sync),
                     readability::show_readable_wireframes
                         .after(EditorSystems::Sync)

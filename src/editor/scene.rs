@@ -88,6 +88,23 @@ pub fn setup_scene(mut commands: Commands, mut materials: ResMut<Assets<SurfaceM
     });
 }
 
+/// Keeps the near plane a hundredth of the distance to what the camera looks at: Bevy's
+/// default of 0.1 cut through small meshes (the bunny is 0.25 across) as soon as the camera
+/// came close to a vertex. Writes only when it changes, so an idle editor stays idle.
+pub fn fit_near_plane(mut cameras: Query<(&OrbitCamera, &mut Projection)>) {
+    for (orbit, mut projection) in &mut cameras {
+        let near = (orbit.radius * 0.01).clamp(1.0e-6, 0.1);
+        if let Projection::Perspective(p) = &*projection
+            && p.near != near
+        {
+            let Projection::Perspective(p) = &mut *projection else {
+                unreachable!()
+            };
+            p.near = near;
+        }
+    }
+}
+
 /// Mouse orbit, pan and zoom (skipped while egui has the pointer).
 pub fn orbit_controls(
     buttons: Res<ButtonInput<MouseButton>>,
@@ -128,6 +145,9 @@ pub fn frame_selection(world: &mut World) {
         return;
     }
     let m = MeshRef::new(world);
+    // Framing the next collapse also turns the camera to face the surface there (it may be on
+    // the far side of the mesh).
+    let mut facing = None;
     let points: Vec<Vec3> = match world.resource::<Selection>().element {
         Some(ElementId::Vertex(v)) if m.try_vertex(v).is_some() => {
             let p = m.position(v);
@@ -144,6 +164,22 @@ pub fn frame_selection(world: &mut World) {
         }
         Some(ElementId::Face(f)) if m.try_face(f).is_some() => {
             m.face_vertices(f).map(|v| m.position(v)).collect()
+        }
+        // In a stepped simplification, the next collapse and the two rings around it.
+        _ if let Some(next) = super::stepping::next_collapse(world) => {
+            let normal: Vec3 = [next.kept, next.removed]
+                .into_iter()
+                .flat_map(|v| m.vertex_faces(v))
+                .map(|f| m.face_area_vector(f))
+                .sum();
+            facing = normal.try_normalize();
+            let mut pts = Vec::new();
+            for v in [next.kept, next.removed] {
+                for w in m.vertex_neighbors(v) {
+                    pts.extend(m.vertex_neighbors(w).map(|x| m.position(x)));
+                }
+            }
+            pts
         }
         _ => crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(
             world,
@@ -166,6 +202,11 @@ pub fn frame_selection(world: &mut World) {
     move_orbit(world, |orbit| {
         orbit.focus = focus;
         orbit.radius = radius;
+        // The camera sits at `(cos p sin y, −sin p, cos p cos y)` from the focus.
+        if let Some(n) = facing {
+            orbit.pitch = (-n.y).asin().clamp(-1.55, 1.55);
+            orbit.yaw = n.x.atan2(n.z);
+        }
     });
 }
 

@@ -135,6 +135,8 @@ pub struct StepView {
     pub made: usize,
     /// Whether the slider may scrub back (QEM).
     pub scrubs: bool,
+    /// Whether the run steps back at all (not remeshing).
+    pub backs: bool,
     /// The next collapse: its edge, cost, and where it is drawn (for the label).
     pub next: Option<(EdgeId, f32, Vec3)>,
     /// The queue's cheapest edges.
@@ -165,6 +167,7 @@ pub fn snapshot_steps(world: &mut World) {
         view.made = run.steps.made();
         view.finished = run.steps.finished();
         view.fate = run.fate.clone();
+        view.backs = !matches!(run.steps, Steps::Remesh(_));
         match &run.steps {
             Steps::Qem(steps) => {
                 view.scrubs = true;
@@ -222,7 +225,7 @@ pub fn step_window(
     let Some(title) = &view.title else {
         if view.enabled {
             egui::Window::new("Step mode")
-                .default_pos(egui::pos2(16.0, 16.0))
+                .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-12.0, 12.0))
                 .resizable(false)
                 .show(ctx, |ui| {
                     ui.label("Simplify (Shift+S) now runs one collapse at a time.");
@@ -243,13 +246,17 @@ pub fn step_window(
         let text = format!("{edge}  cost {cost:.3e}");
         let galley =
             painter.layout_no_wrap(text, egui::FontId::proportional(15.0), egui::Color32::WHITE);
-        let corner = egui::pos2(p.x + 14.0, p.y - 10.0 - galley.size().y);
+        // Up and to the left of the point: the step window sits on the right.
+        let corner = egui::pos2(
+            p.x - 14.0 - galley.size().x,
+            p.y - 10.0 - galley.size().y,
+        );
         let rect = egui::Rect::from_min_size(corner, galley.size()).expand(4.0);
         painter.rect_filled(rect, 3.0, egui::Color32::from_rgb(190, 80, 10));
         painter.galley(corner, galley, egui::Color32::WHITE);
     }
     egui::Window::new(format!("Step through: {title}"))
-        .default_pos(egui::pos2(16.0, 16.0))
+        .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-12.0, 12.0))
         .resizable(false)
         .show(ctx, |ui| {
             ui.label(&view.line);
@@ -263,6 +270,9 @@ pub fn step_window(
                     (StepMove::Forward(100), "+100"),
                     (StepMove::Forward(usize::MAX), "end"),
                 ] {
+                    if matches!(movement, StepMove::Back(_)) && !view.backs {
+                        continue;
+                    }
                     let keys = keys_of(Action::Step(movement));
                     if ui.button(text).on_hover_text(keys).clicked() {
                         pending.0.push(Action::Step(movement));

@@ -248,6 +248,14 @@ impl QemSteps {
     }
 }
 
+/// The collapse a stepped QEM run at its front makes next, if one is in progress.
+pub fn next_collapse(world: &World) -> Option<NextCollapse> {
+    match &world.get_resource::<Stepping>()?.run.as_ref()?.steps {
+        Steps::Qem(q) if q.at_front() => q.next,
+        _ => None,
+    }
+}
+
 /// Whether `edit` can be stepped through.
 pub fn steppable(edit: &Edit) -> bool {
     matches!(

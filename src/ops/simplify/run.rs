@@ -27,8 +27,7 @@ use crate::ops::local::{
 use crate::ops::progressive::ProgressiveMesh;
 
 use super::{
-    Key, Setup, SimplifyParams, SimplifySummary, VertexTable, despawn_removed, keyed_ends,
-    ring_matches, setup,
+    Key, Setup, SimplifyParams, SimplifySummary, VertexTable, keyed_ends, ring_matches, setup,
 };
 
 /// An edge in the queue: where it would collapse to and at what cost.
@@ -191,7 +190,12 @@ impl QemRun {
         let mut gone = Vec::new();
         let plan = self.plan_next(MeshRef::new(world), &mut refused)?.1;
         let result = self.apply(world, plan, &mut gone);
-        despawn_removed(world, gone);
+        // A handful of elements: highest index first, as `despawn_removed` orders a whole
+        // run's, without its table as long as the world's entities.
+        gone.sort_unstable_by_key(|e| std::cmp::Reverse(e.index()));
+        for e in gone {
+            world.despawn(e);
+        }
         Some(result)
     }
 
