@@ -80,7 +80,13 @@ fn saved(app: &App) -> Vec<u8> {
 }
 
 /// Every vertex (id, position bits) and face (id, its corners' ids from its halfedge), by id.
-fn elements(app: &App) -> (Vec<(u64, [u32; 3])>, Vec<(u64, Vec<u64>)>) {
+#[derive(PartialEq)]
+struct Elements {
+    vertices: Vec<(u64, [u32; 3])>,
+    faces: Vec<(u64, Vec<u64>)>,
+}
+
+fn elements(app: &App) -> Elements {
     let mesh = active(app);
     let members = pappus::mesh::MeshMembers::collect(app.world(), mesh);
     let m = MeshRef::new(app.world());
@@ -99,7 +105,7 @@ fn elements(app: &App) -> (Vec<(u64, [u32; 3])>, Vec<(u64, Vec<u64>)>) {
         .collect();
     vertices.sort_unstable();
     faces.sort_unstable();
-    (vertices, faces)
+    Elements { vertices, faces }
 }
 
 /// The saved file's vertex lines, sorted (face lines name vertices by their place in the file).

@@ -90,7 +90,7 @@ pub fn gather_step_overlay(world: &mut World) {
 /// What a remeshing pass touched: its edges as thick lines, its vertices as dots, at most
 /// [`MAX_DRAWN`] of each (an even sample above that).
 fn touched_shapes(m: &MeshRef<'_>, touched: &Touched, out: &mut Vec<Shape>) {
-    let sample = |n: usize| (0..n.min(MAX_DRAWN)).map(move |i| i * n / n.min(MAX_DRAWN).max(1));
+    let sample = |n: usize| (0..n.min(MAX_DRAWN)).map(move |i| i * n / n.clamp(1, MAX_DRAWN));
     for i in sample(touched.edges.len()) {
         let e = touched.edges[i];
         if m.try_edge(e).is_some() {
@@ -247,10 +247,7 @@ pub fn step_window(
         let galley =
             painter.layout_no_wrap(text, egui::FontId::proportional(15.0), egui::Color32::WHITE);
         // Up and to the left of the point: the step window sits on the right.
-        let corner = egui::pos2(
-            p.x - 14.0 - galley.size().x,
-            p.y - 10.0 - galley.size().y,
-        );
+        let corner = egui::pos2(p.x - 14.0 - galley.size().x, p.y - 10.0 - galley.size().y);
         let rect = egui::Rect::from_min_size(corner, galley.size()).expand(4.0);
         painter.rect_filled(rect, 3.0, egui::Color32::from_rgb(190, 80, 10));
         painter.galley(corner, galley, egui::Color32::WHITE);

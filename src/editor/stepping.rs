@@ -531,7 +531,7 @@ fn qem_go_to(
         let faces = steps.faces_at(k.min(steps.made()));
         let mut touched = Vec::new();
         let moved = steps.history.go_to_faces_watching(world, faces, |w, v| {
-            touched.extend(MeshRef::new(w).vertex_faces(v))
+            touched.extend(MeshRef::new(w).vertex_faces(v));
         })?;
         match moved.rewritten {
             true => {

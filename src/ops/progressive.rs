@@ -142,7 +142,7 @@ impl ProgressiveMesh {
         let mut pm = ProgressiveMesh::start(world, mesh, 0);
         let index = SlotIndex::of(&pm);
         let summary = simplify_recorded(world, mesh, params, progress, |world, r| {
-            pm.push(world, &index, r)
+            pm.push(world, &index, r);
         })?;
         pm.full_faces = summary.faces_before;
         Ok((pm, summary))
