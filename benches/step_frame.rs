@@ -10,8 +10,9 @@
 use bevy::prelude::*;
 use criterion::{Criterion, criterion_group, criterion_main};
 use pappus::editor::EditorLogicPlugin;
+use pappus::editor::requests::StepMove;
 use pappus::editor::requests::{OutcomeLog, Request};
-use pappus::editor::stepping::{StepMove, Stepping};
+use pappus::editor::stepping::Stepping;
 use pappus::mesh::{MeshId, MeshInfo, build_mesh};
 use pappus::ops::progressive::{ProgressiveMesh, SlotIndex};
 use pappus::ops::simplify::{QemRun, SimplifyParams};

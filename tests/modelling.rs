@@ -5,13 +5,13 @@
 
 mod common;
 
-use bevy::input::ButtonState;
-use bevy::input::keyboard::{Key, KeyboardInput, NativeKey};
+use common::{last_ok, press, send};
+
 use bevy::prelude::*;
 use pappus::edit::Edit;
 use pappus::editor::history::UndoHistory;
+use pappus::editor::requests::Request;
 use pappus::editor::requests::SelectionEdit;
-use pappus::editor::requests::{OutcomeLog, Request};
 use pappus::editor::selection::{ActiveMesh, SelectMode, Selection};
 use pappus::editor::transform::Gestures;
 use pappus::mesh::ids::ElementId;
@@ -22,47 +22,10 @@ fn open(app: &mut App, source: &str) {
     app.update();
 }
 
-fn send(app: &mut App, request: impl Into<Request>) {
-    app.world_mut().write_message(request.into());
-    app.update();
-}
-
-fn key(app: &mut App, key: KeyCode, state: ButtonState) {
-    app.world_mut().write_message(KeyboardInput {
-        key_code: key,
-        logical_key: Key::Unidentified(NativeKey::Unidentified),
-        state,
-        text: None,
-        repeat: false,
-        window: Entity::PLACEHOLDER,
-    });
-    app.update();
-}
-
-/// Presses `k`, holding `modifier` if given.
-fn press(app: &mut App, modifier: Option<KeyCode>, k: KeyCode) {
-    if let Some(m) = modifier {
-        key(app, m, ButtonState::Pressed);
-    }
-    key(app, k, ButtonState::Pressed);
-    key(app, k, ButtonState::Released);
-    if let Some(m) = modifier {
-        key(app, m, ButtonState::Released);
-    }
-}
-
 fn counts(app: &App) -> (usize, usize, usize) {
     let mesh = app.world().resource::<ActiveMesh>().0.unwrap();
     let s = mesh_stats(app.world(), mesh);
     (s.vertices, s.edges, s.faces)
-}
-
-fn last_ok(app: &App) -> String {
-    let last = app.world().resource::<OutcomeLog>().entries.last().unwrap();
-    match &last.result {
-        Ok(summary) => summary.clone(),
-        Err(why) => panic!("{} was declined: {why}", last.request),
-    }
 }
 
 fn undo_steps(app: &App) -> (usize, usize) {

@@ -7,56 +7,21 @@
 
 mod common;
 
-use bevy::input::ButtonState;
-use bevy::input::keyboard::{Key, KeyboardInput, NativeKey};
+use common::{last_ok, press, send};
+
 use bevy::prelude::*;
 use pappus::editor::history::UndoHistory;
 use pappus::editor::overlay::{Overlay, Shape};
+use pappus::editor::requests::StepMove;
 use pappus::editor::requests::{OutcomeLog, Request};
 use pappus::editor::selection::{ActiveMesh, Selection};
 use pappus::editor::step_view::NEXT;
-use pappus::editor::stepping::{StepMove, Stepping};
+use pappus::editor::stepping::Stepping;
 use pappus::mesh::ids::ElementId;
 use pappus::mesh::{MeshRef, to_soup, validate};
 
 /// A closed mesh with many equal costs (ties decide the order) and one with boundaries.
 const SHAPES: [&str; 2] = ["shape:icosphere:3", "shape:grid:16"];
-
-fn send(app: &mut App, request: impl Into<Request>) {
-    app.world_mut().write_message(request.into());
-    app.update();
-}
-
-fn key(app: &mut App, key: KeyCode, state: ButtonState) {
-    app.world_mut().write_message(KeyboardInput {
-        key_code: key,
-        logical_key: Key::Unidentified(NativeKey::Unidentified),
-        state,
-        text: None,
-        repeat: false,
-        window: Entity::PLACEHOLDER,
-    });
-    app.update();
-}
-
-fn press(app: &mut App, modifier: Option<KeyCode>, k: KeyCode) {
-    if let Some(m) = modifier {
-        key(app, m, ButtonState::Pressed);
-    }
-    key(app, k, ButtonState::Pressed);
-    key(app, k, ButtonState::Released);
-    if let Some(m) = modifier {
-        key(app, m, ButtonState::Released);
-    }
-}
-
-fn last_ok(app: &App) -> String {
-    let last = app.world().resource::<OutcomeLog>().entries.last().unwrap();
-    match &last.result {
-        Ok(summary) => summary.clone(),
-        Err(why) => panic!("{} was declined: {why}", last.request),
-    }
-}
 
 fn opened(source: &str) -> App {
     let mut app = common::headless_editor();

@@ -39,8 +39,8 @@ use crate::edit::Edit;
 use crate::ops::geometry::Quantity;
 
 use super::requests::Request;
+use super::requests::StepMove;
 use super::selection::ActiveMesh;
-use super::stepping::StepMove;
 
 /// One scripted step (see the module doc).
 #[derive(Clone, Debug, PartialEq)]

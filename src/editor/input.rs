@@ -5,7 +5,8 @@
 //! line's. Shortcuts are ignored while egui wants the keyboard (typing in a text field), which
 //! the UI reports through [`KeyboardCaptured`].
 
-use super::stepping::{StepMove, Stepping};
+use super::requests::StepMove;
+use super::stepping::Stepping;
 use bevy::prelude::*;
 
 use crate::edit::{Edit, LocalKind, Scheme, Subdivision};

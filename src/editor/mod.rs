@@ -196,6 +196,10 @@ impl Plugin for EditorWindowPlugin {
             )
             .add_systems(bevy_egui::EguiPrimaryContextPass, box_select::draw_box)
             .add_systems(
+                bevy_egui::EguiPrimaryContextPass,
+                step_view::step_window.after(ui::panels),
+            )
+            .add_systems(
                 Update,
                 automation::run_script
                     .in_set(EditorSystems::Input)

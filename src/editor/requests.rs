@@ -89,7 +89,7 @@ pub enum Request {
     /// Start a stepped run of a global edit (step mode).
     StartStepped(Edit),
     /// Move the stepped run in progress.
-    Step(super::stepping::StepMove),
+    Step(StepMove),
     /// Answer the unsaved-changes question: `true` discards the changes and goes on with what
     /// was asked (opening another file, quitting), `false` cancels it.
     ConfirmDiscard(bool),
@@ -145,6 +145,35 @@ impl Request {
                 | Request::Redo
                 | Request::ConfirmDiscard(true)
         )
+    }
+}
+
+/// A move of a stepped run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum StepMove {
+    /// This many steps forward (`usize::MAX`: to the end).
+    Forward(usize),
+    /// This many steps back.
+    Back(usize),
+    /// To step `k` (0: before the first), within what has run or beyond it.
+    To(usize),
+    /// End the run where it is, as one undo entry.
+    Finish,
+    /// End the run and put the mesh back as it was before it.
+    Cancel,
+}
+
+impl StepMove {
+    /// A short label for logs.
+    pub fn label(self) -> String {
+        match self {
+            StepMove::Forward(usize::MAX) => "step to the end".into(),
+            StepMove::Forward(n) => format!("step {n} forward"),
+            StepMove::Back(n) => format!("step {n} back"),
+            StepMove::To(k) => format!("go to step {k}"),
+            StepMove::Finish => "finish the stepped run".into(),
+            StepMove::Cancel => "cancel the stepped run".into(),
+        }
     }
 }
 

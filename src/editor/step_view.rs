@@ -15,11 +15,12 @@ use crate::mesh::topology::MeshRef;
 use super::input::{Action, SHORTCUTS, UiState};
 use super::overlay::{Overlay, Shape};
 use super::requests::Request;
+use super::requests::StepMove;
 use super::selection::Selection;
 use super::stencil_view::{
     PointsShown, point_shapes, point_shapes_near, stencil_panel, stencil_shapes,
 };
-use super::stepping::{StepMove, Stepping, Steps, describe};
+use super::stepping::{Stepping, Steps, describe};
 use super::ui::PendingActions;
 use crate::ops::remesh::Touched;
 use crate::ops::stencil::{Stencil, stencil_of_element};

@@ -45,41 +45,12 @@ use crate::ops::subdivide::{catmull_clark, loop_subdivide};
 
 use super::finish::{Finished, finish_edit};
 use super::history::{self, Pending};
-use super::requests::Declined;
+use super::requests::{Declined, StepMove};
 use super::selection::{ActiveMesh, MeshDirty, Selection, exists, mark_faces_dirty};
 use super::session::{Modified, SimplificationHistory};
 
 /// How many refusals the panel keeps (the latest).
 const REFUSALS_KEPT: usize = 8;
-
-/// A move of a stepped run.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum StepMove {
-    /// This many steps forward (`usize::MAX`: to the end).
-    Forward(usize),
-    /// This many steps back.
-    Back(usize),
-    /// To step `k` (0: before the first), within what has run or beyond it.
-    To(usize),
-    /// End the run where it is, as one undo entry.
-    Finish,
-    /// End the run and put the mesh back as it was before it.
-    Cancel,
-}
-
-impl StepMove {
-    /// A short label for logs.
-    pub fn label(self) -> String {
-        match self {
-            StepMove::Forward(usize::MAX) => "step to the end".into(),
-            StepMove::Forward(n) => format!("step {n} forward"),
-            StepMove::Back(n) => format!("step {n} back"),
-            StepMove::To(k) => format!("go to step {k}"),
-            StepMove::Finish => "finish the stepped run".into(),
-            StepMove::Cancel => "cancel the stepped run".into(),
-        }
-    }
-}
 
 /// Step mode and the run in progress.
 #[derive(Resource, Default)]
@@ -543,13 +514,13 @@ fn qem_go_to(
     }
     if k <= steps.made() {
         if steps.at_front() {
-            steps.run.reattach(world, &steps.history)?;
+            steps.run.reattach(world, steps.history.slots())?;
             steps.look_ahead(world);
         }
         follow_selection(world);
         return Ok(());
     }
-    steps.run.reattach(world, &steps.history)?;
+    steps.run.reattach(world, steps.history.slots())?;
     let mut dirty: Vec<FaceId> = Vec::new();
     let selected = world.resource::<Selection>().element;
     while steps.at() < k {

@@ -59,12 +59,7 @@ impl Plugin for UiPlugin {
             )
             .add_systems(
                 EguiPrimaryContextPass,
-                (
-                    panels,
-                    super::uv_view::uv_window,
-                    super::step_view::step_window,
-                )
-                    .chain(),
+                (panels, super::uv_view::uv_window).chain(),
             );
     }
 }

@@ -83,3 +83,49 @@ pub fn last_outcome(app: &App) -> pappus::editor::requests::EditOutcome {
         .expect("an outcome")
         .clone()
 }
+
+#[cfg(feature = "editor")]
+/// Writes `request` and lets the editor run one update.
+pub fn send(app: &mut App, request: impl Into<pappus::editor::requests::Request>) {
+    app.world_mut().write_message(request.into());
+    app.update();
+}
+
+#[cfg(feature = "editor")]
+/// A key going down or up, through the same input path as a person's, and one update.
+pub fn key(app: &mut App, key: bevy::prelude::KeyCode, state: bevy::input::ButtonState) {
+    use bevy::input::keyboard::{Key, KeyboardInput, NativeKey};
+    app.world_mut().write_message(KeyboardInput {
+        key_code: key,
+        logical_key: Key::Unidentified(NativeKey::Unidentified),
+        state,
+        text: None,
+        repeat: false,
+        window: bevy::prelude::Entity::PLACEHOLDER,
+    });
+    app.update();
+}
+
+#[cfg(feature = "editor")]
+/// Presses and releases `k`, holding `modifier` if given.
+pub fn press(app: &mut App, modifier: Option<bevy::prelude::KeyCode>, k: bevy::prelude::KeyCode) {
+    use bevy::input::ButtonState;
+    if let Some(m) = modifier {
+        key(app, m, ButtonState::Pressed);
+    }
+    key(app, k, ButtonState::Pressed);
+    key(app, k, ButtonState::Released);
+    if let Some(m) = modifier {
+        key(app, m, ButtonState::Released);
+    }
+}
+
+#[cfg(feature = "editor")]
+/// The summary of the editor's last outcome; panics, naming the request, if it was declined.
+pub fn last_ok(app: &App) -> String {
+    let last = last_outcome(app);
+    match last.result {
+        Ok(summary) => summary,
+        Err(why) => panic!("{} was declined: {why}", last.request),
+    }
+}

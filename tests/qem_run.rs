@@ -1,0 +1,208 @@
+//! A QEM simplification stepped collapse by collapse ([`QemRun`]): stepped to the end it
+//! makes the unstepped run's mesh (to the entity) and history records (to the bit); moved
+//! back along its history and forward again it has the same mesh at every step and the same
+//! end; the next collapse it shows is the one it makes; a run whose mesh was edited while it
+//! waited refuses to go on.
+
+mod common;
+
+use bevy::math::Vec3;
+use bevy::prelude::World;
+use common::{build, canonical};
+use pappus::mesh::shapes::{grid_with_holes, icosphere, torus, triangulate_fans};
+use pappus::mesh::soup::PolygonSoup;
+use pappus::mesh::{MeshId, MeshMembers, MeshRef, to_soup};
+use pappus::ops::Refusal;
+use pappus::ops::progressive::{ProgressiveMesh, SlotIndex, SlotRecord};
+use pappus::ops::simplify::{QemRun, SimplifyParams};
+
+/// Every vertex (id, position bits) and face (id, its corners' ids), by id: equal only when
+/// two runs made the same mesh to the entity.
+type Elements = (Vec<(u64, [u32; 3])>, Vec<(u64, Vec<u64>)>);
+
+fn snapshot(world: &World, mesh: MeshId) -> Elements {
+    let members = MeshMembers::collect(world, mesh);
+    let m = MeshRef::new(world);
+    let mut vertices: Vec<_> = members
+        .vertices
+        .iter()
+        .map(|&v| (v.0.to_bits(), m.position(v).to_array().map(f32::to_bits)))
+        .collect();
+    let mut faces: Vec<_> = members
+        .faces
+        .iter()
+        .map(|&f| {
+            (
+                f.0.to_bits(),
+                m.face_vertices(f).map(|v| v.0.to_bits()).collect(),
+            )
+        })
+        .collect();
+    vertices.sort_unstable();
+    faces.sort_unstable();
+    (vertices, faces)
+}
+
+/// The mesh up to relabeling: faces as cycles of positions, bitwise.
+fn shape(world: &World, mesh: MeshId) -> Vec<Vec<common::Key>> {
+    canonical(&to_soup(world, mesh))
+}
+
+/// The meshes every test runs on: regular ones, where many edges cost the same and the
+/// order of ties decides, and one with boundaries and holes.
+fn inputs() -> Vec<(&'static str, PolygonSoup, SimplifyParams)> {
+    vec![
+        ("icosphere", icosphere(3), SimplifyParams::ratio(0.1)),
+        (
+            "torus",
+            triangulate_fans(&torus(24, 12)),
+            SimplifyParams::ratio(0.2),
+        ),
+        (
+            "holes",
+            triangulate_fans(&grid_with_holes(3)),
+            SimplifyParams::ratio(0.25),
+        ),
+    ]
+}
+
+fn record_bits(r: &SlotRecord) -> impl PartialEq + std::fmt::Debug {
+    let p = |v: Vec3| v.to_array().map(f32::to_bits);
+    (
+        (r.kept, r.removed, r.left, r.right, r.faces),
+        [r.merged_position, r.kept_position, r.removed_position].map(p),
+    )
+}
+
+/// Steps `run` `n` times at the coarsest level, recording into `pm`; returns how many it made.
+fn step(world: &mut World, run: &mut QemRun, pm: &mut ProgressiveMesh, n: usize) -> usize {
+    run.reattach(world, pm.slots()).expect("the run goes on");
+    let index = SlotIndex::of(pm);
+    let mut made = 0;
+    while made < n {
+        let Some(next) = run.peek(world, |_| {}) else {
+            break;
+        };
+        let result = run.collapse_next(world, |_| {}).expect("peek promised one");
+        assert_eq!((result.kept, result.removed), (next.kept, next.removed));
+        assert!(MeshRef::new(world).try_edge(next.queued.edge).is_none());
+        pm.push(world, &index, &result);
+        made += 1;
+    }
+    made
+}
+
+#[test]
+fn stepping_to_the_end_makes_the_unstepped_runs_mesh_and_records() {
+    for (name, soup, params) in inputs() {
+        let (mut whole, built) = build(&soup);
+        let (expected, summary) =
+            ProgressiveMesh::simplify(&mut whole, built.mesh, &params).unwrap();
+        let (mut world, built) = build(&soup);
+        let mesh = built.mesh;
+        let mut run = QemRun::start(&world, mesh, &params).unwrap();
+        let mut pm = ProgressiveMesh::start(&world, mesh, run.faces());
+        // Uneven strides, as a user pressing 1, 10 and 100 would.
+        for stride in [1, 10, 100, 1, 7].into_iter().cycle() {
+            if step(&mut world, &mut run, &mut pm, stride) < stride {
+                break;
+            }
+        }
+        assert_eq!(run.summary(), summary, "{name}");
+        assert!(
+            snapshot(&world, mesh) == snapshot(&whole, built.mesh),
+            "{name}: the stepped mesh differs"
+        );
+        assert_eq!(pm.records.len(), expected.records.len(), "{name}");
+        for (a, b) in pm.records.iter().zip(&expected.records) {
+            assert_eq!(record_bits(a), record_bits(b), "{name}");
+        }
+        pappus::mesh::validate(&world, mesh).unwrap();
+    }
+}
+
+#[test]
+fn scrubbing_back_and_forth_gives_the_same_mesh_at_every_step_and_the_same_end() {
+    for (name, soup, params) in inputs() {
+        let (mut whole, reference) = build(&soup);
+        let end = ProgressiveMesh::simplify(&mut whole, reference.mesh, &params).unwrap();
+        let (mut world, built) = build(&soup);
+        let mesh = built.mesh;
+        let mut run = QemRun::start(&world, mesh, &params).unwrap();
+        let mut pm = ProgressiveMesh::start(&world, mesh, run.faces());
+        let mut at_step = vec![shape(&world, mesh)];
+
+        // Go forward in strides, keeping the shape at each stop; after each stride go back
+        // to an earlier stop (a long way: the bulk refine, which renumbers everything) and
+        // forward again, checking the shapes on the way.
+        for (round, stride) in [40, 3, 25, 60].into_iter().cycle().enumerate() {
+            if step(&mut world, &mut run, &mut pm, stride) == 0 {
+                break;
+            }
+
+            at_step.push(shape(&world, mesh));
+            let back = round % at_step.len();
+            run.detach();
+            let faces = pm.full_faces
+                - pm.records[..pm.records.len() - stride.min(pm.records.len())]
+                    .iter()
+                    .map(|r| r.faces)
+                    .sum::<usize>();
+            pm.go_to_faces(&mut world, if back == 0 { usize::MAX } else { faces })
+                .unwrap();
+            if back == 0 {
+                assert_eq!(shape(&world, mesh), at_step[0], "{name}: the full level");
+            }
+            pm.go_to_faces(&mut world, 0).unwrap();
+            assert_eq!(
+                shape(&world, mesh),
+                *at_step.last().unwrap(),
+                "{name}: back at the run's front"
+            );
+            pappus::mesh::validate(&world, mesh).unwrap();
+        }
+        assert_eq!(run.summary(), end.1, "{name}");
+        assert_eq!(shape(&world, mesh), shape(&whole, reference.mesh), "{name}");
+    }
+}
+
+#[test]
+fn the_candidates_are_the_queue_cheapest_first_and_peek_is_the_first_allowed() {
+    let (mut world, built) = build(&triangulate_fans(&torus(16, 8)));
+    let mut run = QemRun::start(&world, built.mesh, &SimplifyParams::ratio(0.5)).unwrap();
+    let queued = run.queued();
+    let first = run.candidates(12);
+    assert_eq!(first.len(), 12);
+    assert!(first.windows(2).all(|w| w[0].cost <= w[1].cost));
+    let mut refused = Vec::new();
+    let next = run.peek(&world, |r| refused.push(r)).unwrap();
+    // Refused edges leave the queue; the next one stays counted.
+    assert_eq!(run.queued(), queued - refused.len());
+    assert_eq!(first[refused.len()], next.queued);
+    assert_eq!(run.candidates(1)[0], next.queued);
+    let result = run.collapse_next(&mut world, |_| unreachable!()).unwrap();
+    assert_eq!(result.kept, next.kept);
+    assert_eq!(
+        MeshRef::new(&world).position(result.kept),
+        next.queued.position
+    );
+}
+
+#[test]
+fn a_run_whose_mesh_was_edited_while_it_waited_refuses_to_go_on() {
+    let (mut world, built) = build(&icosphere(2));
+    let params = SimplifyParams::ratio(0.5);
+    let mut run = QemRun::start(&world, built.mesh, &params).unwrap();
+    let mut pm = ProgressiveMesh::start(&world, built.mesh, run.faces());
+    step(&mut world, &mut run, &mut pm, 5);
+    run.detach();
+    let queued = run.candidates(3)[2].edge;
+    pappus::ops::local::collapse_edge(&mut world, queued, Default::default()).unwrap();
+    let refusal = run.reattach(&world, pm.slots()).unwrap_err();
+    assert!(
+        matches!(refusal, Refusal::HistoryMismatch(ref why) if why.contains("is gone")),
+        "{refusal}"
+    );
+    // Still detached: it refuses again rather than going on.
+    assert!(run.reattach(&world, pm.slots()).is_err());
+}
