@@ -232,6 +232,9 @@ fn active(app: &App) -> pappus::mesh::MeshId {
 fn a_collapsed_selection_follows_to_what_it_became_and_esc_puts_the_mesh_back() {
     let mut app = opened(SHAPES[0]);
     let before = saved(&app);
+    let first = pappus::mesh::MeshMembers::collect(app.world(), active(&app)).vertices[0];
+    let before_position = MeshRef::new(app.world()).position(first);
+    send(&mut app, Request::Select(Some(ElementId::Vertex(first))));
     start_stepped(&mut app);
     let next = qem_next(&app);
     send(
@@ -252,12 +255,30 @@ fn a_collapsed_selection_follows_to_what_it_became_and_esc_puts_the_mesh_back() 
         .fate
         .clone();
     assert_eq!(
-        fate.as_deref(),
-        Some(format!("{} is gone: collapsed into {}", next.removed, next.kept).as_str())
+        fate.map(|(_, line)| line),
+        Some(format!(
+            "{} is gone: collapsed into {}",
+            next.removed, next.kept
+        ))
     );
+    // A hundred steps on, the selection is still on a live element: each collapse that
+    // removes it moves it on.
+    press(&mut app, Some(KeyCode::ControlLeft), KeyCode::ArrowRight);
+    let selected = app.world().resource::<Selection>().element.unwrap();
+    assert!(pappus::editor::selection::exists(
+        &MeshRef::new(app.world()),
+        selected
+    ));
     press(&mut app, None, KeyCode::Escape);
     assert!(app.world().resource::<Stepping>().run.is_none());
     assert!(saved(&app) == before, "Esc left a different mesh");
+    // The selection from before the run, on the restored mesh's ids.
+    let m = MeshRef::new(app.world());
+    let now = app.world().resource::<Selection>().element;
+    let Some(ElementId::Vertex(v)) = now else {
+        panic!("the selection from before the run: {now:?}");
+    };
+    assert_eq!(m.position(v), before_position);
     assert!(
         app.world()
             .resource::<UndoHistory>()
@@ -287,6 +308,38 @@ fn another_edit_ends_the_run_as_one_undo_entry_first() {
         .unwrap()
         .clone();
     assert!(last.result.is_err(), "a step with no run is declined");
+}
+
+#[test]
+fn a_transform_started_during_a_run_keeps_the_run_when_it_is_cancelled() {
+    let mut app = opened(SHAPES[1]);
+    start_stepped(&mut app);
+    send(&mut app, Request::Step(StepMove::Forward(20)));
+    send(
+        &mut app,
+        Request::Selection(pappus::editor::requests::SelectionEdit::All),
+    );
+    press(&mut app, None, KeyCode::KeyG);
+    assert!(app.world().resource::<Stepping>().run.is_none());
+    press(&mut app, None, KeyCode::Escape);
+    let history = app.world().resource::<UndoHistory>();
+    assert_eq!(history.undo_entries().len(), 1, "the run's entry stays");
+    assert_eq!(history.undo_entries()[0].label, "simplify to 50 %");
+}
+
+#[test]
+fn saving_during_a_run_ends_it_first() {
+    let mut app = opened(SHAPES[1]);
+    start_stepped(&mut app);
+    send(&mut app, Request::Step(StepMove::Forward(5)));
+    let path = std::env::temp_dir().join(format!("pappus-step-save-{}.obj", std::process::id()));
+    send(&mut app, Request::Save(Some(path.clone())));
+    std::fs::remove_file(&path).ok();
+    assert!(app.world().resource::<Stepping>().run.is_none());
+    assert_eq!(
+        app.world().resource::<UndoHistory>().undo_entries().len(),
+        1
+    );
 }
 
 /// Presses `k` (with `modifier`) in a fresh editor on `shape`, unstepped, and returns it.

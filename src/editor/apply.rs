@@ -73,8 +73,11 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
     {
         return Err(Declined::Busy(job.label.clone()));
     }
-    // Any other edit, undo or file request ends a stepped run first, as one undo entry.
-    if request.edits() && !matches!(request, Request::Step(_)) {
+    // Any other edit, undo, save or file request ends a stepped run first, as one undo entry
+    // (a new stepped run ends it once it has been planned).
+    if (request.edits() || matches!(request, Request::Save(_)))
+        && !matches!(request, Request::Step(_) | Request::StartStepped(_))
+    {
         stepping::end_run(world)?;
     }
     match request {

@@ -369,19 +369,25 @@ pub fn commit(world: &mut World, pending: Pending, label: String) {
     history.push(Entry::new(label, record, pending.selection, merge));
 }
 
-/// Puts the mesh back as `pending` captured it and records nothing: an edit taken back before
-/// it was committed (a stepped run cancelled). Only a whole-mesh capture can be put back;
-/// returns whether it was one. The undo and redo entries follow the restored elements' new ids.
-pub fn restore(world: &mut World, pending: Pending) -> bool {
+/// Puts the mesh back as `pending` captured it, and the selection as it was then, and records
+/// nothing: an edit taken back before it was committed (a stepped run cancelled). The undo
+/// and redo entries follow the restored elements' new ids. Only a whole-mesh capture can be
+/// put back: returns the remap of the ids it restored, `None` for any other capture.
+pub fn restore(world: &mut World, pending: Pending) -> Option<Remap> {
     let PendingKind::Whole(saved) = pending.kind else {
-        return false;
+        return None;
     };
     let (_, mut map) = saved.apply(world);
     let history = &mut *world.resource_mut::<UndoHistory>();
     for entry in history.undo.iter_mut().chain(history.redo.iter_mut()) {
         entry.remap(&mut map);
     }
-    true
+    let selection = pending
+        .selection
+        .map(|x| remap_element(x, &mut map))
+        .filter(|&x| exists(&MeshRef::new(world), x));
+    world.resource_mut::<Selection>().select_only(selection);
+    Some(map)
 }
 
 /// What an undo or redo did.

@@ -525,7 +525,7 @@ pub const SHORTCUTS: &[Shortcut] = &[
         KeyCode::F9,
         "F9",
         Action::ToggleStepMode,
-        "step mode on / off: Shift+S then runs QEM one collapse at a time",
+        "step mode on / off: Shift+S, M, L and Q then run a step at a time",
     ),
     key(
         KeyCode::ArrowRight,
@@ -681,6 +681,16 @@ pub fn perform(world: &mut World, action: Action) {
     ) && let Some(mut armed) = world.get_resource_mut::<BoxSelect>()
     {
         *armed = BoxSelect::default();
+    }
+    // A gesture counts the undo entries when it starts, to take back to them on Esc: a
+    // stepped run ends first, so its entry is counted and stays.
+    if matches!(
+        action,
+        Action::Grab | Action::Rotate | Action::Scale | Action::Extrude | Action::Inset
+    ) && world.resource::<Stepping>().run.is_some()
+    {
+        let ended = super::stepping::end_run(world).map(|()| "the stepped run is kept".into());
+        report(world, "end the stepped run".into(), ended, 0.0);
     }
     match request_for(world, action) {
         Ok(Some(request)) => {
@@ -841,12 +851,9 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
         Action::ClearSelection if world.resource::<Stepping>().run.is_some() => {
             return Ok(Some(Request::Step(StepMove::Cancel)));
         }
-        Action::Step(movement) => {
-            if world.resource::<Stepping>().run.is_none() {
-                return Err(Declined::NoSteppedRun);
-            }
-            return Ok(Some(Request::Step(movement)));
-        }
+        // The arrows, End and Enter do nothing without a run (Enter may end a text field).
+        Action::Step(_) if world.resource::<Stepping>().run.is_none() => return Ok(None),
+        Action::Step(movement) => return Ok(Some(Request::Step(movement))),
         Action::ToggleStepMode => {
             let mut stepping = world.resource_mut::<Stepping>();
             stepping.enabled = !stepping.enabled;

@@ -68,7 +68,9 @@ pub fn gather_step_overlay(world: &mut World) {
         }
         Steps::Subdivide(steps) => {
             let selected = world.resource::<Selection>().element;
-            let stencil = selected.and_then(|x| stencil_of_element(&m, steps.scheme, x));
+            let stencil = selected
+                .filter(|_| steps.points.is_some())
+                .and_then(|x| stencil_of_element(&m, steps.scheme, x));
             if let Some(points) = &steps.points {
                 let which = PointsShown {
                     new_points: true,
@@ -167,7 +169,12 @@ pub fn snapshot_steps(world: &mut World) {
         view.at = run.steps.at();
         view.made = run.steps.made();
         view.finished = run.steps.finished();
-        view.fate = run.fate.clone();
+        let selected = world.resource::<Selection>().element;
+        view.fate = run
+            .fate
+            .as_ref()
+            .filter(|(became, _)| selected == Some(*became))
+            .map(|(_, line)| line.clone());
         view.backs = !matches!(run.steps, Steps::Remesh(_));
         match &run.steps {
             Steps::Qem(steps) => {
@@ -229,7 +236,10 @@ pub fn step_window(
                 .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-12.0, 12.0))
                 .resizable(false)
                 .show(ctx, |ui| {
-                    ui.label("Simplify (Shift+S) now runs one collapse at a time.");
+                    ui.label(
+                        "Simplify (Shift+S), remesh (M), Loop (L) and Catmull-Clark (Q) now run \
+                         a step at a time.",
+                    );
                     if ui.button("Turn step mode off (F9)").clicked() {
                         pending.0.push(Action::ToggleStepMode);
                     }

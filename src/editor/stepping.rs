@@ -15,20 +15,25 @@
 //!   project; a finish after the last iteration): what the pass made or moved is highlighted
 //!   and its count listed. A pass rewrites much of the mesh, so a remeshing run does not step
 //!   back; Esc puts the mesh back as it was before the run.
-//! - **Loop and Catmull–Clark**, two steps a level before it is committed: first the new edge
-//!   (and face) points, then the old vertices at their moved positions, each drawn over the
-//!   mesh, and the selected element's stencil (its old vertices and their weights) drawn and
-//!   listed ([`crate::ops::stencil`]); the next step commits the level. Back undoes the preview
-//!   steps of the level not yet committed.
+//! - **Loop and Catmull–Clark**, two steps a level: the run opens on the level's new edge (and
+//!   face) points drawn over the mesh, a step adds the old vertices at their moved positions,
+//!   the next commits the level; the selected element's stencil (its old vertices and their
+//!   weights, [`crate::ops::stencil`]) is drawn and listed meanwhile. Back takes back the
+//!   preview step of the level not yet committed.
 //!
 //! Every step is the operation's own step on the world, so a run stepped to the end leaves the
-//! same mesh, bit for bit, as the unstepped edit. Ending the run ([`StepMove::Finish`], or any
-//! other edit, undo or file request, which end it first) records it as one undo entry under the
-//! edit's own label, as the unstepped edit would be; [`StepMove::Cancel`] puts the mesh back as
-//! it was before the run and records nothing.
+//! same mesh, bit for bit, as the unstepped edit run in place (a large mesh runs the unstepped
+//! edit as a job, whose result gets other entity ids; a stepped run always runs in place).
+//! Ending the run ([`StepMove::Finish`], or any other edit, undo, save or file request, which
+//! end it first, as does the start of a transform) records it as one undo entry under the
+//! edit's own label, as the unstepped edit would be; [`StepMove::Cancel`] puts the mesh (and
+//! the selection and the level-of-detail history) back as they were before the run and records
+//! nothing.
 //!
-//! The selection follows: an element a step removes is replaced by what it became (the vertex
-//! an edge collapsed into, the edge a wing merged into), and the panel says so.
+//! The selection follows new collapses: an element one removes is replaced by what it became
+//! (the vertex an edge collapsed into, the edge a wing merged into), and the window says so.
+//! Elsewhere (collapses replayed or split back, remeshing passes) removed elements drop out of
+//! the selection.
 
 use bevy::prelude::{Resource, World};
 
@@ -74,8 +79,13 @@ pub struct SteppedRun {
     had: MeshAttributes,
     /// The operation's own state.
     pub steps: Steps,
-    /// What became of the selected element at the last step that removed it.
-    pub fate: Option<String>,
+    /// What became of the selected element at the last move that removed it: the element it
+    /// became (selected then) and the line that says so.
+    pub fate: Option<(ElementId, String)>,
+    /// The level-of-detail history from before the run, put back if the run changes nothing.
+    previous_history: Option<ProgressiveMesh>,
+    /// Whether the mesh had unsaved changes before the run (a cancel leaves it so).
+    was_modified: bool,
 }
 
 /// The state of each kind of stepped run.
@@ -240,7 +250,6 @@ pub fn steppable(edit: &Edit) -> bool {
 /// # Errors
 /// No mesh; an edit that cannot be stepped; the operation's refusal (the mesh is untouched).
 pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
-    end_run(world)?;
     let mesh = edit.target(world, world.resource::<ActiveMesh>().0)?;
     let steps = match edit {
         Edit::Simplify(params) => {
@@ -276,10 +285,14 @@ pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
             ))));
         }
     };
+    // Planned on the mesh as the run in progress left it; that run ends only now, so a
+    // refused start leaves it going.
+    end_run(world)?;
     let pending = history::begin_edit(world, edit, mesh);
     let had = MeshAttributes::of(world, mesh);
+    let was_modified = world.get::<Modified>(mesh.0).is_some();
     let summary = format!("stepping {}: {}", edit.label(), describe(world, &steps));
-    world.resource_mut::<SimplificationHistory>().pm = None;
+    let previous_history = world.resource_mut::<SimplificationHistory>().pm.take();
     world.resource_mut::<Stepping>().run = Some(SteppedRun {
         mesh,
         edit: edit.clone(),
@@ -287,6 +300,8 @@ pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
         had,
         steps,
         fate: None,
+        previous_history,
+        was_modified,
     });
     Ok(summary)
 }
@@ -362,6 +377,7 @@ pub fn step(world: &mut World, movement: StepMove) -> Result<String, Declined> {
         .run
         .take()
         .ok_or(Declined::NoSteppedRun)?;
+    run.fate = None;
     let result = match movement {
         StepMove::Finish => return finish(world, run),
         StepMove::Cancel => return cancel(world, run),
@@ -376,7 +392,6 @@ pub fn step(world: &mut World, movement: StepMove) -> Result<String, Declined> {
         StepMove::To(k) => go_to(world, &mut run, k),
     };
     let summary = result.map(|()| describe(world, &run.steps));
-    world.entity_mut(run.mesh.0).insert(Modified);
     world.resource_mut::<Stepping>().run = Some(run);
     summary.map_err(Declined::Refused)
 }
@@ -399,14 +414,15 @@ fn go_to(world: &mut World, run: &mut SteppedRun, k: usize) -> Result<(), Refusa
         Steps::Qem(steps) => qem_go_to(world, mesh, steps, &mut run.fate, k),
         Steps::Remesh(steps) => remesh_go_to(world, mesh, steps, k),
         Steps::Subdivide(steps) => {
-            let made = subdivide_go_to(world, mesh, steps, k)?;
-            if made > 0 {
+            let result = subdivide_go_to(world, mesh, steps, k);
+            // A later level refused still leaves the levels made: the entry names those.
+            if steps.done > 0 {
                 run.edit = Edit::Subdivide(Subdivision {
                     scheme: steps.scheme,
                     levels: steps.done,
                 });
             }
-            Ok(())
+            result
         }
     }
 }
@@ -438,7 +454,7 @@ fn remesh_go_to(
         ));
         steps.last = Some(report);
     }
-    world.entity_mut(mesh.0).insert(MeshDirty);
+    world.entity_mut(mesh.0).insert((MeshDirty, Modified));
     follow_selection(world);
     Ok(())
 }
@@ -450,7 +466,7 @@ fn subdivide_go_to(
     mesh: MeshId,
     steps: &mut SubdivideSteps,
     k: usize,
-) -> Result<u32, Refusal> {
+) -> Result<(), Refusal> {
     if k < 2 * steps.done as usize {
         return Err(Refusal::BadParameter(
             "a committed level does not step back: Esc puts the mesh back as it was before \
@@ -458,7 +474,6 @@ fn subdivide_go_to(
                 .into(),
         ));
     }
-    let mut made = 0;
     while steps.at() < k && steps.done < steps.levels {
         if !steps.moved_shown {
             steps.moved_shown = true;
@@ -470,8 +485,8 @@ fn subdivide_go_to(
             Scheme::CatmullClark => catmull_clark(world, mesh, level.levels),
         }?;
         steps.done += 1;
-        made += 1;
         steps.moved_shown = false;
+        world.entity_mut(mesh.0).insert(Modified);
         steps.points = match steps.done < steps.levels {
             true => Some(next_level_points(world, mesh, steps.scheme)?),
             false => None,
@@ -483,7 +498,7 @@ fn subdivide_go_to(
     if k < steps.at() {
         steps.moved_shown = false;
     }
-    Ok(made)
+    Ok(())
 }
 
 /// Moves a QEM run to step `k`: back or forward along what has run, then new collapses.
@@ -491,9 +506,10 @@ fn qem_go_to(
     world: &mut World,
     mesh: MeshId,
     steps: &mut QemSteps,
-    fate_line: &mut Option<String>,
+    fate_line: &mut Option<(ElementId, String)>,
     k: usize,
 ) -> Result<(), Refusal> {
+    world.entity_mut(mesh.0).insert(Modified);
     if k < steps.made() || !steps.at_front() {
         if steps.at_front() {
             steps.run.detach();
@@ -522,8 +538,8 @@ fn qem_go_to(
     }
     steps.run.reattach(world, steps.history.slots())?;
     let mut dirty: Vec<FaceId> = Vec::new();
-    let selected = world.resource::<Selection>().element;
     while steps.at() < k {
+        let selected = world.resource::<Selection>().element;
         // Faces around both ends: the kept vertex's faces after the collapse are among them.
         let Some(next) = steps.next.or_else(|| {
             steps.look_ahead(world);
@@ -570,14 +586,14 @@ fn ends_of(m: &MeshRef<'_>, x: ElementId) -> Vec<VertexId> {
 }
 
 /// What the selected element `x` became when the collapse of `removed` into `kept` removed
-/// it; selects that and says it.
+/// it; selects that, and returns it with the line that says so.
 fn fate(
     world: &mut World,
     x: ElementId,
     ends: Vec<VertexId>,
     kept: VertexId,
     removed: VertexId,
-) -> String {
+) -> (ElementId, String) {
     let m = MeshRef::new(world);
     // An edge or halfedge beside the collapsed one merged into the edge from the kept vertex
     // to the same third vertex.
@@ -598,7 +614,7 @@ fn fate(
         ElementId::Face(_) => "collapsed to",
         _ => "merged into",
     };
-    format!("{x} is gone: {how} {became}")
+    (became, format!("{x} is gone: {how} {became}"))
 }
 
 /// Keeps the selection on live elements after a move (a split back or a replayed collapse may
@@ -617,6 +633,7 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
         pending,
         had,
         steps,
+        previous_history: run_previous,
         ..
     } = run;
     let (mut summary, history) = match steps {
@@ -646,6 +663,7 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
             (line, None)
         }
         Steps::Subdivide(s) if s.done == 0 => {
+            world.resource_mut::<SimplificationHistory>().pm = run_previous;
             return Ok("nothing committed: the mesh is as before".into());
         }
         Steps::Subdivide(s) => {
@@ -660,10 +678,13 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
     summary.push_str(&edit.settle_attributes(world, mesh, had));
     let applied = Applied {
         summary,
-        // Every step redrew what it changed.
-        redraw: Redraw::Near {
-            faces: Vec::new(),
-            vertices: Vec::new(),
+        // Every step redrew what it changed; attributes dropped now change every face.
+        redraw: match had.is_empty() {
+            true => Redraw::Near {
+                faces: Vec::new(),
+                vertices: Vec::new(),
+            },
+            false => Redraw::Whole,
         },
         made: None,
     };
@@ -685,10 +706,19 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
 /// Puts the mesh back as it was before the run.
 fn cancel(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
     let label = run.edit.label();
-    if let Some(pending) = run.pending {
-        history::restore(world, pending);
+    let map = run
+        .pending
+        .and_then(|pending| history::restore(world, pending));
+    let mut previous = run.previous_history;
+    if let (Some(pm), Some(map)) = (&mut previous, &map) {
+        pm.remap(run.mesh, map);
     }
-    world.entity_mut(run.mesh.0).insert(MeshDirty);
+    world.resource_mut::<SimplificationHistory>().pm = previous;
+    let mut mesh = world.entity_mut(run.mesh.0);
+    mesh.insert(MeshDirty);
+    if !run.was_modified {
+        mesh.remove::<Modified>();
+    }
     follow_selection(world);
     Ok(format!("{label}: cancelled, the mesh is as before"))
 }
