@@ -97,6 +97,12 @@ pub struct InspectorView {
     pub gesture: Option<String>,
     /// Rebuild count at the last statistics refresh.
     pub stats_generation: usize,
+    /// The rebuild count last seen.
+    pub seen_generation: usize,
+    /// When the rebuild count last changed.
+    pub changed_at: Option<std::time::Instant>,
+    /// Whether the last change came after the mesh had stood still (it is counted at once).
+    pub after_quiet: bool,
     /// The simplification history: (coarsest, current, full) face counts.
     pub lod: Option<(usize, usize, usize)>,
     /// The undo history, oldest first: each entry's label and whether it is undone (redoable).
@@ -172,6 +178,10 @@ fn run_pending_actions(world: &mut World) {
     }
 }
 
+/// Changes that come within this of the last count of the O(mesh) statistics, validation and
+/// histograms are counted once the mesh has stood still this long (see [`snapshot`]).
+pub const STATS_QUIET: std::time::Duration = std::time::Duration::from_millis(300);
+
 /// Copies what the panels show out of the world.
 pub fn snapshot(world: &mut World) {
     let generation = world.resource::<RenderStats>().rebuilds;
@@ -185,7 +195,23 @@ pub fn snapshot(world: &mut World) {
             let dragging = world
                 .get_resource::<ButtonInput<MouseButton>>()
                 .is_some_and(|b| b.pressed(MouseButton::Left));
-            let stale = view.stats_generation != generation && !dragging;
+            // They take ~150 ms on the bunny (100 of it validation). The first change after a
+            // quiet spell is counted at once; changes that follow within `STATS_QUIET` (a key
+            // held down in step mode, flips one after another) wait until the mesh has stood
+            // still that long, so they run at the frame rate.
+            let now = std::time::Instant::now();
+            let quiet = |at: Option<std::time::Instant>| at.is_none_or(|t| now - t >= STATS_QUIET);
+            if view.seen_generation != generation {
+                view.seen_generation = generation;
+                view.after_quiet = quiet(view.changed_at);
+                view.changed_at = Some(now);
+            }
+            let changed = view.stats_generation != generation;
+            let due = view.after_quiet || quiet(view.changed_at);
+            if changed && !due {
+                world.write_message(bevy::window::RequestRedraw);
+            }
+            let stale = changed && !dragging && due;
             if view.mesh.is_none() || stale {
                 let info = world.get::<MeshInfo>(mesh.0).cloned().unwrap_or_default();
                 view.mesh = Some(MeshView {
@@ -196,6 +222,7 @@ pub fn snapshot(world: &mut World) {
                 });
                 view.histograms = histograms(world, mesh, world.get::<VertexValues>(mesh.0));
                 view.stats_generation = generation;
+                view.after_quiet = false;
             }
         }
     }
