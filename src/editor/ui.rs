@@ -196,18 +196,21 @@ pub fn snapshot(world: &mut World) {
                 .get_resource::<ButtonInput<MouseButton>>()
                 .is_some_and(|b| b.pressed(MouseButton::Left));
             // They take ~150 ms on the bunny (100 of it validation). The first change after a
-            // quiet spell is counted at once; changes that follow within `STATS_QUIET` (a key
-            // held down in step mode, flips one after another) wait until the mesh has stood
-            // still that long, so they run at the frame rate.
+            // quiet spell is counted in the next frame; changes that follow within `STATS_QUIET`
+            // (a key held down in step mode, flips one after another) wait until the mesh has
+            // stood still that long, so they run at the frame rate.
             let now = std::time::Instant::now();
             let quiet = |at: Option<std::time::Instant>| at.is_none_or(|t| now - t >= STATS_QUIET);
-            if view.seen_generation != generation {
+            // Never in the frame of the change itself: that frame hands the changed mesh to the
+            // renderer, which draws it while the next frame counts.
+            let just_changed = view.seen_generation != generation;
+            if just_changed {
                 view.seen_generation = generation;
                 view.after_quiet = quiet(view.changed_at);
                 view.changed_at = Some(now);
             }
             let changed = view.stats_generation != generation;
-            let due = view.after_quiet || quiet(view.changed_at);
+            let due = !just_changed && (view.after_quiet || quiet(view.changed_at));
             if changed && !due {
                 world.write_message(bevy::window::RequestRedraw);
             }
