@@ -8,40 +8,13 @@ mod common;
 
 use bevy::math::Vec3;
 use bevy::prelude::World;
-use common::{build, canonical};
+use common::{build, canonical, elements};
 use pappus::mesh::shapes::{grid_with_holes, icosphere, torus, triangulate_fans};
 use pappus::mesh::soup::PolygonSoup;
-use pappus::mesh::{MeshId, MeshMembers, MeshRef, to_soup};
+use pappus::mesh::{MeshId, MeshRef, to_soup};
 use pappus::ops::Refusal;
 use pappus::ops::progressive::{ProgressiveMesh, SlotIndex, SlotRecord};
 use pappus::ops::simplify::{QemRun, SimplifyParams};
-
-/// Every vertex (id, position bits) and face (id, its corners' ids), by id: equal only when
-/// two runs made the same mesh to the entity.
-type Elements = (Vec<(u64, [u32; 3])>, Vec<(u64, Vec<u64>)>);
-
-fn snapshot(world: &World, mesh: MeshId) -> Elements {
-    let members = MeshMembers::collect(world, mesh);
-    let m = MeshRef::new(world);
-    let mut vertices: Vec<_> = members
-        .vertices
-        .iter()
-        .map(|&v| (v.0.to_bits(), m.position(v).to_array().map(f32::to_bits)))
-        .collect();
-    let mut faces: Vec<_> = members
-        .faces
-        .iter()
-        .map(|&f| {
-            (
-                f.0.to_bits(),
-                m.face_vertices(f).map(|v| v.0.to_bits()).collect(),
-            )
-        })
-        .collect();
-    vertices.sort_unstable();
-    faces.sort_unstable();
-    (vertices, faces)
-}
 
 /// The mesh up to relabeling: faces as cycles of positions, bitwise.
 fn shape(world: &World, mesh: MeshId) -> Vec<Vec<common::Key>> {
@@ -110,7 +83,7 @@ fn stepping_to_the_end_makes_the_unstepped_runs_mesh_and_records() {
         }
         assert_eq!(run.summary(), summary, "{name}");
         assert!(
-            snapshot(&world, mesh) == snapshot(&whole, built.mesh),
+            elements(&world, mesh) == elements(&whole, built.mesh),
             "{name}: the stepped mesh differs"
         );
         assert_eq!(pm.records.len(), expected.records.len(), "{name}");

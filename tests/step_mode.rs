@@ -44,33 +44,9 @@ fn saved(app: &App) -> Vec<u8> {
     bytes
 }
 
-/// Every vertex (id, position bits) and face (id, its corners' ids from its halfedge), by id.
-#[derive(PartialEq)]
-struct Elements {
-    vertices: Vec<(u64, [u32; 3])>,
-    faces: Vec<(u64, Vec<u64>)>,
-}
-
-fn elements(app: &App) -> Elements {
-    let mesh = active(app);
-    let members = pappus::mesh::MeshMembers::collect(app.world(), mesh);
-    let m = MeshRef::new(app.world());
-    let mut vertices: Vec<_> = members
-        .vertices
-        .iter()
-        .map(|&v| (v.0.to_bits(), m.position(v).to_array().map(f32::to_bits)))
-        .collect();
-    let mut faces: Vec<_> = members
-        .faces
-        .iter()
-        .map(|&f| {
-            let corners = m.face_vertices(f).map(|v| v.0.to_bits()).collect();
-            (f.0.to_bits(), corners)
-        })
-        .collect();
-    vertices.sort_unstable();
-    faces.sort_unstable();
-    Elements { vertices, faces }
+/// The active mesh's elements, to the entity and the bit.
+fn elements(app: &App) -> common::Elements {
+    common::elements(app.world(), active(app))
 }
 
 /// The saved file's vertex lines, sorted (face lines name vertices by their place in the file).

@@ -327,7 +327,8 @@ pub fn stencil_panel(ui: &mut egui::Ui, s: &Stencil) {
 mod tests {
     use super::*;
     use crate::edit::Scheme;
-    use crate::mesh::{MeshId, MeshInfo, MeshMembers, PolygonSoup, build_mesh, shapes};
+    use crate::mesh::{MeshId, MeshInfo, PolygonSoup, build_mesh, shapes};
+    use crate::ops::stencil::tests::vertex_at;
     use crate::ops::stencil::{next_level_points, stencil};
     use bevy::prelude::World;
 
@@ -337,15 +338,6 @@ mod tests {
             .unwrap()
             .mesh;
         (world, mesh)
-    }
-
-    fn vertex_at(world: &World, mesh: MeshId, p: Vec3) -> VertexId {
-        let m = MeshRef::new(world);
-        MeshMembers::collect(world, mesh)
-            .vertices
-            .into_iter()
-            .find(|&v| m.position(v).distance(p) < 1e-6)
-            .unwrap()
     }
 
     /// (large dots, thick lines, thin lines, plain dots).

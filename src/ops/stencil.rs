@@ -257,12 +257,10 @@ fn loop_edge(m: &MeshRef<'_>, e: EdgeId) -> Stencil {
     let point = NewPoint::Edge(e);
     let h = m.edge_halfedge(e);
     let (a, b) = (m.from_vertex(h), m.to_vertex(h));
-    let mut t = Terms::default();
     if m.is_boundary_edge(e) {
-        t.add(a, 0.5);
-        t.add(b, 0.5);
-        return t.into_stencil(m, point, "boundary edge: midpoint, 1/2 on each end".into());
+        return boundary_edge(m, e);
     }
+    let mut t = Terms::default();
     t.add(a, 0.375);
     t.add(b, 0.375);
     t.add(m.to_vertex(m.next(h)), 0.125);
@@ -271,6 +269,19 @@ fn loop_edge(m: &MeshRef<'_>, e: EdgeId) -> Stencil {
         m,
         point,
         "interior edge: 3/8 on each end, 1/8 on each of the two opposite vertices".into(),
+    )
+}
+
+/// A boundary edge's point under either scheme: its midpoint.
+fn boundary_edge(m: &MeshRef<'_>, e: EdgeId) -> Stencil {
+    let (a, b) = m.edge_vertices(e);
+    let mut t = Terms::default();
+    t.add(a, 0.5);
+    t.add(b, 0.5);
+    t.into_stencil(
+        m,
+        NewPoint::Edge(e),
+        "boundary edge: midpoint, 1/2 on each end".into(),
     )
 }
 
@@ -295,12 +306,10 @@ fn cc_edge(m: &MeshRef<'_>, e: EdgeId) -> Stencil {
     let point = NewPoint::Edge(e);
     let h = m.edge_halfedge(e);
     let (a, b) = (m.from_vertex(h), m.to_vertex(h));
-    let mut t = Terms::default();
     if m.is_boundary_edge(e) {
-        t.add(a, 0.5);
-        t.add(b, 0.5);
-        return t.into_stencil(m, point, "boundary edge: midpoint, 1/2 on each end".into());
+        return boundary_edge(m, e);
     }
+    let mut t = Terms::default();
     t.add(a, 0.25);
     t.add(b, 0.25);
     add_face_point(m, h, 0.25, &mut t);
@@ -407,7 +416,7 @@ pub fn next_level_points(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::mesh::shapes;
     use crate::mesh::{MeshMembers, PolygonSoup, build_mesh, despawn_mesh, validate};
@@ -582,7 +591,7 @@ mod tests {
     }
 
     /// The vertex of `world`'s mesh at `p`.
-    fn vertex_at(world: &World, mesh: MeshId, p: Vec3) -> VertexId {
+    pub(crate) fn vertex_at(world: &World, mesh: MeshId, p: Vec3) -> VertexId {
         let m = MeshRef::new(world);
         MeshMembers::collect(world, mesh)
             .vertices

@@ -18,6 +18,36 @@ pub fn build(soup: &PolygonSoup) -> (World, BuiltMesh) {
     (world, built)
 }
 
+/// Every vertex (id, position bits) and face (id, its corners' ids from its halfedge), sorted
+/// by id: equal for two meshes only when they are the same to the entity and the bit.
+#[derive(Debug, PartialEq)]
+pub struct Elements {
+    vertices: Vec<(u64, [u32; 3])>,
+    faces: Vec<(u64, Vec<u64>)>,
+}
+
+/// `mesh`'s [`Elements`].
+pub fn elements(world: &World, mesh: pappus::mesh::MeshId) -> Elements {
+    let members = pappus::mesh::MeshMembers::collect(world, mesh);
+    let m = pappus::mesh::MeshRef::new(world);
+    let mut vertices: Vec<_> = members
+        .vertices
+        .iter()
+        .map(|&v| (v.0.to_bits(), m.position(v).to_array().map(f32::to_bits)))
+        .collect();
+    let mut faces: Vec<_> = members
+        .faces
+        .iter()
+        .map(|&f| {
+            let corners = m.face_vertices(f).map(|v| v.0.to_bits()).collect();
+            (f.0.to_bits(), corners)
+        })
+        .collect();
+    vertices.sort_unstable();
+    faces.sort_unstable();
+    Elements { vertices, faces }
+}
+
 /// The shared test models folder (`../shared/models` beside the repository), if present.
 pub fn models_dir() -> Option<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/models");
