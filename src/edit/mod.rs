@@ -42,7 +42,6 @@ use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::remesh::{RemeshParams, remesh_with_progress};
 use crate::ops::simplify::{SimplifyParams, SimplifyTarget};
 use crate::ops::smooth::{SmoothParams, smooth};
-use crate::ops::subdivide::{catmull_clark, loop_subdivide};
 use crate::ops::triangulate::triangulate;
 
 mod step;
@@ -720,10 +719,9 @@ impl Edit {
                 ))
             }
             Edit::Subdivide(subdivision) => {
-                let s = match subdivision.scheme {
-                    Scheme::Loop => loop_subdivide(world, mesh, subdivision.levels),
-                    Scheme::CatmullClark => catmull_clark(world, mesh, subdivision.levels),
-                }?;
+                let s = subdivision
+                    .scheme
+                    .subdivide(world, mesh, subdivision.levels)?;
                 (context.progress)(1.0);
                 whole(format!(
                     "{} level(s): {} vertices, {} faces",

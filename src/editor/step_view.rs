@@ -9,7 +9,7 @@
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, egui};
 
-use crate::mesh::ids::{EdgeId, ElementId};
+use crate::mesh::ids::ElementId;
 use crate::mesh::topology::MeshRef;
 
 use super::input::{Action, SHORTCUTS, UiState};
@@ -23,7 +23,8 @@ use super::stencil_view::{
 use super::stepping::{Stepping, Steps, describe};
 use super::ui::PendingActions;
 use crate::ops::remesh::Touched;
-use crate::ops::stencil::{Stencil, stencil_of_element};
+use crate::ops::simplify::QueuedEdge;
+use crate::ops::stencil::Stencil;
 
 /// The next edge and the point it collapses to.
 pub const NEXT: Color = Color::srgb(1.0, 0.45, 0.05);
@@ -67,10 +68,7 @@ pub fn gather_step_overlay(world: &mut World) {
             }
         }
         Steps::Subdivide(steps) => {
-            let selected = world.resource::<Selection>().element;
-            let stencil = selected
-                .filter(|_| steps.points.is_some())
-                .and_then(|x| stencil_of_element(&m, steps.scheme, x));
+            let stencil = steps.selected_stencil(world);
             if let Some(points) = &steps.points {
                 let which = PointsShown {
                     new_points: true,
@@ -114,15 +112,6 @@ fn touched_shapes(m: &MeshRef<'_>, touched: &Touched, out: &mut Vec<Shape>) {
     }
 }
 
-/// One line of the queue in the window.
-#[derive(Clone, Debug, PartialEq)]
-pub struct QueueLine {
-    /// The edge.
-    pub edge: EdgeId,
-    /// Its cost.
-    pub cost: f32,
-}
-
 /// What the step window shows, copied out of the world once a frame.
 #[derive(Resource, Default, Debug, Clone)]
 pub struct StepView {
@@ -140,10 +129,10 @@ pub struct StepView {
     pub scrubs: bool,
     /// Whether the run steps back at all (not remeshing).
     pub backs: bool,
-    /// The next collapse: its edge, cost, and where it is drawn (for the label).
-    pub next: Option<(EdgeId, f32, Vec3)>,
+    /// The next collapse: its edge, cost, and where its ends merge (where the label goes).
+    pub next: Option<QueuedEdge>,
     /// The queue's cheapest edges.
-    pub queue: Vec<QueueLine>,
+    pub queue: Vec<QueuedEdge>,
     /// The latest refusals, as lines.
     pub refused: Vec<String>,
     /// What became of the selected element.
@@ -165,7 +154,7 @@ pub fn snapshot_steps(world: &mut World) {
     };
     if let Some(run) = &stepping.run {
         view.title = Some(run.edit.label());
-        view.line = describe(world, &run.steps);
+        view.line = describe(&run.steps);
         view.at = run.steps.at();
         view.made = run.steps.made();
         view.finished = run.steps.finished();
@@ -180,17 +169,8 @@ pub fn snapshot_steps(world: &mut World) {
             Steps::Qem(steps) => {
                 view.scrubs = true;
                 if steps.at_front() {
-                    view.next = steps
-                        .next
-                        .map(|n| (n.queued.edge, n.queued.cost, n.queued.position));
-                    view.queue = steps
-                        .candidates(CANDIDATES)
-                        .into_iter()
-                        .map(|q| QueueLine {
-                            edge: q.edge,
-                            cost: q.cost,
-                        })
-                        .collect();
+                    view.next = steps.next.map(|n| n.queued);
+                    view.queue = steps.candidates(CANDIDATES);
                 }
                 view.refused = steps
                     .refused
@@ -200,14 +180,7 @@ pub fn snapshot_steps(world: &mut World) {
                     .collect();
             }
             Steps::Remesh(steps) => view.passes = steps.passes.clone(),
-            Steps::Subdivide(steps) => {
-                let m = MeshRef::new(world);
-                view.stencil = world
-                    .resource::<Selection>()
-                    .element
-                    .filter(|_| steps.points.is_some())
-                    .and_then(|x| stencil_of_element(&m, steps.scheme, x));
-            }
+            Steps::Subdivide(steps) => view.stencil = steps.selected_stencil(world),
         }
     }
     *world.resource_mut::<StepView>() = view;
@@ -247,14 +220,14 @@ pub fn step_window(
         }
         return Ok(());
     };
-    if let (Some((edge, cost, at)), Ok((camera, eye))) = (view.next, camera.single())
-        && let Ok(p) = camera.world_to_viewport(eye, at)
+    if let (Some(next), Ok((camera, eye))) = (view.next, camera.single())
+        && let Ok(p) = camera.world_to_viewport(eye, next.position)
     {
         let painter = ctx.layer_painter(egui::LayerId::new(
             egui::Order::Background,
             egui::Id::new("next collapse"),
         ));
-        let text = format!("{edge}  cost {cost:.3e}");
+        let text = format!("{}  cost {:.3e}", next.edge, next.cost);
         let galley =
             painter.layout_no_wrap(text, egui::FontId::proportional(15.0), egui::Color32::WHITE);
         // Up and to the left of the point: the step window sits on the right.

@@ -38,15 +38,16 @@
 use bevy::prelude::{Resource, World};
 
 use crate::edit::{Applied, Edit, Redraw, Scheme, Subdivision};
+use crate::mesh::Face;
 use crate::mesh::attributes::MeshAttributes;
 use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
+use crate::mesh::members::of_kind;
 use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
 use crate::ops::progressive::{ProgressiveMesh, SlotIndex};
 use crate::ops::remesh::{Pass, PassReport, RemeshRun};
 use crate::ops::simplify::{NextCollapse, QemRun, QueuedEdge, Refused};
-use crate::ops::stencil::{NextLevelPoints, next_level_points};
-use crate::ops::subdivide::{catmull_clark, loop_subdivide};
+use crate::ops::stencil::{NextLevelPoints, Stencil, next_level_points, stencil_of_element};
 
 use super::finish::{Finished, finish_edit};
 use super::history::{self, Pending};
@@ -156,11 +157,21 @@ pub struct SubdivideSteps {
     pub moved_shown: bool,
     /// The next level's points, while it is previewed.
     pub points: Option<NextLevelPoints>,
+    /// The mesh's vertex and face counts now (read at the start, then given by each level).
+    counts: (usize, usize),
 }
 
 impl SubdivideSteps {
     fn at(&self) -> usize {
         2 * self.done as usize + usize::from(self.moved_shown)
+    }
+
+    /// The stencil of the selected element's point in the level being previewed (none once
+    /// the last level is committed).
+    pub fn selected_stencil(&self, world: &World) -> Option<Stencil> {
+        self.points.as_ref()?;
+        let selected = world.resource::<Selection>().element?;
+        stencil_of_element(&MeshRef::new(world), self.scheme, selected)
     }
 }
 
@@ -271,13 +282,18 @@ pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
             last: None,
             passes: Vec::new(),
         }),
-        Edit::Subdivide(subdivision) => Steps::Subdivide(SubdivideSteps {
-            scheme: subdivision.scheme,
-            levels: subdivision.levels,
-            done: 0,
-            moved_shown: false,
-            points: Some(next_level_points(world, mesh, subdivision.scheme)?),
-        }),
+        Edit::Subdivide(subdivision) => {
+            let points = next_level_points(world, mesh, subdivision.scheme)?;
+            let faces = of_kind::<Face, _>(world, mesh, |f| f).len();
+            Steps::Subdivide(SubdivideSteps {
+                scheme: subdivision.scheme,
+                levels: subdivision.levels,
+                done: 0,
+                moved_shown: false,
+                counts: (points.vertex.len(), faces),
+                points: Some(points),
+            })
+        }
         _ => {
             return Err(Declined::Refused(Refusal::BadParameter(format!(
                 "{} cannot be stepped through",
@@ -291,7 +307,7 @@ pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
     let pending = history::begin_edit(world, edit, mesh);
     let had = MeshAttributes::of(world, mesh);
     let was_modified = world.get::<Modified>(mesh.0).is_some();
-    let summary = format!("stepping {}: {}", edit.label(), describe(world, &steps));
+    let summary = format!("stepping {}: {}", edit.label(), describe(&steps));
     let previous_history = world.resource_mut::<SimplificationHistory>().pm.take();
     world.resource_mut::<Stepping>().run = Some(SteppedRun {
         mesh,
@@ -307,7 +323,7 @@ pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
 }
 
 /// Where a run is, in one line (the status line's and the step window's).
-pub fn describe(world: &World, steps: &Steps) -> String {
+pub fn describe(steps: &Steps) -> String {
     match steps {
         Steps::Qem(q) => match (&q.next, q.at_front()) {
             (Some(next), true) => format!(
@@ -348,10 +364,7 @@ pub fn describe(world: &World, steps: &Steps) -> String {
             }
         }
         Steps::Subdivide(s) => {
-            let faces = world
-                .resource::<ActiveMesh>()
-                .0
-                .map_or(0, |mesh| crate::mesh::mesh_stats(world, mesh).faces);
+            let faces = s.counts.1;
             match (s.done == s.levels, s.moved_shown) {
                 (true, _) => format!("{} level(s) committed, {faces} faces", s.done),
                 (false, false) => format!(
@@ -391,7 +404,7 @@ pub fn step(world: &mut World, movement: StepMove) -> Result<String, Declined> {
         }
         StepMove::To(k) => go_to(world, &mut run, k),
     };
-    let summary = result.map(|()| describe(world, &run.steps));
+    let summary = result.map(|()| describe(&run.steps));
     world.resource_mut::<Stepping>().run = Some(run);
     summary.map_err(Declined::Refused)
 }
@@ -460,7 +473,7 @@ fn remesh_go_to(
 }
 
 /// Moves a subdivision run to step `k`: shows the next level's new points, then its moved
-/// vertices, then commits it. Returns the levels committed by this move.
+/// vertices, then commits it.
 fn subdivide_go_to(
     world: &mut World,
     mesh: MeshId,
@@ -479,19 +492,15 @@ fn subdivide_go_to(
             steps.moved_shown = true;
             continue;
         }
-        let level = Subdivision::once(steps.scheme);
-        match steps.scheme {
-            Scheme::Loop => loop_subdivide(world, mesh, level.levels),
-            Scheme::CatmullClark => catmull_clark(world, mesh, level.levels),
-        }?;
+        let level = steps.scheme.subdivide(world, mesh, 1)?;
+        steps.counts = (level.vertices, level.faces);
         steps.done += 1;
         steps.moved_shown = false;
-        world.entity_mut(mesh.0).insert(Modified);
+        world.entity_mut(mesh.0).insert((Modified, MeshDirty));
         steps.points = match steps.done < steps.levels {
             true => Some(next_level_points(world, mesh, steps.scheme)?),
             false => None,
         };
-        world.entity_mut(mesh.0).insert(MeshDirty);
         // Subdivision keeps vertex ids only.
         super::selection::keep_live_selection(world, |x| matches!(x, ElementId::Vertex(_)));
     }
@@ -667,10 +676,10 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
             return Ok("nothing committed: the mesh is as before".into());
         }
         Steps::Subdivide(s) => {
-            let stats = crate::mesh::mesh_stats(world, mesh);
+            let (vertices, faces) = s.counts;
             let line = format!(
-                "{} level(s): {} vertices, {} faces (stepped)",
-                s.done, stats.vertices, stats.faces
+                "{} level(s): {vertices} vertices, {faces} faces (stepped)",
+                s.done
             );
             (line, None)
         }

@@ -420,7 +420,6 @@ pub(crate) mod tests {
     use super::*;
     use crate::mesh::shapes;
     use crate::mesh::{MeshMembers, PolygonSoup, build_mesh, despawn_mesh, validate};
-    use crate::ops::subdivide::{catmull_clark, loop_subdivide};
     use std::collections::HashSet;
 
     fn build(world: &mut World, soup: &PolygonSoup) -> MeshId {
@@ -501,11 +500,7 @@ pub(crate) mod tests {
         }
         let checked = expected.len();
 
-        match scheme {
-            Scheme::Loop => loop_subdivide(&mut world, mesh, 1),
-            Scheme::CatmullClark => catmull_clark(&mut world, mesh, 1),
-        }
-        .unwrap();
+        scheme.subdivide(&mut world, mesh, 1).unwrap();
         validate(&world, mesh).unwrap();
         let after = MeshMembers::collect(&world, mesh);
         assert_eq!(after.vertices.len(), checked, "one new vertex per point");

@@ -55,6 +55,22 @@ pub enum Scheme {
     CatmullClark,
 }
 
+impl Scheme {
+    /// Subdivides `mesh` `levels` times with this scheme: [`loop_subdivide`] or
+    /// [`catmull_clark`], with their refusals.
+    pub fn subdivide(
+        self,
+        world: &mut World,
+        mesh: MeshId,
+        levels: u32,
+    ) -> Result<SubdivisionSummary, Refusal> {
+        match self {
+            Scheme::Loop => loop_subdivide(world, mesh, levels),
+            Scheme::CatmullClark => catmull_clark(world, mesh, levels),
+        }
+    }
+}
+
 /// What a subdivision produced.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SubdivisionSummary {
