@@ -16,6 +16,10 @@
 # VERBOSE=1. Then the idle CPU: the editor opened on the torus and left alone for 10 s once its
 # script is done, as a percentage of one core (from /proc/PID/stat).
 #
+# Beside them, the floor: Bevy alone in the same window, with the editor's two cameras and egui
+# panels but no mesh and no editor systems (`benches/window_floor.rs`, built here with `cargo
+# bench --no-run`; FLOOR=0 skips it). No change in Pappus takes a frame below that line.
+#
 # Median of REPEAT runs (default 3) for each figure. Needs xvfb-run and mesa-vulkan-drivers
 # (`.ci/run` installs them).
 set -euo pipefail
@@ -71,7 +75,22 @@ idle_run() {
   awk -v a="$t0" -v b="$t1" -v t="$TICK" 'BEGIN {printf "%.1f\n", (b - a) / t / 10 * 100}'
 }
 
+# The floor bench's executable, built if need be (empty when FLOOR=0).
+floor_binary() {
+  [ "${FLOOR:-1}" = 0 ] && return
+  cargo bench --bench window_floor --no-run --message-format=json 2>/dev/null |
+    grep -o '"executable":"[^"]*window_floor[^"]*"' | tail -1 | cut -d'"' -f4
+}
+
+# One run of the floor: prints its mean frame time.
+floor_run() {
+  timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" "$1" panels 2>/dev/null |
+    grep -ao "mean frame time [0-9.]* ms" | awk '{print $4}' | tail -1 || true
+}
+
 declare -A FRAME CPU IDLE
+FLOOR_BIN=$(floor_binary)
+FLOORS=""
 SOURCES=("assets/torus.obj" "$MODELS/stanford-bunny.obj" "shape:icosphere:8")
 NAMES=("torus (288 quads)" "bunny (69k triangles)" "icosphere:8 (1.3M triangles)")
 for r in $(seq 1 "$REPEAT"); do
@@ -86,6 +105,11 @@ for r in $(seq 1 "$REPEAT"); do
   for b in "${!BINARIES[@]}"; do
     IDLE[$b]+="$(idle_run "${BINARIES[$b]}") "
   done
+  if [ -n "$FLOOR_BIN" ]; then
+    f=$(floor_run "$FLOOR_BIN")
+    FLOORS+="${f:-nan} "
+    echo "run $r: floor (Bevy, cameras and panels, no mesh): ${f:-nan} ms a frame" >&2
+  fi
 done
 
 echo "| mesh (1280x800, lavapipe) | binary | frame ms (median of $REPEAT) | CPU ms a frame |"
@@ -97,6 +121,10 @@ for i in "${!SOURCES[@]}"; do
     echo "| ${NAMES[$i]} | ${BINARIES[$b]} | $f | $c |"
   done
 done
+if [ -n "$FLOOR_BIN" ]; then
+  f=$(tr ' ' '\n' <<<"$FLOORS" | grep -v '^$' | median)
+  echo "| floor: Bevy, the editor's cameras and panels, no mesh | window_floor | $f | — |"
+fi
 for b in "${!BINARIES[@]}"; do
   d=$(tr ' ' '\n' <<<"${IDLE[$b]}" | grep -v '^$' | median)
   echo "| idle 10 s, torus | ${BINARIES[$b]} | — | $d % of a core |"
