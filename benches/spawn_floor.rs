@@ -6,15 +6,25 @@
 //! - **after a mesh of that size**: the same world spawned the mesh, then despawned it, before
 //!   the timed spawn (what an editor's undo-then-redo of a subdivision sees);
 //! - **Loop ×1 itself**, on a freshly built bunny (reading, subdividing, writing back), beside
-//!   the floor from the same run.
+//!   the floor from the same run;
+//! - **Loop ×1 again after an undo**: the bunny written back into the world Loop ×1 left (as
+//!   the editor's undo of a whole-mesh edit does), then Loop ×1 again;
+//! - **the kernel's floor**: writing as many fresh pages as the process's first Loop ×1
+//!   touched (one byte a page), which is what a fresh process pays before any work.
+//!
+//! A first row spawns the bunny's own rows, the floor under building a mesh from arrays.
+//!
+//! Every row is timed twice: with glibc's allocator as it comes, then as the `pappus` program
+//! sets it ([`pappus::process_memory::keep_freed_memory`]: freed memory kept for reuse).
 //!
 //! Run: `cargo bench --bench spawn_floor` (uses `../shared/models/stanford-bunny.obj`, or an
 //! icosphere of similar size with a notice).
 
 use bevy::prelude::World;
 use pappus::mesh::tables::{Connectivity, extract, spawn_connectivity};
-use pappus::mesh::{MeshInfo, PolygonSoup, build_mesh, despawn_mesh, shapes};
+use pappus::mesh::{MeshId, MeshInfo, PolygonSoup, build_mesh, despawn_mesh, shapes};
 use pappus::ops::subdivide::loop_subdivide;
+use pappus::process_memory::keep_freed_memory;
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Instant;
@@ -52,48 +62,121 @@ fn timed(mut run: impl FnMut() -> f64) -> Vec<f64> {
     (0..RUNS).map(|_| run()).collect()
 }
 
-fn main() {
-    let soup = bunny();
-    // The tables Loop ×1 produces.
-    let loop_tables: Connectivity = {
-        let mut world = World::new();
-        let mesh = build_mesh(&mut world, &soup, MeshInfo::default())
-            .unwrap()
-            .mesh;
-        loop_subdivide(&mut world, mesh, 1).unwrap();
+/// Page faults this process has taken that needed no disk (`/proc/self/stat`'s `minflt`): one
+/// per fresh page touched.
+fn minor_faults() -> u64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // The fields after the command name (which may hold spaces); minflt is the 10th of the line.
+    stat.rfind(')')
+        .and_then(|at| stat[at + 2..].split_whitespace().nth(7)?.parse().ok())
+        .unwrap_or(0)
+}
+
+/// Milliseconds to touch `pages` fresh pages of a new block, one byte each.
+fn fault_in_ms(pages: usize) -> f64 {
+    const PAGE: usize = 4096;
+    let start = Instant::now();
+    let mut block: Vec<u8> = Vec::with_capacity(pages * PAGE);
+    for page in block.spare_capacity_mut().chunks_mut(PAGE) {
+        page[0].write(1);
+    }
+    black_box(&block);
+    start.elapsed().as_secs_f64() * 1e3
+}
+
+/// A new world holding the bunny, and its mesh.
+fn bunny_world(soup: &PolygonSoup) -> (World, MeshId) {
+    let mut world = World::new();
+    let mesh = build_mesh(&mut world, soup, MeshInfo::default())
+        .unwrap()
+        .mesh;
+    (world, mesh)
+}
+
+/// Milliseconds of Loop ×1 of `mesh`.
+fn loop_ms(world: &mut World, mesh: MeshId) -> f64 {
+    let start = Instant::now();
+    loop_subdivide(world, mesh, 1).unwrap();
+    start.elapsed().as_secs_f64() * 1e3
+}
+
+/// Every row, under the allocator settings of the moment.
+fn rows(soup: &PolygonSoup, loop_tables: &Connectivity, fresh_pages: usize) {
+    let bunny_tables = {
+        let (world, mesh) = bunny_world(soup);
         extract(&world, mesh).tables
     };
-    let rows = loop_tables.vertex_count()
-        + loop_tables.halfedge_count()
-        + loop_tables.edge_count()
-        + loop_tables.face_count();
-    println!("Loop x1 of the bunny: {rows} rows; median / p90 / max of {RUNS} runs, ms");
-    println!();
-    println!("| what | median | p90 | max |");
-    println!("|---|---:|---:|---:|");
+    row(
+        "spawn the bunny's own rows (what `pappus.Mesh(v, f)` spawns), world that held them",
+        timed(|| {
+            let mut world = World::new();
+            let (mesh, _) = spawn_connectivity(&mut world, &bunny_tables, MeshInfo::default());
+            despawn_mesh(&mut world, mesh);
+            spawn_ms(&mut world, &bunny_tables)
+        }),
+    );
     row(
         "spawn the rows, fresh world",
-        timed(|| spawn_ms(&mut World::new(), &loop_tables)),
+        timed(|| spawn_ms(&mut World::new(), loop_tables)),
     );
     row(
         "spawn the rows, after a mesh of that size",
         timed(|| {
             let mut world = World::new();
-            let (mesh, _) = spawn_connectivity(&mut world, &loop_tables, MeshInfo::default());
+            let (mesh, _) = spawn_connectivity(&mut world, loop_tables, MeshInfo::default());
             despawn_mesh(&mut world, mesh);
-            spawn_ms(&mut world, &loop_tables)
+            spawn_ms(&mut world, loop_tables)
         }),
     );
+    let mut again = Vec::with_capacity(RUNS);
+    let first = timed(|| {
+        let (mut world, mesh) = bunny_world(soup);
+        let first = loop_ms(&mut world, mesh);
+        // The undo: the bunny written back in place of the subdivided mesh.
+        despawn_mesh(&mut world, mesh);
+        let mesh = build_mesh(&mut world, soup, MeshInfo::default())
+            .unwrap()
+            .mesh;
+        again.push(loop_ms(&mut world, mesh));
+        first
+    });
+    row("Loop x1 (read, subdivide, write back)", first);
+    row("Loop x1 again, after an undo in the same world", again);
     row(
-        "Loop x1 (read, subdivide, write back)",
-        timed(|| {
-            let mut world = World::new();
-            let mesh = build_mesh(&mut world, &soup, MeshInfo::default())
-                .unwrap()
-                .mesh;
-            let start = Instant::now();
-            loop_subdivide(&mut world, mesh, 1).unwrap();
-            start.elapsed().as_secs_f64() * 1e3
-        }),
+        &format!(
+            "the kernel's floor: write to {} MB of newly allocated memory",
+            (fresh_pages * 4096) >> 20
+        ),
+        timed(|| fault_in_ms(fresh_pages)),
     );
+}
+
+fn main() {
+    let soup = bunny();
+    // The tables Loop ×1 produces, and how many fresh pages the process's first Loop ×1 took.
+    let (loop_tables, fresh_pages) = {
+        let (mut world, mesh) = bunny_world(&soup);
+        let before = minor_faults();
+        loop_subdivide(&mut world, mesh, 1).unwrap();
+        let pages = (minor_faults() - before) as usize;
+        (extract(&world, mesh).tables, pages)
+    };
+    let rows_spawned = loop_tables.vertex_count()
+        + loop_tables.halfedge_count()
+        + loop_tables.edge_count()
+        + loop_tables.face_count();
+    println!(
+        "Loop x1 of the bunny: {rows_spawned} rows; the process's first Loop x1 touched {} MB \
+         of fresh pages; median / p90 / max of {RUNS} runs, ms",
+        (fresh_pages * 4096) >> 20
+    );
+    println!();
+    println!("| what | median | p90 | max |");
+    println!("|---|---:|---:|---:|");
+    println!("| **glibc's defaults** | | | |");
+    rows(&soup, &loop_tables, fresh_pages);
+    if keep_freed_memory() {
+        println!("| **freed memory kept, as `pappus` sets it** | | | |");
+        rows(&soup, &loop_tables, fresh_pages);
+    }
 }

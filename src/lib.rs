@@ -11,6 +11,7 @@
 //! - [`io`]: file formats (OBJ, OFF, PLY, STL), all to and from a [`mesh::soup::PolygonSoup`].
 //! - [`colormap`]: the colour maps quantities on a mesh are shown and exported with.
 //! - [`cli`]: the batch command line (`info`, `convert`, `process`), no window needed.
+//! - [`process_memory`]: the `pappus` program's allocator settings (freed memory kept for reuse).
 //! - `editor`: the Bevy application (the window, rendering, picking, the panels), behind the
 //!   `editor` cargo feature, on by default. Without it the crate is the core above, built on
 //!   Bevy's ECS and math alone: no window, no GPU, no rendering crates to compile.
@@ -23,4 +24,5 @@ pub mod editor;
 pub mod io;
 pub mod mesh;
 pub mod ops;
+pub mod process_memory;
 pub mod source;

@@ -7,6 +7,8 @@ use clap::Parser;
 use pappus::cli::{self, Cli};
 
 fn main() {
+    // Before any bulk allocation: freed memory is kept for the next operation.
+    pappus::process_memory::keep_freed_memory();
     // A usage error prints the usage and exits with 2; --help and --version exit with 0.
     let Cli { file, command } = Cli::parse();
     let code = match command {

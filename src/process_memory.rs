@@ -1,0 +1,117 @@
+//! What the process's allocator does with freed memory: keep it for the next bulk operation
+//! rather than hand it back to the kernel.
+//!
+//! A page a process writes for the first time costs a page fault, and the kernel zeroes it: on
+//! the 2-core development machine about 0.3 ms per MB, whoever touches it and however
+//! (`benches/spawn_floor.rs` measures it beside the spawns). Bulk operations allocate a lot:
+//! Loop ×1 of the bunny touches about 220 MB of fresh pages, so in a fresh process about
+//! 60 ms of its time is the kernel's, not Pappus's or Bevy's.
+//!
+//! The first time is unavoidable. Paying it *again* is not, and glibc's defaults do: a block
+//! above its mmap threshold (128 KiB, rising to at most 32 MiB as blocks are freed) is a
+//! mapping of its own, unmapped when freed, and a heap whose free top exceeds the trim
+//! threshold is shrunk. Bevy's table columns and the operations' side tables are such blocks,
+//! so an editor that subdivides, undoes and subdivides again faulted the same pages in twice.
+//! [`keep_freed_memory`] makes glibc serve every block from its heaps and keep up to
+//! [`KEPT_FREE_BYTES`] of freed memory for reuse.
+//!
+//! The first time can be paid ahead, on the other core: [`warm`] writes to a block of memory on
+//! a thread of its own and frees it, so that the operation that follows finds its pages already
+//! faulted in. `pappus process` does that while it builds its input, when a step subdivides (the
+//! steps that allocate most), sized from the input by [`BYTES_PER_ROW`]. For the warmed block to
+//! be the memory the operation then gets, every thread allocates from one arena, and the heap
+//! grows in large steps ([`GROWTH_PAD`]) so that the warming thread's page faults do not wait on
+//! the heap being extended under them (without that pad, a third of the runs stalled).
+//!
+//! Not transparent huge pages: they make the first touch several times cheaper, but the kernel
+//! may stall for hundreds of milliseconds finding or compacting 2 MiB pages, which an
+//! interactive editor must not do (issue 26 measured both).
+//!
+//! Only the `pappus` program calls this, before anything is allocated in bulk. A library must
+//! not change its host's allocator: the Python package leaves the interpreter's alone.
+
+/// How much freed memory the process keeps mapped for reuse, at most (1 GiB): enough for two
+/// levels of Loop on a million-face mesh; beyond it, freed memory goes back to the system.
+pub const KEPT_FREE_BYTES: usize = 1 << 30;
+
+/// How far the heap grows beyond each request (512 MiB of address space, not of memory: pages
+/// are faulted in only when written).
+pub const GROWTH_PAD: usize = 1 << 29;
+
+/// The memory a bulk operation touches per row it makes (a vertex, halfedge, edge or face
+/// entity, with its components, its place in Bevy's tables and the operation's side tables):
+/// Loop ×1 of the bunny touched 181 MB of fresh pages for its 1.67 M rows.
+pub const BYTES_PER_ROW: usize = 114;
+
+/// Whether [`keep_freed_memory`] took effect.
+static KEEPING: AtomicBool = AtomicBool::new(false);
+
+/// Tells the allocator to keep freed memory for reuse and to serve every thread from one arena
+/// (see the module doc). Returns whether it took effect: `false` on systems other than glibc on
+/// Linux, where the allocator's own defaults stay.
+pub fn keep_freed_memory() -> bool {
+    let kept = imp::keep_freed_memory();
+    KEEPING.store(kept, Ordering::Relaxed);
+    kept
+}
+
+/// Writes to `bytes` of fresh memory (one byte a page) on a thread of its own, then frees it,
+/// so that what is allocated next finds those pages faulted in. Returns the thread, or `None`
+/// when memory is not kept ([`keep_freed_memory`] was not called or did not take effect: the
+/// block would go straight back to the system), `bytes` is 0, or no thread could be started.
+/// At most [`KEPT_FREE_BYTES`] are warmed.
+pub fn warm(bytes: usize) -> Option<JoinHandle<()>> {
+    const PAGE: usize = 4096;
+    let bytes = bytes.min(KEPT_FREE_BYTES);
+    if !KEEPING.load(Ordering::Relaxed) || bytes == 0 {
+        return None;
+    }
+    std::thread::Builder::new()
+        .name("warm memory".into())
+        .spawn(move || {
+            let mut block: Vec<u8> = Vec::with_capacity(bytes);
+            for page in block.spare_capacity_mut().chunks_mut(PAGE) {
+                page[0].write(0);
+            }
+            std::hint::black_box(&block);
+        })
+        .ok()
+}
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::thread::JoinHandle;
+
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+mod imp {
+    use super::{GROWTH_PAD, KEPT_FREE_BYTES};
+    use std::ffi::c_int;
+
+    #[allow(unsafe_code)]
+    pub fn keep_freed_memory() -> bool {
+        let trim = c_int::try_from(KEPT_FREE_BYTES).unwrap_or(c_int::MAX);
+        let pad = c_int::try_from(GROWTH_PAD).unwrap_or(c_int::MAX);
+        // SAFETY: `mallopt` only sets glibc malloc's tuning parameters; it takes plain integers,
+        // keeps no pointers, and is documented as callable at any time, by any thread (it takes
+        // the arenas' locks). Blocks already allocated are unaffected.
+        unsafe {
+            // No block gets a mapping of its own: all come from the heaps, where freed memory
+            // is reused...
+            let no_own_mappings = libc::mallopt(libc::M_MMAP_MAX, 0) == 1;
+            // ...and the heaps keep up to KEPT_FREE_BYTES free before shrinking.
+            let keep = libc::mallopt(libc::M_TRIM_THRESHOLD, trim) == 1;
+            // One arena for every thread, so memory one thread warmed (`warm`) is what the
+            // others get...
+            let one_arena = libc::mallopt(libc::M_ARENA_MAX, 1) == 1;
+            // ...and a heap that grows in large steps, not under a warming thread's faults.
+            let pad = libc::mallopt(libc::M_TOP_PAD, pad) == 1;
+            no_own_mappings && keep && one_arena && pad
+        }
+    }
+}
+
+#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+mod imp {
+    pub fn keep_freed_memory() -> bool {
+        false
+    }
+}

@@ -1,0 +1,80 @@
+//! The `pappus` program's allocator settings (`pappus::process_memory`), in a process of their
+//! own as the program has them: set first thing in `main`, before any other thread exists.
+//! (A test harness starts its threads first, so this test has no harness.)
+//!
+//! What must hold: memory warmed on another thread is what the next large allocation gets,
+//! without page faults; and freed memory is reused rather than faulted in again.
+
+use pappus::process_memory::{keep_freed_memory, warm};
+use std::hint::black_box;
+
+const PAGE: usize = 4096;
+const BLOCK: usize = 64 << 20;
+
+/// Page faults this thread has taken that needed no disk (`/proc/thread-self/stat`'s
+/// `minflt`). The thread's own: the process's count also takes in a finished thread's faults,
+/// at some moment after it was joined.
+fn minor_faults() -> u64 {
+    let stat = std::fs::read_to_string("/proc/thread-self/stat").expect("/proc/thread-self/stat");
+    let after_name = &stat[stat.rfind(')').expect("a command name") + 2..];
+    after_name
+        .split_whitespace()
+        .nth(7)
+        .unwrap()
+        .parse()
+        .unwrap()
+}
+
+/// Page faults taken while writing to each page of a new block of `BLOCK` bytes.
+fn faults_to_fill_a_block() -> u64 {
+    let before = minor_faults();
+    let mut block: Vec<u8> = Vec::with_capacity(BLOCK);
+    for page in block.spare_capacity_mut().chunks_mut(PAGE) {
+        page[0].write(1);
+    }
+    black_box(&block);
+    minor_faults() - before
+}
+
+fn main() {
+    if !cfg!(all(target_os = "linux", target_env = "gnu")) {
+        assert!(!keep_freed_memory(), "only glibc on Linux is tuned");
+        assert!(
+            warm(BLOCK).is_none(),
+            "nothing to warm into without kept memory"
+        );
+        println!("process_memory: not glibc on Linux; the allocator's defaults stay");
+        return;
+    }
+    assert!(
+        warm(BLOCK).is_none(),
+        "warming before memory is kept would hand the block straight back"
+    );
+    assert!(keep_freed_memory(), "glibc accepts every setting");
+    let pages = (BLOCK / PAGE) as u64;
+
+    warm(BLOCK).expect("a warming thread").join().unwrap();
+    let after_warming = faults_to_fill_a_block();
+    assert!(
+        after_warming < pages / 20,
+        "a warmed block faults in again: {after_warming} of {pages} pages"
+    );
+
+    // Freed memory stays. The allocator may take one more block of fresh pages before it
+    // settles on the blocks it reuses; after that, filling a block again and again takes none.
+    let settling = faults_to_fill_a_block();
+    assert!(
+        settling <= pages + pages / 20,
+        "{settling} faults for {pages} pages"
+    );
+    let again: u64 = (0..6).map(|_| faults_to_fill_a_block()).sum();
+    assert!(
+        again < pages / 20,
+        "freed blocks were handed back: {again} pages faulted in again over six fills"
+    );
+    assert_eq!(warm(0).map(|_| ()), None, "nothing to warm");
+    println!(
+        "process_memory: {pages} pages; faults after warming {after_warming}, settling \
+         {settling}, six fills after that {again}"
+    );
+}
