@@ -9,9 +9,14 @@
 //! defined so far, positive ones may name a vertex defined later). Faces that name a missing
 //! vertex, or have fewer than 3 corners, stay in the soup in file order (a missing vertex
 //! becomes its 0-based number, or `u32::MAX` when that does not fit) for the builder to drop
-//! and count. The well-formed faces are handed to `tobj` as one model (grouping statements
-//! left out), and its first-use numbering is mapped back to the file's and checked against
+//! and count. `tobj`'s first-use numbering is mapped back to the file's and checked against
 //! the first pass.
+//!
+//! `tobj` reads the file as it stands on a second thread while the first pass runs, and that
+//! reading serves when the file is one object of well-formed faces (most files: on the bunny
+//! the read then takes about as long as the first pass alone, not first pass + `tobj`).
+//! Otherwise the well-formed faces alone are written out and handed to `tobj` as one model
+//! (grouping statements left out).
 //!
 //! Attributes, read in the same first pass: `vt u v` (a `w` is ignored) named by the corners
 //! (`f v/vt`, `v/vt/vn`) become the soup's corner UVs; `vn` named by the corners (`v//vn`,
@@ -135,6 +140,58 @@ fn resolve(r: Reference, count: usize, what: &str) -> Result<usize, ParseError> 
 /// Parses OBJ text.
 pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     check_text(bytes)?;
+    // `tobj` reads the file as it stands on a second thread while the first pass runs here.
+    let (first, whole_file) = std::thread::scope(|scope| {
+        let tobj = std::thread::Builder::new()
+            .name("tobj".into())
+            .spawn_scoped(scope, || run_tobj(bytes))
+            .ok();
+        let first = first_pass(bytes);
+        (first, tobj.and_then(|t| t.join().ok()))
+    });
+    let (positions, faces, extras) = first?;
+
+    let count = positions.len() as u64;
+    let good = |f: &RawFace| {
+        f.corners.len() >= 3 && f.corners.iter().all(|c| c.is_some_and(|i| i < count))
+    };
+    let mut soup = PolygonSoup::with_capacity(positions.len(), faces.len(), 0);
+    soup.positions = positions;
+    // The whole file's reading serves when every face is well formed and it is one object;
+    // otherwise `tobj` reads the well-formed faces alone, as one object.
+    let whole_file = whole_file
+        .filter(|_| faces.iter().all(&good))
+        .and_then(Result::ok)
+        .and_then(|models| faces_from_tobj(&models, &soup.positions, &faces, &good).ok());
+    let parsed = match whole_file {
+        Some(parsed) => parsed,
+        None => parse_with_tobj(&soup.positions, &faces, &good)?,
+    };
+    let mut parsed = parsed.iter();
+    let mut corners = Vec::new();
+    for face in &faces {
+        if good(face) {
+            let Some(next) = parsed.next() else {
+                return Err(ParseError::line(face.line, "tobj lost this face"));
+            };
+            soup.push_face(next);
+        } else {
+            corners.clear();
+            corners.extend(
+                face.corners
+                    .iter()
+                    .map(|c| c.and_then(|i| u32::try_from(i).ok()).unwrap_or(u32::MAX)),
+            );
+            soup.push_face(&corners);
+        }
+    }
+    attach_extras(&mut soup, extras)?;
+    Ok(soup)
+}
+
+/// The first pass over OBJ text: the `v` lines, each `f` line's vertex numbers, and the
+/// attributes (see the module doc).
+fn first_pass(bytes: &[u8]) -> Result<(Vec<Vec3>, Vec<RawFace>, Extras), ParseError> {
     let mut positions = Vec::new();
     let mut faces: Vec<RawFace> = Vec::new();
     let mut extras = Extras::default();
@@ -186,34 +243,7 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
             _ => {}
         }
     }
-
-    let count = positions.len() as u64;
-    let good = |f: &RawFace| {
-        f.corners.len() >= 3 && f.corners.iter().all(|c| c.is_some_and(|i| i < count))
-    };
-    let mut soup = PolygonSoup::with_capacity(positions.len(), faces.len(), 0);
-    soup.positions = positions;
-    let parsed = parse_with_tobj(&soup.positions, &faces, &good)?;
-    let mut parsed = parsed.iter();
-    let mut corners = Vec::new();
-    for face in &faces {
-        if good(face) {
-            let Some(next) = parsed.next() else {
-                return Err(ParseError::line(face.line, "tobj lost this face"));
-            };
-            soup.push_face(next);
-        } else {
-            corners.clear();
-            corners.extend(
-                face.corners
-                    .iter()
-                    .map(|c| c.and_then(|i| u32::try_from(i).ok()).unwrap_or(u32::MAX)),
-            );
-            soup.push_face(&corners);
-        }
-    }
-    attach_extras(&mut soup, extras)?;
-    Ok(soup)
+    Ok((positions, faces, extras))
 }
 
 /// Puts the file's UVs, normals and colours on the soup: UVs per corner; a normal given per
@@ -317,32 +347,54 @@ fn parse_with_tobj(
     for p in positions {
         let _ = writeln!(text, "v {} {} {}", p.x, p.y, p.z);
     }
-    let mut first_use = Vec::new();
-    let mut seen = vec![false; positions.len()];
     for face in faces.iter().filter(|f| good(f)) {
         text.push('f');
         for &i in face.corners.iter().flatten() {
             let _ = write!(text, " {}", i + 1);
-            if !std::mem::replace(&mut seen[i as usize], true) {
-                first_use.push(i as u32);
-            }
         }
         text.push('\n');
     }
+    let models = run_tobj(text.as_bytes()).map_err(|e| disagree(&e.to_string()))?;
+    faces_from_tobj(&models, positions, faces, good).map_err(|what| disagree(&what))
+}
+
+/// `tobj`'s reading of OBJ `text` as Pappus asks for it: faces as written (not triangulated, not
+/// reindexed), points and lines left out, no material file opened.
+fn run_tobj(mut text: &[u8]) -> Result<Vec<tobj::Model>, tobj::LoadError> {
     let options = tobj::LoadOptions {
         single_index: false,
         triangulate: false,
         ignore_points: true,
         ignore_lines: true,
     };
-    // No material file is ever opened.
-    let (models, _) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |_| {
+    tobj::load_obj_buf(&mut text, &options, |_| {
         Ok((Vec::new(), Default::default()))
     })
-    .map_err(|e| disagree(&e.to_string()))?;
-    let [model] = models.as_slice() else {
-        return Err(disagree(&format!("{} models", models.len())));
+    .map(|(models, _)| models)
+}
+
+/// The well-formed `faces` in the file's numbering, from `tobj`'s `models` of them. `tobj`
+/// numbers vertices in order of first use, so its numbers map back through the order in which
+/// the faces first name each vertex; its positions must be the first pass's, bit for bit.
+/// Fails, saying what differs, unless `tobj` made exactly one model of exactly those faces.
+fn faces_from_tobj(
+    models: &[tobj::Model],
+    positions: &[Vec3],
+    faces: &[RawFace],
+    good: &dyn Fn(&RawFace) -> bool,
+) -> Result<Vec<Vec<u32>>, String> {
+    let [model] = models else {
+        return Err(format!("{} models", models.len()));
     };
+    let mut first_use = Vec::new();
+    let mut seen = vec![false; positions.len()];
+    for face in faces.iter().filter(|f| good(f)) {
+        for &i in face.corners.iter().flatten() {
+            if !std::mem::replace(&mut seen[i as usize], true) {
+                first_use.push(i as u32);
+            }
+        }
+    }
     let mesh = &model.mesh;
     let same = |a: f32, b: f32| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
     let agrees = mesh.positions.len() == 3 * first_use.len()
@@ -354,7 +406,7 @@ fn parse_with_tobj(
                 same(p.x, q[0]) && same(p.y, q[1]) && same(p.z, q[2])
             });
     if !agrees {
-        return Err(disagree("positions"));
+        return Err("positions".into());
     }
     // No arities: every face is a triangle.
     let arities: Vec<u32> = if mesh.face_arities.is_empty() {
@@ -365,16 +417,20 @@ fn parse_with_tobj(
     let mut out = Vec::with_capacity(arities.len());
     let mut at = 0usize;
     for arity in arities {
-        let Some(corners) = mesh.indices.get(at..at + arity as usize) else {
-            return Err(disagree("face sizes"));
-        };
+        let corners = mesh
+            .indices
+            .get(at..at + arity as usize)
+            .ok_or("face sizes")?;
         at += arity as usize;
         let face = corners
             .iter()
             .map(|&k| first_use.get(k as usize).copied())
             .collect::<Option<Vec<u32>>>()
-            .ok_or_else(|| disagree("indices"))?;
+            .ok_or("indices")?;
         out.push(face);
+    }
+    if out.len() != faces.iter().filter(|f| good(f)).count() {
+        return Err("face count".into());
     }
     Ok(out)
 }
@@ -442,6 +498,48 @@ pub fn write(soup: &PolygonSoup) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `tobj`'s reading of the whole file, where it serves, and its reading of the well-formed
+    /// faces alone: `Some(both)`, or `None` where the whole file's reading is refused.
+    fn both_readings(text: &[u8]) -> Option<(Vec<Vec<u32>>, Vec<Vec<u32>>)> {
+        let (positions, faces, _) = first_pass(text).unwrap();
+        let count = positions.len() as u64;
+        let good = |f: &RawFace| {
+            f.corners.len() >= 3 && f.corners.iter().all(|c| c.is_some_and(|i| i < count))
+        };
+        let alone = parse_with_tobj(&positions, &faces, &good).unwrap();
+        let models = run_tobj(text).ok()?;
+        let whole = faces_from_tobj(&models, &positions, &faces, &good).ok()?;
+        Some((whole, alone))
+    }
+
+    #[test]
+    fn the_whole_files_reading_is_the_well_formed_faces_reading() {
+        // Polygons, relative numbers, corners with UVs and normals, an unreferenced vertex,
+        // vertex colours, points and lines.
+        let text = b"v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 7 7 7 0 0 1\nv 1 1 0 1 1 1\nv 0 1 0 0 0 0\n\
+            vt 0 0\nvn 0 0 1\nf -5/1/1 -4/1/1 -2//1 -1\nv 2 0 0 1 1 0\nf 2 4 6\np 1\nl 1 2\n\
+            f 1/1 2/1 5/1\n";
+        let (whole, alone) = both_readings(text).expect("one object, every face well formed");
+        assert_eq!(whole, alone);
+        assert_eq!(whole, [vec![0, 1, 3, 4], vec![1, 3, 5], vec![0, 1, 4]]);
+        // The soup is the same either way: what `read` gives.
+        let soup = read(text).unwrap();
+        assert_eq!(soup.face_count(), 3);
+        assert_eq!(soup.face(0), &[0, 1, 3, 4]);
+    }
+
+    #[test]
+    fn the_whole_files_reading_is_refused_for_several_objects() {
+        let text = b"o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\no b\nf 2 4 3\n";
+        assert_eq!(
+            both_readings(text),
+            None,
+            "two objects: the faces alone are read"
+        );
+        let soup = read(text).unwrap();
+        assert_eq!(soup.face(1), &[1, 3, 2]);
+    }
 
     #[test]
     fn vertex_normals_are_written_as_vn_with_matching_indices() {
