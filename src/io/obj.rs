@@ -499,9 +499,12 @@ pub fn write(soup: &PolygonSoup) -> Vec<u8> {
 mod tests {
     use super::*;
 
+    /// Faces in the file's numbering.
+    type Faces = Vec<Vec<u32>>;
+
     /// `tobj`'s reading of the whole file, where it serves, and its reading of the well-formed
     /// faces alone: `Some(both)`, or `None` where the whole file's reading is refused.
-    fn both_readings(text: &[u8]) -> Option<(Vec<Vec<u32>>, Vec<Vec<u32>>)> {
+    fn both_readings(text: &[u8]) -> Option<(Faces, Faces)> {
         let (positions, faces, _) = first_pass(text).unwrap();
         let count = positions.len() as u64;
         let good = |f: &RawFace| {
