@@ -3,7 +3,8 @@
 operation's own time (the `process --json` step's `ms`, or `info --json`'s `load_ms` for loading),
 median / p90 / max over RUNS runs. For changes that must not trade a faster median for stalls.
 
-Usage: python3 benches/bulk_ab.py BINARY [BINARY ...]   (RUNS=10 by default, env RUNS=N)
+Usage: python3 benches/bulk_ab.py BINARY [BINARY ...]   (RUNS=10 by default, env RUNS=N;
+ONLY=Loop,load runs only the cases whose label holds one of those words)
 Uses ../shared/models (the bunny, beast).
 """
 import json
@@ -19,7 +20,7 @@ BUNNY = os.path.join(MODELS, "stanford-bunny.obj")
 BEAST = os.path.join(MODELS, "beast.obj")
 
 # (label, input, steps, which step's time): a step index, or "load" for info's load_ms.
-CASES = [
+CASES_ALL = [
     ("load the bunny (read + build)", BUNNY, None, "load"),
     ("Loop x1, bunny", BUNNY, ["loop:1"], 0),
     ("Loop x2, bunny", BUNNY, ["loop:2"], 0),
@@ -28,6 +29,9 @@ CASES = [
     ("remesh, bunny", BUNNY, ["remesh"], 0),
     ("refine back after simplify:0.01, bunny", BUNNY, ["simplify:0.01", "refine"], 1),
 ]
+# ONLY=word[,word...] keeps the cases whose label contains one of the words (e.g. ONLY=Loop,load).
+ONLY = [w for w in os.environ.get("ONLY", "").split(",") if w]
+CASES = [c for c in CASES_ALL if not ONLY or any(w in c[0] for w in ONLY)]
 
 
 def one(binary, source, steps, which, out):

@@ -178,10 +178,23 @@ pub fn load(input: &str) -> Result<Loaded, String> {
 }
 
 /// [`load`], for `steps`: when one of them subdivides, the memory its first level will touch is
-/// warmed on the other core while the mesh is built ([`process_memory::warm`]).
+/// warmed on the other core while the file is read and the mesh built
+/// ([`process_memory::warm`]). The warming is over when this returns, so that the steps have
+/// warm memory and both cores to themselves (warming that went on into a subdivision slowed
+/// it, the two contending for the cores).
 fn load_for(input: &str, steps: &[Step]) -> Result<Loaded, String> {
     let start = Instant::now();
-    process_memory::warm(subdivision_bytes(input, steps));
+    let warming = process_memory::warm(subdivision_bytes(input, steps));
+    let loaded = read_and_build(input, start);
+    if let Some(warming) = warming {
+        // A warming thread that panicked warmed nothing; the steps run all the same.
+        let _ = warming.join();
+    }
+    loaded
+}
+
+/// Reads `input` and builds it into a fresh world; `start` is when reading began.
+fn read_and_build(input: &str, start: Instant) -> Result<Loaded, String> {
     let (soup, info) = crate::source::read_source(Path::new(input)).map_err(|e| e.to_string())?;
     let read_ms = ms_since(start);
     let dropped = soup.vertex_attributes();

@@ -46,6 +46,15 @@ pub const BYTES_PER_ROW: usize = 114;
 /// Whether [`keep_freed_memory`] took effect.
 static KEEPING: AtomicBool = AtomicBool::new(false);
 
+/// How many [`warm`] threads are running.
+static WARMING: AtomicUsize = AtomicUsize::new(0);
+
+/// Whether a [`warm`] thread is running: work that would spread over the cores (the OBJ
+/// reader's second thread) runs on one instead, leaving the other to the warming.
+pub fn warming() -> bool {
+    WARMING.load(Ordering::Relaxed) > 0
+}
+
 /// Tells the allocator to keep freed memory for reuse and to serve every thread from one arena
 /// (see the module doc). Returns whether it took effect: `false` on systems other than glibc on
 /// Linux, where the allocator's own defaults stay.
@@ -66,7 +75,8 @@ pub fn warm(bytes: usize) -> Option<JoinHandle<()>> {
     if !KEEPING.load(Ordering::Relaxed) || bytes == 0 {
         return None;
     }
-    std::thread::Builder::new()
+    WARMING.fetch_add(1, Ordering::Relaxed);
+    let spawned = std::thread::Builder::new()
         .name("warm memory".into())
         .spawn(move || {
             let mut block: Vec<u8> = Vec::with_capacity(bytes);
@@ -74,11 +84,16 @@ pub fn warm(bytes: usize) -> Option<JoinHandle<()>> {
                 page[0].write(0);
             }
             std::hint::black_box(&block);
-        })
-        .ok()
+            drop(block);
+            WARMING.fetch_sub(1, Ordering::Relaxed);
+        });
+    if spawned.is_err() {
+        WARMING.fetch_sub(1, Ordering::Relaxed);
+    }
+    spawned.ok()
 }
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::thread::JoinHandle;
 
 #[cfg(all(target_os = "linux", target_env = "gnu"))]

@@ -5,7 +5,7 @@
 //! What must hold: memory warmed on another thread is what the next large allocation gets,
 //! without page faults; and freed memory is reused rather than faulted in again.
 
-use pappus::process_memory::{keep_freed_memory, warm};
+use pappus::process_memory::{keep_freed_memory, warm, warming};
 use std::hint::black_box;
 
 const PAGE: usize = 4096;
@@ -54,6 +54,7 @@ fn main() {
     let pages = (BLOCK / PAGE) as u64;
 
     warm(BLOCK).expect("a warming thread").join().unwrap();
+    assert!(!warming(), "the warming thread has finished");
     let after_warming = faults_to_fill_a_block();
     assert!(
         after_warming < pages / 20,

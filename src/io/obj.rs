@@ -12,9 +12,10 @@
 //! and count. `tobj`'s first-use numbering is mapped back to the file's and checked against
 //! the first pass.
 //!
-//! `tobj` reads the file as it stands on a second thread while the first pass runs, and that
-//! reading serves when the file is one object of well-formed faces (most files: on the bunny
-//! the read then takes about as long as the first pass alone, not first pass + `tobj`).
+//! `tobj` reads the file as it stands on a second thread while the first pass runs (after it
+//! while the other core warms memory, see [`crate::process_memory::warm`]), and that reading
+//! serves when the file is one object of well-formed faces (most files: on the bunny the read
+//! then takes about as long as the first pass alone, not first pass + `tobj`).
 //! Otherwise the well-formed faces alone are written out and handed to `tobj` as one model
 //! (grouping statements left out).
 //!
@@ -36,6 +37,7 @@ use std::fmt::Write as _;
 use super::ParseError;
 use super::text::{cap, check_text, float, lines, position};
 use crate::mesh::soup::PolygonSoup;
+use crate::process_memory;
 
 /// One `f` line: where it was, and its corners as 0-based numbers, not yet range-checked
 /// (`None`: a number that can name no vertex, such as `0`).
@@ -140,15 +142,20 @@ fn resolve(r: Reference, count: usize, what: &str) -> Result<usize, ParseError> 
 /// Parses OBJ text.
 pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     check_text(bytes)?;
-    // `tobj` reads the file as it stands on a second thread while the first pass runs here.
-    let (first, whole_file) = std::thread::scope(|scope| {
-        let tobj = std::thread::Builder::new()
-            .name("tobj".into())
-            .spawn_scoped(scope, || run_tobj(bytes))
-            .ok();
-        let first = first_pass(bytes);
-        (first, tobj.and_then(|t| t.join().ok()))
-    });
+    // `tobj` reads the file as it stands on a second thread while the first pass runs here,
+    // unless the other core is warming memory for what follows (then after it, if at all).
+    let (first, whole_file) = if process_memory::warming() {
+        (first_pass(bytes), None)
+    } else {
+        std::thread::scope(|scope| {
+            let tobj = std::thread::Builder::new()
+                .name("tobj".into())
+                .spawn_scoped(scope, || run_tobj(bytes))
+                .ok();
+            let first = first_pass(bytes);
+            (first, tobj.and_then(|t| t.join().ok()))
+        })
+    };
     let (positions, faces, extras) = first?;
 
     let count = positions.len() as u64;
@@ -159,8 +166,10 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     soup.positions = positions;
     // The whole file's reading serves when every face is well formed and it is one object;
     // otherwise `tobj` reads the well-formed faces alone, as one object.
+    let all_good = faces.iter().all(&good);
     let whole_file = whole_file
-        .filter(|_| faces.iter().all(&good))
+        .or_else(|| all_good.then(|| run_tobj(bytes)))
+        .filter(|_| all_good)
         .and_then(Result::ok)
         .and_then(|models| faces_from_tobj(&models, &soup.positions, &faces, &good).ok());
     let parsed = match whole_file {
