@@ -4,7 +4,7 @@
 //! A page a process writes for the first time costs a page fault, and the kernel zeroes it: on
 //! the 2-core development machine about 0.3 ms per MB, whoever touches it and however
 //! (`benches/spawn_floor.rs` measures it beside the spawns). Bulk operations allocate a lot:
-//! Loop ×1 of the bunny touches about 220 MB of fresh pages, so in a fresh process about
+//! Loop ×1 of the bunny touches about 181 MB of fresh pages, so in a fresh process about
 //! 60 ms of its time is the kernel's, not Pappus's or Bevy's.
 //!
 //! The first time is unavoidable. Paying it *again* is not, and glibc's defaults do: a block
@@ -17,11 +17,12 @@
 //!
 //! The first time can be paid ahead, on the other core: [`warm`] writes to a block of memory on
 //! a thread of its own and frees it, so that the operation that follows finds its pages already
-//! faulted in. `pappus process` does that while it builds its input, when a step subdivides (the
-//! steps that allocate most), sized from the input by [`BYTES_PER_ROW`]. For the warmed block to
-//! be the memory the operation then gets, every thread allocates from one arena, and the heap
-//! grows in large steps ([`GROWTH_PAD`]) so that the warming thread's page faults do not wait on
-//! the heap being extended under them (without that pad, a third of the runs stalled).
+//! faulted in. `pappus process` does that while it reads and builds its input, when a step
+//! subdivides (the steps that allocate most), sized from the input by [`BYTES_PER_ROW`], and
+//! starts the steps once it is done. For the warmed block to be the memory the operation then
+//! gets, every thread allocates from one arena; and the heap grows in large steps
+//! ([`GROWTH_PAD`]), because a heap extended a little at a time under the warming thread's page
+//! faults makes the two threads wait on each other.
 //!
 //! Not transparent huge pages: they make the first touch several times cheaper, but the kernel
 //! may stall for hundreds of milliseconds finding or compacting 2 MiB pages, which an
@@ -30,8 +31,11 @@
 //! Only the `pappus` program calls this, before anything is allocated in bulk. A library must
 //! not change its host's allocator: the Python package leaves the interpreter's alone.
 
-/// How much freed memory the process keeps mapped for reuse, at most (1 GiB): enough for two
-/// levels of Loop on a million-face mesh; beyond it, freed memory goes back to the system.
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::thread::JoinHandle;
+
+/// How much freed memory the process keeps mapped for reuse, at most (1 GiB: the rows of Loop
+/// ×1 of a mesh of about 390 000 triangles); beyond it, freed memory goes back to the system.
 pub const KEPT_FREE_BYTES: usize = 1 << 30;
 
 /// How far the heap grows beyond each request (512 MiB of address space, not of memory: pages
@@ -92,9 +96,6 @@ pub fn warm(bytes: usize) -> Option<JoinHandle<()>> {
     }
     spawned.ok()
 }
-
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::thread::JoinHandle;
 
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 mod imp {
