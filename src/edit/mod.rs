@@ -359,40 +359,23 @@ impl Edit {
     /// The plan of an edit whose operation plans first (its `plan_*` and parameter checks,
     /// whose refusal it passes on); `None` for the other edits.
     fn plan(&self, world: &World) -> Option<Result<Planned, Refusal>> {
-        let planned = || -> Result<Planned, Refusal> {
-            Ok(match self {
-                Edit::Extrude(faces, d) => {
-                    let plan = plan_extrude(world, faces)?;
-                    plan.check_distance(*d)?;
-                    Planned::Extrude(plan, *d)
-                }
-                Edit::Inset(faces, t, d) => {
-                    let plan = plan_inset(world, faces)?;
-                    plan.check(*t, *d)?;
-                    Planned::Inset(plan, *t, *d)
-                }
-                Edit::BevelVertex(v, t) => Planned::BevelVertex(plan_bevel_vertex(world, *v, *t)?),
-                Edit::BevelEdge(e, t) => Planned::BevelEdge(plan_bevel_edge(world, *e, *t)?),
-                Edit::Erase(faces) => Planned::Erase(plan_erase(world, faces)?),
-                Edit::DissolveVertex(v) => {
-                    Planned::DissolveVertex(plan_dissolve_vertex(world, *v)?)
-                }
-                Edit::CollapseFace(f) => Planned::CollapseFace(plan_collapse_face(world, *f)?),
-                Edit::Weld(a, b) => Planned::Weld(plan_weld(world, *a, *b)?),
-                _ => unreachable!("checked below"),
-            })
-        };
-        match self {
-            Edit::Extrude(..)
-            | Edit::Inset(..)
-            | Edit::BevelVertex(..)
-            | Edit::BevelEdge(..)
-            | Edit::Erase(_)
-            | Edit::DissolveVertex(_)
-            | Edit::CollapseFace(_)
-            | Edit::Weld(..) => Some(planned()),
-            _ => None,
-        }
+        Some(match self {
+            Edit::Extrude(faces, d) => plan_extrude(world, faces).and_then(|plan| {
+                plan.check_distance(*d)?;
+                Ok(Planned::Extrude(plan, *d))
+            }),
+            Edit::Inset(faces, t, d) => plan_inset(world, faces).and_then(|plan| {
+                plan.check(*t, *d)?;
+                Ok(Planned::Inset(plan, *t, *d))
+            }),
+            Edit::BevelVertex(v, t) => plan_bevel_vertex(world, *v, *t).map(Planned::BevelVertex),
+            Edit::BevelEdge(e, t) => plan_bevel_edge(world, *e, *t).map(Planned::BevelEdge),
+            Edit::Erase(faces) => plan_erase(world, faces).map(Planned::Erase),
+            Edit::DissolveVertex(v) => plan_dissolve_vertex(world, *v).map(Planned::DissolveVertex),
+            Edit::CollapseFace(f) => plan_collapse_face(world, *f).map(Planned::CollapseFace),
+            Edit::Weld(a, b) => plan_weld(world, *a, *b).map(Planned::Weld),
+            _ => return None,
+        })
     }
 
     /// Whether the edit may run as a job (on a copy of the mesh, on a thread of its own) when
