@@ -327,6 +327,7 @@ pub fn stencil_panel(ui: &mut egui::Ui, s: &Stencil) {
 mod tests {
     use super::*;
     use crate::edit::Scheme;
+    use crate::mesh::ids::EdgeId;
     use crate::mesh::{MeshId, MeshInfo, PolygonSoup, build_mesh, shapes};
     use crate::ops::stencil::tests::vertex_at;
     use crate::ops::stencil::{next_level_points, stencil};
@@ -362,14 +363,38 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_loop_edge_draws_its_heavy_ends_thick_and_its_light_wings_thin() {
+    /// A grid and one of its interior edges, with the edge's Loop stencil.
+    struct InteriorLoopEdge {
+        world: World,
+        edge: EdgeId,
+        ends: (VertexId, VertexId),
+        stencil: Stencil,
+    }
+
+    fn interior_loop_edge() -> InteriorLoopEdge {
         let (world, mesh) = world_with(&shapes::grid(4, 4));
         let m = MeshRef::new(&world);
         let a = vertex_at(&world, mesh, Vec3::new(0.5, 0.5, 0.0));
         let b = vertex_at(&world, mesh, Vec3::new(0.75, 0.5, 0.0));
-        let e = m.edge(m.find_halfedge(a, b).unwrap());
-        let s = stencil(&m, Scheme::Loop, NewPoint::Edge(e)).unwrap();
+        let edge = m.edge(m.find_halfedge(a, b).unwrap());
+        let stencil = stencil(&m, Scheme::Loop, NewPoint::Edge(edge)).unwrap();
+        InteriorLoopEdge {
+            world,
+            edge,
+            ends: (a, b),
+            stencil,
+        }
+    }
+
+    #[test]
+    fn a_loop_edge_draws_its_heavy_ends_thick_and_its_light_wings_thin() {
+        let InteriorLoopEdge {
+            world,
+            ends: (a, b),
+            stencil: s,
+            ..
+        } = interior_loop_edge();
+        let m = MeshRef::new(&world);
         let mut out = Vec::new();
         stencil_shapes(&m, &s, &mut out);
         assert_eq!(census(&out), (1, 2, 2, 4));
@@ -550,12 +575,11 @@ mod tests {
 
     #[test]
     fn the_panel_lists_the_rule_the_vertices_and_their_weights() {
-        let (world, mesh) = world_with(&shapes::grid(4, 4));
-        let m = MeshRef::new(&world);
-        let a = vertex_at(&world, mesh, Vec3::new(0.5, 0.5, 0.0));
-        let b = vertex_at(&world, mesh, Vec3::new(0.75, 0.5, 0.0));
-        let e = m.edge(m.find_halfedge(a, b).unwrap());
-        let s = stencil(&m, Scheme::Loop, NewPoint::Edge(e)).unwrap();
+        let InteriorLoopEdge {
+            edge: e,
+            stencil: s,
+            ..
+        } = interior_loop_edge();
         let ctx = egui::Context::default();
         let mut shown = Vec::new();
         for _ in 0..2 {
