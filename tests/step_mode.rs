@@ -107,15 +107,20 @@ fn start_stepped(app: &mut App) {
     );
 }
 
+/// The label of the oldest entry on the undo stack.
+fn oldest_undo_label(app: &App) -> String {
+    app.world().resource::<UndoHistory>().undo_entries()[0]
+        .label
+        .clone()
+}
+
 #[test]
 fn a_run_stepped_to_its_end_is_the_unstepped_edit_element_for_element_and_one_undo_entry() {
     for shape in SHAPES {
         let mut whole = opened(shape);
         press(&mut whole, Some(KeyCode::ShiftLeft), KeyCode::KeyS);
         let unstepped = last_ok(&whole);
-        let label = whole.world().resource::<UndoHistory>().undo_entries()[0]
-            .label
-            .clone();
+        let label = oldest_undo_label(&whole);
 
         let mut app = opened(shape);
         start_stepped(&mut app);
@@ -380,12 +385,7 @@ fn a_remeshing_run_steps_pass_by_pass_highlights_each_and_ends_as_the_unstepped_
         "the stepped remesh differs"
     );
     press(&mut app, None, KeyCode::Enter);
-    let label = |a: &App| {
-        a.world().resource::<UndoHistory>().undo_entries()[0]
-            .label
-            .clone()
-    };
-    assert_eq!(label(&app), label(&whole));
+    assert_eq!(oldest_undo_label(&app), oldest_undo_label(&whole));
 }
 
 #[test]
@@ -437,11 +437,10 @@ fn a_subdivision_run_shows_new_points_then_moved_vertices_then_commits_the_level
             "{shape}"
         );
         press(&mut app, None, KeyCode::Enter);
-        let label = |a: &App| {
-            a.world().resource::<UndoHistory>().undo_entries()[0]
-                .label
-                .clone()
-        };
-        assert_eq!(label(&app), label(&whole), "{shape}");
+        assert_eq!(
+            oldest_undo_label(&app),
+            oldest_undo_label(&whole),
+            "{shape}"
+        );
     }
 }
