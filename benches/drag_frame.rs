@@ -11,25 +11,18 @@ use bevy::input::mouse::{MouseButton, MouseButtonInput};
 use bevy::prelude::*;
 use criterion::{Criterion, criterion_group, criterion_main};
 use pappus::edit::Edit;
+use pappus::editor::EditorSystems;
 use pappus::editor::requests::Request;
 use pappus::editor::selection::ActiveMesh;
 use pappus::editor::ui::{InspectorView, snapshot};
-use pappus::editor::{EditorLogicPlugin, EditorSystems};
 use pappus::mesh::{MeshMembers, MeshRef};
 use std::path::Path;
 
 /// The editor's logic with the panel's snapshot, the bunny open.
 fn editor() -> App {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        bevy::input::InputPlugin,
-        AssetPlugin::default(),
-        bevy::mesh::MeshPlugin,
-        EditorLogicPlugin,
-    ))
-    .init_resource::<InspectorView>()
-    .add_systems(Update, snapshot.in_set(EditorSystems::Ui));
+    let mut app = pappus::editor::headless_app();
+    app.init_resource::<InspectorView>()
+        .add_systems(Update, snapshot.in_set(EditorSystems::Ui));
     let bunny = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models/stanford-bunny.obj");
     let source = if bunny.exists() {
         bunny

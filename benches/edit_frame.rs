@@ -8,7 +8,6 @@
 use bevy::prelude::*;
 use criterion::{Criterion, criterion_group, criterion_main};
 use pappus::edit::Edit;
-use pappus::editor::EditorLogicPlugin;
 use pappus::editor::requests::{OutcomeLog, Request};
 use pappus::editor::selection::ActiveMesh;
 use pappus::mesh::{MeshMembers, MeshRef};
@@ -16,14 +15,7 @@ use std::time::{Duration, Instant};
 
 /// The editor's logic with a 1000 × 1000 quad grid open (1M faces).
 fn editor() -> App {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        bevy::input::InputPlugin,
-        AssetPlugin::default(),
-        bevy::mesh::MeshPlugin,
-        EditorLogicPlugin,
-    ));
+    let mut app = pappus::editor::headless_app();
     app.world_mut()
         .write_message(Request::Open("shape:quad-grid:1000".into()));
     app.update();

@@ -9,7 +9,6 @@
 
 use bevy::prelude::*;
 use criterion::{Criterion, criterion_group, criterion_main};
-use pappus::editor::EditorLogicPlugin;
 use pappus::editor::requests::StepMove;
 use pappus::editor::requests::{OutcomeLog, Request};
 use pappus::editor::stepping::Stepping;
@@ -66,14 +65,7 @@ impl Run {
 }
 
 fn editor(path: &std::path::Path) -> App {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        bevy::input::InputPlugin,
-        AssetPlugin::default(),
-        bevy::mesh::MeshPlugin,
-        EditorLogicPlugin,
-    ));
+    let mut app = pappus::editor::headless_app();
     app.world_mut()
         .write_message(Request::Open(path.to_path_buf()));
     app.update();

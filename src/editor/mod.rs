@@ -236,6 +236,21 @@ fn frame_new_meshes(world: &mut World, mut last: Local<Option<crate::mesh::MeshI
     }
 }
 
+/// An app with the editor's logic and no window (`MinimalPlugins`, input, assets, meshes and
+/// [`EditorLogicPlugin`]), not yet updated: what the headless tests and the editor benches
+/// start from.
+pub fn headless_app() -> App {
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        bevy::input::InputPlugin,
+        AssetPlugin::default(),
+        bevy::mesh::MeshPlugin,
+        EditorLogicPlugin,
+    ));
+    app
+}
+
 /// Runs the editor until its window closes; returns the process exit code. Opens `path`, or
 /// the default model.
 pub fn run(path: Option<PathBuf>) -> i32 {

@@ -2,9 +2,9 @@
 #![allow(dead_code)]
 
 use bevy::math::Vec3;
-use bevy::prelude::World;
 #[cfg(feature = "editor")]
-use bevy::prelude::{App, AssetPlugin, MinimalPlugins};
+use bevy::prelude::App;
+use bevy::prelude::World;
 use pappus::mesh::{BuiltMesh, MeshInfo, PolygonSoup, build_mesh, validate};
 use std::path::PathBuf;
 
@@ -91,14 +91,7 @@ pub fn canonical(soup: &PolygonSoup) -> Vec<Vec<Key>> {
 #[cfg(feature = "editor")]
 /// The editor's logic without a window (`MinimalPlugins`, input, assets, meshes), updated once.
 pub fn headless_editor() -> App {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        bevy::input::InputPlugin,
-        AssetPlugin::default(),
-        bevy::mesh::MeshPlugin,
-        pappus::editor::EditorLogicPlugin,
-    ));
+    let mut app = pappus::editor::headless_app();
     app.update();
     app
 }
