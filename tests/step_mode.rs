@@ -16,7 +16,7 @@ use pappus::editor::requests::StepMove;
 use pappus::editor::requests::{OutcomeLog, Request};
 use pappus::editor::selection::{ActiveMesh, Selection};
 use pappus::editor::step_view::NEXT;
-use pappus::editor::stepping::Stepping;
+use pappus::editor::stepping::{SteppedRun, Stepping};
 use pappus::mesh::ids::ElementId;
 use pappus::mesh::{MeshRef, to_soup, validate};
 
@@ -61,28 +61,26 @@ fn sorted_lines(app: &App) -> Vec<String> {
     lines
 }
 
-/// The collapse the QEM run in progress makes next.
-fn qem_next(app: &App) -> pappus::ops::simplify::NextCollapse {
-    let run = app
-        .world()
+/// The stepped run in progress.
+fn run(app: &App) -> &SteppedRun {
+    app.world()
         .resource::<Stepping>()
         .run
         .as_ref()
-        .expect("a run");
-    match &run.steps {
+        .expect("a run")
+}
+
+/// The collapse the QEM run in progress makes next.
+fn qem_next(app: &App) -> pappus::ops::simplify::NextCollapse {
+    match &run(app).steps {
         pappus::editor::stepping::Steps::Qem(q) => q.next.expect("a next collapse"),
         _ => panic!("a QEM run"),
     }
 }
 
 fn step_at(app: &App) -> (usize, usize) {
-    let run = app
-        .world()
-        .resource::<Stepping>()
-        .run
-        .as_ref()
-        .expect("a run");
-    (run.steps.at(), run.steps.made())
+    let steps = &run(app).steps;
+    (steps.at(), steps.made())
 }
 
 /// The next edge the overlay draws: the thick line in the next-collapse colour.
@@ -227,14 +225,7 @@ fn a_collapsed_selection_follows_to_what_it_became_and_esc_puts_the_mesh_back() 
         app.world().resource::<Selection>().element,
         Some(ElementId::Vertex(next.kept))
     );
-    let fate = app
-        .world()
-        .resource::<Stepping>()
-        .run
-        .as_ref()
-        .unwrap()
-        .fate
-        .clone();
+    let fate = run(&app).fate.clone();
     assert_eq!(
         fate.map(|(_, line)| line),
         Some(format!(
@@ -346,8 +337,7 @@ fn a_remeshing_run_steps_pass_by_pass_highlights_each_and_ends_as_the_unstepped_
             "{}",
             last_ok(&app)
         );
-        let run = app.world().resource::<Stepping>().run.as_ref().unwrap();
-        let pappus::editor::stepping::Steps::Remesh(steps) = &run.steps else {
+        let pappus::editor::stepping::Steps::Remesh(steps) = &run(&app).steps else {
             panic!("a remeshing run")
         };
         let report = steps.last.as_ref().unwrap();
