@@ -183,9 +183,8 @@ pub fn load(input: &str) -> Result<Loaded, String> {
 /// warm memory and both cores to themselves (warming that went on into a subdivision slowed
 /// it, the two contending for the cores).
 fn load_for(input: &str, steps: &[Step]) -> Result<Loaded, String> {
-    let start = Instant::now();
     let warming = process_memory::warm(subdivision_bytes(input, steps));
-    let loaded = read_and_build(input, start);
+    let loaded = read_and_build(input);
     if let Some(warming) = warming {
         // A warming thread that panicked warmed nothing; the steps run all the same.
         let _ = warming.join();
@@ -193,8 +192,9 @@ fn load_for(input: &str, steps: &[Step]) -> Result<Loaded, String> {
     loaded
 }
 
-/// Reads `input` and builds it into a fresh world; `start` is when reading began.
-fn read_and_build(input: &str, start: Instant) -> Result<Loaded, String> {
+/// Reads `input` and builds it into a fresh world.
+fn read_and_build(input: &str) -> Result<Loaded, String> {
+    let start = Instant::now();
     let (soup, info) = crate::source::read_source(Path::new(input)).map_err(|e| e.to_string())?;
     let read_ms = ms_since(start);
     let dropped = soup.vertex_attributes();
