@@ -19,10 +19,14 @@
 //! a thread of its own and frees it, so that the operation that follows finds its pages already
 //! faulted in. `pappus process` does that while it reads and builds its input, when a step
 //! subdivides (the steps that allocate most), sized from the input by [`BYTES_PER_ROW`], and
-//! starts the steps once it is done. For the warmed block to be the memory the operation then
-//! gets, every thread allocates from one arena; and the heap grows in large steps
-//! ([`GROWTH_PAD`]), because a heap extended a little at a time under the warming thread's page
-//! faults makes the two threads wait on each other.
+//! starts the steps once it is done. A thread that would otherwise wait on another does the
+//! same with [`warm_while`]: the OBJ reader's first pass ends about 10 ms before `tobj` does on
+//! the bunny, and faults in the pages of the mesh about to be built meanwhile.
+//!
+//! For the warmed block to be the memory the operation then gets, every thread allocates from
+//! one arena; and the heap grows in large steps ([`GROWTH_PAD`]), because a heap extended a
+//! little at a time under the warming thread's page faults makes the two threads wait on each
+//! other.
 //!
 //! Not transparent huge pages: they make the first touch several times cheaper, but the kernel
 //! may stall for hundreds of milliseconds finding or compacting 2 MiB pages, which an
@@ -74,8 +78,6 @@ pub fn keep_freed_memory() -> bool {
 /// block would go straight back to the system), `bytes` is 0, or no thread could be started.
 /// At most [`KEPT_FREE_BYTES`] are warmed.
 pub fn warm(bytes: usize) -> Option<JoinHandle<()>> {
-    const PAGE: usize = 4096;
-    let bytes = bytes.min(KEPT_FREE_BYTES);
     if !KEEPING.load(Ordering::Relaxed) || bytes == 0 {
         return None;
     }
@@ -83,18 +85,39 @@ pub fn warm(bytes: usize) -> Option<JoinHandle<()>> {
     let spawned = std::thread::Builder::new()
         .name("warm memory".into())
         .spawn(move || {
-            let mut block: Vec<u8> = Vec::with_capacity(bytes);
-            for page in block.spare_capacity_mut().chunks_mut(PAGE) {
-                page[0].write(0);
-            }
-            std::hint::black_box(&block);
-            drop(block);
+            warm_while(bytes, || true);
             WARMING.fetch_sub(1, Ordering::Relaxed);
         });
     if spawned.is_err() {
         WARMING.fetch_sub(1, Ordering::Relaxed);
     }
     spawned.ok()
+}
+
+/// Writes to fresh memory (one byte a page) on the calling thread while `busy()` holds, up to
+/// `bytes` (and at most [`KEPT_FREE_BYTES`]), then frees it: for a thread that would otherwise
+/// wait on another (the OBJ reader, for `tobj`) to fault in the pages of what it builds next.
+/// `busy` is asked every 256 KiB, so it stops within about 0.1 ms of `busy()` turning false.
+/// Returns the bytes warmed: 0 when memory is not kept (see [`warm`]).
+pub fn warm_while(bytes: usize, busy: impl Fn() -> bool) -> usize {
+    const PAGE: usize = 4096;
+    const ASK_EVERY: usize = 64 * PAGE;
+    if !KEEPING.load(Ordering::Relaxed) {
+        return 0;
+    }
+    let mut block: Vec<u8> = Vec::with_capacity(bytes.min(KEPT_FREE_BYTES));
+    let mut warmed = 0;
+    for chunk in block.spare_capacity_mut().chunks_mut(ASK_EVERY) {
+        if !busy() {
+            break;
+        }
+        for page in chunk.chunks_mut(PAGE) {
+            page[0].write(0);
+        }
+        warmed += chunk.len();
+    }
+    std::hint::black_box(&block);
+    warmed
 }
 
 #[cfg(all(target_os = "linux", target_env = "gnu"))]

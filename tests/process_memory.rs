@@ -3,9 +3,11 @@
 //! (A test harness starts its threads first, so this test has no harness.)
 //!
 //! What must hold: memory warmed on another thread is what the next large allocation gets,
-//! without page faults; and freed memory is reused rather than faulted in again.
+//! without page faults; freed memory is reused rather than faulted in again; and warming on
+//! the calling thread lasts as long as its caller asks.
 
-use pappus::process_memory::{keep_freed_memory, warm, warming};
+use pappus::process_memory::{keep_freed_memory, warm, warm_while, warming};
+use std::cell::Cell;
 use std::hint::black_box;
 
 const PAGE: usize = 4096;
@@ -50,6 +52,7 @@ fn main() {
         warm(BLOCK).is_none(),
         "warming before memory is kept would hand the block straight back"
     );
+    assert_eq!(warm_while(BLOCK, || true), 0, "nor on this thread");
     assert!(keep_freed_memory(), "glibc accepts every setting");
     let pages = (BLOCK / PAGE) as u64;
 
@@ -74,6 +77,16 @@ fn main() {
         "freed blocks were handed back: {again} pages faulted in again over six fills"
     );
     assert_eq!(warm(0).map(|_| ()), None, "nothing to warm");
+
+    // On the calling thread: for as long as `busy` says, asked every 256 KiB.
+    let asked = Cell::new(0);
+    let busy_for_four = || {
+        asked.set(asked.get() + 1);
+        asked.get() <= 4
+    };
+    assert_eq!(warm_while(BLOCK, busy_for_four), 4 * (256 << 10));
+    assert_eq!(warm_while(BLOCK, || true), BLOCK, "the whole block");
+    assert_eq!(warm_while(0, || true), 0, "nothing to warm");
     println!(
         "process_memory: {pages} pages; faults after warming {after_warming}, settling \
          {settling}, six fills after that {again}"

@@ -15,7 +15,9 @@
 //! `tobj` reads the file as it stands on a second thread while the first pass runs (after it
 //! while the other core warms memory, see [`crate::process_memory::warm`]), and that reading
 //! serves when the file is one object of well-formed faces (most files: on the bunny the read
-//! then takes about as long as the first pass alone, not first pass + `tobj`).
+//! then takes about as long as `tobj` alone, not first pass + `tobj`). The first pass is the
+//! shorter of the two; while `tobj` finishes, it faults in memory for the mesh about to be
+//! built ([`crate::process_memory::warm_while`]).
 //! Otherwise the well-formed faces alone are written out and handed to `tobj` as one model
 //! (grouping statements left out).
 //!
@@ -33,17 +35,39 @@
 use bevy::math::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::fmt::Write as _;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::ParseError;
 use super::text::{cap, check_text, float, lines, position};
 use crate::mesh::soup::PolygonSoup;
 use crate::process_memory;
 
-/// One `f` line: where it was, and its corners as 0-based numbers, not yet range-checked
-/// (`None`: a number that can name no vertex, such as `0`).
-struct RawFace {
-    line: usize,
-    corners: Vec<Option<u64>>,
+/// The `f` lines, flat: each face's line and its corners as 0-based vertex numbers, not yet
+/// range-checked ([`NO_VERTEX`] for a number that can name no vertex, such as `0`).
+#[derive(Default)]
+struct RawFaces {
+    lines: Vec<usize>,
+    /// Face `i`'s corners are `corners[starts[i]..starts[i + 1]]` (`starts` begins with 0).
+    starts: Vec<usize>,
+    corners: Vec<u64>,
+}
+
+/// A corner number that names no vertex of any file.
+const NO_VERTEX: u64 = u64::MAX;
+
+impl RawFaces {
+    /// Each face's line and corners, in file order.
+    fn iter(&self) -> impl Iterator<Item = (usize, &[u64])> {
+        self.lines
+            .iter()
+            .zip(self.starts.windows(2))
+            .map(|(&line, s)| (line, &self.corners[s[0]..s[1]]))
+    }
+
+    /// Whether a face's corners are at least three, each naming one of `count` vertices.
+    fn well_formed(corners: &[u64], count: u64) -> bool {
+        corners.len() >= 3 && corners.iter().all(|&i| i < count)
+    }
 }
 
 /// A corner's texture coordinate or normal reference, resolved to a 0-based number but not yet
@@ -56,6 +80,36 @@ struct Reference {
     line: usize,
 }
 
+/// The `vt`s or `vn`s each corner names, in file order: empty until a corner names one (most
+/// files name none, and a list of nothing per corner would cost the bunny 13 MB), then
+/// `None` for the corners before it and those that name none.
+#[derive(Default)]
+struct CornerReferences(Vec<Option<Reference>>);
+
+impl CornerReferences {
+    /// Records what corner number `corner` (counted over the whole file) names.
+    fn push(&mut self, corner: usize, r: Option<Reference>) {
+        if r.is_some() || !self.0.is_empty() {
+            self.0.resize(corner, None);
+            self.0.push(r);
+        }
+    }
+
+    /// Whether any corner names one.
+    fn any(&self) -> bool {
+        !self.0.is_empty()
+    }
+
+    /// What each of `corners` corners names.
+    fn each(&self, corners: usize) -> impl Iterator<Item = Option<Reference>> + '_ {
+        self.0
+            .iter()
+            .copied()
+            .chain(std::iter::repeat(None))
+            .take(corners)
+    }
+}
+
 /// The `vt`, `vn` and vertex colours of a file, and what each corner names.
 #[derive(Default)]
 struct Extras {
@@ -64,9 +118,8 @@ struct Extras {
     /// One per `v` line; `None` for a vertex given without a colour.
     colors: Vec<Option<[u8; 3]>>,
     any_color: bool,
-    /// Per corner, in file order.
-    corner_uv: Vec<Option<Reference>>,
-    corner_normal: Vec<Option<Reference>>,
+    corner_uv: CornerReferences,
+    corner_normal: CornerReferences,
 }
 
 /// An OBJ colour channel (a fraction of full intensity, 0–1) as a byte: rounded to the nearest
@@ -77,16 +130,15 @@ fn channel(v: f32) -> u8 {
 
 /// Parses a `v` line's tokens after the position: nothing, a `w`, or a colour `r g b`.
 fn vertex_color<'a>(
-    tokens: impl Iterator<Item = &'a str>,
+    mut tokens: impl Iterator<Item = &'a str>,
     line: usize,
 ) -> Result<Option<[u8; 3]>, ParseError> {
-    let rest: Vec<&str> = tokens.collect();
-    if rest.len() < 3 {
+    let (Some(r), Some(g), Some(b)) = (tokens.next(), tokens.next(), tokens.next()) else {
         return Ok(None);
-    }
+    };
     let mut c = [0u8; 3];
-    for (k, slot) in c.iter_mut().enumerate() {
-        *slot = channel(float(Some(rest[k]), line, ["red", "green", "blue"][k])?);
+    for ((slot, token), what) in c.iter_mut().zip([r, g, b]).zip(["red", "green", "blue"]) {
+        *slot = channel(float(Some(token), line, what)?);
     }
     Ok(Some(c))
 }
@@ -147,62 +199,87 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     let (first, whole_file) = if process_memory::warming() {
         (first_pass(bytes), None)
     } else {
+        let tobj_done = AtomicBool::new(false);
         std::thread::scope(|scope| {
             let tobj = std::thread::Builder::new()
                 .name("tobj".into())
-                .spawn_scoped(scope, || run_tobj(bytes))
+                .spawn_scoped(scope, || {
+                    let models = run_tobj(bytes);
+                    tobj_done.store(true, Ordering::Release);
+                    models
+                })
                 .ok();
             let first = first_pass(bytes);
+            // The first pass is the shorter: fault in the mesh's pages while `tobj` finishes.
+            if let (Ok((positions, faces, _)), Some(_)) = (&first, &tobj) {
+                let rows = positions.len() + faces.lines.len() + faces.corners.len() * 5 / 2;
+                let bytes = rows.saturating_mul(process_memory::BYTES_PER_ROW);
+                process_memory::warm_while(bytes, || !tobj_done.load(Ordering::Acquire));
+            }
             (first, tobj.and_then(|t| t.join().ok()))
         })
     };
     let (positions, faces, extras) = first?;
 
     let count = positions.len() as u64;
-    let good = |f: &RawFace| {
-        f.corners.len() >= 3 && f.corners.iter().all(|c| c.is_some_and(|i| i < count))
-    };
-    let mut soup = PolygonSoup::with_capacity(positions.len(), faces.len(), 0);
-    soup.positions = positions;
+    let good = |corners: &[u64]| RawFaces::well_formed(corners, count);
     // The whole file's reading serves when every face is well formed and it is one object;
     // otherwise `tobj` reads the well-formed faces alone, as one object.
-    let all_good = faces.iter().all(&good);
+    let all_good = faces.iter().all(|(_, corners)| good(corners));
     let whole_file = whole_file
         .or_else(|| all_good.then(|| run_tobj(bytes)))
         .filter(|_| all_good)
         .and_then(Result::ok)
-        .and_then(|models| faces_from_tobj(&models, &soup.positions, &faces, &good).ok());
+        .and_then(|models| faces_from_tobj(models, &positions, &faces, &good).ok());
     let parsed = match whole_file {
         Some(parsed) => parsed,
-        None => parse_with_tobj(&soup.positions, &faces, &good)?,
+        None => parse_with_tobj(&positions, &faces, &good)?,
     };
-    let mut parsed = parsed.iter();
-    let mut corners = Vec::new();
-    for face in &faces {
-        if good(face) {
-            let Some(next) = parsed.next() else {
-                return Err(ParseError::line(face.line, "tobj lost this face"));
-            };
-            soup.push_face(next);
-        } else {
-            corners.clear();
-            corners.extend(
-                face.corners
-                    .iter()
-                    .map(|c| c.and_then(|i| u32::try_from(i).ok()).unwrap_or(u32::MAX)),
-            );
-            soup.push_face(&corners);
+    let mut soup = if all_good {
+        // Every face is `tobj`'s, in file order: its lists become the soup's.
+        let mut at = 0usize;
+        let face_starts = std::iter::once(0)
+            .chain(parsed.sizes.iter().map(|&size| {
+                at += size as usize;
+                at as u32
+            }))
+            .collect();
+        PolygonSoup {
+            positions,
+            indices: parsed.indices,
+            face_starts,
+            ..PolygonSoup::default()
         }
-    }
+    } else {
+        // In file order, the well-formed faces as `tobj` read them and the others as written.
+        let mut soup = PolygonSoup::with_capacity(0, faces.lines.len(), faces.corners.len());
+        soup.positions = positions;
+        let mut parsed = parsed.faces();
+        let mut corners = Vec::new();
+        for (line, face) in faces.iter() {
+            if good(face) {
+                let Some(next) = parsed.next() else {
+                    return Err(ParseError::line(line, "tobj lost this face"));
+                };
+                soup.push_face(next);
+            } else {
+                corners.clear();
+                corners.extend(face.iter().map(|&i| u32::try_from(i).unwrap_or(u32::MAX)));
+                soup.push_face(&corners);
+            }
+        }
+        soup
+    };
     attach_extras(&mut soup, extras)?;
     Ok(soup)
 }
 
 /// The first pass over OBJ text: the `v` lines, each `f` line's vertex numbers, and the
 /// attributes (see the module doc).
-fn first_pass(bytes: &[u8]) -> Result<(Vec<Vec3>, Vec<RawFace>, Extras), ParseError> {
+fn first_pass(bytes: &[u8]) -> Result<(Vec<Vec3>, RawFaces, Extras), ParseError> {
     let mut positions = Vec::new();
-    let mut faces: Vec<RawFace> = Vec::new();
+    let mut faces = RawFaces::default();
+    faces.starts.push(0);
     let mut extras = Extras::default();
     for (line, text) in lines(bytes) {
         let mut tokens = text.split_whitespace();
@@ -225,7 +302,6 @@ fn first_pass(bytes: &[u8]) -> Result<(Vec<Vec3>, Vec<RawFace>, Extras), ParseEr
             Some("vn") => extras.normals.push(position(&mut tokens, line)?),
             Some("f") => {
                 let defined = positions.len() as i64;
-                let mut corners = Vec::new();
                 for token in tokens {
                     let mut parts = token.split('/');
                     let number = parts.next().unwrap_or("");
@@ -234,7 +310,8 @@ fn first_pass(bytes: &[u8]) -> Result<(Vec<Vec3>, Vec<RawFace>, Extras), ParseEr
                     })?;
                     // 1-based, or negative: relative to the vertices defined so far.
                     let i = if n < 0 { defined + n } else { n - 1 };
-                    corners.push(u64::try_from(i).ok());
+                    let corner = faces.corners.len();
+                    faces.corners.push(u64::try_from(i).unwrap_or(NO_VERTEX));
                     let uv = reference(
                         parts.next(),
                         token,
@@ -244,10 +321,11 @@ fn first_pass(bytes: &[u8]) -> Result<(Vec<Vec3>, Vec<RawFace>, Extras), ParseEr
                     )?;
                     let normal =
                         reference(parts.next(), token, extras.normals.len(), line, "normal")?;
-                    extras.corner_uv.push(uv);
-                    extras.corner_normal.push(normal);
+                    extras.corner_uv.push(corner, uv);
+                    extras.corner_normal.push(corner, normal);
                 }
-                faces.push(RawFace { line, corners });
+                faces.lines.push(line);
+                faces.starts.push(faces.corners.len());
             }
             _ => {}
         }
@@ -269,12 +347,13 @@ fn attach_extras(soup: &mut PolygonSoup, extras: Extras) -> Result<(), ParseErro
         corner_uv,
         corner_normal,
     } = extras;
-    if corner_uv.iter().any(Option::is_some) {
+    let corners = soup.indices.len();
+    if corner_uv.any() {
         let mut missing = 0usize;
-        let mut out = Vec::with_capacity(corner_uv.len());
-        for r in &corner_uv {
+        let mut out = Vec::with_capacity(corners);
+        for r in corner_uv.each(corners) {
             match r {
-                Some(r) => out.push(uvs[resolve(*r, uvs.len(), "texture coordinate")?]),
+                Some(r) => out.push(uvs[resolve(r, uvs.len(), "texture coordinate")?]),
                 None => {
                     missing += 1;
                     out.push(Vec2::ZERO);
@@ -288,14 +367,14 @@ fn attach_extras(soup: &mut PolygonSoup, extras: Extras) -> Result<(), ParseErro
         }
         soup.corner_uvs = Some(out);
     }
-    if corner_normal.iter().any(Option::is_some) {
+    if corner_normal.any() {
         let n = soup.positions.len();
         let mut first: Vec<Option<usize>> = vec![None; n];
         let mut sum = vec![Vec3::ZERO; n];
         let mut differ = vec![false; n];
-        for (k, r) in corner_normal.iter().enumerate() {
+        for (k, r) in corner_normal.each(corners).enumerate() {
             let Some(r) = r else { continue };
-            let i = resolve(*r, normals.len(), "normal")?;
+            let i = resolve(r, normals.len(), "normal")?;
             // A corner naming a missing vertex (a face the builder drops) gives none.
             let Some(v) = soup.indices.get(k).map(|&v| v as usize).filter(|&v| v < n) else {
                 continue;
@@ -340,31 +419,54 @@ fn attach_extras(soup: &mut PolygonSoup, extras: Extras) -> Result<(), ParseErro
     Ok(())
 }
 
+/// Faces in the file's numbering, as `tobj` read them: face `i` is the next `sizes[i]` of
+/// `indices`.
+struct TobjFaces {
+    indices: Vec<u32>,
+    sizes: Vec<u32>,
+}
+
+impl TobjFaces {
+    /// Each face's corners, in order.
+    fn faces(&self) -> impl Iterator<Item = &[u32]> {
+        let mut at = 0usize;
+        self.sizes.iter().map(move |&size| {
+            let face = &self.indices[at..at + size as usize];
+            at += size as usize;
+            face
+        })
+    }
+}
+
 /// Runs `tobj` on the vertices and the well-formed faces, and returns those faces in the
 /// file's numbering. Fails if `tobj` disagrees with the first pass (a bug, not a bad file).
 fn parse_with_tobj(
     positions: &[Vec3],
-    faces: &[RawFace],
-    good: &dyn Fn(&RawFace) -> bool,
-) -> Result<Vec<Vec<u32>>, ParseError> {
-    let Some(first) = faces.iter().find(|f| good(f)) else {
-        return Ok(Vec::new());
+    faces: &RawFaces,
+    good: &dyn Fn(&[u64]) -> bool,
+) -> Result<TobjFaces, ParseError> {
+    let Some((first, _)) = faces.iter().find(|(_, corners)| good(corners)) else {
+        return Ok(TobjFaces {
+            indices: Vec::new(),
+            sizes: Vec::new(),
+        });
     };
     let disagree =
-        |what: &str| ParseError::line(first.line, format!("tobj and Pappus disagree: {what}"));
-    let mut text = String::with_capacity(cap(positions.len() * 24 + faces.len() * 16, 1 << 30));
+        |what: &str| ParseError::line(first, format!("tobj and Pappus disagree: {what}"));
+    let mut text =
+        String::with_capacity(cap(positions.len() * 24 + faces.lines.len() * 16, 1 << 30));
     for p in positions {
         let _ = writeln!(text, "v {} {} {}", p.x, p.y, p.z);
     }
-    for face in faces.iter().filter(|f| good(f)) {
+    for (_, corners) in faces.iter().filter(|(_, corners)| good(corners)) {
         text.push('f');
-        for &i in face.corners.iter().flatten() {
+        for &i in corners {
             let _ = write!(text, " {}", i + 1);
         }
         text.push('\n');
     }
     let models = run_tobj(text.as_bytes()).map_err(|e| disagree(&e.to_string()))?;
-    faces_from_tobj(&models, positions, faces, good).map_err(|what| disagree(&what))
+    faces_from_tobj(models, positions, faces, good).map_err(|what| disagree(&what))
 }
 
 /// `tobj`'s reading of OBJ `text` as Pappus asks for it: faces as written (not triangulated, not
@@ -387,24 +489,26 @@ fn run_tobj(mut text: &[u8]) -> Result<Vec<tobj::Model>, tobj::LoadError> {
 /// the faces first name each vertex; its positions must be the first pass's, bit for bit.
 /// Fails, saying what differs, unless `tobj` made exactly one model of exactly those faces.
 fn faces_from_tobj(
-    models: &[tobj::Model],
+    models: Vec<tobj::Model>,
     positions: &[Vec3],
-    faces: &[RawFace],
-    good: &dyn Fn(&RawFace) -> bool,
-) -> Result<Vec<Vec<u32>>, String> {
-    let [model] = models else {
-        return Err(format!("{} models", models.len()));
+    faces: &RawFaces,
+    good: &dyn Fn(&[u64]) -> bool,
+) -> Result<TobjFaces, String> {
+    let Ok([model]) = <[tobj::Model; 1]>::try_from(models) else {
+        return Err("not one model".into());
     };
     let mut first_use = Vec::new();
     let mut seen = vec![false; positions.len()];
-    for face in faces.iter().filter(|f| good(f)) {
-        for &i in face.corners.iter().flatten() {
+    let mut well_formed = 0usize;
+    for (_, corners) in faces.iter().filter(|(_, corners)| good(corners)) {
+        well_formed += 1;
+        for &i in corners {
             if !std::mem::replace(&mut seen[i as usize], true) {
                 first_use.push(i as u32);
             }
         }
     }
-    let mesh = &model.mesh;
+    let mesh = model.mesh;
     let same = |a: f32, b: f32| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
     let agrees = mesh.positions.len() == 3 * first_use.len()
         && first_use
@@ -417,31 +521,23 @@ fn faces_from_tobj(
     if !agrees {
         return Err("positions".into());
     }
-    // No arities: every face is a triangle.
-    let arities: Vec<u32> = if mesh.face_arities.is_empty() {
-        vec![3; mesh.indices.len() / 3]
-    } else {
-        mesh.face_arities.clone()
-    };
-    let mut out = Vec::with_capacity(arities.len());
-    let mut at = 0usize;
-    for arity in arities {
-        let corners = mesh
-            .indices
-            .get(at..at + arity as usize)
-            .ok_or("face sizes")?;
-        at += arity as usize;
-        let face = corners
-            .iter()
-            .map(|&k| first_use.get(k as usize).copied())
-            .collect::<Option<Vec<u32>>>()
-            .ok_or("indices")?;
-        out.push(face);
+    let mut indices = mesh.indices;
+    for k in &mut indices {
+        *k = *first_use.get(*k as usize).ok_or("indices")?;
     }
-    if out.len() != faces.iter().filter(|f| good(f)).count() {
+    // No sizes: every face is a triangle.
+    let sizes = if mesh.face_arities.is_empty() {
+        vec![3; indices.len() / 3]
+    } else {
+        mesh.face_arities
+    };
+    if sizes.iter().map(|&n| n as usize).sum::<usize>() != indices.len() {
+        return Err("face sizes".into());
+    }
+    if sizes.len() != well_formed {
         return Err("face count".into());
     }
-    Ok(out)
+    Ok(TobjFaces { indices, sizes })
 }
 
 /// Writes OBJ text: `v` lines (shortest exact decimal form; `v x y z r g b` with colours, each
@@ -516,12 +612,11 @@ mod tests {
     fn both_readings(text: &[u8]) -> Option<(Faces, Faces)> {
         let (positions, faces, _) = first_pass(text).unwrap();
         let count = positions.len() as u64;
-        let good = |f: &RawFace| {
-            f.corners.len() >= 3 && f.corners.iter().all(|c| c.is_some_and(|i| i < count))
-        };
-        let alone = parse_with_tobj(&positions, &faces, &good).unwrap();
+        let good = |corners: &[u64]| RawFaces::well_formed(corners, count);
+        let listed = |read: TobjFaces| read.faces().map(<[u32]>::to_vec).collect();
+        let alone = listed(parse_with_tobj(&positions, &faces, &good).unwrap());
         let models = run_tobj(text).ok()?;
-        let whole = faces_from_tobj(&models, &positions, &faces, &good).ok()?;
+        let whole = listed(faces_from_tobj(models, &positions, &faces, &good).ok()?);
         Some((whole, alone))
     }
 
