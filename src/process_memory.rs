@@ -23,6 +23,14 @@
 //! same with [`warm_while`]: the OBJ reader's first pass ends about 10 ms before `tobj` does on
 //! the bunny, and faults in the pages of the mesh about to be built meanwhile.
 //!
+//! Memory an operation has already allocated, or will take next from the top of the heap, can
+//! be faulted in from another thread without allocating anything: [`fault_in_heap_while`] asks
+//! the kernel to populate the heap's pages (`MADV_POPULATE_WRITE`, which faults a page in as a
+//! first write would, without writing). Subdivision's second thread does that once its tables
+//! are computed, while the first thread is still spawning rows into fresh table columns, so the
+//! two cores share the kernel's work instead of one waiting (two threads fault pages in 1.7
+//! times as fast as one on the development machine).
+//!
 //! For the warmed block to be the memory the operation then gets, every thread allocates from
 //! one arena; and the heap grows in large steps ([`GROWTH_PAD`]), because a heap extended a
 //! little at a time under the warming thread's page faults makes the two threads wait on each
@@ -54,6 +62,10 @@ pub const BYTES_PER_ROW: usize = 114;
 /// Whether [`keep_freed_memory`] took effect.
 static KEEPING: AtomicBool = AtomicBool::new(false);
 
+/// Where the heap began when [`keep_freed_memory`] took effect (0 before): the lowest address
+/// [`fault_in_heap_while`] populates.
+static HEAP_START: AtomicUsize = AtomicUsize::new(0);
+
 /// How many [`warm`] threads are running.
 static WARMING: AtomicUsize = AtomicUsize::new(0);
 
@@ -68,6 +80,9 @@ pub fn warming() -> bool {
 /// Linux, where the allocator's own defaults stay.
 pub fn keep_freed_memory() -> bool {
     let kept = imp::keep_freed_memory();
+    if kept {
+        HEAP_START.store(imp::heap_end(), Ordering::Relaxed);
+    }
     KEEPING.store(kept, Ordering::Relaxed);
     kept
 }
@@ -120,6 +135,35 @@ pub fn warm_while(bytes: usize, busy: impl Fn() -> bool) -> usize {
     warmed
 }
 
+/// Faults in the heap's pages from the calling thread while `busy()` holds: first the pages
+/// of blocks already allocated but not yet written (a table another thread is filling), then
+/// the free top of the heap up to `limit` bytes into it (what the next allocations take). For
+/// a thread that has finished its share of a bulk operation while another still writes fresh
+/// memory. `busy` is asked every MiB. Nothing is allocated or written: the kernel populates
+/// the pages as a first write would (`MADV_POPULATE_WRITE`), so what they hold is unchanged.
+/// Returns the bytes walked (pages already present included); 0 when memory is not kept (see
+/// [`keep_freed_memory`]) or the kernel cannot populate (Linux before 5.14).
+pub fn fault_in_heap_while(limit: usize, busy: impl Fn() -> bool) -> usize {
+    let start = HEAP_START.load(Ordering::Relaxed);
+    if !KEEPING.load(Ordering::Relaxed) || start == 0 {
+        return 0;
+    }
+    const STEP: usize = 1 << 20;
+    let stop = imp::heap_top_start().saturating_add(limit);
+    let mut at = start.next_multiple_of(imp::PAGE);
+    let mut walked = 0;
+    while at < stop && busy() {
+        let end = imp::heap_end().min(stop);
+        let len = STEP.min(end.saturating_sub(at)) / imp::PAGE * imp::PAGE;
+        if len == 0 || !imp::populate(at, len) {
+            break;
+        }
+        at += len;
+        walked += len;
+    }
+    walked
+}
+
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 mod imp {
     use super::{GROWTH_PAD, KEPT_FREE_BYTES};
@@ -146,11 +190,59 @@ mod imp {
             no_own_mappings && keep && one_arena && pad
         }
     }
+
+    /// The size of a page.
+    pub const PAGE: usize = 4096;
+
+    /// The end of the heap (the program break).
+    #[allow(unsafe_code)]
+    pub fn heap_end() -> usize {
+        // SAFETY: `sbrk(0)` only reads the current break; it changes nothing.
+        unsafe { libc::sbrk(0) as usize }
+    }
+
+    /// Where the free top of the heap begins: what the next allocation that fits no freed
+    /// block takes.
+    #[allow(unsafe_code)]
+    pub fn heap_top_start() -> usize {
+        // SAFETY: `mallinfo2` takes the arenas' locks and returns statistics by value;
+        // `keepcost` is the size of the main arena's top chunk, which ends at the break.
+        let top = unsafe { libc::mallinfo2() }.keepcost;
+        heap_end().saturating_sub(top)
+    }
+
+    /// Populates `len` bytes at `at` (page-aligned, inside the heap) as a first write would,
+    /// without writing. Whether the kernel did (it refuses before Linux 5.14, or a range no
+    /// longer mapped).
+    #[allow(unsafe_code)]
+    pub fn populate(at: usize, len: usize) -> bool {
+        const MADV_POPULATE_WRITE: std::ffi::c_int = 23;
+        // SAFETY: `MADV_POPULATE_WRITE` faults pages in and changes no byte of memory: an
+        // absent page becomes the zero page a first write would have found, a present one is
+        // left as it is. So no value of any allocated block changes, whichever thread owns it
+        // and whatever it is doing. A range the heap no longer maps makes the call fail
+        // (ENOMEM), and the caller stops.
+        unsafe { libc::madvise(at as *mut libc::c_void, len, MADV_POPULATE_WRITE) == 0 }
+    }
 }
 
 #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
 mod imp {
+    pub const PAGE: usize = 4096;
+
     pub fn keep_freed_memory() -> bool {
+        false
+    }
+
+    pub fn heap_end() -> usize {
+        0
+    }
+
+    pub fn heap_top_start() -> usize {
+        0
+    }
+
+    pub fn populate(_at: usize, _len: usize) -> bool {
         false
     }
 }

@@ -3,10 +3,11 @@
 //! (A test harness starts its threads first, so this test has no harness.)
 //!
 //! What must hold: memory warmed on another thread is what the next large allocation gets,
-//! without page faults; freed memory is reused rather than faulted in again; and warming on
-//! the calling thread lasts as long as its caller asks.
+//! without page faults; freed memory is reused rather than faulted in again; warming on the
+//! calling thread lasts as long as its caller asks; and a block allocated but not yet written
+//! is faulted in by walking the heap.
 
-use pappus::process_memory::{keep_freed_memory, warm, warm_while, warming};
+use pappus::process_memory::{fault_in_heap_while, keep_freed_memory, warm, warm_while, warming};
 use std::cell::Cell;
 use std::hint::black_box;
 
@@ -53,6 +54,7 @@ fn main() {
         "warming before memory is kept would hand the block straight back"
     );
     assert_eq!(warm_while(BLOCK, || true), 0, "nor on this thread");
+    assert_eq!(fault_in_heap_while(BLOCK, || true), 0, "nor the heap");
     assert!(keep_freed_memory(), "glibc accepts every setting");
     let pages = (BLOCK / PAGE) as u64;
 
@@ -87,6 +89,23 @@ fn main() {
     assert_eq!(warm_while(BLOCK, busy_for_four), 4 * (256 << 10));
     assert_eq!(warm_while(BLOCK, || true), BLOCK, "the whole block");
     assert_eq!(warm_while(0, || true), 0, "nothing to warm");
+
+    // A block allocated and not yet written is faulted in by walking the heap, without
+    // allocating: then writing to it takes no faults.
+    let mut untouched: Vec<u8> = Vec::with_capacity(BLOCK);
+    assert_eq!(fault_in_heap_while(BLOCK, || false), 0, "not busy: nothing");
+    let walked = fault_in_heap_while(BLOCK, || true);
+    assert!(walked >= BLOCK, "the block is in the heap walked ({walked} bytes)");
+    let before = minor_faults();
+    for page in untouched.spare_capacity_mut().chunks_mut(PAGE) {
+        page[0].write(1);
+    }
+    black_box(&untouched);
+    let populated = minor_faults() - before;
+    assert!(
+        populated < pages / 20,
+        "the populated block faulted in again: {populated} of {pages} pages"
+    );
     println!(
         "process_memory: {pages} pages; faults after warming {after_warming}, settling \
          {settling}, six fills after that {again}"

@@ -99,6 +99,11 @@ impl RowCounts {
         }
     }
 
+    /// Rows of every kind together.
+    pub fn total(self) -> usize {
+        self.vertices + self.halfedges + self.edges + self.faces
+    }
+
     /// The counts of `rows` (the entities behind a set of tables).
     pub fn of_rows(rows: &MeshMembers) -> Self {
         Self {

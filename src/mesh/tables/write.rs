@@ -16,6 +16,7 @@
 
 use bevy::math::Vec3;
 use bevy::prelude::{Entity, World};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use bevy::prelude::Component;
 
@@ -27,6 +28,7 @@ use crate::mesh::attributes::{
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
 use crate::mesh::ids::{EdgeId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
+use crate::process_memory;
 
 /// Spawns halfedge tables as a new mesh: one entity per element, all links set. Returns the
 /// mesh and the entities of every row, by kind, in table order.
@@ -132,6 +134,11 @@ pub(crate) fn reserve_rows(
 /// [`reserve_rows`] on this thread while `compute` runs on another: the two largest costs of a
 /// bulk rewrite (making the entities exist, computing the new tables) overlapped. Returns what
 /// `compute` returned and the rows; a panic in `compute` is passed on.
+///
+/// Making the rows exist is the longer of the two in a fresh process: most of it is the kernel
+/// faulting in the new table columns. So once `compute` is done, its thread faults in the
+/// heap's pages ahead of this one ([`process_memory::fault_in_heap_while`], up to about what
+/// the rows take) until the rows exist.
 pub(crate) fn reserve_rows_while<T: Send>(
     world: &mut World,
     counts: RowCounts,
@@ -139,9 +146,16 @@ pub(crate) fn reserve_rows_while<T: Send>(
     old: Option<&MeshMembers>,
     compute: impl FnOnce() -> T + Send,
 ) -> (T, MeshMembers) {
+    let reserved = AtomicBool::new(false);
+    let rows_bytes = counts.total().saturating_mul(process_memory::BYTES_PER_ROW);
     std::thread::scope(|scope| {
-        let worker = scope.spawn(compute);
+        let worker = scope.spawn(|| {
+            let computed = compute();
+            process_memory::fault_in_heap_while(rows_bytes, || !reserved.load(Ordering::Relaxed));
+            computed
+        });
         let rows = reserve_rows(world, counts, mesh, old);
+        reserved.store(true, Ordering::Relaxed);
         let computed = worker
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
