@@ -95,7 +95,10 @@ fn main() {
     let mut untouched: Vec<u8> = Vec::with_capacity(BLOCK);
     assert_eq!(fault_in_heap_while(BLOCK, || false), 0, "not busy: nothing");
     let walked = fault_in_heap_while(BLOCK, || true);
-    assert!(walked >= BLOCK, "the block is in the heap walked ({walked} bytes)");
+    assert!(
+        walked >= BLOCK,
+        "the block is in the heap walked ({walked} bytes)"
+    );
     let before = minor_faults();
     for page in untouched.spare_capacity_mut().chunks_mut(PAGE) {
         page[0].write(1);
