@@ -23,6 +23,7 @@ use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology};
 use bevy::prelude::{
     Assets, Component, Entity, Handle, Or, Resource, Transform, Visibility, With, World,
 };
+use bevy::tasks::{ComputeTaskPool, ParallelSlice, TaskPool};
 use std::time::Instant;
 
 use crate::mesh::MeshInfo;
@@ -288,23 +289,11 @@ fn record(world: &mut World, mesh: MeshId, triangles: usize, start: Instant) {
     );
 }
 
-/// Mean length of the faces' sides (each interior edge counted twice, which leaves the mean as it
-/// is); 0 for no faces.
-fn mean_edge_length(m: &MeshRef<'_>, faces: &[FaceId]) -> f32 {
-    let (sum, n) =
-        faces
-            .iter()
-            .flat_map(|&f| m.face_halfedges(f))
-            .fold((0.0f64, 0usize), |(sum, n), h| {
-                let length = m
-                    .position(m.from_vertex(h))
-                    .distance(m.position(m.to_vertex(h)));
-                (sum + f64::from(length), n + 1)
-            });
-    if n == 0 { 0.0 } else { (sum / n as f64) as f32 }
-}
-
 /// Drops every chunk of `mesh` and draws it anew. Returns the triangles drawn.
+///
+/// What each chunk draws is read from the world on the compute threads, the chunks shared
+/// among them; the uploads follow on this thread. The wireframe's lines are read in a second
+/// such pass, once the chunks' sides have said whether the mesh is sparse enough to draw them.
 fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize {
     if let Some(old) = world.entity_mut(mesh.0).take::<RenderChunks>() {
         for e in old.chunks.into_iter().chain(old.wires) {
@@ -312,17 +301,32 @@ fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize
         }
     }
     let faces = crate::mesh::members::of_kind::<crate::mesh::Face, _>(world, mesh, FaceId);
-    let m = MeshRef::new(world);
+    let pool = ComputeTaskPool::get_or_init(TaskPool::default);
+    let surfaces = faces.par_chunk_map(pool, CHUNK_FACES, |_, group| {
+        chunk_surface(world, Some(mesh), group, settings)
+    });
     // Σ face degrees = 2 × interior edges + boundary edges: half of it bounds the edge count
     // from below without walking the edges.
-    let sides: usize = faces.iter().map(|&f| m.face_degree(f)).sum();
+    let (length, sides) = surfaces
+        .iter()
+        .fold((0.0, 0), |(l, n), s| (l + s.side_length, n + s.sides));
+    let wireframe = sides / 2 <= WIREFRAME_MAX_EDGES;
+    let lines = faces.par_chunk_map(pool, CHUNK_FACES, |_, group| {
+        chunk_lines(world, group, wireframe, settings)
+    });
     let mut chunks = RenderChunks {
-        wireframe: sides / 2 <= WIREFRAME_MAX_EDGES,
-        mean_edge_length: mean_edge_length(&m, &faces),
+        wireframe,
+        // Each interior edge counted twice, which leaves the mean as it is.
+        mean_edge_length: if sides == 0 {
+            0.0
+        } else {
+            (length / sides as f64) as f32
+        },
         ..Default::default()
     };
     let mut triangles = 0;
-    for (i, group) in faces.chunks(CHUNK_FACES).enumerate() {
+    let drawn = surfaces.into_iter().zip(lines);
+    for (i, (group, (surface, lines))) in faces.chunks(CHUNK_FACES).zip(drawn).enumerate() {
         for &f in group {
             chunks.face_chunk.insert(f.0, i as u32);
         }
@@ -332,7 +336,7 @@ fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize
         let wire = world.spawn(WireframeOf(mesh)).id();
         chunks.chunks.push(chunk);
         chunks.wires.push(wire);
-        triangles += draw_chunk(world, chunk, wire, chunks.wireframe, settings);
+        triangles += upload_chunk(world, chunk, wire, surface, lines);
     }
     world.entity_mut(mesh.0).insert(chunks);
     triangles
@@ -421,8 +425,91 @@ fn draw_chunk(
         .map(|c| c.0.clone())
         .unwrap_or_default();
     let mesh = world.get::<RenderOf>(chunk).map(|r| r.0);
+    let surface = chunk_surface(world, mesh, &faces, settings);
+    let lines = chunk_lines(world, &faces, wireframe, settings);
+    upload_chunk(world, chunk, wire, surface, lines)
+}
+
+/// One chunk's surface, read from the world without changing it (so that several chunks are
+/// read at once): its triangles, its vertex colours when its mesh is coloured by a quantity,
+/// and its faces' sides (their summed length and their number).
+struct ChunkSurface {
+    data: RenderData,
+    colours: Option<Vec<[f32; 4]>>,
+    side_length: f64,
+    sides: usize,
+}
+
+fn chunk_surface(
+    world: &World,
+    mesh: Option<MeshId>,
+    faces: &[FaceId],
+    settings: ViewSettings,
+) -> ChunkSurface {
     let uvs = settings.checker && mesh.is_some_and(|m| MeshAttributes::of(world, m).uv);
-    let data = render_data(world, &faces, settings.smooth, uvs);
+    let data = render_data(world, faces, settings.smooth, uvs);
+    let colours = mesh
+        .and_then(|m| world.get::<VertexValues>(m.0))
+        .map(|values| data.vertices.iter().map(|&v| values.colour(v)).collect());
+    let (side_length, sides) = side_lengths(&MeshRef::new(world), faces);
+    ChunkSurface {
+        data,
+        colours,
+        side_length,
+        sides,
+    }
+}
+
+/// The summed length of the faces' sides, and their number: each side read from the tips of
+/// the face's halfedges in turn (two lookups a side).
+fn side_lengths(m: &MeshRef<'_>, faces: &[FaceId]) -> (f64, usize) {
+    let mut ring: Vec<Vec3> = Vec::new();
+    let (mut length, mut sides) = (0.0, 0);
+    for &f in faces {
+        ring.clear();
+        ring.extend(m.face_halfedges(f).map(|h| m.position(m.to_vertex(h))));
+        let Some(&last) = ring.last() else {
+            continue;
+        };
+        let mut from = last;
+        for &to in &ring {
+            length += f64::from(from.distance(to));
+            from = to;
+        }
+        sides += ring.len();
+    }
+    (length, sides)
+}
+
+/// One chunk's wireframe lines when wireframes are drawn (`None` otherwise): its edges when
+/// the mesh's `wireframe` is sparse enough, none beyond [`WIREFRAME_MAX_EDGES`].
+fn chunk_lines(
+    world: &World,
+    faces: &[FaceId],
+    wireframe: bool,
+    settings: ViewSettings,
+) -> Option<Vec<(Vec3, Vec3, Color)>> {
+    (settings.wireframe && world.contains_resource::<Assets<bevy::gizmos::GizmoAsset>>()).then(
+        || {
+            if wireframe {
+                edge_lines(world, faces)
+            } else {
+                Vec::new()
+            }
+        },
+    )
+}
+
+/// Gives `chunk` its surface (a new [`Mesh`] asset) and `wire` its lines (a new retained
+/// gizmo), when there are any to draw. Returns the chunk's triangle count.
+fn upload_chunk(
+    world: &mut World,
+    chunk: Entity,
+    wire: Entity,
+    surface: ChunkSurface,
+    lines: Option<Vec<(Vec3, Vec3, Color)>>,
+) -> usize {
+    let ChunkSurface { data, colours, .. } = surface;
     let triangles = data.triangle_faces.len();
     let mut render = Mesh::new(
         PrimitiveTopology::TriangleList,
@@ -436,8 +523,7 @@ fn draw_chunk(
     if !data.uvs.is_empty() {
         render.insert_attribute(Mesh::ATTRIBUTE_UV_0, data.uvs);
     }
-    if let Some(values) = mesh.and_then(|m| world.get::<VertexValues>(m.0)) {
-        let colours: Vec<[f32; 4]> = data.vertices.iter().map(|&v| values.colour(v)).collect();
+    if let Some(colours) = colours {
         render.insert_attribute(Mesh::ATTRIBUTE_COLOR, colours);
     }
     render.insert_indices(Indices::U32(data.indices));
@@ -455,12 +541,7 @@ fn draw_chunk(
     if let Some(material) = material {
         e.insert(bevy::pbr::MeshMaterial3d(material));
     }
-    if settings.wireframe && world.contains_resource::<Assets<bevy::gizmos::GizmoAsset>>() {
-        let lines = if wireframe {
-            edge_lines(world, &faces)
-        } else {
-            Vec::new()
-        };
+    if let Some(lines) = lines {
         let mut asset = bevy::gizmos::GizmoAsset::default();
         for (a, b, color) in lines {
             asset.line(a, b, color);
