@@ -2,7 +2,8 @@
 //! exact mesh (positions bitwise, faces up to relabeling, valid), and redone gives the exact
 //! result again; long random sequences undo to the original; drags are one entry; the memory
 //! cap drops the oldest entries. Jobs: a long operation runs while frames go on, a cancel leaves
-//! the mesh exactly as it was, and a finished one is one undo entry.
+//! the mesh exactly as it was, a finished one is one undo entry, and a subdivision job
+//! (computed on the tables alone) commits exactly what applying the edit at once makes.
 
 mod common;
 
@@ -675,4 +676,93 @@ fn a_finished_job_commits_as_one_undo_entry() {
     assert_eq!(mesh_stats(app.world(), mesh).faces, 5120);
     request(&mut app, Request::Undo).unwrap();
     assert_eq!(state(&app), before);
+}
+
+/// A 2 × 2 grid of quads (`quads`) or of triangles, with corner UVs, vertex normals and vertex
+/// colours, written to a file of its own.
+fn attributed_grid(quads: bool) -> std::path::PathBuf {
+    let mut text = String::new();
+    for y in 0..3 {
+        for x in 0..3 {
+            let colour = [x as f32 / 2.0, y as f32 / 2.0, 0.5];
+            text += &format!(
+                "v {x} {y} {} {} {} {}\n",
+                (x * y) as f32 * 0.1,
+                colour[0],
+                colour[1],
+                colour[2]
+            );
+            text += &format!("vt {} {}\n", x as f32 / 2.0, y as f32 / 2.0);
+        }
+    }
+    text += "vn 0 0 1\n";
+    let at = |x: usize, y: usize| 3 * y + x + 1;
+    let corner = |v: usize| format!("{v}/{v}/1");
+    for y in 0..2 {
+        for x in 0..2 {
+            let [a, b, c, d] = [at(x, y), at(x + 1, y), at(x + 1, y + 1), at(x, y + 1)];
+            let faces = if quads {
+                vec![vec![a, b, c, d]]
+            } else {
+                vec![vec![a, b, c], vec![a, c, d]]
+            };
+            for f in faces {
+                let corners: Vec<String> = f.into_iter().map(corner).collect();
+                text += &format!("f {}\n", corners.join(" "));
+            }
+        }
+    }
+    let path = std::env::temp_dir().join(format!(
+        "pappus-job-grid-{}-{quads}.obj",
+        std::process::id()
+    ));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn a_subdivision_job_commits_exactly_what_the_edit_makes_at_once() {
+    // A job computes subdivision on the mesh's tables alone; it must give the mesh, the
+    // attributes, the outcome and the selection that applying the edit at once gives.
+    let cases = [
+        (false, Subdivision::once(Scheme::Loop)),
+        (
+            true,
+            Subdivision {
+                scheme: Scheme::CatmullClark,
+                levels: 2,
+            },
+        ),
+    ];
+    for (quads, subdivision) in cases {
+        let path = attributed_grid(quads);
+        let run = |as_job: bool| {
+            let mut app = app();
+            jobs_from(&mut app, if as_job { 1 } else { usize::MAX });
+            open(&mut app, path.to_str().unwrap());
+            let v = members(&app).vertices[4];
+            request(&mut app, Request::Select(Some(ElementId::Vertex(v)))).unwrap();
+            let started = request(&mut app, Request::Edit(Edit::Subdivide(subdivision)));
+            assert_eq!(started.is_ok_and(|s| s.contains("running")), as_job);
+            frames_until(&mut app, |a| !job_running(a));
+            let outcome = last(&app).result.unwrap();
+            let soup = to_soup(app.world(), active(&app).unwrap());
+            let selected = app.world().resource::<Selection>().element;
+            assert_eq!(
+                selected,
+                Some(ElementId::Vertex(v)),
+                "the vertex stays selected"
+            );
+            (soup, outcome)
+        };
+        let (job, at_once) = (run(true), run(false));
+        assert!(job.0.corner_uvs.is_some() && job.0.vertex_colors.is_some());
+        assert!(
+            job.1.contains("normals"),
+            "the dropped normals are said: {}",
+            job.1
+        );
+        assert_eq!(job, at_once, "{subdivision:?}");
+        std::fs::remove_file(path).ok();
+    }
 }

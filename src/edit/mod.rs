@@ -26,6 +26,7 @@ use bevy::prelude::World;
 
 use crate::mesh::attributes::{MeshAttributes, Seam, drop_attributes, set_record};
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
+use crate::mesh::tables::{Connectivity, MeshTables};
 use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::local::{
@@ -42,6 +43,7 @@ use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::remesh::{RemeshParams, remesh_with_progress};
 use crate::ops::simplify::{SimplifyParams, SimplifyTarget};
 use crate::ops::smooth::{SmoothParams, smooth};
+use crate::ops::subdivide::SubdivisionSummary;
 use crate::ops::triangulate::triangulate;
 
 mod step;
@@ -420,6 +422,48 @@ impl Edit {
         )
     }
 
+    /// Whether [`Edit::run_on_tables`] computes the edit (subdivision).
+    pub fn runs_on_tables(&self) -> bool {
+        matches!(self, Edit::Subdivide(_))
+    }
+
+    /// The edit computed from a mesh's tables alone, where that gives exactly what
+    /// [`Edit::run`] would write back and return (subdivision, whose tables are a function of
+    /// the tables before): the result's tables and the outcome. `None` for every other edit,
+    /// which needs the entities. The editor's jobs take this way when they can: it spares them
+    /// spawning a copy of the mesh and reading the result back from it.
+    ///
+    /// # Refusals
+    /// As [`Edit::run`]'s.
+    pub fn run_on_tables(
+        &self,
+        before: &MeshTables,
+    ) -> Option<Result<(Connectivity, Applied), Refusal>> {
+        let Edit::Subdivide(subdivision) = self else {
+            return None;
+        };
+        let after = subdivision.scheme.subdivide_tables(
+            &before.tables,
+            &before.members,
+            subdivision.levels,
+        );
+        Some(after.map(|after| {
+            let made = SubdivisionSummary {
+                levels: subdivision.levels,
+                vertices: after.vertex_count(),
+                faces: after.face_count(),
+            };
+            let had = before.tables.attributes.present();
+            let lost = had.lost_in(after.attributes.present());
+            let applied = Applied {
+                summary: made.describe() + &lost.dropped_note(&self.why_dropped()),
+                redraw: Redraw::Whole,
+                made: None,
+            };
+            (after, applied)
+        }))
+    }
+
     /// After the edit has changed `mesh`, which had the attributes `had`: drops them if the
     /// edit does not carry them, and returns the note that says what was lost (empty if
     /// nothing). [`Edit::run`] calls it; a stepped run calls it when it ends.
@@ -706,10 +750,7 @@ impl Edit {
                     .scheme
                     .subdivide(world, mesh, subdivision.levels)?;
                 (context.progress)(1.0);
-                whole(format!(
-                    "{} level(s): {} vertices, {} faces",
-                    s.levels, s.vertices, s.faces
-                ))
+                whole(s.describe())
             }
             Edit::Remesh(params) => {
                 let s = remesh_with_progress(world, mesh, params, &mut *context.progress)?;

@@ -7,6 +7,11 @@
 //! the thread is done, [`finish_jobs`] writes the result into the mesh in one step (the same
 //! table write an undo uses) and hands it to [`finish_edit`], the path every edit ends on.
 //!
+//! An edit that is a function of the tables alone (subdivision, [`Edit::runs_on_tables`]) skips
+//! the scratch world: the thread computes the result's tables from the undo record's copy, and
+//! the commit writes them. Spawning the copy and reading the result back from it took more than
+//! the subdivision itself.
+//!
 //! Cancelling (Esc, or the panel's button) drops the job; the mesh was never touched, so it is
 //! exactly as it was. While a job runs, edits of its mesh (undo and redo included) are refused
 //! with a message; selecting and looking around still work.
@@ -19,7 +24,9 @@ use std::thread::JoinHandle;
 use crate::edit::{Applied, Edit, EditContext, IdsKept};
 use crate::mesh::change::row_map;
 use crate::mesh::ids::{ElementId, MeshId};
-use crate::mesh::tables::{MeshTables, extract, replace_contents, spawn_connectivity};
+use crate::mesh::tables::{
+    Connectivity, MeshTables, extract, replace_contents, spawn_connectivity,
+};
 use crate::mesh::{MeshInfo, MeshMembers, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::progressive::ProgressiveMesh;
@@ -74,14 +81,23 @@ impl Progress {
     }
 }
 
-/// What a job's thread hands back: the result's tables in the scratch world with the scratch
-/// entity behind every row, and the scratch entities the input's rows were spawned as (the two
-/// carry the selection and the simplification history over).
-struct JobOutput {
-    result: MeshTables,
-    input: MeshMembers,
-    applied: Applied,
-    history: Option<ProgressiveMesh>,
+/// What a job's thread hands back.
+enum JobOutput {
+    /// The edit ran on a copy of the mesh in a scratch world: the result's tables with the
+    /// scratch entity behind every row, and the scratch entities the input's rows were spawned
+    /// as (the two carry the selection and the simplification history over).
+    Copy {
+        result: MeshTables,
+        input: MeshMembers,
+        applied: Applied,
+        history: Option<Box<ProgressiveMesh>>,
+    },
+    /// The edit was computed on the tables alone ([`Edit::run_on_tables`]): the result's
+    /// tables, whose first rows of each kind keep the mesh's entities when written.
+    Tables {
+        tables: Connectivity,
+        applied: Applied,
+    },
 }
 
 /// The job in flight.
@@ -96,8 +112,9 @@ pub struct RunningJob {
     pub started: std::time::Instant,
     edit: Edit,
     pending: Option<Pending>,
-    /// The mesh's entities, row by row, as copied.
-    rows: MeshMembers,
+    /// The mesh's entities, row by row, as copied into the scratch world (none when the job
+    /// works on the tables alone).
+    rows: Option<MeshMembers>,
     /// The thread, until it is joined.
     thread: Option<JoinHandle<Result<JobOutput, Refusal>>>,
 }
@@ -121,8 +138,9 @@ pub fn wants_job(world: &World, edit: &Edit, mesh: MeshId) -> bool {
             >= settings.min_faces
 }
 
-/// Starts `edit` on a copy of `mesh` on a thread of its own. `pending` is the undo record the
-/// result will be committed with.
+/// Starts `edit` on a thread of its own: on the mesh's tables when the edit is a function of
+/// them ([`Edit::runs_on_tables`]), on a copy of `mesh` in a scratch world otherwise.
+/// `pending` is the undo record the result will be committed with.
 ///
 /// # Errors
 /// When a job is running already, or no thread can be started.
@@ -158,9 +176,18 @@ pub fn start(
         }
         _ => Vec::new(),
     };
-    let thread = std::thread::Builder::new()
-        .name(format!("pappus job: {label}"))
-        .spawn(move || {
+    let name = format!("pappus job: {label}");
+    let spawned = if job.runs_on_tables() {
+        // The edit is a function of the tables: no copy of the mesh to spawn or read back.
+        let before = MeshTables { tables, members };
+        let thread = std::thread::Builder::new().name(name).spawn(move || {
+            let (tables, applied) = job.run_on_tables(&before).expect("checked above")?;
+            shared.set(1.0);
+            Ok(JobOutput::Tables { tables, applied })
+        });
+        thread.map(|thread| (thread, None))
+    } else {
+        let thread = std::thread::Builder::new().name(name).spawn(move || {
             let mut scratch = World::new();
             let (copy, input) = spawn_connectivity(&mut scratch, &tables, MeshInfo::default());
             if let Edit::Smooth(params) = &mut job {
@@ -178,14 +205,17 @@ pub fn start(
                     },
                 },
             )?;
-            Ok(JobOutput {
+            Ok(JobOutput::Copy {
                 result: extract(&scratch, copy),
                 input,
                 applied,
-                history,
+                history: history.map(Box::new),
             })
-        })
-        .map_err(|e| Declined::Job(format!("could not start a thread: {e}")))?;
+        });
+        thread.map(|thread| (thread, Some(members)))
+    };
+    let (thread, rows) =
+        spawned.map_err(|e| Declined::Job(format!("could not start a thread: {e}")))?;
     world.resource_mut::<Jobs>().running = Some(RunningJob {
         mesh,
         label,
@@ -193,7 +223,7 @@ pub fn start(
         started: std::time::Instant::now(),
         edit,
         pending,
-        rows: members,
+        rows,
         thread: Some(thread),
     });
     Ok("running (Esc cancels)".into())
@@ -248,24 +278,41 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
         return Err(Declined::Refused(Refusal::Stale(ElementId::Mesh(mesh))));
     }
     let old = MeshMembers::collect(world, mesh);
-    let rows = replace_contents(world, mesh, &old, &output.result.tables);
-    // Scratch entities of the result → the entities that hold those rows now.
-    let to_main = row_map(&output.result.members, &rows);
-    world.resource_mut::<SimplificationHistory>().pm = output.history.map(|mut pm| {
-        pm.remap(mesh, &to_main);
-        pm
-    });
-    // The selection, followed from its row in the copy to that element's row in the result.
-    let to_scratch = row_map(&job.rows, &output.input);
     let kept = job.edit.keeps_ids();
-    let selection = world.resource::<Selection>().element.and_then(|x| {
-        if kept == IdsKept::VerticesOnly && !matches!(x, ElementId::Vertex(_)) {
-            return None;
-        }
-        let now = to_main.get(to_scratch.get(&x.entity())?)?;
-        let x = x.with_entity(*now);
-        exists(&MeshRef::new(world), x).then_some(x)
+    let selected = world.resource::<Selection>().element.filter(|x| {
+        kept == IdsKept::All || (kept == IdsKept::VerticesOnly && matches!(x, ElementId::Vertex(_)))
     });
+    let (applied, selection) = match output {
+        JobOutput::Tables { tables, applied } => {
+            replace_contents(world, mesh, &old, &tables);
+            world.resource_mut::<SimplificationHistory>().pm = None;
+            // The rows whose ids are kept keep their entities.
+            (applied, selected)
+        }
+        JobOutput::Copy {
+            result,
+            input,
+            applied,
+            history,
+        } => {
+            let rows = replace_contents(world, mesh, &old, &result.tables);
+            // Scratch entities of the result → the entities that hold those rows now.
+            let to_main = row_map(&result.members, &rows);
+            world.resource_mut::<SimplificationHistory>().pm = history.map(|mut pm| {
+                pm.remap(mesh, &to_main);
+                *pm
+            });
+            // The selection, followed from its row in the copy to that element's row in the
+            // result.
+            let to_scratch = job.rows.as_ref().map(|rows| row_map(rows, &input));
+            let followed = selected.and_then(|x| {
+                let now = to_main.get(to_scratch.as_ref()?.get(&x.entity())?)?;
+                Some(x.with_entity(*now))
+            });
+            (applied, followed)
+        }
+    };
+    let selection = selection.filter(|&x| exists(&MeshRef::new(world), x));
     // The set is not followed through the job's rows: the active element alone stays selected.
     world.resource_mut::<Selection>().select_only(selection);
     finish_edit(
@@ -273,7 +320,7 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
         Finished {
             edit: job.edit.clone(),
             mesh,
-            result: Ok(output.applied),
+            result: Ok(applied),
             pending: job.pending.take(),
         },
     )

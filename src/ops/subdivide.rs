@@ -36,6 +36,7 @@
 use bevy::math::{Vec2, Vec3};
 use bevy::prelude::World;
 
+use crate::mesh::MeshMembers;
 use crate::mesh::attributes::{AttributeColumns, mean_color};
 use crate::mesh::ids::{ElementId, FaceId, MeshId};
 use crate::mesh::tables::write::{reserve_rows_while, write_links};
@@ -69,6 +70,77 @@ impl Scheme {
             Scheme::CatmullClark => catmull_clark(world, mesh, levels),
         }
     }
+
+    /// The tables `levels` levels of this scheme make from `tables` (whose rows are the
+    /// entities `members`): what [`Scheme::subdivide`] writes back, for a caller that holds the
+    /// tables already and writes them itself (the editor's jobs).
+    ///
+    /// # Refusals
+    /// As [`Scheme::subdivide`]'s, naming the element by its entity in `members`.
+    pub fn subdivide_tables(
+        self,
+        tables: &Connectivity,
+        members: &MeshMembers,
+        levels: u32,
+    ) -> Result<Connectivity, Refusal> {
+        self.check(tables, members)?;
+        if levels == 0 {
+            return Ok(tables.clone());
+        }
+        final_counts(self.steps(), tables, levels)?;
+        Ok(self.levels(tables, levels))
+    }
+
+    /// How one level runs.
+    fn steps(self) -> Steps {
+        match self {
+            Scheme::Loop => Steps {
+                step: |t| loop_tables(t).expect("checked: every face is a triangle"),
+                counts: |t, _| {
+                    let edges = 2 * t.edges + 3 * t.faces;
+                    RowCounts {
+                        vertices: t.vertices + t.edges,
+                        halfedges: 2 * edges,
+                        edges,
+                        faces: 4 * t.faces,
+                    }
+                },
+            },
+            Scheme::CatmullClark => Steps {
+                step: catmull_clark_tables,
+                // Every corner becomes a quad, and each adds an edge from its face point.
+                counts: |t, corners| {
+                    let edges = 2 * t.edges + corners;
+                    RowCounts {
+                        vertices: t.vertices + t.edges + t.faces,
+                        halfedges: 2 * edges,
+                        edges,
+                        faces: corners,
+                    }
+                },
+            },
+        }
+    }
+
+    /// Refuses tables the scheme cannot subdivide: Loop a face that is not a triangle.
+    fn check(self, t: &Connectivity, members: &MeshMembers) -> Result<(), Refusal> {
+        match (self, t.first_non_triangle()) {
+            (Scheme::Loop, Some(f)) => Err(Refusal::NotTriangle(ElementId::Face(
+                members.faces[f.index()],
+            ))),
+            _ => Ok(()),
+        }
+    }
+
+    /// `levels` levels of the scheme on tables the check passed (at least one level).
+    fn levels(self, tables: &Connectivity, levels: u32) -> Connectivity {
+        let step = self.steps().step;
+        let mut t = step(tables);
+        for _ in 1..levels {
+            t = step(&t);
+        }
+        t
+    }
 }
 
 /// What a subdivision produced.
@@ -80,6 +152,16 @@ pub struct SubdivisionSummary {
     pub vertices: usize,
     /// Faces after.
     pub faces: usize,
+}
+
+impl SubdivisionSummary {
+    /// What the subdivision made, for its outcome: levels, vertices and faces.
+    pub fn describe(&self) -> String {
+        format!(
+            "{} level(s): {} vertices, {} faces",
+            self.levels, self.vertices, self.faces
+        )
+    }
 }
 
 /// The faces of a table mesh as rings of halfedges, each starting at the face's halfedge.
@@ -145,26 +227,7 @@ pub fn loop_subdivide(
     mesh: MeshId,
     levels: u32,
 ) -> Result<SubdivisionSummary, Refusal> {
-    let steps = Steps {
-        step: |t| loop_tables(t).expect("checked: every face is a triangle"),
-        counts: |t, _| {
-            let edges = 2 * t.edges + 3 * t.faces;
-            RowCounts {
-                vertices: t.vertices + t.edges,
-                halfedges: 2 * edges,
-                edges,
-                faces: 4 * t.faces,
-            }
-        },
-    };
-    subdivide(world, mesh, levels, steps, |t, members| {
-        match t.first_non_triangle() {
-            Some(f) => Err(Refusal::NotTriangle(ElementId::Face(
-                members.faces[f.index()],
-            ))),
-            None => Ok(()),
-        }
-    })
+    subdivide(world, mesh, levels, Scheme::Loop)
 }
 
 /// Catmull–Clark-subdivides any polygon mesh `levels` times. Never refuses.
@@ -173,51 +236,22 @@ pub fn catmull_clark(
     mesh: MeshId,
     levels: u32,
 ) -> Result<SubdivisionSummary, Refusal> {
-    let steps = Steps {
-        step: catmull_clark_tables,
-        // Every corner becomes a quad, and each adds an edge from its face point.
-        counts: |t, corners| {
-            let edges = 2 * t.edges + corners;
-            RowCounts {
-                vertices: t.vertices + t.edges + t.faces,
-                halfedges: 2 * edges,
-                edges,
-                faces: corners,
-            }
-        },
-    };
-    subdivide(world, mesh, levels, steps, |_, _| Ok(()))
+    subdivide(world, mesh, levels, Scheme::CatmullClark)
 }
 
 /// How a scheme runs: one level on tables, and the row counts a level makes from the
 /// counts before it and the number of face corners, known before the tables are computed.
+#[derive(Clone, Copy)]
 struct Steps {
     step: fn(&Connectivity) -> Connectivity,
     counts: fn(RowCounts, usize) -> RowCounts,
 }
 
-/// Runs `levels` levels of `steps` after `check` passed. The tables are computed on a second
-/// thread while this one makes the result's entities exist (the two largest costs, overlapped),
-/// and the links are written once both are done.
-fn subdivide(
-    world: &mut World,
-    mesh: MeshId,
-    levels: u32,
-    steps: Steps,
-    check: impl Fn(&Connectivity, &crate::mesh::MeshMembers) -> Result<(), Refusal>,
-) -> Result<SubdivisionSummary, Refusal> {
-    if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
-        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
-    }
-    let MeshTables { tables, members } = extract(world, mesh);
-    check(&tables, &members)?;
-    if levels == 0 {
-        return Ok(SubdivisionSummary {
-            levels,
-            vertices: tables.vertex_count(),
-            faces: tables.face_count(),
-        });
-    }
+/// The row counts `levels` levels of `steps` make from `tables`.
+///
+/// # Refusals
+/// [`Refusal::TooLarge`] when the halfedges would not fit 32-bit rows.
+fn final_counts(steps: Steps, tables: &Connectivity, levels: u32) -> Result<RowCounts, Refusal> {
     let mut counts = tables.row_counts();
     let mut corners = tables
         .halfedges()
@@ -230,13 +264,34 @@ fn subdivide(
             return Err(Refusal::TooLarge(counts.halfedges));
         }
     }
+    Ok(counts)
+}
+
+/// Runs `levels` levels of `scheme` once its check passed. The tables are computed on a second
+/// thread while this one makes the result's entities exist (the two largest costs, overlapped),
+/// and the links are written once both are done.
+fn subdivide(
+    world: &mut World,
+    mesh: MeshId,
+    levels: u32,
+    scheme: Scheme,
+) -> Result<SubdivisionSummary, Refusal> {
+    if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
+        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
+    }
+    let MeshTables { tables, members } = extract(world, mesh);
+    scheme.check(&tables, &members)?;
+    if levels == 0 {
+        return Ok(SubdivisionSummary {
+            levels,
+            vertices: tables.vertex_count(),
+            faces: tables.face_count(),
+        });
+    }
+    let counts = final_counts(scheme.steps(), &tables, levels)?;
     let tables = &tables;
     let (result, rows) = reserve_rows_while(world, counts, mesh, Some(&members), move || {
-        let mut t = (steps.step)(tables);
-        for _ in 1..levels {
-            t = (steps.step)(&t);
-        }
-        t
+        scheme.levels(tables, levels)
     });
     write_links(world, &result, mesh, &rows);
     Ok(SubdivisionSummary {
