@@ -108,9 +108,6 @@ fn run(app: &mut App, request: Request) {
     while logged(app) == before || running(app) {
         let frame = Instant::now();
         app.update();
-        if frame.elapsed().as_millis() > 5 {
-            eprintln!("  frame took {:?}", frame.elapsed());
-        }
         std::thread::sleep(FRAME.saturating_sub(frame.elapsed()));
     }
     let log = app.world().resource::<OutcomeLog>();
