@@ -344,7 +344,10 @@ where
     B: bevy::prelude::Bundle<Effect: bevy::ecs::bundle::NoBundleEffect> + Clone,
 {
     let keep = old.len().min(n);
-    for &e in &old[keep..] {
+    // Last row first: rows a bulk edit spawned sit at the end of their table in row order, so
+    // each despawn then takes the table's last row, moving no other row into its place (and
+    // the rows kept stay in order).
+    for &e in old[keep..].iter().rev() {
         world.despawn(e);
     }
     let mut ids = old;
