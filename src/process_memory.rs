@@ -29,7 +29,8 @@
 //! first write would, without writing). Subdivision's second thread does that once its tables
 //! are computed, while the first thread is still spawning rows into fresh table columns, so the
 //! two cores share the kernel's work instead of one waiting (two threads fault pages in 1.7
-//! times as fast as one on the development machine).
+//! times as fast as one on the development machine); every other large table write (building a
+//! mesh, an editor job's commit, the undo of a whole-mesh edit) starts a thread for just that.
 //!
 //! For the warmed block to be the memory the operation then gets, every thread allocates from
 //! one arena; and the heap grows in large steps ([`GROWTH_PAD`]), because a heap extended a
