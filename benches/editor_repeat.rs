@@ -7,7 +7,8 @@
 //! without a window (`pappus::editor::headless_app`) with the bunny open. It runs Loop ×1,
 //! undo, Loop ×1, undo, Loop ×1, each as the editor runs it (a Loop on a mesh this size is a
 //! job on a thread of its own, then committed), and times each step from its request to the end
-//! of the frame that shows its outcome (the render copy rebuilt), frames paced at 60 Hz. The bench runs itself `RUNS` times (default 10) and prints median / p90 / max.
+//! of the frame that shows its outcome (the render copy rebuilt), frames paced at 60 Hz. The
+//! bench runs itself `RUNS` times (default 10) and prints median / p90 / max.
 //!
 //! Run: `cargo bench --bench editor_repeat`. Uses `../shared/models/stanford-bunny.obj`.
 

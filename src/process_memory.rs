@@ -63,12 +63,19 @@ pub const BYTES_PER_ROW: usize = 114;
 /// Whether [`keep_freed_memory`] took effect.
 static KEEPING: AtomicBool = AtomicBool::new(false);
 
-/// Where the heap began when [`keep_freed_memory`] took effect (0 before): the lowest address
-/// [`fault_in_heap_while`] populates.
-static HEAP_START: AtomicUsize = AtomicUsize::new(0);
+/// The program break when [`keep_freed_memory`] took effect (0 before): every block the heap
+/// serves after that lies above it, and [`fault_in_heap_while`] populates nothing below it.
+static BREAK_WHEN_KEPT: AtomicUsize = AtomicUsize::new(0);
 
 /// How many [`warm`] threads are running.
 static WARMING: AtomicUsize = AtomicUsize::new(0);
+
+/// Whether [`keep_freed_memory`] took effect: the `pappus` program, not the library or the
+/// Python package. Without it, warming and faulting in ahead do nothing, so callers need not
+/// start a thread for them.
+pub fn keeps_freed_memory() -> bool {
+    KEEPING.load(Ordering::Relaxed)
+}
 
 /// Whether a [`warm`] thread is running: work that would spread over the cores (the OBJ
 /// reader's second thread) runs on one instead, leaving the other to the warming.
@@ -82,7 +89,7 @@ pub fn warming() -> bool {
 pub fn keep_freed_memory() -> bool {
     let kept = imp::keep_freed_memory();
     if kept {
-        HEAP_START.store(imp::heap_end(), Ordering::Relaxed);
+        BREAK_WHEN_KEPT.store(imp::heap_end(), Ordering::Relaxed);
     }
     KEEPING.store(kept, Ordering::Relaxed);
     kept
@@ -94,7 +101,7 @@ pub fn keep_freed_memory() -> bool {
 /// block would go straight back to the system), `bytes` is 0, or no thread could be started.
 /// At most [`KEPT_FREE_BYTES`] are warmed.
 pub fn warm(bytes: usize) -> Option<JoinHandle<()>> {
-    if !KEEPING.load(Ordering::Relaxed) || bytes == 0 {
+    if !keeps_freed_memory() || bytes == 0 {
         return None;
     }
     WARMING.fetch_add(1, Ordering::Relaxed);
@@ -118,7 +125,7 @@ pub fn warm(bytes: usize) -> Option<JoinHandle<()>> {
 pub fn warm_while(bytes: usize, busy: impl Fn() -> bool) -> usize {
     const PAGE: usize = 4096;
     const ASK_EVERY: usize = 64 * PAGE;
-    if !KEEPING.load(Ordering::Relaxed) {
+    if !keeps_freed_memory() {
         return 0;
     }
     let mut block: Vec<u8> = Vec::with_capacity(bytes.min(KEPT_FREE_BYTES));
@@ -136,22 +143,26 @@ pub fn warm_while(bytes: usize, busy: impl Fn() -> bool) -> usize {
     warmed
 }
 
-/// Faults in the heap's pages from the calling thread while `busy()` holds: first the pages
-/// of blocks already allocated but not yet written (a table another thread is filling), then
-/// the free top of the heap up to `limit` bytes into it (what the next allocations take). For
-/// a thread that has finished its share of a bulk operation while another still writes fresh
-/// memory. `busy` is asked every MiB. Nothing is allocated or written: the kernel populates
-/// the pages as a first write would (`MADV_POPULATE_WRITE`), so what they hold is unchanged.
-/// Returns the bytes walked (pages already present included); 0 when memory is not kept (see
-/// [`keep_freed_memory`]) or the kernel cannot populate (Linux before 5.14).
+/// Faults in the heap's pages from the calling thread while `busy()` holds, from `limit` bytes
+/// below the free top of the heap to `limit` bytes into it: the blocks allocated last but not
+/// yet written (the table columns another thread is filling), then what the next allocations
+/// take. For a thread that has finished its share of a bulk operation while another still
+/// writes fresh memory. `busy` is asked every MiB. Nothing is allocated or written: the kernel
+/// populates the pages as a first write would (`MADV_POPULATE_WRITE`), so what they hold is
+/// unchanged. Returns the bytes walked (pages already present included); 0 when memory is not
+/// kept (see [`keep_freed_memory`]) or the kernel cannot populate (Linux before 5.14).
 pub fn fault_in_heap_while(limit: usize, busy: impl Fn() -> bool) -> usize {
-    let start = HEAP_START.load(Ordering::Relaxed);
-    if !KEEPING.load(Ordering::Relaxed) || start == 0 {
+    const STEP: usize = 1 << 20;
+    let floor = BREAK_WHEN_KEPT.load(Ordering::Relaxed);
+    if !keeps_freed_memory() || floor == 0 {
         return 0;
     }
-    const STEP: usize = 1 << 20;
-    let stop = imp::heap_top_start().saturating_add(limit);
-    let mut at = start.next_multiple_of(imp::PAGE);
+    let top = imp::heap_top_start();
+    let stop = top.saturating_add(limit);
+    let mut at = top
+        .saturating_sub(limit)
+        .max(floor)
+        .next_multiple_of(imp::PAGE);
     let mut walked = 0;
     while at < stop && busy() {
         let end = imp::heap_end().min(stop);
@@ -195,20 +206,24 @@ mod imp {
     /// The size of a page.
     pub const PAGE: usize = 4096;
 
-    /// The end of the heap (the program break).
+    /// The end of the heap (the program break), as the kernel has it.
     #[allow(unsafe_code)]
     pub fn heap_end() -> usize {
-        // SAFETY: `sbrk(0)` only reads the current break; it changes nothing.
-        unsafe { libc::sbrk(0) as usize }
+        // SAFETY: `brk(0)` asks the kernel for the current break and changes nothing (no break
+        // is at address 0). The raw system call, not glibc's `sbrk(0)`, which reads a variable
+        // that another thread's `malloc` may be writing.
+        unsafe { libc::syscall(libc::SYS_brk, 0) as usize }
     }
 
     /// Where the free top of the heap begins: what the next allocation that fits no freed
     /// block takes.
     #[allow(unsafe_code)]
     pub fn heap_top_start() -> usize {
-        // SAFETY: `mallinfo2` takes the arenas' locks and returns statistics by value;
-        // `keepcost` is the size of the main arena's top chunk, which ends at the break.
-        let top = unsafe { libc::mallinfo2() }.keepcost;
+        // SAFETY: `mallinfo` takes the arenas' locks and returns statistics by value;
+        // `keepcost` is the size of the main arena's top chunk, which ends at the break. (Not
+        // `mallinfo2`, which glibc has only from 2.33; `keepcost` is an `int` here, read as
+        // unsigned: the top chunk stays well under 4 GiB, as memory kept is 1 GiB at most.)
+        let top = unsafe { libc::mallinfo() }.keepcost as u32 as usize;
         heap_end().saturating_sub(top)
     }
 

@@ -766,3 +766,28 @@ fn a_subdivision_job_commits_exactly_what_the_edit_makes_at_once() {
         std::fs::remove_file(path).ok();
     }
 }
+
+#[test]
+fn loop_refuses_a_quad_mesh_as_a_job_naming_a_face_of_the_mesh() {
+    use pappus::editor::requests::Declined;
+    use pappus::ops::Refusal;
+    let mut app = app();
+    jobs_from(&mut app, 1);
+    open(&mut app, "shape:quad-grid");
+    let (before, depth) = (state(&app), undo_depth(&app));
+    let started = request(
+        &mut app,
+        Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::Loop))),
+    );
+    assert!(started.is_ok_and(|s| s.contains("running")));
+    frames_until(&mut app, |a| !job_running(a));
+    let Err(Declined::Refused(Refusal::NotTriangle(ElementId::Face(f)))) = last(&app).result else {
+        panic!("{:?}", last(&app));
+    };
+    assert!(
+        MeshRef::new(app.world()).try_face(f).is_some(),
+        "the refusal names a face of the mesh, not of a copy"
+    );
+    assert_eq!(state(&app), before);
+    assert_eq!(undo_depth(&app), depth);
+}

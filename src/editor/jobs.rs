@@ -93,9 +93,11 @@ enum JobOutput {
         history: Option<Box<ProgressiveMesh>>,
     },
     /// The edit was computed on the tables alone ([`Edit::run_on_tables`]): the result's
-    /// tables, whose first rows of each kind keep the mesh's entities when written.
+    /// tables, and the mesh's entities row by row as the input's tables had them (written over
+    /// row for row, so the first rows of each kind keep their entities).
     Tables {
         tables: Connectivity,
+        input: MeshMembers,
         applied: Applied,
     },
 }
@@ -183,7 +185,11 @@ pub fn start(
         let thread = std::thread::Builder::new().name(name).spawn(move || {
             let (tables, applied) = job.run_on_tables(&before).expect("checked above")?;
             shared.set(1.0);
-            Ok(JobOutput::Tables { tables, applied })
+            Ok(JobOutput::Tables {
+                tables,
+                input: before.members,
+                applied,
+            })
         });
         thread.map(|thread| (thread, None))
     } else {
@@ -277,16 +283,20 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
     if world.get::<MeshInfo>(mesh.0).is_none() {
         return Err(Declined::Refused(Refusal::Stale(ElementId::Mesh(mesh))));
     }
-    let old = MeshMembers::collect(world, mesh);
     let kept = job.edit.keeps_ids();
     let selected = world.resource::<Selection>().element.filter(|x| {
         kept == IdsKept::All || (kept == IdsKept::VerticesOnly && matches!(x, ElementId::Vertex(_)))
     });
     let (applied, selection) = match output {
-        JobOutput::Tables { tables, applied } => {
-            replace_contents(world, mesh, &old, &tables);
+        JobOutput::Tables {
+            tables,
+            input,
+            applied,
+        } => {
+            // Written over the input's rows in their order: the rows whose ids are kept keep
+            // their entities, the selected one included.
+            replace_contents(world, mesh, &input, &tables);
             world.resource_mut::<SimplificationHistory>().pm = None;
-            // The rows whose ids are kept keep their entities.
             (applied, selected)
         }
         JobOutput::Copy {
@@ -295,6 +305,7 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
             applied,
             history,
         } => {
+            let old = MeshMembers::collect(world, mesh);
             let rows = replace_contents(world, mesh, &old, &result.tables);
             // Scratch entities of the result → the entities that hold those rows now.
             let to_main = row_map(&result.members, &rows);
@@ -312,6 +323,10 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
             (applied, followed)
         }
     };
+    #[cfg(debug_assertions)]
+    if let Err(e) = crate::mesh::validate(world, mesh) {
+        panic!("{} left an invalid mesh: {e}", job.label);
+    }
     let selection = selection.filter(|&x| exists(&MeshRef::new(world), x));
     // The set is not followed through the job's rows: the active element alone stays selected.
     world.resource_mut::<Selection>().select_only(selection);

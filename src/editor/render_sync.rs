@@ -303,13 +303,16 @@ fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize
     let faces = crate::mesh::members::of_kind::<crate::mesh::Face, _>(world, mesh, FaceId);
     let pool = ComputeTaskPool::get_or_init(TaskPool::default);
     let surfaces = faces.par_chunk_map(pool, CHUNK_FACES, |_, group| {
-        chunk_surface(world, Some(mesh), group, settings)
+        let sides = side_lengths(&MeshRef::new(world), group);
+        (chunk_surface(world, Some(mesh), group, settings), sides)
     });
     // Σ face degrees = 2 × interior edges + boundary edges: half of it bounds the edge count
     // from below without walking the edges.
     let (length, sides) = surfaces
         .iter()
-        .fold((0.0, 0), |(l, n), s| (l + s.side_length, n + s.sides));
+        .fold((0.0, 0), |(l, n), (_, (length, sides))| {
+            (l + length, n + sides)
+        });
     let wireframe = sides / 2 <= WIREFRAME_MAX_EDGES;
     let lines = faces.par_chunk_map(pool, CHUNK_FACES, |_, group| {
         chunk_lines(world, group, wireframe, settings)
@@ -325,7 +328,7 @@ fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize
         ..Default::default()
     };
     let mut triangles = 0;
-    let drawn = surfaces.into_iter().zip(lines);
+    let drawn = surfaces.into_iter().map(|(surface, _)| surface).zip(lines);
     for (i, (group, (surface, lines))) in faces.chunks(CHUNK_FACES).zip(drawn).enumerate() {
         for &f in group {
             chunks.face_chunk.insert(f.0, i as u32);
@@ -431,13 +434,11 @@ fn draw_chunk(
 }
 
 /// One chunk's surface, read from the world without changing it (so that several chunks are
-/// read at once): its triangles, its vertex colours when its mesh is coloured by a quantity,
-/// and its faces' sides (their summed length and their number).
+/// read at once): its triangles, and its vertex colours when its mesh is coloured by a
+/// quantity.
 struct ChunkSurface {
     data: RenderData,
     colours: Option<Vec<[f32; 4]>>,
-    side_length: f64,
-    sides: usize,
 }
 
 fn chunk_surface(
@@ -451,13 +452,7 @@ fn chunk_surface(
     let colours = mesh
         .and_then(|m| world.get::<VertexValues>(m.0))
         .map(|values| data.vertices.iter().map(|&v| values.colour(v)).collect());
-    let (side_length, sides) = side_lengths(&MeshRef::new(world), faces);
-    ChunkSurface {
-        data,
-        colours,
-        side_length,
-        sides,
-    }
+    ChunkSurface { data, colours }
 }
 
 /// The summed length of the faces' sides, and their number: each side read from the tips of
@@ -509,7 +504,7 @@ fn upload_chunk(
     surface: ChunkSurface,
     lines: Option<Vec<(Vec3, Vec3, Color)>>,
 ) -> usize {
-    let ChunkSurface { data, colours, .. } = surface;
+    let ChunkSurface { data, colours } = surface;
     let triangles = data.triangle_faces.len();
     let mut render = Mesh::new(
         PrimitiveTopology::TriangleList,

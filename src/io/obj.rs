@@ -52,6 +52,15 @@ struct RawFaces {
     corners: Vec<u64>,
 }
 
+/// Sets its flag when dropped.
+struct SetOnDrop<'a>(&'a AtomicBool);
+
+impl Drop for SetOnDrop<'_> {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Release);
+    }
+}
+
 /// A corner number that names no vertex of any file.
 const NO_VERTEX: u64 = u64::MAX;
 
@@ -204,14 +213,17 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
             let tobj = std::thread::Builder::new()
                 .name("tobj".into())
                 .spawn_scoped(scope, || {
-                    let models = run_tobj(bytes);
-                    tobj_done.store(true, Ordering::Release);
-                    models
+                    // Set however `tobj` ends, a panic included.
+                    let _done = SetOnDrop(&tobj_done);
+                    run_tobj(bytes)
                 })
                 .ok();
             let first = first_pass(bytes);
             // The first pass is the shorter: fault in the mesh's pages while `tobj` finishes.
             if let (Ok((positions, faces, _)), Some(_)) = (&first, &tobj) {
+                // Rows: a vertex per position, a face per face, a halfedge per corner and an
+                // edge per two; the repair's and the tables' arrays are about as many again
+                // per corner.
                 let rows = positions.len() + faces.lines.len() + faces.corners.len() * 5 / 2;
                 let bytes = rows.saturating_mul(process_memory::BYTES_PER_ROW);
                 process_memory::warm_while(bytes, || !tobj_done.load(Ordering::Acquire));
@@ -494,8 +506,9 @@ fn faces_from_tobj(
     faces: &RawFaces,
     good: &dyn Fn(&[u64]) -> bool,
 ) -> Result<TobjFaces, String> {
+    let count = models.len();
     let Ok([model]) = <[tobj::Model; 1]>::try_from(models) else {
-        return Err("not one model".into());
+        return Err(format!("{count} models"));
     };
     let mut first_use = Vec::new();
     let mut seen = vec![false; positions.len()];

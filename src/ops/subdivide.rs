@@ -65,10 +65,7 @@ impl Scheme {
         mesh: MeshId,
         levels: u32,
     ) -> Result<SubdivisionSummary, Refusal> {
-        match self {
-            Scheme::Loop => loop_subdivide(world, mesh, levels),
-            Scheme::CatmullClark => catmull_clark(world, mesh, levels),
-        }
+        subdivide(world, mesh, levels, self)
     }
 
     /// The tables `levels` levels of this scheme make from `tables` (whose rows are the
@@ -83,12 +80,33 @@ impl Scheme {
         members: &MeshMembers,
         levels: u32,
     ) -> Result<Connectivity, Refusal> {
-        self.check(tables, members)?;
-        if levels == 0 {
-            return Ok(tables.clone());
+        Ok(match self.plan(tables, members, levels)? {
+            Some(_) => self.run_levels(tables, levels),
+            None => tables.clone(),
+        })
+    }
+
+    /// Checks `tables` (rows: `members`) and returns the row counts `levels` levels make, or
+    /// `None` for no level.
+    ///
+    /// # Refusals
+    /// Loop: [`Refusal::NotTriangle`] naming a face that is not a triangle. Both:
+    /// [`Refusal::TooLarge`] when the halfedges would not fit 32-bit rows.
+    fn plan(
+        self,
+        tables: &Connectivity,
+        members: &MeshMembers,
+        levels: u32,
+    ) -> Result<Option<RowCounts>, Refusal> {
+        if let (Scheme::Loop, Some(f)) = (self, tables.first_non_triangle()) {
+            return Err(Refusal::NotTriangle(ElementId::Face(
+                members.faces[f.index()],
+            )));
         }
-        final_counts(self.steps(), tables, levels)?;
-        Ok(self.levels(tables, levels))
+        if levels == 0 {
+            return Ok(None);
+        }
+        final_counts(self.steps(), tables, levels).map(Some)
     }
 
     /// How one level runs.
@@ -122,18 +140,8 @@ impl Scheme {
         }
     }
 
-    /// Refuses tables the scheme cannot subdivide: Loop a face that is not a triangle.
-    fn check(self, t: &Connectivity, members: &MeshMembers) -> Result<(), Refusal> {
-        match (self, t.first_non_triangle()) {
-            (Scheme::Loop, Some(f)) => Err(Refusal::NotTriangle(ElementId::Face(
-                members.faces[f.index()],
-            ))),
-            _ => Ok(()),
-        }
-    }
-
-    /// `levels` levels of the scheme on tables the check passed (at least one level).
-    fn levels(self, tables: &Connectivity, levels: u32) -> Connectivity {
+    /// `levels` levels of the scheme on tables [`Scheme::plan`] passed (at least one level).
+    fn run_levels(self, tables: &Connectivity, levels: u32) -> Connectivity {
         let step = self.steps().step;
         let mut t = step(tables);
         for _ in 1..levels {
@@ -267,9 +275,9 @@ fn final_counts(steps: Steps, tables: &Connectivity, levels: u32) -> Result<RowC
     Ok(counts)
 }
 
-/// Runs `levels` levels of `scheme` once its check passed. The tables are computed on a second
-/// thread while this one makes the result's entities exist (the two largest costs, overlapped),
-/// and the links are written once both are done.
+/// Runs `levels` levels of `scheme` on `mesh`, if [`Scheme::plan`] passes its tables. The new
+/// tables are computed on a second thread while this one makes the result's entities exist
+/// (the two largest costs, overlapped), and the links are written once both are done.
 fn subdivide(
     world: &mut World,
     mesh: MeshId,
@@ -280,18 +288,16 @@ fn subdivide(
         return Err(Refusal::Stale(ElementId::Mesh(mesh)));
     }
     let MeshTables { tables, members } = extract(world, mesh);
-    scheme.check(&tables, &members)?;
-    if levels == 0 {
+    let Some(counts) = scheme.plan(&tables, &members, levels)? else {
         return Ok(SubdivisionSummary {
             levels,
             vertices: tables.vertex_count(),
             faces: tables.face_count(),
         });
-    }
-    let counts = final_counts(scheme.steps(), &tables, levels)?;
+    };
     let tables = &tables;
     let (result, rows) = reserve_rows_while(world, counts, mesh, Some(&members), move || {
-        scheme.levels(tables, levels)
+        scheme.run_levels(tables, levels)
     });
     write_links(world, &result, mesh, &rows);
     Ok(SubdivisionSummary {

@@ -70,7 +70,7 @@ pub(crate) fn write_tables(
     old: Option<&MeshMembers>,
 ) -> MeshMembers {
     let counts = c.row_counts();
-    let rows = if counts.total() >= FAULT_AHEAD_ROWS {
+    let rows = if counts.total() >= FAULT_AHEAD_ROWS && process_memory::keeps_freed_memory() {
         // Nothing to compute beside the reserve: the second thread only faults pages in ahead.
         reserve_rows_while(world, counts, mesh, old, || ()).1
     } else {
@@ -81,8 +81,9 @@ pub(crate) fn write_tables(
 }
 
 /// Writes of at least this many rows fault the heap's pages in on a second thread while the
-/// rows are made ([`reserve_rows_while`]): about 10 MB of them, where that saves milliseconds
-/// and starting the thread costs microseconds.
+/// rows are made ([`reserve_rows_while`]), where the program keeps freed memory (elsewhere that
+/// thread would do nothing): about 10 MB of them, where that saves milliseconds and starting
+/// the thread costs microseconds.
 const FAULT_AHEAD_ROWS: usize = 100_000;
 
 /// Makes `counts` rows of each kind exist in `mesh`: the entities of `old` first (reused as
@@ -149,8 +150,9 @@ pub(crate) fn reserve_rows(
 ///
 /// Making the rows exist is the longer of the two in a fresh process: most of it is the kernel
 /// faulting in the new table columns. So once `compute` is done, its thread faults in the
-/// heap's pages ahead of this one ([`process_memory::fault_in_heap_while`], up to about what
-/// the rows take) until the rows exist.
+/// heap's pages ahead of this one until the rows exist
+/// ([`process_memory::fault_in_heap_while`], as far around the top of the heap as the rows
+/// take).
 pub(crate) fn reserve_rows_while<T: Send>(
     world: &mut World,
     counts: RowCounts,
