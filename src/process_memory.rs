@@ -60,6 +60,9 @@ pub const GROWTH_PAD: usize = 1 << 29;
 /// Loop ×1 of the bunny touched 181 MB of fresh pages for its 1.67 M rows.
 pub const BYTES_PER_ROW: usize = 114;
 
+/// The size of a page: the unit the kernel faults in.
+const PAGE: usize = 4096;
+
 /// Whether [`keep_freed_memory`] took effect.
 static KEEPING: AtomicBool = AtomicBool::new(false);
 
@@ -123,7 +126,6 @@ pub fn warm(bytes: usize) -> Option<JoinHandle<()>> {
 /// `busy` is asked every 256 KiB, so it stops within about 0.1 ms of `busy()` turning false.
 /// Returns the bytes warmed: 0 when memory is not kept (see [`warm`]).
 pub fn warm_while(bytes: usize, busy: impl Fn() -> bool) -> usize {
-    const PAGE: usize = 4096;
     const ASK_EVERY: usize = 64 * PAGE;
     if !keeps_freed_memory() {
         return 0;
@@ -159,14 +161,11 @@ pub fn fault_in_heap_while(limit: usize, busy: impl Fn() -> bool) -> usize {
     }
     let top = imp::heap_top_start();
     let stop = top.saturating_add(limit);
-    let mut at = top
-        .saturating_sub(limit)
-        .max(floor)
-        .next_multiple_of(imp::PAGE);
+    let mut at = top.saturating_sub(limit).max(floor).next_multiple_of(PAGE);
     let mut walked = 0;
     while at < stop && busy() {
         let end = imp::heap_end().min(stop);
-        let len = STEP.min(end.saturating_sub(at)) / imp::PAGE * imp::PAGE;
+        let len = STEP.min(end.saturating_sub(at)) / PAGE * PAGE;
         if len == 0 || !imp::populate(at, len) {
             break;
         }
@@ -202,9 +201,6 @@ mod imp {
             no_own_mappings && keep && one_arena && pad
         }
     }
-
-    /// The size of a page.
-    pub const PAGE: usize = 4096;
 
     /// The end of the heap (the program break), as the kernel has it.
     #[allow(unsafe_code)]
@@ -244,8 +240,6 @@ mod imp {
 
 #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
 mod imp {
-    pub const PAGE: usize = 4096;
-
     pub fn keep_freed_memory() -> bool {
         false
     }

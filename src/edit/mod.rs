@@ -153,6 +153,13 @@ pub enum IdsKept {
     VerticesOnly,
 }
 
+impl IdsKept {
+    /// Whether `x`'s id still names the same element after the edit (if it survived).
+    pub fn keeps(self, x: ElementId) -> bool {
+        self == IdsKept::All || matches!(x, ElementId::Vertex(_))
+    }
+}
+
 /// What to redraw after an edit.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Redraw {
@@ -448,15 +455,10 @@ impl Edit {
             subdivision.levels,
         );
         Some(after.map(|after| {
-            let made = SubdivisionSummary {
-                levels: subdivision.levels,
-                vertices: after.vertex_count(),
-                faces: after.face_count(),
-            };
+            let made = SubdivisionSummary::of(subdivision.levels, &after);
             let had = before.tables.attributes.present();
-            let lost = had.lost_in(after.attributes.present());
             let applied = Applied {
-                summary: made.describe() + &lost.dropped_note(&self.why_dropped()),
+                summary: made.describe() + &self.lost_note(had, after.attributes.present()),
                 redraw: Redraw::Whole,
                 made: None,
             };
@@ -479,8 +481,13 @@ impl Edit {
         if !self.carries_attributes() {
             drop_attributes(world, mesh);
         }
-        let lost = had.lost_in(MeshAttributes::of(world, mesh));
-        lost.dropped_note(&self.why_dropped())
+        self.lost_note(had, MeshAttributes::of(world, mesh))
+    }
+
+    /// The summary's note on the attributes of `had` that the edit left out of `now` (empty
+    /// if none), with why.
+    fn lost_note(&self, had: MeshAttributes, now: MeshAttributes) -> String {
+        had.lost_in(now).dropped_note(&self.why_dropped())
     }
 
     /// Why the edit dropped attributes, for the summary's note.

@@ -9,9 +9,8 @@
 
 use bevy::prelude::World;
 
-use crate::edit::{Applied, Edit, IdsKept, Redraw};
+use crate::edit::{Applied, Edit, Redraw};
 use crate::mesh::MeshId;
-use crate::mesh::ids::ElementId;
 use crate::ops::Refusal;
 
 use super::history::{self, Pending};
@@ -68,9 +67,7 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
         Some(made) => world.resource_mut::<Selection>().select_only(Some(made)),
         None => {
             let kept = edit.keeps_ids();
-            keep_live_selection(world, |x| {
-                kept == IdsKept::All || matches!(x, ElementId::Vertex(_))
-            });
+            keep_live_selection(world, |x| kept.keeps(x));
         }
     }
     Ok(applied.summary)

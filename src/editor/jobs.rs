@@ -21,7 +21,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::thread::JoinHandle;
 
-use crate::edit::{Applied, Edit, EditContext, IdsKept};
+use crate::edit::{Applied, Edit, EditContext};
 use crate::mesh::change::row_map;
 use crate::mesh::ids::{ElementId, MeshId};
 use crate::mesh::tables::{
@@ -284,9 +284,10 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
         return Err(Declined::Refused(Refusal::Stale(ElementId::Mesh(mesh))));
     }
     let kept = job.edit.keeps_ids();
-    let selected = world.resource::<Selection>().element.filter(|x| {
-        kept == IdsKept::All || (kept == IdsKept::VerticesOnly && matches!(x, ElementId::Vertex(_)))
-    });
+    let selected = world
+        .resource::<Selection>()
+        .element
+        .filter(|&x| kept.keeps(x));
     let (applied, selection) = match output {
         JobOutput::Tables {
             tables,

@@ -15,11 +15,10 @@
 //! `tobj` reads the file as it stands on a second thread while the first pass runs (after it
 //! while the other core warms memory, see [`crate::process_memory::warm`]), and that reading
 //! serves when the file is one object of well-formed faces (most files: on the bunny the read
-//! then takes about as long as `tobj` alone, not first pass + `tobj`). The first pass is the
-//! shorter of the two; while `tobj` finishes, it faults in memory for the mesh about to be
-//! built ([`crate::process_memory::warm_while`]).
-//! Otherwise the well-formed faces alone are written out and handed to `tobj` as one model
-//! (grouping statements left out).
+//! then takes about as long as `tobj` alone, not first pass + `tobj`). Otherwise the
+//! well-formed faces alone are written out and handed to `tobj` as one model (grouping
+//! statements left out). The first pass is the shorter of the two; while `tobj` finishes, it
+//! faults in memory for the mesh about to be built ([`crate::process_memory::warm_while`]).
 //!
 //! Attributes, read in the same first pass: `vt u v` (a `w` is ignored) named by the corners
 //! (`f v/vt`, `v/vt/vn`) become the soup's corner UVs; `vn` named by the corners (`v//vn`,
@@ -238,9 +237,8 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     // The whole file's reading serves when every face is well formed and it is one object;
     // otherwise `tobj` reads the well-formed faces alone, as one object.
     let all_good = faces.iter().all(|(_, corners)| good(corners));
-    let whole_file = whole_file
-        .or_else(|| all_good.then(|| run_tobj(bytes)))
-        .filter(|_| all_good)
+    let whole_file = all_good
+        .then(|| whole_file.unwrap_or_else(|| run_tobj(bytes)))
         .and_then(Result::ok)
         .and_then(|models| faces_from_tobj(models, &positions, &faces, &good).ok());
     let parsed = match whole_file {

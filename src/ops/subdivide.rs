@@ -163,6 +163,15 @@ pub struct SubdivisionSummary {
 }
 
 impl SubdivisionSummary {
+    /// The summary of `levels` levels that made the tables `t`.
+    pub fn of(levels: u32, t: &Connectivity) -> Self {
+        Self {
+            levels,
+            vertices: t.vertex_count(),
+            faces: t.face_count(),
+        }
+    }
+
     /// What the subdivision made, for its outcome: levels, vertices and faces.
     pub fn describe(&self) -> String {
         format!(
@@ -289,22 +298,14 @@ fn subdivide(
     }
     let MeshTables { tables, members } = extract(world, mesh);
     let Some(counts) = scheme.plan(&tables, &members, levels)? else {
-        return Ok(SubdivisionSummary {
-            levels,
-            vertices: tables.vertex_count(),
-            faces: tables.face_count(),
-        });
+        return Ok(SubdivisionSummary::of(levels, &tables));
     };
     let tables = &tables;
     let (result, rows) = reserve_rows_while(world, counts, mesh, Some(&members), move || {
         scheme.run_levels(tables, levels)
     });
     write_links(world, &result, mesh, &rows);
-    Ok(SubdivisionSummary {
-        levels,
-        vertices: result.vertex_count(),
-        faces: result.face_count(),
-    })
+    Ok(SubdivisionSummary::of(levels, &result))
 }
 
 /// The positions of the vertices one level of Loop subdivision makes, by their rows in
