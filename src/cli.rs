@@ -22,6 +22,7 @@ use std::time::Instant;
 use crate::colormap::Range;
 use crate::edit::{Edit, STEP_SYNTAX, Step};
 use crate::io;
+use crate::memory_budget::Budget;
 use crate::mesh::attributes::MeshAttributes;
 use crate::mesh::tables::extract;
 use crate::mesh::{BuiltMesh, MeshId, RepairReport, build_mesh, mesh_stats, to_soup, validate};
@@ -51,6 +52,7 @@ macro_rules! outln {
 }
 
 mod batch;
+mod recover;
 
 /// The command line.
 #[derive(Parser, Clone, Debug, PartialEq)]
@@ -67,6 +69,11 @@ pub struct Cli {
     /// A batch command; without one, the editor opens.
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// The memory an operation may ask for: a size (2G, 512M) or a share of the available
+    /// memory (50%); default 75%. An operation whose result would need more is refused with
+    /// its estimate.
+    #[arg(long, global = true, value_parser = Budget::parse, value_name = "SIZE")]
+    pub max_memory: Option<Budget>,
 }
 
 /// What a FILE may be.
@@ -123,7 +130,32 @@ pub enum Command {
         #[arg(value_parser = ProcessArg::parse, value_name = "STEP")]
         steps: Vec<ProcessArg>,
     },
+    /// List or restore the editor's recovery files: unsaved work kept after a crash or a kill.
+    #[command(after_help = RECOVER_HELP)]
+    Recover {
+        /// The recovery to restore, by name (as --list shows it).
+        #[arg(conflicts_with_all = ["latest", "list"])]
+        name: Option<String>,
+        /// List the recoveries, newest first.
+        #[arg(long, conflicts_with = "latest")]
+        list: bool,
+        /// Restore the newest recovery.
+        #[arg(long)]
+        latest: bool,
+        /// Where to write the restored mesh (format by extension).
+        #[arg(short, long, required_unless_present = "list")]
+        output: Option<PathBuf>,
+        /// JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
 }
+
+/// How `recover` is used.
+const RECOVER_HELP: &str = "The editor keeps unsaved work in $XDG_STATE_HOME/pappus/recovery \
+(default ~/.local/state/pappus/recovery) a few seconds after each edit, and removes it on save. \
+`pappus recover --list` lists what is kept; `pappus recover --latest -o bunny.obj` writes the \
+newest back as a mesh file.";
 
 /// How `process` takes several inputs.
 const PROCESS_HELP: &str = "Several inputs: `pappus process a.obj b.off 'scans/*.ply' -o out/{stem}.ply -j 2 STEP...`: \
@@ -404,8 +436,14 @@ fn info_text(name: &str, object: &Map<String, Value>, report: &RepairReport) -> 
     )
 }
 
-/// Runs a command and returns the process exit code. Output goes to stdout, errors to stderr.
+/// Runs a command and returns the process exit code. Output goes to stdout, errors to stderr:
+/// 1 for a failure, 2 for a usage error (a `shape:` name that is unknown, or whose sizes pass
+/// the limits, found before anything is read).
 pub fn run(command: Command) -> i32 {
+    if let Err(message) = check_shapes(&command) {
+        eprintln!("pappus: {message}");
+        return 2;
+    }
     match execute(command) {
         Ok(()) => 0,
         Err(message) => {
@@ -413,6 +451,25 @@ pub fn run(command: Command) -> i32 {
             1
         }
     }
+}
+
+/// Checks every `shape:` input of `command` ([`crate::mesh::shapes::check_name`]): its sizes
+/// are multiplied out in 64 bits and held to the memory budget before anything is made.
+fn check_shapes(command: &Command) -> Result<(), String> {
+    let inputs: Vec<&str> = match command {
+        Command::Info { input, .. } | Command::Convert { input, .. } => vec![input],
+        Command::Process { input, steps, .. } => std::iter::once(input.as_str())
+            .chain(steps.iter().filter_map(|arg| match arg {
+                ProcessArg::Input(input) => Some(input.as_str()),
+                ProcessArg::Step(_) => None,
+            }))
+            .collect(),
+        Command::Recover { .. } => Vec::new(),
+    };
+    for name in inputs.iter().filter_map(|i| i.strip_prefix("shape:")) {
+        crate::mesh::shapes::check_name(name).map_err(|e| e.to_string())?;
+    }
+    Ok(())
 }
 
 fn execute(command: Command) -> Result<(), String> {
@@ -462,6 +519,21 @@ fn execute(command: Command) -> Result<(), String> {
                 steps: Vec::new(),
             };
             return batch::process(input, output, steps, jobs as usize, job);
+        }
+        Command::Recover {
+            name,
+            list,
+            latest,
+            output,
+            json,
+        } => {
+            return recover::recover(recover::RecoverArgs {
+                name,
+                list,
+                latest,
+                output,
+                json,
+            });
         }
     }
     Ok(())
@@ -700,6 +772,7 @@ mod tests {
         let editor = |file: Option<&str>| Cli {
             file: file.map(PathBuf::from),
             command: None,
+            max_memory: None,
         };
         assert_eq!(parse("").unwrap(), editor(None));
         assert_eq!(parse("bunny.obj").unwrap(), editor(Some("bunny.obj")));

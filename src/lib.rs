@@ -21,8 +21,11 @@ pub mod colormap;
 pub mod edit;
 #[cfg(feature = "editor")]
 pub mod editor;
+pub mod fuzzing;
 pub mod io;
+pub mod memory_budget;
 pub mod mesh;
 pub mod ops;
 pub mod process_memory;
+pub mod recovery;
 pub mod source;

@@ -9,8 +9,17 @@ use pappus::cli::{self, Cli};
 fn main() {
     // Before any bulk allocation: freed memory is kept for the next operation.
     pappus::process_memory::keep_freed_memory();
+    // A save past the file-size limit (`ulimit -f`) fails with a message, the old file intact.
+    pappus::io::ignore_file_size_signal();
     // A usage error prints the usage and exits with 2; --help and --version exit with 0.
-    let Cli { file, command } = Cli::parse();
+    let Cli {
+        file,
+        command,
+        max_memory,
+    } = Cli::parse();
+    if let Some(budget) = max_memory {
+        pappus::memory_budget::set(budget);
+    }
     let code = match command {
         None => open_editor(file),
         Some(command) => cli::run(command),

@@ -9,9 +9,9 @@ use crate::mesh::{MeshInfo, PolygonSoup, shapes};
 /// Why a source could not be read.
 #[derive(Debug, thiserror::Error)]
 pub enum SourceError {
-    /// `shape:NAME` names no shape [`shapes::by_name`] knows.
-    #[error("unknown shape `{0}`; known: {known}", known = shapes::SHAPE_NAMES.join(", "))]
-    UnknownShape(String),
+    /// `shape:NAME` names no shape [`shapes::by_name`] knows, or sizes too large to make.
+    #[error(transparent)]
+    Shape(#[from] shapes::ShapeError),
     /// The file could not be read (the error names it, with the line or offset).
     #[error(transparent)]
     Io(#[from] IoError),
@@ -24,8 +24,7 @@ pub enum SourceError {
 pub fn read_source(source: &Path) -> Result<(PolygonSoup, MeshInfo), SourceError> {
     let text = source.to_string_lossy();
     if let Some(name) = text.strip_prefix("shape:") {
-        let soup =
-            shapes::by_name(name).ok_or_else(|| SourceError::UnknownShape(name.to_string()))?;
+        let soup = shapes::by_name(name)?;
         let info = MeshInfo {
             name: name.to_string(),
             path: None,

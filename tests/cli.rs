@@ -770,3 +770,184 @@ fn several_inputs_need_a_pattern_that_tells_their_outputs_apart() {
     assert_eq!(late.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&late.stderr).contains("the inputs come first"));
 }
+
+/// Runs `pappus ARGS…` under `sh -c` with `limits` (ulimit commands) applied first.
+fn pappus_limited(limits: &str, args: &[&str]) -> Output {
+    let mut script = format!("{limits} && exec \"$0\"");
+    for i in 1..=args.len() {
+        script.push_str(&format!(" \"${i}\""));
+    }
+    Command::new("sh")
+        .arg("-c")
+        .arg(script)
+        .arg(env!("CARGO_BIN_EXE_pappus"))
+        .args(args)
+        .output()
+        .expect("runs pappus under sh")
+}
+
+/// Operations whose result's size follows from their parameters are refused before they start,
+/// with the estimate and the budget, under an address-space limit that an attempt would exhaust
+/// (4 GiB, as a user's `ulimit -v` might be): no abort, exit 1, the reason on stderr.
+#[test]
+fn sizes_beyond_the_memory_are_refused_before_they_start() {
+    let Some(bunny) = common::model("stanford-bunny.obj") else {
+        return;
+    };
+    let bunny = bunny.to_str().unwrap();
+    let out = tmp("never.off");
+    let out = out.to_str().unwrap();
+    for (step, what) in [
+        ("loop:5", "Loop ×5 would make 71 M faces, about "),
+        (
+            "catmull-clark:7",
+            "Catmull–Clark ×7 would make 860 M faces, about ",
+        ),
+        (
+            "remesh:8:0.00001",
+            "remeshing to edges of 0.00001 (8 iterations) would make ",
+        ),
+    ] {
+        let start = std::time::Instant::now();
+        let output = pappus_limited("ulimit -v 4194304", &["process", bunny, "-o", out, step]);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "{step}: {stderr}");
+        assert!(stderr.contains(what), "{step}: {stderr}");
+        assert!(stderr.contains("; the budget is "), "{step}: {stderr}");
+        assert!(
+            start.elapsed().as_secs() < 10,
+            "{step} took {:?}",
+            start.elapsed()
+        );
+    }
+    // --max-memory sets the budget: a Loop ×1 of the bunny fits 2 GB, not 10 MB.
+    let output = pappus(&["--max-memory", "10M", "process", bunny, "-o", out, "loop:1"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("the budget is 10 MB (the limit set): use fewer levels"),
+        "{stderr}"
+    );
+    let output = pappus(&["process", bunny, "-o", out, "--max-memory", "2G", "loop:1"]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let output = pappus(&["--max-memory", "lots", "info", "shape:cube"]);
+    assert_eq!(output.status.code(), Some(2));
+}
+
+/// Shape sizes are multiplied out in 64 bits and held to the budget before anything is made: a
+/// usage error (exit 2) in well under a second, never a wrap or an abort.
+#[test]
+fn huge_shape_sizes_are_usage_errors() {
+    for name in [
+        "shape:grid:100000",
+        "shape:torus:100000:100000",
+        "shape:grid:10000",
+    ] {
+        let start = std::time::Instant::now();
+        let output = pappus(&["info", name]);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{name}: {stderr}");
+        assert!(stderr.starts_with("pappus: shape `"), "{stderr}");
+        assert!(start.elapsed().as_secs() < 5);
+    }
+    let out = tmp("huge.off");
+    let output = pappus(&["convert", "shape:grid:100000", out.to_str().unwrap()]);
+    assert_eq!(output.status.code(), Some(2));
+    assert!(!out.exists());
+}
+
+/// A save past the file-size limit fails with the system's reason and leaves the old file
+/// byte for byte and no temporary file; a save through a symbolic link replaces its target.
+#[test]
+fn a_failed_save_leaves_the_old_file_whole() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-save");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("m.obj");
+    let old = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::fs::write(&path, old).unwrap();
+    // 64 blocks of 512 bytes: far less than an icosphere of 5 levels takes as OBJ.
+    let output = pappus_limited(
+        "ulimit -f 64",
+        &["convert", "shape:icosphere:5", path.to_str().unwrap()],
+    );
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("not saved (File too large")
+            && stderr.contains("the file on disk is as it was"),
+        "{stderr}"
+    );
+    assert_eq!(std::fs::read(&path).unwrap(), old);
+    let names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, ["m.obj"], "no temporary file is left");
+    // Through a link: the target changes, the link stays a link.
+    std::os::unix::fs::symlink("m.obj", dir.join("link.obj")).unwrap();
+    let output = pappus(&[
+        "convert",
+        "shape:cube",
+        dir.join("link.obj").to_str().unwrap(),
+    ]);
+    assert!(output.status.success());
+    assert!(
+        std::fs::symlink_metadata(dir.join("link.obj"))
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert_eq!(pappus::io::read(&path).unwrap().face_count(), 6, "the cube");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `pappus recover` lists the recoveries and writes one back; with none it says so.
+#[test]
+fn recover_lists_and_restores_recovery_files() {
+    let state = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-recover");
+    let _ = std::fs::remove_dir_all(&state);
+    let run = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_pappus"))
+            .args(args)
+            .env("XDG_STATE_HOME", &state)
+            .output()
+            .unwrap()
+    };
+    let output = run(&["recover", "--list"]);
+    assert!(output.status.success());
+    assert!(String::from_utf8_lossy(&output.stdout).starts_with("no recovery in "));
+    let output = run(&["recover", "--latest", "-o", "x.obj"]);
+    assert_eq!(output.status.code(), Some(1));
+    let soup = pappus::mesh::shapes::torus(5, 3);
+    let info = pappus::recovery::RecoveryInfo {
+        source: None,
+        name: "torus".into(),
+        saved_at: pappus::recovery::now(),
+        pid: u32::MAX,
+        vertices: soup.positions.len(),
+        faces: soup.face_count(),
+    };
+    let folder = state.join("pappus/recovery");
+    pappus::recovery::write(&folder, "torus-1-2", &soup, &info).unwrap();
+    let listed = json(&run(&["recover", "--list", "--json"]));
+    assert_eq!(listed[0]["name"], "torus-1-2");
+    assert_eq!(listed[0]["faces"], 15);
+    assert_eq!(listed[0]["newer_than_source"], true);
+    let out = state.join("back.off");
+    let output = run(&["recover", "torus-1-2", "-o", out.to_str().unwrap()]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let back = pappus::io::read(&out).unwrap();
+    assert_eq!(back.positions, soup.positions);
+    assert_eq!(back.indices, soup.indices);
+    let output = run(&["recover", "nothing-of-the-kind", "-o", "x.obj"]);
+    assert!(String::from_utf8_lossy(&output.stderr).contains("no recovery named"));
+    std::fs::remove_dir_all(&state).unwrap();
+}

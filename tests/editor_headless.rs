@@ -864,6 +864,75 @@ fn smoothing_as_a_job_holds_the_vertex_the_editor_named() {
     assert_ne!(at(&app, free), free_at, "the others moved");
 }
 
+/// A job's commit follows the whole selected set through its rows, not the active element
+/// alone: a smoothing (run on a copy of the mesh) keeps every selected element; a Loop
+/// subdivision (run on the tables) keeps the selected vertices, whose ids it keeps.
+#[test]
+fn a_job_keeps_the_selected_set() {
+    use pappus::editor::jobs::{JobSettings, Jobs};
+    use pappus::ops::smooth::{SmoothMethod, SmoothParams};
+    let mut app = app();
+    app.world_mut().resource_mut::<JobSettings>().min_faces = 100;
+    open(&mut app, "shape:icosphere");
+    let members = pappus::mesh::MeshMembers::collect(app.world(), mesh(&app));
+    let mut chosen: Vec<ElementId> = members.vertices[3..9]
+        .iter()
+        .map(|&v| ElementId::Vertex(v))
+        .collect();
+    chosen.push(ElementId::Face(members.faces[5]));
+    chosen.push(ElementId::Vertex(members.vertices[20]));
+    let run = |app: &mut App, edit: Edit| {
+        app.world_mut().write_message(Request::Edit(edit));
+        app.update();
+        assert!(
+            app.world().resource::<Jobs>().running.is_some(),
+            "runs as a job"
+        );
+        while app.world().resource::<Jobs>().running.is_some() {
+            std::thread::sleep(std::time::Duration::from_millis(2));
+            app.update();
+        }
+        assert!(last_outcome(app).result.is_ok(), "{:?}", last_outcome(app));
+    };
+    let select = |app: &mut App| {
+        let mut selection = app.world_mut().resource_mut::<Selection>();
+        selection.select_only(None);
+        selection.extend(chosen.iter().copied());
+    };
+    select(&mut app);
+    run(
+        &mut app,
+        Edit::Smooth(SmoothParams::new(SmoothMethod::Uniform)),
+    );
+    let selection = app.world().resource::<Selection>();
+    assert_eq!(selection.len(), chosen.len(), "{:?}", selection.elements());
+    assert_eq!(selection.element, chosen.last().copied());
+    let m = MeshRef::new(app.world());
+    assert!(
+        selection
+            .elements()
+            .iter()
+            .all(|&x| pappus::editor::selection::exists(&m, x))
+    );
+    select(&mut app);
+    run(
+        &mut app,
+        Edit::Subdivide(pappus::edit::Subdivision::once(pappus::edit::Scheme::Loop)),
+    );
+    let selection = app.world().resource::<Selection>();
+    let vertices: Vec<ElementId> = chosen
+        .iter()
+        .copied()
+        .filter(|x| matches!(x, ElementId::Vertex(_)))
+        .collect();
+    assert_eq!(
+        selection.elements(),
+        vertices,
+        "the vertices keep their ids"
+    );
+    assert_eq!(selection.element, chosen.last().copied());
+}
+
 /// Whether every render chunk of the active mesh has texture coordinates.
 fn renders_uvs(app: &mut App) -> bool {
     let meshes: Vec<Handle<Mesh>> = app
@@ -975,4 +1044,154 @@ fn shift_u_parameterizes_as_a_job_draws_a_checker_and_undo_removes_the_uvs() {
     assert!(!MeshAttributes::of(app.world(), m).uv);
     assert!(!renders_uvs(&mut app));
     assert!(app.world().resource::<UvLayout>().is_empty());
+}
+
+/// A folder of its own for a test's recovery files.
+fn recovery_folder(test: &str) -> std::path::PathBuf {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("recovery-{test}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// Updates `app` until `done` holds (a thread's write lands between frames), for at most 10 s.
+fn update_until(app: &mut App, done: impl Fn(&App) -> bool) {
+    let start = std::time::Instant::now();
+    while !done(app) {
+        assert!(start.elapsed().as_secs() < 10, "timed out");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        app.update();
+    }
+}
+
+/// Autosave: an edit writes the unsaved mesh to a recovery file once the editor is idle (here
+/// at once), which gives the mesh back bit for bit; a save removes it.
+#[test]
+fn an_idle_editor_keeps_its_unsaved_mesh_in_a_recovery_file_until_it_is_saved() {
+    use pappus::editor::recovery::Autosave;
+    let dir = recovery_folder("autosave");
+    let mut app = app();
+    let mut autosave = Autosave::into_folder(Some(dir.clone()));
+    autosave.idle = std::time::Duration::ZERO;
+    app.insert_resource(autosave);
+    open(&mut app, "shape:icosphere:1");
+    app.update();
+    assert!(
+        pappus::recovery::list(&dir).is_empty(),
+        "nothing unsaved yet"
+    );
+    let e = some_interior_edge(&app);
+    app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
+    update_until(&mut app, |app| {
+        app.world().resource::<Autosave>().written.is_some()
+    });
+    let found = pappus::recovery::list(&dir);
+    assert_eq!(found.len(), 1);
+    assert_eq!(found[0].info.name, "icosphere:1");
+    assert_eq!(found[0].info.source, None);
+    let kept = found[0].read().unwrap();
+    let now = pappus::mesh::to_soup(app.world(), mesh(&app));
+    assert_eq!(
+        (kept.positions.clone(), kept.indices.clone()),
+        (now.positions, now.indices)
+    );
+    // Saved: the recovery goes.
+    let saved = dir.join("saved.obj");
+    app.world_mut()
+        .write_message(Request::Save(Some(saved.clone())));
+    update_until(&mut app, |_| pappus::recovery::list(&dir).is_empty());
+    assert!(saved.is_file());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// At start the newest recovery newer than its source is offered; restoring opens its mesh as
+/// unsaved work on the source file, and the recovery is removed.
+#[test]
+fn a_recovery_newer_than_its_source_is_offered_at_start_and_restores() {
+    use pappus::editor::recovery::{Autosave, RecoveryAnswer, RecoveryOffer};
+    use pappus::editor::session::is_modified;
+    let dir = recovery_folder("offer");
+    std::fs::create_dir_all(&dir).unwrap();
+    let source = dir.join("torus.obj");
+    std::fs::write(&source, b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let soup = pappus::mesh::shapes::torus(6, 4);
+    let info = pappus::recovery::RecoveryInfo {
+        source: Some(source.clone()),
+        name: "torus.obj".into(),
+        saved_at: pappus::recovery::now() + 5.0,
+        pid: u32::MAX,
+        vertices: soup.positions.len(),
+        faces: soup.face_count(),
+    };
+    pappus::recovery::write(&dir, "torus.obj-1-2", &soup, &info).unwrap();
+    // An older one, and one older than its source, are not the one offered.
+    let stale = pappus::recovery::RecoveryInfo {
+        saved_at: 1000.0,
+        ..info.clone()
+    };
+    pappus::recovery::write(&dir, "torus.obj-1-1", &soup, &stale).unwrap();
+    let mut app = pappus::editor::headless_app();
+    app.insert_resource(Autosave::into_folder(Some(dir.clone())));
+    app.update();
+    let offered = app
+        .world()
+        .resource::<RecoveryOffer>()
+        .0
+        .clone()
+        .expect("an offer");
+    assert_eq!(offered.name, "torus.obj-1-2");
+    app.world_mut()
+        .write_message(Request::Recover(RecoveryAnswer::Restore));
+    app.update();
+    assert!(
+        last_outcome(&app).result.is_ok(),
+        "{:?}",
+        last_outcome(&app)
+    );
+    let mesh = mesh(&app);
+    let restored = pappus::mesh::to_soup(app.world(), mesh);
+    assert_eq!(restored.positions, soup.positions);
+    assert_eq!(restored.indices, soup.indices);
+    let info_now = app.world().get::<pappus::mesh::MeshInfo>(mesh.0).unwrap();
+    assert_eq!(info_now.path.as_deref(), Some(source.as_path()));
+    assert!(is_modified(app.world(), mesh), "restored work is unsaved");
+    let left: Vec<String> = pappus::recovery::list(&dir)
+        .into_iter()
+        .map(|r| r.name)
+        .collect();
+    assert_eq!(left, ["torus.obj-1-1"], "the restored recovery is gone");
+    assert!(app.world().resource::<RecoveryOffer>().0.is_none());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A Loop the memory budget refuses leaves the mesh as it was, in a job as at once.
+#[test]
+fn a_subdivision_past_the_memory_budget_is_refused_and_changes_nothing() {
+    use pappus::edit::{Scheme, Subdivision};
+    use pappus::editor::jobs::{JobSettings, Jobs};
+    for min_faces in [usize::MAX, 100] {
+        let mut app = app();
+        app.world_mut().resource_mut::<JobSettings>().min_faces = min_faces;
+        open(&mut app, "shape:icosphere:5");
+        let before = pappus::mesh::to_soup(app.world(), mesh(&app));
+        let loop8 = Subdivision {
+            scheme: Scheme::Loop,
+            levels: 8,
+        };
+        app.world_mut()
+            .write_message(Request::Edit(Edit::Subdivide(loop8)));
+        app.update();
+        update_until(&mut app, |app| {
+            app.world().resource::<Jobs>().running.is_none()
+        });
+        let outcome = last_outcome(&app);
+        let why = outcome.result.expect_err("refused").to_string();
+        assert!(
+            why.contains("Loop ×8 would make 1342 M faces, about ")
+                && why.contains("the budget is"),
+            "{why}"
+        );
+        let after = pappus::mesh::to_soup(app.world(), mesh(&app));
+        assert_eq!(after, before, "the mesh is as it was");
+    }
 }

@@ -175,6 +175,7 @@ fn a_gesture_is_one_undo_step_and_esc_takes_it_back_with_the_edit_it_followed() 
     let f = members(&app).faces[2];
     send(&mut app, Request::Select(Some(ElementId::Face(f))));
     let keep = undo_steps(&app).0;
+    let mark = app.world().resource::<UndoHistory>().mark();
     send(&mut app, Edit::Extrude(vec![f], 0.0));
     app.world_mut()
         .resource_mut::<UndoHistory>()
@@ -184,7 +185,7 @@ fn a_gesture_is_one_undo_step_and_esc_takes_it_back_with_the_edit_it_followed() 
     send(&mut app, Edit::MoveVertices(moves));
     app.world_mut().resource_mut::<UndoHistory>().end_gesture();
     assert_eq!(undo_steps(&app), (keep + 2, 0));
-    send(&mut app, Request::Retract(keep));
+    send(&mut app, Request::Retract(mark));
     assert_eq!(
         undo_steps(&app),
         (keep, 0),
@@ -192,6 +193,49 @@ fn a_gesture_is_one_undo_step_and_esc_takes_it_back_with_the_edit_it_followed() 
     );
     assert_eq!(counts(&app), (8, 12, 6));
     assert_eq!(MeshRef::new(app.world()).position(v), p + Vec3::splat(0.3));
+}
+
+/// Esc counts back by the entries' serial numbers, not by how many there are: the memory cap
+/// may drop old entries while a gesture runs, and the cancel still takes back exactly the
+/// extrusion and the gesture's moves.
+#[test]
+fn esc_takes_a_gesture_back_after_the_memory_cap_trimmed_the_history() {
+    let mut app = common::headless_editor();
+    open(&mut app, "shape:cube");
+    let vs = members(&app).vertices;
+    for (i, &v) in vs.iter().enumerate().take(6) {
+        let p = MeshRef::new(app.world()).position(v);
+        send(&mut app, Edit::MoveVertex(v, p * (1.0 + 0.01 * i as f32)));
+    }
+    let before_extrusion = counts(&app);
+    let old_entries = undo_steps(&app).0;
+    let mark = app.world().resource::<UndoHistory>().mark();
+    let f = members(&app).faces[2];
+    send(&mut app, Edit::Extrude(vec![f], 0.0));
+    // From now on the cap holds about what there is, less the oldest entry: the gesture's
+    // step pushes the oldest ones out.
+    {
+        let mut h = app.world_mut().resource_mut::<UndoHistory>();
+        let oldest = h.undo_entries()[0].bytes();
+        h.limit_bytes = h.bytes() - oldest + 1;
+    }
+    app.world_mut()
+        .resource_mut::<UndoHistory>()
+        .begin_gesture();
+    let top: Vec<_> = MeshRef::new(app.world()).face_vertices(f).collect();
+    send(
+        &mut app,
+        Edit::MoveVertices(top.iter().map(|&x| (x, Vec3::splat(2.0))).collect()),
+    );
+    app.world_mut().resource_mut::<UndoHistory>().end_gesture();
+    let (now, _) = undo_steps(&app);
+    assert!(now < old_entries + 2, "the cap dropped old entries: {now}");
+    assert_ne!(counts(&app), before_extrusion);
+    send(&mut app, Request::Retract(mark));
+    assert_eq!(counts(&app), before_extrusion, "{}", last_ok(&app));
+    assert_eq!(undo_steps(&app), (now - 2, 0));
+    let mesh = app.world().resource::<ActiveMesh>().0.unwrap();
+    validate(app.world(), mesh).unwrap();
 }
 
 #[test]

@@ -25,6 +25,8 @@ from ._pappus import (
     Refused,
     __version__,
     load,
+    memory_budget,
+    set_memory_budget,
 )
 
 __all__ = [
@@ -36,6 +38,8 @@ __all__ = [
     "Refused",
     "__version__",
     "load",
+    "memory_budget",
+    "set_memory_budget",
 ]
 
 

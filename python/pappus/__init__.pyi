@@ -10,7 +10,15 @@ __version__: str
 #: The procedural shapes ``load("shape:NAME")`` knows (sizes after colons: ``"shape:torus:64:32"``).
 SHAPES: List[str]
 
-#: A progress callback: called with the fraction done (0 to 1); return False to stop early.
+#: A progress callback: called with the fraction done (0 to 1) at least once per level, pass,
+#: iteration or solve phase. Returning False stops the operation where that is safe: simplify
+#: and remesh stop after the pass (a valid, partly simplified or remeshed mesh), smooth after
+#: the iteration (the summary says "stopped after k of n iterations"), loop and catmull_clark
+#: only at their first call, before anything changed (Refused: "stopped by the progress
+#: callback"); triangulate, parameterize and refine cannot stop and run to their end. An
+#: exception raised by the callback never leaves a half-told result: the operation runs to its
+#: end (the callback is not called again) and the exception is re-raised with a note (PEP 678)
+#: saying that the edit completed, or that it was refused and the mesh is unchanged.
 Progress = Optional[Callable[[float], Optional[bool]]]
 #: A vertex by its input number; an edge ``(a, b)``; a face ``(a, b, c, ...)`` (consecutive corners).
 Element = Union[int, Sequence[int]]
@@ -43,6 +51,18 @@ def load(path: Union[str, os.PathLike]) -> "Mesh":
     Raises ParseError (naming the line), FileNotFoundError/OSError, or ValueError (unknown
     extension or shape, no usable face). The GIL is released while reading and building.
     """
+
+def set_memory_budget(limit: Union[int, str, None] = None) -> int:
+    """Sets the memory budget of every operation in this process; returns the limit in bytes.
+
+    ``limit``: bytes, a size such as ``"2G"`` or ``"512M"``, a share such as ``"50%"``, or None
+    for the default (75 % of the available memory). An operation whose result would pass it
+    (subdivision levels, a remeshing length, shape sizes, extrusions) raises Refused with its
+    estimate before it starts.
+    """
+
+def memory_budget() -> Tuple[int, str]:
+    """The budget now: ``(limit_bytes, how_it_was_chosen)``."""
 
 class Mesh:
     """One halfedge mesh (polygons allowed).
@@ -80,7 +100,12 @@ class Mesh:
     def validate(self) -> None:
         """Returns None when every invariant holds; raises InvalidMesh otherwise."""
     def save(self, path: Union[str, os.PathLike]) -> None:
-        """Writes .obj/.off/.ply/.stl (by extension) atomically; ValueError/OSError on failure."""
+        """Writes .obj/.off/.ply/.stl (by extension) atomically; ValueError/OSError on failure.
+
+        The old file survives any failure byte for byte (no space, the file-size limit, no
+        permission; the OSError says which); a symbolic link is followed and kept; the old
+        file's permissions are kept; two threads saving one path leave one whole file.
+        """
     def step(self, step: str, *, progress: Progress = None) -> str:
         """Runs one ``pappus process`` step written as on the command line (``"flip:3,17"``)."""
     # Whole-mesh operations: the GIL is released, ``progress`` is called now and then.

@@ -30,10 +30,12 @@ use bevy::math::{Vec2, Vec3};
 use pappus::cli::info_with_load_times;
 use pappus::edit::{EditContext, Step};
 use pappus::io::{self, IoError};
+use pappus::memory_budget::Budget;
 use pappus::mesh::{
     MeshId, MeshInfo, MeshMembers, PolygonSoup, RepairReport, VertexId, build_mesh, to_soup,
     validate,
 };
+use pappus::ops::Refusal;
 use pappus::ops::progressive::ProgressiveMesh;
 use pappus::source::{SourceError, read_source};
 
@@ -77,7 +79,7 @@ fn io_error(py: Python<'_>, e: IoError) -> PyErr {
         IoError::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound => {
             PyFileNotFoundError::new_err(e.to_string())
         }
-        IoError::Io { .. } => PyOSError::new_err(e.to_string()),
+        IoError::Io { .. } | IoError::Save { .. } => PyOSError::new_err(e.to_string()),
         IoError::Parse { path, location, .. } | IoError::Unsupported { path, location, .. } => {
             let err = ParseError::new_err(e.to_string());
             let value = err.value(py);
@@ -92,6 +94,25 @@ fn io_error(py: Python<'_>, e: IoError) -> PyErr {
             err
         }
     }
+}
+
+/// The exception a progress callback raised, with a note (PEP 678) on what became of the
+/// edit: it completed (the mesh holds its result: `outcome`'s summary), or it was refused and
+/// the mesh is unchanged.
+fn with_outcome_note(py: Python<'_>, e: PyErr, outcome: &Result<String, Refusal>) -> PyErr {
+    let note = match outcome {
+        Ok(summary) => format!(
+            "pappus: raised in a progress callback; the edit completed all the same and the \
+             mesh holds its result ({summary})"
+        ),
+        Err(refusal) => format!(
+            "pappus: raised in a progress callback; the edit was refused ({refusal}) and the \
+             mesh is unchanged"
+        ),
+    };
+    // `add_note` exists from Python 3.11; on older ones the exception goes up without it.
+    let _ = e.value(py).call_method1("add_note", (note,));
+    e
 }
 
 /// One halfedge mesh (polygons allowed), owned by Python.
@@ -141,7 +162,11 @@ impl Mesh {
     }
 
     /// Runs a parsed step, the GIL released, reporting to `progress` if given. Returns the
-    /// summary; a refusal becomes `Refused`, an exception raised by `progress` is re-raised.
+    /// summary; a refusal becomes `Refused`. `progress` returning `False` stops the edit where
+    /// it can stop (the summary says so). An exception raised by `progress` is never a
+    /// half-told result: the callback is not called again, the edit runs to its end (or its
+    /// refusal, which changes nothing), and the exception is re-raised with a note that says
+    /// which ([`with_outcome_note`]).
     fn run_step(
         &mut self,
         py: Python<'_>,
@@ -162,14 +187,16 @@ impl Mesh {
                     return true;
                 };
                 if failure.is_some() {
-                    return false;
+                    return true;
                 }
                 Python::attach(|py| match callback.call1(py, (fraction,)) {
                     // None (or any true value) goes on; False stops where the edit can.
                     Ok(answer) => answer.is_none(py) || answer.is_truthy(py).unwrap_or(true),
+                    // The edit goes on to its end: stopping it here would change the mesh
+                    // and then report a failure.
                     Err(e) => {
                         failure = Some(e);
-                        false
+                        true
                     }
                 })
             };
@@ -192,7 +219,7 @@ impl Mesh {
             (outcome, failure)
         });
         if let Some(e) = failure {
-            return Err(e);
+            return Err(with_outcome_note(py, e, &outcome));
         }
         outcome.map_err(|refusal| Refused::new_err(refusal.to_string()))
     }
@@ -974,6 +1001,36 @@ fn faces_array<'py>(
     Ok(list.into_any())
 }
 
+/// Sets the memory budget of every operation in this process: a size in bytes (`int`), a
+/// string as the command line's `--max-memory` takes (`"2G"`, `"512M"`, `"50%"`), or `None`
+/// for the default (75 % of the available memory). An operation whose result's size follows
+/// from its parameters (subdivision, remeshing, shapes, extrusions) estimates it before it
+/// starts and raises `Refused` with the estimate when it would pass the budget, rather than
+/// exhausting the memory. Returns the limit now, in bytes.
+///
+/// Raises `ValueError` for a budget it cannot read.
+#[pyfunction]
+#[pyo3(signature = (limit=None))]
+fn set_memory_budget(limit: Option<Bound<'_, PyAny>>) -> PyResult<u64> {
+    let budget = match limit {
+        None => Budget::default(),
+        Some(value) => match value.extract::<u64>() {
+            Ok(bytes) if bytes > 0 => Budget::Bytes(bytes),
+            Ok(_) => return Err(PyValueError::new_err("a memory budget of 0 bytes")),
+            Err(_) => Budget::parse(&value.extract::<String>()?).map_err(PyValueError::new_err)?,
+        },
+    };
+    pappus::memory_budget::set(budget);
+    Ok(budget.limit().0)
+}
+
+/// The memory budget now: `(limit_bytes, how_it_was_chosen)`, e.g.
+/// `(17_000_000_000, "75 % of available memory")`.
+#[pyfunction]
+fn memory_budget() -> (u64, String) {
+    pappus::memory_budget::get().limit()
+}
+
 /// Loads a mesh from a file (.obj .off .ply .stl, by extension) or a procedural shape
 /// (`"shape:torus"`, `"shape:icosphere:6"`), repaired as the command line repairs it. The GIL
 /// is released while it reads and builds. What the file held that a mesh does not keep
@@ -986,7 +1043,7 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
     let start = Instant::now();
     let (soup, info) = py.detach(|| read_source(&path)).map_err(|e| match e {
         SourceError::Io(e) => io_error(py, e),
-        unknown @ SourceError::UnknownShape(_) => PyValueError::new_err(unknown.to_string()),
+        shape @ SourceError::Shape(_) => PyValueError::new_err(shape.to_string()),
     })?;
     let read_ms = ms_since(start);
     let name = path.display().to_string();
@@ -1015,13 +1072,17 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
 #[pymodule]
 mod _pappus {
     #[pymodule_export]
-    use super::{InvalidMesh, Mesh, PappusError, ParseError, Refused, load};
+    use super::{
+        InvalidMesh, Mesh, PappusError, ParseError, Refused, load, memory_budget, set_memory_budget,
+    };
 
     use pyo3::prelude::*;
 
     /// Adds the constants: the version and the procedural shapes' names.
     #[pymodule_init]
     fn init(m: &Bound<'_, PyModule>) -> PyResult<()> {
+        // A save past the file-size limit fails with a message instead of killing Python.
+        pappus::io::ignore_file_size_signal();
         m.add("__version__", env!("CARGO_PKG_VERSION"))?;
         m.add("SHAPES", pappus::mesh::shapes::SHAPE_NAMES.to_vec())?;
         Ok(())

@@ -42,7 +42,7 @@ use crate::ops::param::{ParamParams, parameterize_in_place};
 use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::remesh::{RemeshParams, remesh_with_progress};
 use crate::ops::simplify::{SimplifyParams, SimplifyTarget};
-use crate::ops::smooth::{SmoothParams, smooth};
+use crate::ops::smooth::{SmoothParams, smooth_with_progress};
 use crate::ops::subdivide::SubdivisionSummary;
 use crate::ops::triangulate::triangulate;
 
@@ -371,10 +371,12 @@ impl Edit {
         Some(match self {
             Edit::Extrude(faces, d) => plan_extrude(world, faces).and_then(|plan| {
                 plan.check_distance(*d)?;
+                check_growth("extruding", faces.len(), plan.seeds().len())?;
                 Ok(Planned::Extrude(plan, *d))
             }),
             Edit::Inset(faces, t, d) => plan_inset(world, faces).and_then(|plan| {
                 plan.check(*t, *d)?;
+                check_growth("insetting", faces.len(), plan.seeds().len())?;
                 Ok(Planned::Inset(plan, *t, *d))
             }),
             Edit::BevelVertex(v, t) => plan_bevel_vertex(world, *v, *t).map(Planned::BevelVertex),
@@ -696,9 +698,19 @@ impl Edit {
                 // Only the faces around the vertices each step touches are redrawn, unless the
                 // move rewrote the whole mesh (a long refine).
                 let mut touched: Vec<FaceId> = Vec::new();
+                // Progress by the steps taken of those the move needs (a collapse or a split
+                // changes the faces by two), every 1000 steps; a move cannot stop half-way.
+                let needed = (before.abs_diff((*faces).min(pm.full_faces)) / 2).max(1);
+                let mut steps = 0usize;
+                let progress = &mut *context.progress;
                 let moved = pm.go_to_faces_watching(world, *faces, |w, v| {
                     touched.extend(faces_around(w, &[v]));
+                    steps += 1;
+                    if steps % 1000 == 0 {
+                        progress((steps as f32 / needed as f32).min(0.99));
+                    }
                 });
+                (context.progress)(1.0);
                 let now = pm.faces();
                 match moved {
                     Ok(moved) => Applied {
@@ -753,9 +765,12 @@ impl Edit {
                 ))
             }
             Edit::Subdivide(subdivision) => {
-                let s = subdivision
-                    .scheme
-                    .subdivide(world, mesh, subdivision.levels)?;
+                let s = subdivision.scheme.subdivide_with_progress(
+                    world,
+                    mesh,
+                    subdivision.levels,
+                    &mut *context.progress,
+                )?;
                 (context.progress)(1.0);
                 whole(s.describe())
             }
@@ -767,15 +782,22 @@ impl Edit {
                 ))
             }
             Edit::Smooth(params) => {
-                let s = smooth(world, mesh, params)?;
-                (context.progress)(1.0);
+                let s = smooth_with_progress(world, mesh, params, &mut *context.progress)?;
+                let stopped = if s.iterations < params.iterations {
+                    format!(
+                        " (stopped after {} of {} iterations)",
+                        s.iterations, params.iterations
+                    )
+                } else {
+                    String::new()
+                };
                 whole(format!(
-                    "{} free vertices moved {:.3e} on average",
+                    "{} free vertices moved {:.3e} on average{stopped}",
                     s.free, s.mean_move
                 ))
             }
             Edit::Parameterize(params) => {
-                let r = parameterize_in_place(world, mesh, params)?;
+                let r = parameterize_in_place(world, mesh, params, &mut *context.progress)?;
                 (context.progress)(1.0);
                 let cut = match (r.seam_edges, r.filled_holes) {
                     (0, 0) => String::new(),
@@ -917,6 +939,21 @@ impl Planned {
 }
 
 /// "1 face", "3 faces" ("vertex" → "vertices").
+/// The memory check of an edit that adds rows in proportion to its selection (extrusion,
+/// inset): at most, each corner of the selection gains a vertex, a quad beside it, two edges
+/// and eight halfedges (12 rows), which bounds both.
+///
+/// # Refusals
+/// [`Refusal::OverBudget`] past the memory budget.
+fn check_growth(what: &str, faces: usize, corners: usize) -> Result<(), Refusal> {
+    crate::memory_budget::check(&crate::memory_budget::Estimate {
+        what: format!("{what} {faces} face(s)"),
+        faces: corners as u64,
+        rows: corners as u64 * 12,
+        instead: "select fewer faces",
+    })
+}
+
 fn count(n: usize, what: &str) -> String {
     match (n, what) {
         (1, _) => format!("1 {what}"),

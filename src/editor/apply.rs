@@ -85,9 +85,14 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
         Request::StartStepped(edit) => stepping::start(world, edit),
         Request::Step(movement) => stepping::step(world, *movement),
         Request::Undo => undo_or_redo(world, false),
-        Request::Retract(keep) => {
+        Request::Retract(mark) => {
             let mut taken = Vec::new();
-            while world.resource::<UndoHistory>().undo_entries().len() > *keep {
+            while world
+                .resource::<UndoHistory>()
+                .undo_entries()
+                .last()
+                .is_some_and(|e| e.serial() >= *mark)
+            {
                 taken.push(undo_or_redo(world, false)?);
                 world.resource_mut::<UndoHistory>().forget_undone();
             }
@@ -145,6 +150,7 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
             }
         }
         Request::Save(path) => save(world, path.as_deref()),
+        Request::Recover(answer) => super::recovery::answer(world, *answer),
         Request::DeleteMesh => {
             let mesh = world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
             let pending = history::begin_replace(world);
@@ -234,7 +240,7 @@ fn undo_or_redo(world: &mut World, redo: bool) -> Result<String, Declined> {
 }
 
 /// Opens a mesh, replacing the active one only once the new one has been read and built.
-fn open(world: &mut World, path: &Path) -> Result<String, Declined> {
+pub(super) fn open(world: &mut World, path: &Path) -> Result<String, Declined> {
     let (soup, info) =
         crate::source::read_source(path).map_err(|e| Declined::File(e.to_string()))?;
     let pending = history::begin_replace(world);

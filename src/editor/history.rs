@@ -139,6 +139,9 @@ pub struct Entry {
     /// Set while later edits of the same kind may merge into this entry.
     merge: Option<(MergeKey, u64)>,
     bytes: usize,
+    /// The entry's number, in the order edits were made (an undone entry keeps it on the redo
+    /// stack and back): what a gesture's cancel counts back to ([`UndoHistory::mark`]).
+    serial: u64,
 }
 
 impl Entry {
@@ -155,7 +158,13 @@ impl Entry {
             selection,
             merge,
             bytes,
+            serial: 0,
         }
+    }
+
+    /// The entry's number (see [`UndoHistory::mark`]).
+    pub fn serial(&self) -> u64 {
+        self.serial
     }
 
     /// Bytes the entry holds.
@@ -182,6 +191,8 @@ pub struct UndoHistory {
     pressed: bool,
     /// A gesture (a keyboard-driven transform) is under way: its edits may merge as a drag's.
     gesture: bool,
+    /// The serial number the next entry gets.
+    next_serial: u64,
 }
 
 impl Default for UndoHistory {
@@ -193,6 +204,7 @@ impl Default for UndoHistory {
             press: 0,
             pressed: false,
             gesture: false,
+            next_serial: 0,
         }
     }
 }
@@ -221,7 +233,17 @@ impl UndoHistory {
         if redo { &mut self.redo } else { &mut self.undo }
     }
 
-    fn push(&mut self, entry: Entry) {
+    /// The mark of the history now: the entries made after this call have serial numbers at
+    /// least this. A cancelled gesture takes back the entries from its mark on
+    /// ([`crate::editor::requests::Request::Retract`]), however many the memory cap has
+    /// dropped from the old end meanwhile.
+    pub fn mark(&self) -> u64 {
+        self.next_serial
+    }
+
+    fn push(&mut self, mut entry: Entry) {
+        entry.serial = self.next_serial;
+        self.next_serial += 1;
         self.redo.clear();
         self.undo.push(entry);
         self.trim();
@@ -412,7 +434,8 @@ pub fn step(world: &mut World, redo: bool) -> Option<Stepped> {
         .selection
         .map(|x| remap_element(x, &mut map))
         .filter(|&x| exists(&MeshRef::new(world), x));
-    let back = Entry::new(entry.label.clone(), inverse, now_selected, None);
+    let mut back = Entry::new(entry.label.clone(), inverse, now_selected, None);
+    back.serial = entry.serial;
     let mut history = world.resource_mut::<UndoHistory>();
     if redo {
         history.undo.push(back);

@@ -745,14 +745,11 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
                 Action::Extrude => Edit::Extrude(faces, 0.0),
                 _ => Edit::Inset(faces, 0.0, 0.0),
             };
-            let keep_undo = world
-                .resource::<super::history::UndoHistory>()
-                .undo_entries()
-                .len();
+            let undo_mark = world.resource::<super::history::UndoHistory>().mark();
             world.resource_mut::<Gestures>().after_edit = Some(super::transform::FollowUp {
                 label: edit.label(),
                 inset: action == Action::Inset,
-                keep_undo,
+                undo_mark,
             });
             edit
         }

@@ -22,7 +22,7 @@ use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::thread::JoinHandle;
 
 use crate::edit::{Applied, Edit, EditContext};
-use crate::mesh::change::row_map;
+use crate::mesh::change::{Remap, row_map};
 use crate::mesh::ids::{ElementId, MeshId};
 use crate::mesh::tables::{
     Connectivity, MeshTables, extract, replace_contents, spawn_connectivity,
@@ -274,7 +274,12 @@ pub fn finish_jobs(world: &mut World) {
             "the operation failed (a bug: please report it); the mesh is unchanged".into(),
         )),
     };
+    let panicked = matches!(result, Err(Declined::Job(_)));
     report(world, job.label, result, ms);
+    if panicked {
+        // The mesh is as it was; its unsaved changes go to disk now rather than after a wait.
+        super::recovery::write_now(world);
+    }
 }
 
 /// Writes a finished job's result into its mesh and ends it as every edit ends.
@@ -284,21 +289,28 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
         return Err(Declined::Refused(Refusal::Stale(ElementId::Mesh(mesh))));
     }
     let kept = job.edit.keeps_ids();
-    let selected = world
-        .resource::<Selection>()
-        .element
-        .filter(|&x| kept.keeps(x));
-    let (applied, selection) = match output {
+    // The selected set (the active element last), as far as its ids outlive the edit.
+    let (set, active) = {
+        let selection = world.resource::<Selection>();
+        let set: Vec<ElementId> = selection
+            .elements()
+            .iter()
+            .copied()
+            .filter(|&x| kept.keeps(x))
+            .collect();
+        (set, selection.element.filter(|&x| kept.keeps(x)))
+    };
+    let (applied, follow): (Applied, Option<(Remap, Remap)>) = match output {
         JobOutput::Tables {
             tables,
             input,
             applied,
         } => {
             // Written over the input's rows in their order: the rows whose ids are kept keep
-            // their entities, the selected one included.
+            // their entities, the selected ones included.
             replace_contents(world, mesh, &input, &tables);
             world.resource_mut::<SimplificationHistory>().pm = None;
-            (applied, selected)
+            (applied, None)
         }
         JobOutput::Copy {
             result,
@@ -314,23 +326,40 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
                 pm.remap(mesh, &to_main);
                 *pm
             });
-            // The selection, followed from its row in the copy to that element's row in the
+            // The selection's entities → their rows in the copy → those rows' entities in the
             // result.
-            let to_scratch = job.rows.as_ref().map(|rows| row_map(rows, &input));
-            let followed = selected.and_then(|x| {
-                let now = to_main.get(to_scratch.as_ref()?.get(&x.entity())?)?;
-                Some(x.with_entity(*now))
-            });
-            (applied, followed)
+            let to_scratch = job
+                .rows
+                .as_ref()
+                .map(|rows| row_map(rows, &input))
+                .unwrap_or_default();
+            (applied, Some((to_scratch, to_main)))
         }
     };
     #[cfg(debug_assertions)]
     if let Err(e) = crate::mesh::validate(world, mesh) {
         panic!("{} left an invalid mesh: {e}", job.label);
     }
-    let selection = selection.filter(|&x| exists(&MeshRef::new(world), x));
-    // The set is not followed through the job's rows: the active element alone stays selected.
-    world.resource_mut::<Selection>().select_only(selection);
+    let followed = |x: ElementId| match &follow {
+        None => Some(x),
+        Some((to_scratch, to_main)) => {
+            let now = to_main.get(to_scratch.get(&x.entity())?)?;
+            Some(x.with_entity(*now))
+        }
+    };
+    let m = MeshRef::new(world);
+    let set: Vec<ElementId> = set
+        .into_iter()
+        .filter_map(followed)
+        .filter(|&x| exists(&m, x))
+        .collect();
+    let active = active.and_then(followed).filter(|&x| exists(&m, x));
+    let mut selection = world.resource_mut::<Selection>();
+    selection.select_only(None);
+    selection.extend(set);
+    if let Some(x) = active {
+        selection.add(x);
+    }
     finish_edit(
         world,
         Finished {

@@ -28,6 +28,7 @@ pub mod pacing;
 pub mod picking;
 pub mod plots;
 pub mod readability;
+pub mod recovery;
 pub mod render_sync;
 pub mod requests;
 pub mod scene;
@@ -98,6 +99,9 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<box_select::BoxSelect>()
             .init_resource::<stepping::Stepping>()
             .init_resource::<step_view::StepView>()
+            .init_resource::<recovery::Autosave>()
+            .init_resource::<recovery::RecoveryOffer>()
+            .add_systems(Startup, recovery::find_recovery)
             .configure_sets(
                 Update,
                 (
@@ -120,7 +124,7 @@ impl Plugin for EditorLogicPlugin {
                         .chain()
                         .in_set(EditorSystems::Input),
                     picking::resolve_picks.in_set(EditorSystems::Request),
-                    (jobs::finish_jobs, apply::apply_requests)
+                    (jobs::finish_jobs, apply::apply_requests, recovery::autosave)
                         .chain()
                         .in_set(EditorSystems::Apply),
                     (
@@ -172,7 +176,7 @@ impl Plugin for EditorWindowPlugin {
             )
             .init_resource::<automation::PendingShots>()
             .init_resource::<dialog::OpenDialog>()
-            .insert_resource(pacing::settings(false))
+            .insert_resource(pacing::settings(None))
             .add_systems(Update, pacing::keep_drawing.in_set(EditorSystems::Ui))
             .add_systems(
                 PreUpdate,
@@ -197,7 +201,7 @@ impl Plugin for EditorWindowPlugin {
             .add_systems(bevy_egui::EguiPrimaryContextPass, box_select::draw_box)
             .add_systems(
                 bevy_egui::EguiPrimaryContextPass,
-                step_view::step_window.after(ui::panels),
+                (step_view::step_window, recovery::offer_window).after(ui::panels),
             )
             .add_systems(
                 Update,
@@ -293,6 +297,10 @@ pub fn run(path: Option<PathBuf>) -> i32 {
     if let Some(script) = script {
         app.insert_resource(script);
     }
+    // Unsaved work goes to a recovery file once the editor is idle after an edit, and a panic
+    // finishes a recovery write in flight before the process ends.
+    app.insert_resource(recovery::Autosave::into_folder(crate::recovery::folder()));
+    recovery::install_panic_hook();
     let exit = app.run();
     match exit {
         AppExit::Success => 0,

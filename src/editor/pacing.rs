@@ -6,7 +6,8 @@
 //! tooltip). [`keep_drawing`] asks for the next frame while work is under way that no input
 //! drives: a running job (its progress bar), a script (screenshots, the frame-time bench). A
 //! native file dialog answers on another thread, so while one is open the editor looks for the
-//! answer ten times a second instead of drawing continuously.
+//! answer ten times a second instead of drawing continuously; an autosave waiting for the editor
+//! to be idle ([`super::recovery`]) wakes it four times a second until the recovery is written.
 //!
 //! `bevy_egui` 0.42 tells egui "the modifier keys are now …" every frame, changed or not, and egui
 //! answers any input event by asking for another frame: the editor never slept (177 % of the two
@@ -26,33 +27,44 @@ use std::time::Duration;
 use super::automation::Script;
 use super::dialog::OpenDialog;
 use super::jobs::Jobs;
+use super::recovery::Autosave;
 
 /// How often the editor looks for a file dialog's answer while one is open.
 pub const DIALOG_POLL: Duration = Duration::from_millis(100);
 
-/// The update modes for the editor's window: reactive, with a short wait while a dialog is open.
-pub fn settings(dialog_open: bool) -> WinitSettings {
+/// How often the editor wakes while an autosave waits for it to be idle.
+pub const AUTOSAVE_POLL: Duration = Duration::from_millis(250);
+
+/// The update modes for the editor's window: reactive, waking after `poll` at the latest when
+/// something waits on time rather than input (a dialog's answer, an autosave).
+pub fn settings(poll: Option<Duration>) -> WinitSettings {
     let mut settings = WinitSettings::desktop_app();
-    if dialog_open {
-        settings.focused_mode = UpdateMode::reactive(DIALOG_POLL);
-        settings.unfocused_mode = UpdateMode::reactive_low_power(DIALOG_POLL);
+    if let Some(poll) = poll {
+        settings.focused_mode = UpdateMode::reactive(poll);
+        settings.unfocused_mode = UpdateMode::reactive_low_power(poll);
     }
     settings
 }
 
 /// Asks for another frame while a job runs or a script plays, and shortens the wait while a
-/// file dialog is open (see the module doc).
+/// file dialog is open or an autosave waits (see the module doc).
 pub fn keep_drawing(
     jobs: Res<Jobs>,
     script: Option<Res<Script>>,
     dialog: Res<OpenDialog>,
+    autosave: Res<Autosave>,
     mut winit: ResMut<WinitSettings>,
     mut redraw: MessageWriter<RequestRedraw>,
 ) {
     if jobs.running.is_some() || script.is_some_and(|s| s.is_running()) {
         redraw.write(RequestRedraw);
     }
-    let wanted = settings(dialog.is_open());
+    let poll = if dialog.is_open() {
+        Some(DIALOG_POLL)
+    } else {
+        autosave.is_pending().then_some(AUTOSAVE_POLL)
+    };
+    let wanted = settings(poll);
     if winit.focused_mode != wanted.focused_mode || winit.unfocused_mode != wanted.unfocused_mode {
         *winit = wanted;
     }

@@ -10,6 +10,7 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
+use super::recovery::RecoveryAnswer;
 use crate::edit::Edit;
 use crate::mesh::ids::EdgeId;
 use crate::mesh::ids::ElementId;
@@ -82,8 +83,9 @@ pub enum Request {
     CancelJob,
     /// Undo the last edit.
     Undo,
-    /// Take back the undo entries past this many, leaving no redo: a cancelled transform.
-    Retract(usize),
+    /// Take back the undo entries made since this mark ([`super::history::UndoHistory::mark`]),
+    /// leaving no redo: a cancelled transform.
+    Retract(u64),
     /// Redo the last undone edit.
     Redo,
     /// Start a stepped run of a global edit (step mode).
@@ -93,6 +95,9 @@ pub enum Request {
     /// Answer the unsaved-changes question: `true` discards the changes and goes on with what
     /// was asked (opening another file, quitting), `false` cancels it.
     ConfirmDiscard(bool),
+    /// Answer the offer of a recovery file found at start (unsaved work of an editor that
+    /// ended without saving).
+    Recover(RecoveryAnswer),
 }
 
 impl From<Edit> for Request {
@@ -128,6 +133,9 @@ impl Request {
             Request::Redo => "redo".into(),
             Request::ConfirmDiscard(true) => "discard changes".into(),
             Request::ConfirmDiscard(false) => "keep changes".into(),
+            Request::Recover(RecoveryAnswer::Restore) => "restore the recovery".into(),
+            Request::Recover(RecoveryAnswer::Discard) => "delete the recovery".into(),
+            Request::Recover(RecoveryAnswer::Keep) => "keep the recovery for later".into(),
         }
     }
 
@@ -144,6 +152,7 @@ impl Request {
                 | Request::Retract(_)
                 | Request::Redo
                 | Request::ConfirmDiscard(true)
+                | Request::Recover(RecoveryAnswer::Restore)
         )
     }
 }

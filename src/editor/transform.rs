@@ -80,9 +80,9 @@ pub struct Gesture {
     pub pivot: Vec3,
     /// The pointer when it started.
     pub cursor: Vec2,
-    /// The undo steps there were before the edit it follows (the gesture's own merge into one
-    /// more): cancelling takes the history back to this many.
-    pub keep_undo: usize,
+    /// The history's mark before the edit it follows ([`UndoHistory::mark`]): cancelling takes
+    /// back every entry from it on (the edit's and the gesture's own).
+    pub undo_mark: u64,
     /// The value the pointer (or the typing) gives now, for the status line.
     pub value: f32,
 }
@@ -107,8 +107,8 @@ pub struct FollowUp {
     pub label: String,
     /// Which gesture.
     pub inset: bool,
-    /// Undo steps before the edit.
-    pub keep_undo: usize,
+    /// The history's mark before the edit.
+    pub undo_mark: u64,
 }
 
 impl Gestures {
@@ -135,10 +135,10 @@ impl Gestures {
 }
 
 /// Starts a gesture on the selection's vertices; `false` (nothing started) if nothing is
-/// selected. `keep_undo`: the undo steps to go back to on Esc (by default, those there are now).
+/// selected. `undo_mark`: the history's mark to take back to on Esc (by default, now's).
 /// Without a pointer over the window (a script), the pointer is taken to be at the pivot's
 /// right, so typed values still work.
-pub fn start(world: &mut World, kind: GestureKind, keep_undo: Option<usize>) -> bool {
+pub fn start(world: &mut World, kind: GestureKind, undo_mark: Option<u64>) -> bool {
     let vertices = selected_vertices(world);
     if vertices.is_empty() {
         return false;
@@ -153,7 +153,7 @@ pub fn start(world: &mut World, kind: GestureKind, keep_undo: Option<usize>) -> 
         })
         .unwrap_or(Vec2::ZERO);
     let mut history = world.resource_mut::<UndoHistory>();
-    let keep_undo = keep_undo.unwrap_or(history.undo_entries().len());
+    let undo_mark = undo_mark.unwrap_or(history.mark());
     history.begin_gesture();
     world.resource_mut::<Gestures>().active = Some(Gesture {
         kind,
@@ -162,7 +162,7 @@ pub fn start(world: &mut World, kind: GestureKind, keep_undo: Option<usize>) -> 
         start,
         pivot,
         cursor,
-        keep_undo,
+        undo_mark,
         value: 0.0,
     });
     true
@@ -224,7 +224,7 @@ pub fn drive_gesture(world: &mut World) {
         match key {
             KeyCode::Escape => {
                 world.resource_mut::<UndoHistory>().end_gesture();
-                world.write_message(Request::Retract(g.keep_undo));
+                world.write_message(Request::Retract(g.undo_mark));
                 return;
             }
             KeyCode::Enter | KeyCode::NumpadEnter => return end(world, false),
@@ -289,7 +289,7 @@ fn start_follow_up(world: &mut World) {
         false => GestureKind::Extrude(Vec::new()),
         true => GestureKind::Inset(Vec::new()),
     };
-    if start(world, kind, Some(follow.keep_undo)) {
+    if start(world, kind, Some(follow.undo_mark)) {
         let directions = directions(world, follow.inset);
         if let Some(GestureKind::Extrude(d) | GestureKind::Inset(d)) = world
             .resource_mut::<Gestures>()

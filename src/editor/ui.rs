@@ -448,6 +448,7 @@ pub fn panels(
                 }
                 ui.separator();
                 history_section(ui, &view, &mut pending);
+                budget_row(ui);
                 ui.separator();
                 ui.label(egui::RichText::new("Log").strong());
                 for entry in log.entries.iter().rev().take(30) {
@@ -994,6 +995,44 @@ fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
 
 /// Colour by a quantity: the choice, and the legend (the map from its low to its high value, as
 /// clamped).
+/// The memory budget ([`crate::memory_budget`]): 75 % of the available memory, or a fixed
+/// number of gigabytes. An operation whose result would pass it is refused with its estimate.
+fn budget_row(ui: &mut egui::Ui) {
+    use crate::memory_budget::{self, Budget};
+    const GB: f64 = 1e9;
+    let budget = memory_budget::get();
+    let (limit, _) = budget.limit();
+    ui.horizontal(|ui| {
+        ui.label("memory budget").on_hover_text(
+            "Operations whose result would need more (subdivision levels, a remeshing length, \
+             shape sizes) are refused with their estimate instead of running out of memory.",
+        );
+        let mut share = matches!(budget, Budget::Share(_));
+        if ui.checkbox(&mut share, "75 % of free").changed() {
+            memory_budget::set(if share {
+                Budget::default()
+            } else {
+                Budget::Bytes(limit.min(1 << 50))
+            });
+        }
+        match budget {
+            Budget::Bytes(bytes) => {
+                let mut gb = bytes as f64 / GB;
+                let field = egui::DragValue::new(&mut gb)
+                    .range(0.1..=1e4)
+                    .speed(0.1)
+                    .suffix(" GB");
+                if ui.add(field).changed() {
+                    memory_budget::set(Budget::Bytes((gb * GB) as u64));
+                }
+            }
+            Budget::Share(_) => {
+                ui.weak(memory_budget::size(limit));
+            }
+        }
+    });
+}
+
 fn colour_section(
     ui: &mut egui::Ui,
     view: &InspectorView,

@@ -9,21 +9,22 @@
 //! beyond what the input could hold.
 //!
 //! Writing goes to a temporary file beside the target, which is then renamed over it: a failed
-//! save never destroys the old file.
+//! save never destroys the old file ([`save`] says how).
 
 mod obj;
 mod off;
 mod ply;
+mod save;
 mod stl;
 mod text;
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 use crate::mesh::soup::PolygonSoup;
 
 pub use ply::PlyEncoding;
+pub use save::ignore_file_size_signal;
 pub use stl::StlEncoding;
 
 /// The file formats Pappus reads and writes.
@@ -67,6 +68,14 @@ pub enum IoError {
     /// The extension names no supported format.
     #[error("{0}: unknown format (expected .obj, .off, .ply or .stl)")]
     UnknownFormat(PathBuf),
+    /// A save failed; the file on disk is as it was before it.
+    #[error("{path}: not saved ({source}); the file on disk is as it was")]
+    Save {
+        /// The file.
+        path: PathBuf,
+        /// What the system said.
+        source: std::io::Error,
+    },
     /// The file system refused.
     #[error("{path}: {source}")]
     Io {
@@ -211,32 +220,25 @@ pub fn read(path: &Path) -> Result<PolygonSoup, IoError> {
     read_bytes(format, &bytes, path)
 }
 
-/// Writes a mesh file, its format chosen by extension, atomically: the data goes to a
-/// temporary file `.NAME.tmp-PID` in the same folder, which is renamed over `path` once
-/// complete and synced. On failure the temporary file is removed and `path` is untouched.
+/// Replaces the file at `path` with `bytes` as mesh saves do ([`save::replace`]): atomically,
+/// through symbolic links, keeping permissions.
 ///
 /// # Errors
-/// An unknown extension or a file-system failure.
+/// [`IoError::Save`] with the system's reason; the file on disk is then as it was.
+pub fn replace_file(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
+    save::replace(path, bytes)
+}
+
+/// Writes a mesh file, its format chosen by extension, atomically ([`save::replace`]): a
+/// temporary file beside the target, synced, renamed over it (through symbolic links, keeping
+/// its permissions), then the folder synced.
+///
+/// # Errors
+/// An unknown extension, or [`IoError::Save`] with the system's reason; the file on disk is
+/// then exactly as it was and no temporary file is left.
 pub fn write(path: &Path, soup: &PolygonSoup) -> Result<(), IoError> {
     let format = Format::from_path(path)?;
-    let bytes = write_bytes(format, soup);
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = path.with_file_name(format!(".{name}.tmp-{}", std::process::id()));
-    let result = std::fs::File::create(&tmp)
-        .and_then(|mut f| f.write_all(&bytes).and_then(|()| f.sync_all()))
-        .and_then(|()| std::fs::rename(&tmp, path));
-    if let Err(source) = result {
-        // The temporary file may not exist (creation failed); nothing else to undo.
-        let _ = std::fs::remove_file(&tmp);
-        return Err(IoError::Io {
-            path: path.to_path_buf(),
-            source,
-        });
-    }
-    Ok(())
+    save::replace(path, &write_bytes(format, soup))
 }
 
 #[cfg(test)]
@@ -395,7 +397,7 @@ pub(crate) mod tests {
         // A folder that does not exist: an error, and nothing written.
         let missing = dir.join("no/such/dir/m.obj");
         let err = write(&missing, &mixed()).unwrap_err();
-        assert!(matches!(err, IoError::Io { .. }));
+        assert!(matches!(err, IoError::Save { .. }));
         assert!(err.to_string().contains("m.obj"), "{err}");
         // The target is a folder: the rename fails, the temporary file is removed and the
         // folder survives.

@@ -292,19 +292,47 @@ pub fn triangulate_fans(soup: &PolygonSoup) -> PolygonSoup {
     out
 }
 
+/// Why a `shape:` name gives no shape.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ShapeError {
+    /// The name (or its sizes' syntax) is not one [`by_name`] knows.
+    #[error("unknown shape `{0}`; known: {known}", known = SHAPE_NAMES.join(", "))]
+    Unknown(String),
+    /// The sizes ask for more than a mesh may have, or than the memory budget allows.
+    #[error("shape `{name}`: {why}")]
+    TooLarge {
+        /// The name as given.
+        name: String,
+        /// The counts, and the limit they pass.
+        why: String,
+    },
+}
+
+/// The sizes of the mesh a shape name makes, counted in 64 bits before anything is made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct ShapeSize {
+    vertices: u64,
+    faces: u64,
+    /// Face corners (halfedges).
+    corners: u64,
+}
+
+/// The most face corners a mesh may have (the builder's limit).
+const MAX_CORNERS: u64 = 1 << 31;
+
 /// A shape by name, for the command line and the editor's menu: `tetrahedron`, `cube`,
 /// `icosahedron`, `icosphere`, `torus`, `grid`, `quad-grid`, `grid-with-holes`, `double-torus`.
 /// Sizes can follow after colons: `icosphere:6` (levels), `torus:64:32` (rings, sides),
 /// `grid:100` or `grid:100:50`, `quad-grid:…`, `grid-with-holes:3`, `slab:3` (genus 3).
-pub fn by_name(name: &str) -> Option<PolygonSoup> {
-    let mut parts = name.split(':');
-    let shape = parts.next()?;
-    let args: Vec<u32> = parts.map(|p| p.parse().ok()).collect::<Option<_>>()?;
+///
+/// # Errors
+/// [`ShapeError::Unknown`] for a name or size syntax it does not know;
+/// [`ShapeError::TooLarge`] when the sizes, multiplied out in 64 bits, pass 2³¹ face corners
+/// or the memory budget ([`crate::memory_budget`]). Both are found before anything is made.
+pub fn by_name(name: &str) -> Result<PolygonSoup, ShapeError> {
+    let (shape, args) = parse_name(name)?;
     let arg = |i: usize, default: u32| args.get(i).copied().unwrap_or(default);
-    if args.iter().any(|&a| a > 100_000) || (shape == "icosphere" && arg(0, 3) > 9) {
-        return None;
-    }
-    Some(match shape {
+    Ok(match shape {
         "tetrahedron" => tetrahedron(),
         "cube" => cube(),
         "icosahedron" => icosahedron(),
@@ -315,6 +343,94 @@ pub fn by_name(name: &str) -> Option<PolygonSoup> {
         "grid-with-holes" => grid_with_holes(arg(0, 2)),
         "double-torus" => slab_with_holes(2),
         "slab" => slab_with_holes(arg(0, 2)),
+        _ => return Err(ShapeError::Unknown(name.to_string())),
+    })
+}
+
+/// Checks a shape name as [`by_name`] does, without making the mesh: for the command line's
+/// argument checks.
+///
+/// # Errors
+/// As [`by_name`].
+pub fn check_name(name: &str) -> Result<(), ShapeError> {
+    parse_name(name).map(|_| ())
+}
+
+/// The shape and its sizes, once they pass the size checks.
+fn parse_name(name: &str) -> Result<(&str, Vec<u32>), ShapeError> {
+    let unknown = || ShapeError::Unknown(name.to_string());
+    let mut parts = name.split(':');
+    let shape = parts.next().ok_or_else(unknown)?;
+    let args: Vec<u32> = parts
+        .map(|p| p.parse().ok())
+        .collect::<Option<_>>()
+        .ok_or_else(unknown)?;
+    let size = shape_size(shape, &args).ok_or_else(unknown)?;
+    let too_large = |why: String| ShapeError::TooLarge {
+        name: name.to_string(),
+        why,
+    };
+    if size.corners >= MAX_CORNERS || size.vertices >= MAX_CORNERS {
+        return Err(too_large(format!(
+            "{} faces with {} corners, more than a mesh may have (2^31 corners)",
+            size.faces, size.corners
+        )));
+    }
+    let estimate = crate::memory_budget::Estimate {
+        what: "it".into(),
+        faces: size.faces,
+        rows: size.vertices + size.corners + size.corners.div_ceil(2) + size.faces,
+        instead: "use smaller sizes",
+    };
+    crate::memory_budget::check(&estimate).map_err(|refusal| too_large(refusal.to_string()))?;
+    Ok((shape, args))
+}
+
+/// The sizes `shape` with `args` makes, in 64 bits (saturating), or `None` for a shape name
+/// that is not known.
+fn shape_size(shape: &str, args: &[u32]) -> Option<ShapeSize> {
+    let arg = |i: usize, default: u32| u64::from(args.get(i).copied().unwrap_or(default));
+    let quads = |vertices: u64, faces: u64| ShapeSize {
+        vertices,
+        faces,
+        corners: faces.saturating_mul(4),
+    };
+    let grid_size = |nx: u64, ny: u64| (nx.max(1), ny.max(1));
+    Some(match shape {
+        "tetrahedron" | "cube" | "icosahedron" => quads(12, 20),
+        "icosphere" => {
+            let split = 4u64.saturating_pow(arg(0, 3).min(64) as u32);
+            ShapeSize {
+                vertices: split.saturating_mul(10).saturating_add(2),
+                faces: split.saturating_mul(20),
+                corners: split.saturating_mul(60),
+            }
+        }
+        "torus" => {
+            let cells = arg(0, 24).max(3).saturating_mul(arg(1, 12).max(3));
+            quads(cells, cells)
+        }
+        "grid" | "quad-grid" => {
+            let nx = arg(0, 10);
+            let (nx, ny) = grid_size(nx, args.get(1).map_or(nx, |&n| u64::from(n)));
+            let vertices = (nx + 1).saturating_mul(ny + 1);
+            let cells = nx.saturating_mul(ny);
+            if shape == "grid" {
+                ShapeSize {
+                    vertices,
+                    faces: cells.saturating_mul(2),
+                    corners: cells.saturating_mul(6),
+                }
+            } else {
+                quads(vertices, cells)
+            }
+        }
+        "grid-with-holes" | "slab" => {
+            let k = arg(0, 2);
+            let cells = k.saturating_mul(2).saturating_add(1).saturating_mul(6);
+            quads(cells.saturating_mul(2), cells.saturating_mul(2))
+        }
+        "double-torus" => quads(64, 64),
         _ => return None,
     })
 }
@@ -331,3 +447,77 @@ pub const SHAPE_NAMES: [&str; 9] = [
     "grid-with-holes",
     "double-torus",
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sizes checked before a shape is made are the sizes of the shape made (the
+    /// placeholders for the fixed shapes only bound them).
+    #[test]
+    fn sizes_are_counted_before_the_shape_is_made() {
+        for name in [
+            "icosphere:2",
+            "torus:7:5",
+            "grid:4:3",
+            "quad-grid:6",
+            "grid:0",
+            "torus:1:1",
+        ] {
+            let (shape, args) = parse_name(name).unwrap();
+            let size = shape_size(shape, &args).unwrap();
+            let soup = by_name(name).unwrap();
+            assert_eq!(
+                (size.vertices, size.faces, size.corners),
+                (
+                    soup.positions.len() as u64,
+                    soup.face_count() as u64,
+                    soup.indices.len() as u64
+                ),
+                "{name}"
+            );
+        }
+        for name in ["grid-with-holes:3", "slab:3", "double-torus", "cube"] {
+            let (shape, args) = parse_name(name).unwrap();
+            let size = shape_size(shape, &args).unwrap();
+            let soup = by_name(name).unwrap();
+            assert!(size.faces >= soup.face_count() as u64, "{name}");
+            assert!(size.corners >= soup.indices.len() as u64, "{name}");
+        }
+    }
+
+    /// Sizes that would wrap 32 bits, or pass the memory, are refused before anything is
+    /// made; a bad size is an unknown name.
+    #[test]
+    fn huge_sizes_are_refused_up_front() {
+        for name in [
+            "grid:100000",
+            "torus:100000:100000",
+            "quad-grid:4294967295",
+            "icosphere:40",
+        ] {
+            let err = check_name(name).unwrap_err();
+            assert!(matches!(err, ShapeError::TooLarge { .. }), "{name}: {err}");
+            assert!(err.to_string().starts_with(&format!("shape `{name}`: ")));
+        }
+        assert_eq!(
+            check_name("grid:100000").unwrap_err().to_string(),
+            "shape `grid:100000`: 20000000000 faces with 60000000000 corners, more than a mesh \
+             may have (2^31 corners)"
+        );
+        // Within 2^31 corners, beyond this machine's memory: the budget's reason.
+        let err = check_name("grid:10000").unwrap_err().to_string();
+        assert!(
+            err.starts_with(
+                "shape `grid:10000`: it would make 200 M faces, about 137 GB; the budget is "
+            ),
+            "{err}"
+        );
+        for name in ["sphere", "grid:-1", "grid:x", "torus:99999999999"] {
+            assert!(
+                matches!(check_name(name), Err(ShapeError::Unknown(_))),
+                "{name}"
+            );
+        }
+    }
+}

@@ -90,6 +90,13 @@ pub enum Refusal {
     /// The result would need more rows than 32-bit indices address.
     #[error("the result would have {0} halfedges, more than 32-bit indices can address")]
     TooLarge(usize),
+    /// The result would take more memory than the budget allows
+    /// ([`crate::memory_budget`]); the text gives the estimate, the limit and what to do.
+    #[error("{0}")]
+    OverBudget(String),
+    /// The progress callback asked a long edit to stop before it changed anything.
+    #[error("stopped by the progress callback before anything changed")]
+    Stopped,
     /// A collapse that removed a polygon corner: only triangle collapses can be split back.
     #[error("this collapse removed a polygon corner: only triangle collapses can be split back")]
     NotInvertible,

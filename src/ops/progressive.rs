@@ -401,10 +401,14 @@ impl ProgressiveMesh {
         };
         let mut tables = extracted.tables;
         tables.reserve(added);
-        let ((made, refusal), mut written) =
-            reserve_rows_while(world, before.plus(added), self.mesh, Some(old), || {
-                replay(&mut tables, records, &mut rows, &old.vertices)
-            });
+        let ((made, refusal), mut written) = reserve_rows_while(
+            world,
+            before.plus(added),
+            self.mesh,
+            Some(old),
+            &mut |_| {},
+            || replay(&mut tables, records, &mut rows, &old.vertices),
+        );
         // A refusal left fewer rows than were reserved: the surplus goes.
         release_rows(world, &mut written, tables.row_counts());
         write_links(world, &tables, self.mesh, &written);

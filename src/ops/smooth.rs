@@ -112,6 +112,8 @@ pub struct SmoothSummary {
     pub free: usize,
     /// The mean distance a free vertex moved, over all iterations.
     pub mean_move: f64,
+    /// The iterations run: all of them, unless the progress callback stopped it.
+    pub iterations: u32,
 }
 
 /// The pass-band frequency of Taubin's filter.
@@ -120,12 +122,27 @@ const TAUBIN_PASS_BAND: f64 = 0.1;
 /// Smooths `mesh` (see the module doc).
 ///
 /// # Refusals
-/// A stale mesh; a step that is not finite and positive ([`Refusal::BadParameter`]); the mesh is
-/// then unchanged.
+/// As [`smooth_with_progress`].
 pub fn smooth(
     world: &mut World,
     mesh: MeshId,
     params: &SmoothParams,
+) -> Result<SmoothSummary, Refusal> {
+    smooth_with_progress(world, mesh, params, &mut |_| true)
+}
+
+/// [`smooth`], calling `progress` with the fraction of the iterations done after each one;
+/// `false` stops after that iteration, and the mesh then holds the iterations run (each one a
+/// whole smoothing step, so the mesh is as valid as after any number of them).
+///
+/// # Refusals
+/// A stale mesh; a step that is not finite and positive ([`Refusal::BadParameter`]); the mesh is
+/// then unchanged.
+pub fn smooth_with_progress(
+    world: &mut World,
+    mesh: MeshId,
+    params: &SmoothParams,
+    progress: &mut dyn FnMut(f32) -> bool,
 ) -> Result<SmoothSummary, Refusal> {
     if world.get::<MeshInfo>(mesh.0).is_none() {
         return Err(Refusal::Stale(ElementId::Mesh(mesh)));
@@ -151,7 +168,8 @@ pub fn smooth(
     }
     let start: Vec<DVec3> = t.positions.iter().map(|p| p.as_dvec3()).collect();
     let mut x = start.clone();
-    for _ in 0..params.iterations {
+    let mut iterations = 0;
+    while iterations < params.iterations {
         match params.method {
             SmoothMethod::Uniform => umbrella_step(t, &held, &mut x, params.step),
             SmoothMethod::Taubin => {
@@ -161,6 +179,10 @@ pub fn smooth(
             }
             SmoothMethod::Cotan => cotan_step(t, &held, &mut x, params.step),
             SmoothMethod::Implicit => implicit_step(t, &held, &mut x, params.step)?,
+        }
+        iterations += 1;
+        if !progress(iterations as f32 / params.iterations as f32) {
+            break;
         }
     }
     let free = held.iter().filter(|h| !**h).count();
@@ -173,6 +195,7 @@ pub fn smooth(
     Ok(SmoothSummary {
         free,
         mean_move: if free > 0 { moved / free as f64 } else { 0.0 },
+        iterations,
     })
 }
 

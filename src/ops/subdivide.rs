@@ -46,6 +46,7 @@ use crate::mesh::tables::{
 };
 
 use super::Refusal;
+use crate::memory_budget::Estimate;
 
 /// A subdivision scheme (the edit layer names it as `crate::edit::Scheme`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -65,7 +66,26 @@ impl Scheme {
         mesh: MeshId,
         levels: u32,
     ) -> Result<SubdivisionSummary, Refusal> {
-        subdivide(world, mesh, levels, self)
+        subdivide(world, mesh, levels, self, &mut |_| true)
+    }
+
+    /// [`Scheme::subdivide`], calling `progress` as its phases end: the plan checked (0.05),
+    /// then as each kind of row of the result is made (up to 0.8) while the levels are computed
+    /// on another thread. `false` at the first call stops it
+    /// before anything changed ([`Refusal::Stopped`]); from then on it runs to the end (its
+    /// levels are computed in one pass on another thread while this one makes the rows, and
+    /// half-written rows would be no mesh).
+    ///
+    /// # Refusals
+    /// As [`Scheme::subdivide`]'s, and [`Refusal::Stopped`].
+    pub fn subdivide_with_progress(
+        self,
+        world: &mut World,
+        mesh: MeshId,
+        levels: u32,
+        progress: &mut dyn FnMut(f32) -> bool,
+    ) -> Result<SubdivisionSummary, Refusal> {
+        subdivide(world, mesh, levels, self, progress)
     }
 
     /// The tables `levels` levels of this scheme make from `tables` (whose rows are the
@@ -91,7 +111,9 @@ impl Scheme {
     ///
     /// # Refusals
     /// Loop: [`Refusal::NotTriangle`] naming a face that is not a triangle. Both:
-    /// [`Refusal::TooLarge`] when the halfedges would not fit 32-bit rows.
+    /// [`Refusal::OverBudget`] when the result would take more memory than the budget allows
+    /// ([`crate::memory_budget`]), [`Refusal::TooLarge`] when its halfedges would not fit
+    /// 32-bit rows.
     fn plan(
         self,
         tables: &Connectivity,
@@ -106,7 +128,25 @@ impl Scheme {
         if levels == 0 {
             return Ok(None);
         }
-        final_counts(self.steps(), tables, levels).map(Some)
+        let counts = final_counts(self.steps(), tables, levels);
+        crate::memory_budget::check(&Estimate {
+            what: format!("{} ×{levels}", self.name()),
+            faces: counts.faces as u64,
+            rows: (counts.vertices + counts.halfedges + counts.edges + counts.faces) as u64,
+            instead: "use fewer levels",
+        })?;
+        if counts.halfedges >= NONE as usize {
+            return Err(Refusal::TooLarge(counts.halfedges));
+        }
+        Ok(Some(counts))
+    }
+
+    /// The scheme's name as a person says it: "Loop", "Catmull–Clark".
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::Loop => "Loop",
+            Scheme::CatmullClark => "Catmull–Clark",
+        }
     }
 
     /// How one level runs.
@@ -244,7 +284,7 @@ pub fn loop_subdivide(
     mesh: MeshId,
     levels: u32,
 ) -> Result<SubdivisionSummary, Refusal> {
-    subdivide(world, mesh, levels, Scheme::Loop)
+    subdivide(world, mesh, levels, Scheme::Loop, &mut |_| true)
 }
 
 /// Catmull–Clark-subdivides any polygon mesh `levels` times. Never refuses.
@@ -253,7 +293,7 @@ pub fn catmull_clark(
     mesh: MeshId,
     levels: u32,
 ) -> Result<SubdivisionSummary, Refusal> {
-    subdivide(world, mesh, levels, Scheme::CatmullClark)
+    subdivide(world, mesh, levels, Scheme::CatmullClark, &mut |_| true)
 }
 
 /// How a scheme runs: one level on tables, and the row counts a level makes from the
@@ -264,11 +304,9 @@ struct Steps {
     counts: fn(RowCounts, usize) -> RowCounts,
 }
 
-/// The row counts `levels` levels of `steps` make from `tables`.
-///
-/// # Refusals
-/// [`Refusal::TooLarge`] when the halfedges would not fit 32-bit rows.
-fn final_counts(steps: Steps, tables: &Connectivity, levels: u32) -> Result<RowCounts, Refusal> {
+/// The row counts `levels` levels of `steps` make from `tables` (saturating: a count too
+/// large for `usize` is refused by the budget long before).
+fn final_counts(steps: Steps, tables: &Connectivity, levels: u32) -> RowCounts {
     let mut counts = tables.row_counts();
     let mut corners = tables
         .halfedges()
@@ -276,12 +314,9 @@ fn final_counts(steps: Steps, tables: &Connectivity, levels: u32) -> Result<RowC
         .count();
     for _ in 0..levels {
         counts = (steps.counts)(counts, corners);
-        corners = 4 * counts.faces;
-        if counts.halfedges >= NONE as usize {
-            return Err(Refusal::TooLarge(counts.halfedges));
-        }
+        corners = counts.faces.saturating_mul(4);
     }
-    Ok(counts)
+    counts
 }
 
 /// Runs `levels` levels of `scheme` on `mesh`, if [`Scheme::plan`] passes its tables. The new
@@ -292,6 +327,7 @@ fn subdivide(
     mesh: MeshId,
     levels: u32,
     scheme: Scheme,
+    progress: &mut dyn FnMut(f32) -> bool,
 ) -> Result<SubdivisionSummary, Refusal> {
     if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
         return Err(Refusal::Stale(ElementId::Mesh(mesh)));
@@ -300,10 +336,23 @@ fn subdivide(
     let Some(counts) = scheme.plan(&tables, &members, levels)? else {
         return Ok(SubdivisionSummary::of(levels, &tables));
     };
+    if !progress(0.05) {
+        return Err(Refusal::Stopped);
+    }
     let tables = &tables;
-    let (result, rows) = reserve_rows_while(world, counts, mesh, Some(&members), move || {
-        scheme.run_levels(tables, levels)
-    });
+    // The rows are made on this thread while the levels are computed on the other: progress
+    // follows the rows, kind by kind.
+    let mut rows_made = |fraction: f32| {
+        progress(0.05 + 0.75 * fraction);
+    };
+    let (result, rows) = reserve_rows_while(
+        world,
+        counts,
+        mesh,
+        Some(&members),
+        &mut rows_made,
+        move || scheme.run_levels(tables, levels),
+    );
     write_links(world, &result, mesh, &rows);
     Ok(SubdivisionSummary::of(levels, &result))
 }

@@ -48,13 +48,44 @@ pub fn elements(world: &World, mesh: pappus::mesh::MeshId) -> Elements {
     Elements { vertices, faces }
 }
 
-/// The shared test models folder (`../shared/models` beside the repository), if present.
+/// Whether a test whose fixture is missing must fail rather than skip: under CI (`CI=true`,
+/// as `.ci/run` runs), where a green run must have run every test.
+pub fn skipping_is_failure() -> bool {
+    std::env::var("CI").is_ok_and(|v| v == "true" || v == "1")
+}
+
+/// A test cannot run because `missing` is absent: under CI that is a failure (a panic that
+/// names it); elsewhere a notice, also appended to the file `$PAPPUS_SKIPPED` names (where
+/// `.ci/run` collects them to say which tests skipped).
+pub fn skip_because(missing: &str, test: &str) {
+    if skipping_is_failure() {
+        panic!("{missing} is absent, and under CI=true a test may not pass by skipping ({test})");
+    }
+    println!("NOTICE: {missing} is absent; skipping {test}");
+    if let Some(log) = std::env::var_os("PAPPUS_SKIPPED") {
+        use std::io::Write as _;
+        if let Ok(mut f) = std::fs::OpenOptions::new()
+            .append(true)
+            .create(true)
+            .open(log)
+        {
+            let _ = writeln!(f, "{test}: {missing} is absent");
+        }
+    }
+}
+
+/// The shared test models folder (`../shared/models` beside the repository), if present;
+/// absent, the test skips ([`skip_because`]: a failure under CI).
 pub fn models_dir() -> Option<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/models");
     if dir.is_dir() {
         Some(dir)
     } else {
-        println!("NOTICE: ../shared/models is absent; skipping the tests on the shared models");
+        let test = std::thread::current()
+            .name()
+            .unwrap_or("a test on the shared models")
+            .to_string();
+        skip_because("../shared/models", &test);
         None
     }
 }

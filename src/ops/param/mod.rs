@@ -154,9 +154,23 @@ pub fn parameterize_then<R>(
     params: &ParamParams,
     meanwhile: impl FnOnce(&[Vec2]) -> R,
 ) -> Result<(Parameterization, R), ParamError> {
+    parameterize_reporting(t, params, &mut |_| true, meanwhile)
+}
+
+/// [`parameterize_then`], calling `progress` as its phases end: the mesh cut open (0.2), the
+/// system solved (0.7). The return value is not read: a half-solved layout is no layout, so a
+/// parameterization cannot stop early.
+fn parameterize_reporting<R>(
+    t: &Connectivity,
+    params: &ParamParams,
+    progress: &mut dyn FnMut(f32) -> bool,
+    meanwhile: impl FnOnce(&[Vec2]) -> R,
+) -> Result<(Parameterization, R), ParamError> {
     let start = Instant::now();
     let cut = cut::cut(t, &params.seams, params.auto_cut)?;
+    progress(0.2);
     let (uv, solver, solve_ms, filled) = solve(&cut, params)?;
+    progress(0.7);
     let (d, corner_uv, result) = std::thread::scope(|scope| {
         let distortion = scope.spawn(|| distortion::measure(&cut.positions, &uv, &cut.triangles));
         let normalised = normalise(&uv);
@@ -209,14 +223,19 @@ pub fn parameterize_then<R>(
 /// replaced. Without seams in `params`, the edges the mesh marks with
 /// [`crate::mesh::attributes::Seam`] are the seams. On a refusal the world is not changed.
 ///
+/// `progress` is called as the phases end (the tables read, the mesh cut, the system solved);
+/// a parameterization cannot stop early, so its return value is not read.
+///
 /// # Errors
 /// As [`parameterize`].
 pub fn parameterize_in_place(
     world: &mut World,
     mesh: MeshId,
     params: &ParamParams,
+    progress: &mut dyn FnMut(f32) -> bool,
 ) -> Result<ParamReport, ParamError> {
     let tables = extract(world, mesh);
+    progress(0.05);
     let mut params = params.clone();
     if params.seams.is_empty()
         && let Some(marks) = &tables.tables.attributes.seams
@@ -229,7 +248,7 @@ pub fn parameterize_in_place(
             .collect();
     }
     let t = &tables.tables;
-    let (p, ()) = parameterize_then(t, &params, |uv| {
+    let (p, ()) = parameterize_reporting(t, &params, progress, |uv| {
         let corners: Vec<_> = t
             .halfedges()
             .filter(|&h| !t.is_boundary(h))

@@ -62,13 +62,47 @@ pub struct RemeshRun {
     relaxed: Vec<VertexId>,
 }
 
+/// Refuses a target `length` whose triangles would not fit the memory budget: a surface of
+/// area A remeshed to edges of length L has about A / (√3/4 · L²) triangles (equilateral ones
+/// tile it), whatever the iterations.
+///
+/// # Refusals
+/// [`Refusal::OverBudget`], [`Refusal::BadParameter`] for a length that is not positive.
+fn check_budget(
+    m: &MeshRef<'_>,
+    members: &MeshMembers,
+    length: f32,
+    iterations: u32,
+) -> Result<(), Refusal> {
+    if !(length > 0.0 && length.is_finite()) {
+        return Err(Refusal::BadParameter(format!(
+            "the target edge length must be positive (it is {length})"
+        )));
+    }
+    let area: f64 = members
+        .faces
+        .iter()
+        .map(|&f| 0.5 * f64::from(m.face_area_vector(f).length()))
+        .sum();
+    let triangle = 3f64.sqrt() / 4.0 * f64::from(length).powi(2);
+    let faces = (area / triangle).min(u64::MAX as f64 / 8.0) as u64;
+    crate::memory_budget::check(&crate::memory_budget::Estimate {
+        what: format!("remeshing to edges of {length} ({iterations} iterations)"),
+        faces,
+        rows: crate::memory_budget::Estimate::triangle_rows(faces),
+        instead: "use a longer target length",
+    })
+}
+
 impl RemeshRun {
     /// Reads `mesh` for a remesh with `params`: the target length (the mean edge length when
     /// `params` gives none), the input surface, the input's interior vertices and the feature
     /// edges. Changes nothing.
     ///
     /// # Refusals
-    /// [`Refusal::Stale`] for a mesh that is not there, [`Refusal::NotTriangle`] on a polygon.
+    /// [`Refusal::Stale`] for a mesh that is not there, [`Refusal::NotTriangle`] on a polygon,
+    /// [`Refusal::OverBudget`] when triangles of the target length would not fit the memory
+    /// budget.
     pub fn start(world: &World, mesh: MeshId, params: &RemeshParams) -> Result<Self, Refusal> {
         if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
             return Err(Refusal::Stale(ElementId::Mesh(mesh)));
@@ -82,6 +116,7 @@ impl RemeshRun {
             let sum: f32 = members.edges.iter().map(|&e| edge_length(&m, e)).sum();
             sum / members.edges.len().max(1) as f32
         });
+        check_budget(&m, &members, length, params.iterations)?;
         let reference = Reference::new(&m, &members);
         let tips: Vec<Vec3> = members
             .vertices
