@@ -97,10 +97,18 @@ impl Budget {
     pub fn limit(self) -> (u64, String) {
         match self {
             Budget::Bytes(bytes) => (bytes, "the limit set".into()),
-            Budget::Share(share) => match available_memory() {
-                Some(available) => (
+            Budget::Share(share) => match available() {
+                Some((available, limited)) => (
                     (available as f64 * share) as u64,
-                    format!("{:.0} % of available memory", share * 100.0),
+                    format!(
+                        "{:.0} % of available memory{}",
+                        share * 100.0,
+                        if limited {
+                            " under the address-space limit"
+                        } else {
+                            ""
+                        }
+                    ),
                 ),
                 None => (u64::MAX, "available memory unknown".into()),
             },
@@ -189,14 +197,19 @@ pub fn size(bytes: u64) -> String {
 /// The memory the process can still get: the kernel's `MemAvailable`, or the room left under
 /// an address-space limit if that is less. `None` where neither can be read.
 pub fn available_memory() -> Option<u64> {
+    available().map(|(bytes, _)| bytes)
+}
+
+/// [`available_memory`], and whether the address-space limit is what bounds it.
+fn available() -> Option<(u64, bool)> {
     let meminfo = std::fs::read_to_string("/proc/meminfo").ok();
     let available = meminfo
         .as_deref()
         .and_then(|m| kilobytes(m, "MemAvailable:"));
-    let room = address_space_room();
-    match (available, room) {
-        (Some(a), Some(r)) => Some(a.min(r)),
-        (a, r) => a.or(r),
+    match (available, address_space_room()) {
+        (Some(a), Some(r)) => Some((a.min(r), r < a)),
+        (Some(a), None) => Some((a, false)),
+        (None, r) => r.map(|r| (r, true)),
     }
 }
 

@@ -1108,7 +1108,8 @@ fn an_idle_editor_keeps_its_unsaved_mesh_in_a_recovery_file_until_it_is_saved() 
 /// unsaved work on the source file, and the recovery is removed.
 #[test]
 fn a_recovery_newer_than_its_source_is_offered_at_start_and_restores() {
-    use pappus::editor::recovery::{Autosave, RecoveryAnswer, RecoveryOffer};
+    use pappus::editor::recovery::{Autosave, RecoveryOffer};
+    use pappus::editor::requests::RecoveryAnswer;
     use pappus::editor::session::is_modified;
     let dir = recovery_folder("offer");
     std::fs::create_dir_all(&dir).unwrap();

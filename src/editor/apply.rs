@@ -150,7 +150,7 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
             }
         }
         Request::Save(path) => save(world, path.as_deref()),
-        Request::Recover(answer) => super::recovery::answer(world, *answer),
+        Request::Recover(answer) => super::recovery::answer(world, *answer, open),
         Request::DeleteMesh => {
             let mesh = world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
             let pending = history::begin_replace(world);

@@ -126,6 +126,9 @@ pub struct RunningJob {
 pub struct Jobs {
     /// The running job.
     pub running: Option<RunningJob>,
+    /// The last job failed (a bug: its thread panicked); set until the autosave has seen it
+    /// ([`super::recovery`]).
+    pub failed: bool,
 }
 
 /// Whether `edit` should run as a job on `mesh` (a whole-mesh computation on a large enough
@@ -274,12 +277,10 @@ pub fn finish_jobs(world: &mut World) {
             "the operation failed (a bug: please report it); the mesh is unchanged".into(),
         )),
     };
-    let panicked = matches!(result, Err(Declined::Job(_)));
+    // The mesh is as it was; the autosave writes its unsaved changes now rather than after
+    // a wait.
+    world.resource_mut::<Jobs>().failed = matches!(result, Err(Declined::Job(_)));
     report(world, job.label, result, ms);
-    if panicked {
-        // The mesh is as it was; its unsaved changes go to disk now rather than after a wait.
-        super::recovery::write_now(world);
-    }
 }
 
 /// Writes a finished job's result into its mesh and ends it as every edit ends.

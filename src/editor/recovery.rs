@@ -11,7 +11,8 @@
 //! - **What survives**: a kill or a power cut loses the edits of the last `idle` seconds at
 //!   most. A panic anywhere in the process ([`install_panic_hook`]) finishes a write still in
 //!   flight before the process ends, and says where the work is. A panic in a job ends only
-//!   the job (the mesh is unchanged) and the recovery is written at once.
+//!   the job (the mesh is unchanged; `Jobs::failed` says so) and the recovery is written at
+//!   once.
 //! - **After a save** the mesh is no longer `Modified` and this session's recovery goes.
 //!
 //! The headless app leaves autosave off ([`Autosave::default`] has no folder): tests and
@@ -26,7 +27,7 @@ use bevy::ecs::change_detection::Tick;
 use bevy::prelude::{DetectChanges, Resource, World};
 
 use super::jobs::Jobs;
-use super::requests::Declined;
+use super::requests::{Declined, RecoveryAnswer};
 use super::selection::ActiveMesh;
 use super::session::Modified;
 use crate::mesh::{MeshId, MeshInfo, PolygonSoup, to_soup};
@@ -94,17 +95,6 @@ impl Autosave {
 #[derive(Resource, Default, Debug)]
 pub struct RecoveryOffer(pub Option<Recovery>);
 
-/// How the offer of a recovery is answered.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RecoveryAnswer {
-    /// Open the recovered mesh (as unsaved work on its source file).
-    Restore,
-    /// Delete the recovery.
-    Discard,
-    /// Close the offer and keep the recovery for later (`pappus recover`).
-    Keep,
-}
-
 /// The snapshot a write in flight holds, for the panic hook to finish.
 struct Snapshot {
     folder: PathBuf,
@@ -162,18 +152,10 @@ pub fn autosave(world: &mut World) {
         Some(_) => {}
     }
     let due = state.edited_at.is_some_and(|at| at.elapsed() >= state.idle);
-    if due && state.writing.is_none() && world.resource::<Jobs>().running.is_none() {
-        start_write(world, mesh);
-    }
-}
-
-/// Writes the recovery of `mesh` at once (after a job's panic; a test).
-pub fn write_now(world: &mut World) {
-    if let Some(mesh) = world.resource::<ActiveMesh>().0
-        && world.get::<Modified>(mesh.0).is_some()
-        && world.resource::<Autosave>().folder.is_some()
-        && !world.resource::<Autosave>().is_writing()
-    {
+    let idle = state.writing.is_none();
+    // A job that failed left the mesh as it was: its unsaved changes go to disk now.
+    let failed_job = std::mem::take(&mut world.resource_mut::<Jobs>().failed);
+    if (due || failed_job) && idle && world.resource::<Jobs>().running.is_none() {
         start_write(world, mesh);
     }
 }
@@ -277,12 +259,17 @@ pub fn install_panic_hook() {
     });
 }
 
-/// Answers the offer: restores the recovery (its mesh opened as unsaved work on its source,
-/// and the recovery then removed, this session keeping its own), discards it, or keeps it.
+/// Answers the offer: restores the recovery (its mesh opened with `open`, the pipeline's own
+/// way of opening a file, as unsaved work on its source, and the recovery then removed, this
+/// session keeping its own), discards it, or keeps it.
 ///
 /// # Errors
 /// No offer open; restoring over unsaved changes; a recovery that cannot be read.
-pub fn answer(world: &mut World, answer: RecoveryAnswer) -> Result<String, Declined> {
+pub fn answer(
+    world: &mut World,
+    answer: RecoveryAnswer,
+    open: fn(&mut World, &Path) -> Result<String, Declined>,
+) -> Result<String, Declined> {
     let offer = world
         .resource_mut::<RecoveryOffer>()
         .0
@@ -304,15 +291,19 @@ pub fn answer(world: &mut World, answer: RecoveryAnswer) -> Result<String, Decli
                 world.resource_mut::<RecoveryOffer>().0 = Some(offer);
                 return Err(Declined::UnsavedChanges);
             }
-            restore(world, &offer)
+            restore(world, &offer, open)
         }
     }
 }
 
 /// Opens `offer`'s mesh in place of the active one, names it after its source and marks it
 /// unsaved.
-fn restore(world: &mut World, offer: &Recovery) -> Result<String, Declined> {
-    let summary = super::apply::open(world, &offer.mesh)?;
+fn restore(
+    world: &mut World,
+    offer: &Recovery,
+    open: fn(&mut World, &Path) -> Result<String, Declined>,
+) -> Result<String, Declined> {
+    let summary = open(world, &offer.mesh)?;
     let mesh = world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
     if let Some(mut info) = world.get_mut::<MeshInfo>(mesh.0) {
         info.name = offer.info.name.clone();

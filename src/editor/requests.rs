@@ -10,7 +10,6 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
-use super::recovery::RecoveryAnswer;
 use crate::edit::Edit;
 use crate::mesh::ids::EdgeId;
 use crate::mesh::ids::ElementId;
@@ -269,6 +268,17 @@ pub enum Declined {
     /// A job's thread could not start, or broke (a bug).
     #[error("{0}")]
     Job(String),
+}
+
+/// How the offer of a recovery found at start is answered ([`super::recovery`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RecoveryAnswer {
+    /// Open the recovered mesh (as unsaved work on its source file).
+    Restore,
+    /// Delete the recovery.
+    Discard,
+    /// Close the offer and keep the recovery for later (`pappus recover`).
+    Keep,
 }
 
 /// What waits for the user to say whether unsaved changes may be discarded.
