@@ -74,12 +74,16 @@ sanitizer="${FUZZ_SANITIZER:-none}"
 toolchain=()
 [[ "$sanitizer" == none ]] || toolchain=(+nightly)
 
+# Build every target once, then run the binaries: the source may change while they run.
+cargo "${toolchain[@]}" fuzz build --sanitizer "$sanitizer"
+bin_dir="fuzz/target/$(rustc -vV | sed -n 's/^host: //p')/release"
+
 summary=()
 for t in "${targets[@]}"; do
   log="$(mktemp)"
   mkdir -p "fuzz/corpus/$t" "fuzz/artifacts/$t"
   before=$(find "fuzz/artifacts/$t" -type f | wc -l)
-  cargo "${toolchain[@]}" fuzz run --sanitizer "$sanitizer" "$t" "fuzz/corpus/$t" -- \
+  "$bin_dir/$t" "fuzz/corpus/$t" -artifact_prefix="fuzz/artifacts/$t/" \
     -max_total_time=$((minutes * 60)) -max_len=8192 -timeout=10 -rss_limit_mb=2048 \
     -print_final_stats=1 2>"$log" || true
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
@@ -87,8 +91,10 @@ for t in "${targets[@]}"; do
   features=$(grep -o 'ft: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*')
   crashes=$(($(find "fuzz/artifacts/$t" -type f | wc -l) - before))
   grep -E '^(==|thread|panicked|SUMMARY)' "$log" | head -20 || true
-  # Keep the corpus small: only inputs that add coverage.
-  cargo "${toolchain[@]}" fuzz cmin --sanitizer "$sanitizer" "$t" "fuzz/corpus/$t" >/dev/null 2>&1 || true
+  # Keep the corpus small: only the inputs that add coverage (libFuzzer's merge).
+  minimised="$(mktemp -d)"
+  "$bin_dir/$t" -merge=1 "$minimised" "fuzz/corpus/$t" >/dev/null 2>&1 &&
+    rm -rf "fuzz/corpus/$t" && mv "$minimised" "fuzz/corpus/$t" || rm -rf "$minimised"
   summary+=("$(printf '%-11s %3s min  %12s execs  cov %6s  ft %6s  crashes %s  corpus %s' \
     "$t" "$minutes" "${execs:-?}" "${cov:-?}" "${features:-?}" "$crashes" \
     "$(find "fuzz/corpus/$t" -type f | wc -l)")")

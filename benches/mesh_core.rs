@@ -1,4 +1,5 @@
-//! The cost of the entity design: building a mesh into entities, and walking every one-ring.
+//! The cost of the entity design: building a mesh into entities, and walking every one-ring;
+//! and the cost of the editor's autosave (the copy on the frame, the write on its thread).
 //!
 //! Uses the shared Stanford bunny (`../shared/models/stanford-bunny.obj`, 35 947 vertices,
 //! 69 451 faces) when present, else an icosphere of similar size. Run: `cargo bench --bench
@@ -60,6 +61,29 @@ fn bench(c: &mut Criterion) {
     c.bench_function(&format!("validate {name}"), |b| {
         b.iter(|| black_box(pappus::mesh::validate(&world, mesh).is_ok()));
     });
+    // The part of the editor's autosave that holds a frame: the mesh copied into a soup (the
+    // encoding and the write run on a thread).
+    c.bench_function(&format!("copy {name} into a soup (autosave)"), |b| {
+        b.iter(|| black_box(pappus::mesh::to_soup(&world, mesh)));
+    });
+    // The autosave's thread: the recovery written (binary PLY and its description), synced.
+    let folder = std::env::temp_dir().join(format!("pappus-bench-recovery-{}", std::process::id()));
+    let copy = pappus::mesh::to_soup(&world, mesh);
+    let info = pappus::recovery::RecoveryInfo {
+        source: None,
+        name: name.clone(),
+        saved_at: 0.0,
+        pid: std::process::id(),
+        vertices: copy.positions.len(),
+        faces: copy.face_count(),
+    };
+    c.bench_function(
+        &format!("write {name}'s recovery file (autosave thread)"),
+        |b| {
+            b.iter(|| black_box(pappus::recovery::write(&folder, "bench", &copy, &info).unwrap()));
+        },
+    );
+    let _ = std::fs::remove_dir_all(&folder);
 }
 
 criterion_group! {

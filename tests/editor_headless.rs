@@ -888,10 +888,7 @@ fn a_job_keeps_the_selected_set() {
             app.world().resource::<Jobs>().running.is_some(),
             "runs as a job"
         );
-        while app.world().resource::<Jobs>().running.is_some() {
-            std::thread::sleep(std::time::Duration::from_millis(2));
-            app.update();
-        }
+        update_until(app, |app| app.world().resource::<Jobs>().running.is_none());
         assert!(last_outcome(app).result.is_ok(), "{:?}", last_outcome(app));
     };
     let select = |app: &mut App| {

@@ -706,7 +706,7 @@ impl Edit {
                 let moved = pm.go_to_faces_watching(world, *faces, |w, v| {
                     touched.extend(faces_around(w, &[v]));
                     steps += 1;
-                    if steps % 1000 == 0 {
+                    if steps.is_multiple_of(1000) {
                         progress((steps as f32 / needed as f32).min(0.99));
                     }
                 });

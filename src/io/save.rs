@@ -3,8 +3,8 @@
 //! [`replace`] writes the new contents to a temporary file beside the target, flushes it to
 //! the disk, renames it over the target and then flushes the folder, so that after a crash or
 //! a power cut the name holds either the old contents or the new, whole. The classic recipe
-//! (as in `rename(2)`'s notes and SQLite's and Git's lock files), with the details that make
-//! it hold in practice:
+//! (as in the notes of `rename(2)` and in the lock files of `SQLite` and Git), with the
+//! details that make it hold in practice:
 //!
 //! - **A temporary name per save, not per process**: `.NAME.PID-N.tmp` with `N` counted per
 //!   save and the file created with `O_EXCL`, so two threads saving at once (Python releases
