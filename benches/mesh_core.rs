@@ -61,11 +61,24 @@ fn bench(c: &mut Criterion) {
     c.bench_function(&format!("validate {name}"), |b| {
         b.iter(|| black_box(pappus::mesh::validate(&world, mesh).is_ok()));
     });
-    // The part of the editor's autosave that holds a frame: the mesh copied into a soup (the
-    // encoding and the write run on a thread).
-    c.bench_function(&format!("copy {name} into a soup (autosave)"), |b| {
+    // Saving reads the mesh into a soup element by element; the editor's autosave reads its
+    // tables on the frame (the part that holds a frame) and makes the soup on its thread.
+    c.bench_function(&format!("copy {name} into a soup (saving)"), |b| {
         b.iter(|| black_box(pappus::mesh::to_soup(&world, mesh)));
     });
+    c.bench_function(
+        &format!("read {name}'s tables (autosave, on the frame)"),
+        |b| {
+            b.iter(|| black_box(pappus::mesh::tables::extract(&world, mesh)));
+        },
+    );
+    let tables = pappus::mesh::tables::extract(&world, mesh).tables;
+    c.bench_function(
+        &format!("the soup of {name}'s tables (autosave thread)"),
+        |b| {
+            b.iter(|| black_box(pappus::mesh::soup_of_tables(&tables)));
+        },
+    );
     // The autosave's thread: the recovery written (binary PLY and its description), synced.
     let folder = std::env::temp_dir().join(format!("pappus-bench-recovery-{}", std::process::id()));
     let copy = pappus::mesh::to_soup(&world, mesh);

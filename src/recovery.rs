@@ -189,6 +189,17 @@ fn parse_info(text: &str) -> Option<RecoveryInfo> {
     })
 }
 
+/// A duration in seconds as a person reads it: `40 s`, `12 min`, `3 h`, `2 days`.
+pub fn age(seconds: f64) -> String {
+    let s = seconds.max(0.0) as u64;
+    match s {
+        0..120 => format!("{s} s"),
+        120..7200 => format!("{} min", s / 60),
+        7200..172_800 => format!("{} h", s / 3600),
+        _ => format!("{} days", s / 86_400),
+    }
+}
+
 /// Now, in seconds since the Unix epoch.
 pub fn now() -> f64 {
     seconds(SystemTime::now())

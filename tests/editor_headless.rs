@@ -1098,6 +1098,19 @@ fn an_idle_editor_keeps_its_unsaved_mesh_in_a_recovery_file_until_it_is_saved() 
         .write_message(Request::Save(Some(saved.clone())));
     update_until(&mut app, |_| pappus::recovery::list(&dir).is_empty());
     assert!(saved.is_file());
+    // Edited again, then quit with "discard changes": the recovery goes too.
+    let e = some_interior_edge(&app);
+    app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
+    update_until(&mut app, |_| !pappus::recovery::list(&dir).is_empty());
+    app.world_mut()
+        .resource_mut::<pappus::editor::requests::ConfirmDiscard>()
+        .0 = Some(pappus::editor::requests::PendingDiscard::Quit);
+    app.world_mut().write_message(Request::ConfirmDiscard(true));
+    app.update();
+    assert!(
+        pappus::recovery::list(&dir).is_empty(),
+        "discarded on purpose"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

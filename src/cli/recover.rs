@@ -128,21 +128,10 @@ fn print_list(folder: &Path, found: &[Recovery], as_json: bool) {
         outln!(
             "{}  {} ago  {} ({} vertices, {} faces), from {source}{state}",
             r.name,
-            ago(now - r.info.saved_at),
+            recovery::age(now - r.info.saved_at),
             r.info.name,
             r.info.vertices,
             r.info.faces
         );
-    }
-}
-
-/// A duration as a person reads it: `40 s`, `12 min`, `3 h`, `2 days`.
-fn ago(seconds: f64) -> String {
-    let s = seconds.max(0.0) as u64;
-    match s {
-        0..120 => format!("{s} s"),
-        120..7200 => format!("{} min", s / 60),
-        7200..172_800 => format!("{} h", s / 3600),
-        _ => format!("{} days", s / 86_400),
     }
 }

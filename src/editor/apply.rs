@@ -144,6 +144,8 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
             match pending {
                 PendingDiscard::Open(path) => open(world, &path),
                 PendingDiscard::Quit => {
+                    // The changes were given up on purpose: nothing to offer back next time.
+                    super::recovery::forget(world);
                     world.write_message(bevy::app::AppExit::Success);
                     Ok("changes discarded, quitting".into())
                 }

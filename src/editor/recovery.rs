@@ -5,9 +5,9 @@
 //!
 //! - **When**: an edit re-marks the mesh [`Modified`]; [`autosave`] sees the marker change and
 //!   waits until no edit has come for [`Autosave::idle`] (2 s; a drag or a gesture edits every
-//!   frame, so it waits for its end) and no job is running. Then it copies the mesh into a
-//!   soup on this frame (the only part that needs the world: about 10 ms for the bunny) and a
-//!   thread encodes and writes it, atomically, so a frame never waits for the disk.
+//!   frame, so it waits for its end) and no job is running. Then it reads the mesh's tables on
+//!   this frame (the only part that needs the world) and a thread makes the soup, encodes and
+//!   writes it, atomically, so a frame never waits for the disk.
 //! - **What survives**: a kill or a power cut loses the edits of the last `idle` seconds at
 //!   most. A panic anywhere in the process ([`install_panic_hook`]) finishes a write still in
 //!   flight before the process ends, and says where the work is. A panic in a job ends only
@@ -30,7 +30,8 @@ use super::jobs::Jobs;
 use super::requests::{Declined, RecoveryAnswer};
 use super::selection::ActiveMesh;
 use super::session::Modified;
-use crate::mesh::{MeshId, MeshInfo, PolygonSoup, to_soup};
+use crate::mesh::tables::{Connectivity, extract};
+use crate::mesh::{MeshId, MeshInfo, soup_of_tables};
 use crate::recovery::{self, Recovery, RecoveryInfo};
 
 /// The autosave's settings and state.
@@ -99,7 +100,8 @@ pub struct RecoveryOffer(pub Option<Recovery>);
 struct Snapshot {
     folder: PathBuf,
     name: String,
-    soup: PolygonSoup,
+    /// The mesh's tables: the soup is made from them on the writing thread.
+    tables: Connectivity,
     info: RecoveryInfo,
 }
 
@@ -160,9 +162,27 @@ pub fn autosave(world: &mut World) {
     }
 }
 
+/// Removes this session's recovery, and forgets the edits not written yet: the user discarded
+/// the unsaved changes (quitting without saving), so there is nothing to offer back.
+pub fn forget(world: &mut World) {
+    let mut state = world.resource_mut::<Autosave>();
+    state.edited_at = None;
+    if let Some(thread) = state.writing.take()
+        && let Ok(Ok(path)) = thread.join()
+    {
+        // The write in flight finished: its file is what goes.
+        state.written = Some(path);
+    }
+    if let Some(path) = state.written.take() {
+        recovery::remove(&path);
+    }
+}
+
 /// Copies `mesh` into a soup and starts the thread that writes it.
 fn start_write(world: &mut World, mesh: MeshId) {
-    let soup = to_soup(world, mesh);
+    // The one part on the frame: the tables, read in storage order (about 6 ms for the bunny,
+    // against 20 ms for the soup read element by element).
+    let tables = extract(world, mesh).tables;
     let (name, source) = world
         .get::<MeshInfo>(mesh.0)
         .map(|i| (i.name.clone(), i.path.clone()))
@@ -179,10 +199,10 @@ fn start_write(world: &mut World, mesh: MeshId) {
             name,
             saved_at: recovery::now(),
             pid: std::process::id(),
-            vertices: soup.positions.len(),
-            faces: soup.face_count(),
+            vertices: tables.vertex_count(),
+            faces: tables.face_count(),
         },
-        soup,
+        tables,
         folder,
     });
     *IN_FLIGHT.lock().unwrap_or_else(|e| e.into_inner()) = Some(Arc::clone(&snapshot));
@@ -206,7 +226,8 @@ fn start_write(world: &mut World, mesh: MeshId) {
 }
 
 fn write_snapshot(s: &Snapshot) -> Result<PathBuf, String> {
-    recovery::write(&s.folder, &s.name, &s.soup, &s.info).map_err(|e| e.to_string())
+    let soup = soup_of_tables(&s.tables);
+    recovery::write(&s.folder, &s.name, &soup, &s.info).map_err(|e| e.to_string())
 }
 
 /// Takes the result of a finished write: the recovery on disk, or the failure, said once in
@@ -335,10 +356,10 @@ pub fn offer_window(
         return Ok(());
     };
     let ctx = contexts.ctx_mut()?;
-    let age = (recovery::now() - recovery.info.saved_at).max(0.0) / 60.0;
-    let source = recovery.info.source.as_ref().map_or_else(
-        || "a mesh never saved".to_string(),
-        |p| p.display().to_string(),
+    let age = recovery::age(recovery::now() - recovery.info.saved_at);
+    let file = recovery.info.source.as_ref().map_or_else(
+        || "It was never saved to a file.".to_string(),
+        |p| format!("Its file: {}", p.display()),
     );
     egui::Window::new("Recover unsaved work?")
         .collapsible(false)
@@ -346,10 +367,10 @@ pub fn offer_window(
         .anchor(egui::Align2::CENTER_CENTER, [0.0, 0.0])
         .show(ctx, |ui| {
             ui.label(format!(
-                "An editor ended without saving {} ({} vertices, {} faces), {age:.0} min ago.",
+                "An editor ended without saving {} ({} vertices, {} faces), {age} ago.",
                 recovery.info.name, recovery.info.vertices, recovery.info.faces
             ));
-            ui.label(format!("Its file: {source}"));
+            ui.label(file);
             ui.horizontal(|ui| {
                 if ui.button("Restore").clicked() {
                     requests.write(Request::Recover(RecoveryAnswer::Restore));

@@ -440,6 +440,88 @@ vt -0 0.33333334\nvt 1 1e-7\nvt 1 1\nvt 0 1\nvt 2.5 -3\nvt 0.25 0.75\n\
 vn 0 0 1\nvn -0 0.6 0.8\nvn 1e-20 0 -1\nvn 0.5773503 0.5773503 0.5773503\nvn 0 0 2\n\
 f 1/1/1 2/2/2 3/3/3 4/4/4\nf 4/6/4 3/3/3 5/5/5\n";
 
+    /// The soup of a mesh walked element by element through the world (face by face from one
+    /// halfedge before its own, each corner's UV, each vertex's normal and colour): what
+    /// `to_soup` read before it read the tables, kept here as the reference.
+    fn soup_by_elements(world: &bevy::prelude::World, mesh: crate::mesh::MeshId) -> PolygonSoup {
+        use crate::mesh::attributes::{CornerUv, MeshAttributes, VertexColor, VertexNormal};
+        let has = MeshAttributes::of(world, mesh);
+        let members = crate::mesh::MeshMembers::collect(world, mesh);
+        let m = crate::mesh::MeshRef::new(world);
+        let index = members.vertex_rows();
+        let mut soup = PolygonSoup::with_capacity(0, 0, 0);
+        soup.positions = members.vertices.iter().map(|&v| m.position(v)).collect();
+        let mut uvs = has.uv.then(Vec::new);
+        for &f in &members.faces {
+            let first = m.prev(m.face_halfedge(f));
+            let face: Vec<u32> = m
+                .loop_from(first)
+                .map(|h| index[&m.to_vertex(h).0])
+                .collect();
+            if let Some(uvs) = &mut uvs {
+                uvs.extend(
+                    m.loop_from(first)
+                        .map(|h| world.get::<CornerUv>(h.0).map_or(Vec2::ZERO, |c| c.0)),
+                );
+            }
+            soup.push_face(&face);
+        }
+        soup.corner_uvs = uvs;
+        if has.normals {
+            let n = |v: &crate::mesh::ids::VertexId| {
+                world.get::<VertexNormal>(v.0).map_or(Vec3::ZERO, |x| x.0)
+            };
+            soup.vertex_normals = Some(members.vertices.iter().map(n).collect());
+        }
+        if has.colors {
+            let c = |v: &crate::mesh::ids::VertexId| {
+                world.get::<VertexColor>(v.0).map_or([0; 3], |x| x.0)
+            };
+            soup.vertex_colors = Some(members.vertices.iter().map(c).collect());
+        }
+        soup
+    }
+
+    /// The soup read through the tables is the soup walked element by element, attributes and
+    /// face starts included, before and after edits that reorder rows.
+    #[test]
+    fn the_soup_read_through_the_tables_is_the_mesh_element_by_element() {
+        let soup = read_bytes(Format::Obj, ATTRIBUTED_OBJ, name()).unwrap();
+        let mut world = bevy::prelude::World::new();
+        let mesh = crate::mesh::build_mesh(&mut world, &soup, Default::default())
+            .unwrap()
+            .mesh;
+        let same = |world: &bevy::prelude::World| {
+            assert_eq!(
+                crate::mesh::to_soup(world, mesh),
+                soup_by_elements(world, mesh)
+            );
+        };
+        same(&world);
+        crate::ops::triangulate::triangulate(&mut world, mesh);
+        same(&world);
+        crate::edit::Scheme::Loop
+            .subdivide(&mut world, mesh, 1)
+            .unwrap();
+        same(&world);
+        // Holes, and every shared model (repaired, polygons, UVs) where they are.
+        let mut soups = vec![crate::mesh::shapes::grid_with_holes(2)];
+        let models = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models");
+        for entry in std::fs::read_dir(models).into_iter().flatten().flatten() {
+            if entry.path().extension().is_some_and(|e| e == "obj") {
+                soups.push(read(&entry.path()).unwrap());
+            }
+        }
+        for soup in soups {
+            let mut world = bevy::prelude::World::new();
+            let built = crate::mesh::build_mesh(&mut world, &soup, Default::default()).unwrap();
+            assert_eq!(
+                crate::mesh::to_soup(&world, built.mesh),
+                soup_by_elements(&world, built.mesh)
+            );
+        }
+    }
+
     #[test]
     fn obj_attributes_survive_the_mesh_bit_for_bit() {
         let input = read_bytes(Format::Obj, ATTRIBUTED_OBJ, name()).unwrap();
