@@ -851,10 +851,9 @@ fn smoothing_as_a_job_holds_the_vertex_the_editor_named() {
         .write_message(Request::Edit(Edit::Smooth(params)));
     app.update();
     assert!(app.world().resource::<Jobs>().running.is_some() || last_outcome(&app).result.is_ok());
-    while app.world().resource::<Jobs>().running.is_some() {
-        std::thread::sleep(std::time::Duration::from_millis(2));
-        app.update();
-    }
+    update_until(&mut app, |app| {
+        app.world().resource::<Jobs>().running.is_none()
+    });
     assert!(
         last_outcome(&app).result.is_ok(),
         "{:?}",

@@ -41,14 +41,20 @@ fn xvfb_is_here(test: &str) -> bool {
     here
 }
 
+/// An empty folder `name` in the tests' scratch space (emptied if a run left it).
+fn fresh_folder(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 #[test]
 fn flip_through_its_shortcut_changes_the_picture() {
     if !xvfb_is_here("the windowed screenshot test") {
         return;
     }
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("screenshot");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = fresh_folder("screenshot");
     let (before, after) = (dir.join("before.png"), dir.join("after.png"));
     // The icosphere's input vertices 0 and 11 share an interior edge (a face of the icosahedron).
     // 30 frames first: under load, the first frames can come before the pipelines are ready.
@@ -133,11 +139,9 @@ fn an_editor_killed_after_an_edit_leaves_its_work_to_recover() {
     if !xvfb_is_here("the windowed recovery test") {
         return;
     }
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("killed");
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = fresh_folder("killed");
     let state = dir.join("state");
     let recoveries = state.join("pappus/recovery");
-    std::fs::create_dir_all(&state).unwrap();
     // Flip the edge between input vertices 0 and 11, then stay open (the script waits on).
     let mut editor = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1024x700x24"])
