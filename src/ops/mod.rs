@@ -9,6 +9,7 @@
 //! Operations are plain functions over `&World` / `&mut World`, callable from a unit test, the
 //! command line and the editor alike; the editor's systems are thin adapters around them.
 
+pub mod deform;
 pub mod geometry;
 pub mod indexed_heap;
 pub mod local;

@@ -32,7 +32,7 @@ use crate::mesh::tables::{Connectivity, extract};
 use crate::mesh::{MeshInfo, Position};
 
 use super::Refusal;
-use super::geometry::{Surface, mixed_areas};
+use super::geometry::{Surface, cotan_edges, mixed_areas};
 use super::named::Named;
 
 /// Which Laplacian moves the vertices.
@@ -216,32 +216,6 @@ fn umbrella_step(t: &Connectivity, held: &[bool], x: &mut [DVec3], lambda: f64) 
             x[v.index()] = p + lambda * (sum / count - p);
         }
     }
-}
-
-/// The cotangent weights `½(cot α + cot β)` of every edge of the fanned triangles, as
-/// (i, j, w) with i < j, merged.
-fn cotan_edges(s: &Surface) -> Vec<(u32, u32, f64)> {
-    let mut edges: Vec<(u32, u32, f64)> = Vec::with_capacity(3 * s.triangles.len());
-    for (t, tri) in s.triangles.iter().enumerate() {
-        let p = s.corners(t);
-        for k in 0..3 {
-            let (a, b, c) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
-            let (u, v) = (b - a, c - a);
-            let sin = u.cross(v).length();
-            let w = if sin > 0.0 { 0.5 * u.dot(v) / sin } else { 0.0 };
-            let (i, j) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
-            edges.push((i.min(j), i.max(j), w));
-        }
-    }
-    edges.sort_unstable_by_key(|&(i, j, _)| (i, j));
-    let mut merged: Vec<(u32, u32, f64)> = Vec::with_capacity(edges.len() / 2 + 1);
-    for (i, j, w) in edges {
-        match merged.last_mut() {
-            Some(last) if (last.0, last.1) == (i, j) => last.2 += w,
-            _ => merged.push((i, j, w)),
-        }
-    }
-    merged
 }
 
 /// One explicit step with the normalised cotangent weights.

@@ -6,11 +6,13 @@
 //! entities through the tables' members.
 
 pub mod closest;
+pub mod cotan;
 pub mod curvature;
 pub mod normals;
 pub mod quantity;
 pub mod surface;
 
+pub use cotan::cotan_edges;
 pub use curvature::{Curvature, curvature, mixed_areas, scalar_curvature};
 pub use normals::{NormalWeighting, face_normals, vertex_normals, vertex_normals_by_angle};
 pub use quantity::Quantity;

@@ -1,0 +1,202 @@
+//! As-rigid-as-possible surface deformation (Sorkine & Alexa, "As-Rigid-As-Possible Surface
+//! Modeling", SGP 2007), with the "spokes" energy and cotangent weights:
+//!
+//! `E(p′, R) = Σ_i Σ_{j ∈ N(i)} w_ij ‖(p′_i − p′_j) − R_i (p_i − p_j)‖²`
+//!
+//! minimised by alternating two steps, each of which cannot raise `E`:
+//! - **local**: each vertex's rotation `R_i`, the rotation closest to
+//!   `Σ_j w_ij (p′_i − p′_j)(p_i − p_j)ᵀ` ([`super::rotation`], warm-started from the last
+//!   one), vertices split over the cores;
+//! - **global**: the positions, from the linear system `L p′ = b`,
+//!   `b_i = Σ_j (w_ij / 2)(R_i + R_j)(p_i − p_j)`, with `L` the cotangent stiffness matrix. `L`
+//!   does not change while the held vertices stay the same, so its free block is factored once
+//!   ([`HeldSystem`]) and each iteration is three triangular solves.
+//!
+//! The held vertices (anchors and handle) sit where they are placed; an iteration moves only the
+//! others. [`Arap`] keeps the factor, the rotations and the positions between calls, so the
+//! editor can run one iteration a frame while a handle is dragged, starting from the last
+//! frame's result.
+
+use bevy::math::{DMat3, DQuat, DVec3};
+
+use crate::ops::Refusal;
+use crate::ops::geometry::{Surface, cotan_edges};
+
+use super::rotation::closest_rotation;
+use super::system::{HeldSystem, k_harmonic};
+
+/// Vertices per thread below which the local step stays on one thread.
+const MIN_VERTICES_PER_THREAD: usize = 4096;
+
+/// An as-rigid-as-possible deformation in progress (see the module doc).
+pub struct Arap {
+    /// The rest positions.
+    rest: Vec<DVec3>,
+    /// Each vertex's one-ring in `ring[start[i]..start[i + 1]]`: (neighbour, cotangent weight).
+    start: Vec<u32>,
+    ring: Vec<(u32, f64)>,
+    system: HeldSystem,
+    rotations: Vec<DQuat>,
+    current: Vec<DVec3>,
+}
+
+impl Arap {
+    /// Prepares the deformation of `surface` (its positions the rest pose) with the vertices
+    /// where `held` is set held: builds the one-rings and factors the system. The deformed
+    /// positions start at the rest pose.
+    ///
+    /// # Refusals
+    /// As [`HeldSystem::new`]: nothing free, or a part of the mesh with nothing held.
+    pub fn new(surface: &Surface, held: &[bool]) -> Result<Self, Refusal> {
+        let n = surface.vertex_count();
+        let edges = cotan_edges(surface);
+        let system = HeldSystem::new(&k_harmonic(n, &edges, &[], 1), held)?;
+        let mut count = vec![0u32; n + 1];
+        for &(i, j, _) in &edges {
+            count[i as usize + 1] += 1;
+            count[j as usize + 1] += 1;
+        }
+        for i in 0..n {
+            count[i + 1] += count[i];
+        }
+        let start = count.clone();
+        let mut ring = vec![(0u32, 0.0); 2 * edges.len()];
+        let mut fill = count;
+        for &(i, j, w) in &edges {
+            ring[fill[i as usize] as usize] = (j, w);
+            fill[i as usize] += 1;
+            ring[fill[j as usize] as usize] = (i, w);
+            fill[j as usize] += 1;
+        }
+        Ok(Self {
+            rest: surface.positions.clone(),
+            start,
+            ring,
+            system,
+            rotations: vec![DQuat::IDENTITY; n],
+            current: surface.positions.clone(),
+        })
+    }
+
+    /// The deformed positions, by vertex row.
+    pub fn positions(&self) -> &[DVec3] {
+        &self.current
+    }
+
+    /// Each vertex's rotation from the last local step.
+    pub fn rotations(&self) -> &[DQuat] {
+        &self.rotations
+    }
+
+    /// Whether vertex row `v` is held.
+    pub fn is_held(&self, v: u32) -> bool {
+        self.system.is_held(v)
+    }
+
+    /// Puts held vertices where they go (rows that are not held are ignored: only the solve
+    /// places them).
+    pub fn place(&mut self, targets: impl IntoIterator<Item = (u32, DVec3)>) {
+        for (v, p) in targets {
+            if self.system.is_held(v) {
+                self.current[v as usize] = p;
+            }
+        }
+    }
+
+    /// Starts the next iteration from these positions (the last frame's result, or a better
+    /// guess); the held vertices keep where [`Arap::place`] put them.
+    pub fn start_from(&mut self, positions: &[DVec3]) {
+        for (v, p) in positions.iter().enumerate() {
+            if !self.system.is_held(v as u32) {
+                self.current[v] = *p;
+            }
+        }
+    }
+
+    /// One local step and one global step.
+    pub fn iterate(&mut self) {
+        self.fit_rotations();
+        let rhs = self.right_hand_side();
+        self.system.solve(Some(&rhs), &mut self.current);
+    }
+
+    /// The local step: each vertex's best rotation for the current positions.
+    pub fn fit_rotations(&mut self) {
+        let (rest, current, start, ring) = (&self.rest, &self.current, &self.start, &self.ring);
+        in_parallel(&mut self.rotations, |i, q| {
+            let (pi, ci) = (rest[i], current[i]);
+            let mut a = DMat3::ZERO;
+            for &(j, w) in &ring[start[i] as usize..start[i + 1] as usize] {
+                let e = pi - rest[j as usize];
+                let d = (ci - current[j as usize]) * w;
+                a += DMat3::from_cols(d * e.x, d * e.y, d * e.z);
+            }
+            *q = closest_rotation(&a, *q);
+        });
+    }
+
+    /// The global step's right-hand side `b_i = Σ_j (w_ij / 2)(R_i + R_j)(p_i − p_j)`.
+    fn right_hand_side(&self) -> Vec<DVec3> {
+        let mut matrices = vec![DMat3::IDENTITY; self.rotations.len()];
+        in_parallel(&mut matrices, |i, m| {
+            *m = DMat3::from_quat(self.rotations[i])
+        });
+        let mut rhs = vec![DVec3::ZERO; self.rest.len()];
+        in_parallel(&mut rhs, |i, b| {
+            let pi = self.rest[i];
+            let mut sum = DVec3::ZERO;
+            for &(j, w) in self.neighbours(i) {
+                let j = j as usize;
+                sum += (matrices[i] + matrices[j]) * ((pi - self.rest[j]) * (0.5 * w));
+            }
+            *b = sum;
+        });
+        rhs
+    }
+
+    fn neighbours(&self, i: usize) -> &[(u32, f64)] {
+        &self.ring[self.start[i] as usize..self.start[i + 1] as usize]
+    }
+
+    /// The energy `E` of the current positions with the current rotations (after
+    /// [`Arap::fit_rotations`], the energy of the positions alone).
+    pub fn energy(&self) -> f64 {
+        let mut terms = vec![0.0; self.rest.len()];
+        in_parallel(&mut terms, |i, e| {
+            let r = DMat3::from_quat(self.rotations[i]);
+            *e = self
+                .neighbours(i)
+                .iter()
+                .map(|&(j, w)| {
+                    let j = j as usize;
+                    let rest = self.rest[i] - self.rest[j];
+                    let now = self.current[i] - self.current[j];
+                    w * (now - r * rest).length_squared()
+                })
+                .sum();
+        });
+        terms.iter().sum()
+    }
+}
+
+/// Runs `f(index, item)` over `items`, split into contiguous chunks over the available cores
+/// (one thread for short slices).
+fn in_parallel<T: Send>(items: &mut [T], f: impl Fn(usize, &mut T) + Sync) {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = cores.min(items.len() / MIN_VERTICES_PER_THREAD).max(1);
+    if threads == 1 {
+        items.iter_mut().enumerate().for_each(|(i, x)| f(i, x));
+        return;
+    }
+    let chunk = items.len().div_ceil(threads);
+    std::thread::scope(|scope| {
+        for (c, part) in items.chunks_mut(chunk).enumerate() {
+            let f = &f;
+            scope.spawn(move || {
+                for (k, x) in part.iter_mut().enumerate() {
+                    f(c * chunk + k, x);
+                }
+            });
+        }
+    });
+}

@@ -1,0 +1,391 @@
+//! Shape editing that moves vertices and keeps the connectivity: handle deformation and fairing
+//! (Botsch, Kobbelt, Pauly, Alliez & Lévy, *Polygon Mesh Processing*, ch. 9 "Deformation" and
+//! §4.3 "Fairing").
+//!
+//! - **Laplacian (thin-plate) deformation** ([`DeformMethod::Laplace`]): the displacement `d`
+//!   that minimises the thin-plate energy `∫ ‖Δd‖²`, discretised as `L M⁻¹ L d = 0` over the free
+//!   vertices ([`system`]), with `d` zero on the anchors and the handle's motion on the handle.
+//!   One sparse solve; linear precision (an affine motion of every held vertex of a flat patch
+//!   moves it affinely), but rotations of the handle shear the detail rather than turn it.
+//! - **As-rigid-as-possible** ([`DeformMethod::Arap`], [`arap`]): Sorkine & Alexa's local/global
+//!   iterations, which turn the detail with the surface.
+//! - **Fairing** ([`fair`]): the free vertices solve the k-harmonic equation
+//!   `L (M⁻¹ L)^(k−1) x = 0` (PMP's `fair(mesh, k)`: k = 1 membrane, 2 thin plate, 3 minimum
+//!   variation), every other vertex held where it is.
+//!
+//! Weights are the cotangent weights of the fanned triangles ([`crate::ops::geometry::cotan`]),
+//! areas the mixed Voronoi areas. A part of the mesh with no held vertex cannot be placed by
+//! either solve (its position is free up to a translation), so such parts stay where they are and
+//! the summary says how many. Held vertices are never written: they keep their positions to the
+//! bit, and the handle lands exactly where its motion sends it.
+
+mod arap;
+mod rotation;
+mod system;
+#[cfg(test)]
+mod tests;
+
+use std::time::Instant;
+
+use bevy::math::{Affine3A, DVec3};
+use bevy::prelude::World;
+
+use crate::mesh::ids::{ElementId, MeshId, VertexId};
+use crate::mesh::tables::{MeshTables, extract};
+use crate::mesh::{MeshInfo, Position};
+
+use super::Refusal;
+use super::geometry::{Surface, cotan_edges, mixed_areas};
+use super::named::Named;
+
+pub use arap::Arap;
+pub use rotation::closest_rotation;
+pub use system::{HeldSystem, k_harmonic};
+
+/// How a handle's motion spreads over the free vertices.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DeformMethod {
+    /// The thin-plate displacement: one linear solve.
+    Laplace,
+    /// As-rigid-as-possible: local/global iterations.
+    #[default]
+    Arap,
+}
+
+impl Named for DeformMethod {
+    const ALL: &'static [(Self, &'static str)] = &[
+        (DeformMethod::Arap, "arap"),
+        (DeformMethod::Laplace, "laplace"),
+    ];
+}
+
+/// A handle deformation: which vertices stay, which move and how, and how far to iterate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DeformParams {
+    /// The method. Default ARAP.
+    pub method: DeformMethod,
+    /// The anchors: they do not move.
+    pub fixed: Vec<VertexId>,
+    /// The handle: each of its vertices goes where `motion` sends it.
+    pub handle: Vec<VertexId>,
+    /// The handle's motion (a translation from the command line; any affine map from the
+    /// editor's gestures).
+    pub motion: Affine3A,
+    /// ARAP iterations (1–10 000). Default [`DeformParams::DEFAULT_ITERATIONS`]. Ignored by the
+    /// Laplacian method.
+    pub iterations: u32,
+}
+
+impl DeformParams {
+    /// ARAP iterations when none are given.
+    pub const DEFAULT_ITERATIONS: u32 = 10;
+    /// The most ARAP iterations one edit runs.
+    pub const MAX_ITERATIONS: u32 = 10_000;
+}
+
+/// What a deformation did, measured as it ran.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DeformSummary {
+    /// Vertices that moved freely.
+    pub free: usize,
+    /// ARAP iterations run (0 for the Laplacian method).
+    pub iterations: u32,
+    /// The ARAP energy of the starting guess (the rest pose with the held vertices placed), and
+    /// after the last iteration, each with its best rotations; 0 for the Laplacian method.
+    pub energy_before: f64,
+    /// See `energy_before`.
+    pub energy: f64,
+    /// Seconds spent building and factoring the system.
+    pub factor_seconds: f64,
+    /// Seconds per ARAP iteration (local and global step), or for the one Laplacian solve.
+    pub iteration_seconds: f64,
+    /// Parts of the mesh with no held vertex, left where they were.
+    pub loose_parts: usize,
+}
+
+/// Fairing parameters: the vertices that move, and the order of the equation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FairParams {
+    /// The vertices that move; all others are held.
+    pub vertices: Vec<VertexId>,
+    /// 1 (membrane), 2 (thin plate, the default) or 3 (minimum variation).
+    pub k: u32,
+}
+
+/// What a fairing did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FairSummary {
+    /// Vertices that moved.
+    pub free: usize,
+    /// The mean distance they moved.
+    pub mean_move: f64,
+    /// Parts of the mesh with no held vertex, left where they were.
+    pub loose_parts: usize,
+}
+
+/// The mesh read for a solve: its tables, its fanned triangles, and each vertex entity's row.
+struct Read {
+    tables: MeshTables,
+    surface: Surface,
+}
+
+impl Read {
+    fn of(world: &World, mesh: MeshId) -> Result<Self, Refusal> {
+        if world.get::<MeshInfo>(mesh.0).is_none() {
+            return Err(Refusal::Stale(ElementId::Mesh(mesh)));
+        }
+        let tables = extract(world, mesh);
+        let surface = Surface::from_tables(&tables.tables);
+        Ok(Self { tables, surface })
+    }
+
+    /// The rows of these vertices, refused if one is not a live vertex of the mesh.
+    fn rows(&self, vertices: &[VertexId]) -> Result<Vec<u32>, Refusal> {
+        let rows = self.tables.members.vertex_rows();
+        vertices
+            .iter()
+            .map(|v| {
+                rows.get(&v.0)
+                    .copied()
+                    .ok_or(Refusal::Stale(ElementId::Vertex(*v)))
+            })
+            .collect()
+    }
+
+    /// Writes the positions of the rows not held back to the entities.
+    ///
+    /// # Refusals
+    /// [`Refusal::BadParameter`] when a position is not finite; nothing is written then.
+    fn write(
+        &self,
+        world: &mut World,
+        x: &[DVec3],
+        write: impl Fn(usize) -> bool,
+    ) -> Result<(), Refusal> {
+        if let Some(bad) = x.iter().find(|p| !p.as_vec3().is_finite()) {
+            return Err(Refusal::NotFinite(bad.as_vec3()));
+        }
+        for (row, v) in self.tables.members.vertices.iter().enumerate() {
+            if write(row)
+                && let Some(mut p) = world.get_mut::<Position>(v.0)
+            {
+                p.0 = x[row].as_vec3();
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Holds every vertex of each part of the surface (connected through its triangles' edges)
+/// that has no held vertex; returns how many parts that was.
+fn hold_loose_parts(n: usize, edges: &[(u32, u32, f64)], held: &mut [bool]) -> usize {
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn root(parent: &mut [u32], mut v: u32) -> u32 {
+        while parent[v as usize] != v {
+            parent[v as usize] = parent[parent[v as usize] as usize];
+            v = parent[v as usize];
+        }
+        v
+    }
+    for &(i, j, _) in edges {
+        let (a, b) = (root(&mut parent, i), root(&mut parent, j));
+        if a != b {
+            parent[a as usize] = b;
+        }
+    }
+    let mut anchored = vec![false; n];
+    for v in 0..n {
+        if held[v] {
+            let r = root(&mut parent, v as u32);
+            anchored[r as usize] = true;
+        }
+    }
+    let mut loose = vec![false; n];
+    for v in 0..n {
+        let r = root(&mut parent, v as u32) as usize;
+        if !anchored[r] {
+            loose[r] = true;
+            held[v] = true;
+        }
+    }
+    loose.iter().filter(|x| **x).count()
+}
+
+/// Deforms `mesh`: the anchors stay, the handle moves by its motion, the rest follows by the
+/// method (see the module doc).
+///
+/// # Refusals
+/// A stale mesh or vertex; an empty handle, a vertex both anchor and handle, a motion that is
+/// not finite, iterations outside 1–10 000 ([`Refusal::BadParameter`]); a system that cannot be
+/// solved. The mesh is then unchanged.
+pub fn deform(
+    world: &mut World,
+    mesh: MeshId,
+    params: &DeformParams,
+) -> Result<DeformSummary, Refusal> {
+    let iterations_ok = (1..=DeformParams::MAX_ITERATIONS).contains(&params.iterations);
+    if params.method == DeformMethod::Arap && !iterations_ok {
+        return Err(Refusal::BadParameter(format!(
+            "{} ARAP iterations: give 1 to {}",
+            params.iterations,
+            DeformParams::MAX_ITERATIONS
+        )));
+    }
+    if !params.motion.is_finite() {
+        return Err(Refusal::BadParameter(
+            "the handle's motion is not finite".into(),
+        ));
+    }
+    if params.handle.is_empty() {
+        return Err(Refusal::BadParameter(
+            "no handle: name the vertices that move".into(),
+        ));
+    }
+    let read = Read::of(world, mesh)?;
+    let (fixed, handle) = (read.rows(&params.fixed)?, read.rows(&params.handle)?);
+    let n = read.surface.vertex_count();
+    let mut held = vec![false; n];
+    fixed.iter().for_each(|&v| held[v as usize] = true);
+    if let Some(&both) = handle.iter().find(|&&v| held[v as usize]) {
+        return Err(Refusal::BadParameter(format!(
+            "{} is both an anchor and part of the handle",
+            ElementId::Vertex(read.tables.members.vertices[both as usize])
+        )));
+    }
+    handle.iter().for_each(|&v| held[v as usize] = true);
+    let started = Instant::now();
+    let edges = cotan_edges(&read.surface);
+    let loose_parts = hold_loose_parts(n, &edges, &mut held);
+    let rest = &read.surface.positions;
+    let placed = |v: u32| {
+        let p = params.motion.transform_point3(rest[v as usize].as_vec3());
+        (v, p.as_dvec3())
+    };
+    let free = held.iter().filter(|h| !**h).count();
+    let mut summary = DeformSummary {
+        free,
+        iterations: 0,
+        energy_before: 0.0,
+        energy: 0.0,
+        factor_seconds: 0.0,
+        iteration_seconds: 0.0,
+        loose_parts,
+    };
+    let x = match params.method {
+        DeformMethod::Laplace => {
+            let targets: Vec<(u32, DVec3)> = handle.iter().map(|&v| placed(v)).collect();
+            let (x, solve_seconds) = laplace_rows(&read.surface, &edges, &held, &targets)?;
+            summary.factor_seconds = started.elapsed().as_secs_f64() - solve_seconds;
+            summary.iteration_seconds = solve_seconds;
+            x
+        }
+        DeformMethod::Arap => {
+            let mut arap = Arap::new(&read.surface, &held)?;
+            arap.place(handle.iter().map(|&v| placed(v)));
+            summary.factor_seconds = started.elapsed().as_secs_f64();
+            arap.fit_rotations();
+            summary.energy_before = arap.energy();
+            let iterating = Instant::now();
+            for _ in 0..params.iterations {
+                arap.iterate();
+            }
+            summary.iteration_seconds =
+                iterating.elapsed().as_secs_f64() / params.iterations as f64;
+            summary.iterations = params.iterations;
+            arap.fit_rotations();
+            summary.energy = arap.energy();
+            arap.positions().to_vec()
+        }
+    };
+    let anchors = held.clone();
+    let handle_rows: std::collections::HashSet<u32> = handle.iter().copied().collect();
+    read.write(world, &x, |row| {
+        !anchors[row] || handle_rows.contains(&(row as u32))
+    })?;
+    Ok(summary)
+}
+
+/// The thin-plate deformation of `surface` (see the module doc): the vertices of `targets` go
+/// there, the other held ones stay, the free ones are displaced by `L M⁻¹ L d = 0`. Returns the
+/// positions and the seconds the solve took (after the factorisation).
+///
+/// # Refusals
+/// As [`HeldSystem::new`].
+pub fn laplace_rows(
+    surface: &Surface,
+    edges: &[(u32, u32, f64)],
+    held: &[bool],
+    targets: &[(u32, DVec3)],
+) -> Result<(Vec<DVec3>, f64), Refusal> {
+    let n = surface.vertex_count();
+    let areas = mixed_areas(surface);
+    let system = HeldSystem::new(&k_harmonic(n, edges, &areas, 2), held)?;
+    let solving = Instant::now();
+    let rest = &surface.positions;
+    let mut d = vec![DVec3::ZERO; n];
+    for &(v, p) in targets {
+        d[v as usize] = p - rest[v as usize];
+    }
+    system.solve(None, &mut d);
+    let mut x: Vec<DVec3> = rest.iter().zip(&d).map(|(p, d)| *p + *d).collect();
+    // Exactly where they were sent, not rest + (target − rest).
+    targets.iter().for_each(|&(v, p)| x[v as usize] = p);
+    Ok((x, solving.elapsed().as_secs_f64()))
+}
+
+/// Fairs `params.vertices`: they solve the k-harmonic equation, every other vertex held (see the
+/// module doc).
+///
+/// # Refusals
+/// A stale mesh or vertex; no vertices, or `k` outside 1–3 ([`Refusal::BadParameter`]); a
+/// system that cannot be solved. The mesh is then unchanged.
+pub fn fair(world: &mut World, mesh: MeshId, params: &FairParams) -> Result<FairSummary, Refusal> {
+    if !(1..=3).contains(&params.k) {
+        return Err(Refusal::BadParameter(format!(
+            "fairing order k = {}: give 1, 2 or 3",
+            params.k
+        )));
+    }
+    if params.vertices.is_empty() {
+        return Err(Refusal::BadParameter(
+            "nothing to fair: select the vertices that move".into(),
+        ));
+    }
+    let read = Read::of(world, mesh)?;
+    let free = read.rows(&params.vertices)?;
+    let n = read.surface.vertex_count();
+    let mut held = vec![true; n];
+    free.iter().for_each(|&v| held[v as usize] = false);
+    let (x, loose_parts) = fair_rows(&read.surface, &mut held, params.k)?;
+    let moved: f64 = free
+        .iter()
+        .map(|&v| x[v as usize].distance(read.surface.positions[v as usize]))
+        .sum();
+    read.write(world, &x, |row| !held[row])?;
+    let free_count = held.iter().filter(|h| !**h).count();
+    Ok(FairSummary {
+        free: free_count,
+        mean_move: moved / free.len() as f64,
+        loose_parts,
+    })
+}
+
+/// The surface's positions with the vertices not `held` solving the k-harmonic equation; parts
+/// with nothing held are held whole (`held` is updated), and counted.
+///
+/// # Refusals
+/// As [`HeldSystem::new`].
+pub fn fair_rows(
+    surface: &Surface,
+    held: &mut [bool],
+    k: u32,
+) -> Result<(Vec<DVec3>, usize), Refusal> {
+    let n = surface.vertex_count();
+    let edges = cotan_edges(surface);
+    let loose = hold_loose_parts(n, &edges, held);
+    let areas = mixed_areas(surface);
+    let system = HeldSystem::new(&k_harmonic(n, &edges, &areas, k), held)?;
+    let mut x = surface.positions.clone();
+    system.solve(None, &mut x);
+    Ok((x, loose))
+}
