@@ -11,6 +11,7 @@
 
 pub mod deform;
 pub mod geometry;
+pub mod hole;
 pub mod indexed_heap;
 pub mod local;
 pub mod named;

@@ -20,6 +20,7 @@
 //! bit, and the handle lands exactly where its motion sends it.
 
 mod arap;
+mod region;
 mod rotation;
 mod system;
 #[cfg(test)]
@@ -32,13 +33,14 @@ use bevy::prelude::World;
 
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::mesh::tables::{MeshTables, extract};
-use crate::mesh::{MeshInfo, Position};
+use crate::mesh::{InMesh, MeshInfo, Position};
 
 use super::Refusal;
 use super::geometry::{Surface, cotan_edges, mixed_areas};
 use super::named::Named;
 
 pub use arap::Arap;
+pub use region::Region;
 pub use rotation::closest_rotation;
 pub use system::{HeldSystem, k_harmonic};
 
@@ -351,21 +353,34 @@ pub fn fair(world: &mut World, mesh: MeshId, params: &FairParams) -> Result<Fair
             "nothing to fair: select the vertices that move".into(),
         ));
     }
-    let read = Read::of(world, mesh)?;
-    let free = read.rows(&params.vertices)?;
-    let n = read.surface.vertex_count();
-    let mut held = vec![true; n];
-    free.iter().for_each(|&v| held[v as usize] = false);
-    let (x, loose_parts) = fair_rows(&read.surface, &mut held, params.k)?;
-    let moved: f64 = free
-        .iter()
-        .map(|&v| x[v as usize].distance(read.surface.positions[v as usize]))
-        .sum();
-    read.write(world, &x, |row| !held[row])?;
-    let free_count = held.iter().filter(|h| !**h).count();
+    if world.get::<MeshInfo>(mesh.0).is_none() {
+        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
+    }
+    for &v in &params.vertices {
+        if world.get::<InMesh>(v.0).map(|m| m.0) != Some(mesh)
+            || world.get::<crate::mesh::Vertex>(v.0).is_none()
+        {
+            return Err(Refusal::Stale(ElementId::Vertex(v)));
+        }
+    }
+    let mut region = Region::around(world, &params.vertices, params.k);
+    let (x, loose_parts) = fair_rows(&region.surface, &mut region.held, params.k)?;
+    if let Some(bad) = x.iter().find(|p| !p.as_vec3().is_finite()) {
+        return Err(Refusal::NotFinite(bad.as_vec3()));
+    }
+    let (mut free, mut moved) = (0, 0.0);
+    for (i, &v) in region.vertices.iter().enumerate() {
+        if !region.held[i] {
+            free += 1;
+            moved += x[i].distance(region.surface.positions[i]);
+            if let Some(mut p) = world.get_mut::<Position>(v.0) {
+                p.0 = x[i].as_vec3();
+            }
+        }
+    }
     Ok(FairSummary {
-        free: free_count,
-        mean_move: moved / free.len() as f64,
+        free,
+        mean_move: if free > 0 { moved / free as f64 } else { 0.0 },
         loose_parts,
     })
 }
