@@ -732,9 +732,57 @@ impl Mesh {
         self.run_text(py, &format!("dissolve:{a},{b}"), None)
     }
 
-    /// Fills the hole beside the boundary edge `a`–`b`: its loop becomes one face.
-    fn fill_hole(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
-        self.run_text(py, &format!("fill-hole:{a},{b}"), None)
+    /// Fills the hole beside the boundary edge `a`–`b`: its loop becomes one face, or with
+    /// `fair=True` a patch of triangles at the surrounding density that continues the surface's
+    /// curvature (Liepa 2003). `Refused` on an interior edge.
+    #[pyo3(signature = (a, b, *, fair=false))]
+    fn fill_hole(&mut self, py: Python<'_>, a: u32, b: u32, fair: bool) -> PyResult<String> {
+        let suffix = if fair { ":fair" } else { "" };
+        self.run_text(py, &format!("fill-hole:{a},{b}{suffix}"), None)
+    }
+
+    /// Fills every hole: with fair patches of triangles (`fair=True`, the default), else one
+    /// polygon each. Holes a fair fill refuses are left open and named in the summary; `Refused`
+    /// when the mesh has none.
+    #[pyo3(signature = (fair=true))]
+    fn fill_holes(&mut self, py: Python<'_>, fair: bool) -> PyResult<String> {
+        let text = if fair { "fill-holes:fair" } else { "fill-holes" };
+        self.run_text(py, text, None)
+    }
+
+    /// Handle deformation: the input vertices `fixed` stay, `handle` moves by `offset`
+    /// (dx, dy, dz), the rest follows by `method`: `"arap"` (as-rigid-as-possible,
+    /// `iterations` local/global steps, default 10) or `"laplace"` (thin plate, one solve).
+    /// Returns the summary (energy before and after, the factor and iteration times). `Refused`
+    /// for an empty handle or a vertex in both lists; GIL released.
+    #[pyo3(signature = (method, fixed, handle, offset, iterations=10))]
+    fn deform(
+        &mut self,
+        py: Python<'_>,
+        method: &str,
+        fixed: Vec<u32>,
+        handle: Vec<u32>,
+        offset: (f64, f64, f64),
+        iterations: u32,
+    ) -> PyResult<String> {
+        let list = |v: &[u32]| v.iter().map(u32::to_string).collect::<Vec<_>>().join("/");
+        let text = format!(
+            "deform:{method}:{}:{}:{},{},{}:{iterations}",
+            list(&fixed),
+            list(&handle),
+            number(offset.0),
+            number(offset.1),
+            number(offset.2)
+        );
+        self.run_text(py, &text, None)
+    }
+
+    /// Fairs the input vertices `vertices`: they solve the k-harmonic equation (`k` 1, 2 or 3,
+    /// default 2), every other vertex held. Returns the summary.
+    #[pyo3(signature = (vertices, k=2))]
+    fn fair(&mut self, py: Python<'_>, vertices: Vec<u32>, k: u32) -> PyResult<String> {
+        let list: Vec<String> = vertices.iter().map(u32::to_string).collect();
+        self.run_text(py, &format!("fair:{}:{k}", list.join("/")), None)
     }
 
     /// Splits the face that input vertices `a` and `b` share with a new edge between them.

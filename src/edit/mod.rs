@@ -37,6 +37,8 @@ use crate::ops::local::{
     plan_bevel_vertex, plan_collapse_face, plan_dissolve_vertex, plan_erase, plan_extrude,
     plan_inset, plan_weld, split_edge, split_face,
 };
+use crate::ops::deform::{DeformMethod, DeformParams, DeformSummary, FairParams, deform, fair};
+use crate::ops::hole::{fill_hole_fair, fill_holes};
 use crate::ops::named::Named;
 use crate::ops::param::{ParamParams, parameterize_in_place};
 use crate::ops::progressive::ProgressiveMesh;
@@ -133,6 +135,15 @@ pub enum Edit {
     /// A UV layout for every corner (Tutte with uniform, mean-value or harmonic weights, or
     /// LSCM), cutting a closed genus-0 mesh open automatically. Only UVs change.
     Parameterize(ParamParams),
+    /// Handle deformation: the anchors stay, the handle moves by its motion, the rest follows
+    /// (thin-plate or as-rigid-as-possible). Only positions change.
+    Deform(DeformParams),
+    /// Fairing: the vertices solve the k-harmonic equation, every other one held.
+    Fair(FairParams),
+    /// Fill the hole beside a boundary edge with a fair patch of triangles.
+    FillHoleFair(EdgeId),
+    /// Fill every hole of the mesh: with fair patches (`true`) or one polygon each.
+    FillHoles(bool),
 }
 
 /// What an edit may change, so that an undo record can capture it first.
@@ -258,6 +269,14 @@ impl Edit {
                 true => format!("parameterize ({}, {})", p.method, p.boundary),
                 false => format!("parameterize ({})", p.method),
             },
+            Edit::Deform(p) => match p.method {
+                DeformMethod::Arap => format!("ARAP deformation ({} iterations)", p.iterations),
+                DeformMethod::Laplace => "thin-plate deformation".into(),
+            },
+            Edit::Fair(p) => format!("fair {} (k = {})", count(p.vertices.len(), "vertex"), p.k),
+            Edit::FillHoleFair(e) => format!("fill the hole at {e} (fair)"),
+            Edit::FillHoles(true) => "fill every hole (fair)".into(),
+            Edit::FillHoles(false) => "fill every hole".into(),
         }
     }
 
@@ -311,6 +330,17 @@ impl Edit {
                 }
                 local(seeds)
             }
+            // Fairing moves only the vertices it names.
+            Edit::Fair(p) => {
+                p.vertices
+                    .iter()
+                    .try_for_each(|&v| m.try_vertex(v).map(|_| ()))?;
+                local(p.vertices.first().map(|_| p.vertices.clone())?)
+            }
+            // A deformation moves any vertex; a fair fill makes vertices away from the loop.
+            Edit::Deform(_) | Edit::FillHoleFair(_) | Edit::FillHoles(_) => {
+                world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh))
+            }
             Edit::LevelOfDetail(_)
             | Edit::Triangulate
             | Edit::Simplify(_)
@@ -334,7 +364,10 @@ impl Edit {
             | Edit::Collapse(e)
             | Edit::Dissolve(e)
             | Edit::ToggleSeam(e)
-            | Edit::FillHole(e) => Some(ElementId::Edge(*e)),
+            | Edit::FillHole(e)
+            | Edit::FillHoleFair(e) => Some(ElementId::Edge(*e)),
+            Edit::Deform(p) => p.handle.first().map(|v| ElementId::Vertex(*v)),
+            Edit::Fair(p) => p.vertices.first().map(|v| ElementId::Vertex(*v)),
             Edit::SplitFace(f, ..) => Some(ElementId::Face(*f)),
             Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => Some(ElementId::Vertex(*v)),
             Edit::MoveVertices(moves) => moves.first().map(|(v, _)| ElementId::Vertex(*v)),
@@ -796,6 +829,53 @@ impl Edit {
                     s.free, s.mean_move
                 ))
             }
+            Edit::Deform(params) => whole(deformed(&deform(world, mesh, params)?)),
+            Edit::Fair(params) => {
+                let s = fair(world, mesh, params)?;
+                let loose = loose_note(s.loose_parts);
+                Applied {
+                    summary: format!(
+                        "{} faired (k = {}), moved {:.3e} on average{loose}",
+                        count(s.free, "vertex"),
+                        params.k,
+                        s.mean_move
+                    ),
+                    redraw: near(world, Vec::new(), params.vertices.clone()),
+                    made: None,
+                }
+            }
+            Edit::FillHoleFair(e) => {
+                let r = fill_hole_fair(world, *e)?;
+                Applied {
+                    summary: format!(
+                        "a hole of {} sides filled with {}, {} new",
+                        r.sides,
+                        count(r.triangles, "triangle"),
+                        count(r.new_vertices, "vertex")
+                    ),
+                    redraw: Redraw::Whole,
+                    made: Some(ElementId::Face(r.face)),
+                }
+            }
+            Edit::FillHoles(fair) => {
+                let r = fill_holes(world, mesh, *fair)?;
+                if r.filled == 0 {
+                    return Err(Refusal::BadParameter(match r.refused.first() {
+                        None => "the mesh has no holes".into(),
+                        Some(_) => format!("no hole could be filled: {}", r.refused.join("; ")),
+                    }));
+                }
+                let open = match r.refused.len() {
+                    0 => String::new(),
+                    n => format!("; {n} left open: {}", r.refused.join("; ")),
+                };
+                whole(format!(
+                    "{} filled: {} and {} added{open}",
+                    count(r.filled, "hole"),
+                    count(r.faces, "face"),
+                    count(r.vertices, "vertex")
+                ))
+            }
             Edit::Parameterize(params) => {
                 let r = parameterize_in_place(world, mesh, params, &mut *context.progress)?;
                 (context.progress)(1.0);
@@ -938,7 +1018,39 @@ impl Planned {
     }
 }
 
-/// "1 face", "3 faces" ("vertex" → "vertices").
+/// The summary of a deformation.
+fn deformed(s: &DeformSummary) -> String {
+    let loose = loose_note(s.loose_parts);
+    let ms = |seconds: f64| seconds * 1e3;
+    if s.iterations == 0 {
+        return format!(
+            "thin plate: {} moved; factored in {:.1} ms, solved in {:.1} ms{loose}",
+            count(s.free, "free vertex"),
+            ms(s.factor_seconds),
+            ms(s.iteration_seconds)
+        );
+    }
+    format!(
+        "ARAP: {} moved, {} iterations, energy {:.4e} -> {:.4e}; factored in {:.1} ms, \
+         {:.2} ms an iteration{loose}",
+        count(s.free, "free vertex"),
+        s.iterations,
+        s.energy_before,
+        s.energy,
+        ms(s.factor_seconds),
+        ms(s.iteration_seconds)
+    )
+}
+
+/// The note on parts of the mesh a solve left alone (none held there).
+fn loose_note(parts: usize) -> String {
+    match parts {
+        0 => String::new(),
+        n => format!(" ({} with nothing held stayed)", count(n, "part")),
+    }
+}
+
+/// "1 face", "3 faces" ("vertex" → "vertices", "free vertex" → "free vertices").
 /// The memory check of an edit that adds rows in proportion to its selection (extrusion,
 /// inset): at most, each corner of the selection gains a vertex, a quad beside it, two edges
 /// and eight halfedges (12 rows), which bounds both.
@@ -957,7 +1069,7 @@ fn check_growth(what: &str, faces: usize, corners: usize) -> Result<(), Refusal>
 fn count(n: usize, what: &str) -> String {
     match (n, what) {
         (1, _) => format!("1 {what}"),
-        (_, "vertex") => format!("{n} vertices"),
+        (_, w) if w.ends_with("vertex") => format!("{n} {}ices", &w[..w.len() - 2]),
         _ => format!("{n} {what}s"),
     }
 }

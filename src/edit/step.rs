@@ -6,11 +6,13 @@
 //! two vertices, `A,B,C` the face with those three consecutive corners (either way round), and
 //! several elements are separated by `/` (`extrude:0,1,2/1,2,3:0.5`).
 
+use bevy::math::{Affine3A, Vec3};
 use bevy::prelude::World;
 
 use crate::mesh::ids::{EdgeId, ElementId, VertexId};
 use crate::mesh::{MeshId, MeshRef, validate};
 use crate::ops::Refusal;
+use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
 use crate::ops::local::faces_of;
 use crate::ops::named::Named;
 use crate::ops::param::{BoundaryShape, ParamMethod, ParamParams};
@@ -112,6 +114,96 @@ pub enum Step {
     /// An edit of elements named by vertex numbers (`A`, `A,B`, `A,B,C`, several joined by
     /// `/`), with its numbers (a distance, an amount).
     Elements(ElementStep, Vec<Vec<u32>>, Vec<f32>),
+    /// `deform:arap|laplace:FIXED:HANDLE:DX,DY,DZ[:ITERATIONS]`.
+    Deform(DeformStep),
+    /// `fair:VERTICES[:K]`: the vertices, and the order k.
+    Fair(Vec<u32>, u32),
+    /// `fill-hole:A,B:fair`: the hole beside the boundary edge, filled with a fair patch.
+    FillHoleFair(u32, u32),
+}
+
+/// A handle deformation as a step names it: by the input file's vertex numbers.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DeformStep {
+    /// The method.
+    pub method: DeformMethod,
+    /// The anchors (may be none).
+    pub fixed: Vec<u32>,
+    /// The handle (at least one vertex).
+    pub handle: Vec<u32>,
+    /// The handle's translation.
+    pub offset: Vec3,
+    /// ARAP iterations.
+    pub iterations: u32,
+}
+
+impl DeformStep {
+    /// Parses `METHOD:FIXED:HANDLE:DX,DY,DZ[:ITERATIONS]`.
+    fn parse(args: &str) -> Option<Self> {
+        let parts: Vec<&str> = args.split(':').collect();
+        let [method, fixed, handle, offset, rest @ ..] = parts.as_slice() else {
+            return None;
+        };
+        let (method, _) = DeformMethod::ALL.iter().find(|(_, n)| n == method)?;
+        let offset: Vec<f32> = offset
+            .split(',')
+            .map(|x| x.trim().parse::<f32>().ok().filter(|x| x.is_finite()))
+            .collect::<Option<_>>()?;
+        let iterations = match rest {
+            [] => DeformParams::DEFAULT_ITERATIONS,
+            [n] => n
+                .parse()
+                .ok()
+                .filter(|n| (1..=DeformParams::MAX_ITERATIONS).contains(n))?,
+            _ => return None,
+        };
+        let handle = parse_vertices(handle).filter(|h| !h.is_empty())?;
+        Some(Self {
+            method: *method,
+            fixed: parse_vertices(fixed)?,
+            handle,
+            offset: Vec3::from_slice(offset.get(..3).filter(|_| offset.len() == 3)?),
+            iterations,
+        })
+    }
+}
+
+/// `A/B/C` → `[A, B, C]`; the empty text → none.
+fn parse_vertices(text: &str) -> Option<Vec<u32>> {
+    if text.is_empty() {
+        return Some(Vec::new());
+    }
+    text.split('/').map(|i| i.trim().parse().ok()).collect()
+}
+
+/// `[A, B, C]` → `A/B/C`.
+fn vertices_text(vertices: &[u32]) -> String {
+    vertices
+        .iter()
+        .map(u32::to_string)
+        .collect::<Vec<_>>()
+        .join("/")
+}
+
+/// The live vertex that the input file's vertex `i` became.
+///
+/// # Refusals
+/// [`Refusal::NoInputVertex`] when the input had no such vertex, [`Refusal::Stale`] when an
+/// edit since removed it.
+fn live_vertex(
+    world: &World,
+    input_vertices: &[Option<VertexId>],
+    i: u32,
+) -> Result<VertexId, Refusal> {
+    let v = input_vertices
+        .get(i as usize)
+        .copied()
+        .flatten()
+        .ok_or(Refusal::NoInputVertex(i))?;
+    MeshRef::new(world)
+        .try_vertex(v)
+        .map(|_| v)
+        .ok_or(Refusal::Stale(ElementId::Vertex(v)))
 }
 
 /// The steps that name elements of any kind, and how many numbers follow them.
@@ -227,17 +319,10 @@ fn element_at(
     target: &[u32],
 ) -> Result<ElementId, Refusal> {
     let m = MeshRef::new(world);
-    let live = |i: u32| -> Result<VertexId, Refusal> {
-        let v = input_vertices
-            .get(i as usize)
-            .copied()
-            .flatten()
-            .ok_or(Refusal::NoInputVertex(i))?;
-        m.try_vertex(v)
-            .map(|_| v)
-            .ok_or(Refusal::Stale(ElementId::Vertex(v)))
-    };
-    let corners: Vec<VertexId> = target.iter().map(|&i| live(i)).collect::<Result<_, _>>()?;
+    let corners: Vec<VertexId> = target
+        .iter()
+        .map(|&i| live_vertex(world, input_vertices, i))
+        .collect::<Result<_, _>>()?;
     match corners[..] {
         [v] => Ok(ElementId::Vertex(v)),
         [a, b] => m
@@ -267,7 +352,9 @@ remesh[:ITERATIONS[:LENGTH]]   (isotropic; LENGTH defaults to the mean edge leng
 smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held) |
 param:uniform|mean-value|harmonic|lscm[:circle|square]   (UVs; written as OBJ vt / PLY u v)
 extrude:FACES:DISTANCE | inset:FACES:AMOUNT[:DEPTH] | bevel:ELEMENT[:AMOUNT[:DEPTH]] |
-erase:ELEMENTS | dissolve:A | collapse:A,B,C | weld:A,B/C,D
+erase:ELEMENTS | dissolve:A | collapse:A,B,C | weld:A,B/C,D |
+deform:arap|laplace:FIXED:HANDLE:DX,DY,DZ[:ITERATIONS]   (FIXED stays, HANDLE moves by DX,DY,DZ) |
+fair:VERTICES[:K]   (k-harmonic, K 1-3, default 2) | fill-hole:A,B:fair | fill-holes[:fair]
 A, B, C: 0-based indices of the input file's vertices: A a vertex, A,B the edge between two,
 A,B,C the face with those consecutive corners; several elements joined by /";
 
@@ -302,6 +389,13 @@ impl Step {
             };
             Ok(Step::Edit(Edit::Subdivide(Subdivision { scheme, levels })))
         };
+        if let Some(edge) = args.strip_suffix(":fair").filter(|_| name == "fill-hole") {
+            let (a, b) = edge
+                .split_once(',')
+                .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)))
+                .ok_or_else(|| format!("step `{text}`: expected fill-hole:A,B:fair"))?;
+            return Ok(Step::FillHoleFair(a, b));
+        }
         let element_step = ElementStep::ALL
             .iter()
             .find(|(_, n)| *n == name)
@@ -374,6 +468,30 @@ impl Step {
                     "step `{text}`: expected smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]"
                 )
             })?),
+            "deform" => {
+                return DeformStep::parse(args).map(Step::Deform).ok_or_else(|| {
+                    format!(
+                        "step `{text}`: expected deform:arap|laplace:FIXED:HANDLE:DX,DY,DZ\
+                         [:ITERATIONS] (vertex lists joined by /, HANDLE not empty, 1 to {} \
+                         iterations)",
+                        DeformParams::MAX_ITERATIONS
+                    )
+                });
+            }
+            "fair" => {
+                let bad = || format!("step `{text}`: expected fair:VERTICES[:K], K 1, 2 or 3");
+                let (vertices, k) = args.split_once(':').unwrap_or((args, "2"));
+                let k = k.parse().ok().filter(|k| (1..=3).contains(k)).ok_or_else(bad)?;
+                let vertices = parse_vertices(vertices)
+                    .filter(|v| !v.is_empty())
+                    .ok_or_else(bad)?;
+                return Ok(Step::Fair(vertices, k));
+            }
+            "fill-holes" => match args {
+                "" => Edit::FillHoles(false),
+                "fair" => Edit::FillHoles(true),
+                _ => return Err(format!("step `{text}`: expected fill-holes or fill-holes:fair")),
+            },
             "param" => Edit::Parameterize(parse_param(args).map_err(|why| {
                 format!(
                     "step `{text}`: {why}; expected param:uniform|mean-value|harmonic|lscm[:circle|square]"
@@ -409,19 +527,39 @@ impl Step {
             }
             Step::Edit(edit) => edit.clone(),
             Step::Local(kind, a, b) => {
-                let live = |i: u32| -> Result<VertexId, Refusal> {
-                    let v = input_vertices
-                        .get(i as usize)
-                        .copied()
-                        .flatten()
-                        .ok_or(Refusal::NoInputVertex(i))?;
-                    MeshRef::new(world)
-                        .try_vertex(v)
-                        .map(|_| v)
-                        .ok_or(Refusal::Stale(ElementId::Vertex(v)))
-                };
+                let live = |i: u32| live_vertex(world, input_vertices, i);
                 kind.between(world, (live(*a)?, live(*b)?), (*a, *b))?
             }
+            Step::FillHoleFair(a, b) => {
+                let live = |i: u32| live_vertex(world, input_vertices, i);
+                let (va, vb) = (live(*a)?, live(*b)?);
+                let m = MeshRef::new(world);
+                let h = m
+                    .find_halfedge(va, vb)
+                    .ok_or(Refusal::NoEdgeBetween(*a, *b))?;
+                Edit::FillHoleFair(m.edge(h))
+            }
+            Step::Deform(d) => {
+                let live = |list: &[u32]| -> Result<Vec<VertexId>, Refusal> {
+                    list.iter()
+                        .map(|&i| live_vertex(world, input_vertices, i))
+                        .collect()
+                };
+                Edit::Deform(DeformParams {
+                    method: d.method,
+                    fixed: live(&d.fixed)?,
+                    handle: live(&d.handle)?,
+                    motion: Affine3A::from_translation(d.offset),
+                    iterations: d.iterations,
+                })
+            }
+            Step::Fair(vertices, k) => Edit::Fair(FairParams {
+                vertices: vertices
+                    .iter()
+                    .map(|&i| live_vertex(world, input_vertices, i))
+                    .collect::<Result<_, _>>()?,
+                k: *k,
+            }),
             Step::Elements(op, targets, numbers) => {
                 let elements: Vec<ElementId> = targets
                     .iter()
@@ -483,6 +621,19 @@ impl std::fmt::Display for Step {
         match self {
             Step::Validate => write!(f, "validate"),
             Step::Local(kind, a, b) => write!(f, "{}:{a},{b}", kind.name()),
+            Step::FillHoleFair(a, b) => write!(f, "fill-hole:{a},{b}:fair"),
+            Step::Fair(vertices, k) => write!(f, "fair:{}:{k}", vertices_text(vertices)),
+            Step::Deform(d) => write!(
+                f,
+                "deform:{}:{}:{}:{},{},{}:{}",
+                d.method.name(),
+                vertices_text(&d.fixed),
+                vertices_text(&d.handle),
+                d.offset.x,
+                d.offset.y,
+                d.offset.z,
+                d.iterations
+            ),
             Step::Elements(op, targets, numbers) => {
                 let targets: Vec<String> = targets
                     .iter()
@@ -511,6 +662,8 @@ impl std::fmt::Display for Step {
                     write!(f, "smooth:{}:{}:{}", p.method.name(), p.iterations, p.step)
                 }
                 Edit::Parameterize(p) => write!(f, "param:{}:{}", p.method, p.boundary),
+                Edit::FillHoles(false) => write!(f, "fill-holes"),
+                Edit::FillHoles(true) => write!(f, "fill-holes:fair"),
                 other => write!(f, "{}", other.label()),
             },
         }
@@ -556,6 +709,12 @@ mod tests {
             "dissolve:4",
             "collapse:0,1,2",
             "weld:0,1/7,8",
+            "deform:arap:0/1/2:5/6:0,0.5,-1:10",
+            "deform:laplace::5:1,0,0:10",
+            "fair:3/4/5:2",
+            "fill-hole:0,1:fair",
+            "fill-holes",
+            "fill-holes:fair",
         ] {
             let step = Step::parse(text).unwrap();
             assert_eq!(step.to_string(), text);
@@ -598,6 +757,13 @@ mod tests {
             ("bevel:0/1", "one element"),
             ("dissolve:1,2,3", "a vertex"),
             ("erase:x", "expected elements"),
+            ("deform:arap:0:1:1,2", "DX,DY,DZ"),
+            ("deform:arap:0::1,2,3", "HANDLE not empty"),
+            ("deform:spring:0:1:1,2,3", "arap|laplace"),
+            ("deform:arap:0:1:1,2,3:0", "iterations"),
+            ("fair:1/2:4", "K 1, 2 or 3"),
+            ("fill-hole:0:fair", "fill-hole:A,B:fair"),
+            ("fill-holes:smooth", "fill-holes:fair"),
         ] {
             let e = Step::parse(text).unwrap_err();
             assert!(e.contains(expected), "{text}: {e}");

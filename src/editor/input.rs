@@ -16,6 +16,7 @@ use crate::ops::local::faces_of;
 use crate::ops::param::ParamParams;
 use crate::ops::remesh::RemeshParams;
 use crate::ops::simplify::SimplifyParams;
+use crate::ops::deform::{FairParams, Proportional};
 use crate::ops::smooth::SmoothParams;
 
 use super::box_select::BoxSelect;
@@ -50,6 +51,14 @@ pub enum Action {
     Erase,
     /// Fill the hole beside the selected boundary edge (with a halfedge active: go to its face).
     Fill,
+    /// Fill the hole beside the selected boundary edge with a fair patch of triangles.
+    FillFair,
+    /// Fill every hole of the active mesh (fair patches, or one face each: the panel's choice).
+    FillAll,
+    /// Fair the selected vertices (the panel's order k; every other vertex held).
+    Fair,
+    /// Proportional editing on / off.
+    ToggleProportional,
     /// Dissolve the active vertex (merge its faces) or edge (merge its two faces).
     Dissolve,
     /// Collapse the active edge or face.
@@ -325,6 +334,30 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "F",
         Action::Fill,
         "fill the hole beside the selected boundary edge (halfedge active: go to face)",
+    ),
+    alt(
+        KeyCode::KeyF,
+        "Alt+F",
+        Action::FillFair,
+        "fill the hole beside the selected boundary edge with faired triangles",
+    ),
+    shift(
+        KeyCode::KeyF,
+        "Shift+F",
+        Action::FillAll,
+        "fill every hole (faired triangles or one face each, as set in the panel)",
+    ),
+    shift(
+        KeyCode::KeyO,
+        "Shift+O",
+        Action::Fair,
+        "fair the selected vertices (k-harmonic, k in the panel; the rest held)",
+    ),
+    alt(
+        KeyCode::KeyO,
+        "Alt+O",
+        Action::ToggleProportional,
+        "proportional editing on / off (G, R, S take the vertices within the radius along)",
     ),
     alt(
         KeyCode::KeyM,
@@ -613,6 +646,12 @@ pub struct UiState {
     pub bevel_amount: f32,
     /// Bevel of faces: how far the inset face moves along its normal.
     pub bevel_depth: f32,
+    /// Fairing's order k (1–3).
+    pub fair_k: u32,
+    /// Fill every hole with faired triangles (else one face each).
+    pub fill_fair: bool,
+    /// Proportional editing: on or off, falloff, radius, distances along edges.
+    pub proportional: Proportional,
 }
 
 impl Default for UiState {
@@ -629,6 +668,9 @@ impl Default for UiState {
             uv_view: false,
             bevel_amount: 0.25,
             bevel_depth: 0.0,
+            fair_k: 2,
+            fill_fair: true,
+            proportional: Proportional::default(),
         }
     }
 }
@@ -731,10 +773,32 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             };
             return Ok(Some(Request::Navigate(to)));
         }
-        Action::Fill => {
+        Action::Fill | Action::FillFair => {
             let edge =
                 selected_edge(&m, selection).ok_or(Declined::SelectFirst("a boundary edge"))?;
-            Edit::FillHole(edge)
+            match action {
+                Action::Fill => Edit::FillHole(edge),
+                _ => Edit::FillHoleFair(edge),
+            }
+        }
+        Action::FillAll => {
+            world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
+            Edit::FillHoles(world.resource::<UiState>().fill_fair)
+        }
+        Action::Fair => {
+            let vertices = super::transform::selected_vertices(world);
+            if vertices.is_empty() {
+                return Err(Declined::SelectFirst("vertices to fair"));
+            }
+            Edit::Fair(FairParams {
+                vertices,
+                k: world.resource::<UiState>().fair_k.clamp(1, 3),
+            })
+        }
+        Action::ToggleProportional => {
+            let mut ui = world.resource_mut::<UiState>();
+            ui.proportional.enabled = !ui.proportional.enabled;
+            return Ok(None);
         }
         Action::Extrude | Action::Inset => {
             let faces = selected_faces(world);
@@ -873,7 +937,8 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             if world.resource::<Selection>().is_empty() {
                 return Err(Declined::SelectFirst("something to transform"));
             }
-            super::transform::start(world, kind, None);
+            let proportional = world.resource::<UiState>().proportional;
+            super::transform::start(world, kind, None, Some(proportional));
             return Ok(None);
         }
         Action::DeleteMesh => return Ok(Some(Request::DeleteMesh)),

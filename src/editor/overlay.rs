@@ -42,6 +42,8 @@ pub const HOVERED: Color = Color::srgb(0.35, 0.8, 1.0);
 pub const ARROW: Color = Color::srgb(0.2, 0.25, 0.55);
 /// Colour of seam marks.
 pub const SEAM: Color = Color::srgb(0.95, 0.2, 0.75);
+/// Colour of proportional editing's radius.
+pub const PROPORTIONAL: Color = Color::srgb(0.95, 0.95, 0.95);
 /// Colour of vertex dots.
 pub const DOT: Color = Color::srgb(0.05, 0.05, 0.05);
 
@@ -56,6 +58,8 @@ pub enum Shape {
     Line(Vec3, Vec3, Color),
     /// A thick line over everything.
     Highlight(Vec3, Vec3, Color),
+    /// A thick circle facing the camera: centre, radius.
+    Ring(Vec3, f32, Color),
     /// A thick arrow over everything.
     HighlightArrow(Vec3, Vec3, Color),
     /// A thin arrow.
@@ -258,6 +262,15 @@ pub fn gather_overlay(world: &mut World) {
             let p = gesture.pivot;
             shapes.push(Shape::Line(p - reach, p + reach, AXIS_COLORS[axis]));
         }
+        // Proportional editing's reach about the pivot.
+        if let Some(follow) = world
+            .get_resource::<super::transform::Gestures>()
+            .and_then(|g| g.active.as_ref())
+            .and_then(|g| Some((g.pivot, g.follow.as_ref()?)))
+        {
+            let (pivot, follow) = follow;
+            shapes.push(Shape::Ring(pivot, follow.settings.radius, PROPORTIONAL));
+        }
     }
     world.resource_mut::<Overlay>().shapes = shapes;
 }
@@ -286,6 +299,9 @@ pub fn draw_overlay(
             }
             Shape::HighlightArrow(a, b, c) => {
                 thick.arrow(a, b, c).with_tip_length(a.distance(b) * 0.25);
+            }
+            Shape::Ring(p, r, c) => {
+                thick.circle(Isometry3d::new(p, facing), r, c).resolution(64);
             }
             Shape::Dot(p, r, c) => {
                 thin.circle(Isometry3d::new(p, facing), r, c).resolution(6);

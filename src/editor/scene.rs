@@ -15,6 +15,7 @@ use crate::mesh::topology::MeshRef;
 
 use super::selection::{ActiveMesh, Selection};
 use super::surface::SurfaceMaterial;
+use super::transform::Gestures;
 
 /// The orbit camera's state: it looks at `focus` from `radius` away, turned by `yaw`/`pitch`.
 #[derive(Component, Debug, Clone, Copy, PartialEq)]
@@ -105,14 +106,20 @@ pub fn fit_near_plane(mut cameras: Query<(&OrbitCamera, &mut Projection)>) {
     }
 }
 
-/// Mouse orbit, pan and zoom (skipped while egui has the pointer).
+/// Mouse orbit, pan and zoom (skipped while egui has the pointer; the wheel does not zoom
+/// while a proportional gesture uses it for its radius).
 pub fn orbit_controls(
     buttons: Res<ButtonInput<MouseButton>>,
     keys: Res<ButtonInput<KeyCode>>,
     motion: Res<AccumulatedMouseMotion>,
     scroll: Res<AccumulatedMouseScroll>,
+    gestures: Option<Res<Gestures>>,
     mut cameras: Query<(&mut OrbitCamera, &mut Transform)>,
 ) {
+    let wheel_taken = gestures
+        .as_ref()
+        .and_then(|g| g.active.as_ref())
+        .is_some_and(|g| g.follow.is_some());
     let dragging = buttons.pressed(MouseButton::Middle) || buttons.pressed(MouseButton::Right);
     for (mut orbit, mut transform) in &mut cameras {
         let before = *orbit;
@@ -127,7 +134,7 @@ pub fn orbit_controls(
                 orbit.pitch = (orbit.pitch - motion.delta.y * 0.006).clamp(-1.55, 1.55);
             }
         }
-        if scroll.delta.y != 0.0 {
+        if scroll.delta.y != 0.0 && !wheel_taken {
             orbit.radius = (orbit.radius * (1.0 - 0.1 * scroll.delta.y.clamp(-3.0, 3.0))).max(1e-3);
         }
         if *orbit != before {

@@ -19,6 +19,13 @@
 //! - **Extrude / Inset**: each vertex moves along its own direction (the region's normal at it;
 //!   towards its face's centroid) by one amount: the pointer's travel along the mean direction
 //!   for an extrusion, the fraction by which the pointer came closer to the pivot for an inset.
+//!
+//! **Proportional editing** (Alt+O; its settings come with the gesture's start): a move, rotation or
+//! scale also takes the unselected vertices within the radius, each by its falloff weight `w`
+//! ([`crate::ops::deform::Falloff`]): moved by `w` times the motion, turned by `w` times the
+//! angle, scaled by `1 + w (factor − 1)`. PageUp / PageDown or the wheel change the radius while
+//! the gesture runs (drawn as a circle about the pivot); the vertices a larger radius reaches
+//! join the gesture where they are.
 
 use bevy::input::mouse::MouseButton;
 use bevy::math::primitives::InfinitePlane3d;
@@ -30,6 +37,7 @@ use bevy::ecs::entity::EntityHashMap;
 use crate::edit::Edit;
 use crate::mesh::ids::VertexId;
 use crate::mesh::topology::MeshRef;
+use crate::ops::deform::{Proportional, distances};
 use crate::ops::local::extrude_directions;
 
 use super::history::UndoHistory;
@@ -85,6 +93,31 @@ pub struct Gesture {
     pub undo_mark: u64,
     /// The value the pointer (or the typing) gives now, for the status line.
     pub value: f32,
+    /// Proportional editing's reach, when it is on for this gesture.
+    pub follow: Option<Follow>,
+}
+
+/// The unselected vertices a proportional gesture takes along.
+#[derive(Clone, Debug)]
+pub struct Follow {
+    /// The settings, the radius as the gesture changed it.
+    pub settings: Proportional,
+    /// How many of [`Gesture::start`] are the selection (the rest follow).
+    pub selected: usize,
+    /// The distance of each following vertex to the selection (`start[selected + i]`).
+    pub distances: Vec<f32>,
+    /// The radius the following vertices were gathered for.
+    pub gathered: f32,
+}
+
+impl Follow {
+    /// The weight of start vertex `i`.
+    fn weight(&self, i: usize) -> f32 {
+        match i.checked_sub(self.selected) {
+            None => 1.0,
+            Some(k) => self.settings.falloff.weight(self.distances[k], self.settings.radius),
+        }
+    }
 }
 
 /// The gesture under way, and the one to start once the edit it follows has applied.
@@ -127,8 +160,15 @@ impl Gestures {
             (GestureKind::Rotate, true) => format!("{:.1}°", g.value),
             (_, true) => format!("{:.4}", g.value),
         };
+        let radius = g.follow.as_ref().map_or(String::new(), |f| {
+            format!(
+                ", proportional {} r {:.4} (PageUp/PageDown)",
+                crate::ops::named::Named::name(f.settings.falloff),
+                f.settings.radius
+            )
+        });
         Some(format!(
-            "{}{axis}: {value}   (X/Y/Z constrain, type a value, Enter or click confirms, Esc cancels)",
+            "{}{axis}: {value}{radius}   (X/Y/Z constrain, type a value, Enter or click confirms, Esc cancels)",
             g.kind.name()
         ))
     }
@@ -136,9 +176,15 @@ impl Gestures {
 
 /// Starts a gesture on the selection's vertices; `false` (nothing started) if nothing is
 /// selected. `undo_mark`: the history's mark to take back to on Esc (by default, now's).
-/// Without a pointer over the window (a script), the pointer is taken to be at the pivot's
-/// right, so typed values still work.
-pub fn start(world: &mut World, kind: GestureKind, undo_mark: Option<u64>) -> bool {
+/// `proportional`: proportional editing's settings, when it is on (a move, rotation or scale
+/// then takes the vertices around along). Without a pointer over the window (a script), the
+/// pointer is taken to be at the pivot's right, so typed values still work.
+pub fn start(
+    world: &mut World,
+    kind: GestureKind,
+    undo_mark: Option<u64>,
+    proportional: Option<Proportional>,
+) -> bool {
     let vertices = selected_vertices(world);
     if vertices.is_empty() {
         return false;
@@ -152,10 +198,22 @@ pub fn start(world: &mut World, kind: GestureKind, undo_mark: Option<u64>) -> bo
             Some(camera.world_to_viewport(&eye, pivot).ok()? + Vec2::new(100.0, 0.0))
         })
         .unwrap_or(Vec2::ZERO);
+    let takes_along = matches!(
+        kind,
+        GestureKind::Grab | GestureKind::Rotate | GestureKind::Scale
+    );
+    let follow = proportional
+        .filter(|p| p.enabled && takes_along)
+        .map(|settings| Follow {
+            settings,
+            selected: start.len(),
+            distances: Vec::new(),
+            gathered: 0.0,
+        });
     let mut history = world.resource_mut::<UndoHistory>();
     let undo_mark = undo_mark.unwrap_or(history.mark());
     history.begin_gesture();
-    world.resource_mut::<Gestures>().active = Some(Gesture {
+    let mut gesture = Gesture {
         kind,
         axis: None,
         typed: String::new(),
@@ -164,8 +222,40 @@ pub fn start(world: &mut World, kind: GestureKind, undo_mark: Option<u64>) -> bo
         cursor,
         undo_mark,
         value: 0.0,
-    });
+        follow,
+    };
+    gather(world, &mut gesture);
+    world.resource_mut::<Gestures>().active = Some(gesture);
     true
+}
+
+/// Takes along the vertices within the proportional radius that the gesture does not hold yet
+/// (where they are: out of reach until now, they have not moved).
+fn gather(world: &World, g: &mut Gesture) {
+    let Some(follow) = g.follow.as_mut() else {
+        return;
+    };
+    let radius = follow.settings.radius;
+    if radius <= follow.gathered {
+        return;
+    }
+    let selected: Vec<VertexId> = g.start[..follow.selected].iter().map(|(v, _)| *v).collect();
+    let held: bevy::ecs::entity::EntityHashMap<usize> = g.start[follow.selected..]
+        .iter()
+        .enumerate()
+        .map(|(k, (v, _))| (v.0, k))
+        .collect();
+    let m = MeshRef::new(world);
+    for (v, d) in distances(world, &selected, radius, follow.settings.connected) {
+        match held.get(&v.0) {
+            Some(&k) => follow.distances[k] = d,
+            None => {
+                g.start.push((v, m.position(v)));
+                follow.distances.push(d);
+            }
+        }
+    }
+    follow.gathered = radius;
 }
 
 /// The corners of every selected element, each once, in selection order.
@@ -239,6 +329,8 @@ pub fn drive_gesture(world: &mut World) {
             KeyCode::Backspace => {
                 g.typed.pop();
             }
+            KeyCode::PageUp => resize(&mut g, 1.25),
+            KeyCode::PageDown => resize(&mut g, 0.8),
             _ => {
                 if let Some(c) = typed_char(key) {
                     g.typed.push(c);
@@ -246,6 +338,13 @@ pub fn drive_gesture(world: &mut World) {
             }
         }
     }
+    let wheel = world
+        .get_resource::<bevy::input::mouse::AccumulatedMouseScroll>()
+        .map_or(0.0, |s| s.delta.y);
+    if wheel != 0.0 {
+        resize(&mut g, 1.1f32.powf(wheel.clamp(-3.0, 3.0)));
+    }
+    gather(world, &mut g);
     if clicked {
         // Apply this frame's position, then stop.
         if let Some(moves) = positions(world, &mut g) {
@@ -263,6 +362,13 @@ pub fn drive_gesture(world: &mut World) {
         }
     }
     world.resource_mut::<Gestures>().active = Some(g);
+}
+
+/// Scales the proportional radius (when the gesture has one).
+fn resize(g: &mut Gesture, factor: f32) {
+    if let Some(f) = g.follow.as_mut() {
+        f.settings.radius = (f.settings.radius * factor).max(1e-6);
+    }
 }
 
 fn end(world: &mut World, by_click: bool) {
@@ -289,7 +395,7 @@ fn start_follow_up(world: &mut World) {
         false => GestureKind::Extrude(Vec::new()),
         true => GestureKind::Inset(Vec::new()),
     };
-    if start(world, kind, Some(follow.undo_mark)) {
+    if start(world, kind, Some(follow.undo_mark), None) {
         let directions = directions(world, follow.inset);
         if let Some(GestureKind::Extrude(d) | GestureKind::Inset(d)) = world
             .resource_mut::<Gestures>()
@@ -364,7 +470,7 @@ fn positions(world: &mut World, g: &mut Gesture) -> Option<Vec<(VertexId, Vec3)>
     };
     let axis = g.axis.map(|a| Vec3::AXES[a]);
     let pivot_px = on_screen(g.pivot)?;
-    let transform: Box<dyn Fn(usize, Vec3) -> Vec3> = match &g.kind {
+    let transform: Box<dyn Fn(usize, Vec3, f32) -> Vec3> = match &g.kind {
         GestureKind::Grab => {
             let pointer = on_plane(now)? - on_plane(g.cursor)?;
             let delta = match (typed, axis) {
@@ -373,7 +479,7 @@ fn positions(world: &mut World, g: &mut Gesture) -> Option<Vec<(VertexId, Vec3)>
                 (None, None) => pointer,
             };
             g.value = delta.length();
-            Box::new(move |_, p| p + delta)
+            Box::new(move |_, p, w| p + delta * w)
         }
         GestureKind::Rotate => {
             let (a, b) = (g.cursor - pivot_px, now - pivot_px);
@@ -386,17 +492,18 @@ fn positions(world: &mut World, g: &mut Gesture) -> Option<Vec<(VertexId, Vec3)>
             };
             let angle = typed.map_or(angle, f32::to_radians);
             g.value = angle.to_degrees();
-            let q = Quat::from_axis_angle(about, angle);
             let pivot = g.pivot;
-            Box::new(move |_, p| pivot + q * (p - pivot))
+            Box::new(move |_, p, w| pivot + Quat::from_axis_angle(about, angle * w) * (p - pivot))
         }
         GestureKind::Scale => {
             let from = (g.cursor - pivot_px).length().max(1.0);
             let factor = typed.unwrap_or((now - pivot_px).length() / from);
             g.value = factor;
             let pivot = g.pivot;
-            Box::new(move |_, p| {
+            Box::new(move |_, p, w| {
                 let d = p - pivot;
+                // The selection (w = 1) scales by the factor itself, to the bit.
+                let factor = if w == 1.0 { factor } else { 1.0 + (factor - 1.0) * w };
                 match axis {
                     Some(a) => p + a * d.dot(a) * (factor - 1.0),
                     None => pivot + d * factor,
@@ -410,7 +517,7 @@ fn positions(world: &mut World, g: &mut Gesture) -> Option<Vec<(VertexId, Vec3)>
             });
             g.value = distance;
             let dirs = dirs.clone();
-            Box::new(move |i, p| p + dirs[i] * distance)
+            Box::new(move |i, p, _| p + dirs[i] * distance)
         }
         GestureKind::Inset(dirs) => {
             let from = (g.cursor - pivot_px).length().max(1.0);
@@ -418,14 +525,17 @@ fn positions(world: &mut World, g: &mut Gesture) -> Option<Vec<(VertexId, Vec3)>
             let fraction = typed.map_or(closer, |x| x.clamp(0.0, 0.95));
             g.value = fraction;
             let dirs = dirs.clone();
-            Box::new(move |i, p| p + dirs[i] * fraction)
+            Box::new(move |i, p, _| p + dirs[i] * fraction)
         }
     };
     Some(
         g.start
             .iter()
             .enumerate()
-            .map(|(i, &(v, p))| (v, transform(i, p)))
+            .map(|(i, &(v, p))| {
+                let w = g.follow.as_ref().map_or(1.0, |f| f.weight(i));
+                (v, transform(i, p, w))
+            })
             .collect(),
     )
 }

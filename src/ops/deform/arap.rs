@@ -35,6 +35,8 @@ pub struct Arap {
     /// Each vertex's one-ring in `ring[start[i]..start[i + 1]]`: (neighbour, cotangent weight).
     start: Vec<u32>,
     ring: Vec<(u32, f64)>,
+    /// Each one-ring entry's weighted rest spoke `w_ij (p_i − p_j)`, beside `ring`.
+    spokes: Vec<DVec3>,
     system: HeldSystem,
     rotations: Vec<DQuat>,
     current: Vec<DVec3>,
@@ -68,10 +70,19 @@ impl Arap {
             ring[fill[j as usize] as usize] = (i, w);
             fill[j as usize] += 1;
         }
+        let rest = &surface.positions;
+        let mut spokes = vec![DVec3::ZERO; ring.len()];
+        for i in 0..n {
+            for k in start[i] as usize..start[i + 1] as usize {
+                let (j, w) = ring[k];
+                spokes[k] = (rest[i] - rest[j as usize]) * w;
+            }
+        }
         Ok(Self {
             rest: surface.positions.clone(),
             start,
             ring,
+            spokes,
             system,
             rotations: vec![DQuat::IDENTITY; n],
             current: surface.positions.clone(),
@@ -122,13 +133,12 @@ impl Arap {
 
     /// The local step: each vertex's best rotation for the current positions.
     pub fn fit_rotations(&mut self) {
-        let (rest, current, start, ring) = (&self.rest, &self.current, &self.start, &self.ring);
+        let (current, start, ring, spokes) = (&self.current, &self.start, &self.ring, &self.spokes);
         in_parallel(&mut self.rotations, |i, q| {
-            let (pi, ci) = (rest[i], current[i]);
+            let ci = current[i];
             let mut a = DMat3::ZERO;
-            for &(j, w) in &ring[start[i] as usize..start[i + 1] as usize] {
-                let e = pi - rest[j as usize];
-                let d = (ci - current[j as usize]) * w;
+            for k in start[i] as usize..start[i + 1] as usize {
+                let (e, d) = (spokes[k], ci - current[ring[k].0 as usize]);
                 a += DMat3::from_cols(d * e.x, d * e.y, d * e.z);
             }
             *q = closest_rotation(&a, *q);
@@ -143,13 +153,12 @@ impl Arap {
         });
         let mut rhs = vec![DVec3::ZERO; self.rest.len()];
         in_parallel(&mut rhs, |i, b| {
-            let pi = self.rest[i];
             let mut sum = DVec3::ZERO;
-            for &(j, w) in self.neighbours(i) {
-                let j = j as usize;
-                sum += (matrices[i] + matrices[j]) * ((pi - self.rest[j]) * (0.5 * w));
+            for k in self.start[i] as usize..self.start[i + 1] as usize {
+                let j = self.ring[k].0 as usize;
+                sum += (matrices[i] + matrices[j]) * self.spokes[k];
             }
-            *b = sum;
+            *b = sum * 0.5;
         });
         rhs
     }

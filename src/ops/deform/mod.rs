@@ -13,6 +13,9 @@
 //!   `L (M⁻¹ L)^(k−1) x = 0` (PMP's `fair(mesh, k)`: k = 1 membrane, 2 thin plate, 3 minimum
 //!   variation), every other vertex held where it is.
 //!
+//! - **Proportional editing** ([`falloff`]): the weights by which unselected vertices follow a
+//!   transform of the selection.
+//!
 //! Weights are the cotangent weights of the fanned triangles ([`crate::ops::geometry::cotan`]),
 //! areas the mixed Voronoi areas. A part of the mesh with no held vertex cannot be placed by
 //! either solve (its position is free up to a translation), so such parts stay where they are and
@@ -20,6 +23,7 @@
 //! bit, and the handle lands exactly where its motion sends it.
 
 mod arap;
+mod falloff;
 mod region;
 mod rotation;
 mod system;
@@ -40,6 +44,7 @@ use super::geometry::{Surface, cotan_edges, mixed_areas};
 use super::named::Named;
 
 pub use arap::Arap;
+pub use falloff::{Falloff, Proportional, distances};
 pub use region::Region;
 pub use rotation::closest_rotation;
 pub use system::{HeldSystem, k_harmonic};

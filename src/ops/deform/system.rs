@@ -17,6 +17,9 @@ use faer::{Mat, Side};
 
 use crate::ops::Refusal;
 
+/// Free unknowns from which a solve splits its columns over two threads.
+const PARALLEL_SOLVE: usize = 2000;
+
 /// The cotangent stiffness matrix of `n` vertices from the merged edge weights `(i, j, w)`,
 /// each scaled by `1 / scale[i]` on row `i` when `scale` is given (`M⁻¹ L`).
 fn stiffness(
@@ -161,7 +164,16 @@ impl HeldSystem {
             b[(c, 1)] -= held.y;
             b[(c, 2)] -= held.z;
         }
-        self.llt.solve_in_place(b.as_mut());
+        if size < PARALLEL_SOLVE {
+            self.llt.solve_in_place(b.as_mut());
+        } else {
+            // x and y on one core, z on another (both read the same factor).
+            let (xy, z) = b.as_mut().split_at_col_mut(2);
+            std::thread::scope(|scope| {
+                scope.spawn(|| self.llt.solve_in_place(z));
+                self.llt.solve_in_place(xy);
+            });
+        }
         for (c, &v) in self.free.iter().enumerate() {
             let p = DVec3::new(b[(c, 0)], b[(c, 1)], b[(c, 2)]);
             if p.is_finite() {
