@@ -632,6 +632,129 @@ fn dragging_the_selected_vertex_moves_it_in_the_view_plane() {
     assert_eq!(MeshRef::new(app.world()).position(v), end);
 }
 
+/// The editor's logic with a camera looking down at the z = 0 plane (a gesture needs one).
+fn app_with_camera() -> App {
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        bevy::input::InputPlugin,
+        WindowPlugin::default(),
+        AssetPlugin::default(),
+        bevy::image::ImagePlugin::default(),
+        bevy::mesh::MeshPlugin,
+        bevy::camera::CameraPlugin,
+        bevy::render::camera::CameraPlugin,
+        TransformPlugin,
+        pappus::editor::EditorLogicPlugin,
+    ));
+    app.init_resource::<bevy::render::texture::ManualTextureViews>();
+    app.world_mut().spawn((
+        Camera3d::default(),
+        Transform::from_xyz(0.5, 0.5, 2.0).looking_at(Vec3::new(0.5, 0.5, 0.0), Vec3::Y),
+    ));
+    app.update();
+    app.update();
+    app
+}
+
+#[test]
+fn a_proportional_move_takes_each_vertex_by_its_falloff() {
+    use pappus::editor::input::UiState;
+    use pappus::ops::deform::{Falloff, Proportional};
+    use pappus::ops::named::Named;
+    let radius = 0.35;
+    for &(falloff, name) in Falloff::ALL {
+        let mut app = app_with_camera();
+        open(&mut app, "shape:quad-grid");
+        let vertices = pappus::mesh::MeshMembers::collect(app.world(), mesh(&app)).vertices;
+        let centre = vertices[5 * 11 + 5]; // (0.5, 0.5)
+        let before: Vec<Vec3> = {
+            let m = MeshRef::new(app.world());
+            vertices.iter().map(|&v| m.position(v)).collect()
+        };
+        app.world_mut()
+            .write_message(Request::Select(Some(ElementId::Vertex(centre))));
+        app.update();
+        app.world_mut().resource_mut::<UiState>().proportional = Proportional {
+            enabled: true,
+            falloff,
+            radius,
+            connected: false,
+        };
+        // G, 0.1 typed (along X), Enter.
+        for key in [
+            KeyCode::KeyG,
+            KeyCode::Digit0,
+            KeyCode::Period,
+            KeyCode::Digit1,
+            KeyCode::Enter,
+        ] {
+            press(&mut app, key);
+        }
+        let m = MeshRef::new(app.world());
+        let pivot = before[5 * 11 + 5];
+        for (i, &v) in vertices.iter().enumerate() {
+            let d = before[i].distance(pivot);
+            let w = if v == centre { 1.0 } else { falloff.weight(d, radius) };
+            let want = before[i] + Vec3::X * 0.1 * w;
+            let got = m.position(v);
+            assert!((got - want).length() < 1e-6, "{name}: vertex {i} at {d}: {got} vs {want}");
+        }
+        // Some vertex beside the centre moved, one past the radius did not.
+        assert!(m.position(vertices[5 * 11 + 6]) != before[5 * 11 + 6], "{name}");
+        assert_eq!(m.position(vertices[0]), before[0]);
+        let undo = app
+            .world()
+            .resource::<pappus::editor::history::UndoHistory>()
+            .undo_entries()
+            .len();
+        assert_eq!(undo, 1, "{name}: one undo step");
+    }
+}
+
+#[test]
+fn hole_and_fairing_keys_fill_and_fair() {
+    let mut app = app();
+    open(&mut app, "shape:grid-with-holes:2");
+    let m = mesh(&app);
+    let boundary = {
+        let world = app.world();
+        let r = MeshRef::new(world);
+        pappus::mesh::MeshMembers::collect(world, m)
+            .edges
+            .into_iter()
+            .find(|&e| r.is_boundary_edge(e))
+            .unwrap()
+    };
+    // Alt+F: one hole, faired triangles.
+    app.world_mut()
+        .write_message(Request::Select(Some(ElementId::Edge(boundary))));
+    app.update();
+    let loops = pappus::mesh::mesh_stats(app.world(), m).boundary_loops;
+    press_with(&mut app, KeyCode::AltLeft, KeyCode::KeyF);
+    let outcome = last_outcome(&app);
+    assert!(outcome.request.ends_with("(fair)"), "{outcome:?}");
+    assert!(outcome.result.is_ok(), "{outcome:?}");
+    assert_eq!(pappus::mesh::mesh_stats(app.world(), m).boundary_loops, loops - 1);
+    // Shift+F: every other hole.
+    press_with(&mut app, KeyCode::ShiftLeft, KeyCode::KeyF);
+    let outcome = last_outcome(&app);
+    assert_eq!(outcome.request, "fill every hole (fair)");
+    assert!(outcome.result.is_ok(), "{outcome:?}");
+    let stats = pappus::mesh::mesh_stats(app.world(), m);
+    assert!(stats.closed && stats.euler_characteristic == 2, "{stats:?}");
+    // Shift+O: fair the selected vertex.
+    let v = pappus::mesh::MeshMembers::collect(app.world(), m).vertices[5];
+    app.world_mut()
+        .write_message(Request::Select(Some(ElementId::Vertex(v))));
+    app.update();
+    press_with(&mut app, KeyCode::ShiftLeft, KeyCode::KeyO);
+    let outcome = last_outcome(&app);
+    assert_eq!(outcome.request, "fair 1 vertex (k = 2)");
+    assert!(outcome.result.is_ok(), "{outcome:?}");
+    validate(app.world(), m).unwrap();
+}
+
 #[test]
 fn shift_s_simplifies_to_the_panel_ratio() {
     let mut app = app();

@@ -746,7 +746,11 @@ impl Mesh {
     /// when the mesh has none.
     #[pyo3(signature = (fair=true))]
     fn fill_holes(&mut self, py: Python<'_>, fair: bool) -> PyResult<String> {
-        let text = if fair { "fill-holes:fair" } else { "fill-holes" };
+        let text = if fair {
+            "fill-holes:fair"
+        } else {
+            "fill-holes"
+        };
         self.run_text(py, text, None)
     }
 

@@ -29,6 +29,8 @@ use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::tables::{Connectivity, MeshTables};
 use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
+use crate::ops::deform::{DeformMethod, DeformParams, DeformSummary, FairParams, deform, fair};
+use crate::ops::hole::{fill_hole_fair, fill_holes};
 use crate::ops::local::{
     BevelEdgePlan, BevelVertexPlan, CollapseFacePlan, CollapseOptions, DissolveVertexPlan,
     ErasePlan, ExtrudePlan, InsetPlan, WeldPlan, apply_bevel_edge, apply_bevel_vertex,
@@ -37,8 +39,6 @@ use crate::ops::local::{
     plan_bevel_vertex, plan_collapse_face, plan_dissolve_vertex, plan_erase, plan_extrude,
     plan_inset, plan_weld, split_edge, split_face,
 };
-use crate::ops::deform::{DeformMethod, DeformParams, DeformSummary, FairParams, deform, fair};
-use crate::ops::hole::{fill_hole_fair, fill_holes};
 use crate::ops::named::Named;
 use crate::ops::param::{ParamParams, parameterize_in_place};
 use crate::ops::progressive::ProgressiveMesh;

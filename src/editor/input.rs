@@ -12,11 +12,11 @@ use bevy::prelude::*;
 use crate::edit::{Edit, LocalKind, Scheme, Subdivision};
 use crate::mesh::MeshRef;
 use crate::mesh::ids::ElementId;
+use crate::ops::deform::{FairParams, Proportional};
 use crate::ops::local::faces_of;
 use crate::ops::param::ParamParams;
 use crate::ops::remesh::RemeshParams;
 use crate::ops::simplify::SimplifyParams;
-use crate::ops::deform::{FairParams, Proportional};
 use crate::ops::smooth::SmoothParams;
 
 use super::box_select::BoxSelect;

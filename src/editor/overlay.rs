@@ -301,7 +301,9 @@ pub fn draw_overlay(
                 thick.arrow(a, b, c).with_tip_length(a.distance(b) * 0.25);
             }
             Shape::Ring(p, r, c) => {
-                thick.circle(Isometry3d::new(p, facing), r, c).resolution(64);
+                thick
+                    .circle(Isometry3d::new(p, facing), r, c)
+                    .resolution(64);
             }
             Shape::Dot(p, r, c) => {
                 thin.circle(Isometry3d::new(p, facing), r, c).resolution(6);

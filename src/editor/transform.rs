@@ -23,7 +23,7 @@
 //! **Proportional editing** (Alt+O; its settings come with the gesture's start): a move, rotation or
 //! scale also takes the unselected vertices within the radius, each by its falloff weight `w`
 //! ([`crate::ops::deform::Falloff`]): moved by `w` times the motion, turned by `w` times the
-//! angle, scaled by `1 + w (factor − 1)`. PageUp / PageDown or the wheel change the radius while
+//! angle, scaled by `1 + w (factor − 1)`. `PageUp` / `PageDown` or the wheel change the radius while
 //! the gesture runs (drawn as a circle about the pivot); the vertices a larger radius reaches
 //! join the gesture where they are.
 
@@ -115,7 +115,10 @@ impl Follow {
     fn weight(&self, i: usize) -> f32 {
         match i.checked_sub(self.selected) {
             None => 1.0,
-            Some(k) => self.settings.falloff.weight(self.distances[k], self.settings.radius),
+            Some(k) => self
+                .settings
+                .falloff
+                .weight(self.distances[k], self.settings.radius),
         }
     }
 }
@@ -503,7 +506,11 @@ fn positions(world: &mut World, g: &mut Gesture) -> Option<Vec<(VertexId, Vec3)>
             Box::new(move |_, p, w| {
                 let d = p - pivot;
                 // The selection (w = 1) scales by the factor itself, to the bit.
-                let factor = if w == 1.0 { factor } else { 1.0 + (factor - 1.0) * w };
+                let factor = if w == 1.0 {
+                    factor
+                } else {
+                    1.0 + (factor - 1.0) * w
+                };
                 match axis {
                     Some(a) => p + a * d.dot(a) * (factor - 1.0),
                     None => pivot + d * factor,

@@ -19,6 +19,7 @@ use crate::ops::named::Named;
 use crate::edit::{Edit, LocalKind, Subdivision};
 use crate::ops::param::{BoundaryShape, ParamMethod};
 use crate::ops::simplify::SimplifyTarget;
+use crate::ops::deform::Falloff;
 use crate::ops::smooth::SmoothMethod;
 
 use super::EditorSystems;
@@ -980,6 +981,40 @@ fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
         button(ui, Action::OnEdge(LocalKind::Seam), "Seam");
         button(ui, Action::Parameterize, "Parameterize");
         ui.checkbox(&mut state.uv_view, "UV view");
+    });
+    // Shape: fairing, holes, proportional editing.
+    ui.horizontal_wrapped(|ui| {
+        ui.add(
+            egui::DragValue::new(&mut state.fair_k)
+                .range(1..=3)
+                .prefix("k "),
+        )
+        .on_hover_text("1 membrane, 2 thin plate, 3 minimum variation");
+        button(ui, Action::Fair, "Fair");
+        button(ui, Action::FillFair, "Fill hole fair");
+        ui.checkbox(&mut state.fill_fair, "fair");
+        button(ui, Action::FillAll, "Fill all holes");
+    });
+    ui.horizontal_wrapped(|ui| {
+        let p = &mut state.proportional;
+        ui.checkbox(
+            &mut p.enabled,
+            format!("proportional ({})", shortcut_label(Action::ToggleProportional)),
+        );
+        egui::ComboBox::from_id_salt("falloff")
+            .selected_text(p.falloff.name())
+            .show_ui(ui, |ui| {
+                for &(falloff, name) in Falloff::ALL {
+                    ui.selectable_value(&mut p.falloff, falloff, name);
+                }
+            });
+        ui.add(
+            egui::DragValue::new(&mut p.radius)
+                .range(1e-6..=f32::MAX)
+                .speed(0.001)
+                .prefix("r "),
+        );
+        ui.checkbox(&mut p.connected, "connected");
     });
     // Subdivision: levels per press.
     ui.horizontal(|ui| {

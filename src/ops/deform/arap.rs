@@ -149,7 +149,7 @@ impl Arap {
     fn right_hand_side(&self) -> Vec<DVec3> {
         let mut matrices = vec![DMat3::IDENTITY; self.rotations.len()];
         in_parallel(&mut matrices, |i, m| {
-            *m = DMat3::from_quat(self.rotations[i])
+            *m = DMat3::from_quat(self.rotations[i]);
         });
         let mut rhs = vec![DVec3::ZERO; self.rest.len()];
         in_parallel(&mut rhs, |i, b| {

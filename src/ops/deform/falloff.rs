@@ -14,10 +14,10 @@ use bevy::ecs::entity::{EntityHashMap, EntityHashSet};
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
+use crate::mesh::InMesh;
 use crate::mesh::ids::VertexId;
 use crate::mesh::members::MeshMembers;
 use crate::mesh::topology::MeshRef;
-use crate::mesh::InMesh;
 use crate::ops::named::Named;
 
 /// How the weight falls from 1 at the selection to 0 at the radius.

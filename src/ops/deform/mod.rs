@@ -201,18 +201,16 @@ fn hold_loose_parts(n: usize, edges: &[(u32, u32, f64)], held: &mut [bool]) -> u
         }
     }
     let mut anchored = vec![false; n];
-    for v in 0..n {
-        if held[v] {
-            let r = root(&mut parent, v as u32);
-            anchored[r as usize] = true;
-        }
+    for (v, _) in held.iter().enumerate().filter(|(_, h)| **h) {
+        let r = root(&mut parent, v as u32);
+        anchored[r as usize] = true;
     }
     let mut loose = vec![false; n];
-    for v in 0..n {
+    for (v, h) in held.iter_mut().enumerate() {
         let r = root(&mut parent, v as u32) as usize;
         if !anchored[r] {
             loose[r] = true;
-            held[v] = true;
+            *h = true;
         }
     }
     loose.iter().filter(|x| **x).count()

@@ -45,7 +45,12 @@ impl Region {
         }
         let mut faces: Vec<FaceId> = Vec::new();
         let mut seen_faces = EntityHashSet::default();
-        for &v in reached.iter().map(|e| VertexId(*e)).collect::<Vec<_>>().iter() {
+        for &v in reached
+            .iter()
+            .map(|e| VertexId(*e))
+            .collect::<Vec<_>>()
+            .iter()
+        {
             for f in m.vertex_faces(v) {
                 if seen_faces.insert(f.0) {
                     faces.push(f);

@@ -98,7 +98,9 @@ fn horn(a: &DMat3) -> DMat4 {
 /// `N + c I` (`c` making it positive definite) from the guess come near enough for Newton.
 fn better_start(a: &DMat3, guess: DQuat) -> DQuat {
     let n = horn(a);
-    let shift = (0..4).map(|c| n.col(c).abs().element_sum()).fold(0.0, f64::max);
+    let shift = (0..4)
+        .map(|c| n.col(c).abs().element_sum())
+        .fold(0.0, f64::max);
     let shifted = n + DMat4::from_diagonal(DVec4::splat(shift));
     let mut v = DVec4::from(guess.to_array());
     for _ in 0..POWER_ITERATIONS {
@@ -113,7 +115,11 @@ fn better_start(a: &DMat3, guess: DQuat) -> DQuat {
         let r = DMat3::from_quat(q);
         r.x_axis.dot(a.x_axis) + r.y_axis.dot(a.y_axis) + r.z_axis.dot(a.z_axis)
     };
-    if score(found) > score(guess) { found } else { guess }
+    if score(found) > score(guess) {
+        found
+    } else {
+        guess
+    }
 }
 
 #[cfg(test)]
@@ -161,7 +167,9 @@ mod against_svd {
         let m = faer::Mat::<f64>::from_fn(3, 3, |i, j| a.col(j)[i]);
         let svd = m.svd().unwrap();
         let (u, v) = (svd.U(), svd.V());
-        let to = |x: faer::MatRef<'_, f64>| DMat3::from_cols_array(&std::array::from_fn(|k| x[(k % 3, k / 3)]));
+        let to = |x: faer::MatRef<'_, f64>| {
+            DMat3::from_cols_array(&std::array::from_fn(|k| x[(k % 3, k / 3)]))
+        };
         let (u, v) = (to(u), to(v));
         let d = (u * v.transpose()).determinant().signum();
         u * DMat3::from_diagonal(DVec3::new(1.0, 1.0, d)) * v.transpose()
@@ -182,7 +190,10 @@ mod against_svd {
         ] {
             let v = DVec4::from(q.to_array());
             let quadratic = v.dot(horn(&a) * v);
-            assert!((quadratic - score(&DMat3::from_quat(q), &a)).abs() < 1e-12, "{q:?}");
+            assert!(
+                (quadratic - score(&DMat3::from_quat(q), &a)).abs() < 1e-12,
+                "{q:?}"
+            );
         }
     }
 
@@ -190,7 +201,9 @@ mod against_svd {
     fn newton_reaches_the_svd_optimum_from_the_identity() {
         let mut seed = 12345u64;
         let mut next = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
         };
         let mut worst: f64 = 0.0;
@@ -199,7 +212,9 @@ mod against_svd {
             if trial % 3 == 0 {
                 // Flat, as a surface's one-ring: rank 2.
                 a.z_axis = DVec3::ZERO;
-                a = DMat3::from_quat(DQuat::from_scaled_axis(DVec3::new(next(), next(), next()) * 3.0)) * a;
+                a = DMat3::from_quat(DQuat::from_scaled_axis(
+                    DVec3::new(next(), next(), next()) * 3.0,
+                )) * a;
             }
             let best = score(&by_svd(&a), &a);
             let ours = score(&DMat3::from_quat(closest_rotation(&a, DQuat::IDENTITY)), &a);

@@ -112,7 +112,7 @@ impl HeldSystem {
                     (u32::MAX, _) => {}
                     (ci, u32::MAX) => coupling.push((ci, j as u32, value)),
                     (ci, cj) if cj <= ci => {
-                        triplets.push(Triplet::new(ci as usize, cj as usize, value))
+                        triplets.push(Triplet::new(ci as usize, cj as usize, value));
                     }
                     _ => {}
                 }

@@ -87,8 +87,9 @@ fn plan_fair_fill(world: &World, e: EdgeId) -> Result<FairFillPlan, Refusal> {
     let beyond: Vec<DVec3> = ring
         .iter()
         .map(|&h| {
-            m.face(m.twin(h))
-                .map_or(DVec3::ZERO, |f| m.face_area_vector(f).as_dvec3().normalize_or_zero())
+            m.face(m.twin(h)).map_or(DVec3::ZERO, |f| {
+                m.face_area_vector(f).as_dvec3().normalize_or_zero()
+            })
         })
         .collect();
     let index: bevy::ecs::entity::EntityHashMap<usize> =
@@ -160,7 +161,12 @@ pub fn fill_hole_fair(world: &mut World, e: EdgeId) -> Result<FilledHole, Refusa
             {
                 let r = MeshRef::new(world);
                 let h = r.edge_halfedge(edge);
-                patch_faces.extend([r.face(h), r.face(r.twin(h))].into_iter().flatten().map(|f| f.0));
+                patch_faces.extend(
+                    [r.face(h), r.face(r.twin(h))]
+                        .into_iter()
+                        .flatten()
+                        .map(|f| f.0),
+                );
             }
         }
     }

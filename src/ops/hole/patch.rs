@@ -70,7 +70,8 @@ impl Patch {
         let m = MeshRef::new(world);
         let rim_edges: EntityHashSet = self.ring.iter().map(|&h| m.edge(h).0).collect();
         let (mut edges, mut vertices) = (Vec::new(), Vec::new());
-        let (mut seen_edges, mut seen_vertices) = (EntityHashSet::default(), EntityHashSet::default());
+        let (mut seen_edges, mut seen_vertices) =
+            (EntityHashSet::default(), EntityHashSet::default());
         for f in self.faces(world) {
             for h in m.face_halfedges(f) {
                 let e = m.edge(h);

@@ -99,7 +99,8 @@ fn a_cap_cut_from_a_sphere_comes_back_round_closed_and_well_shaped() {
 fn every_hole_is_filled_as_polygons_or_fair_patches() {
     for fair in [false, true] {
         let mut world = World::new();
-        let built = build_mesh(&mut world, &shapes::grid_with_holes(3), MeshInfo::default()).unwrap();
+        let built =
+            build_mesh(&mut world, &shapes::grid_with_holes(3), MeshInfo::default()).unwrap();
         let done = fill_holes(&mut world, built.mesh, fair).unwrap();
         validate(&world, built.mesh).unwrap();
         assert_eq!(done.filled, 4, "{done:?}");
@@ -116,6 +117,9 @@ fn an_edge_with_no_hole_beside_it_is_refused_and_changes_nothing() {
     let built = build_mesh(&mut world, &shapes::icosphere(1), MeshInfo::default()).unwrap();
     let e = MeshMembers::collect(&world, built.mesh).edges[0];
     let before = mesh_stats(&world, built.mesh);
-    assert!(matches!(fill_hole_fair(&mut world, e), Err(Refusal::NotBoundary(_))));
+    assert!(matches!(
+        fill_hole_fair(&mut world, e),
+        Err(Refusal::NotBoundary(_))
+    ));
     assert_eq!(mesh_stats(&world, built.mesh), before);
 }

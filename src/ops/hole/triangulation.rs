@@ -69,7 +69,8 @@ pub fn triangulate(hole: &HoleLoop<'_>) -> Option<Vec<[usize; 3]>> {
         return None;
     }
     let p = hole.positions;
-    let normal = |i: usize, m: usize, k: usize| (p[m] - p[i]).cross(p[k] - p[i]).normalize_or_zero();
+    let normal =
+        |i: usize, m: usize, k: usize| (p[m] - p[i]).cross(p[k] - p[i]).normalize_or_zero();
     let area = |i: usize, m: usize, k: usize| 0.5 * (p[m] - p[i]).cross(p[k] - p[i]).length();
     let at = |i: usize, k: usize| i * n + k;
     let mut weight = vec![Weight::NONE; n * n];
@@ -193,7 +194,10 @@ mod tests {
             joined: &forbid_02,
         };
         let triangles = triangulate(&hole).unwrap();
-        assert!(triangles.iter().all(|t| t.contains(&1) && t.contains(&3)), "{triangles:?}");
+        assert!(
+            triangles.iter().all(|t| t.contains(&1) && t.contains(&3)),
+            "{triangles:?}"
+        );
         // Both diagonals forbidden: nothing.
         let forbid_both = |i: usize, k: usize| (i, k) == (0, 2) || (i, k) == (1, 3);
         let hole = HoleLoop {
