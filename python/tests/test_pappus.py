@@ -167,6 +167,51 @@ def test_edge_operations_by_input_vertex_numbers():
     cube.validate()
 
 
+def test_shape_editing():
+    # ARAP: the anchors (the lower cap) stay to the bit, the handle (the top cap) lands where it
+    # was sent, the energy falls.
+    sphere = pappus.load("shape:icosphere:3")
+    rest = sphere.vertices
+    fixed = [int(i) for i in np.flatnonzero(rest[:, 1] < -0.6)]
+    handle = [int(i) for i in np.flatnonzero(rest[:, 1] > 0.7)]
+    summary = sphere.deform("arap", fixed, handle, (0.2, 0.3, 0.0), iterations=5)
+    assert summary.startswith("ARAP:") and "ms an iteration" in summary
+    before, after = (float(x) for x in summary.split("energy ")[1].split(";")[0].split(" -> "))
+    assert after < before
+    moved = sphere.vertices
+    assert np.array_equal(moved[fixed], rest[fixed])
+    sent = (rest[handle] + np.float32([0.2, 0.3, 0.0])).astype(np.float32)
+    assert np.array_equal(moved[handle], sent)
+    # The thin plate moves a flat grid's middle rigidly with its translated border.
+    grid = pappus.load("shape:grid:6")
+    border = [int(i) for i in np.flatnonzero(np.any((grid.vertices[:, :2] % 1) == 0, axis=1))]
+    grid.deform("laplace", [], border, (0.0, 0.0, 0.5))
+    assert np.allclose(grid.vertices[:, 2], 0.5, atol=1e-6)
+    with pytest.raises(pappus.Refused):
+        grid.deform("arap", [0], [0], (1.0, 0.0, 0.0))
+    with pytest.raises(ValueError):
+        grid.deform("spring", [0], [1], (1.0, 0.0, 0.0))
+    # Fairing a raised vertex of a plane lays it back flat.
+    plane = pappus.load("shape:grid:8")
+    middle = int(np.argmin(np.linalg.norm(plane.vertices[:, :2] - 0.5, axis=1)))
+    vertices = plane.vertices
+    vertices[middle, 2] = 0.3
+    plane = pappus.Mesh(vertices, plane.faces)
+    assert plane.fair([middle], k=2).startswith("1 vertex faired (k = 2)")
+    assert abs(plane.vertices[middle, 2]) < 1e-6
+    # Holes: one fair patch, then the rest; the sphere comes back closed.
+    sphere = pappus.load("shape:icosphere:3")
+    f0 = face(sphere, 0)
+    sphere.erase(f0)
+    assert sphere.fill_hole(f0[0], f0[1], fair=True).startswith("a hole of 3 sides")
+    sphere.erase([face(sphere, 10), face(sphere, 200)])
+    assert sphere.fill_holes().startswith("2 holes filled")
+    assert sphere.info()["closed"]
+    with pytest.raises(pappus.Refused):
+        sphere.fill_holes()
+    sphere.validate()
+
+
 def test_modelling_operations():
     cube = pappus.load("shape:cube")
     assert cube.extrude(face(cube, 1), 0.5) == "1 face lifted on 4 side faces"

@@ -4,13 +4,18 @@
 //! The patch is the set of faces inside the filled loop, found again before every pass by a
 //! flood from the loop's own halfedges (which no pass touches) that does not cross the loop.
 //! Each round, for the surrounding edge length `L`:
-//! 1. split every patch edge longer than 4/3 L at its midpoint, longest first;
+//! 1. split every patch edge longer than 4/3 L at its midpoint, longest first, where both
+//!    triangles beside it are at least L/3 high (a narrow, slit-like hole keeps its strip);
 //! 2. collapse every patch edge shorter than 4/5 L whose two ends are new vertices;
 //! 3. flip a patch edge when that brings the valences of its four vertices closer to 6, or
 //!    leaves them as close and the edge was not locally Delaunay;
 //! 4. move each new vertex halfway to its neighbours' centroid, within its tangent plane;
 //! 5. fair the new vertices (the thin-plate equation, the loop and the mesh held), so the patch
 //!    continues the curvature around it.
+//!
+//!
+//! After the last fairing, edges that are not locally Delaunay are flipped (no vertex moves), for
+//! the largest smallest angles the faired vertices allow.
 //!
 //! The loop's vertices never move and the loop's edges are never split, so the mesh outside the
 //! patch is untouched. Every pass is a local operation that refuses rather than break the mesh;
@@ -103,7 +108,35 @@ impl Patch {
             self.relax(world);
         }
         self.fair(world);
+        // Flips move no vertex: the faired shape stays, the thin triangles go.
+        for _ in 0..ROUNDS {
+            if self.flip_to_delaunay(world) == 0 {
+                break;
+            }
+        }
         self.inside(world).1
+    }
+
+    /// Flips every patch edge that is not locally Delaunay (the angles facing it sum to more
+    /// than π); returns how many flipped.
+    fn flip_to_delaunay(&self, world: &mut World) -> usize {
+        let mut flipped = 0;
+        for e in self.inside(world).0 {
+            let m = MeshRef::new(world);
+            if m.try_edge(e).is_none() {
+                continue;
+            }
+            let h = m.edge_halfedge(e);
+            let (a, b) = (m.from_vertex(h), m.to_vertex(h));
+            let (c, d) = (m.to_vertex(m.next(h)), m.to_vertex(m.next(m.twin(h))));
+            let at = |v: VertexId| m.position(v);
+            let opposite = |apex: Vec3| (at(a) - apex).angle_between(at(b) - apex);
+            let delaunay = opposite(at(c)) + opposite(at(d)) <= std::f32::consts::PI + 1e-4;
+            if !delaunay && flip_edge(world, e).is_ok() {
+                flipped += 1;
+            }
+        }
+        flipped
     }
 
     fn split_long(&self, world: &mut World) {
@@ -120,7 +153,7 @@ impl Patch {
         edges.sort_by(|a, b| b.0.total_cmp(&a.0));
         for (_, e) in edges {
             let m = MeshRef::new(world);
-            if m.try_edge(e).is_some() && length(&m, e) > long {
+            if m.try_edge(e).is_some() && length(&m, e) > long && roomy(&m, e, self.length) {
                 let _ = split_edge_midpoint(world, e);
             }
         }
@@ -211,6 +244,19 @@ impl Patch {
             let _ = fair(world, self.mesh, &FairParams { vertices, k: 3 });
         }
     }
+}
+
+/// Whether both triangles beside `e` are at least a third of `length` high over it: a split of
+/// a long edge of a thin triangle (a slit-like hole's strip) would put vertices the fairing lays
+/// in a line.
+fn roomy(m: &MeshRef<'_>, e: EdgeId, length: f32) -> bool {
+    let h = m.edge_halfedge(e);
+    let (a, b) = (m.position(m.from_vertex(h)), m.position(m.to_vertex(h)));
+    let base = b - a;
+    [h, m.twin(h)].iter().all(|&x| {
+        let apex = m.position(m.to_vertex(m.next(x)));
+        base.cross(apex - a).length() / base.length().max(f32::MIN_POSITIVE) >= length / 3.0
+    })
 }
 
 fn length(m: &MeshRef<'_>, e: EdgeId) -> f32 {

@@ -89,6 +89,7 @@ fn a_cap_cut_from_a_sphere_comes_back_round_closed_and_well_shaped() {
         .map(|&v| (m.position(v).length() - 1.0).abs())
         .fold(0.0f32, f32::max);
     let shape = patch_shape(&world, mesh, &before, plan.length);
+    eprintln!("{filled:?}: radius off by {radius}, {shape:?}");
     // Within 1 % of the radius, the density of the surroundings, no sliver.
     assert!(radius < 0.01, "radius off by {radius}");
     assert!((shape.mean - 1.0).abs() < 0.25, "{shape:?}");
