@@ -695,13 +695,23 @@ fn a_proportional_move_takes_each_vertex_by_its_falloff() {
         let pivot = before[5 * 11 + 5];
         for (i, &v) in vertices.iter().enumerate() {
             let d = before[i].distance(pivot);
-            let w = if v == centre { 1.0 } else { falloff.weight(d, radius) };
+            let w = if v == centre {
+                1.0
+            } else {
+                falloff.weight(d, radius)
+            };
             let want = before[i] + Vec3::X * 0.1 * w;
             let got = m.position(v);
-            assert!((got - want).length() < 1e-6, "{name}: vertex {i} at {d}: {got} vs {want}");
+            assert!(
+                (got - want).length() < 1e-6,
+                "{name}: vertex {i} at {d}: {got} vs {want}"
+            );
         }
         // Some vertex beside the centre moved, one past the radius did not.
-        assert!(m.position(vertices[5 * 11 + 6]) != before[5 * 11 + 6], "{name}");
+        assert!(
+            m.position(vertices[5 * 11 + 6]) != before[5 * 11 + 6],
+            "{name}"
+        );
         assert_eq!(m.position(vertices[0]), before[0]);
         let undo = app
             .world()
@@ -709,6 +719,81 @@ fn a_proportional_move_takes_each_vertex_by_its_falloff() {
             .undo_entries()
             .len();
         assert_eq!(undo, 1, "{name}: one undo step");
+    }
+}
+
+#[test]
+fn a_move_of_a_handle_with_anchors_marked_deforms_the_mesh_in_one_undo_step() {
+    use pappus::editor::requests::SelectionEdit;
+    let mut app = app_with_camera();
+    open(&mut app, "shape:quad-grid");
+    let m = mesh(&app);
+    let vertices = pappus::mesh::MeshMembers::collect(app.world(), m).vertices;
+    let before: Vec<Vec3> = {
+        let r = MeshRef::new(app.world());
+        vertices.iter().map(|&v| r.position(v)).collect()
+    };
+    let column = |x: f32| -> Vec<ElementId> {
+        (0..vertices.len())
+            .filter(|&i| (before[i].x - x).abs() < 1e-6)
+            .map(|i| ElementId::Vertex(vertices[i]))
+            .collect()
+    };
+    let select = |app: &mut App, xs: Vec<ElementId>| {
+        app.world_mut()
+            .write_message(Request::from(SelectionEdit::Replace(xs)));
+        app.update();
+    };
+    // Shift+A: the left column holds; the right column is the handle, lifted 0.1 along Z.
+    select(&mut app, column(0.0));
+    press_with(&mut app, KeyCode::ShiftLeft, KeyCode::KeyA);
+    assert!(
+        last_outcome(&app)
+            .result
+            .as_ref()
+            .unwrap()
+            .starts_with("11 anchor vertices")
+    );
+    select(&mut app, column(1.0));
+    for key in [
+        KeyCode::KeyG,
+        KeyCode::KeyZ,
+        KeyCode::Digit0,
+        KeyCode::Period,
+        KeyCode::Digit1,
+        KeyCode::Enter,
+    ] {
+        press(&mut app, key);
+    }
+    let r = MeshRef::new(app.world());
+    for (i, &v) in vertices.iter().enumerate() {
+        let p = r.position(v);
+        if before[i].x == 0.0 {
+            assert_eq!(p, before[i], "anchor {i}");
+        } else if before[i].x == 1.0 {
+            assert_eq!(p, before[i] + Vec3::Z * 0.1, "handle {i}");
+        } else {
+            assert!(p.z > 0.0 && p.z < 0.1, "vertex {i} at {}: {p}", before[i]);
+        }
+    }
+    // Higher toward the handle.
+    let at = |x: f32, y: f32| {
+        let i = (0..vertices.len())
+            .find(|&i| (before[i] - Vec3::new(x, y, 0.0)).length() < 1e-6)
+            .unwrap();
+        r.position(vertices[i]).z
+    };
+    assert!(at(0.3, 0.5) < at(0.7, 0.5));
+    let undo = app
+        .world()
+        .resource::<pappus::editor::history::UndoHistory>()
+        .undo_entries()
+        .len();
+    assert_eq!(undo, 1, "one undo step");
+    press_with(&mut app, KeyCode::ControlLeft, KeyCode::KeyZ);
+    let r = MeshRef::new(app.world());
+    for (i, &v) in vertices.iter().enumerate() {
+        assert_eq!(r.position(v), before[i]);
     }
 }
 
@@ -735,7 +820,10 @@ fn hole_and_fairing_keys_fill_and_fair() {
     let outcome = last_outcome(&app);
     assert!(outcome.request.ends_with("(fair)"), "{outcome:?}");
     assert!(outcome.result.is_ok(), "{outcome:?}");
-    assert_eq!(pappus::mesh::mesh_stats(app.world(), m).boundary_loops, loops - 1);
+    assert_eq!(
+        pappus::mesh::mesh_stats(app.world(), m).boundary_loops,
+        loops - 1
+    );
     // Shift+F: every other hole.
     press_with(&mut app, KeyCode::ShiftLeft, KeyCode::KeyF);
     let outcome = last_outcome(&app);

@@ -29,7 +29,7 @@ use super::requests::{Declined, Relation, Request};
 use super::selection::{
     ActiveMesh, MeshDirty, SelectMode, Selection, selected_edge, selected_faces,
 };
-use super::transform::{GestureKind, Gestures};
+use super::transform::{Anchors, GestureKind, Gestures};
 
 /// What a shortcut does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -59,6 +59,9 @@ pub enum Action {
     Fair,
     /// Proportional editing on / off.
     ToggleProportional,
+    /// The selection's vertices become the anchors of handle deformation (nothing selected:
+    /// no anchors).
+    MarkAnchors,
     /// Dissolve the active vertex (merge its faces) or edge (merge its two faces).
     Dissolve,
     /// Collapse the active edge or face.
@@ -352,6 +355,12 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "Shift+O",
         Action::Fair,
         "fair the selected vertices (k-harmonic, k in the panel; the rest held)",
+    ),
+    shift(
+        KeyCode::KeyA,
+        "Shift+A",
+        Action::MarkAnchors,
+        "anchors: the selection stays, G/R/S on a handle then deform the rest (again, empty: none)",
     ),
     alt(
         KeyCode::KeyO,
@@ -794,6 +803,17 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
                 vertices,
                 k: world.resource::<UiState>().fair_k.clamp(1, 3),
             })
+        }
+        Action::MarkAnchors => {
+            let vertices = super::transform::selected_vertices(world);
+            let count = vertices.len();
+            world.resource_mut::<Anchors>().vertices = vertices;
+            let summary = match count {
+                0 => "no anchors: G, R and S move the selection alone".to_string(),
+                n => format!("{n} anchor vertices: G, R and S on a handle now deform the mesh"),
+            };
+            report(world, "anchors".into(), Ok(summary), 0.0);
+            return Ok(None);
         }
         Action::ToggleProportional => {
             let mut ui = world.resource_mut::<UiState>();

@@ -96,6 +96,7 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<input::UiState>()
             .init_resource::<uv_view::UvLayout>()
             .init_resource::<transform::Gestures>()
+            .init_resource::<transform::Anchors>()
             .init_resource::<box_select::BoxSelect>()
             .init_resource::<stepping::Stepping>()
             .init_resource::<step_view::StepView>()

@@ -42,6 +42,8 @@ pub const HOVERED: Color = Color::srgb(0.35, 0.8, 1.0);
 pub const ARROW: Color = Color::srgb(0.2, 0.25, 0.55);
 /// Colour of seam marks.
 pub const SEAM: Color = Color::srgb(0.95, 0.2, 0.75);
+/// Colour of the anchors of handle deformation.
+pub const ANCHOR: Color = Color::srgb(0.85, 0.15, 0.15);
 /// Colour of proportional editing's radius.
 pub const PROPORTIONAL: Color = Color::srgb(0.95, 0.95, 0.95);
 /// Colour of vertex dots.
@@ -261,6 +263,15 @@ pub fn gather_overlay(world: &mut World) {
             let reach = Vec3::AXES[axis] * 1e3;
             let p = gesture.pivot;
             shapes.push(Shape::Line(p - reach, p + reach, AXIS_COLORS[axis]));
+        }
+        // The anchors of handle deformation.
+        if let Some(anchors) = world.get_resource::<super::transform::Anchors>() {
+            for &v in anchors.vertices.iter().take(MAX_SET_DRAWN) {
+                if m.try_vertex(v).is_some() {
+                    let r = mean_edge_near(&m, v) * 0.1;
+                    shapes.push(Shape::Dot(m.position(v), r, ANCHOR));
+                }
+            }
         }
         // Proportional editing's reach about the pivot.
         if let Some(follow) = world

@@ -26,6 +26,12 @@
 //! angle, scaled by `1 + w (factor − 1)`. `PageUp` / `PageDown` or the wheel change the radius while
 //! the gesture runs (drawn as a circle about the pivot); the vertices a larger radius reaches
 //! join the gesture where they are.
+//!
+//! **Handle deformation** (with [`Anchors`] marked, Shift+A): a move, rotation or scale of the
+//! selection (the handle) deforms the rest of the mesh, the anchors held
+//! ([`crate::ops::deform::LiveDeform`]): the system is factored when the gesture starts, each
+//! frame runs one as-rigid-as-possible iteration from the last frame's result (or the one
+//! thin-plate solve), and confirming runs [`FINAL_ITERATIONS`] more.
 
 use bevy::input::mouse::MouseButton;
 use bevy::math::primitives::InfinitePlane3d;
@@ -37,7 +43,7 @@ use bevy::ecs::entity::EntityHashMap;
 use crate::edit::Edit;
 use crate::mesh::ids::VertexId;
 use crate::mesh::topology::MeshRef;
-use crate::ops::deform::{Proportional, distances};
+use crate::ops::deform::{DeformMethod, LiveDeform, Proportional, distances};
 use crate::ops::local::extrude_directions;
 
 use super::history::UndoHistory;
@@ -95,6 +101,24 @@ pub struct Gesture {
     pub value: f32,
     /// Proportional editing's reach, when it is on for this gesture.
     pub follow: Option<Follow>,
+    /// The handle deformation, when anchors are marked.
+    pub deform: Option<std::sync::Arc<std::sync::Mutex<LiveDeform>>>,
+    /// Confirmed by Enter with a last edit under way: the gesture ends next frame, once that
+    /// edit has joined its undo step.
+    pub closing: bool,
+}
+
+/// ARAP iterations run when a handle deformation is confirmed (one runs each frame before).
+pub const FINAL_ITERATIONS: u32 = 10;
+
+/// The fixed region of handle deformation (Shift+A marks the selection's vertices), and how the
+/// rest follows the handle.
+#[derive(Resource, Default, Debug, Clone)]
+pub struct Anchors {
+    /// The anchors; none: gestures move the selection alone.
+    pub vertices: Vec<VertexId>,
+    /// As-rigid-as-possible or thin plate.
+    pub method: DeformMethod,
 }
 
 /// The unselected vertices a proportional gesture takes along.
@@ -170,8 +194,15 @@ impl Gestures {
                 f.settings.radius
             )
         });
+        let deform = g
+            .deform
+            .as_ref()
+            .and_then(|d| d.lock().ok())
+            .map_or(String::new(), |d| {
+                format!(", deforming ({} ARAP iterations)", d.iterations())
+            });
         Some(format!(
-            "{}{axis}: {value}{radius}   (X/Y/Z constrain, type a value, Enter or click confirms, Esc cancels)",
+            "{}{axis}: {value}{radius}{deform}   (X/Y/Z constrain, type a value, Enter or click confirms, Esc cancels)",
             g.kind.name()
         ))
     }
@@ -213,6 +244,15 @@ pub fn start(
             distances: Vec::new(),
             gathered: 0.0,
         });
+    let deform = match handle_deformation(world, &kind, &start) {
+        Ok(deform) => deform,
+        Err(refusal) => {
+            let label = format!("{} (handle deformation)", kind.name());
+            super::finish::report(world, label, Err(refusal.into()), 0.0);
+            return false;
+        }
+    };
+    let follow = follow.filter(|_| deform.is_none());
     let mut history = world.resource_mut::<UndoHistory>();
     let undo_mark = undo_mark.unwrap_or(history.mark());
     history.begin_gesture();
@@ -226,10 +266,50 @@ pub fn start(
         undo_mark,
         value: 0.0,
         follow,
+        deform,
+        closing: false,
     };
     gather(world, &mut gesture);
     world.resource_mut::<Gestures>().active = Some(gesture);
     true
+}
+
+/// The handle deformation a move, rotation or scale of these vertices starts when anchors are
+/// marked (none otherwise), its system factored.
+///
+/// # Errors
+/// When the system cannot be factored (a part with nothing held is held whole, so this is a
+/// degenerate mesh).
+fn handle_deformation(
+    world: &World,
+    kind: &GestureKind,
+    start: &[(VertexId, Vec3)],
+) -> Result<Option<std::sync::Arc<std::sync::Mutex<LiveDeform>>>, crate::ops::Refusal> {
+    let Some(anchors) = world.get_resource::<Anchors>() else {
+        return Ok(None);
+    };
+    let moves = matches!(
+        kind,
+        GestureKind::Grab | GestureKind::Rotate | GestureKind::Scale
+    );
+    let mesh = start
+        .first()
+        .and_then(|(v, _)| world.get::<crate::mesh::InMesh>(v.0))
+        .map(|m| m.0);
+    let (Some(mesh), true, false) = (mesh, moves, anchors.vertices.is_empty()) else {
+        return Ok(None);
+    };
+    let handle: Vec<VertexId> = start.iter().map(|(v, _)| *v).collect();
+    let handle_set: bevy::ecs::entity::EntityHashSet = handle.iter().map(|v| v.0).collect();
+    let m = MeshRef::new(world);
+    let fixed: Vec<VertexId> = anchors
+        .vertices
+        .iter()
+        .copied()
+        .filter(|v| m.try_vertex(*v).is_some() && !handle_set.contains(&v.0))
+        .collect();
+    let live = LiveDeform::new(world, mesh, anchors.method, &fixed, &handle)?;
+    Ok(Some(std::sync::Arc::new(std::sync::Mutex::new(live))))
 }
 
 /// Takes along the vertices within the proportional radius that the gesture does not hold yet
@@ -308,6 +388,9 @@ pub fn drive_gesture(world: &mut World) {
     let Some(mut g) = gestures.active.take() else {
         return;
     };
+    if g.closing {
+        return end(world, false);
+    }
     let keys = world.resource::<ButtonInput<KeyCode>>();
     let pressed: Vec<KeyCode> = keys.get_just_pressed().copied().collect();
     let clicked = world
@@ -320,7 +403,17 @@ pub fn drive_gesture(world: &mut World) {
                 world.write_message(Request::Retract(g.undo_mark));
                 return;
             }
-            KeyCode::Enter | KeyCode::NumpadEnter => return end(world, false),
+            KeyCode::Enter | KeyCode::NumpadEnter => {
+                if g.deform.is_some()
+                    && let Some(moves) = positions(world, &mut g, FINAL_ITERATIONS)
+                {
+                    world.write_message(Request::Edit(Edit::MoveVertices(moves)));
+                    g.closing = true;
+                    world.resource_mut::<Gestures>().active = Some(g);
+                    return;
+                }
+                return end(world, false);
+            }
             KeyCode::KeyX | KeyCode::KeyY | KeyCode::KeyZ => {
                 let a = match key {
                     KeyCode::KeyX => 0,
@@ -350,12 +443,12 @@ pub fn drive_gesture(world: &mut World) {
     gather(world, &mut g);
     if clicked {
         // Apply this frame's position, then stop.
-        if let Some(moves) = positions(world, &mut g) {
+        if let Some(moves) = positions(world, &mut g, FINAL_ITERATIONS) {
             world.write_message(Request::Edit(Edit::MoveVertices(moves)));
         }
         return end(world, true);
     }
-    if let Some(moves) = positions(world, &mut g) {
+    if let Some(moves) = positions(world, &mut g, 1) {
         let m = MeshRef::new(world);
         let changed = moves
             .iter()
@@ -460,9 +553,9 @@ fn typed_char(key: KeyCode) -> Option<char> {
     })
 }
 
-/// Where the gesture puts its vertices now (`None` without a pointer or camera). Sets
-/// `g.value`.
-fn positions(world: &mut World, g: &mut Gesture) -> Option<Vec<(VertexId, Vec3)>> {
+/// Where the gesture puts its vertices now (`None` without a pointer or camera), running
+/// `iterations` ARAP iterations of a handle deformation. Sets `g.value`.
+fn positions(world: &mut World, g: &mut Gesture, iterations: u32) -> Option<Vec<(VertexId, Vec3)>> {
     let typed: Option<f32> = g.typed.parse().ok().filter(|x: &f32| x.is_finite());
     let (camera, eye) = camera(world)?;
     let now = cursor(world).unwrap_or(g.cursor);
@@ -535,14 +628,21 @@ fn positions(world: &mut World, g: &mut Gesture) -> Option<Vec<(VertexId, Vec3)>
             Box::new(move |i, p, _| p + dirs[i] * fraction)
         }
     };
-    Some(
-        g.start
-            .iter()
-            .enumerate()
-            .map(|(i, &(v, p))| {
-                let w = g.follow.as_ref().map_or(1.0, |f| f.weight(i));
-                (v, transform(i, p, w))
-            })
-            .collect(),
-    )
+    let moves: Vec<(VertexId, Vec3)> = g
+        .start
+        .iter()
+        .enumerate()
+        .map(|(i, &(v, p))| {
+            let w = g.follow.as_ref().map_or(1.0, |f| f.weight(i));
+            (v, transform(i, p, w))
+        })
+        .collect();
+    match &g.deform {
+        Some(live) => {
+            let targets: Vec<Vec3> = moves.iter().map(|(_, p)| *p).collect();
+            let mut live = live.lock().ok()?;
+            Some(live.solve(&targets, iterations))
+        }
+        None => Some(moves),
+    }
 }

@@ -17,9 +17,9 @@ use crate::mesh::{MeshInfo, MeshStats, mesh_stats, validate};
 use crate::ops::named::Named;
 
 use crate::edit::{Edit, LocalKind, Subdivision};
+use crate::ops::deform::{DeformMethod, Falloff};
 use crate::ops::param::{BoundaryShape, ParamMethod};
 use crate::ops::simplify::SimplifyTarget;
-use crate::ops::deform::Falloff;
 use crate::ops::smooth::SmoothMethod;
 
 use super::EditorSystems;
@@ -377,6 +377,7 @@ pub fn panels(
     confirm: Res<super::requests::ConfirmDiscard>,
     mut colour_by: ResMut<ColorBy>,
     mut pending: ResMut<PendingActions>,
+    mut anchors: ResMut<super::transform::Anchors>,
     mut requests: MessageWriter<Request>,
 ) -> Result {
     let ctx = contexts.ctx_mut()?.clone();
@@ -427,6 +428,7 @@ pub fn panels(
                     (&mut view_settings, &density),
                     &mut pending,
                     &mut ui_state,
+                    &mut anchors,
                 );
                 settings.set_if_neq(view_settings);
                 if let Some((label, fraction, seconds)) = &view.job {
@@ -758,6 +760,7 @@ fn operations_section(
     (settings, density): (&mut ViewSettings, &super::readability::WireframeDensity),
     pending: &mut PendingActions,
     ui_state: &mut UiState,
+    anchors: &mut super::transform::Anchors,
 ) {
     ui.label(egui::RichText::new("Operations").strong());
     ui.horizontal_wrapped(|ui| {
@@ -816,7 +819,7 @@ fn operations_section(
             }
         }
     });
-    parameters_section(ui, ui_state, pending);
+    parameters_section(ui, ui_state, anchors, pending);
     ui.horizontal(|ui| {
         ui.label("click selects");
         for m in [
@@ -859,7 +862,12 @@ fn operations_section(
 /// The whole-mesh edits with their parameters: the same structs and defaults as the command
 /// line's steps (`simplify:RATIO`, `simplify-faces:N`, `remesh:ITERATIONS:LENGTH`, `loop:N`,
 /// `param:METHOD:BOUNDARY`).
-fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
+fn parameters_section(
+    ui: &mut egui::Ui,
+    state: &mut UiState,
+    anchors: &mut super::transform::Anchors,
+    pending: &mut PendingActions,
+) {
     let mut button = |ui: &mut egui::Ui, action: Action, name: &str| {
         if ui
             .button(format!("{name} ({})", shortcut_label(action)))
@@ -999,7 +1007,10 @@ fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
         let p = &mut state.proportional;
         ui.checkbox(
             &mut p.enabled,
-            format!("proportional ({})", shortcut_label(Action::ToggleProportional)),
+            format!(
+                "proportional ({})",
+                shortcut_label(Action::ToggleProportional)
+            ),
         );
         egui::ComboBox::from_id_salt("falloff")
             .selected_text(p.falloff.name())
@@ -1015,6 +1026,21 @@ fn parameters_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
                 .prefix("r "),
         );
         ui.checkbox(&mut p.connected, "connected");
+    });
+    // Handle deformation: the anchors, and how the rest follows a transform of the handle.
+    ui.horizontal_wrapped(|ui| {
+        button(ui, Action::MarkAnchors, "Anchors");
+        ui.label(format!("{} anchored", anchors.vertices.len()));
+        egui::ComboBox::from_id_salt("deform method")
+            .selected_text(anchors.method.name())
+            .show_ui(ui, |ui| {
+                for &(method, name) in DeformMethod::ALL {
+                    ui.selectable_value(&mut anchors.method, method, name);
+                }
+            });
+        if ui.button("Clear anchors").clicked() {
+            anchors.vertices.clear();
+        }
     });
     // Subdivision: levels per press.
     ui.horizontal(|ui| {

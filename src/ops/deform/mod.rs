@@ -24,6 +24,7 @@
 
 mod arap;
 mod falloff;
+mod live;
 mod region;
 mod rotation;
 mod system;
@@ -45,6 +46,7 @@ use super::named::Named;
 
 pub use arap::Arap;
 pub use falloff::{Falloff, Proportional, distances};
+pub use live::LiveDeform;
 pub use region::Region;
 pub use rotation::closest_rotation;
 pub use system::{HeldSystem, k_harmonic};
