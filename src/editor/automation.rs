@@ -6,7 +6,7 @@
 //! | step | meaning |
 //! |---|---|
 //! | `wait:N` | let N frames pass |
-//! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:3`, `key:.`, `key:Period`, `key:Enter`, `key:Escape`, `key:Delete`, `key:Backspace`, `key:Minus`, `key:Equal`, `key:F9`, `key:Right`, `key:Left`, `key:End`); `key:Shift+S`, `key:Ctrl+T`, `key:Alt+M` hold a modifier |
+//! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:3`, `key:.`, `key:Period`, `key:Enter`, `key:Escape`, `key:Delete`, `key:Backspace`, `key:Minus`, `key:Equal`, `key:F9`, `key:Right`, `key:Left`, `key:End`, `key:PageUp`, `key:PageDown`); `key:Shift+S`, `key:Ctrl+T`, `key:Alt+M` hold a modifier |
 //! | `select-edge:A,B` | select the edge between the input file's vertices A and B (0-based) |
 //! | `select-vertex:A` | select the input file's vertex A |
 //! | `select:ID` | select an element by id (`f12v0`) |
@@ -263,6 +263,8 @@ fn key_code(name: &str) -> Option<KeyCode> {
         "Right" => Some(KeyCode::ArrowRight),
         "Left" => Some(KeyCode::ArrowLeft),
         "End" => Some(KeyCode::End),
+        "PageUp" => Some(KeyCode::PageUp),
+        "PageDown" => Some(KeyCode::PageDown),
         "Delete" => Some(KeyCode::Delete),
         "Enter" => Some(KeyCode::Enter),
         "Backspace" => Some(KeyCode::Backspace),

@@ -628,13 +628,16 @@ fn positions(world: &mut World, g: &mut Gesture, iterations: u32) -> Option<Vec<
             Box::new(move |i, p, _| p + dirs[i] * fraction)
         }
     };
+    let m = MeshRef::new(world);
     let moves: Vec<(VertexId, Vec3)> = g
         .start
         .iter()
         .enumerate()
-        .map(|(i, &(v, p))| {
+        .filter_map(|(i, &(v, p))| {
             let w = g.follow.as_ref().map_or(1.0, |f| f.weight(i));
-            (v, transform(i, p, w))
+            // A follower out of reach that is where it started is left out of the edit.
+            let idle = w == 0.0 && m.try_position(v) == Some(p);
+            (!idle).then(|| (v, transform(i, p, w)))
         })
         .collect();
     match &g.deform {
