@@ -555,28 +555,10 @@ fn dragging_the_selected_vertex_moves_it_in_the_view_plane() {
     use bevy::window::PrimaryWindow;
     use pappus::editor::EditorSystems;
     use pappus::editor::drag::{VertexDrag, drive_vertex_drag};
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        bevy::input::InputPlugin,
-        WindowPlugin::default(),
-        AssetPlugin::default(),
-        bevy::image::ImagePlugin::default(),
-        bevy::mesh::MeshPlugin,
-        bevy::camera::CameraPlugin,
-        bevy::render::camera::CameraPlugin,
-        TransformPlugin,
-        pappus::editor::EditorLogicPlugin,
-    ));
-    app.init_resource::<bevy::render::texture::ManualTextureViews>();
+    // Looking straight down -z at the unit quad grid in the z = 0 plane.
+    let mut app = app_with_camera();
     app.init_resource::<VertexDrag>();
     app.add_systems(Update, drive_vertex_drag.in_set(EditorSystems::Input));
-    // Looking straight down -z at the unit quad grid in the z = 0 plane.
-    app.world_mut().spawn((
-        Camera3d::default(),
-        Transform::from_xyz(0.5, 0.5, 2.0).looking_at(Vec3::new(0.5, 0.5, 0.0), Vec3::Y),
-    ));
-    app.update();
     app.update();
     open(&mut app, "shape:quad-grid");
     let vertices = pappus::mesh::MeshMembers::collect(app.world(), mesh(&app)).vertices;

@@ -333,15 +333,7 @@ fn implicit_step(
 mod tests {
     use super::*;
     use crate::mesh::{MeshMembers, MeshRef, build_mesh, shapes, validate};
-
-    fn positions(world: &World, mesh: MeshId) -> Vec<bevy::math::Vec3> {
-        let m = MeshRef::new(world);
-        MeshMembers::collect(world, mesh)
-            .vertices
-            .iter()
-            .map(|&v| m.position(v))
-            .collect()
-    }
+    use crate::ops::local::testkit::positions;
 
     #[test]
     fn a_planar_grid_is_a_fixed_point_of_every_method() {

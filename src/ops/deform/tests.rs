@@ -4,6 +4,7 @@ use bevy::prelude::World;
 use super::*;
 use crate::mesh::tables::extract;
 use crate::mesh::{MeshMembers, MeshRef, build_mesh, shapes, validate};
+use crate::ops::local::testkit::positions;
 
 /// A regular `n × n` grid of unit cells, each split along its rising diagonal, with heights
 /// `z(x, y)`: its cotangent Laplacian is the five-point stencil (the diagonals weigh 0).
@@ -159,15 +160,6 @@ fn arap_iterations_never_raise_the_energy_and_leave_held_vertices_where_placed()
     for v in (0..surface.positions.len()).filter(|&v| columns(v) < 2) {
         assert_eq!(arap.positions()[v], surface.positions[v]);
     }
-}
-
-fn positions(world: &World, mesh: MeshId) -> Vec<Vec3> {
-    let m = MeshRef::new(world);
-    MeshMembers::collect(world, mesh)
-        .vertices
-        .iter()
-        .map(|&v| m.position(v))
-        .collect()
 }
 
 #[test]

@@ -71,6 +71,16 @@ pub fn sorted<T: Ord>(mut x: Vec<T>) -> Vec<T> {
 // ---- building ---------------------------------------------------------------------------
 
 /// Builds `soup` into a fresh world; the mesh must validate.
+/// Every vertex position of `mesh`, in its members' order.
+pub fn positions(world: &World, mesh: crate::mesh::ids::MeshId) -> Vec<Vec3> {
+    let m = crate::mesh::MeshRef::new(world);
+    crate::mesh::MeshMembers::collect(world, mesh)
+        .vertices
+        .iter()
+        .map(|&v| m.position(v))
+        .collect()
+}
+
 pub fn build(soup: &PolygonSoup) -> (World, BuiltMesh) {
     let mut world = World::new();
     let built = build_mesh(&mut world, soup, MeshInfo::default()).expect("builds");
