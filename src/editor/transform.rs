@@ -80,7 +80,7 @@ impl GestureKind {
 }
 
 /// One transform under way.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Gesture {
     /// What it does.
     pub kind: GestureKind,
@@ -102,7 +102,7 @@ pub struct Gesture {
     /// Proportional editing's reach, when it is on for this gesture.
     pub follow: Option<Follow>,
     /// The handle deformation, when anchors are marked.
-    pub deform: Option<std::sync::Arc<std::sync::Mutex<LiveDeform>>>,
+    pub deform: Option<Box<LiveDeform>>,
     /// Confirmed by Enter with a last edit under way: the gesture ends next frame, once that
     /// edit has joined its undo step.
     pub closing: bool,
@@ -194,13 +194,9 @@ impl Gestures {
                 f.settings.radius
             )
         });
-        let deform = g
-            .deform
-            .as_ref()
-            .and_then(|d| d.lock().ok())
-            .map_or(String::new(), |d| {
-                format!(", deforming ({} ARAP iterations)", d.iterations())
-            });
+        let deform = g.deform.as_ref().map_or(String::new(), |d| {
+            format!(", deforming ({} ARAP iterations)", d.iterations())
+        });
         Some(format!(
             "{}{axis}: {value}{radius}{deform}   (X/Y/Z constrain, type a value, Enter or click confirms, Esc cancels)",
             g.kind.name()
@@ -284,7 +280,7 @@ fn handle_deformation(
     world: &World,
     kind: &GestureKind,
     start: &[(VertexId, Vec3)],
-) -> Result<Option<std::sync::Arc<std::sync::Mutex<LiveDeform>>>, crate::ops::Refusal> {
+) -> Result<Option<Box<LiveDeform>>, crate::ops::Refusal> {
     let Some(anchors) = world.get_resource::<Anchors>() else {
         return Ok(None);
     };
@@ -309,7 +305,7 @@ fn handle_deformation(
         .filter(|v| m.try_vertex(*v).is_some() && !handle_set.contains(&v.0))
         .collect();
     let live = LiveDeform::new(world, mesh, anchors.method, &fixed, &handle)?;
-    Ok(Some(std::sync::Arc::new(std::sync::Mutex::new(live))))
+    Ok(Some(Box::new(live)))
 }
 
 /// Takes along the vertices within the proportional radius that the gesture does not hold yet
@@ -640,11 +636,11 @@ fn positions(world: &mut World, g: &mut Gesture, iterations: u32) -> Option<Vec<
             (!idle).then(|| (v, transform(i, p, w)))
         })
         .collect();
-    match &g.deform {
+    match g.deform.as_mut() {
         Some(live) => {
             let targets: Vec<Vec3> = moves.iter().map(|(_, p)| *p).collect();
-            let mut live = live.lock().ok()?;
-            Some(live.solve(&targets, iterations))
+            // A frame whose solve is not finite moves nothing.
+            live.solve(&targets, iterations).ok()
         }
         None => Some(moves),
     }

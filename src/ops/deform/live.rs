@@ -3,6 +3,8 @@
 //! as-rigid-as-possible iteration from the last frame's result (or the one thin-plate solve),
 //! the editor's `G` / `R` / `S` with anchors marked.
 
+use std::time::Instant;
+
 use bevy::math::{DVec3, Vec3};
 use bevy::prelude::World;
 
@@ -10,16 +12,17 @@ use crate::mesh::MeshInfo;
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::mesh::tables::extract;
 use crate::ops::Refusal;
-use crate::ops::geometry::{Surface, cotan_edges, mixed_areas};
+use crate::ops::geometry::{Surface, cotan_edges};
 
-use super::system::{HeldSystem, k_harmonic};
-use super::{Arap, DeformMethod, hold_loose_parts};
+use super::{Arap, DeformMethod, ThinPlate, hold_loose_parts};
 
 enum Solver {
     Arap(Box<Arap>),
+    /// The thin plate, the handle's placed rows, and the last solve's positions.
     Laplace {
-        system: HeldSystem,
-        rest: Vec<DVec3>,
+        plate: ThinPlate,
+        targets: Vec<(u32, DVec3)>,
+        positions: Vec<DVec3>,
     },
 }
 
@@ -30,10 +33,16 @@ pub struct LiveDeform {
     vertices: Vec<VertexId>,
     /// The handle's rows, in the order [`LiveDeform::new`] was given them.
     handle: Vec<u32>,
+    /// Where [`LiveDeform::place`] put the handle, in the same order.
+    targets: Vec<Vec3>,
     /// Rows that are held (anchors, the handle, parts with nothing held).
     held: Vec<bool>,
     /// ARAP iterations run so far.
     iterations: u32,
+    /// Parts with nothing held, left where they are.
+    loose_parts: usize,
+    /// Seconds spent building and factoring the system (after reading the mesh).
+    factor_seconds: f64,
 }
 
 impl std::fmt::Debug for LiveDeform {
@@ -48,7 +57,7 @@ impl std::fmt::Debug for LiveDeform {
 
 impl LiveDeform {
     /// Prepares the deformation of `mesh` with these anchors and handle (a vertex in both is the
-    /// handle's), and factors its system.
+    /// handle's), and factors its system. The handle starts where it is.
     ///
     /// # Refusals
     /// A stale mesh or vertex, an empty handle, or a system that cannot be factored.
@@ -80,68 +89,133 @@ impl LiveDeform {
         }
         let handle: Vec<u32> = handle.iter().map(row).collect::<Result<_, _>>()?;
         handle.iter().for_each(|&r| held[r as usize] = true);
+        let started = Instant::now();
         let edges = cotan_edges(&surface);
-        hold_loose_parts(n, &edges, &mut held);
+        let loose_parts = hold_loose_parts(n, &edges, &mut held);
         let solver = match method {
             DeformMethod::Arap => Solver::Arap(Box::new(Arap::new(&surface, &held)?)),
             DeformMethod::Laplace => Solver::Laplace {
-                system: HeldSystem::new(&k_harmonic(n, &edges, &mixed_areas(&surface), 2), &held)?,
-                rest: surface.positions,
+                plate: ThinPlate::new(&surface, &edges, &held)?,
+                targets: Vec::new(),
+                positions: surface.positions.clone(),
             },
         };
+        let targets = handle
+            .iter()
+            .map(|&r| surface.positions[r as usize].as_vec3())
+            .collect();
         Ok(Self {
             solver,
             vertices: read.members.vertices,
             handle,
+            targets,
             held,
             iterations: 0,
+            loose_parts,
+            factor_seconds: started.elapsed().as_secs_f64(),
         })
     }
 
-    /// Places the handle's vertices at `targets` (in the handle's order) and solves: `iterations`
-    /// ARAP iterations from the last result, or the thin-plate solve. Returns where every vertex
-    /// that is not an anchor goes (the handle exactly at its targets).
-    pub fn solve(&mut self, targets: &[Vec3], iterations: u32) -> Vec<(VertexId, Vec3)> {
+    /// Puts the handle's vertices at `targets` (in the handle's order).
+    pub fn place(&mut self, targets: &[Vec3]) {
+        self.targets = targets.to_vec();
         let placed = self
             .handle
             .iter()
             .zip(targets)
             .map(|(&r, p)| (r, p.as_dvec3()));
-        let x: Vec<DVec3> = match &mut self.solver {
+        match &mut self.solver {
+            Solver::Arap(arap) => arap.place(placed),
+            Solver::Laplace { targets, .. } => *targets = placed.collect(),
+        }
+    }
+
+    /// Runs `iterations` ARAP iterations from the last result, or the thin-plate solve.
+    pub fn iterate(&mut self, iterations: u32) {
+        match &mut self.solver {
             Solver::Arap(arap) => {
-                arap.place(placed);
                 for _ in 0..iterations {
                     arap.iterate();
                 }
                 self.iterations += iterations;
-                arap.positions().to_vec()
             }
-            Solver::Laplace { system, rest } => {
-                let mut d = vec![DVec3::ZERO; rest.len()];
-                for (r, p) in placed {
-                    d[r as usize] = p - rest[r as usize];
-                }
-                system.solve(None, &mut d);
-                rest.iter().zip(&d).map(|(p, d)| *p + *d).collect()
+            Solver::Laplace {
+                plate,
+                targets,
+                positions,
+            } => *positions = plate.displace(targets),
+        }
+    }
+
+    /// The ARAP energy of the current positions with their best rotations (0 for the thin
+    /// plate).
+    pub fn energy(&mut self) -> f64 {
+        match &mut self.solver {
+            Solver::Arap(arap) => {
+                arap.fit_rotations();
+                arap.energy()
             }
+            Solver::Laplace { .. } => 0.0,
+        }
+    }
+
+    /// Where every vertex that is not held goes, and the handle (exactly at its targets).
+    ///
+    /// # Refusals
+    /// [`Refusal::NotFinite`] when a position came out not finite.
+    pub fn moves(&self) -> Result<Vec<(VertexId, Vec3)>, Refusal> {
+        let x = match &self.solver {
+            Solver::Arap(arap) => arap.positions(),
+            Solver::Laplace { positions, .. } => positions,
         };
         let mut moves: Vec<(VertexId, Vec3)> = self
             .handle
             .iter()
-            .zip(targets)
+            .zip(&self.targets)
             .map(|(&r, &p)| (self.vertices[r as usize], p))
             .collect();
-        moves.extend(
-            (0..self.vertices.len())
-                .filter(|&r| !self.held[r] && x[r].as_vec3().is_finite())
-                .map(|r| (self.vertices[r], x[r].as_vec3())),
-        );
-        moves
+        for r in (0..self.vertices.len()).filter(|&r| !self.held[r]) {
+            let p = x[r].as_vec3();
+            if !p.is_finite() {
+                return Err(Refusal::NotFinite(p));
+            }
+            moves.push((self.vertices[r], p));
+        }
+        Ok(moves)
+    }
+
+    /// [`LiveDeform::place`], [`LiveDeform::iterate`] and [`LiveDeform::moves`]: one frame.
+    ///
+    /// # Refusals
+    /// As [`LiveDeform::moves`].
+    pub fn solve(
+        &mut self,
+        targets: &[Vec3],
+        iterations: u32,
+    ) -> Result<Vec<(VertexId, Vec3)>, Refusal> {
+        self.place(targets);
+        self.iterate(iterations);
+        self.moves()
     }
 
     /// ARAP iterations run so far.
     pub fn iterations(&self) -> u32 {
         self.iterations
+    }
+
+    /// Vertices that move freely.
+    pub fn free(&self) -> usize {
+        self.held.iter().filter(|h| !**h).count()
+    }
+
+    /// Parts with nothing held, left where they are.
+    pub fn loose_parts(&self) -> usize {
+        self.loose_parts
+    }
+
+    /// Seconds spent building and factoring the system.
+    pub fn factor_seconds(&self) -> f64 {
+        self.factor_seconds
     }
 }
 
@@ -174,7 +248,7 @@ mod tests {
         for frame in 1..=10 {
             let t = Vec3::X * 0.05 * frame as f32;
             let targets: Vec<Vec3> = start.iter().map(|p| *p + t).collect();
-            moves = live.solve(&targets, 1);
+            moves = live.solve(&targets, 1).unwrap();
         }
         assert_eq!(live.iterations(), 10);
         // Anchors are not moved; the handle is where it was sent.

@@ -33,12 +33,12 @@ mod tests;
 
 use std::time::Instant;
 
-use bevy::math::{Affine3A, DVec3};
+use bevy::ecs::entity::EntityHashSet;
+use bevy::math::{Affine3A, DVec3, Vec3};
 use bevy::prelude::World;
 
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
-use crate::mesh::tables::{MeshTables, extract};
-use crate::mesh::{InMesh, MeshInfo, Position};
+use crate::mesh::{InMesh, MeshInfo, MeshRef, Position};
 
 use super::Refusal;
 use super::geometry::{Surface, cotan_edges, mixed_areas};
@@ -132,59 +132,6 @@ pub struct FairSummary {
     pub loose_parts: usize,
 }
 
-/// The mesh read for a solve: its tables, its fanned triangles, and each vertex entity's row.
-struct Read {
-    tables: MeshTables,
-    surface: Surface,
-}
-
-impl Read {
-    fn of(world: &World, mesh: MeshId) -> Result<Self, Refusal> {
-        if world.get::<MeshInfo>(mesh.0).is_none() {
-            return Err(Refusal::Stale(ElementId::Mesh(mesh)));
-        }
-        let tables = extract(world, mesh);
-        let surface = Surface::from_tables(&tables.tables);
-        Ok(Self { tables, surface })
-    }
-
-    /// The rows of these vertices, refused if one is not a live vertex of the mesh.
-    fn rows(&self, vertices: &[VertexId]) -> Result<Vec<u32>, Refusal> {
-        let rows = self.tables.members.vertex_rows();
-        vertices
-            .iter()
-            .map(|v| {
-                rows.get(&v.0)
-                    .copied()
-                    .ok_or(Refusal::Stale(ElementId::Vertex(*v)))
-            })
-            .collect()
-    }
-
-    /// Writes the positions of the rows not held back to the entities.
-    ///
-    /// # Refusals
-    /// [`Refusal::BadParameter`] when a position is not finite; nothing is written then.
-    fn write(
-        &self,
-        world: &mut World,
-        x: &[DVec3],
-        write: impl Fn(usize) -> bool,
-    ) -> Result<(), Refusal> {
-        if let Some(bad) = x.iter().find(|p| !p.as_vec3().is_finite()) {
-            return Err(Refusal::NotFinite(bad.as_vec3()));
-        }
-        for (row, v) in self.tables.members.vertices.iter().enumerate() {
-            if write(row)
-                && let Some(mut p) = world.get_mut::<Position>(v.0)
-            {
-                p.0 = x[row].as_vec3();
-            }
-        }
-        Ok(())
-    }
-}
-
 /// Holds every vertex of each part of the surface (connected through its triangles' edges)
 /// that has no held vertex; returns how many parts that was.
 fn hold_loose_parts(n: usize, edges: &[(u32, u32, f64)], held: &mut [bool]) -> usize {
@@ -248,96 +195,87 @@ pub fn deform(
             "no handle: name the vertices that move".into(),
         ));
     }
-    let read = Read::of(world, mesh)?;
-    let (fixed, handle) = (read.rows(&params.fixed)?, read.rows(&params.handle)?);
-    let n = read.surface.vertex_count();
-    let mut held = vec![false; n];
-    fixed.iter().for_each(|&v| held[v as usize] = true);
-    if let Some(&both) = handle.iter().find(|&&v| held[v as usize]) {
+    let handle_set: EntityHashSet = params.handle.iter().map(|v| v.0).collect();
+    if let Some(both) = params.fixed.iter().find(|v| handle_set.contains(&v.0)) {
         return Err(Refusal::BadParameter(format!(
             "{} is both an anchor and part of the handle",
-            ElementId::Vertex(read.tables.members.vertices[both as usize])
+            ElementId::Vertex(*both)
         )));
     }
-    handle.iter().for_each(|&v| held[v as usize] = true);
-    let started = Instant::now();
-    let edges = cotan_edges(&read.surface);
-    let loose_parts = hold_loose_parts(n, &edges, &mut held);
-    let rest = &read.surface.positions;
-    let placed = |v: u32| {
-        let p = params.motion.transform_point3(rest[v as usize].as_vec3());
-        (v, p.as_dvec3())
+    let mut live = LiveDeform::new(world, mesh, params.method, &params.fixed, &params.handle)?;
+    let m = MeshRef::new(world);
+    let targets: Vec<Vec3> = params
+        .handle
+        .iter()
+        .map(|&v| params.motion.transform_point3(m.position(v)))
+        .collect();
+    live.place(&targets);
+    let energy_before = live.energy();
+    let iterating = Instant::now();
+    live.iterate(params.iterations);
+    let seconds = iterating.elapsed().as_secs_f64();
+    let arap = params.method == DeformMethod::Arap;
+    let summary = DeformSummary {
+        free: live.free(),
+        iterations: if arap { params.iterations } else { 0 },
+        energy_before,
+        energy: live.energy(),
+        factor_seconds: live.factor_seconds(),
+        iteration_seconds: if arap {
+            seconds / params.iterations as f64
+        } else {
+            seconds
+        },
+        loose_parts: live.loose_parts(),
     };
-    let free = held.iter().filter(|h| !**h).count();
-    let mut summary = DeformSummary {
-        free,
-        iterations: 0,
-        energy_before: 0.0,
-        energy: 0.0,
-        factor_seconds: 0.0,
-        iteration_seconds: 0.0,
-        loose_parts,
-    };
-    let x = match params.method {
-        DeformMethod::Laplace => {
-            let targets: Vec<(u32, DVec3)> = handle.iter().map(|&v| placed(v)).collect();
-            let (x, solve_seconds) = laplace_rows(&read.surface, &edges, &held, &targets)?;
-            summary.factor_seconds = started.elapsed().as_secs_f64() - solve_seconds;
-            summary.iteration_seconds = solve_seconds;
-            x
+    for (v, p) in live.moves()? {
+        if let Some(mut at) = world.get_mut::<Position>(v.0) {
+            at.0 = p;
         }
-        DeformMethod::Arap => {
-            let mut arap = Arap::new(&read.surface, &held)?;
-            arap.place(handle.iter().map(|&v| placed(v)));
-            summary.factor_seconds = started.elapsed().as_secs_f64();
-            arap.fit_rotations();
-            summary.energy_before = arap.energy();
-            let iterating = Instant::now();
-            for _ in 0..params.iterations {
-                arap.iterate();
-            }
-            summary.iteration_seconds =
-                iterating.elapsed().as_secs_f64() / params.iterations as f64;
-            summary.iterations = params.iterations;
-            arap.fit_rotations();
-            summary.energy = arap.energy();
-            arap.positions().to_vec()
-        }
-    };
-    let anchors = held.clone();
-    let handle_rows: std::collections::HashSet<u32> = handle.iter().copied().collect();
-    read.write(world, &x, |row| {
-        !anchors[row] || handle_rows.contains(&(row as u32))
-    })?;
+    }
     Ok(summary)
 }
 
-/// The thin-plate deformation of `surface` (see the module doc): the vertices of `targets` go
-/// there, the other held ones stay, the free ones are displaced by `L M⁻¹ L d = 0`. Returns the
-/// positions and the seconds the solve took (after the factorisation).
-///
-/// # Refusals
-/// As [`HeldSystem::new`].
-pub fn laplace_rows(
-    surface: &Surface,
-    edges: &[(u32, u32, f64)],
-    held: &[bool],
-    targets: &[(u32, DVec3)],
-) -> Result<(Vec<DVec3>, f64), Refusal> {
-    let n = surface.vertex_count();
-    let areas = mixed_areas(surface);
-    let system = HeldSystem::new(&k_harmonic(n, edges, &areas, 2), held)?;
-    let solving = Instant::now();
-    let rest = &surface.positions;
-    let mut d = vec![DVec3::ZERO; n];
-    for &(v, p) in targets {
-        d[v as usize] = p - rest[v as usize];
+/// The thin-plate deformation of a surface (see the module doc), its system factored for one
+/// set of held vertices.
+pub struct ThinPlate {
+    system: HeldSystem,
+    rest: Vec<DVec3>,
+}
+
+impl ThinPlate {
+    /// Factors `L M⁻¹ L` of `surface` (its positions the rest pose, `edges` its cotangent
+    /// weights) with the vertices where `held` is set held.
+    ///
+    /// # Refusals
+    /// As [`HeldSystem::new`].
+    pub fn new(
+        surface: &Surface,
+        edges: &[(u32, u32, f64)],
+        held: &[bool],
+    ) -> Result<Self, Refusal> {
+        let n = surface.vertex_count();
+        let areas = mixed_areas(surface);
+        Ok(Self {
+            system: HeldSystem::new(&k_harmonic(n, edges, &areas, 2), held)?,
+            rest: surface.positions.clone(),
+        })
     }
-    system.solve(None, &mut d);
-    let mut x: Vec<DVec3> = rest.iter().zip(&d).map(|(p, d)| *p + *d).collect();
-    // Exactly where they were sent, not rest + (target − rest).
-    targets.iter().for_each(|&(v, p)| x[v as usize] = p);
-    Ok((x, solving.elapsed().as_secs_f64()))
+
+    /// The positions with the vertices of `targets` there, the other held ones at rest, and the
+    /// free ones displaced by `L M⁻¹ L d = 0`.
+    pub fn displace(&self, targets: &[(u32, DVec3)]) -> Vec<DVec3> {
+        let rest = &self.rest;
+        let mut d = vec![DVec3::ZERO; rest.len()];
+        for &(v, p) in targets {
+            d[v as usize] = p - rest[v as usize];
+        }
+        self.system.solve(None, &mut d);
+        let mut x: Vec<DVec3> = rest.iter().zip(&d).map(|(p, d)| *p + *d).collect();
+        // Exactly where they were sent, not rest + (target − rest).
+        targets.iter().for_each(|&(v, p)| x[v as usize] = p);
+        x
+    }
 }
 
 /// Fairs `params.vertices`: they solve the k-harmonic equation, every other vertex held (see the

@@ -21,13 +21,13 @@ use bevy::ecs::entity::EntityHashSet;
 use bevy::math::DVec3;
 use bevy::prelude::World;
 
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
+use crate::mesh::MeshInfo;
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::topology::MeshRef;
-use crate::mesh::{InMesh, MeshInfo};
 
 use super::Refusal;
-use super::local::{fill_hole, plan_fill_hole, split_face};
+use super::local::{FillHolePlan, apply_fill_hole, fill_hole, plan_fill_hole, split_face};
 use patch::Patch;
 use triangulation::{HoleLoop, triangulate};
 
@@ -49,8 +49,8 @@ pub struct FilledHole {
 
 /// The plan of a fair fill: the loop and its triangulation, checked.
 struct FairFillPlan {
-    mesh: MeshId,
-    ring: Vec<HalfedgeId>,
+    /// The plain fill's plan: the loop, made one face first.
+    fill: FillHolePlan,
     vertices: Vec<VertexId>,
     triangles: Vec<[usize; 3]>,
     length: f32,
@@ -61,12 +61,10 @@ struct FairFillPlan {
 /// # Refusals
 /// See the module doc.
 fn plan_fair_fill(world: &World, e: EdgeId) -> Result<FairFillPlan, Refusal> {
-    // The plain fill's checks: a live boundary edge.
-    plan_fill_hole(world, e)?;
+    // The plain fill's checks (a live boundary edge) and its loop.
+    let fill = plan_fill_hole(world, e)?;
     let m = MeshRef::new(world);
-    let h = m.edge_halfedge(e);
-    let start = if m.is_boundary(h) { h } else { m.twin(h) };
-    let ring: Vec<HalfedgeId> = m.loop_from(start).collect();
+    let ring = fill.ring();
     let vertices: Vec<VertexId> = ring.iter().map(|&h| m.from_vertex(h)).collect();
     let n = vertices.len();
     let distinct: EntityHashSet = vertices.iter().map(|v| v.0).collect();
@@ -122,13 +120,8 @@ fn plan_fair_fill(world: &World, e: EdgeId) -> Result<FairFillPlan, Refusal> {
             count += 1;
         }
     }
-    let mesh = world
-        .get::<InMesh>(e.0)
-        .ok_or(Refusal::Stale(ElementId::Edge(e)))?
-        .0;
     Ok(FairFillPlan {
-        mesh,
-        ring,
+        fill,
         vertices,
         triangles,
         length: sum / count.max(1) as f32,
@@ -141,7 +134,8 @@ fn plan_fair_fill(world: &World, e: EdgeId) -> Result<FairFillPlan, Refusal> {
 /// See the module doc; the mesh is then unchanged.
 pub fn fill_hole_fair(world: &mut World, e: EdgeId) -> Result<FilledHole, Refusal> {
     let plan = plan_fair_fill(world, e)?;
-    let face = fill_hole(world, e)?;
+    let (mesh, ring) = (plan.fill.mesh(), plan.fill.ring().to_vec());
+    let face = apply_fill_hole(world, plan.fill);
     let mut patch_faces: EntityHashSet = [face.0].into_iter().collect();
     // Cut the polygon along the triangulation's diagonals, parents first: each diagonal's ends
     // then share exactly one patch face.
@@ -171,8 +165,8 @@ pub fn fill_hole_fair(world: &mut World, e: EdgeId) -> Result<FilledHole, Refusa
         }
     }
     let patch = Patch {
-        mesh: plan.mesh,
-        ring: plan.ring,
+        mesh,
+        ring,
         rim: plan.vertices.iter().map(|v| v.0).collect(),
         length: plan.length,
     };

@@ -29,6 +29,7 @@ use crate::mesh::ids::{EdgeId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 use crate::ops::deform::{FairParams, fair};
 use crate::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge_midpoint};
+use crate::ops::remesh::flip::locally_delaunay;
 
 /// Rounds of the five passes.
 const ROUNDS: u32 = 6;
@@ -126,12 +127,7 @@ impl Patch {
             if m.try_edge(e).is_none() {
                 continue;
             }
-            let h = m.edge_halfedge(e);
-            let (a, b) = (m.from_vertex(h), m.to_vertex(h));
-            let (c, d) = (m.to_vertex(m.next(h)), m.to_vertex(m.next(m.twin(h))));
-            let at = |v: VertexId| m.position(v);
-            let opposite = |apex: Vec3| (at(a) - apex).angle_between(at(b) - apex);
-            let delaunay = opposite(at(c)) + opposite(at(d)) <= std::f32::consts::PI + 1e-4;
+            let delaunay = locally_delaunay(&m, m.edge_halfedge(e));
             if !delaunay && flip_edge(world, e).is_ok() {
                 flipped += 1;
             }

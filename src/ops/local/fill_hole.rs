@@ -34,6 +34,18 @@ pub struct FillHolePlan {
     ring: Vec<HalfedgeId>,
 }
 
+impl FillHolePlan {
+    /// The mesh the hole is in.
+    pub fn mesh(&self) -> MeshId {
+        self.mesh
+    }
+
+    /// The boundary loop, in `next` order (the new face's halfedges).
+    pub fn ring(&self) -> &[HalfedgeId] {
+        &self.ring
+    }
+}
+
 /// Checks that the boundary loop beside `e` can be filled.
 ///
 /// # Refusals

@@ -143,7 +143,7 @@ pub(super) fn quad_corners(m: &MeshRef<'_>, h: HalfedgeId) -> [Vec3; 4] {
 /// Whether the edge of `h` (between triangles a b c and b a d) is locally Delaunay: the angles
 /// facing it, at c and at d, sum to at most 180°. Flipping an edge that is not makes the
 /// pair's smallest angle larger.
-fn locally_delaunay(m: &MeshRef<'_>, h: HalfedgeId) -> bool {
+pub(crate) fn locally_delaunay(m: &MeshRef<'_>, h: HalfedgeId) -> bool {
     let [a, b, c, d] = quad_corners(m, h);
     let angle = |apex: Vec3| (a - apex).angle_between(b - apex);
     angle(c) + angle(d) <= std::f32::consts::PI + 1e-4

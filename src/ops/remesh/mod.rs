@@ -58,7 +58,7 @@
 mod collapse;
 mod features;
 mod finish;
-mod flip;
+pub(crate) mod flip;
 mod pass;
 mod relax;
 mod run;
