@@ -178,6 +178,7 @@ proptest! {
             let before = if check_undo { shape_of(&world, mesh) } else { Vec::new() };
             let recorder = match edit.reach(&world, mesh) {
                 Some(Reach::Local(m, seeds)) => Some(LocalRecorder::begin(&world, m, &seeds)),
+                Some(Reach::Vertices(m, seeds)) => Some(LocalRecorder::begin_vertices(&world, m, &seeds)),
                 _ => None,
             };
             // `Edit::run` validates the mesh after every applied edit in test builds (and panics,

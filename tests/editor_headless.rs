@@ -772,6 +772,14 @@ fn a_move_of_a_handle_with_anchors_marked_deforms_the_mesh_in_one_undo_step() {
         .undo_entries()
         .len();
     assert_eq!(undo, 1, "one undo step");
+    // The panel's row: the iterations run (one a frame, ten more on Enter) and the energy.
+    let progress = app
+        .world()
+        .resource::<pappus::editor::transform::Anchors>()
+        .progress
+        .expect("an ARAP gesture reports its progress");
+    assert!(progress.iterations > pappus::editor::transform::FINAL_ITERATIONS);
+    assert!(progress.energy.is_finite() && progress.energy > 0.0);
     press_with(&mut app, KeyCode::ControlLeft, KeyCode::KeyZ);
     let r = MeshRef::new(app.world());
     for (i, &v) in vertices.iter().enumerate() {

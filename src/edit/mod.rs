@@ -151,6 +151,9 @@ pub enum Edit {
 pub enum Reach {
     /// The neighbourhood of these vertices of this mesh.
     Local(MeshId, Vec<VertexId>),
+    /// These vertices of this mesh, and nothing else: their positions (and attributes) change,
+    /// the connectivity does not (a move, a fairing).
+    Vertices(MeshId, Vec<VertexId>),
     /// Any element of this mesh.
     Whole(MeshId),
 }
@@ -286,6 +289,7 @@ impl Edit {
         let m = MeshRef::new(world);
         let mesh_of = |e: bevy::prelude::Entity| world.get::<InMesh>(e).map(|x| x.0);
         let local = |seeds: Vec<VertexId>| Some(Reach::Local(mesh_of(seeds[0].0)?, seeds));
+        let only = |seeds: Vec<VertexId>| Some(Reach::Vertices(mesh_of(seeds[0].0)?, seeds));
         match self {
             Edit::Flip(e)
             | Edit::Split(e)
@@ -308,7 +312,11 @@ impl Edit {
                 let h = if m.is_boundary(h) { h } else { m.twin(h) };
                 local(m.loop_from(h).map(|x| m.from_vertex(x)).collect())
             }
-            Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => {
+            Edit::MoveVertex(v, _) => {
+                m.try_vertex(*v)?;
+                only(vec![*v])
+            }
+            Edit::SplitVertex(v) => {
                 m.try_vertex(*v)?;
                 local(vec![*v])
             }
@@ -328,14 +336,14 @@ impl Edit {
                 if seeds.is_empty() {
                     return None;
                 }
-                local(seeds)
+                only(seeds)
             }
             // Fairing moves only the vertices it names.
             Edit::Fair(p) => {
                 p.vertices
                     .iter()
                     .try_for_each(|&v| m.try_vertex(v).map(|_| ()))?;
-                local(p.vertices.first().map(|_| p.vertices.clone())?)
+                only(p.vertices.first().map(|_| p.vertices.clone())?)
             }
             // A deformation moves any vertex; a fair fill makes vertices away from the loop.
             Edit::Deform(_) | Edit::FillHoleFair(_) | Edit::FillHoles(_) => {
@@ -700,22 +708,16 @@ impl Edit {
                     made,
                 }
             }
-            Edit::MoveVertex(v, p) => {
-                let ring = move_vertices(world, &[(*v, *p)])?;
-                Applied {
-                    summary: format!("{v} at {p}"),
-                    redraw: near(world, Vec::new(), ring),
-                    made: None,
-                }
-            }
-            Edit::MoveVertices(moves) => {
-                let ring = move_vertices(world, moves)?;
-                Applied {
-                    summary: format!("{} vertices moved", moves.len()),
-                    redraw: near(world, Vec::new(), ring),
-                    made: None,
-                }
-            }
+            Edit::MoveVertex(v, p) => Applied {
+                summary: format!("{v} at {p}"),
+                redraw: move_vertices(world, &[(*v, *p)])?,
+                made: None,
+            },
+            Edit::MoveVertices(moves) => Applied {
+                summary: format!("{} vertices moved", moves.len()),
+                redraw: move_vertices(world, moves)?,
+                made: None,
+            },
             Edit::SplitVertex(v) => {
                 let pm = context.history.as_mut().ok_or(Refusal::NoHistory)?;
                 let b = pm.refine_vertex(world, *v)?;
@@ -1085,13 +1087,15 @@ fn element_corners(world: &World, x: ElementId) -> Vec<VertexId> {
     }
 }
 
-/// Moves vertices; returns them with their neighbours (whose smooth normals change too, so
-/// their faces are redrawn as well).
+/// Moves vertices; returns what to redraw: the faces around them and their neighbours (whose
+/// smooth normals change too), or the whole mesh when the moves reach a quarter of its
+/// vertices (an ARAP frame moves most of them, and walking every one-ring then costs more than
+/// the whole redraw it leads to).
 ///
 /// # Refusals
 /// [`Refusal::NotFinite`] for a position that is not finite, [`Refusal::Stale`] for a vertex
 /// that is gone; both before anything moves.
-fn move_vertices(world: &mut World, moves: &[(VertexId, Vec3)]) -> Result<Vec<VertexId>, Refusal> {
+fn move_vertices(world: &mut World, moves: &[(VertexId, Vec3)]) -> Result<Redraw, Refusal> {
     let m = MeshRef::new(world);
     for &(v, p) in moves {
         if !p.is_finite() {
@@ -1100,19 +1104,41 @@ fn move_vertices(world: &mut World, moves: &[(VertexId, Vec3)]) -> Result<Vec<Ve
         m.try_vertex(v)
             .ok_or(Refusal::Stale(ElementId::Vertex(v)))?;
     }
-    let mut ring: Vec<VertexId> = moves
-        .iter()
-        .flat_map(|&(v, _)| m.vertex_neighbors(v).chain([v]))
-        .collect();
-    ring.sort_unstable();
-    ring.dedup();
+    let many = moves.len() >= WHOLE_REDRAW_MOVES
+        && moves
+            .first()
+            .and_then(|(v, _)| world.get::<InMesh>(v.0))
+            .is_some_and(|mesh| {
+                let vertices = crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(
+                    world, mesh.0, VertexId,
+                );
+                4 * moves.len() > vertices.len()
+            });
+    let redraw = if many {
+        Redraw::Whole
+    } else {
+        let mut ring: Vec<VertexId> = moves
+            .iter()
+            .flat_map(|&(v, _)| m.vertex_neighbors(v).chain([v]))
+            .collect();
+        ring.sort_unstable();
+        ring.dedup();
+        Redraw::Near {
+            faces: faces_around(world, &ring),
+            vertices: ring,
+        }
+    };
     for &(v, p) in moves {
         if let Some(mut position) = world.get_mut::<crate::mesh::Position>(v.0) {
             position.0 = p;
         }
     }
-    Ok(ring)
+    Ok(redraw)
 }
+
+/// Moves of fewer vertices than this are always redrawn by their neighbourhoods (counting the
+/// mesh's vertices is not free either).
+const WHOLE_REDRAW_MOVES: usize = 1024;
 
 /// The two ends of an edge (none if it is gone).
 fn edge_ends(world: &World, e: EdgeId) -> Vec<VertexId> {
@@ -1154,5 +1180,46 @@ mod tests {
             Edit::MoveVertex(v, Vec3::ZERO).merge_key(),
             Some(MergeKey::Move(v))
         );
+    }
+
+    /// A move of most of a mesh redraws it whole and is recorded (and undone) by its vertices
+    /// alone; a move of a few redraws their neighbourhood.
+    #[test]
+    fn a_move_of_most_vertices_redraws_whole_and_records_only_them() {
+        use crate::mesh::change::LocalRecorder;
+        use crate::mesh::{MeshMembers, build_mesh, shapes};
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &shapes::icosphere(4), MeshInfo::default()).unwrap();
+        let vertices = MeshMembers::collect(&world, built.mesh).vertices;
+        assert!(vertices.len() > 2 * WHOLE_REDRAW_MOVES);
+        let m = MeshRef::new(&world);
+        let before: Vec<Vec3> = vertices.iter().map(|&v| m.position(v)).collect();
+        let mut context = EditContext {
+            history: &mut None,
+            progress: &mut |_| true,
+        };
+        let few = Edit::MoveVertex(vertices[0], Vec3::ONE);
+        let applied = few.run(&mut world, built.mesh, &mut context).unwrap();
+        assert!(matches!(applied.redraw, Redraw::Near { .. }));
+        let moves: Vec<(VertexId, Vec3)> = vertices
+            .iter()
+            .zip(&before)
+            .map(|(&v, p)| (v, *p * 1.5))
+            .collect();
+        let many = Edit::MoveVertices(moves);
+        let Some(Reach::Vertices(mesh, seeds)) = many.reach(&world, built.mesh) else {
+            panic!("a move reaches its vertices alone");
+        };
+        let recorder = LocalRecorder::begin_vertices(&world, mesh, &seeds);
+        let applied = many.run(&mut world, built.mesh, &mut context).unwrap();
+        assert_eq!(applied.redraw, Redraw::Whole);
+        let change = recorder.finish(&world);
+        assert_eq!(change.counts(), (0, 0, vertices.len()));
+        change.apply(&mut world);
+        let m = MeshRef::new(&world);
+        assert_eq!(m.position(vertices[0]), Vec3::ONE);
+        for (&v, p) in vertices.iter().zip(&before).skip(1) {
+            assert_eq!(m.position(v), *p);
+        }
     }
 }

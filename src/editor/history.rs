@@ -341,6 +341,9 @@ pub fn begin_edit(world: &World, edit: &Edit, mesh: MeshId) -> Option<Pending> {
             Reach::Local(mesh, seeds) => PendingKind::Local(
                 LocalRecorder::begin(world, mesh, &seeds).keeping_seeds(merge.is_some()),
             ),
+            Reach::Vertices(mesh, seeds) => PendingKind::Local(
+                LocalRecorder::begin_vertices(world, mesh, &seeds).keeping_seeds(merge.is_some()),
+            ),
             Reach::Whole(mesh) => PendingKind::Whole(SavedContents::capture(world, mesh)),
         }
     };

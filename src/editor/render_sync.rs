@@ -115,6 +115,10 @@ pub struct RenderData {
     /// The texture coordinate of each render vertex (only when drawn with UVs; empty
     /// otherwise).
     pub uvs: Vec<[f32; 2]>,
+    /// The summed length of the faces' sides (each interior edge counted from both faces).
+    pub side_length: f64,
+    /// The number of the faces' sides.
+    pub sides: usize,
 }
 
 /// The render chunks of a mesh (a component of the mesh entity).
@@ -207,7 +211,18 @@ fn push_vertex(m: &MeshRef<'_>, out: &mut RenderData, v: VertexId, smooth: bool)
     }
 }
 
+/// Fans face `f` (its render vertices `corners`) into triangles, and counts its sides.
 fn fan(out: &mut RenderData, corners: &[u32], f: FaceId) {
+    let at = |i: u32| Vec3::from(out.positions[i as usize]);
+    if let Some(&last) = corners.last() {
+        let mut from = at(last);
+        for &i in corners {
+            let to = at(i);
+            out.side_length += f64::from(from.distance(to));
+            from = to;
+        }
+        out.sides += corners.len();
+    }
     for i in 1..corners.len().saturating_sub(1) {
         out.indices
             .extend_from_slice(&[corners[0], corners[i], corners[i + 1]]);
@@ -303,16 +318,13 @@ fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize
     let faces = crate::mesh::members::of_kind::<crate::mesh::Face, _>(world, mesh, FaceId);
     let pool = ComputeTaskPool::get_or_init(TaskPool::default);
     let surfaces = faces.par_chunk_map(pool, CHUNK_FACES, |_, group| {
-        let sides = side_lengths(&MeshRef::new(world), group);
-        (chunk_surface(world, Some(mesh), group, settings), sides)
+        chunk_surface(world, Some(mesh), group, settings)
     });
     // Σ face degrees = 2 × interior edges + boundary edges: half of it bounds the edge count
     // from below without walking the edges.
-    let (length, sides) = surfaces
-        .iter()
-        .fold((0.0, 0), |(l, n), (_, (length, sides))| {
-            (l + length, n + sides)
-        });
+    let (length, sides) = surfaces.iter().fold((0.0, 0), |(l, n), s| {
+        (l + s.data.side_length, n + s.data.sides)
+    });
     let wireframe = sides / 2 <= WIREFRAME_MAX_EDGES;
     let lines = faces.par_chunk_map(pool, CHUNK_FACES, |_, group| {
         chunk_lines(world, group, wireframe, settings)
@@ -328,7 +340,7 @@ fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize
         ..Default::default()
     };
     let mut triangles = 0;
-    let drawn = surfaces.into_iter().map(|(surface, _)| surface).zip(lines);
+    let drawn = surfaces.into_iter().zip(lines);
     for (i, (group, (surface, lines))) in faces.chunks(CHUNK_FACES).zip(drawn).enumerate() {
         for &f in group {
             chunks.face_chunk.insert(f.0, i as u32);
@@ -453,27 +465,6 @@ fn chunk_surface(
         .and_then(|m| world.get::<VertexValues>(m.0))
         .map(|values| data.vertices.iter().map(|&v| values.colour(v)).collect());
     ChunkSurface { data, colours }
-}
-
-/// The summed length of the faces' sides, and their number: each side read from the tips of
-/// the face's halfedges in turn (two lookups a side).
-fn side_lengths(m: &MeshRef<'_>, faces: &[FaceId]) -> (f64, usize) {
-    let mut ring: Vec<Vec3> = Vec::new();
-    let (mut length, mut sides) = (0.0, 0);
-    for &f in faces {
-        ring.clear();
-        ring.extend(m.face_halfedges(f).map(|h| m.position(m.to_vertex(h))));
-        let Some(&last) = ring.last() else {
-            continue;
-        };
-        let mut from = last;
-        for &to in &ring {
-            length += f64::from(from.distance(to));
-            from = to;
-        }
-        sides += ring.len();
-    }
-    (length, sides)
 }
 
 /// One chunk's wireframe lines when wireframes are drawn (`None` otherwise): its edges when

@@ -119,6 +119,37 @@ pub struct Anchors {
     pub vertices: Vec<VertexId>,
     /// As-rigid-as-possible or thin plate.
     pub method: DeformMethod,
+    /// The last handle deformation's ARAP iterations and energy, for the panel.
+    pub progress: Option<DeformProgress>,
+}
+
+/// How far an as-rigid-as-possible handle deformation has come.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DeformProgress {
+    /// Iterations run since the gesture started (one a frame, more on confirm).
+    pub iterations: u32,
+    /// The energy the last iteration's local step measured ([`LiveDeform::last_energy`]).
+    pub energy: f64,
+}
+
+impl std::fmt::Display for DeformProgress {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} ARAP iterations, energy {:.4e}",
+            self.iterations, self.energy
+        )
+    }
+}
+
+impl DeformProgress {
+    /// The progress of `live`, once it has run an ARAP iteration.
+    pub fn of(live: &LiveDeform) -> Option<Self> {
+        Some(Self {
+            iterations: live.iterations(),
+            energy: live.last_energy()?,
+        })
+    }
 }
 
 /// The unselected vertices a proportional gesture takes along.
@@ -195,7 +226,7 @@ impl Gestures {
             )
         });
         let deform = g.deform.as_ref().map_or(String::new(), |d| {
-            format!(", deforming ({} ARAP iterations)", d.iterations())
+            DeformProgress::of(d).map_or(", deforming".into(), |p| format!(", deforming ({p})"))
         });
         Some(format!(
             "{}{axis}: {value}{radius}{deform}   (X/Y/Z constrain, type a value, Enter or click confirms, Esc cancels)",
@@ -304,7 +335,8 @@ fn handle_deformation(
         .copied()
         .filter(|v| m.try_vertex(*v).is_some() && !handle_set.contains(&v.0))
         .collect();
-    let live = LiveDeform::new(world, mesh, anchors.method, &fixed, &handle)?;
+    let mut live = LiveDeform::new(world, mesh, anchors.method, &fixed, &handle)?;
+    live.measure_each_iteration();
     Ok(Some(Box::new(live)))
 }
 
@@ -640,7 +672,11 @@ fn positions(world: &mut World, g: &mut Gesture, iterations: u32) -> Option<Vec<
         Some(live) => {
             let targets: Vec<Vec3> = moves.iter().map(|(_, p)| *p).collect();
             // A frame whose solve is not finite moves nothing.
-            live.solve(&targets, iterations).ok()
+            let moves = live.solve(&targets, iterations).ok();
+            if let Some(mut anchors) = world.get_resource_mut::<Anchors>() {
+                anchors.progress = DeformProgress::of(live);
+            }
+            moves
         }
         None => Some(moves),
     }

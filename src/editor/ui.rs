@@ -192,10 +192,14 @@ pub fn snapshot(world: &mut World) {
         None => view.mesh = None,
         Some(mesh) => {
             // Statistics and validation are O(mesh): they wait for the end of a drag (the
-            // mouse button held on a vertex or a panel field) instead of slowing each frame.
+            // mouse button held on a vertex or a panel field, a G / R / S gesture) instead of slowing
+            // each frame.
             let dragging = world
                 .get_resource::<ButtonInput<MouseButton>>()
-                .is_some_and(|b| b.pressed(MouseButton::Left));
+                .is_some_and(|b| b.pressed(MouseButton::Left))
+                || world
+                    .get_resource::<super::transform::Gestures>()
+                    .is_some_and(|g| g.active.is_some());
             // They take ~150 ms on the bunny (100 of it validation). The first change after a
             // quiet spell is counted in the next frame; changes that follow within `STATS_QUIET`
             // (a key held down in step mode, flips one after another) wait until the mesh has
@@ -1040,8 +1044,12 @@ fn parameters_section(
             });
         if ui.button("Clear anchors").clicked() {
             anchors.vertices.clear();
+            anchors.progress = None;
         }
     });
+    if let Some(progress) = anchors.progress {
+        ui.label(format!("last deformation: {progress}"));
+    }
     // Subdivision: levels per press.
     ui.horizontal(|ui| {
         ui.add(

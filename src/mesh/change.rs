@@ -373,6 +373,8 @@ pub struct LocalRecorder {
     seeds: Vec<VertexId>,
     before: EntityHashMap<ElementState>,
     keep_seeds: bool,
+    /// Only the seeds were captured (the edit changes nothing else).
+    seeds_only: bool,
 }
 
 impl LocalRecorder {
@@ -388,6 +390,24 @@ impl LocalRecorder {
             seeds: seeds.to_vec(),
             before,
             keep_seeds: false,
+            seeds_only: false,
+        }
+    }
+
+    /// Captures the seeds alone, for an edit that changes their states (positions,
+    /// attributes) and nothing else: a move of a whole mesh records its vertices, not every
+    /// element around them.
+    pub fn begin_vertices(world: &World, mesh: MeshId, seeds: &[VertexId]) -> Self {
+        let before = seeds
+            .iter()
+            .filter_map(|v| Some((v.0, ElementState::of(world, v.0)?)))
+            .collect();
+        Self {
+            mesh,
+            seeds: seeds.to_vec(),
+            before,
+            keep_seeds: false,
+            seeds_only: true,
         }
     }
 
@@ -422,7 +442,10 @@ impl LocalRecorder {
                 Some(_) => {}
             }
         }
-        let after = neighbourhood(world, &self.seeds);
+        let after = match self.seeds_only {
+            true => EntityHashSet::default(),
+            false => neighbourhood(world, &self.seeds),
+        };
         change.despawn.extend(
             after
                 .into_iter()

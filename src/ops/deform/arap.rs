@@ -30,16 +30,29 @@ const MIN_VERTICES_PER_THREAD: usize = 4096;
 
 /// An as-rigid-as-possible deformation in progress (see the module doc).
 pub struct Arap {
-    /// The rest positions.
-    rest: Vec<DVec3>,
     /// Each vertex's one-ring in `ring[start[i]..start[i + 1]]`: (neighbour, cotangent weight).
     start: Vec<u32>,
     ring: Vec<(u32, f64)>,
     /// Each one-ring entry's weighted rest spoke `w_ij (p_i − p_j)`, beside `ring`.
     spokes: Vec<DVec3>,
+    /// Each vertex's `Σ_j w_ij ‖p_i − p_j‖²` (its energy's rest term).
+    rest_terms: Vec<f64>,
     system: HeldSystem,
-    rotations: Vec<DQuat>,
+    /// Each vertex's rotation and its part of the energy, from the last local step.
+    local: Vec<LocalFit>,
     current: Vec<DVec3>,
+    /// Whether [`Arap::iterate`]'s local step measures the energy too (it costs a tenth of an
+    /// iteration or more; [`Arap::fit_rotations`] always does).
+    measuring: bool,
+}
+
+/// One vertex's result of the local step.
+#[derive(Clone, Copy, Debug)]
+struct LocalFit {
+    /// The rotation closest to its one-ring's covariance.
+    rotation: DQuat,
+    /// `Σ_j w_ij ‖(p′_i − p′_j) − R_i (p_i − p_j)‖²` for the positions it was fitted to.
+    energy: f64,
 }
 
 impl Arap {
@@ -72,20 +85,30 @@ impl Arap {
         }
         let rest = &surface.positions;
         let mut spokes = vec![DVec3::ZERO; ring.len()];
+        let mut rest_terms = vec![0.0; n];
         for i in 0..n {
             for k in start[i] as usize..start[i + 1] as usize {
                 let (j, w) = ring[k];
-                spokes[k] = (rest[i] - rest[j as usize]) * w;
+                let e = rest[i] - rest[j as usize];
+                spokes[k] = e * w;
+                rest_terms[i] += w * e.length_squared();
             }
         }
         Ok(Self {
-            rest: surface.positions.clone(),
             start,
             ring,
             spokes,
+            rest_terms,
             system,
-            rotations: vec![DQuat::IDENTITY; n],
+            local: vec![
+                LocalFit {
+                    rotation: DQuat::IDENTITY,
+                    energy: 0.0,
+                };
+                n
+            ],
             current: surface.positions.clone(),
+            measuring: false,
         })
     }
 
@@ -95,13 +118,8 @@ impl Arap {
     }
 
     /// Each vertex's rotation from the last local step.
-    pub fn rotations(&self) -> &[DQuat] {
-        &self.rotations
-    }
-
-    /// Whether vertex row `v` is held.
-    pub fn is_held(&self, v: u32) -> bool {
-        self.system.is_held(v)
+    pub fn rotations(&self) -> impl ExactSizeIterator<Item = DQuat> + '_ {
+        self.local.iter().map(|fit| fit.rotation)
     }
 
     /// Puts held vertices where they go (rows that are not held are ignored: only the solve
@@ -124,34 +142,57 @@ impl Arap {
         }
     }
 
+    /// Makes each [`Arap::iterate`] measure the energy of the positions it starts from.
+    pub fn measure_each_iteration(&mut self, on: bool) {
+        self.measuring = on;
+    }
+
     /// One local step and one global step.
     pub fn iterate(&mut self) {
-        self.fit_rotations();
+        self.local_step(self.measuring);
         let rhs = self.right_hand_side();
         self.system.solve(Some(&rhs), &mut self.current);
     }
 
-    /// The local step: each vertex's best rotation for the current positions.
+    /// The local step: each vertex's best rotation for the current positions, and with it the
+    /// energy of the current positions ([`Arap::energy`]).
     pub fn fit_rotations(&mut self) {
+        self.local_step(true);
+    }
+
+    fn local_step(&mut self, measure: bool) {
         let (current, start, ring, spokes) = (&self.current, &self.start, &self.ring, &self.spokes);
-        in_parallel(&mut self.rotations, |i, q| {
+        let rest_terms = &self.rest_terms;
+        in_parallel(&mut self.local, |i, fit| {
             let ci = current[i];
             let mut a = DMat3::ZERO;
+            let mut deformed_term = 0.0;
             for k in start[i] as usize..start[i + 1] as usize {
-                let (e, d) = (spokes[k], ci - current[ring[k].0 as usize]);
+                let (e, (j, w)) = (spokes[k], ring[k]);
+                let d = ci - current[j as usize];
                 a += DMat3::from_cols(d * e.x, d * e.y, d * e.z);
+                if measure {
+                    deformed_term += w * d.length_squared();
+                }
             }
-            *q = closest_rotation(&a, *q);
+            fit.rotation = closest_rotation(&a, fit.rotation);
+            if !measure {
+                return;
+            }
+            // Σ w ‖d − R e‖² = Σ w ‖d‖² − 2 tr(Rᵀ A) + Σ w ‖e‖², with A = Σ d (w e)ᵀ.
+            let r = DMat3::from_quat(fit.rotation);
+            let score = r.x_axis.dot(a.x_axis) + r.y_axis.dot(a.y_axis) + r.z_axis.dot(a.z_axis);
+            fit.energy = deformed_term - 2.0 * score + rest_terms[i];
         });
     }
 
     /// The global step's right-hand side `b_i = Σ_j (w_ij / 2)(R_i + R_j)(p_i − p_j)`.
     fn right_hand_side(&self) -> Vec<DVec3> {
-        let mut matrices = vec![DMat3::IDENTITY; self.rotations.len()];
+        let mut matrices = vec![DMat3::IDENTITY; self.local.len()];
         in_parallel(&mut matrices, |i, m| {
-            *m = DMat3::from_quat(self.rotations[i]);
+            *m = DMat3::from_quat(self.local[i].rotation);
         });
-        let mut rhs = vec![DVec3::ZERO; self.rest.len()];
+        let mut rhs = vec![DVec3::ZERO; self.current.len()];
         in_parallel(&mut rhs, |i, b| {
             let mut sum = DVec3::ZERO;
             for k in self.start[i] as usize..self.start[i + 1] as usize {
@@ -163,28 +204,12 @@ impl Arap {
         rhs
     }
 
-    fn neighbours(&self, i: usize) -> &[(u32, f64)] {
-        &self.ring[self.start[i] as usize..self.start[i + 1] as usize]
-    }
-
-    /// The energy `E` of the current positions with the current rotations (after
-    /// [`Arap::fit_rotations`], the energy of the positions alone).
+    /// The energy `E` of the positions the last measuring local step fitted its rotations to,
+    /// with those rotations: the energy of those positions alone (each rotation is the best for
+    /// them). After [`Arap::fit_rotations`], the current positions' energy; after a measured
+    /// [`Arap::iterate`], that of the positions the iteration started from.
     pub fn energy(&self) -> f64 {
-        let mut terms = vec![0.0; self.rest.len()];
-        in_parallel(&mut terms, |i, e| {
-            let r = DMat3::from_quat(self.rotations[i]);
-            *e = self
-                .neighbours(i)
-                .iter()
-                .map(|&(j, w)| {
-                    let j = j as usize;
-                    let rest = self.rest[i] - self.rest[j];
-                    let now = self.current[i] - self.current[j];
-                    w * (now - r * rest).length_squared()
-                })
-                .sum();
-        });
-        terms.iter().sum()
+        self.local.iter().map(|fit| fit.energy).sum()
     }
 }
 

@@ -43,6 +43,8 @@ pub struct LiveDeform {
     loose_parts: usize,
     /// Seconds spent building and factoring the system (after reading the mesh).
     factor_seconds: f64,
+    /// Whether each iteration measures its energy.
+    measuring: bool,
 }
 
 impl std::fmt::Debug for LiveDeform {
@@ -113,6 +115,7 @@ impl LiveDeform {
             iterations: 0,
             loose_parts,
             factor_seconds: started.elapsed().as_secs_f64(),
+            measuring: false,
         })
     }
 
@@ -156,6 +159,26 @@ impl LiveDeform {
                 arap.energy()
             }
             Solver::Laplace { .. } => 0.0,
+        }
+    }
+
+    /// Makes each ARAP iteration measure the energy it starts from, for
+    /// [`LiveDeform::last_energy`] (the editor shows it; a tenth of an iteration's cost or more).
+    pub fn measure_each_iteration(&mut self) {
+        self.measuring = true;
+        if let Solver::Arap(arap) = &mut self.solver {
+            arap.measure_each_iteration(true);
+        }
+    }
+
+    /// The ARAP energy of the positions the last iteration started from (the handle where that
+    /// iteration placed it), as its local step measured it; `None` for the thin plate, before
+    /// the first iteration, or without [`LiveDeform::measure_each_iteration`]. Free to ask,
+    /// unlike [`LiveDeform::energy`].
+    pub fn last_energy(&self) -> Option<f64> {
+        match &self.solver {
+            Solver::Arap(arap) if self.iterations > 0 && self.measuring => Some(arap.energy()),
+            _ => None,
         }
     }
 

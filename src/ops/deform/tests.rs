@@ -166,6 +166,44 @@ fn arap_iterations_never_raise_the_energy_and_leave_held_vertices_where_placed()
     }
 }
 
+/// The energy the local step measures (expanded: `Σ w‖d‖² − 2 tr(Rᵀ A) + Σ w‖e‖²`) is the
+/// spokes energy summed term by term, with the rotations it fitted.
+#[test]
+fn the_local_step_measures_the_spokes_energy() {
+    let n = 8;
+    let surface = grid_surface(n, |x, y| 0.1 * x * y);
+    let held: Vec<bool> = (0..surface.positions.len())
+        .map(|v| [0, n].contains(&(v as u32 % (n + 1))))
+        .collect();
+    let mut arap = Arap::new(&surface, &held).unwrap();
+    arap.place((0..=n).map(|j| {
+        let v = j * (n + 1) + n;
+        (v, surface.positions[v as usize] + DVec3::new(1.0, 0.5, 2.0))
+    }));
+    for _ in 0..3 {
+        arap.iterate();
+    }
+    arap.fit_rotations();
+    let rotations: Vec<DMat3> = arap.rotations().map(DMat3::from_quat).collect();
+    let (p, q) = (&surface.positions, arap.positions());
+    let direct: f64 = cotan_edges(&surface)
+        .iter()
+        .map(|&(i, j, w)| {
+            let (i, j) = (i as usize, j as usize);
+            let spoke = |a: usize, b: usize| {
+                ((q[a] - q[b]) - rotations[a] * (p[a] - p[b])).length_squared()
+            };
+            w * (spoke(i, j) + spoke(j, i))
+        })
+        .sum();
+    assert!(direct > 1e-3);
+    assert!(
+        (arap.energy() - direct).abs() < 1e-12 * direct,
+        "{} vs {direct}",
+        arap.energy()
+    );
+}
+
 #[test]
 fn a_deformation_keeps_anchors_to_the_bit_and_lands_the_handle_where_it_was_sent() {
     for method in [DeformMethod::Arap, DeformMethod::Laplace] {
