@@ -381,7 +381,24 @@ impl LocalRecorder {
     /// Captures the neighbourhood of `seeds` (the vertices the edit is about: an edge's ends, a
     /// face's corners, a moved vertex).
     pub fn begin(world: &World, mesh: MeshId, seeds: &[VertexId]) -> Self {
-        let before = neighbourhood(world, seeds)
+        Self::capture(world, mesh, seeds, neighbourhood(world, seeds), false)
+    }
+
+    /// Captures the seeds alone, for an edit that changes their states (positions,
+    /// attributes) and nothing else: a move of a whole mesh records its vertices, not every
+    /// element around them.
+    pub fn begin_vertices(world: &World, mesh: MeshId, seeds: &[VertexId]) -> Self {
+        Self::capture(world, mesh, seeds, seeds.iter().map(|v| v.0), true)
+    }
+
+    fn capture(
+        world: &World,
+        mesh: MeshId,
+        seeds: &[VertexId],
+        elements: impl IntoIterator<Item = Entity>,
+        seeds_only: bool,
+    ) -> Self {
+        let before = elements
             .into_iter()
             .filter_map(|e| Some((e, ElementState::of(world, e)?)))
             .collect();
@@ -390,24 +407,7 @@ impl LocalRecorder {
             seeds: seeds.to_vec(),
             before,
             keep_seeds: false,
-            seeds_only: false,
-        }
-    }
-
-    /// Captures the seeds alone, for an edit that changes their states (positions,
-    /// attributes) and nothing else: a move of a whole mesh records its vertices, not every
-    /// element around them.
-    pub fn begin_vertices(world: &World, mesh: MeshId, seeds: &[VertexId]) -> Self {
-        let before = seeds
-            .iter()
-            .filter_map(|v| Some((v.0, ElementState::of(world, v.0)?)))
-            .collect();
-        Self {
-            mesh,
-            seeds: seeds.to_vec(),
-            before,
-            keep_seeds: false,
-            seeds_only: true,
+            seeds_only,
         }
     }
 

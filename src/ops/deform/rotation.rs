@@ -205,6 +205,16 @@ mod against_svd {
         u * DMat3::from_diagonal(DVec3::new(1.0, 1.0, d)) * v.transpose()
     }
 
+    /// Numbers uniform in [−1, 1), from a linear congruential generator seeded with `seed`.
+    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+    }
+
     fn score(r: &DMat3, a: &DMat3) -> f64 {
         (0..3).map(|k| r.col(k).dot(a.col(k))).sum()
     }
@@ -229,13 +239,7 @@ mod against_svd {
 
     #[test]
     fn newton_reaches_the_svd_optimum_from_the_identity() {
-        let mut seed = 12345u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut next = uniform(12345);
         let mut worst: f64 = 0.0;
         for trial in 0..2000 {
             let mut a = DMat3::from_cols_array(&std::array::from_fn(|_| next()));
@@ -259,13 +263,7 @@ mod against_svd {
     /// quaternion stopped short and the steps from there crawled.
     #[test]
     fn nearly_collinear_flat_rings_reach_the_svd_optimum() {
-        let mut seed = 777u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut next = uniform(777);
         let mut worst: f64 = 0.0;
         for trial in 0..3000 {
             let mut turn = || {
