@@ -147,6 +147,11 @@ impl Arap {
         self.measuring = on;
     }
 
+    /// Whether each [`Arap::iterate`] measures the energy.
+    pub fn measures_each_iteration(&self) -> bool {
+        self.measuring
+    }
+
     /// One local step and one global step.
     pub fn iterate(&mut self) {
         self.local_step(self.measuring);

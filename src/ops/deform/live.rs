@@ -43,8 +43,6 @@ pub struct LiveDeform {
     loose_parts: usize,
     /// Seconds spent building and factoring the system (after reading the mesh).
     factor_seconds: f64,
-    /// Whether each iteration measures its energy.
-    measuring: bool,
 }
 
 impl std::fmt::Debug for LiveDeform {
@@ -115,7 +113,6 @@ impl LiveDeform {
             iterations: 0,
             loose_parts,
             factor_seconds: started.elapsed().as_secs_f64(),
-            measuring: false,
         })
     }
 
@@ -165,7 +162,6 @@ impl LiveDeform {
     /// Makes each ARAP iteration measure the energy it starts from, for
     /// [`LiveDeform::last_energy`] (the editor shows it; a tenth of an iteration's cost or more).
     pub fn measure_each_iteration(&mut self) {
-        self.measuring = true;
         if let Solver::Arap(arap) = &mut self.solver {
             arap.measure_each_iteration(true);
         }
@@ -177,7 +173,9 @@ impl LiveDeform {
     /// unlike [`LiveDeform::energy`].
     pub fn last_energy(&self) -> Option<f64> {
         match &self.solver {
-            Solver::Arap(arap) if self.iterations > 0 && self.measuring => Some(arap.energy()),
+            Solver::Arap(arap) if self.iterations > 0 && arap.measures_each_iteration() => {
+                Some(arap.energy())
+            }
             _ => None,
         }
     }
