@@ -16,12 +16,14 @@
 # libc calls), or on nightly with ASan when FUZZ_SANITIZER=address.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-targets_all=(read_obj read_off read_ply read_stl parse_step)
+targets_all=(read_obj read_off read_ply read_stl read_dae parse_step)
 
 seed() {
   local bin="${1:-${CARGO_TARGET_DIR:-target}/debug/pappus}"
   local models="../shared/models" out="fuzz/corpus"
-  mkdir -p "$out"/{read_obj,read_off,read_ply,read_stl,parse_step}
+  mkdir -p "$out"/{read_obj,read_off,read_ply,read_stl,read_dae,parse_step}
+  # COLLADA: the hand-written documents kept in fuzz/corpus/read_dae (every primitive, input,
+  # transform and instance kind); the course scenes are not copied into the repository.
   # OBJ: the head of every shared model as it is (comments, groups, vt/vn, faces that name
   # vertices past the cut), cut at a line end.
   for f in "$models"/*.obj; do

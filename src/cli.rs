@@ -77,7 +77,7 @@ pub struct Cli {
 }
 
 /// What a FILE may be.
-const FILE_HELP: &str = "FILE: .obj .off .ply .stl, or shape:NAME (tetrahedron cube icosahedron \
+const FILE_HELP: &str = "FILE: .obj .off .ply .stl .dae (read only), or shape:NAME (tetrahedron cube icosahedron \
 icosphere torus grid quad-grid grid-with-holes double-torus)";
 
 /// The batch commands.
@@ -173,7 +173,7 @@ pub enum ProcessArg {
 }
 
 impl ProcessArg {
-    /// An input when `text` names a mesh source (`shape:…`, a `.obj .off .ply .stl` path, or
+    /// An input when `text` names a mesh source (`shape:…`, a `.obj .off .ply .stl .dae` path, or
     /// a pattern with `*`, `?` or `[`), else a step.
     ///
     /// # Errors
@@ -555,8 +555,14 @@ struct ProcessJob {
 /// Checks that `output`'s format can hold what `job` writes beside the mesh.
 ///
 /// # Errors
-/// `--normals` into a format without normals, `--quantity` into anything but PLY.
+/// A format Pappus does not write, `--normals` into a format without normals, `--quantity`
+/// into anything but PLY.
 fn check_output(job: &ProcessJob, output: &Path) -> Result<(), String> {
+    if let Ok(format) = io::Format::from_path(output)
+        && !format.writes()
+    {
+        return Err(io::IoError::ReadOnly(output.to_path_buf()).to_string());
+    }
     if job.normals.is_some()
         && !matches!(
             io::Format::from_path(output),

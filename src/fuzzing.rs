@@ -15,7 +15,14 @@ use crate::io::{self, Format};
 use crate::mesh::{MeshInfo, build_mesh, to_soup, validate};
 
 /// The fuzz targets, by the name of their folder in `fuzz/corpus/` and `fuzz/fuzz_targets/`.
-pub const TARGETS: [&str; 5] = ["read_obj", "read_off", "read_ply", "read_stl", "parse_step"];
+pub const TARGETS: [&str; 6] = [
+    "read_obj",
+    "read_off",
+    "read_ply",
+    "read_stl",
+    "read_dae",
+    "parse_step",
+];
 
 /// Runs the fuzz target `target` on `data`.
 ///
@@ -29,13 +36,15 @@ pub fn run(target: &str, data: &[u8]) {
         "read_off" => read_and_build(Format::Off, data),
         "read_ply" => read_and_build(Format::Ply, data),
         "read_stl" => read_and_build(Format::Stl, data),
+        "read_dae" => read_and_build(Format::Collada, data),
         "parse_step" => parse_step(data),
         _ => panic!("no fuzz target `{target}`"),
     }
 }
 
 /// Reads `data` as `format`; what reads must build into a valid mesh (repairs allowed), and the
-/// mesh's soup must read back from `format`'s writer with the same faces and positions.
+/// mesh's soup must read back from `format`'s writer (OBJ's for a format Pappus only reads)
+/// with the same faces and positions.
 ///
 /// # Panics
 /// As [`run`].
@@ -52,7 +61,14 @@ pub fn read_and_build(format: Format, data: &[u8]) {
         panic!("a {format:?} file built into an invalid mesh: {e}");
     }
     let saved = to_soup(&world, built.mesh);
-    let again = io::read_bytes(format, &io::write_bytes(format, &saved), name)
+    let (format, bytes) = match io::write_bytes(format, &saved) {
+        Some(bytes) => (format, bytes),
+        None => (
+            Format::Obj,
+            io::write_bytes(Format::Obj, &saved).expect("Pappus writes OBJ"),
+        ),
+    };
+    let again = io::read_bytes(format, &bytes, name)
         .unwrap_or_else(|e| panic!("Pappus's own {format:?} does not read back: {e}"));
     if format == Format::Stl {
         // STL stores triangles and welds by position: the counts of triangles are what survive.

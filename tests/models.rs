@@ -168,3 +168,85 @@ fn catmull_clark_subdivides_the_polygon_models() {
         );
     }
 }
+
+/// The course labs' COLLADA scenes open with the counts Blender reports for them, closed, with
+/// the camera and lights beside the mesh said to be skipped.
+#[test]
+fn course_scenes_open_with_blenders_counts() {
+    for (name, vertices, faces) in [
+        ("course/cube.dae", 8, 12),
+        ("course/quadball.dae", 386, 768),
+    ] {
+        let Some(path) = common::model(name) else {
+            return;
+        };
+        let soup = pappus::io::read(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let skipped = soup
+            .notes
+            .iter()
+            .find(|n| n.starts_with("skipped:"))
+            .cloned();
+        let Some(l) = load(name) else { return };
+        let s = mesh_stats(&l.world, l.built.mesh);
+        assert_eq!((s.vertices, s.faces), (vertices, faces), "{name}");
+        assert!(s.closed && s.euler_characteristic == 2, "{name}");
+        assert!(l.built.report.is_clean(), "{name}: {}", l.built.report);
+        let skipped = skipped.unwrap_or_default();
+        assert!(
+            skipped.contains("1 camera(s)") && skipped.contains("light(s)"),
+            "{name}: {skipped}"
+        );
+    }
+}
+
+/// The lab's "flip, split and collapse three times each" on `cube.dae` gives what the same mesh
+/// read from OBJ gives, bit for bit.
+#[test]
+fn local_operations_on_cube_dae_match_the_same_mesh_from_obj() {
+    use pappus::io::{Format, read_bytes, write_bytes};
+    use pappus::mesh::MeshMembers;
+    use pappus::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
+    let Some(path) = common::model("course/cube.dae") else {
+        return;
+    };
+    let dae = pappus::io::read(&path).unwrap();
+    let obj_bytes = write_bytes(Format::Obj, &dae).unwrap();
+    let obj = read_bytes(Format::Obj, &obj_bytes, std::path::Path::new("cube.obj")).unwrap();
+    let run = |soup: &pappus::mesh::PolygonSoup| {
+        let mut world = World::new();
+        let mesh = build_mesh(&mut world, soup, MeshInfo::default())
+            .unwrap()
+            .mesh;
+        let mut outcomes = Vec::new();
+        for round in 0..3 {
+            for op in 0..3 {
+                let edges = MeshMembers::collect(&world, mesh).edges;
+                let e = edges[(5 * round + op) % edges.len()];
+                let ok = match op {
+                    0 => flip_edge(&mut world, e).is_ok(),
+                    1 => split_edge(&mut world, e, 0.5).is_ok(),
+                    _ => collapse_edge(&mut world, e, CollapseOptions::default()).is_ok(),
+                };
+                outcomes.push(ok);
+                validate(&world, mesh).unwrap();
+            }
+        }
+        (outcomes, to_soup(&world, mesh))
+    };
+    let (from_dae, from_obj) = (run(&dae), run(&obj));
+    assert!(
+        from_dae.0.iter().filter(|&&ok| ok).count() >= 6,
+        "{:?}",
+        from_dae.0
+    );
+    assert_eq!(from_dae.0, from_obj.0);
+    let bits = |s: &pappus::mesh::PolygonSoup| -> Vec<[u32; 3]> {
+        s.positions
+            .iter()
+            .map(|p| p.to_array().map(f32::to_bits))
+            .collect()
+    };
+    assert_eq!(bits(&from_dae.1), bits(&from_obj.1));
+    assert_eq!(from_dae.1.indices, from_obj.1.indices);
+    assert_eq!(from_dae.1.face_starts, from_obj.1.face_starts);
+}

@@ -72,10 +72,10 @@ fn ms_since(start: Instant) -> f64 {
 
 /// The Python exception for a file error: `ParseError` (with its location) for malformed or
 /// unsupported contents, `FileNotFoundError` / `OSError` for the file system, `ValueError` for
-/// an unknown extension.
+/// an unknown extension or one Pappus only reads.
 fn io_error(py: Python<'_>, e: IoError) -> PyErr {
     match &e {
-        IoError::UnknownFormat(_) => PyValueError::new_err(e.to_string()),
+        IoError::UnknownFormat(_) | IoError::ReadOnly(_) => PyValueError::new_err(e.to_string()),
         IoError::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound => {
             PyFileNotFoundError::new_err(e.to_string())
         }
@@ -560,7 +560,7 @@ impl Mesh {
     /// Writes the mesh to `path`, the format chosen by its extension (.obj .off .ply .stl), with
     /// the attributes it has (UVs, normals, colours). Writes a temporary file and renames it
     /// over the target, so a failed save leaves the old file. Raises `ValueError` for an unknown
-    /// extension, `OSError` when the file system refuses.
+    /// extension or `.dae` (read only), `OSError` when the file system refuses.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
         py.detach(|| io::write(&path, &self.soup()))
             .map_err(|e| io_error(py, e))
@@ -1083,7 +1083,7 @@ fn memory_budget() -> (u64, String) {
     pappus::memory_budget::get().limit()
 }
 
-/// Loads a mesh from a file (.obj .off .ply .stl, by extension) or a procedural shape
+/// Loads a mesh from a file (.obj .off .ply .stl .dae, by extension) or a procedural shape
 /// (`"shape:torus"`, `"shape:icosphere:6"`), repaired as the command line repairs it. The GIL
 /// is released while it reads and builds. What the file held that a mesh does not keep
 /// (PLY quality) and what a reader had to approximate is reported with `warnings.warn`.

@@ -34,9 +34,6 @@ impl OpenDialog {
     }
 }
 
-/// The extensions Pappus reads and writes.
-const EXTENSIONS: [&str; 4] = ["obj", "off", "ply", "stl"];
-
 /// Opens a native dialog to choose a file to open or to save to (one at a time).
 pub fn show(world: &mut World, purpose: PathPurpose) {
     let mut state = world.resource_mut::<OpenDialog>();
@@ -48,10 +45,14 @@ pub fn show(world: &mut World, purpose: PathPurpose) {
     let spawned = std::thread::Builder::new()
         .name("file dialog".into())
         .spawn(move || {
-            let dialog = rfd::FileDialog::new().add_filter("meshes", &EXTENSIONS);
+            let dialog = rfd::FileDialog::new();
             let choice = match purpose {
-                PathPurpose::Open => dialog.pick_file(),
-                PathPurpose::SaveAs => dialog.save_file(),
+                PathPurpose::Open => dialog
+                    .add_filter("meshes", &crate::io::READ_EXTENSIONS)
+                    .pick_file(),
+                PathPurpose::SaveAs => dialog
+                    .add_filter("meshes", &crate::io::WRITE_EXTENSIONS)
+                    .save_file(),
             };
             if let Ok(mut slot) = slot.lock() {
                 *slot = Some(choice);

@@ -1,4 +1,5 @@
-//! File formats: OBJ, OFF, PLY (ASCII and binary), STL (ASCII and binary), chosen by extension.
+//! File formats: OBJ, OFF, PLY (ASCII and binary), STL (ASCII and binary), read and written;
+//! COLLADA, read; chosen by extension.
 //!
 //! Every reader produces a [`PolygonSoup`] and every writer takes one: this module knows
 //! nothing of entities. Readers keep the file's vertex order (so scripts can name vertices by
@@ -11,6 +12,8 @@
 //! Writing goes to a temporary file beside the target, which is then renamed over it: a failed
 //! save never destroys the old file ([`save`] says how).
 
+mod collada;
+mod corners;
 mod obj;
 mod off;
 mod ply;
@@ -40,9 +43,23 @@ pub enum Format {
     Ply,
     /// STL (ASCII and binary; written binary, polygons fan-triangulated).
     Stl,
+    /// COLLADA (`.dae`, 1.4.1 and 1.5), read only: its scene's meshes, placed by their node
+    /// transforms, Y-up, with normals, texture coordinates and colours.
+    Collada,
 }
 
+/// The extensions Pappus reads, as the open dialog's filter and the help list them.
+pub const READ_EXTENSIONS: [&str; 5] = ["obj", "off", "ply", "stl", "dae"];
+
+/// The extensions Pappus writes.
+pub const WRITE_EXTENSIONS: [&str; 4] = ["obj", "off", "ply", "stl"];
+
 impl Format {
+    /// Whether Pappus writes this format (COLLADA is read only).
+    pub fn writes(self) -> bool {
+        self != Format::Collada
+    }
+
     /// The format of a path, by its extension (case-insensitive).
     ///
     /// # Errors
@@ -57,6 +74,7 @@ impl Format {
             Some("off") => Ok(Format::Off),
             Some("ply") => Ok(Format::Ply),
             Some("stl") => Ok(Format::Stl),
+            Some("dae") => Ok(Format::Collada),
             _ => Err(IoError::UnknownFormat(path.to_path_buf())),
         }
     }
@@ -66,8 +84,13 @@ impl Format {
 #[derive(Debug, Error)]
 pub enum IoError {
     /// The extension names no supported format.
-    #[error("{0}: unknown format (expected .obj, .off, .ply or .stl)")]
+    #[error("{0}: unknown format (expected .obj, .off, .ply, .stl or .dae)")]
     UnknownFormat(PathBuf),
+    /// The format is one Pappus reads but does not write.
+    #[error(
+        "{0}: Pappus reads this format but does not write it (save as .obj, .ply, .off or .stl)"
+    )]
+    ReadOnly(PathBuf),
     /// A save failed; the file on disk is as it was before it.
     #[error("{path}: not saved ({source}); the file on disk is as it was")]
     Save {
@@ -175,19 +198,21 @@ pub fn read_bytes(format: Format, bytes: &[u8], name: &Path) -> Result<PolygonSo
         Format::Off => off::read(bytes),
         Format::Ply => ply::read(bytes),
         Format::Stl => stl::read(bytes),
+        Format::Collada => collada::read(bytes),
     };
     soup.map_err(|e| e.in_file(name))
 }
 
 /// Encodes a soup in the given format, as [`write()`] would save it (PLY binary little-endian,
-/// STL binary).
-pub fn write_bytes(format: Format, soup: &PolygonSoup) -> Vec<u8> {
-    match format {
+/// STL binary); `None` for a format Pappus only reads (COLLADA).
+pub fn write_bytes(format: Format, soup: &PolygonSoup) -> Option<Vec<u8>> {
+    Some(match format {
         Format::Obj => obj::write(soup),
         Format::Off => off::write(soup),
         Format::Ply => ply::write(soup, PlyEncoding::BinaryLittleEndian),
         Format::Stl => stl::write(soup, StlEncoding::Binary),
-    }
+        Format::Collada => return None,
+    })
 }
 
 /// Encodes a soup as PLY with the chosen encoding: `float x y z`, then `uchar red green blue`
@@ -234,11 +259,13 @@ pub fn replace_file(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
 /// its permissions), then the folder synced.
 ///
 /// # Errors
-/// An unknown extension, or [`IoError::Save`] with the system's reason; the file on disk is
-/// then exactly as it was and no temporary file is left.
+/// An unknown extension, a format Pappus only reads ([`IoError::ReadOnly`]), or
+/// [`IoError::Save`] with the system's reason; the file on disk is then exactly as it was and
+/// no temporary file is left.
 pub fn write(path: &Path, soup: &PolygonSoup) -> Result<(), IoError> {
     let format = Format::from_path(path)?;
-    save::replace(path, &write_bytes(format, soup))
+    let bytes = write_bytes(format, soup).ok_or_else(|| IoError::ReadOnly(path.to_path_buf()))?;
+    save::replace(path, &bytes)
 }
 
 #[cfg(test)]
@@ -280,7 +307,7 @@ pub(crate) mod tests {
     fn every_format_round_trips_exactly() {
         for format in [Format::Obj, Format::Off, Format::Ply] {
             let soup = mixed();
-            let back = read_bytes(format, &write_bytes(format, &soup), name()).unwrap();
+            let back = read_bytes(format, &write_bytes(format, &soup).unwrap(), name()).unwrap();
             assert!(same_bits(&back, &soup), "{format:?}: {back:?}");
         }
         for encoding in [
@@ -328,8 +355,8 @@ pub(crate) mod tests {
     fn damaged_files_never_panic() {
         let soup = mixed();
         let files = [
-            (Format::Obj, write_bytes(Format::Obj, &soup)),
-            (Format::Off, write_bytes(Format::Off, &soup)),
+            (Format::Obj, write_bytes(Format::Obj, &soup).unwrap()),
+            (Format::Off, write_bytes(Format::Off, &soup).unwrap()),
             (Format::Ply, write_ply(&soup, PlyEncoding::Ascii)),
             (
                 Format::Ply,
@@ -547,8 +574,8 @@ f 1/1/1 2/2/2 3/3/3 4/4/4\nf 4/6/4 3/3/3 5/5/5\n";
             (Vec2::new(0.0, 1.0), Vec2::new(0.25, 0.75))
         );
         // Written and read again: the same file, byte for byte, and the same values.
-        let once = write_bytes(Format::Obj, &back);
-        let twice = write_bytes(Format::Obj, &through_mesh(Format::Obj, &once));
+        let once = write_bytes(Format::Obj, &back).unwrap();
+        let twice = write_bytes(Format::Obj, &through_mesh(Format::Obj, &once)).unwrap();
         assert_eq!(
             String::from_utf8_lossy(&once),
             String::from_utf8_lossy(&twice)
@@ -596,7 +623,12 @@ f 1/1/1 2/2/2 3/3/3 4/4/4\nf 4/6/4 3/3/3 5/5/5\n";
             vertex_colors: Some((0..=255u8).map(|c| [c, 255 - c, c / 3]).collect()),
             ..PolygonSoup::from_faces(vec![Vec3::ZERO; 256], &[[0u32, 1, 2]])
         };
-        let back = read_bytes(Format::Obj, &write_bytes(Format::Obj, &soup), name()).unwrap();
+        let back = read_bytes(
+            Format::Obj,
+            &write_bytes(Format::Obj, &soup).unwrap(),
+            name(),
+        )
+        .unwrap();
         assert_eq!(back.vertex_colors, soup.vertex_colors);
     }
 

@@ -37,6 +37,7 @@ use std::fmt::Write as _;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::ParseError;
+use super::corners::{differing_normals_note, mean_normal, per_vertex};
 use super::text::{cap, check_text, float, lines, position};
 use crate::mesh::soup::PolygonSoup;
 use crate::process_memory;
@@ -132,7 +133,7 @@ struct Extras {
 
 /// An OBJ colour channel (a fraction of full intensity, 0–1) as a byte: rounded to the nearest
 /// 1/255 and clamped (NaN gives 0). `c / 255` written in the shortest form reads back as `c`.
-fn channel(v: f32) -> u8 {
+pub(super) fn channel(v: f32) -> u8 {
     (v * 255.0).round().clamp(0.0, 255.0) as u8
 }
 
@@ -378,42 +379,27 @@ fn attach_extras(soup: &mut PolygonSoup, extras: Extras) -> Result<(), ParseErro
         soup.corner_uvs = Some(out);
     }
     if corner_normal.any() {
-        let n = soup.positions.len();
-        let mut first: Vec<Option<usize>> = vec![None; n];
-        let mut sum = vec![Vec3::ZERO; n];
-        let mut differ = vec![false; n];
-        for (k, r) in corner_normal.each(corners).enumerate() {
-            let Some(r) = r else { continue };
-            let i = resolve(r, normals.len(), "normal")?;
-            // A corner naming a missing vertex (a face the builder drops) gives none.
-            let Some(v) = soup.indices.get(k).map(|&v| v as usize).filter(|&v| v < n) else {
-                continue;
-            };
-            sum[v] += normals[i];
-            match first[v] {
-                None => first[v] = Some(i),
-                Some(j)
-                    if normals[j].to_array().map(f32::to_bits)
-                        != normals[i].to_array().map(f32::to_bits) =>
-                {
-                    differ[v] = true;
-                }
-                Some(_) => {}
-            }
-        }
-        let differing = differ.iter().filter(|&&d| d).count();
-        if differing > 0 {
-            soup.notes.push(format!(
-                "{differing} vertex(es) had different normals at different corners: each takes their normalised mean"
-            ));
+        let resolved = corner_normal
+            .each(corners)
+            .map(|r| {
+                r.map(|r| resolve(r, normals.len(), "normal").map(|i| normals[i]))
+                    .transpose()
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let gathered = per_vertex(
+            &soup.indices,
+            soup.positions.len(),
+            resolved.into_iter(),
+            mean_normal,
+        );
+        if gathered.differing > 0 {
+            soup.notes.push(differing_normals_note(gathered.differing));
         }
         soup.vertex_normals = Some(
-            (0..n)
-                .map(|v| match first[v] {
-                    Some(_) if differ[v] => sum[v].normalize_or_zero(),
-                    Some(j) => normals[j],
-                    None => Vec3::ZERO,
-                })
+            gathered
+                .values
+                .into_iter()
+                .map(|n| n.unwrap_or(Vec3::ZERO))
                 .collect(),
         );
     }

@@ -1,0 +1,426 @@
+//! One COLLADA `<geometry>`'s `<mesh>` read into a [`Part`]: its positions and its polygons,
+//! with the normals, texture coordinates and colours its corners name.
+//!
+//! A `<mesh>` holds `<source>`s (a `<float_array>` read through an `<accessor>`'s count,
+//! stride and offset), one `<vertices>` (the `POSITION` source, and any per-vertex `NORMAL`,
+//! `TEXCOORD`, `COLOR`), and primitives whose `<p>` lists every corner as a tuple of indices,
+//! one per input `offset` (COLLADA 1.4.1 §4.2, 1.5 §5): `<triangles>`, `<polylist>` (a
+//! `<vcount>` per polygon), `<polygons>` (a `<p>` per polygon; a `<ph>`'s `<h>` holes are
+//! dropped and counted), `<trifans>` and `<tristrips>` (a `<p>` per fan or strip, turned into
+//! triangles: a strip's odd triangles swap their first two corners to keep one winding; a
+//! strip's degenerate triangles, its way of turning corners, are left out). `<lines>` and
+//! `<linestrips>` hold no faces and are counted.
+//!
+//! Of several `TEXCOORD` inputs, set 0 (or the lowest set) is read. Every position of the
+//! `POSITION` source is kept in order, used or not (as Blender counts them); a corner naming a
+//! position that does not exist gets `u32::MAX`, which the builder drops with its face.
+
+use bevy::math::{Vec2, Vec3};
+use roxmltree::Node;
+use std::collections::HashMap;
+
+use super::{Ids, child, children, line_of, reference};
+use crate::io::ParseError;
+use crate::io::obj::channel;
+
+/// A corner index that names no position.
+pub(super) const NO_POSITION: u32 = u32::MAX;
+
+/// One geometry's polygons, indexed into its own positions, and what its corners carry.
+#[derive(Default)]
+pub(super) struct Part {
+    /// The `POSITION` source, in order.
+    pub positions: Vec<Vec3>,
+    /// Every face's corners, concatenated (indices into `positions`, or [`NO_POSITION`]).
+    pub indices: Vec<u32>,
+    /// Where each face starts in `indices`, then `indices.len()`.
+    pub face_starts: Vec<u32>,
+    /// A normal per corner, when an input gives them.
+    pub normals: Option<Vec<Option<Vec3>>>,
+    /// A texture coordinate per corner, when an input gives them.
+    pub uvs: Option<Vec<Option<Vec2>>>,
+    /// A colour per corner (0–255 per channel, as floats), when an input gives them.
+    pub colors: Option<Vec<Option<Vec3>>>,
+    /// What the geometry held that is not read.
+    pub skipped: Skipped,
+}
+
+/// Counts of what a geometry held that Pappus does not read.
+#[derive(Default, Clone, Copy)]
+pub(super) struct Skipped {
+    /// `<lines>` and `<linestrips>` primitives.
+    pub line_primitives: usize,
+    /// `<h>` holes of `<polygons>`' `<ph>` entries.
+    pub holes: usize,
+    /// Polylist or triangle corners past the end of the `<p>` list's whole faces.
+    pub incomplete_faces: usize,
+}
+
+impl Skipped {
+    /// Adds another geometry's counts.
+    pub fn add(&mut self, other: Skipped) {
+        self.line_primitives += other.line_primitives;
+        self.holes += other.holes;
+        self.incomplete_faces += other.incomplete_faces;
+    }
+}
+
+/// A `<source>`'s numbers and how to read items from them.
+struct Source {
+    values: Vec<f32>,
+    count: usize,
+    stride: usize,
+    offset: usize,
+}
+
+impl Source {
+    /// Item `i`'s first `N` components, if it exists.
+    fn item<const N: usize>(&self, i: u32) -> Option<[f32; N]> {
+        let i = i as usize;
+        if i >= self.count {
+            return None;
+        }
+        let start = self.offset.checked_add(i.checked_mul(self.stride)?)?;
+        let values = self.values.get(start..start.checked_add(N)?)?;
+        values.try_into().ok()
+    }
+}
+
+/// What a corner of a primitive reads, and from where in its index tuple.
+#[derive(Clone, Copy)]
+enum Reads {
+    Normal,
+    Uv,
+    Color,
+}
+
+/// An input of a primitive (or of `<vertices>`): which value, its source, its tuple offset.
+struct Input<'s> {
+    reads: Reads,
+    source: &'s Source,
+    offset: usize,
+}
+
+/// Reads a `<geometry>` element's mesh.
+///
+/// # Errors
+/// A missing `<mesh>` is not an error (the caller checks); a malformed number, a reference to
+/// an element that does not exist, or a `<vertices>` without `POSITION` is, naming its line.
+pub(super) fn read_mesh(mesh: Node, ids: &Ids) -> Result<Part, ParseError> {
+    let mut sources = HashMap::new();
+    for node in children(mesh, "source") {
+        if let Some(id) = node.attribute("id") {
+            sources.insert(id, read_source(node)?);
+        }
+    }
+    let source = |node: Node, url: &str| -> Result<&Source, ParseError> {
+        let id = reference(url);
+        sources.get(id).ok_or_else(|| {
+            let what = match ids.get(id) {
+                Some(_) => "is not a <source> of this mesh",
+                None => "does not exist",
+            };
+            ParseError::line(line_of(node), format!("source `{url}` {what}"))
+        })
+    };
+    let vertices = child(mesh, "vertices")
+        .ok_or_else(|| ParseError::line(line_of(mesh), "<mesh> without <vertices>"))?;
+    let mut positions = None;
+    let mut per_vertex = Vec::new();
+    for input in children(vertices, "input") {
+        let url = input.attribute("source").unwrap_or_default();
+        match input.attribute("semantic") {
+            Some("POSITION") => positions = Some(source(input, url)?),
+            Some(semantic) => {
+                if let Some(reads) = reads(semantic) {
+                    per_vertex.push(Input {
+                        reads,
+                        source: source(input, url)?,
+                        offset: 0,
+                    });
+                }
+            }
+            None => {}
+        }
+    }
+    let positions = positions.ok_or_else(|| {
+        ParseError::line(line_of(vertices), "<vertices> without a POSITION input")
+    })?;
+    let mut part = Part {
+        positions: (0..=u32::MAX)
+            .map_while(|i| positions.item::<3>(i).map(Vec3::from_array))
+            .collect(),
+        face_starts: vec![0],
+        ..Part::default()
+    };
+    for primitive in mesh.children().filter(Node::is_element) {
+        let name = primitive.tag_name().name();
+        if matches!(name, "lines" | "linestrips") {
+            part.skipped.line_primitives += 1;
+            continue;
+        }
+        if !matches!(
+            name,
+            "triangles" | "polylist" | "polygons" | "trifans" | "tristrips"
+        ) {
+            continue;
+        }
+        let mut layout = Layout {
+            stride: 1,
+            vertex: None,
+            inputs: Vec::new(),
+            per_vertex: &per_vertex,
+        };
+        let mut texcoord_set = u32::MAX;
+        for input in children(primitive, "input") {
+            let offset = number::<usize>(input, "offset")?.unwrap_or(0);
+            layout.stride = layout.stride.max(offset.saturating_add(1));
+            let semantic = input.attribute("semantic").unwrap_or_default();
+            if semantic == "VERTEX" {
+                layout.vertex = Some(offset);
+                continue;
+            }
+            let Some(reads) = reads(semantic) else {
+                continue;
+            };
+            if let Reads::Uv = reads {
+                // Set 0, or the lowest set given.
+                let set = number::<u32>(input, "set")?.unwrap_or(0);
+                if set >= texcoord_set {
+                    continue;
+                }
+                texcoord_set = set;
+                layout.inputs.retain(|i| !matches!(i.reads, Reads::Uv));
+            }
+            let url = input.attribute("source").unwrap_or_default();
+            layout.inputs.push(Input {
+                reads,
+                source: source(input, url)?,
+                offset,
+            });
+        }
+        if layout.vertex.is_none() {
+            return Err(ParseError::line(
+                line_of(primitive),
+                format!("<{name}> without a VERTEX input"),
+            ));
+        }
+        read_primitive(primitive, &layout, &mut part)?;
+    }
+    Ok(part)
+}
+
+/// What a per-corner input semantic reads; `None` for those Pappus does not read (tangents,
+/// binormals, a second UV set's `TEXBINORMAL`, …).
+fn reads(semantic: &str) -> Option<Reads> {
+    match semantic {
+        "NORMAL" => Some(Reads::Normal),
+        "TEXCOORD" => Some(Reads::Uv),
+        "COLOR" => Some(Reads::Color),
+        _ => None,
+    }
+}
+
+/// How one primitive's index tuples are laid out.
+struct Layout<'a, 's> {
+    /// Indices per corner.
+    stride: usize,
+    /// The tuple offset of the `VERTEX` index.
+    vertex: Option<usize>,
+    /// The primitive's own per-corner inputs.
+    inputs: Vec<Input<'s>>,
+    /// `<vertices>`' own inputs, read at the vertex index.
+    per_vertex: &'a [Input<'s>],
+}
+
+/// Reads one primitive's faces into `part`.
+fn read_primitive(primitive: Node, layout: &Layout, part: &mut Part) -> Result<(), ParseError> {
+    let stride = layout.stride;
+    match primitive.tag_name().name() {
+        "triangles" | "polylist" => {
+            let Some(p) = child(primitive, "p") else {
+                return Ok(());
+            };
+            let indices = integers(p)?;
+            let corners = indices.len() / stride;
+            let sizes: Vec<usize> = match child(primitive, "vcount") {
+                Some(vcount) if primitive.has_tag_name("polylist") => {
+                    integers(vcount)?.into_iter().map(|n| n as usize).collect()
+                }
+                _ => vec![3; corners / 3],
+            };
+            let mut start = 0usize;
+            for (k, &size) in sizes.iter().enumerate() {
+                let end = start.saturating_add(size);
+                if end > corners {
+                    part.skipped.incomplete_faces += sizes.len() - k;
+                    break;
+                }
+                let face: Vec<&[u32]> = (start..end)
+                    .map(|c| &indices[c * stride..(c + 1) * stride])
+                    .collect();
+                push_face(part, layout, &face);
+                start = end;
+            }
+            if primitive.has_tag_name("triangles") && !corners.is_multiple_of(3) {
+                part.skipped.incomplete_faces += 1;
+            }
+        }
+        "polygons" | "trifans" | "tristrips" => {
+            for entry in primitive.children().filter(Node::is_element) {
+                let p = match entry.tag_name().name() {
+                    "p" => entry,
+                    "ph" => {
+                        part.skipped.holes += children(entry, "h").count();
+                        match child(entry, "p") {
+                            Some(p) => p,
+                            None => continue,
+                        }
+                    }
+                    _ => continue,
+                };
+                let indices = integers(p)?;
+                let corners: Vec<&[u32]> = indices.chunks_exact(stride).collect();
+                match primitive.tag_name().name() {
+                    "polygons" => push_face(part, layout, &corners),
+                    "trifans" => {
+                        for i in 1..corners.len().saturating_sub(1) {
+                            push_triangle(part, layout, [corners[0], corners[i], corners[i + 1]]);
+                        }
+                    }
+                    _ => {
+                        for i in 0..corners.len().saturating_sub(2) {
+                            let [a, b, c] = [corners[i], corners[i + 1], corners[i + 2]];
+                            let triangle = if i % 2 == 0 { [a, b, c] } else { [b, a, c] };
+                            push_triangle(part, layout, triangle);
+                        }
+                    }
+                }
+            }
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+/// Pushes a fan's or strip's triangle, unless two of its corners are one position (a strip's
+/// way of turning: no face).
+fn push_triangle(part: &mut Part, layout: &Layout, corners: [&[u32]; 3]) {
+    let vertex = layout.vertex.unwrap_or(0);
+    let [a, b, c] = corners.map(|t| t[vertex]);
+    if a != b && b != c && a != c {
+        push_face(part, layout, &corners);
+    }
+}
+
+/// Pushes one face: each corner's position index and the values its inputs name.
+fn push_face(part: &mut Part, layout: &Layout, corners: &[&[u32]]) {
+    let vertex_offset = layout.vertex.unwrap_or(0);
+    let count = part.positions.len();
+    for tuple in corners {
+        let vertex = tuple[vertex_offset];
+        let corner = part.indices.len();
+        part.indices.push(if (vertex as usize) < count {
+            vertex
+        } else {
+            NO_POSITION
+        });
+        let vertex_inputs = layout.per_vertex.iter().map(|i| (i, vertex));
+        let corner_inputs = layout.inputs.iter().map(|i| (i, tuple[i.offset]));
+        for (input, index) in vertex_inputs.chain(corner_inputs) {
+            match input.reads {
+                Reads::Normal => set(
+                    &mut part.normals,
+                    corner,
+                    input.source.item::<3>(index).map(Vec3::from_array),
+                ),
+                Reads::Uv => set(
+                    &mut part.uvs,
+                    corner,
+                    input.source.item::<2>(index).map(Vec2::from_array),
+                ),
+                Reads::Color => set(
+                    &mut part.colors,
+                    corner,
+                    input
+                        .source
+                        .item::<3>(index)
+                        .map(|c| Vec3::from_array(c.map(|v| f32::from(channel(v))))),
+                ),
+            }
+        }
+    }
+    part.face_starts.push(part.indices.len() as u32);
+}
+
+/// Sets corner `corner`'s value in a per-corner list, creating it (and padding it with `None`
+/// for earlier corners) on first use. A value that the source does not hold stays `None`.
+fn set<T: Copy>(list: &mut Option<Vec<Option<T>>>, corner: usize, value: Option<T>) {
+    let list = list.get_or_insert_with(Vec::new);
+    list.resize(corner, None);
+    list.push(value);
+}
+
+/// Reads a `<source>`: its `<float_array>` and its accessor's count, stride and offset.
+fn read_source(source: Node) -> Result<Source, ParseError> {
+    let values = match child(source, "float_array") {
+        Some(array) => floats(array)?,
+        None => Vec::new(),
+    };
+    let accessor = child(source, "technique_common").and_then(|t| child(t, "accessor"));
+    let (stride, offset, count) = match accessor {
+        Some(a) => {
+            let stride = number::<usize>(a, "stride")?.unwrap_or(1).max(1);
+            let offset = number::<usize>(a, "offset")?.unwrap_or(0);
+            let count = number::<usize>(a, "count")?.unwrap_or(values.len() / stride);
+            (stride, offset, count)
+        }
+        None => (3, 0, values.len() / 3),
+    };
+    Ok(Source {
+        values,
+        count,
+        stride,
+        offset,
+    })
+}
+
+/// An attribute as a number, `None` when absent.
+fn number<T: std::str::FromStr>(node: Node, name: &str) -> Result<Option<T>, ParseError> {
+    node.attribute(name)
+        .map(|text| {
+            text.trim().parse::<T>().map_err(|_| {
+                ParseError::line(
+                    line_of(node),
+                    format!("{name}=\"{text}\" is not a non-negative integer"),
+                )
+            })
+        })
+        .transpose()
+}
+
+/// An element's text as whitespace-separated floats.
+pub(super) fn floats(node: Node) -> Result<Vec<f32>, ParseError> {
+    let text = node.text().unwrap_or_default();
+    text.split_ascii_whitespace()
+        .map(|t| {
+            t.parse::<f32>()
+                .map_err(|_| ParseError::line(line_of(node), format!("`{t}` is not a number")))
+        })
+        .collect()
+}
+
+/// An element's text as whitespace-separated non-negative integers.
+fn integers(node: Node) -> Result<Vec<u32>, ParseError> {
+    let text = node.text().unwrap_or_default();
+    text.split_ascii_whitespace()
+        .map(|t| {
+            t.parse::<u32>().map_err(|_| {
+                ParseError::line(
+                    line_of(node),
+                    format!("`{t}` is not an index (a non-negative integer)"),
+                )
+            })
+        })
+        .collect()
+}
