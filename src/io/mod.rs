@@ -19,6 +19,7 @@ mod off;
 mod ply;
 mod save;
 mod stl;
+mod strips;
 mod text;
 
 use std::path::{Path, PathBuf};

@@ -27,11 +27,13 @@
 //! colour (0–1 per channel, rounded to 8 bits: see [`crate::mesh::attributes`]). A corner that
 //! names a `vt` or `vn` the file does not define (or number 0) is an error naming its line.
 //!
-//! Ignored: materials (no `.mtl` is opened), groups and objects (all merged into one mesh),
-//! points and lines, a vertex's `w`. A malformed `v`, `vt`, `vn` or `f` line is an error naming
-//! its line.
+//! A line ending in `\` continues on the next. Ignored, and counted in the soup's notes:
+//! materials (no `.mtl` is opened), groups and objects (all merged into one mesh), smoothing
+//! groups, points and lines, and any other statement; a vertex's `w` is ignored. A malformed
+//! `v`, `vt`, `vn` or `f` line is an error naming its line.
 
 use bevy::math::{Vec2, Vec3};
+use std::borrow::Cow;
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -129,6 +131,36 @@ struct Extras {
     any_color: bool,
     corner_uv: CornerReferences,
     corner_normal: CornerReferences,
+    /// Statements read past, by keyword, in order of first appearance.
+    skipped: Vec<(String, usize)>,
+}
+
+impl Extras {
+    /// Counts a statement the reader reads past.
+    fn skip(&mut self, keyword: &str) {
+        match self.skipped.iter_mut().find(|(k, _)| k == keyword) {
+            Some((_, count)) => *count += 1,
+            None => self.skipped.push((keyword.to_string(), 1)),
+        }
+    }
+
+    /// The note naming what was read past, if anything was.
+    fn skipped_note(&self) -> Option<String> {
+        let what = |keyword: &str| match keyword {
+            "l" => "line element(s) (`l`)".to_string(),
+            "p" => "point element(s) (`p`)".to_string(),
+            "g" | "o" => format!("`{keyword}` statement(s) (all parts merged into one mesh)"),
+            "usemtl" | "mtllib" => format!("`{keyword}` statement(s) (materials are not kept)"),
+            "s" => "`s` smoothing group statement(s)".to_string(),
+            other => format!("unknown statement(s) `{other}`"),
+        };
+        let parts: Vec<String> = self
+            .skipped
+            .iter()
+            .map(|(keyword, count)| format!("{count} {}", what(keyword)))
+            .collect();
+        (!parts.is_empty()).then(|| format!("skipped: {}", parts.join(", ")))
+    }
 }
 
 /// An OBJ colour channel (a fraction of full intensity, 0–1) as a byte: rounded to the nearest
@@ -203,6 +235,8 @@ fn resolve(r: Reference, count: usize, what: &str) -> Result<usize, ParseError> 
 /// Parses OBJ text.
 pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     check_text(bytes)?;
+    let joined = join_continuations(bytes);
+    let bytes: &[u8] = &joined;
     // `tobj` reads the file as it stands on a second thread while the first pass runs here,
     // unless the other core is warming memory for what follows (then after it, if at all).
     let (first, whole_file) = if process_memory::warming() {
@@ -281,8 +315,37 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
         }
         soup
     };
+    let skipped = extras.skipped_note();
     attach_extras(&mut soup, extras)?;
+    soup.notes.extend(skipped);
     Ok(soup)
+}
+
+/// The text with every line that ends in `\\` joined to the next (the format's continuation
+/// lines, which `tobj` does not read), the newlines it removed put back after the joined line
+/// so that later lines keep their numbers; borrowed as it is when there are none.
+fn join_continuations(bytes: &[u8]) -> Cow<'_, [u8]> {
+    let continued = |line: &[u8]| line.trim_ascii_end().ends_with(b"\\");
+    if !bytes.contains(&b'\\') || !bytes.split(|&b| b == b'\n').any(continued) {
+        return Cow::Borrowed(bytes);
+    }
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut pending = 0usize;
+    for line in bytes.split(|&b| b == b'\n') {
+        if continued(line) {
+            let line = line.trim_ascii_end();
+            out.extend_from_slice(&line[..line.len() - 1]);
+            out.push(b' ');
+            pending += 1;
+        } else {
+            out.extend_from_slice(line);
+            out.extend(std::iter::repeat_n(b'\n', pending + 1));
+            pending = 0;
+        }
+    }
+    // `split` yields a last piece after a final newline: one newline too many.
+    out.pop();
+    Cow::Owned(out)
 }
 
 /// The first pass over OBJ text: the `v` lines, each `f` line's vertex numbers, and the
@@ -338,7 +401,8 @@ fn first_pass(bytes: &[u8]) -> Result<(Vec<Vec3>, RawFaces, Extras), ParseError>
                 faces.lines.push(line);
                 faces.starts.push(faces.corners.len());
             }
-            _ => {}
+            Some(keyword) => extras.skip(keyword),
+            None => {}
         }
     }
     Ok((positions, faces, extras))
@@ -357,6 +421,7 @@ fn attach_extras(soup: &mut PolygonSoup, extras: Extras) -> Result<(), ParseErro
         any_color,
         corner_uv,
         corner_normal,
+        ..
     } = extras;
     let corners = soup.indices.len();
     if corner_uv.any() {
@@ -708,6 +773,31 @@ mod tests {
         assert_eq!(soup.face(0), &[0, 1, 2]);
         let empty = read(b"").unwrap();
         assert_eq!((empty.positions.len(), empty.face_count()), (0, 0));
+    }
+
+    #[test]
+    fn continuation_lines_join_and_later_lines_keep_their_numbers() {
+        let text = b"v 0 0 0\nv 1 \\\n 0 0\nv 0 1 0\nf 1 2 \\\r\n3\nv 1 2\n";
+        let err = read(text).unwrap_err();
+        assert_eq!(err.location, "line 7", "{err:?}");
+        let soup = read(&text[..text.len() - 6]).unwrap();
+        assert_eq!(soup.positions, vec![Vec3::ZERO, Vec3::X, Vec3::Y]);
+        assert_eq!(soup.face(0), &[0, 1, 2]);
+    }
+
+    #[test]
+    fn statements_read_past_are_counted_in_the_notes() {
+        let text = b"mtllib m.mtl\no a\ng x\nusemtl red\ns 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvp 0.5\nf 1 2 3\nl 1 2\nl 2 3\np 1\ng y\n";
+        let soup = read(text).unwrap();
+        assert_eq!(soup.face_count(), 1);
+        assert_eq!(
+            soup.notes,
+            vec![
+                "skipped: 1 `mtllib` statement(s) (materials are not kept), 1 `o` statement(s) (all parts merged into one mesh), \
+2 `g` statement(s) (all parts merged into one mesh), 1 `usemtl` statement(s) (materials are not kept), \
+1 `s` smoothing group statement(s), 1 unknown statement(s) `vp`, 2 line element(s) (`l`), 1 point element(s) (`p`)"
+            ]
+        );
     }
 
     #[test]

@@ -11,9 +11,12 @@
 //! vertex as `u v`, `s t`, `texture_u texture_v` or `texture_s texture_t` (every corner of the
 //! vertex takes it), or per corner as a face's `texcoord` list of `u v` pairs (MeshLab's
 //! convention; it wins over per-vertex ones), both becoming the soup's
-//! [`corner_uvs`](PolygonSoup::corner_uvs). Every other property (scalar or list, `alpha` included) and
-//! every other element is read past, in the order the header declares them. The vertex
-//! element must have `x`, `y` and `z`, and a face element must have the index list. Indices
+//! [`corner_uvs`](PolygonSoup::corner_uvs). A `tristrips` element's `vertex_indices` list
+//! holds triangle strips separated by `-1` ([`super::strips`]; the degenerate triangles that
+//! turn a strip's corners are left out), as some Stanford scans were saved. Every other
+//! property (scalar or list, `alpha` included) and every other element is read past, in the
+//! order the header declares them, and named in the soup's notes. The vertex element must have
+//! `x`, `y` and `z`, and a face or strips element its index list. Indices
 //! must be non-negative integers; out-of-range ones are kept for the builder to drop. In an
 //! ASCII body a `float` property is parsed as an `f32` directly (not through `f64`), so what
 //! the writer prints reads back bit for bit.
@@ -31,6 +34,7 @@ use bevy::math::{Vec2, Vec3};
 use std::fmt::Write as _;
 
 use super::ParseError;
+use super::strips::strip_triangles;
 use super::text::cap;
 use crate::mesh::soup::PolygonSoup;
 
@@ -105,6 +109,8 @@ enum Role {
     TexCoord,
     /// The corners of a face.
     Corners,
+    /// A `tristrips` element's `vertex_indices`: strips, `-1` between them.
+    Strip,
     /// Read past.
     Skip,
 }
@@ -217,7 +223,7 @@ impl Values for Binary<'_> {
 pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     let (encoding, elements, body) = header(bytes)?;
     let header_lines = bytes[..body].iter().filter(|&&b| b == b'\n').count();
-    match encoding {
+    let mut soup = match encoding {
         PlyEncoding::Ascii => {
             let text = std::str::from_utf8(&bytes[body..]).map_err(|e| {
                 let valid = &bytes[body..body + e.valid_up_to()];
@@ -239,7 +245,9 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
             };
             body_values(&elements, &mut values, bytes.len())
         }
-    }
+    }?;
+    soup.notes.extend(skipped_note(&elements));
+    Ok(soup)
 }
 
 /// Reads the header: the encoding, the elements, and the byte offset where the body starts.
@@ -306,10 +314,11 @@ fn header(bytes: &[u8]) -> Result<(PlyEncoding, Vec<Element>, usize), ParseError
                         return Err(ParseError::line(line, "a list's count must be an integer"));
                     }
                     let name = t.next().unwrap_or("").to_string();
-                    let corners = element.name == "face"
-                        && (name == "vertex_indices" || name == "vertex_index");
-                    let role = if corners {
+                    let indices = name == "vertex_indices" || name == "vertex_index";
+                    let role = if indices && element.name == "face" {
                         Role::Corners
+                    } else if indices && element.name == "tristrips" {
+                        Role::Strip
                     } else if element.name == "face" && name == "texcoord" && !item.is_integer() {
                         Role::TexCoord
                     } else {
@@ -378,6 +387,7 @@ fn check_element(element: &Element) -> Result<(), ParseError> {
             .find(|&k| !has(Role::Coordinate(k)))
             .map(|k| ["property `x`", "property `y`", "property `z`"][k]),
         "face" => (!has(Role::Corners)).then_some("list `vertex_indices`"),
+        "tristrips" => (!has(Role::Strip)).then_some("list `vertex_indices`"),
         _ => None,
     };
     match missing {
@@ -493,7 +503,7 @@ fn body_values(
                             Role::Color(k) => color[k] = channel(v, *ty),
                             Role::Normal(k) => normal[k] = v as f32,
                             Role::Uv(k) => uv[k] = v as f32,
-                            Role::Corners | Role::TexCoord | Role::Skip => {}
+                            Role::Corners | Role::Strip | Role::TexCoord | Role::Skip => {}
                         }
                     }
                     Property::List {
@@ -506,7 +516,7 @@ fn body_values(
                         if n < 0.0 || n.fract() != 0.0 {
                             return Err(values.error(format!("`{name}` has {n} items")));
                         }
-                        let corners = *role == Role::Corners;
+                        let corners = matches!(role, Role::Corners | Role::Strip);
                         let uvs = *role == Role::TexCoord;
                         face.clear();
                         for _ in 0..n as u64 {
@@ -515,14 +525,19 @@ fn body_values(
                                 texcoord.push(v as f32);
                             }
                             if corners {
-                                if v < 0.0 || v.fract() != 0.0 || v > f64::from(u32::MAX) {
+                                let restart = *role == Role::Strip && v == -1.0;
+                                if !restart
+                                    && (v < 0.0 || v.fract() != 0.0 || v > f64::from(u32::MAX))
+                                {
                                     return Err(values.error(format!("bad vertex index {v}")));
                                 }
-                                face.push(v as u32);
+                                face.push(if restart { STRIP_RESTART } else { v as u32 });
                             }
                         }
-                        if corners {
-                            soup.push_face(&face);
+                        match role {
+                            Role::Corners => soup.push_face(&face),
+                            Role::Strip => push_strips(&mut soup, &face),
+                            _ => {}
                         }
                     }
                 }
@@ -568,6 +583,57 @@ fn body_values(
         })
     });
     Ok(soup)
+}
+
+/// A `-1` in a `tristrips` list: the strip ends and the next begins.
+const STRIP_RESTART: u32 = u32::MAX;
+
+/// Pushes the triangles of a `tristrips` list (strips separated by `-1`), leaving out the
+/// degenerate ones strips use to turn corners.
+fn push_strips(soup: &mut PolygonSoup, list: &[u32]) {
+    for strip in list.split(|&v| v == STRIP_RESTART) {
+        for [a, b, c] in strip_triangles(strip) {
+            if a != b && b != c && a != c {
+                soup.push_face(&[a, b, c]);
+            }
+        }
+    }
+}
+
+/// What the header declares that the reader reads past (elements other than `vertex`, `face`
+/// and `tristrips`, and properties it has no use for), as one note; `None` when nothing is.
+fn skipped_note(elements: &[Element]) -> Option<String> {
+    let mut skipped = Vec::new();
+    for element in elements.iter().filter(|e| e.count > 0) {
+        if !matches!(element.name.as_str(), "vertex" | "face" | "tristrips") {
+            skipped.push(format!("element `{}` ({})", element.name, element.count));
+            continue;
+        }
+        let roles: Vec<Role> = element
+            .properties
+            .iter()
+            .map(|p| match p {
+                Property::Scalar { role, .. } | Property::List { role, .. } => *role,
+            })
+            .collect();
+        // A normal, colour or UV is kept only when all its components are there.
+        let whole = |part: fn(usize) -> Role, n: usize| (0..n).all(|k| roles.contains(&part(k)));
+        for property in &element.properties {
+            let (Property::Scalar { name, role, .. } | Property::List { name, role, .. }) =
+                property;
+            let read = match role {
+                Role::Skip => false,
+                Role::Normal(_) => whole(Role::Normal, 3),
+                Role::Color(_) => whole(Role::Color, 3),
+                Role::Uv(_) => whole(Role::Uv, 2),
+                _ => true,
+            };
+            if !read {
+                skipped.push(format!("`{}` property `{name}`", element.name));
+            }
+        }
+    }
+    (!skipped.is_empty()).then(|| format!("skipped: {}", skipped.join(", ")))
 }
 
 /// The UV of each vertex when every corner of every vertex has the same one (bit for bit;
@@ -1002,6 +1068,73 @@ mod tests {
         let soup = read(text).unwrap();
         assert_eq!(soup.positions, vec![Vec3::ZERO, Vec3::X, Vec3::Y]);
         assert_eq!(soup.face(0), &[0, 1, 2]);
+        assert_eq!(
+            soup.notes,
+            vec![
+                "skipped: `vertex` property `nx`, `vertex` property `junk`, `face` property `flags`, element `edge` (1)"
+            ]
+        );
+    }
+
+    /// A 3 × 3 grid of vertices as two strips with a restart between them, in ASCII and in
+    /// binary: eight triangles, one winding, a valid disk.
+    #[test]
+    fn tristrips_make_their_triangles_with_one_winding() {
+        let strips: [i32; 13] = [0, 3, 1, 4, 2, 5, -1, 3, 6, 4, 7, 5, 8];
+        let head = |format: &str| {
+            format!(
+                "ply\nformat {format} 1.0\nelement vertex 9\nproperty float x\nproperty float y\nproperty float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n"
+            )
+        };
+        let grid = (0..9).map(|i| [(i % 3) as f32, (i / 3) as f32, 0.0]);
+        let mut ascii = head("ascii");
+        for p in grid.clone() {
+            let _ = writeln!(ascii, "{} {} {}", p[0], p[1], p[2]);
+        }
+        let _ = writeln!(ascii, "13 {}", strips.map(|i| i.to_string()).join(" "));
+        let mut binary = head("binary_little_endian").into_bytes();
+        for p in grid {
+            binary.extend(p.iter().flat_map(|c| c.to_le_bytes()));
+        }
+        binary.extend(13i32.to_le_bytes());
+        binary.extend(strips.iter().flat_map(|i| i.to_le_bytes()));
+        for bytes in [ascii.into_bytes(), binary] {
+            let soup = read(&bytes).unwrap();
+            let faces: Vec<&[u32]> = soup.faces().collect();
+            assert_eq!(
+                faces,
+                vec![
+                    &[0, 3, 1][..],
+                    &[1, 3, 4],
+                    &[1, 4, 2],
+                    &[2, 4, 5],
+                    &[3, 6, 4],
+                    &[4, 6, 7],
+                    &[4, 7, 5],
+                    &[5, 7, 8]
+                ]
+            );
+            let mut world = bevy::prelude::World::new();
+            let built = crate::mesh::build_mesh(&mut world, &soup, Default::default()).unwrap();
+            assert!(built.report.is_clean(), "{}", built.report);
+            let stats = crate::mesh::mesh_stats(&world, built.mesh);
+            assert_eq!(
+                (
+                    stats.faces,
+                    stats.boundary_loops,
+                    stats.euler_characteristic
+                ),
+                (8, 1, 1)
+            );
+        }
+        // A negative index other than the restart is an error.
+        let bad = b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 -2 1\n";
+        assert!(
+            read(bad)
+                .unwrap_err()
+                .message
+                .contains("bad vertex index -2")
+        );
     }
 
     #[test]

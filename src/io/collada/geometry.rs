@@ -7,8 +7,8 @@
 //! one per input `offset` (COLLADA 1.4.1 §4.2, 1.5 §5): `<triangles>`, `<polylist>` (a
 //! `<vcount>` per polygon), `<polygons>` (a `<p>` per polygon; a `<ph>`'s `<h>` holes are
 //! dropped and counted), `<trifans>` and `<tristrips>` (a `<p>` per fan or strip, turned into
-//! triangles: a strip's odd triangles swap their first two corners to keep one winding; a
-//! strip's degenerate triangles, its way of turning corners, are left out). `<lines>` and
+//! triangles as [`crate::io::strips`] says; a strip's degenerate triangles, its way of turning
+//! corners, are left out). `<lines>` and
 //! `<linestrips>` hold no faces and are counted.
 //!
 //! Of several `TEXCOORD` inputs, set 0 (or the lowest set) is read. Every position of the
@@ -22,6 +22,7 @@ use std::collections::HashMap;
 use super::{Ids, child, children, line_of, reference};
 use crate::io::ParseError;
 use crate::io::obj::channel;
+use crate::io::strips::strip_triangles;
 
 /// A corner index that names no position.
 pub(super) const NO_POSITION: u32 = u32::MAX;
@@ -289,9 +290,7 @@ fn read_primitive(primitive: Node, layout: &Layout, part: &mut Part) -> Result<(
                         }
                     }
                     _ => {
-                        for i in 0..corners.len().saturating_sub(2) {
-                            let [a, b, c] = [corners[i], corners[i + 1], corners[i + 2]];
-                            let triangle = if i % 2 == 0 { [a, b, c] } else { [b, a, c] };
+                        for triangle in strip_triangles(&corners) {
                             push_triangle(part, layout, triangle);
                         }
                     }
