@@ -498,7 +498,13 @@ fn execute(command: Command) -> Result<(), String> {
         Command::Convert { input, output } => {
             let loaded = load(&input)?;
             let soup = to_soup(&loaded.world, loaded.built.mesh);
+            let dropped = io::Format::from_path(&output)
+                .map(|format| io::dropped(format, &soup))
+                .unwrap_or_default();
             io::write(&output, &soup).map_err(|e| e.to_string())?;
+            if !dropped.is_empty() {
+                eprintln!("pappus: {}", io::dropped_note(&output, &dropped));
+            }
             if !loaded.built.report.is_clean() {
                 eprintln!("pappus: {input}: repaired: {}", loaded.built.report);
             }
@@ -585,7 +591,8 @@ fn check_output(job: &ProcessJob, output: &Path) -> Result<(), String> {
 
 /// Runs `job` on one input and writes `output`. Text lines (when not `job.json`) go to
 /// `text` as they come, warnings to `warn` (without the `pappus: ` prefix). Returns the JSON
-/// report: `{"steps": […], "result": {info keys}, "quantity"?: {…}}`.
+/// report: `{"steps": […], "result": {info keys}, "dropped": [what the output's format could
+/// not hold: "UVs", "normals", "colours", "quality"], "quantity"?: {…}}`.
 ///
 /// # Errors
 /// A message naming the file: it could not be read, built or written.
@@ -657,7 +664,13 @@ fn process_file(
         let n = vertex_normals(&surface, weighting);
         soup.vertex_normals = Some(n.iter().map(|v| v.as_vec3()).collect());
     }
+    let dropped = io::Format::from_path(output)
+        .map(|format| io::dropped(format, &soup))
+        .unwrap_or_default();
     io::write(output, &soup).map_err(|e| e.to_string())?;
+    if !dropped.is_empty() {
+        warn(&io::dropped_note(output, &dropped));
+    }
     if MeshAttributes::of(&loaded.world, mesh).seams {
         warn(&format!(
             "{}: seam marks are not written (the format has no place for them; \
@@ -673,7 +686,8 @@ fn process_file(
             &loaded.built.report,
         ));
     }
-    let mut report = json!({ "steps": records, "result": Value::Object(result) });
+    let mut report =
+        json!({ "steps": records, "result": Value::Object(result), "dropped": dropped });
     if let Some(q) = quantity {
         report["quantity"] = Value::Object(q);
     }

@@ -960,3 +960,40 @@ fn recover_lists_and_restores_recovery_files() {
     assert!(String::from_utf8_lossy(&output.stderr).contains("no recovery named"));
     std::fs::remove_dir_all(&state).unwrap();
 }
+
+/// A save into a format that cannot hold the mesh's UVs says so, on stderr and in `--json`;
+/// COLLADA reads but is refused as an output before any work is done.
+#[test]
+fn saves_name_what_their_format_drops_and_dae_is_read_only() {
+    let Some(beast) = common::model("beast.obj") else {
+        return;
+    };
+    let beast = beast.to_str().unwrap();
+    let off = tmp("beast-dropped.off");
+    let out = pappus(&["convert", beast, off.to_str().unwrap()]);
+    assert!(out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("beast-dropped.off: UVs dropped (OFF cannot hold it)"),
+        "{stderr}"
+    );
+    let (report, _) = process_json(beast, "beast-dropped.stl", &["triangulate"]);
+    assert_eq!(report["dropped"], serde_json::json!(["UVs"]));
+    let (report, _) = process_json(beast, "beast-kept.ply", &["triangulate"]);
+    assert_eq!(report["dropped"], serde_json::json!([]));
+    let dae = tmp("out.dae");
+    let out = pappus(&["process", beast, "-o", dae.to_str().unwrap(), "loop"]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("reads this format but does not write it"),
+        "{stderr}"
+    );
+    if let Some(cube) = common::model("course/cube.dae") {
+        let info = json(&pappus(&["info", cube.to_str().unwrap(), "--json"]));
+        assert_eq!(
+            (info["vertices"].as_u64(), info["faces"].as_u64()),
+            (Some(8), Some(12))
+        );
+    }
+}

@@ -916,6 +916,44 @@ fn level_of_detail_and_vertex_split_follow_the_simplification() {
 }
 
 #[test]
+fn a_save_that_would_drop_the_beasts_uvs_asks_first() {
+    let Some(beast) = common::model("beast.obj") else {
+        return;
+    };
+    let mut app = app();
+    open(&mut app, beast.to_str().unwrap());
+    let target = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("beast-no-uv.off");
+    let _ = std::fs::remove_file(&target);
+    let save = |app: &mut App| {
+        app.world_mut()
+            .write_message(Request::Save(Some(target.clone())));
+        app.update();
+    };
+    save(&mut app);
+    let asked = last_outcome(&app).result.unwrap_err().to_string();
+    assert!(
+        asked.contains("beast-no-uv.off: UVs dropped (OFF cannot hold it)"),
+        "{asked}"
+    );
+    assert!(!target.exists(), "nothing is written before the answer");
+    app.world_mut()
+        .write_message(Request::ConfirmDiscard(false));
+    app.update();
+    assert!(!target.exists());
+    save(&mut app);
+    app.world_mut().write_message(Request::ConfirmDiscard(true));
+    app.update();
+    let saved = last_outcome(&app).result.unwrap();
+    assert!(saved.contains("UVs dropped"), "{saved}");
+    assert_eq!(pappus::io::read(&target).unwrap().face_count(), 32364);
+    // PLY holds the UVs: no question.
+    app.world_mut()
+        .write_message(Request::Save(Some(target.with_extension("ply"))));
+    app.update();
+    assert!(last_outcome(&app).result.is_ok());
+}
+
+#[test]
 fn unsaved_changes_are_not_lost_to_an_open() {
     let mut app = app();
     open(&mut app, "shape:torus");

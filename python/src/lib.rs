@@ -560,10 +560,20 @@ impl Mesh {
     /// Writes the mesh to `path`, the format chosen by its extension (.obj .off .ply .stl), with
     /// the attributes it has (UVs, normals, colours). Writes a temporary file and renames it
     /// over the target, so a failed save leaves the old file. Raises `ValueError` for an unknown
-    /// extension or `.dae` (read only), `OSError` when the file system refuses.
+    /// extension or `.dae` (read only), `OSError` when the file system refuses. What the format
+    /// cannot hold (OFF and STL: UVs, normals, colours) is dropped with a `UserWarning` naming it.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        py.detach(|| io::write(&path, &self.soup()))
-            .map_err(|e| io_error(py, e))
+        let soup = self.soup();
+        let dropped = io::Format::from_path(&path)
+            .map(|format| io::dropped(format, &soup))
+            .unwrap_or_default();
+        py.detach(|| io::write(&path, &soup))
+            .map_err(|e| io_error(py, e))?;
+        if dropped.is_empty() {
+            Ok(())
+        } else {
+            user_warning(py, io::dropped_note(&path, &dropped))
+        }
     }
 
     /// Runs one command-line step as `pappus process` writes it (`"simplify:0.25"`,
@@ -1083,6 +1093,14 @@ fn memory_budget() -> (u64, String) {
     pappus::memory_budget::get().limit()
 }
 
+/// Issues a Python `UserWarning` with `message`.
+fn user_warning(py: Python<'_>, message: String) -> PyResult<()> {
+    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    let message = std::ffi::CString::new(message.replace('\0', " "))
+        .expect("no interior NUL after the replace");
+    PyErr::warn(py, &category, &message, 1)
+}
+
 /// Loads a mesh from a file (.obj .off .ply .stl .dae, by extension) or a procedural shape
 /// (`"shape:torus"`, `"shape:icosphere:6"`), repaired as the command line repairs it. The GIL
 /// is released while it reads and builds. What the file held that a mesh does not keep
@@ -1099,12 +1117,7 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
     })?;
     let read_ms = ms_since(start);
     let name = path.display().to_string();
-    let warn = |message: String| -> PyResult<()> {
-        let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
-        let message = std::ffi::CString::new(message.replace('\0', " "))
-            .expect("no interior NUL after the replace");
-        PyErr::warn(py, &category, &message, 1)
-    };
+    let warn = |message: String| user_warning(py, message);
     let dropped = soup.vertex_attributes();
     if !dropped.is_empty() {
         warn(format!(

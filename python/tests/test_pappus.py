@@ -9,6 +9,7 @@ import copy
 import multiprocessing
 import os
 import pickle
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -99,6 +100,30 @@ def test_files_round_trip(tmp_path):
     # STL holds triangles only: written fan-triangulated.
     mesh.save(str(tmp_path / "grid.stl"))
     assert pappus.load(tmp_path / "grid.stl").info()["faces"] == 2 * mesh.info()["faces"]
+
+
+def test_a_save_that_drops_attributes_says_so_and_dae_is_read_only(tmp_path):
+    models()
+    beast = pappus.load(MODELS / "beast.obj")
+    assert beast.info()["attributes"]["uv"]
+    with pytest.warns(UserWarning, match=r"beast\.off: UVs dropped \(OFF cannot hold it\)"):
+        beast.save(tmp_path / "beast.off")
+    assert pappus.load(tmp_path / "beast.off").info()["faces"] == beast.info()["faces"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        beast.save(tmp_path / "beast.ply")
+    with pytest.raises(ValueError, match="reads this format but does not write it"):
+        beast.save(tmp_path / "beast.dae")
+
+
+def test_course_collada_scenes_load_with_blenders_counts():
+    models()
+    for name, counts in [("cube.dae", (8, 12)), ("quadball.dae", (386, 768))]:
+        with pytest.warns(UserWarning, match="skipped: 1 camera"):
+            mesh = pappus.load(MODELS / "course" / name)
+        info = mesh.info()
+        assert (info["vertices"], info["faces"]) == counts
+        assert info["closed"] and info["euler_characteristic"] == 2
 
 
 def test_shared_models_load_with_the_command_lines_counts():

@@ -85,7 +85,14 @@ fn restore(chosen: &Recovery, output: &Path) -> Result<(), String> {
     let soup = chosen
         .read()
         .map_err(|e| format!("the recovery is damaged: {e}"))?;
-    io::write(output, &soup).map_err(|e| e.to_string())
+    let dropped = io::Format::from_path(output)
+        .map(|format| io::dropped(format, &soup))
+        .unwrap_or_default();
+    io::write(output, &soup).map_err(|e| e.to_string())?;
+    if !dropped.is_empty() {
+        eprintln!("pappus: {}", io::dropped_note(output, &dropped));
+    }
+    Ok(())
 }
 
 /// Prints the recoveries, newest first.

@@ -143,6 +143,7 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
             }
             match pending {
                 PendingDiscard::Open(path) => open(world, &path),
+                PendingDiscard::Save { path, .. } => save(world, Some(&path), true),
                 PendingDiscard::Quit => {
                     // The changes were given up on purpose: nothing to offer back next time.
                     super::recovery::forget(world);
@@ -151,7 +152,7 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
                 }
             }
         }
-        Request::Save(path) => save(world, path.as_deref()),
+        Request::Save(path) => save(world, path.as_deref(), false),
         Request::Recover(answer) => super::recovery::answer(world, *answer, open),
         Request::DeleteMesh => {
             let mesh = world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
@@ -280,7 +281,9 @@ pub(super) fn open(world: &mut World, path: &Path) -> Result<String, Declined> {
     ))
 }
 
-fn save(world: &mut World, path: Option<&Path>) -> Result<String, Declined> {
+/// Saves the active mesh to `path` (or to its own file). Unless `confirmed`, a format that
+/// cannot hold what the mesh has (OFF or STL and UVs, normals or colours) asks first.
+fn save(world: &mut World, path: Option<&Path>, confirmed: bool) -> Result<String, Declined> {
     let mesh = world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
     let target = match path {
         Some(p) => p.to_path_buf(),
@@ -290,6 +293,17 @@ fn save(world: &mut World, path: Option<&Path>) -> Result<String, Declined> {
             .ok_or(Declined::NoFileYet)?,
     };
     let soup = to_soup(world, mesh);
+    let dropped = io::Format::from_path(&target)
+        .map(|format| io::dropped(format, &soup))
+        .unwrap_or_default();
+    if !dropped.is_empty() && !confirmed {
+        let note = io::dropped_note(&target, &dropped);
+        world.resource_mut::<ConfirmDiscard>().0 = Some(PendingDiscard::Save {
+            path: target,
+            dropped,
+        });
+        return Err(Declined::WouldDrop(note));
+    }
     io::write(&target, &soup).map_err(|e| Declined::File(e.to_string()))?;
     if let Some(mut info) = world.get_mut::<MeshInfo>(mesh.0) {
         info.path = Some(target.clone());
@@ -303,5 +317,9 @@ fn save(world: &mut World, path: Option<&Path>) -> Result<String, Declined> {
     } else {
         ""
     };
-    Ok(format!("saved {}{note}", target.display()))
+    let dropped = match dropped.is_empty() {
+        true => String::new(),
+        false => format!(" ({})", io::dropped_note(&target, &dropped)),
+    };
+    Ok(format!("saved {}{note}{dropped}", target.display()))
 }

@@ -256,6 +256,10 @@ pub enum Declined {
     /// Opening over unsaved changes: the user is asked first.
     #[error("the mesh has unsaved changes: save it (Ctrl+S) or discard them first")]
     UnsavedChanges,
+    /// A save into a format that cannot hold some of what the mesh has: the user is asked
+    /// first. The text names what would be dropped.
+    #[error("{0}: answer Save anyway, or Save as .ply (or .obj) to keep them")]
+    WouldDrop(String),
     /// An answer to a question nobody asked.
     #[error("nothing is waiting for an answer")]
     NothingWaiting,
@@ -281,16 +285,23 @@ pub enum RecoveryAnswer {
     Keep,
 }
 
-/// What waits for the user to say whether unsaved changes may be discarded.
+/// What waits for the user to say whether something may be discarded.
 #[derive(Clone, Debug, PartialEq)]
 pub enum PendingDiscard {
-    /// Opening this file over the modified mesh.
+    /// Opening this file over the modified mesh (its unsaved changes would be lost).
     Open(PathBuf),
-    /// Closing the window.
+    /// Closing the window (the unsaved changes would be lost).
     Quit,
+    /// Saving into this file, whose format cannot hold what is named (`"UVs"`, `"normals"`, …).
+    Save {
+        /// The file.
+        path: PathBuf,
+        /// What the save would drop.
+        dropped: Vec<&'static str>,
+    },
 }
 
-/// The unsaved-changes question, while it is open.
+/// The question whether something may be discarded, while it is open.
 #[derive(Resource, Default, Debug, Clone)]
 pub struct ConfirmDiscard(pub Option<PendingDiscard>);
 

@@ -478,28 +478,7 @@ pub fn panels(
     }
 
     if let Some(pending) = &confirm.0 {
-        let what = match pending {
-            super::requests::PendingDiscard::Open(path) => format!("open {}", path.display()),
-            super::requests::PendingDiscard::Quit => "quit".to_string(),
-        };
-        egui::Window::new("Unsaved changes")
-            .collapsible(false)
-            .resizable(false)
-            .anchor(egui::Align2::CENTER_CENTER, [0.0, 0.0])
-            .show(&ctx, |ui| {
-                ui.label(format!(
-                    "The mesh has changes that are not saved. Discard them and {what}?"
-                ));
-                ui.label("(Cancel, then Ctrl+S, to keep them.)");
-                ui.horizontal(|ui| {
-                    if ui.button("Discard changes").clicked() {
-                        requests.write(Request::ConfirmDiscard(true));
-                    }
-                    if ui.button("Cancel").clicked() {
-                        requests.write(Request::ConfirmDiscard(false));
-                    }
-                });
-            });
+        discard_question(&ctx, pending, &mut requests);
     }
 
     histogram_window(&ctx, &view, ui_state.histograms);
@@ -1168,4 +1147,57 @@ fn legend(ui: &mut egui::Ui, label: &str, map: ColorMap, range: Range) {
             .small()
             .weak(),
     );
+}
+
+/// The window that asks whether something may be discarded: unsaved changes (before an open
+/// or quitting) or what a save's format cannot hold.
+fn discard_question(
+    ctx: &egui::Context,
+    pending: &super::requests::PendingDiscard,
+    requests: &mut MessageWriter<Request>,
+) {
+    use super::requests::PendingDiscard;
+    let (title, question, hint, confirm) = match pending {
+        PendingDiscard::Open(path) => (
+            "Unsaved changes",
+            format!(
+                "The mesh has changes that are not saved. Discard them and open {}?",
+                path.display()
+            ),
+            "(Cancel, then Ctrl+S, to keep them.)".to_string(),
+            "Discard changes",
+        ),
+        PendingDiscard::Quit => (
+            "Unsaved changes",
+            "The mesh has changes that are not saved. Discard them and quit?".to_string(),
+            "(Cancel, then Ctrl+S, to keep them.)".to_string(),
+            "Discard changes",
+        ),
+        PendingDiscard::Save { path, dropped } => (
+            "Save drops data",
+            format!(
+                "{} cannot hold the mesh's {}: saving drops them.",
+                path.display(),
+                dropped.join(", ")
+            ),
+            "(Cancel, then Save as .ply, to keep everything.)".to_string(),
+            "Save anyway",
+        ),
+    };
+    egui::Window::new(title)
+        .collapsible(false)
+        .resizable(false)
+        .anchor(egui::Align2::CENTER_CENTER, [0.0, 0.0])
+        .show(ctx, |ui| {
+            ui.label(question);
+            ui.label(hint);
+            ui.horizontal(|ui| {
+                if ui.button(confirm).clicked() {
+                    requests.write(Request::ConfirmDiscard(true));
+                }
+                if ui.button("Cancel").clicked() {
+                    requests.write(Request::ConfirmDiscard(false));
+                }
+            });
+        });
 }

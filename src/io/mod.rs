@@ -81,6 +81,48 @@ impl Format {
     }
 }
 
+/// What the soup carries that a file in `format` cannot hold, in a person's words (`"UVs"`,
+/// `"normals"`, `"colours"`, `"quality"`), in that order: empty when a save keeps everything.
+/// OBJ holds all but the quality, PLY all four, OFF and STL none of them.
+pub fn dropped(format: Format, soup: &PolygonSoup) -> Vec<&'static str> {
+    let has = soup.attributes();
+    let carried = [
+        ("UVs", has.uv),
+        ("normals", has.normals),
+        ("colours", has.colors),
+        ("quality", soup.vertex_quality.is_some()),
+    ];
+    let holds = |what: &str| match format {
+        Format::Ply => true,
+        Format::Obj => what != "quality",
+        Format::Off | Format::Stl | Format::Collada => false,
+    };
+    carried
+        .into_iter()
+        .filter(|&(what, carries)| carries && !holds(what))
+        .map(|(what, _)| what)
+        .collect()
+}
+
+/// The sentence for what a save into `path` drops: `"m.off: UVs and normals dropped (OFF
+/// cannot hold them)"`.
+pub fn dropped_note(path: &Path, dropped: &[&str]) -> String {
+    let list = match dropped {
+        [] => String::new(),
+        [one] => (*one).to_string(),
+        [init @ .., last] => format!("{} and {last}", init.join(", ")),
+    };
+    let format = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_uppercase())
+        .unwrap_or_default();
+    format!(
+        "{}: {list} dropped ({format} cannot hold {})",
+        path.display(),
+        if dropped.len() == 1 { "it" } else { "them" }
+    )
+}
+
 /// Why a file could not be read or written.
 #[derive(Debug, Error)]
 pub enum IoError {
@@ -334,6 +376,29 @@ pub(crate) mod tests {
         let err = read_bytes(Format::Off, b"4OFF\n", Path::new("m.off")).unwrap_err();
         assert!(matches!(err, IoError::Unsupported { .. }), "{err}");
         assert!(err.to_string().starts_with("m.off: line 1: not supported"));
+    }
+
+    #[test]
+    fn a_save_names_what_its_format_cannot_hold() {
+        let soup = read_bytes(Format::Obj, ATTRIBUTED_OBJ, name()).unwrap();
+        assert_eq!(dropped(Format::Off, &soup), ["UVs", "normals", "colours"]);
+        assert_eq!(dropped(Format::Stl, &soup), ["UVs", "normals", "colours"]);
+        assert!(dropped(Format::Obj, &soup).is_empty());
+        assert!(dropped(Format::Ply, &soup).is_empty());
+        assert!(dropped(Format::Off, &mixed()).is_empty());
+        let with_quality = PolygonSoup {
+            vertex_quality: Some(vec![0.5; 5]),
+            ..mixed()
+        };
+        assert_eq!(dropped(Format::Obj, &with_quality), ["quality"]);
+        assert_eq!(
+            dropped_note(Path::new("beast.off"), &["UVs"]),
+            "beast.off: UVs dropped (OFF cannot hold it)"
+        );
+        assert_eq!(
+            dropped_note(Path::new("m.stl"), &["UVs", "normals", "colours"]),
+            "m.stl: UVs, normals and colours dropped (STL cannot hold them)"
+        );
     }
 
     #[test]
