@@ -16,12 +16,12 @@
 # libc calls), or on nightly with ASan when FUZZ_SANITIZER=address.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-targets_all=(read_obj read_off read_ply read_stl read_dae parse_step)
+targets_all=(read_obj read_off read_ply read_stl read_dae read_glb parse_step)
 
 seed() {
   local bin="${1:-${CARGO_TARGET_DIR:-target}/debug/pappus}"
   local models="../shared/models" out="fuzz/corpus"
-  mkdir -p "$out"/{read_obj,read_off,read_ply,read_stl,read_dae,parse_step}
+  mkdir -p "$out"/{read_obj,read_off,read_ply,read_stl,read_dae,read_glb,parse_step}
   # COLLADA: the hand-written documents kept in fuzz/corpus/read_dae (every primitive, input,
   # transform and instance kind); the course scenes are not copied into the repository.
   # OBJ: the head of every shared model as it is (comments, groups, vt/vn, faces that name
@@ -32,7 +32,7 @@ seed() {
   # Every format, from small simplified models; PLY with quality and colours, OBJ and PLY with
   # normals and UVs.
   for f in spot cow fandisk suzanne teapot; do
-    for ext in obj off ply stl; do
+    for ext in obj off ply stl glb; do
       "$bin" process "$models/$f.obj" -o "$out/read_$ext/$f.$ext" triangulate simplify-faces:48 \
         >/dev/null 2>&1 || true
     done

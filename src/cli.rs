@@ -77,7 +77,7 @@ pub struct Cli {
 }
 
 /// What a FILE may be.
-const FILE_HELP: &str = "FILE: .obj .off .ply .stl .dae (read only), or shape:NAME (tetrahedron cube icosahedron \
+const FILE_HELP: &str = "FILE: .obj .off .ply .stl .glb .gltf .dae (read only), or shape:NAME (tetrahedron cube icosahedron \
 icosphere torus grid quad-grid grid-with-holes double-torus)";
 
 /// The batch commands.
@@ -173,7 +173,7 @@ pub enum ProcessArg {
 }
 
 impl ProcessArg {
-    /// An input when `text` names a mesh source (`shape:…`, a `.obj .off .ply .stl .dae` path, or
+    /// An input when `text` names a mesh source (`shape:…`, a `.obj .off .ply .stl .glb .gltf .dae` path, or
     /// a pattern with `*`, `?` or `[`), else a step.
     ///
     /// # Errors

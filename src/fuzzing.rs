@@ -15,12 +15,13 @@ use crate::io::{self, Format};
 use crate::mesh::{MeshInfo, build_mesh, to_soup, validate};
 
 /// The fuzz targets, by the name of their folder in `fuzz/corpus/` and `fuzz/fuzz_targets/`.
-pub const TARGETS: [&str; 6] = [
+pub const TARGETS: [&str; 7] = [
     "read_obj",
     "read_off",
     "read_ply",
     "read_stl",
     "read_dae",
+    "read_glb",
     "parse_step",
 ];
 
@@ -37,6 +38,7 @@ pub fn run(target: &str, data: &[u8]) {
         "read_ply" => read_and_build(Format::Ply, data),
         "read_stl" => read_and_build(Format::Stl, data),
         "read_dae" => read_and_build(Format::Collada, data),
+        "read_glb" => read_and_build(Format::Glb, data),
         "parse_step" => parse_step(data),
         _ => panic!("no fuzz target `{target}`"),
     }

@@ -250,3 +250,38 @@ fn local_operations_on_cube_dae_match_the_same_mesh_from_obj() {
     assert_eq!(from_dae.1.indices, from_obj.1.indices);
     assert_eq!(from_dae.1.face_starts, from_obj.1.face_starts);
 }
+
+/// Every shared model through `.glb` and back: every position bit for bit and in order, as
+/// many triangles as the model triangulates into, the same vertices and boundary loops (the
+/// copies glTF splits joined again, two coincident vertices kept two).
+#[test]
+fn every_shared_model_survives_glb_bit_for_bit() {
+    use pappus::io::{Format, read_bytes, write_bytes};
+    for name in MODELS {
+        let Some(l) = load(name) else { return };
+        let soup = to_soup(&l.world, l.built.mesh);
+        let glb = write_bytes(Format::Glb, &soup).unwrap();
+        let back = read_bytes(Format::Glb, &glb, std::path::Path::new(name)).unwrap();
+        let bits = |s: &pappus::mesh::PolygonSoup| -> Vec<[u32; 3]> {
+            s.positions
+                .iter()
+                .map(|p| p.to_array().map(f32::to_bits))
+                .collect()
+        };
+        assert_eq!(bits(&back), bits(&soup), "{name}");
+        let triangles: usize = soup.faces().map(|f| f.len() - 2).sum();
+        assert_eq!(back.face_count(), triangles, "{name}");
+        let mut world = World::new();
+        let rebuilt = build_mesh(&mut world, &back, MeshInfo::default()).unwrap();
+        assert!(rebuilt.report.is_clean(), "{name}: {}", rebuilt.report);
+        let (before, after) = (
+            mesh_stats(&l.world, l.built.mesh),
+            mesh_stats(&world, rebuilt.mesh),
+        );
+        assert_eq!(
+            (before.vertices, before.boundary_loops, before.closed),
+            (after.vertices, after.boundary_loops, after.closed),
+            "{name}"
+        );
+    }
+}

@@ -557,11 +557,12 @@ impl Mesh {
             .map_err(|e| InvalidMesh::new_err(e.to_string()))
     }
 
-    /// Writes the mesh to `path`, the format chosen by its extension (.obj .off .ply .stl), with
+    /// Writes the mesh to `path`, the format chosen by its extension (.obj .off .ply .stl .glb .gltf), with
     /// the attributes it has (UVs, normals, colours). Writes a temporary file and renames it
     /// over the target, so a failed save leaves the old file. Raises `ValueError` for an unknown
     /// extension or `.dae` (read only), `OSError` when the file system refuses. What the format
-    /// cannot hold (OFF and STL: UVs, normals, colours) is dropped with a `UserWarning` naming it.
+    /// cannot hold (OFF and STL: UVs, normals, colours; STL and glTF: polygons, written as
+    /// triangles) is dropped with a `UserWarning` naming it.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
         let soup = self.soup();
         let dropped = io::Format::from_path(&path)
@@ -1101,7 +1102,7 @@ fn user_warning(py: Python<'_>, message: String) -> PyResult<()> {
     PyErr::warn(py, &category, &message, 1)
 }
 
-/// Loads a mesh from a file (.obj .off .ply .stl .dae, by extension) or a procedural shape
+/// Loads a mesh from a file (.obj .off .ply .stl .glb .gltf .dae, by extension) or a procedural shape
 /// (`"shape:torus"`, `"shape:icosphere:6"`), repaired as the command line repairs it. The GIL
 /// is released while it reads and builds. What the file held that a mesh does not keep
 /// (PLY quality) and what a reader had to approximate is reported with `warnings.warn`.

@@ -1,5 +1,5 @@
-//! File formats: OBJ, OFF, PLY (ASCII and binary), STL (ASCII and binary), read and written;
-//! COLLADA, read; chosen by extension.
+//! File formats: OBJ, OFF, PLY (ASCII and binary), STL (ASCII and binary), glTF 2.0 (`.gltf`,
+//! `.glb`), read and written; COLLADA, read; chosen by extension.
 //!
 //! Every reader produces a [`PolygonSoup`] and every writer takes one: this module knows
 //! nothing of entities. Readers keep the file's vertex order (so scripts can name vertices by
@@ -14,8 +14,10 @@
 
 mod collada;
 mod corners;
+mod gltf;
 mod obj;
 mod off;
+mod parts;
 mod ply;
 mod save;
 mod stl;
@@ -47,13 +49,17 @@ pub enum Format {
     /// COLLADA (`.dae`, 1.4.1 and 1.5), read only: its scene's meshes, placed by their node
     /// transforms, Y-up, with normals, texture coordinates and colours.
     Collada,
+    /// glTF 2.0 as JSON (`.gltf`: buffers beside it or embedded; written embedded).
+    Gltf,
+    /// glTF 2.0 binary (`.glb`).
+    Glb,
 }
 
 /// The extensions Pappus reads, as the open dialog's filter and the help list them.
-pub const READ_EXTENSIONS: [&str; 5] = ["obj", "off", "ply", "stl", "dae"];
+pub const READ_EXTENSIONS: [&str; 7] = ["obj", "off", "ply", "stl", "glb", "gltf", "dae"];
 
 /// The extensions Pappus writes.
-pub const WRITE_EXTENSIONS: [&str; 4] = ["obj", "off", "ply", "stl"];
+pub const WRITE_EXTENSIONS: [&str; 6] = ["obj", "off", "ply", "stl", "glb", "gltf"];
 
 impl Format {
     /// Whether Pappus writes this format (COLLADA is read only).
@@ -76,14 +82,17 @@ impl Format {
             Some("ply") => Ok(Format::Ply),
             Some("stl") => Ok(Format::Stl),
             Some("dae") => Ok(Format::Collada),
+            Some("gltf") => Ok(Format::Gltf),
+            Some("glb") => Ok(Format::Glb),
             _ => Err(IoError::UnknownFormat(path.to_path_buf())),
         }
     }
 }
 
 /// What the soup carries that a file in `format` cannot hold, in a person's words (`"UVs"`,
-/// `"normals"`, `"colours"`, `"quality"`), in that order: empty when a save keeps everything.
-/// OBJ holds all but the quality, PLY all four, OFF and STL none of them.
+/// `"normals"`, `"colours"`, `"quality"`, then `"polygon faces (written as triangles)"`), in
+/// that order: empty when a save keeps everything. OBJ and glTF hold all but the quality, PLY
+/// all four, OFF and STL none of them; STL and glTF hold triangles only.
 pub fn dropped(format: Format, soup: &PolygonSoup) -> Vec<&'static str> {
     let has = soup.attributes();
     let carried = [
@@ -94,13 +103,16 @@ pub fn dropped(format: Format, soup: &PolygonSoup) -> Vec<&'static str> {
     ];
     let holds = |what: &str| match format {
         Format::Ply => true,
-        Format::Obj => what != "quality",
+        Format::Obj | Format::Gltf | Format::Glb => what != "quality",
         Format::Off | Format::Stl | Format::Collada => false,
     };
+    let triangles_only = matches!(format, Format::Stl | Format::Gltf | Format::Glb);
+    let polygons = triangles_only && soup.faces().any(|f| f.len() > 3);
     carried
         .into_iter()
         .filter(|&(what, carries)| carries && !holds(what))
         .map(|(what, _)| what)
+        .chain(polygons.then_some("polygon faces (written as triangles)"))
         .collect()
 }
 
@@ -127,7 +139,7 @@ pub fn dropped_note(path: &Path, dropped: &[&str]) -> String {
 #[derive(Debug, Error)]
 pub enum IoError {
     /// The extension names no supported format.
-    #[error("{0}: unknown format (expected .obj, .off, .ply, .stl or .dae)")]
+    #[error("{0}: unknown format (expected .obj, .off, .ply, .stl, .glb, .gltf or .dae)")]
     UnknownFormat(PathBuf),
     /// The format is one Pappus reads but does not write.
     #[error(
@@ -242,18 +254,21 @@ pub fn read_bytes(format: Format, bytes: &[u8], name: &Path) -> Result<PolygonSo
         Format::Ply => ply::read(bytes),
         Format::Stl => stl::read(bytes),
         Format::Collada => collada::read(bytes),
+        Format::Gltf | Format::Glb => gltf::read(bytes, None),
     };
     soup.map_err(|e| e.in_file(name))
 }
 
 /// Encodes a soup in the given format, as [`write()`] would save it (PLY binary little-endian,
-/// STL binary); `None` for a format Pappus only reads (COLLADA).
+/// STL binary, glTF with its buffer embedded); `None` for a format Pappus only reads (COLLADA).
 pub fn write_bytes(format: Format, soup: &PolygonSoup) -> Option<Vec<u8>> {
     Some(match format {
         Format::Obj => obj::write(soup),
         Format::Off => off::write(soup),
         Format::Ply => ply::write(soup, PlyEncoding::BinaryLittleEndian),
         Format::Stl => stl::write(soup, StlEncoding::Binary),
+        Format::Gltf => gltf::write(soup, false),
+        Format::Glb => gltf::write(soup, true),
         Format::Collada => return None,
     })
 }
@@ -285,7 +300,13 @@ pub fn read(path: &Path) -> Result<PolygonSoup, IoError> {
         path: path.to_path_buf(),
         source,
     })?;
-    read_bytes(format, &bytes, path)
+    match format {
+        // A `.gltf`'s buffers may be files beside it.
+        Format::Gltf | Format::Glb => {
+            gltf::read(&bytes, path.parent()).map_err(|e| e.in_file(path))
+        }
+        _ => read_bytes(format, &bytes, path),
+    }
 }
 
 /// Replaces the file at `path` with `bytes` as mesh saves do ([`save::replace`]): atomically,
@@ -382,7 +403,19 @@ pub(crate) mod tests {
     fn a_save_names_what_its_format_cannot_hold() {
         let soup = read_bytes(Format::Obj, ATTRIBUTED_OBJ, name()).unwrap();
         assert_eq!(dropped(Format::Off, &soup), ["UVs", "normals", "colours"]);
-        assert_eq!(dropped(Format::Stl, &soup), ["UVs", "normals", "colours"]);
+        assert_eq!(
+            dropped(Format::Stl, &soup),
+            [
+                "UVs",
+                "normals",
+                "colours",
+                "polygon faces (written as triangles)"
+            ]
+        );
+        assert_eq!(
+            dropped(Format::Glb, &soup),
+            ["polygon faces (written as triangles)"]
+        );
         assert!(dropped(Format::Obj, &soup).is_empty());
         assert!(dropped(Format::Ply, &soup).is_empty());
         assert!(dropped(Format::Off, &mixed()).is_empty());

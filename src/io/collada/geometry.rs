@@ -22,49 +22,8 @@ use std::collections::HashMap;
 use super::{Ids, child, children, line_of, reference};
 use crate::io::ParseError;
 use crate::io::obj::channel;
+use crate::io::parts::{NO_POSITION, Part};
 use crate::io::strips::strip_triangles;
-
-/// A corner index that names no position.
-pub(super) const NO_POSITION: u32 = u32::MAX;
-
-/// One geometry's polygons, indexed into its own positions, and what its corners carry.
-#[derive(Default)]
-pub(super) struct Part {
-    /// The `POSITION` source, in order.
-    pub positions: Vec<Vec3>,
-    /// Every face's corners, concatenated (indices into `positions`, or [`NO_POSITION`]).
-    pub indices: Vec<u32>,
-    /// Where each face starts in `indices`, then `indices.len()`.
-    pub face_starts: Vec<u32>,
-    /// A normal per corner, when an input gives them.
-    pub normals: Option<Vec<Option<Vec3>>>,
-    /// A texture coordinate per corner, when an input gives them.
-    pub uvs: Option<Vec<Option<Vec2>>>,
-    /// A colour per corner (0–255 per channel, as floats), when an input gives them.
-    pub colors: Option<Vec<Option<Vec3>>>,
-    /// What the geometry held that is not read.
-    pub skipped: Skipped,
-}
-
-/// Counts of what a geometry held that Pappus does not read.
-#[derive(Default, Clone, Copy)]
-pub(super) struct Skipped {
-    /// `<lines>` and `<linestrips>` primitives.
-    pub line_primitives: usize,
-    /// `<h>` holes of `<polygons>`' `<ph>` entries.
-    pub holes: usize,
-    /// Polylist or triangle corners past the end of the `<p>` list's whole faces.
-    pub incomplete_faces: usize,
-}
-
-impl Skipped {
-    /// Adds another geometry's counts.
-    pub fn add(&mut self, other: Skipped) {
-        self.line_primitives += other.line_primitives;
-        self.holes += other.holes;
-        self.incomplete_faces += other.incomplete_faces;
-    }
-}
 
 /// A `<source>`'s numbers and how to read items from them.
 struct Source {
@@ -147,17 +106,14 @@ pub(super) fn read_mesh(mesh: Node, ids: &Ids) -> Result<Part, ParseError> {
     let positions = positions.ok_or_else(|| {
         ParseError::line(line_of(vertices), "<vertices> without a POSITION input")
     })?;
-    let mut part = Part {
-        positions: (0..=u32::MAX)
-            .map_while(|i| positions.item::<3>(i).map(Vec3::from_array))
-            .collect(),
-        face_starts: vec![0],
-        ..Part::default()
-    };
+    let mut part = Part::new();
+    part.positions = (0..=u32::MAX)
+        .map_while(|i| positions.item::<3>(i).map(Vec3::from_array))
+        .collect();
     for primitive in mesh.children().filter(Node::is_element) {
         let name = primitive.tag_name().name();
         if matches!(name, "lines" | "linestrips") {
-            part.skipped.line_primitives += 1;
+            part.skipped.count("line primitive(s)", 1);
             continue;
         }
         if !matches!(
@@ -254,7 +210,8 @@ fn read_primitive(primitive: Node, layout: &Layout, part: &mut Part) -> Result<(
             for (k, &size) in sizes.iter().enumerate() {
                 let end = start.saturating_add(size);
                 if end > corners {
-                    part.skipped.incomplete_faces += sizes.len() - k;
+                    part.skipped
+                        .count("incomplete face(s) at the end of a <p>", sizes.len() - k);
                     break;
                 }
                 let face: Vec<&[u32]> = (start..end)
@@ -264,7 +221,8 @@ fn read_primitive(primitive: Node, layout: &Layout, part: &mut Part) -> Result<(
                 start = end;
             }
             if primitive.has_tag_name("triangles") && !corners.is_multiple_of(3) {
-                part.skipped.incomplete_faces += 1;
+                part.skipped
+                    .count("incomplete face(s) at the end of a <p>", 1);
             }
         }
         "polygons" | "trifans" | "tristrips" => {
@@ -272,7 +230,8 @@ fn read_primitive(primitive: Node, layout: &Layout, part: &mut Part) -> Result<(
                 let p = match entry.tag_name().name() {
                     "p" => entry,
                     "ph" => {
-                        part.skipped.holes += children(entry, "h").count();
+                        part.skipped
+                            .count("polygon hole(s)", children(entry, "h").count());
                         match child(entry, "p") {
                             Some(p) => p,
                             None => continue,
@@ -318,46 +277,29 @@ fn push_face(part: &mut Part, layout: &Layout, corners: &[&[u32]]) {
     let count = part.positions.len();
     for tuple in corners {
         let vertex = tuple[vertex_offset];
-        let corner = part.indices.len();
-        part.indices.push(if (vertex as usize) < count {
-            vertex
-        } else {
-            NO_POSITION
-        });
+        let (mut normal, mut uv, mut color) = (None, None, None);
         let vertex_inputs = layout.per_vertex.iter().map(|i| (i, vertex));
         let corner_inputs = layout.inputs.iter().map(|i| (i, tuple[i.offset]));
         for (input, index) in vertex_inputs.chain(corner_inputs) {
             match input.reads {
-                Reads::Normal => set(
-                    &mut part.normals,
-                    corner,
-                    input.source.item::<3>(index).map(Vec3::from_array),
-                ),
-                Reads::Uv => set(
-                    &mut part.uvs,
-                    corner,
-                    input.source.item::<2>(index).map(Vec2::from_array),
-                ),
-                Reads::Color => set(
-                    &mut part.colors,
-                    corner,
-                    input
+                Reads::Normal => normal = input.source.item::<3>(index).map(Vec3::from_array),
+                Reads::Uv => uv = input.source.item::<2>(index).map(Vec2::from_array),
+                Reads::Color => {
+                    color = input
                         .source
                         .item::<3>(index)
-                        .map(|c| Vec3::from_array(c.map(|v| f32::from(channel(v))))),
-                ),
+                        .map(|c| Vec3::from_array(c.map(|v| f32::from(channel(v)))));
+                }
             }
         }
+        let index = if (vertex as usize) < count {
+            vertex
+        } else {
+            NO_POSITION
+        };
+        part.push_corner(index, normal, uv, color);
     }
-    part.face_starts.push(part.indices.len() as u32);
-}
-
-/// Sets corner `corner`'s value in a per-corner list, creating it (and padding it with `None`
-/// for earlier corners) on first use. A value that the source does not hold stays `None`.
-fn set<T: Copy>(list: &mut Option<Vec<Option<T>>>, corner: usize, value: Option<T>) {
-    let list = list.get_or_insert_with(Vec::new);
-    list.resize(corner, None);
-    list.push(value);
+    part.end_face();
 }
 
 /// Reads a `<source>`: its `<float_array>` and its accessor's count, stride and offset.

@@ -1,0 +1,386 @@
+//! glTF 2.0 (`.gltf` with `.bin` files or embedded data, `.glb`), read and written with the
+//! `gltf` crate, the one Bevy's loader uses.
+//!
+//! **Reading** walks the default scene (else the first; a file without scenes places each mesh
+//! once) with every node's transform applied, and reads every primitive drawn as `TRIANGLES`,
+//! `TRIANGLE_STRIP` or `TRIANGLE_FAN` ([`super::strips`] for strips); points and lines are
+//! counted in the notes, as are skins, animations, morph targets, cameras, materials and
+//! textures. Attributes: `POSITION`, `NORMAL`, `TEXCOORD_0` (any component type, normalised
+//! integers scaled to 0–1; glTF's `v` runs down the image, so it is flipped, `v = 1 − v′`, as
+//! OBJ and Blender count it), `COLOR_0` (RGB or RGBA, alpha dropped); indices of any width;
+//! sparse accessors. glTF splits a vertex wherever an attribute differs (a UV seam, a hard
+//! edge): reading welds the vertices of one mesh that sit at the same position (bit for bit,
+//! `−0` as `+0`), so a closed surface comes back closed — or, in a file Pappus wrote, the
+//! vertices that copy one mesh vertex ([`VERTEX_ATTRIBUTE`]), so that two distinct vertices
+//! that coincide stay two — and keeps the split values per corner: UVs as they are; normals
+//! and colours, which Pappus keeps per vertex, as their mean where the corners differ (said in
+//! the notes).
+//!
+//! **Writing** ([`write`]) is a scene of one node and one mesh of one triangle primitive:
+//! polygons fan-triangulated (said by the caller: a polygon's face is not kept as one), a vertex written once per distinct (position, UV) pair, normals and
+//! colours per vertex. `.glb` by default, `.gltf` with the buffer embedded as a data URI.
+
+mod buffers;
+mod write;
+
+use bevy::math::{Mat4, Vec2, Vec3};
+use gltf::accessor::{DataType, Dimensions};
+use gltf::mesh::Mode;
+use std::collections::HashMap;
+use std::path::Path;
+
+use super::ParseError;
+use super::parts::{Merged, NO_POSITION, Part, Skipped, check_budget, merged_objects_note};
+use super::strips::strip_triangles;
+use crate::mesh::soup::PolygonSoup;
+use buffers::Buffers;
+pub(super) use write::write;
+
+/// An application-specific attribute (glTF §3.7.2.1: a name starting with `_`) that Pappus
+/// writes: for each vertex, the mesh vertex it is a copy of (`VEC2` of `u16`, low and high
+/// halves). Reading joins the copies by it, exactly, where a file has it; other files' vertices
+/// are joined by position. Other readers ignore it (Blender keeps it as a generic attribute).
+pub(super) const VERTEX_ATTRIBUTE: &str = "_PAPPUS_VERTEX";
+
+/// Node trees nested deeper than this are refused (a cycle, which validation does not catch).
+const MAX_DEPTH: usize = 64;
+
+/// Scenes that walk more nodes than this are refused.
+const MAX_NODES: usize = 1 << 20;
+
+/// Reads a glTF or GLB document; external buffers are looked for in `folder`.
+///
+/// # Errors
+/// A document the `gltf` crate does not parse or validate, a buffer that cannot be resolved,
+/// an accessor that cannot be read safely, or a scene too large for the memory budget.
+pub fn read(bytes: &[u8], folder: Option<&Path>) -> Result<PolygonSoup, ParseError> {
+    let error = |message: String| ParseError::byte(0, message);
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| error(e.to_string()))?;
+    let json = document.into_json();
+    // The crate's validation indexes the accessors by POSITION's number before it checks the
+    // number: check it first.
+    for mesh in &json.meshes {
+        for primitive in &mesh.primitives {
+            if let Some(bad) = primitive
+                .attributes
+                .values()
+                .find(|a| a.value() >= json.accessors.len())
+            {
+                return Err(error(format!(
+                    "an attribute names accessor {}, which does not exist",
+                    bad.value()
+                )));
+            }
+        }
+    }
+    let document = gltf::Document::from_json(json).map_err(|e| error(e.to_string()))?;
+    let buffers = Buffers::resolve(&document, blob, folder).map_err(error)?;
+    let placements = placements(&document).map_err(error)?;
+    let mut parts: HashMap<usize, Part> = HashMap::new();
+    for (mesh, _, _) in &placements {
+        if let std::collections::hash_map::Entry::Vacant(entry) = parts.entry(mesh.index()) {
+            let part =
+                read_mesh(mesh, &buffers).map_err(|e| ParseError::byte(0, e).unsupported())?;
+            entry.insert(part);
+        }
+    }
+    check_budget(
+        placements
+            .iter()
+            .filter_map(|(mesh, _, _)| parts.get(&mesh.index())),
+    )?;
+    let mut merged = Merged::default();
+    let mut names = Vec::new();
+    for (mesh, transform, name) in &placements {
+        if let Some(part) = parts.get(&mesh.index()) {
+            merged.append(part, *transform);
+            names.push(name.as_str());
+        }
+    }
+    let mut soup = merged.into_soup();
+    let mut skipped = Skipped::default();
+    for part in parts.values() {
+        skipped.add(&part.skipped);
+    }
+    skipped.count(
+        "skin(s) (meshes read in their bind pose)",
+        document.skins().count(),
+    );
+    skipped.count("animation(s)", document.animations().count());
+    skipped.count("camera(s)", document.cameras().count());
+    skipped.count("material(s)", document.materials().count());
+    skipped.count("texture(s)", document.textures().count());
+    soup.notes.extend(
+        merged_objects_note(&names)
+            .into_iter()
+            .chain(skipped.note()),
+    );
+    Ok(soup)
+}
+
+/// Every mesh the scene draws, with its transform and a name (the node's, else the mesh's).
+fn placements(document: &gltf::Document) -> Result<Vec<(gltf::Mesh<'_>, Mat4, String)>, String> {
+    let mut out = Vec::new();
+    let scene = document
+        .default_scene()
+        .or_else(|| document.scenes().next());
+    let Some(scene) = scene else {
+        for mesh in document.meshes() {
+            let name = mesh
+                .name()
+                .map_or_else(|| format!("mesh {}", mesh.index()), str::to_owned);
+            out.push((mesh, Mat4::IDENTITY, name));
+        }
+        return Ok(out);
+    };
+    let mut walked = 0usize;
+    let mut stack: Vec<(gltf::Node, Mat4, usize)> =
+        scene.nodes().map(|n| (n, Mat4::IDENTITY, 0)).collect();
+    stack.reverse();
+    while let Some((node, parent, depth)) = stack.pop() {
+        walked += 1;
+        if depth > MAX_DEPTH || walked > MAX_NODES {
+            return Err(format!(
+                "the scene's nodes nest deeper than {MAX_DEPTH} or number more than {MAX_NODES} (a cycle?)"
+            ));
+        }
+        let transform = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        if let Some(mesh) = node.mesh() {
+            let name = node
+                .name()
+                .or_else(|| mesh.name())
+                .map_or_else(|| format!("node {}", node.index()), str::to_owned);
+            out.push((mesh, transform, name));
+        }
+        let children: Vec<_> = node.children().collect();
+        stack.extend(
+            children
+                .into_iter()
+                .rev()
+                .map(|c| (c, transform, depth + 1)),
+        );
+    }
+    Ok(out)
+}
+
+/// The accessor types glTF allows for each attribute Pappus reads.
+const POSITIONS: &[(DataType, Dimensions)] = &[(DataType::F32, Dimensions::Vec3)];
+const NORMALS: &[(DataType, Dimensions)] = &[(DataType::F32, Dimensions::Vec3)];
+const TEXCOORDS: &[(DataType, Dimensions)] = &[
+    (DataType::F32, Dimensions::Vec2),
+    (DataType::U8, Dimensions::Vec2),
+    (DataType::U16, Dimensions::Vec2),
+];
+const COLORS: &[(DataType, Dimensions)] = &[
+    (DataType::F32, Dimensions::Vec3),
+    (DataType::U8, Dimensions::Vec3),
+    (DataType::U16, Dimensions::Vec3),
+    (DataType::F32, Dimensions::Vec4),
+    (DataType::U8, Dimensions::Vec4),
+    (DataType::U16, Dimensions::Vec4),
+];
+const VERTEX_IDS: &[(DataType, Dimensions)] = &[(DataType::U16, Dimensions::Vec2)];
+const INDICES: &[(DataType, Dimensions)] = &[
+    (DataType::U8, Dimensions::Scalar),
+    (DataType::U16, Dimensions::Scalar),
+    (DataType::U32, Dimensions::Scalar),
+];
+
+/// What joins a primitive's vertices into one mesh vertex.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+enum Weld {
+    /// The position's bits (`−0` as `+0`).
+    Position([u32; 3]),
+    /// The mesh vertex [`VERTEX_ATTRIBUTE`] names.
+    Vertex(u32),
+}
+
+/// One primitive's vertex data, as read.
+struct Vertices {
+    positions: Vec<Vec3>,
+    /// [`VERTEX_ATTRIBUTE`], where the file has it.
+    ids: Option<Vec<u32>>,
+    normals: Option<Vec<Vec3>>,
+    uvs: Option<Vec<Vec2>>,
+    colors: Option<Vec<Vec3>>,
+}
+
+/// Reads a mesh's triangle primitives into one part, welding vertices at the same position.
+fn read_mesh(mesh: &gltf::Mesh, buffers: &Buffers) -> Result<Part, String> {
+    let mut part = Part::new();
+    let mut welded: HashMap<Weld, u32> = HashMap::new();
+    for primitive in mesh.primitives() {
+        let mode = primitive.mode();
+        if !matches!(
+            mode,
+            Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+        ) {
+            let what = if mode == Mode::Points {
+                "point primitive(s)"
+            } else {
+                "line primitive(s)"
+            };
+            part.skipped.count(what, 1);
+            continue;
+        }
+        part.skipped
+            .count("morph target(s)", primitive.morph_targets().count());
+        let Some(vertices) = read_vertices(&primitive, buffers)? else {
+            part.skipped.count("primitive(s) without positions", 1);
+            continue;
+        };
+        // This primitive's vertex `i` is the part's position `slot[i]`.
+        let slot: Vec<u32> = vertices
+            .positions
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| {
+                let key = match &vertices.ids {
+                    Some(ids) => Weld::Vertex(ids[i]),
+                    None => Weld::Position((p + Vec3::ZERO).to_array().map(f32::to_bits)),
+                };
+                *welded.entry(key).or_insert_with(|| {
+                    part.positions.push(p);
+                    (part.positions.len() - 1) as u32
+                })
+            })
+            .collect();
+        let order = read_indices(&primitive, buffers, vertices.positions.len())?;
+        let mut triangle = |corners: [u32; 3]| {
+            for i in corners {
+                let i = i as usize;
+                let index = slot.get(i).copied().unwrap_or(NO_POSITION);
+                part.push_corner(
+                    index,
+                    value_at(&vertices.normals, i),
+                    value_at(&vertices.uvs, i),
+                    value_at(&vertices.colors, i),
+                );
+            }
+            part.end_face();
+        };
+        match mode {
+            Mode::Triangles => order
+                .chunks_exact(3)
+                .for_each(|t| triangle([t[0], t[1], t[2]])),
+            Mode::TriangleFan => {
+                for i in 1..order.len().saturating_sub(1) {
+                    triangle([order[0], order[i], order[i + 1]]);
+                }
+            }
+            _ => {
+                for [a, b, c] in strip_triangles(&order) {
+                    if a != b && b != c && a != c {
+                        triangle([a, b, c]);
+                    }
+                }
+            }
+        }
+    }
+    Ok(part)
+}
+
+/// Vertex `i`'s value of an attribute the primitive may not have.
+fn value_at<T: Copy>(list: &Option<Vec<T>>, i: usize) -> Option<T> {
+    list.as_ref().and_then(|l| l.get(i).copied())
+}
+
+/// A primitive's positions and the attributes Pappus reads; `None` without positions.
+fn read_vertices(
+    primitive: &gltf::Primitive,
+    buffers: &Buffers,
+) -> Result<Option<Vertices>, String> {
+    let reader = primitive.reader(|b| buffers.get(b));
+    let Some(accessor) = primitive.get(&gltf::Semantic::Positions) else {
+        return Ok(None);
+    };
+    buffers.check_accessor(&accessor, POSITIONS, "positions")?;
+    let positions: Vec<Vec3> = reader
+        .read_positions()
+        .ok_or("positions cannot be read")?
+        .map(Vec3::from_array)
+        .collect();
+    let n = positions.len();
+    let attribute = |semantic: gltf::Semantic, allowed, what: &str| -> Result<bool, String> {
+        match primitive.get(&semantic) {
+            Some(accessor) => {
+                buffers.check_accessor(&accessor, allowed, what)?;
+                if accessor.count() < n {
+                    return Err(format!("{what}: {} for {n} positions", accessor.count()));
+                }
+                Ok(true)
+            }
+            None => Ok(false),
+        }
+    };
+    let normals = attribute(gltf::Semantic::Normals, NORMALS, "normals")?
+        .then(|| {
+            reader
+                .read_normals()
+                .map(|r| r.map(Vec3::from_array).collect())
+        })
+        .flatten();
+    // glTF's v runs down the image; Pappus's (OBJ's, Blender's) runs up.
+    let uvs = attribute(
+        gltf::Semantic::TexCoords(0),
+        TEXCOORDS,
+        "texture coordinates",
+    )?
+    .then(|| {
+        let flip = |[u, v]: [f32; 2]| Vec2::new(u, 1.0 - v);
+        reader
+            .read_tex_coords(0)
+            .map(|r| r.into_f32().map(flip).collect())
+    })
+    .flatten();
+    let colors = attribute(gltf::Semantic::Colors(0), COLORS, "colours")?
+        .then(|| {
+            let bytes =
+                |c: [f32; 3]| Vec3::from_array(c.map(|v| (v * 255.0).round().clamp(0.0, 255.0)));
+            reader
+                .read_colors(0)
+                .map(|r| r.into_rgb_f32().map(bytes).collect())
+        })
+        .flatten();
+    let id_semantic = || gltf::Semantic::Extras(VERTEX_ATTRIBUTE[1..].into());
+    let ids = attribute(id_semantic(), VERTEX_IDS, "vertex ids")?
+        .then(|| {
+            let accessor = primitive.get(&id_semantic())?;
+            let ids = gltf::accessor::Iter::<[u16; 2]>::new(accessor, |b| buffers.get(b))?;
+            Some(
+                ids.map(|[low, high]| u32::from(low) | (u32::from(high) << 16))
+                    .collect(),
+            )
+        })
+        .flatten();
+    Ok(Some(Vertices {
+        positions,
+        ids,
+        normals,
+        uvs,
+        colors,
+    }))
+}
+
+/// A primitive's vertex order: its indices, or every vertex in turn without them. An index
+/// past the vertices stays, for the part to turn into [`NO_POSITION`].
+fn read_indices(
+    primitive: &gltf::Primitive,
+    buffers: &Buffers,
+    vertices: usize,
+) -> Result<Vec<u32>, String> {
+    let Some(accessor) = primitive.indices() else {
+        return Ok((0..vertices as u32).collect());
+    };
+    buffers.check_accessor(&accessor, INDICES, "indices")?;
+    let reader = primitive.reader(|b| buffers.get(b));
+    Ok(reader
+        .read_indices()
+        .ok_or("indices cannot be read")?
+        .into_u32()
+        .collect())
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,244 @@
+//! glTF on hand-made and written documents: round trips bit for bit, welding, the vertex count
+//! a write produces, strips and fans, transforms, and broken files.
+
+use bevy::math::{Vec2, Vec3};
+use serde_json::json;
+
+use super::{read, write};
+use crate::mesh::soup::PolygonSoup;
+
+/// A cube of quads whose faces each have their own UV square (a seam at every edge), with
+/// normals and colours: the case glTF splits.
+fn seamed_cube() -> PolygonSoup {
+    let mut soup = crate::mesh::shapes::cube();
+    let corners = soup.indices.len();
+    let square = [Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y];
+    // Face f's square sits at u = 0.15 f: no two faces share a UV.
+    let uv = |k: usize| square[k % 4] * 0.1 + Vec2::new(0.15 * (k / 4) as f32, 0.3);
+    soup.corner_uvs = Some((0..corners).map(uv).collect());
+    soup.vertex_normals = Some(soup.positions.iter().map(|p| p.normalize()).collect());
+    soup.vertex_colors = Some(
+        (0..soup.positions.len() as u8)
+            .map(|i| [i * 30, 255 - i, 7])
+            .collect(),
+    );
+    soup
+}
+
+fn bits3(v: &[Vec3]) -> Vec<[u32; 3]> {
+    v.iter().map(|p| p.to_array().map(f32::to_bits)).collect()
+}
+
+#[test]
+fn a_written_file_reads_back_welded_with_every_value() {
+    let soup = seamed_cube();
+    for binary in [true, false] {
+        let bytes = write(&soup, binary);
+        // The crate itself accepts what is written.
+        let gltf = gltf::Gltf::from_slice(&bytes).unwrap();
+        let primitive = gltf.meshes().next().unwrap().primitives().next().unwrap();
+        // One vertex per (position, UV): each cube corner is in three faces with three UVs.
+        assert_eq!(
+            primitive.get(&gltf::Semantic::Positions).unwrap().count(),
+            24
+        );
+        let back = read(&bytes, None).unwrap();
+        assert_eq!(
+            bits3(&back.positions),
+            bits3(&soup.positions),
+            "welded back to 8, in order"
+        );
+        assert_eq!(
+            back.face_count(),
+            12,
+            "quads come back as two triangles each"
+        );
+        assert_eq!(
+            bits3(back.vertex_normals.as_ref().unwrap()),
+            bits3(soup.vertex_normals.as_ref().unwrap())
+        );
+        assert_eq!(back.vertex_colors, soup.vertex_colors);
+        // Each triangle's corners carry their face's UVs (v flipped twice: within an ulp of 1).
+        let uvs = back.corner_uvs.as_ref().unwrap();
+        let original = soup.corner_uvs.as_ref().unwrap();
+        for (f, face) in back.faces().enumerate() {
+            let quad = f / 2;
+            for (c, &v) in face.iter().enumerate() {
+                let k = quad * 4 + soup.face(quad).iter().position(|&x| x == v).unwrap();
+                assert!(uvs[f * 3 + c].abs_diff_eq(original[k], 1e-7), "face {f}");
+            }
+        }
+        assert!(back.notes.is_empty(), "{:?}", back.notes);
+    }
+}
+
+#[test]
+fn a_written_file_read_again_writes_the_same_bytes() {
+    let once = write(&seamed_cube(), true);
+    let mut back = read(&once, None).unwrap();
+    back.notes.clear();
+    let twice = write(&back, true);
+    let third = write(&read(&twice, None).unwrap(), true);
+    assert_eq!(twice, third);
+}
+
+/// A document with `positions` (flat f32 triples) and a primitive of `mode` over `indices`
+/// (u16), placed by `nodes` (the scene's node list is `[0]`).
+fn document(positions: &[f32], indices: &[u16], mode: u32, nodes: serde_json::Value) -> Vec<u8> {
+    let mut bytes: Vec<u8> = positions.iter().flat_map(|c| c.to_le_bytes()).collect();
+    let index_offset = bytes.len();
+    bytes.extend(indices.iter().flat_map(|i| i.to_le_bytes()));
+    let count = positions.len() / 3;
+    let (mut min, mut max) = ([f32::MAX; 3], [f32::MIN; 3]);
+    for p in positions.chunks(3) {
+        for k in 0..3 {
+            min[k] = min[k].min(p[k]);
+            max[k] = max[k].max(p[k]);
+        }
+    }
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &bytes)
+    );
+    serde_json::to_vec(&json!({
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": nodes,
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": mode}]}],
+        "buffers": [{"byteLength": bytes.len(), "uri": uri}],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": index_offset},
+            {"buffer": 0, "byteOffset": index_offset, "byteLength": bytes.len() - index_offset}
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": count, "type": "VEC3", "min": min, "max": max},
+            {"bufferView": 1, "componentType": 5123, "count": indices.len(), "type": "SCALAR"}
+        ]
+    }))
+    .unwrap()
+}
+
+const SQUARE: [f32; 12] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0];
+
+#[test]
+fn strips_fans_and_node_transforms() {
+    let node = json!([{"mesh": 0}]);
+    let strip = read(&document(&SQUARE, &[0, 1, 3, 2], 5, node.clone()), None).unwrap();
+    let faces: Vec<&[u32]> = strip.faces().collect();
+    assert_eq!(faces, vec![&[0, 1, 3][..], &[3, 1, 2]]);
+    let fan = read(&document(&SQUARE, &[0, 1, 2, 3], 6, node), None).unwrap();
+    let faces: Vec<&[u32]> = fan.faces().collect();
+    assert_eq!(faces, vec![&[0, 1, 2][..], &[0, 2, 3]]);
+    // A parent moves, its child scales; the mesh is placed twice.
+    let nodes = json!([
+        {"translation": [0.0, 0.0, 5.0], "children": [1], "name": "parent"},
+        {"scale": [2.0, 2.0, 2.0], "mesh": 0, "name": "child"},
+        {"mesh": 0}
+    ]);
+    let mut bytes = document(&SQUARE, &[0, 1, 2, 0, 2, 3], 4, nodes);
+    let mut value: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+    value["scenes"][0]["nodes"] = json!([0, 2]);
+    bytes = serde_json::to_vec(&value).unwrap();
+    let placed = read(&bytes, None).unwrap();
+    assert_eq!(placed.positions.len(), 8);
+    assert_eq!(placed.positions[2], Vec3::new(2.0, 2.0, 5.0));
+    assert_eq!(placed.positions[6], Vec3::new(1.0, 1.0, 0.0));
+    assert!(
+        placed.notes[0].starts_with("2 objects (child, node 2)"),
+        "{:?}",
+        placed.notes
+    );
+}
+
+#[test]
+fn split_vertices_are_welded_so_a_closed_surface_stays_closed() {
+    // A tetrahedron written glTF-style: each triangle with its own three vertices.
+    let corners = [
+        [0.0f32, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    ];
+    let triangles = [[0usize, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+    let positions: Vec<f32> = triangles
+        .iter()
+        .flatten()
+        .flat_map(|&v| corners[v])
+        .collect();
+    let indices: Vec<u16> = (0..12).collect();
+    let soup = read(
+        &document(&positions, &indices, 4, json!([{"mesh": 0}])),
+        None,
+    )
+    .unwrap();
+    assert_eq!(soup.positions.len(), 4);
+    let mut world = bevy::prelude::World::new();
+    let built = crate::mesh::build_mesh(&mut world, &soup, Default::default()).unwrap();
+    let stats = crate::mesh::mesh_stats(&world, built.mesh);
+    assert!(stats.closed && stats.euler_characteristic == 2);
+}
+
+#[test]
+fn broken_files_are_errors_not_panics() {
+    let good = document(&SQUARE, &[0, 1, 2], 4, json!([{"mesh": 0}]));
+    let mut value: serde_json::Value = serde_json::from_slice(&good).unwrap();
+    let cases = [
+        ("/accessors/0/count", json!(0), "is empty"),
+        ("/accessors/0/count", json!(100), "reaches past the end"),
+        (
+            "/bufferViews/0/byteLength",
+            json!(4),
+            "reaches past the end",
+        ),
+        (
+            "/buffers/0/byteLength",
+            json!(10_000),
+            "declares 10000 bytes",
+        ),
+        (
+            "/buffers/0/uri",
+            json!("missing.bin"),
+            "open the .gltf from its folder",
+        ),
+        ("/nodes/0/children", json!([0]), "a cycle"),
+    ];
+    for (pointer, replacement, expected) in cases {
+        let original = value.pointer(pointer).cloned();
+        let (parent, key) = pointer.rsplit_once('/').unwrap();
+        value.pointer_mut(parent).unwrap()[key] = replacement;
+        let err = read(&serde_json::to_vec(&value).unwrap(), None).unwrap_err();
+        assert!(err.message.contains(expected), "{pointer}: {err:?}");
+        match original {
+            Some(v) => *value.pointer_mut(pointer).unwrap() = v,
+            None => {
+                let (parent, key) = pointer.rsplit_once('/').unwrap();
+                value
+                    .pointer_mut(parent)
+                    .unwrap()
+                    .as_object_mut()
+                    .unwrap()
+                    .remove(key);
+            }
+        }
+    }
+    assert!(read(b"{", None).is_err());
+    assert!(read(b"glTF\x02\0\0\0", None).is_err());
+    for cut in 0..good.len() {
+        let _ = read(&good[..cut], None);
+    }
+    let glb = write(&seamed_cube(), true);
+    for cut in 0..glb.len() {
+        let _ = read(&glb[..cut], None);
+    }
+    let mut seed = 0x1234_5678_u32;
+    for _ in 0..3000 {
+        let mut damaged = glb.clone();
+        seed ^= seed << 13;
+        seed ^= seed >> 17;
+        seed ^= seed << 5;
+        let at = seed as usize % damaged.len();
+        damaged[at] = (seed >> 24) as u8;
+        let _ = read(&damaged, None);
+    }
+}

@@ -1,0 +1,310 @@
+//! Writing glTF 2.0: one scene, one node, one mesh of one `TRIANGLES` primitive.
+//!
+//! A vertex is written once per distinct (position, UV) pair — once per position when the soup
+//! has no UVs, in the soup's order — so only a UV seam splits a vertex, as glTF requires.
+//! Polygons are fan-triangulated, from the first corner whose diagonals are not edges already. `POSITION` (with the `min`/`max` glTF
+//! requires), `NORMAL`, `TEXCOORD_0` (`v` flipped back to glTF's downward axis) and `COLOR_0`
+//! (normalised bytes, padded to 4 for alignment) are written when the soup has them, and
+//! [`VERTEX_ATTRIBUTE`](super::VERTEX_ATTRIBUTE), the soup vertex each written vertex copies;
+//! indices are 32-bit. A `.glb` holds the JSON and the binary chunk; a `.gltf` embeds the buffer as a
+//! base64 data URI, so either is one file.
+
+use base64::Engine;
+use serde_json::{Value, json};
+use std::collections::HashMap;
+
+use super::VERTEX_ATTRIBUTE;
+use crate::mesh::soup::PolygonSoup;
+
+/// glTF's component type and target codes.
+const FLOAT: u32 = 5126;
+const UNSIGNED_BYTE: u32 = 5121;
+const UNSIGNED_SHORT: u32 = 5123;
+const UNSIGNED_INT: u32 = 5125;
+const ARRAY_BUFFER: u32 = 34962;
+const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+
+/// Encodes `soup` as a `.glb` (`binary`) or a `.gltf` with its buffer embedded.
+pub fn write(soup: &PolygonSoup, binary: bool) -> Vec<u8> {
+    let (vertices, indices) = vertices_and_triangles(soup);
+    let mut buffer = Vec::new();
+    let mut views = Vec::new();
+    let mut accessors = Vec::new();
+    let mut attributes = serde_json::Map::new();
+    let mut push = |bytes: Vec<u8>, stride: Option<usize>, target: u32, accessor: Value| {
+        let view = json!({
+            "buffer": 0,
+            "byteOffset": buffer.len(),
+            "byteLength": bytes.len(),
+            "target": target,
+        });
+        let mut view = view;
+        if let Some(stride) = stride {
+            view["byteStride"] = json!(stride);
+        }
+        buffer.extend_from_slice(&bytes);
+        buffer.resize(buffer.len().next_multiple_of(4), 0);
+        let mut accessor = accessor;
+        accessor["bufferView"] = json!(views.len());
+        views.push(view);
+        accessors.push(accessor);
+        accessors.len() - 1
+    };
+    if !indices.is_empty() {
+        let positions: Vec<[f32; 3]> = vertices
+            .iter()
+            .map(|&(v, _)| soup.positions[v as usize].to_array())
+            .collect();
+        let (min, max) = bounds(&positions);
+        let count = positions.len();
+        let bytes = positions
+            .iter()
+            .flatten()
+            .flat_map(|c| c.to_le_bytes())
+            .collect();
+        let position = push(
+            bytes,
+            None,
+            ARRAY_BUFFER,
+            json!({
+                "componentType": FLOAT, "count": count, "type": "VEC3", "min": min, "max": max,
+            }),
+        );
+        attributes.insert("POSITION".into(), json!(position));
+        if let Some(normals) = soup
+            .vertex_normals
+            .as_ref()
+            .filter(|n| n.len() == soup.positions.len())
+        {
+            let bytes = vertices
+                .iter()
+                .flat_map(|&(v, _)| normals[v as usize].to_array())
+                .flat_map(|c| c.to_le_bytes())
+                .collect();
+            let normal = push(
+                bytes,
+                None,
+                ARRAY_BUFFER,
+                json!({
+                    "componentType": FLOAT, "count": count, "type": "VEC3",
+                }),
+            );
+            attributes.insert("NORMAL".into(), json!(normal));
+        }
+        if soup.attributes().uv {
+            let bytes = vertices
+                .iter()
+                .flat_map(|&(_, uv)| {
+                    let [u, v] = uv.map(f32::from_bits);
+                    [u, 1.0 - v]
+                })
+                .flat_map(|c| c.to_le_bytes())
+                .collect();
+            let uv = push(
+                bytes,
+                None,
+                ARRAY_BUFFER,
+                json!({
+                    "componentType": FLOAT, "count": count, "type": "VEC2",
+                }),
+            );
+            attributes.insert("TEXCOORD_0".into(), json!(uv));
+        }
+        if let Some(colors) = soup
+            .vertex_colors
+            .as_ref()
+            .filter(|c| c.len() == soup.positions.len())
+        {
+            let bytes = vertices
+                .iter()
+                .flat_map(|&(v, _)| {
+                    let [r, g, b] = colors[v as usize];
+                    [r, g, b, 0]
+                })
+                .collect();
+            let color = push(
+                bytes,
+                Some(4),
+                ARRAY_BUFFER,
+                json!({
+                    "componentType": UNSIGNED_BYTE, "normalized": true, "count": count, "type": "VEC3",
+                }),
+            );
+            attributes.insert("COLOR_0".into(), json!(color));
+        }
+        // Which soup vertex each written one is (low and high 16 bits), so that Pappus joins
+        // exactly the copies it split, not every two vertices that happen to coincide.
+        let bytes = vertices
+            .iter()
+            .flat_map(|&(v, _)| [v as u16, (v >> 16) as u16])
+            .flat_map(|half| half.to_le_bytes())
+            .collect();
+        let vertex = push(
+            bytes,
+            None,
+            ARRAY_BUFFER,
+            json!({ "componentType": UNSIGNED_SHORT, "count": count, "type": "VEC2" }),
+        );
+        attributes.insert(VERTEX_ATTRIBUTE.into(), json!(vertex));
+        let bytes = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+        push(
+            bytes,
+            None,
+            ELEMENT_ARRAY_BUFFER,
+            json!({
+                "componentType": UNSIGNED_INT, "count": indices.len(), "type": "SCALAR",
+            }),
+        );
+    }
+    let mut document = json!({
+        "asset": { "version": "2.0", "generator": concat!("Pappus ", env!("CARGO_PKG_VERSION")) },
+        "scene": 0,
+        "scenes": [{ "nodes": [0] }],
+        "nodes": [{ "name": "Pappus mesh" }],
+    });
+    if !indices.is_empty() {
+        document["nodes"][0]["mesh"] = json!(0);
+        document["meshes"] = json!([{
+            "name": "Pappus mesh",
+            "primitives": [{ "attributes": attributes, "indices": accessors.len() - 1, "mode": 4 }],
+        }]);
+        document["accessors"] = json!(accessors);
+        document["bufferViews"] = json!(views);
+        let mut entry = json!({ "byteLength": buffer.len() });
+        if !binary {
+            let encoded = base64::engine::general_purpose::STANDARD.encode(&buffer);
+            entry["uri"] = json!(format!("data:application/octet-stream;base64,{encoded}"));
+        }
+        document["buffers"] = json!([entry]);
+    }
+    let text = serde_json::to_vec(&document).expect("a JSON value always serialises");
+    if binary { glb(text, buffer) } else { text }
+}
+
+/// The vertices to write, as (soup vertex, UV bits), and each triangle's three vertex numbers.
+/// Vertices are in the soup's order, a vertex's UV copies together in order of first use (every
+/// position, used or not, when the soup has no UVs): so a reader that welds by position gets
+/// the soup's vertices back in their order.
+fn vertices_and_triangles(soup: &PolygonSoup) -> (Vec<(u32, [u32; 2])>, Vec<u32>) {
+    let uvs = soup.corner_uvs.as_ref().filter(|_| soup.attributes().uv);
+    let n = soup.positions.len() as u32;
+    // Each corner's key, for the triangles of every face that names existing vertices.
+    let mut corners: Vec<(u32, [u32; 2])> = Vec::new();
+    let mut triangles: Vec<[usize; 3]> = Vec::new();
+    let mut edges = Edges::of(soup);
+    for (f, face) in soup.faces().enumerate() {
+        if face.len() < 3 || face.iter().any(|&v| v >= n) {
+            continue;
+        }
+        let start = soup.face_starts[f] as usize;
+        let first = corners.len();
+        corners.extend(face.iter().enumerate().map(|(i, &v)| {
+            let uv = uvs.map_or([0, 0], |uvs| uvs[start + i].to_array().map(f32::to_bits));
+            (v, uv)
+        }));
+        let apex = edges.fan_apex(face);
+        let m = face.len();
+        triangles.extend((1..m - 1).map(|i| {
+            let at = |j: usize| first + (apex + j) % m;
+            [at(0), at(i), at(i + 1)]
+        }));
+    }
+    let vertices: Vec<(u32, [u32; 2])> = match uvs {
+        None => (0..n).map(|v| (v, [0, 0])).collect(),
+        Some(_) => {
+            // Distinct keys in order of first use, then stably by vertex.
+            let mut seen = std::collections::HashSet::new();
+            let mut keys: Vec<(u32, [u32; 2])> = corners
+                .iter()
+                .copied()
+                .filter(|key| seen.insert(*key))
+                .collect();
+            keys.sort_by_key(|&(v, _)| v);
+            keys
+        }
+    };
+    let numbers: HashMap<(u32, [u32; 2]), u32> = vertices
+        .iter()
+        .enumerate()
+        .map(|(i, &key)| (key, i as u32))
+        .collect();
+    let indices = triangles
+        .iter()
+        .flatten()
+        .map(|&k| numbers[&corners[k]])
+        .collect();
+    (vertices, indices)
+}
+
+/// The mesh's edges, and the diagonals fans add, to triangulate polygons without making an
+/// edge twice: a quad whose diagonal is already an edge elsewhere (a fold, as Suzanne has)
+/// would otherwise come back with a non-manifold edge.
+struct Edges(std::collections::HashSet<(u32, u32)>);
+
+impl Edges {
+    fn key(a: u32, b: u32) -> (u32, u32) {
+        (a.min(b), a.max(b))
+    }
+
+    /// Every edge of the soup's faces.
+    fn of(soup: &PolygonSoup) -> Edges {
+        let mut set = std::collections::HashSet::new();
+        for face in soup.faces() {
+            for (i, &a) in face.iter().enumerate() {
+                set.insert(Self::key(a, face[(i + 1) % face.len()]));
+            }
+        }
+        Edges(set)
+    }
+
+    /// The corner to fan `face` from: the first whose diagonals are not edges yet (the first
+    /// corner when none is, or for a triangle). Records the chosen fan's diagonals.
+    fn fan_apex(&mut self, face: &[u32]) -> usize {
+        let m = face.len();
+        if m == 3 {
+            return 0;
+        }
+        let diagonals = |apex: usize| (2..m - 1).map(move |j| (face[apex], face[(apex + j) % m]));
+        let apex = (0..m)
+            .find(|&apex| diagonals(apex).all(|(a, b)| !self.0.contains(&Self::key(a, b))))
+            .unwrap_or(0);
+        for (a, b) in diagonals(apex) {
+            self.0.insert(Self::key(a, b));
+        }
+        apex
+    }
+}
+
+/// The componentwise minimum and maximum of the positions.
+fn bounds(positions: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
+    let mut min = [f32::INFINITY; 3];
+    let mut max = [f32::NEG_INFINITY; 3];
+    for p in positions {
+        for k in 0..3 {
+            min[k] = min[k].min(p[k]);
+            max[k] = max[k].max(p[k]);
+        }
+    }
+    (min, max)
+}
+
+/// A `.glb`: the 12-byte header, the JSON chunk (padded with spaces) and the binary chunk
+/// (padded with zeros), each chunk 4-byte aligned.
+fn glb(mut json: Vec<u8>, mut bin: Vec<u8>) -> Vec<u8> {
+    json.resize(json.len().next_multiple_of(4), b' ');
+    bin.resize(bin.len().next_multiple_of(4), 0);
+    let chunks = 8 + json.len() + if bin.is_empty() { 0 } else { 8 + bin.len() };
+    let mut out = Vec::with_capacity(12 + chunks);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&((12 + chunks) as u32).to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json);
+    if !bin.is_empty() {
+        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+        out.extend_from_slice(b"BIN\0");
+        out.extend_from_slice(&bin);
+    }
+    out
+}

@@ -1,0 +1,300 @@
+//! Scene readers' common ground (COLLADA, glTF): a mesh of a file read into a [`Part`], its
+//! corners naming their own normals, UVs and colours, and the parts placed in the scene
+//! appended into one soup by [`Merged`] — each copy's positions transformed (normals by the
+//! inverse transpose, the winding reversed under a mirroring transform so faces keep facing
+//! out; the identity skipped so positions keep their bits), per-corner normals and colours
+//! then gathered per vertex ([`super::corners`]), UVs kept per corner.
+
+use bevy::math::{Mat3, Mat4, Vec2, Vec3};
+
+use super::ParseError;
+use super::corners::{differing_normals_note, mean_normal, per_vertex};
+use crate::memory_budget;
+use crate::mesh::soup::PolygonSoup;
+
+/// A corner index that names no position.
+pub(super) const NO_POSITION: u32 = u32::MAX;
+
+/// One geometry's polygons, indexed into its own positions, and what its corners carry.
+#[derive(Default)]
+pub(super) struct Part {
+    /// The `POSITION` source, in order.
+    pub positions: Vec<Vec3>,
+    /// Every face's corners, concatenated (indices into `positions`, or [`NO_POSITION`]).
+    pub indices: Vec<u32>,
+    /// Where each face starts in `indices`, then `indices.len()`.
+    pub face_starts: Vec<u32>,
+    /// A normal per corner, when an input gives them.
+    pub normals: Option<Vec<Option<Vec3>>>,
+    /// A texture coordinate per corner, when an input gives them.
+    pub uvs: Option<Vec<Option<Vec2>>>,
+    /// A colour per corner (0–255 per channel, as floats), when an input gives them.
+    pub colors: Option<Vec<Option<Vec3>>>,
+    /// What the geometry held that is not read.
+    pub skipped: Skipped,
+}
+
+impl Part {
+    /// An empty part, ready for [`push_corner`](Self::push_corner) and
+    /// [`end_face`](Self::end_face).
+    pub fn new() -> Self {
+        Part {
+            face_starts: vec![0],
+            ..Part::default()
+        }
+    }
+
+    /// Appends a corner of the face being built: its position index (or [`NO_POSITION`]) and
+    /// the values it names. A list starts (`None` for the corners before) at its first value.
+    pub fn push_corner(
+        &mut self,
+        index: u32,
+        normal: Option<Vec3>,
+        uv: Option<Vec2>,
+        color: Option<Vec3>,
+    ) {
+        let k = self.indices.len();
+        self.indices.push(index);
+        put(&mut self.normals, k, normal);
+        put(&mut self.uvs, k, uv);
+        put(&mut self.colors, k, color);
+    }
+
+    /// Ends the face whose corners were pushed since the last one ended.
+    pub fn end_face(&mut self) {
+        self.face_starts.push(self.indices.len() as u32);
+    }
+}
+
+/// Sets corner `k`'s value in a per-corner list (padding it with `None` up to `k`), creating
+/// the list at its first value.
+fn put<T: Copy>(list: &mut Option<Vec<Option<T>>>, k: usize, value: Option<T>) {
+    match list {
+        Some(list) => {
+            list.resize(k, None);
+            list.push(value);
+        }
+        None if value.is_some() => {
+            let mut new = vec![None; k];
+            new.push(value);
+            *list = Some(new);
+        }
+        None => {}
+    }
+}
+
+/// Counts of what a reader read past, by what it is in a person's words
+/// (`"line primitive(s)"`), in order of first appearance.
+#[derive(Default, Clone, Debug)]
+pub(super) struct Skipped(Vec<(&'static str, usize)>);
+
+impl Skipped {
+    /// Counts `n` more of `what`.
+    pub fn count(&mut self, what: &'static str, n: usize) {
+        if n == 0 {
+            return;
+        }
+        match self.0.iter_mut().find(|(w, _)| *w == what) {
+            Some((_, count)) => *count += n,
+            None => self.0.push((what, n)),
+        }
+    }
+
+    /// Adds another's counts.
+    pub fn add(&mut self, other: &Skipped) {
+        for &(what, n) in &other.0 {
+            self.count(what, n);
+        }
+    }
+
+    /// The note for the soup: `"skipped: 1 camera(s), 2 line primitive(s)"`; `None` when
+    /// nothing was.
+    pub fn note(&self) -> Option<String> {
+        let phrases: Vec<String> = self
+            .0
+            .iter()
+            .map(|(what, n)| format!("{n} {what}"))
+            .collect();
+        (!phrases.is_empty()).then(|| format!("skipped: {}", phrases.join(", ")))
+    }
+}
+
+/// The note naming the objects (placed meshes) read into one mesh, when there are several:
+/// `"3 objects (Cube, Cone, Plane) read as one mesh of several parts"`.
+pub(super) fn merged_objects_note(names: &[&str]) -> Option<String> {
+    if names.len() < 2 {
+        return None;
+    }
+    let shown: Vec<&str> = names.iter().take(5).copied().collect();
+    let more = if names.len() > 5 { ", …" } else { "" };
+    Some(format!(
+        "{} objects ({}{more}) read as one mesh of several parts",
+        names.len(),
+        shown.join(", ")
+    ))
+}
+
+/// Refuses a scene whose placed copies (`placed`: each part once per placement) would not fit
+/// the memory budget: instances multiply, so a small file can describe a huge mesh.
+///
+/// # Errors
+/// The budget's refusal, as an unsupported-content error.
+pub(super) fn check_budget<'p>(placed: impl Iterator<Item = &'p Part>) -> Result<(), ParseError> {
+    let (mut copies, mut faces, mut rows) = (0usize, 0u64, 0u64);
+    for part in placed {
+        copies += 1;
+        let part_faces = part.face_starts.len().saturating_sub(1) as u64;
+        faces = faces.saturating_add(part_faces);
+        // Vertices, a halfedge a corner, half an edge a corner, and the faces.
+        let corners = part.indices.len() as u64;
+        rows =
+            rows.saturating_add(part.positions.len() as u64 + corners + corners / 2 + part_faces);
+    }
+    memory_budget::check(&memory_budget::Estimate {
+        what: format!("the scene's {copies} placed mesh(es)"),
+        faces,
+        rows,
+        instead: "open a scene that places fewer copies",
+    })
+    .map_err(|refusal| ParseError::byte(0, refusal.to_string()).unsupported())
+}
+
+/// The parts appended one after another, per-corner values kept until the end.
+#[derive(Default)]
+pub(super) struct Merged {
+    soup: PolygonSoup,
+    normals: Option<Vec<Option<Vec3>>>,
+    uvs: Option<Vec<Option<Vec2>>>,
+    colors: Option<Vec<Option<Vec3>>>,
+}
+
+impl Merged {
+    /// Appends a copy of `part` placed by `transform`.
+    pub fn append(&mut self, part: &Part, transform: Mat4) {
+        let base = self.soup.positions.len() as u32;
+        let corners_before = self.soup.indices.len();
+        let identity = transform == Mat4::IDENTITY;
+        // The identity is skipped, not applied: 1·x + 0·y would turn −0 into +0.
+        self.soup.positions.extend(part.positions.iter().map(|&p| {
+            if identity {
+                p
+            } else {
+                transform.transform_point3(p)
+            }
+        }));
+        let normal_matrix = Mat3::from_mat4(transform).inverse().transpose();
+        let normal_matrix = if normal_matrix.is_finite() {
+            normal_matrix
+        } else {
+            Mat3::IDENTITY
+        };
+        let mirrored = transform.determinant() < 0.0;
+        let order = |start: usize, end: usize| -> Vec<usize> {
+            if mirrored {
+                (start..end).rev().collect()
+            } else {
+                (start..end).collect()
+            }
+        };
+        start_list(&mut self.normals, corners_before, &part.normals);
+        start_list(&mut self.uvs, corners_before, &part.uvs);
+        start_list(&mut self.colors, corners_before, &part.colors);
+        for face in part.face_starts.windows(2) {
+            let corners = order(face[0] as usize, face[1] as usize);
+            let face_indices: Vec<u32> = corners
+                .iter()
+                .map(|&k| match part.indices[k] {
+                    NO_POSITION => NO_POSITION,
+                    v => base + v,
+                })
+                .collect();
+            self.soup.push_face(&face_indices);
+            for &k in &corners {
+                if let Some(list) = &mut self.normals {
+                    list.push(corner(&part.normals, k).map(|n: Vec3| {
+                        if identity {
+                            n
+                        } else {
+                            (normal_matrix * n).normalize_or_zero()
+                        }
+                    }));
+                }
+                if let Some(list) = &mut self.uvs {
+                    list.push(corner(&part.uvs, k));
+                }
+                if let Some(list) = &mut self.colors {
+                    list.push(corner(&part.colors, k));
+                }
+            }
+        }
+    }
+
+    /// The soup, per-corner normals and colours gathered per vertex.
+    pub fn into_soup(self) -> PolygonSoup {
+        let Merged {
+            mut soup,
+            normals,
+            uvs,
+            colors,
+        } = self;
+        let n = soup.positions.len();
+        if let Some(normals) = normals {
+            let gathered = per_vertex(&soup.indices, n, normals.into_iter(), mean_normal);
+            if gathered.differing > 0 {
+                soup.notes.push(differing_normals_note(gathered.differing));
+            }
+            soup.vertex_normals = Some(
+                gathered
+                    .values
+                    .into_iter()
+                    .map(|v| v.unwrap_or(Vec3::ZERO))
+                    .collect(),
+            );
+        }
+        if let Some(uvs) = uvs {
+            let missing = uvs.iter().filter(|u| u.is_none()).count();
+            if missing > 0 {
+                soup.notes.push(format!(
+                    "{missing} face corner(s) have no texture coordinate: given (0, 0)"
+                ));
+            }
+            soup.corner_uvs = Some(uvs.into_iter().map(|u| u.unwrap_or(Vec2::ZERO)).collect());
+        }
+        if let Some(colors) = colors {
+            let gathered = per_vertex(&soup.indices, n, colors.into_iter(), |sum, count| {
+                sum / count as f32
+            });
+            if gathered.differing > 0 {
+                soup.notes.push(format!(
+                    "{} vertex(es) had different colours at different corners: each takes their mean",
+                    gathered.differing
+                ));
+            }
+            soup.vertex_colors = Some(
+                gathered
+                    .values
+                    .into_iter()
+                    .map(|c| c.map_or([0; 3], |c| c.round().to_array().map(|v| v as u8)))
+                    .collect(),
+            );
+        }
+        soup
+    }
+}
+
+/// Corner `k`'s value in a part's per-corner list, if it has one.
+fn corner<T: Copy>(list: &Option<Vec<Option<T>>>, k: usize) -> Option<T> {
+    list.as_ref().and_then(|l| l.get(k).copied().flatten())
+}
+
+/// Starts a merged per-corner list (`None` for the `before` corners already merged) when the
+/// first part that has its values comes.
+fn start_list<T: Copy>(
+    list: &mut Option<Vec<Option<T>>>,
+    before: usize,
+    part: &Option<Vec<Option<T>>>,
+) {
+    if list.is_none() && part.is_some() {
+        *list = Some(vec![None; before]);
+    }
+}
