@@ -24,6 +24,7 @@ mod buffers;
 mod write;
 
 use bevy::math::{Mat4, Vec2, Vec3};
+use bevy::platform::collections::HashMap as FastMap;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
 use std::collections::HashMap;
@@ -209,7 +210,7 @@ struct Vertices {
 /// Reads a mesh's triangle primitives into one part, welding vertices at the same position.
 fn read_mesh(mesh: &gltf::Mesh, buffers: &Buffers) -> Result<Part, String> {
     let mut part = Part::new();
-    let mut welded: HashMap<Weld, u32> = HashMap::new();
+    let mut welded: FastMap<Weld, u32> = FastMap::default();
     for primitive in mesh.primitives() {
         let mode = primitive.mode();
         if !matches!(

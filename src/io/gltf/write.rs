@@ -10,8 +10,8 @@
 //! base64 data URI, so either is one file.
 
 use base64::Engine;
+use bevy::platform::collections::HashMap;
 use serde_json::{Value, json};
-use std::collections::HashMap;
 
 use super::VERTEX_ATTRIBUTE;
 use crate::mesh::soup::PolygonSoup;
@@ -191,7 +191,12 @@ fn vertices_and_triangles(soup: &PolygonSoup) -> (Vec<(u32, [u32; 2])>, Vec<u32>
     // Each corner's key, for the triangles of every face that names existing vertices.
     let mut corners: Vec<(u32, [u32; 2])> = Vec::new();
     let mut triangles: Vec<[usize; 3]> = Vec::new();
-    let mut edges = Edges::of(soup);
+    // Only polygons need the edges (to choose their diagonals).
+    let mut edges = if soup.faces().any(|f| f.len() > 3) {
+        Edges::of(soup)
+    } else {
+        Edges(Default::default())
+    };
     for (f, face) in soup.faces().enumerate() {
         if face.len() < 3 || face.iter().any(|&v| v >= n) {
             continue;
@@ -213,7 +218,7 @@ fn vertices_and_triangles(soup: &PolygonSoup) -> (Vec<(u32, [u32; 2])>, Vec<u32>
         None => (0..n).map(|v| (v, [0, 0])).collect(),
         Some(_) => {
             // Distinct keys in order of first use, then stably by vertex.
-            let mut seen = std::collections::HashSet::new();
+            let mut seen = bevy::platform::collections::HashSet::new();
             let mut keys: Vec<(u32, [u32; 2])> = corners
                 .iter()
                 .copied()
@@ -239,7 +244,7 @@ fn vertices_and_triangles(soup: &PolygonSoup) -> (Vec<(u32, [u32; 2])>, Vec<u32>
 /// The mesh's edges, and the diagonals fans add, to triangulate polygons without making an
 /// edge twice: a quad whose diagonal is already an edge elsewhere (a fold, as Suzanne has)
 /// would otherwise come back with a non-manifold edge.
-struct Edges(std::collections::HashSet<(u32, u32)>);
+struct Edges(bevy::platform::collections::HashSet<(u32, u32)>);
 
 impl Edges {
     fn key(a: u32, b: u32) -> (u32, u32) {
@@ -248,7 +253,7 @@ impl Edges {
 
     /// Every edge of the soup's faces.
     fn of(soup: &PolygonSoup) -> Edges {
-        let mut set = std::collections::HashSet::new();
+        let mut set = bevy::platform::collections::HashSet::default();
         for face in soup.faces() {
             for (i, &a) in face.iter().enumerate() {
                 set.insert(Self::key(a, face[(i + 1) % face.len()]));
