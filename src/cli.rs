@@ -655,7 +655,7 @@ fn process_file(
         record.insert("ms".into(), json!(ms));
         records.push(Value::Object(record));
     }
-    let mut soup = to_soup(&loaded.world, mesh);
+    let (mut soup, recomputed) = crate::edit::soup_to_save(&loaded.world, mesh);
     let quantity =
         quantity.map(|q| attach_quantity(&loaded.world, mesh, q, reference.as_ref(), &mut soup));
     if let Some(weighting) = normals {
@@ -670,6 +670,9 @@ fn process_file(
     io::write(output, &soup).map_err(|e| e.to_string())?;
     if !dropped.is_empty() {
         warn(&io::dropped_note(output, &dropped));
+    }
+    if let Some(note) = recomputed.filter(|_| normals.is_none()) {
+        warn(&format!("{}: {note}", output.display()));
     }
     if MeshAttributes::of(&loaded.world, mesh).seams {
         warn(&format!(

@@ -564,12 +564,15 @@ impl Mesh {
     /// cannot hold (OFF and STL: UVs, normals, colours; STL and glTF: polygons, written as
     /// triangles) is dropped with a `UserWarning` naming it.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        let soup = self.soup();
+        let (soup, recomputed) = pappus::edit::soup_to_save(&self.world, self.mesh);
         let dropped = io::Format::from_path(&path)
             .map(|format| io::dropped(format, &soup))
             .unwrap_or_default();
         py.detach(|| io::write(&path, &soup))
             .map_err(|e| io_error(py, e))?;
+        if let Some(note) = recomputed {
+            user_warning(py, format!("{}: {note}", path.display()))?;
+        }
         if dropped.is_empty() {
             Ok(())
         } else {

@@ -48,7 +48,9 @@ use crate::ops::smooth::{SmoothParams, smooth_with_progress};
 use crate::ops::subdivide::SubdivisionSummary;
 use crate::ops::triangulate::triangulate;
 
+mod save;
 mod step;
+pub use save::{RECOMPUTED_NORMALS, mark_normals_stale, soup_to_save};
 pub use step::{LocalKind, STEP_SYNTAX, Step};
 
 /// A subdivision scheme (defined beside the schemes, in [`crate::ops::subdivide`], so that
@@ -582,6 +584,8 @@ impl Edit {
         applied
             .summary
             .push_str(&self.settle_attributes(world, mesh, had));
+        // Normals kept through an edit that changed the surface no longer describe it.
+        mark_normals_stale(world, mesh, self);
         #[cfg(debug_assertions)]
         if let Err(e) = crate::mesh::validate(world, mesh) {
             panic!("{} left an invalid mesh: {e}", self.label());

@@ -13,7 +13,7 @@ use std::path::Path;
 use crate::edit::{Edit, EditContext};
 use crate::io;
 use crate::mesh::topology::MeshRef;
-use crate::mesh::{MeshInfo, build_mesh, despawn_mesh, to_soup};
+use crate::mesh::{MeshInfo, build_mesh, despawn_mesh};
 
 use super::finish::{Finished, finish_edit, report};
 use super::history::{self, Redraw, UndoHistory};
@@ -292,7 +292,7 @@ fn save(world: &mut World, path: Option<&Path>, confirmed: bool) -> Result<Strin
             .and_then(|i| i.path.clone())
             .ok_or(Declined::NoFileYet)?,
     };
-    let soup = to_soup(world, mesh);
+    let (soup, recomputed) = crate::edit::soup_to_save(world, mesh);
     let dropped = io::Format::from_path(&target)
         .map(|format| io::dropped(format, &soup))
         .unwrap_or_default();
@@ -321,5 +321,9 @@ fn save(world: &mut World, path: Option<&Path>, confirmed: bool) -> Result<Strin
         true => String::new(),
         false => format!(" ({})", io::dropped_note(&target, &dropped)),
     };
-    Ok(format!("saved {}{note}{dropped}", target.display()))
+    let recomputed = recomputed.map_or(String::new(), |n| format!("; {n}"));
+    Ok(format!(
+        "saved {}{note}{dropped}{recomputed}",
+        target.display()
+    ))
 }

@@ -337,6 +337,7 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
             (applied, Some((to_scratch, to_main)))
         }
     };
+    crate::edit::mark_normals_stale(world, mesh, &job.edit);
     #[cfg(debug_assertions)]
     if let Err(e) = crate::mesh::validate(world, mesh) {
         panic!("{} left an invalid mesh: {e}", job.label);

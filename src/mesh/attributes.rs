@@ -57,6 +57,12 @@ pub struct CornerUv(pub Vec2);
 #[derive(Component, Clone, Copy, Debug, PartialEq)]
 pub struct VertexNormal(pub Vec3);
 
+/// On a mesh entity: an edit has changed the mesh since its vertex normals were read, so they
+/// may point the way the surface used to face; a save recomputes them
+/// ([`crate::edit::soup_to_save`]).
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StaleNormals;
+
 /// A vertex colour, 8-bit sRGB (red, green, blue).
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq)]
 pub struct VertexColor(pub [u8; 3]);
