@@ -55,13 +55,33 @@ fn bits(v: Vec3) -> [u32; 3] {
     v.to_array().map(f32::to_bits)
 }
 
+/// Sets the soup's vertex normals from per-corner ones (parallel to its `indices`): each
+/// vertex's corners' normal, their normalised mean where they differ (with a note), zero for
+/// a vertex no corner gives one.
+pub(super) fn attach_corner_normals(
+    soup: &mut crate::mesh::soup::PolygonSoup,
+    corner_normals: impl Iterator<Item = Option<Vec3>>,
+) {
+    let gathered = per_vertex(
+        &soup.indices,
+        soup.positions.len(),
+        corner_normals,
+        mean_normal,
+    );
+    if gathered.differing > 0 {
+        soup.notes.push(differing_normals_note(gathered.differing));
+    }
+    let normals = gathered.values.into_iter().map(|n| n.unwrap_or(Vec3::ZERO));
+    soup.vertex_normals = Some(normals.collect());
+}
+
 /// The normalised mean of normals that differ (for [`per_vertex`]).
-pub(super) fn mean_normal(sum: Vec3, _count: u32) -> Vec3 {
+fn mean_normal(sum: Vec3, _count: u32) -> Vec3 {
     sum.normalize_or_zero()
 }
 
 /// The note for vertices whose corners named different normals.
-pub(super) fn differing_normals_note(differing: usize) -> String {
+fn differing_normals_note(differing: usize) -> String {
     format!(
         "{differing} vertex(es) had different normals at different corners: each takes their normalised mean"
     )

@@ -39,7 +39,7 @@ use std::fmt::Write as _;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::ParseError;
-use super::corners::{differing_normals_note, mean_normal, per_vertex};
+use super::corners::attach_corner_normals;
 use super::text::{cap, check_text, float, lines, position};
 use crate::mesh::soup::PolygonSoup;
 use crate::process_memory;
@@ -451,22 +451,7 @@ fn attach_extras(soup: &mut PolygonSoup, extras: Extras) -> Result<(), ParseErro
                     .transpose()
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let gathered = per_vertex(
-            &soup.indices,
-            soup.positions.len(),
-            resolved.into_iter(),
-            mean_normal,
-        );
-        if gathered.differing > 0 {
-            soup.notes.push(differing_normals_note(gathered.differing));
-        }
-        soup.vertex_normals = Some(
-            gathered
-                .values
-                .into_iter()
-                .map(|n| n.unwrap_or(Vec3::ZERO))
-                .collect(),
-        );
+        attach_corner_normals(soup, resolved.into_iter());
     }
     if any_color {
         let missing = colors.iter().filter(|c| c.is_none()).count();

@@ -8,7 +8,7 @@
 use bevy::math::{Mat3, Mat4, Vec2, Vec3};
 
 use super::ParseError;
-use super::corners::{differing_normals_note, mean_normal, per_vertex};
+use super::corners::{attach_corner_normals, per_vertex};
 use crate::memory_budget;
 use crate::mesh::soup::PolygonSoup;
 
@@ -239,17 +239,7 @@ impl Merged {
         } = self;
         let n = soup.positions.len();
         if let Some(normals) = normals {
-            let gathered = per_vertex(&soup.indices, n, normals.into_iter(), mean_normal);
-            if gathered.differing > 0 {
-                soup.notes.push(differing_normals_note(gathered.differing));
-            }
-            soup.vertex_normals = Some(
-                gathered
-                    .values
-                    .into_iter()
-                    .map(|v| v.unwrap_or(Vec3::ZERO))
-                    .collect(),
-            );
+            attach_corner_normals(&mut soup, normals.into_iter());
         }
         if let Some(uvs) = uvs {
             let missing = uvs.iter().filter(|u| u.is_none()).count();
