@@ -116,6 +116,27 @@ def test_a_save_that_drops_attributes_says_so_and_dae_is_read_only(tmp_path):
         beast.save(tmp_path / "beast.dae")
 
 
+def test_glb_round_trips_positions_bit_for_bit_and_edited_normals_are_recomputed(tmp_path):
+    models()
+    spot = pappus.load(MODELS / "spot.obj")
+    spot.save(tmp_path / "spot.glb")
+    back = pappus.load(tmp_path / "spot.glb")
+    np.testing.assert_array_equal(back.vertices.view(np.uint32), spot.vertices.view(np.uint32))
+    np.testing.assert_array_equal(back.faces, spot.faces)
+    assert back.info()["closed"]
+    # A mesh with normals (quadball's, from its COLLADA file), edited: the save recomputes them
+    # and says so; unedited, it writes them as they were read.
+    with pytest.warns(UserWarning, match="skipped"):
+        ball = pappus.load(MODELS / "course" / "quadball.dae")
+    assert ball.info()["attributes"]["normals"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ball.save(tmp_path / "unedited.obj")
+    ball.smooth()
+    with pytest.warns(UserWarning, match="vertex normals recomputed"):
+        ball.save(tmp_path / "smoothed.obj")
+
+
 def test_course_collada_scenes_load_with_blenders_counts():
     models()
     for name, counts in [("cube.dae", (8, 12)), ("quadball.dae", (386, 768))]:

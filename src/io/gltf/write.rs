@@ -27,158 +27,147 @@ const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 /// Encodes `soup` as a `.glb` (`binary`) or a `.gltf` with its buffer embedded.
 pub fn write(soup: &PolygonSoup, binary: bool) -> Vec<u8> {
     let (vertices, indices) = vertices_and_triangles(soup);
-    let mut buffer = Vec::new();
-    let mut views = Vec::new();
-    let mut accessors = Vec::new();
-    let mut attributes = serde_json::Map::new();
-    let mut push = |bytes: Vec<u8>, stride: Option<usize>, target: u32, accessor: Value| {
-        let view = json!({
-            "buffer": 0,
-            "byteOffset": buffer.len(),
-            "byteLength": bytes.len(),
-            "target": target,
-        });
-        let mut view = view;
-        if let Some(stride) = stride {
-            view["byteStride"] = json!(stride);
-        }
-        buffer.extend_from_slice(&bytes);
-        buffer.resize(buffer.len().next_multiple_of(4), 0);
-        let mut accessor = accessor;
-        accessor["bufferView"] = json!(views.len());
-        views.push(view);
-        accessors.push(accessor);
-        accessors.len() - 1
-    };
-    if !indices.is_empty() {
-        let positions: Vec<[f32; 3]> = vertices
-            .iter()
-            .map(|&(v, _)| soup.positions[v as usize].to_array())
-            .collect();
-        let (min, max) = bounds(&positions);
-        let count = positions.len();
-        let bytes = positions
-            .iter()
-            .flatten()
-            .flat_map(|c| c.to_le_bytes())
-            .collect();
-        let position = push(
-            bytes,
-            None,
-            ARRAY_BUFFER,
-            json!({
-                "componentType": FLOAT, "count": count, "type": "VEC3", "min": min, "max": max,
-            }),
-        );
-        attributes.insert("POSITION".into(), json!(position));
-        if let Some(normals) = soup
-            .vertex_normals
-            .as_ref()
-            .filter(|n| n.len() == soup.positions.len())
-        {
-            let bytes = vertices
-                .iter()
-                .flat_map(|&(v, _)| normals[v as usize].to_array())
-                .flat_map(|c| c.to_le_bytes())
-                .collect();
-            let normal = push(
-                bytes,
-                None,
-                ARRAY_BUFFER,
-                json!({
-                    "componentType": FLOAT, "count": count, "type": "VEC3",
-                }),
-            );
-            attributes.insert("NORMAL".into(), json!(normal));
-        }
-        if soup.attributes().uv {
-            let bytes = vertices
-                .iter()
-                .flat_map(|&(_, uv)| {
-                    let [u, v] = uv.map(f32::from_bits);
-                    [u, 1.0 - v]
-                })
-                .flat_map(|c| c.to_le_bytes())
-                .collect();
-            let uv = push(
-                bytes,
-                None,
-                ARRAY_BUFFER,
-                json!({
-                    "componentType": FLOAT, "count": count, "type": "VEC2",
-                }),
-            );
-            attributes.insert("TEXCOORD_0".into(), json!(uv));
-        }
-        if let Some(colors) = soup
-            .vertex_colors
-            .as_ref()
-            .filter(|c| c.len() == soup.positions.len())
-        {
-            let bytes = vertices
-                .iter()
-                .flat_map(|&(v, _)| {
-                    let [r, g, b] = colors[v as usize];
-                    [r, g, b, 0]
-                })
-                .collect();
-            let color = push(
-                bytes,
-                Some(4),
-                ARRAY_BUFFER,
-                json!({
-                    "componentType": UNSIGNED_BYTE, "normalized": true, "count": count, "type": "VEC3",
-                }),
-            );
-            attributes.insert("COLOR_0".into(), json!(color));
-        }
-        // Which soup vertex each written one is (low and high 16 bits), so that Pappus joins
-        // exactly the copies it split, not every two vertices that happen to coincide.
-        let bytes = vertices
-            .iter()
-            .flat_map(|&(v, _)| [v as u16, (v >> 16) as u16])
-            .flat_map(|half| half.to_le_bytes())
-            .collect();
-        let vertex = push(
-            bytes,
-            None,
-            ARRAY_BUFFER,
-            json!({ "componentType": UNSIGNED_SHORT, "count": count, "type": "VEC2" }),
-        );
-        attributes.insert(VERTEX_ATTRIBUTE.into(), json!(vertex));
-        let bytes = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
-        push(
-            bytes,
-            None,
-            ELEMENT_ARRAY_BUFFER,
-            json!({
-                "componentType": UNSIGNED_INT, "count": indices.len(), "type": "SCALAR",
-            }),
-        );
-    }
+    let mut chunks = Chunks::default();
     let mut document = json!({
         "asset": { "version": "2.0", "generator": concat!("Pappus ", env!("CARGO_PKG_VERSION")) },
         "scene": 0,
         "scenes": [{ "nodes": [0] }],
         "nodes": [{ "name": "Pappus mesh" }],
     });
+    // glTF accessors hold at least one item: a mesh without faces is a scene without a mesh.
     if !indices.is_empty() {
+        let attributes = attributes(soup, &vertices, &mut chunks);
+        let bytes = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+        let accessor =
+            json!({ "componentType": UNSIGNED_INT, "count": indices.len(), "type": "SCALAR" });
+        let indices = chunks.push(bytes, None, ELEMENT_ARRAY_BUFFER, accessor);
         document["nodes"][0]["mesh"] = json!(0);
         document["meshes"] = json!([{
             "name": "Pappus mesh",
-            "primitives": [{ "attributes": attributes, "indices": accessors.len() - 1, "mode": 4 }],
+            "primitives": [{ "attributes": attributes, "indices": indices, "mode": 4 }],
         }]);
-        document["accessors"] = json!(accessors);
-        document["bufferViews"] = json!(views);
-        let mut entry = json!({ "byteLength": buffer.len() });
+        document["accessors"] = json!(chunks.accessors);
+        document["bufferViews"] = json!(chunks.views);
+        let mut entry = json!({ "byteLength": chunks.buffer.len() });
         if !binary {
-            let encoded = base64::engine::general_purpose::STANDARD.encode(&buffer);
+            let encoded = base64::engine::general_purpose::STANDARD.encode(&chunks.buffer);
             entry["uri"] = json!(format!("data:application/octet-stream;base64,{encoded}"));
         }
         document["buffers"] = json!([entry]);
     }
     let text = serde_json::to_vec(&document).expect("a JSON value always serialises");
-    if binary { glb(text, buffer) } else { text }
+    if binary {
+        glb(text, chunks.buffer)
+    } else {
+        text
+    }
+}
+
+/// The one buffer being written, and its views and accessors.
+#[derive(Default)]
+struct Chunks {
+    buffer: Vec<u8>,
+    views: Vec<Value>,
+    accessors: Vec<Value>,
+}
+
+impl Chunks {
+    /// Appends `bytes` (then zeros to a multiple of 4) as a buffer view of `stride` for
+    /// `target`, read by `accessor`; the accessor's number.
+    fn push(
+        &mut self,
+        bytes: Vec<u8>,
+        stride: Option<usize>,
+        target: u32,
+        mut accessor: Value,
+    ) -> usize {
+        let mut view = json!({
+            "buffer": 0,
+            "byteOffset": self.buffer.len(),
+            "byteLength": bytes.len(),
+            "target": target,
+        });
+        if let Some(stride) = stride {
+            view["byteStride"] = json!(stride);
+        }
+        self.buffer.extend_from_slice(&bytes);
+        self.buffer.resize(self.buffer.len().next_multiple_of(4), 0);
+        accessor["bufferView"] = json!(self.views.len());
+        self.views.push(view);
+        self.accessors.push(accessor);
+        self.accessors.len() - 1
+    }
+}
+
+/// Writes the vertices' attributes into `chunks`: the primitive's `attributes` object.
+fn attributes(
+    soup: &PolygonSoup,
+    vertices: &[(u32, [u32; 2])],
+    chunks: &mut Chunks,
+) -> serde_json::Map<String, Value> {
+    let count = vertices.len();
+    let per_vertex = |values: &mut dyn FnMut(u32, [u32; 2]) -> Vec<u8>| -> Vec<u8> {
+        vertices.iter().flat_map(|&(v, uv)| values(v, uv)).collect()
+    };
+    let floats =
+        |values: &[f32]| -> Vec<u8> { values.iter().flat_map(|c| c.to_le_bytes()).collect() };
+    let mut attributes = serde_json::Map::new();
+    let positions: Vec<[f32; 3]> = vertices
+        .iter()
+        .map(|&(v, _)| soup.positions[v as usize].to_array())
+        .collect();
+    let (min, max) = bounds(&positions);
+    let accessor =
+        json!({ "componentType": FLOAT, "count": count, "type": "VEC3", "min": min, "max": max });
+    let bytes = floats(positions.as_flattened());
+    attributes.insert(
+        "POSITION".into(),
+        json!(chunks.push(bytes, None, ARRAY_BUFFER, accessor)),
+    );
+    let vec = |kind: &str| json!({ "componentType": FLOAT, "count": count, "type": kind });
+    let n = soup.positions.len();
+    if let Some(normals) = soup.vertex_normals.as_ref().filter(|x| x.len() == n) {
+        let bytes = per_vertex(&mut |v, _| floats(&normals[v as usize].to_array()));
+        attributes.insert(
+            "NORMAL".into(),
+            json!(chunks.push(bytes, None, ARRAY_BUFFER, vec("VEC3"))),
+        );
+    }
+    if soup.attributes().uv {
+        // glTF's v runs down the image.
+        let bytes =
+            per_vertex(&mut |_, [u, v]| floats(&[f32::from_bits(u), 1.0 - f32::from_bits(v)]));
+        attributes.insert(
+            "TEXCOORD_0".into(),
+            json!(chunks.push(bytes, None, ARRAY_BUFFER, vec("VEC2"))),
+        );
+    }
+    if let Some(colors) = soup.vertex_colors.as_ref().filter(|x| x.len() == n) {
+        // Bytes, each colour padded to 4: vertex attributes are 4-byte aligned.
+        let bytes = per_vertex(&mut |v, _| {
+            let [r, g, b] = colors[v as usize];
+            vec![r, g, b, 0]
+        });
+        let accessor = json!({ "componentType": UNSIGNED_BYTE, "normalized": true, "count": count, "type": "VEC3" });
+        attributes.insert(
+            "COLOR_0".into(),
+            json!(chunks.push(bytes, Some(4), ARRAY_BUFFER, accessor)),
+        );
+    }
+    // Which soup vertex each written one is (low and high 16 bits), so that Pappus joins
+    // exactly the copies it split, not every two vertices that happen to coincide.
+    let bytes = per_vertex(&mut |v, _| {
+        [v as u16, (v >> 16) as u16]
+            .iter()
+            .flat_map(|h| h.to_le_bytes())
+            .collect()
+    });
+    let accessor = json!({ "componentType": UNSIGNED_SHORT, "count": count, "type": "VEC2" });
+    attributes.insert(
+        VERTEX_ATTRIBUTE.into(),
+        json!(chunks.push(bytes, None, ARRAY_BUFFER, accessor)),
+    );
+    attributes
 }
 
 /// The vertices to write, as (soup vertex, UV bits), and each triangle's three vertex numbers.
