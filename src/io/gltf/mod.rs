@@ -56,6 +56,16 @@ const MAX_NODES: usize = 1 << 20;
 /// an accessor that cannot be read safely, or a scene too large for the memory budget.
 pub fn read(bytes: &[u8], folder: Option<&Path>) -> Result<PolygonSoup, ParseError> {
     let error = |message: String| ParseError::byte(0, message);
+    // The crate subtracts the header's size from the length it declares before comparing them.
+    if let Some(header) = bytes.get(..12).filter(|h| h.starts_with(b"glTF")) {
+        let length = u32::from_le_bytes([header[8], header[9], header[10], header[11]]);
+        if length < 12 {
+            return Err(ParseError::byte(
+                8,
+                format!("the GLB header declares {length} bytes, fewer than itself"),
+            ));
+        }
+    }
     let gltf::Gltf { document, blob } =
         gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| error(e.to_string()))?;
     let json = document.into_json();
