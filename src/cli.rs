@@ -25,7 +25,9 @@ use crate::io;
 use crate::memory_budget::Budget;
 use crate::mesh::attributes::MeshAttributes;
 use crate::mesh::tables::extract;
-use crate::mesh::{BuiltMesh, MeshId, RepairReport, build_mesh, mesh_stats, to_soup, validate};
+use crate::mesh::{
+    BuiltMesh, MeshId, PolygonSoup, RepairReport, build_mesh, mesh_stats, to_soup, validate,
+};
 use crate::ops::geometry::closest::Reference;
 use crate::ops::geometry::{
     NormalWeighting, Quantity, Surface, face_normals, scalar_curvature, vertex_normals,
@@ -498,13 +500,9 @@ fn execute(command: Command) -> Result<(), String> {
         Command::Convert { input, output } => {
             let loaded = load(&input)?;
             let soup = to_soup(&loaded.world, loaded.built.mesh);
-            let dropped = io::Format::from_path(&output)
-                .map(|format| io::dropped(format, &soup))
-                .unwrap_or_default();
-            io::write(&output, &soup).map_err(|e| e.to_string())?;
-            if !dropped.is_empty() {
-                eprintln!("pappus: {}", io::dropped_note(&output, &dropped));
-            }
+            write_mesh(&output, &soup, &mut |message| {
+                eprintln!("pappus: {message}");
+            })?;
             if !loaded.built.report.is_clean() {
                 eprintln!("pappus: {input}: repaired: {}", loaded.built.report);
             }
@@ -655,7 +653,11 @@ fn process_file(
         record.insert("ms".into(), json!(ms));
         records.push(Value::Object(record));
     }
-    let (mut soup, recomputed) = crate::edit::soup_to_save(&loaded.world, mesh);
+    // `--normals` writes normals of its own: stale ones need no recomputing first.
+    let (mut soup, recomputed) = match normals {
+        Some(_) => (to_soup(&loaded.world, mesh), None),
+        None => crate::edit::soup_to_save(&loaded.world, mesh),
+    };
     let quantity =
         quantity.map(|q| attach_quantity(&loaded.world, mesh, q, reference.as_ref(), &mut soup));
     if let Some(weighting) = normals {
@@ -664,14 +666,8 @@ fn process_file(
         let n = vertex_normals(&surface, weighting);
         soup.vertex_normals = Some(n.iter().map(|v| v.as_vec3()).collect());
     }
-    let dropped = io::Format::from_path(output)
-        .map(|format| io::dropped(format, &soup))
-        .unwrap_or_default();
-    io::write(output, &soup).map_err(|e| e.to_string())?;
-    if !dropped.is_empty() {
-        warn(&io::dropped_note(output, &dropped));
-    }
-    if let Some(note) = recomputed.filter(|_| normals.is_none()) {
+    let dropped = write_mesh(output, &soup, warn)?;
+    if let Some(note) = recomputed {
         warn(&format!("{}: {note}", output.display()));
     }
     if MeshAttributes::of(&loaded.world, mesh).seams {
@@ -695,6 +691,24 @@ fn process_file(
         report["quantity"] = Value::Object(q);
     }
     Ok(report)
+}
+
+/// Writes `soup` to `output` and says on `warn` (without the `pappus: ` prefix) what the
+/// output's format could not hold; returns that, for `--json`'s `"dropped"`.
+///
+/// # Errors
+/// The write's error, naming the file.
+fn write_mesh(
+    output: &Path,
+    soup: &PolygonSoup,
+    warn: &mut dyn FnMut(&str),
+) -> Result<Vec<&'static str>, String> {
+    let dropped = io::dropped(output, soup);
+    io::write(output, soup).map_err(|e| e.to_string())?;
+    if !dropped.is_empty() {
+        warn(&io::dropped_note(output, &dropped));
+    }
+    Ok(dropped)
 }
 
 /// Parses a `--normals` weighting.

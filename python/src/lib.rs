@@ -565,9 +565,7 @@ impl Mesh {
     /// triangles) is dropped with a `UserWarning` naming it.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
         let (soup, recomputed) = pappus::edit::soup_to_save(&self.world, self.mesh);
-        let dropped = io::Format::from_path(&path)
-            .map(|format| io::dropped(format, &soup))
-            .unwrap_or_default();
+        let dropped = io::dropped(&path, &soup);
         py.detach(|| io::write(&path, &soup))
             .map_err(|e| io_error(py, e))?;
         if let Some(note) = recomputed {

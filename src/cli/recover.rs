@@ -14,7 +14,6 @@ use std::path::{Path, PathBuf};
 
 use serde_json::json;
 
-use crate::io;
 use crate::recovery::{self, Recovery};
 
 /// What `pappus recover` was asked.
@@ -85,13 +84,7 @@ fn restore(chosen: &Recovery, output: &Path) -> Result<(), String> {
     let soup = chosen
         .read()
         .map_err(|e| format!("the recovery is damaged: {e}"))?;
-    let dropped = io::Format::from_path(output)
-        .map(|format| io::dropped(format, &soup))
-        .unwrap_or_default();
-    io::write(output, &soup).map_err(|e| e.to_string())?;
-    if !dropped.is_empty() {
-        eprintln!("pappus: {}", io::dropped_note(output, &dropped));
-    }
+    super::write_mesh(output, &soup, &mut |message| eprintln!("pappus: {message}"))?;
     Ok(())
 }
 

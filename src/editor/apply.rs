@@ -293,9 +293,7 @@ fn save(world: &mut World, path: Option<&Path>, confirmed: bool) -> Result<Strin
             .ok_or(Declined::NoFileYet)?,
     };
     let (soup, recomputed) = crate::edit::soup_to_save(world, mesh);
-    let dropped = io::Format::from_path(&target)
-        .map(|format| io::dropped(format, &soup))
-        .unwrap_or_default();
+    let dropped = io::dropped(&target, &soup);
     if !dropped.is_empty() && !confirmed {
         let note = io::dropped_note(&target, &dropped);
         world.resource_mut::<ConfirmDiscard>().0 = Some(PendingDiscard::Save {

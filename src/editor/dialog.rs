@@ -48,10 +48,10 @@ pub fn show(world: &mut World, purpose: PathPurpose) {
             let dialog = rfd::FileDialog::new();
             let choice = match purpose {
                 PathPurpose::Open => dialog
-                    .add_filter("meshes", &crate::io::READ_EXTENSIONS)
+                    .add_filter("meshes", &crate::io::extensions(false))
                     .pick_file(),
                 PathPurpose::SaveAs => dialog
-                    .add_filter("meshes", &crate::io::WRITE_EXTENSIONS)
+                    .add_filter("meshes", &crate::io::extensions(true))
                     .save_file(),
             };
             if let Ok(mut slot) = slot.lock() {

@@ -20,6 +20,7 @@ mod off;
 mod parts;
 mod ply;
 mod save;
+mod skipped;
 mod stl;
 mod strips;
 mod text;
@@ -55,11 +56,27 @@ pub enum Format {
     Glb,
 }
 
-/// The extensions Pappus reads, as the open dialog's filter and the help list them.
-pub const READ_EXTENSIONS: [&str; 7] = ["obj", "off", "ply", "stl", "glb", "gltf", "dae"];
+/// Every extension Pappus knows, and its format: what [`Format::from_path`] reads and what
+/// [`extensions`] lists.
+const EXTENSIONS: [(&str, Format); 7] = [
+    ("obj", Format::Obj),
+    ("off", Format::Off),
+    ("ply", Format::Ply),
+    ("stl", Format::Stl),
+    ("glb", Format::Glb),
+    ("gltf", Format::Gltf),
+    ("dae", Format::Collada),
+];
 
-/// The extensions Pappus writes.
-pub const WRITE_EXTENSIONS: [&str; 6] = ["obj", "off", "ply", "stl", "glb", "gltf"];
+/// The extensions of the formats Pappus reads (every one), or of those it writes when
+/// `writing` (all but COLLADA): the open and save dialogs' filters.
+pub fn extensions(writing: bool) -> Vec<&'static str> {
+    EXTENSIONS
+        .iter()
+        .filter(|(_, format)| !writing || format.writes())
+        .map(|&(extension, _)| extension)
+        .collect()
+}
 
 impl Format {
     /// Whether Pappus writes this format (COLLADA is read only).
@@ -76,24 +93,23 @@ impl Format {
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
-        match ext.as_deref() {
-            Some("obj") => Ok(Format::Obj),
-            Some("off") => Ok(Format::Off),
-            Some("ply") => Ok(Format::Ply),
-            Some("stl") => Ok(Format::Stl),
-            Some("dae") => Ok(Format::Collada),
-            Some("gltf") => Ok(Format::Gltf),
-            Some("glb") => Ok(Format::Glb),
-            _ => Err(IoError::UnknownFormat(path.to_path_buf())),
-        }
+        EXTENSIONS
+            .iter()
+            .find(|(extension, _)| Some(*extension) == ext.as_deref())
+            .map(|&(_, format)| format)
+            .ok_or_else(|| IoError::UnknownFormat(path.to_path_buf()))
     }
 }
 
-/// What the soup carries that a file in `format` cannot hold, in a person's words (`"UVs"`,
-/// `"normals"`, `"colours"`, `"quality"`, then `"polygon faces (written as triangles)"`), in
-/// that order: empty when a save keeps everything. OBJ and glTF hold all but the quality, PLY
-/// all four, OFF and STL none of them; STL and glTF hold triangles only.
-pub fn dropped(format: Format, soup: &PolygonSoup) -> Vec<&'static str> {
+/// What the soup carries that a file at `path` (its format by extension) cannot hold, in a
+/// person's words (`"UVs"`, `"normals"`, `"colours"`, `"quality"`, then `"polygon faces
+/// (written as triangles)"`), in that order: empty when a save keeps everything, or when the
+/// extension names no format Pappus writes (the save itself then fails). OBJ and glTF hold all
+/// but the quality, PLY all four, OFF and STL none of them; STL and glTF hold triangles only.
+pub fn dropped(path: &Path, soup: &PolygonSoup) -> Vec<&'static str> {
+    let Ok(format) = Format::from_path(path) else {
+        return Vec::new();
+    };
     let has = soup.attributes();
     let carried = [
         ("UVs", has.uv),
@@ -402,9 +418,12 @@ pub(crate) mod tests {
     #[test]
     fn a_save_names_what_its_format_cannot_hold() {
         let soup = read_bytes(Format::Obj, ATTRIBUTED_OBJ, name()).unwrap();
-        assert_eq!(dropped(Format::Off, &soup), ["UVs", "normals", "colours"]);
+        let dropped = |extension: &str, soup: &PolygonSoup| {
+            dropped(&Path::new("m").with_extension(extension), soup)
+        };
+        assert_eq!(dropped("off", &soup), ["UVs", "normals", "colours"]);
         assert_eq!(
-            dropped(Format::Stl, &soup),
+            dropped("stl", &soup),
             [
                 "UVs",
                 "normals",
@@ -413,17 +432,17 @@ pub(crate) mod tests {
             ]
         );
         assert_eq!(
-            dropped(Format::Glb, &soup),
+            dropped("glb", &soup),
             ["polygon faces (written as triangles)"]
         );
-        assert!(dropped(Format::Obj, &soup).is_empty());
-        assert!(dropped(Format::Ply, &soup).is_empty());
-        assert!(dropped(Format::Off, &mixed()).is_empty());
+        assert!(dropped("obj", &soup).is_empty());
+        assert!(dropped("ply", &soup).is_empty());
+        assert!(dropped("off", &mixed()).is_empty());
         let with_quality = PolygonSoup {
             vertex_quality: Some(vec![0.5; 5]),
             ..mixed()
         };
-        assert_eq!(dropped(Format::Obj, &with_quality), ["quality"]);
+        assert_eq!(dropped("obj", &with_quality), ["quality"]);
         assert_eq!(
             dropped_note(Path::new("beast.off"), &["UVs"]),
             "beast.off: UVs dropped (OFF cannot hold it)"
@@ -443,6 +462,14 @@ pub(crate) mod tests {
         assert_eq!(Format::from_path(Path::new("x.Ply")).unwrap(), Format::Ply);
         assert_eq!(Format::from_path(Path::new("x.off")).unwrap(), Format::Off);
         assert_eq!(Format::from_path(Path::new("x.STL")).unwrap(), Format::Stl);
+        assert_eq!(
+            extensions(false),
+            ["obj", "off", "ply", "stl", "glb", "gltf", "dae"]
+        );
+        assert_eq!(
+            extensions(true),
+            ["obj", "off", "ply", "stl", "glb", "gltf"]
+        );
         for bad in ["notes.txt", "noext", "obj"] {
             let err = Format::from_path(Path::new(bad)).unwrap_err();
             assert!(err.to_string().starts_with(bad), "{err}");

@@ -40,6 +40,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::ParseError;
 use super::corners::attach_corner_normals;
+use super::skipped::Skipped;
 use super::text::{cap, check_text, float, lines, position};
 use crate::mesh::soup::PolygonSoup;
 use crate::process_memory;
@@ -131,35 +132,19 @@ struct Extras {
     any_color: bool,
     corner_uv: CornerReferences,
     corner_normal: CornerReferences,
-    /// Statements read past, by keyword, in order of first appearance.
-    skipped: Vec<(String, usize)>,
+    /// Statements read past, in order of first appearance.
+    skipped: Skipped,
 }
 
-impl Extras {
-    /// Counts a statement the reader reads past.
-    fn skip(&mut self, keyword: &str) {
-        match self.skipped.iter_mut().find(|(k, _)| k == keyword) {
-            Some((_, count)) => *count += 1,
-            None => self.skipped.push((keyword.to_string(), 1)),
-        }
-    }
-
-    /// The note naming what was read past, if anything was.
-    fn skipped_note(&self) -> Option<String> {
-        let what = |keyword: &str| match keyword {
-            "l" => "line element(s) (`l`)".to_string(),
-            "p" => "point element(s) (`p`)".to_string(),
-            "g" | "o" => format!("`{keyword}` statement(s) (all parts merged into one mesh)"),
-            "usemtl" | "mtllib" => format!("`{keyword}` statement(s) (materials are not kept)"),
-            "s" => "`s` smoothing group statement(s)".to_string(),
-            other => format!("unknown statement(s) `{other}`"),
-        };
-        let parts: Vec<String> = self
-            .skipped
-            .iter()
-            .map(|(keyword, count)| format!("{count} {}", what(keyword)))
-            .collect();
-        (!parts.is_empty()).then(|| format!("skipped: {}", parts.join(", ")))
+/// What a statement the reader reads past is, for the note.
+fn skipped_statement(keyword: &str) -> Cow<'static, str> {
+    match keyword {
+        "l" => "line element(s) (`l`)".into(),
+        "p" => "point element(s) (`p`)".into(),
+        "g" | "o" => format!("`{keyword}` statement(s) (all parts merged into one mesh)").into(),
+        "usemtl" | "mtllib" => format!("`{keyword}` statement(s) (materials are not kept)").into(),
+        "s" => "`s` smoothing group statement(s)".into(),
+        other => format!("unknown statement(s) `{other}`").into(),
     }
 }
 
@@ -315,7 +300,7 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
         }
         soup
     };
-    let skipped = extras.skipped_note();
+    let skipped = extras.skipped.note();
     attach_extras(&mut soup, extras)?;
     soup.notes.extend(skipped);
     Ok(soup)
@@ -401,7 +386,7 @@ fn first_pass(bytes: &[u8]) -> Result<(Vec<Vec3>, RawFaces, Extras), ParseError>
                 faces.lines.push(line);
                 faces.starts.push(faces.corners.len());
             }
-            Some(keyword) => extras.skip(keyword),
+            Some(keyword) => extras.skipped.count(skipped_statement(keyword), 1),
             None => {}
         }
     }

@@ -1,14 +1,18 @@
 //! Scene readers' common ground (COLLADA, glTF): a mesh of a file read into a [`Part`], its
-//! corners naming their own normals, UVs and colours, and the parts placed in the scene
-//! appended into one soup by [`Merged`] — each copy's positions transformed (normals by the
-//! inverse transpose, the winding reversed under a mirroring transform so faces keep facing
-//! out; the identity skipped so positions keep their bits), per-corner normals and colours
-//! then gathered per vertex ([`super::corners`]), UVs kept per corner.
+//! corners naming their own normals, UVs and colours, and the parts placed in the scene, each
+//! read once, appended into one soup by [`assemble`] — each copy's positions transformed
+//! (normals by the inverse transpose, the winding reversed under a mirroring transform so
+//! faces keep facing out; the identity skipped so positions keep their bits), per-corner
+//! normals and colours then gathered per vertex ([`super::corners`]), UVs kept per corner.
 
 use bevy::math::{Mat3, Mat4, Vec2, Vec3};
+use std::collections::HashMap;
+use std::collections::hash_map::Entry;
+use std::hash::Hash;
 
 use super::ParseError;
 use super::corners::{attach_corner_normals, per_vertex};
+use super::skipped::Skipped;
 use crate::memory_budget;
 use crate::mesh::soup::PolygonSoup;
 
@@ -83,45 +87,9 @@ fn put<T: Copy>(list: &mut Option<Vec<Option<T>>>, k: usize, value: Option<T>) {
     }
 }
 
-/// Counts of what a reader read past, by what it is in a person's words
-/// (`"line primitive(s)"`), in order of first appearance.
-#[derive(Default, Clone, Debug)]
-pub(super) struct Skipped(Vec<(&'static str, usize)>);
-
-impl Skipped {
-    /// Counts `n` more of `what`.
-    pub fn count(&mut self, what: &'static str, n: usize) {
-        if n == 0 {
-            return;
-        }
-        match self.0.iter_mut().find(|(w, _)| *w == what) {
-            Some((_, count)) => *count += n,
-            None => self.0.push((what, n)),
-        }
-    }
-
-    /// Adds another's counts.
-    pub fn add(&mut self, other: &Skipped) {
-        for &(what, n) in &other.0 {
-            self.count(what, n);
-        }
-    }
-
-    /// The note for the soup: `"skipped: 1 camera(s), 2 line primitive(s)"`; `None` when
-    /// nothing was.
-    pub fn note(&self) -> Option<String> {
-        let phrases: Vec<String> = self
-            .0
-            .iter()
-            .map(|(what, n)| format!("{n} {what}"))
-            .collect();
-        (!phrases.is_empty()).then(|| format!("skipped: {}", phrases.join(", ")))
-    }
-}
-
 /// The note naming the objects (placed meshes) read into one mesh, when there are several:
 /// `"3 objects (Cube, Cone, Plane) read as one mesh of several parts"`.
-pub(super) fn merged_objects_note(names: &[&str]) -> Option<String> {
+fn merged_objects_note(names: &[&str]) -> Option<String> {
     if names.len() < 2 {
         return None;
     }
@@ -134,12 +102,46 @@ pub(super) fn merged_objects_note(names: &[&str]) -> Option<String> {
     ))
 }
 
+/// A scene's meshes as one soup: each placement is (the key of its mesh, its transform, its
+/// name); each distinct mesh is read once by `read` (`None`: not a polygon mesh, left out),
+/// the copies are checked against the memory budget, then appended in order, and the soup's
+/// notes name the objects merged. Returns the parts read too, by key, for the caller's notes.
+///
+/// # Errors
+/// The first error of `read`, or the budget's refusal.
+pub(super) fn assemble<K: Copy + Eq + Hash>(
+    placements: &[(K, Mat4, &str)],
+    mut read: impl FnMut(K) -> Result<Option<Part>, ParseError>,
+) -> Result<(PolygonSoup, HashMap<K, Option<Part>>), ParseError> {
+    let mut parts: HashMap<K, Option<Part>> = HashMap::new();
+    for &(key, _, _) in placements {
+        if let Entry::Vacant(entry) = parts.entry(key) {
+            entry.insert(read(key)?);
+        }
+    }
+    let placed = || {
+        placements
+            .iter()
+            .filter_map(|(key, transform, name)| Some((parts.get(key)?.as_ref()?, transform, name)))
+    };
+    check_budget(placed().map(|(part, _, _)| part))?;
+    let mut merged = Merged::default();
+    let mut names = Vec::new();
+    for (part, transform, name) in placed() {
+        merged.append(part, *transform);
+        names.push(*name);
+    }
+    let mut soup = merged.into_soup();
+    soup.notes.extend(merged_objects_note(&names));
+    Ok((soup, parts))
+}
+
 /// Refuses a scene whose placed copies (`placed`: each part once per placement) would not fit
 /// the memory budget: instances multiply, so a small file can describe a huge mesh.
 ///
 /// # Errors
 /// The budget's refusal, as an unsupported-content error.
-pub(super) fn check_budget<'p>(placed: impl Iterator<Item = &'p Part>) -> Result<(), ParseError> {
+fn check_budget<'p>(placed: impl Iterator<Item = &'p Part>) -> Result<(), ParseError> {
     let (mut copies, mut faces, mut rows) = (0usize, 0u64, 0u64);
     for part in placed {
         copies += 1;
@@ -159,23 +161,23 @@ pub(super) fn check_budget<'p>(placed: impl Iterator<Item = &'p Part>) -> Result
     .map_err(|refusal| ParseError::byte(0, refusal.to_string()).unsupported())
 }
 
-/// The parts appended one after another, per-corner values kept until the end.
-#[derive(Default)]
-pub(super) struct Merged {
-    soup: PolygonSoup,
-    normals: Option<Vec<Option<Vec3>>>,
-    uvs: Option<Vec<Option<Vec2>>>,
-    colors: Option<Vec<Option<Vec3>>>,
+/// The parts appended one after another into one part, per-corner values kept until the end.
+struct Merged(Part);
+
+impl Default for Merged {
+    fn default() -> Self {
+        Merged(Part::new())
+    }
 }
 
 impl Merged {
     /// Appends a copy of `part` placed by `transform`.
     pub fn append(&mut self, part: &Part, transform: Mat4) {
-        let base = self.soup.positions.len() as u32;
-        let corners_before = self.soup.indices.len();
+        let merged = &mut self.0;
+        let base = merged.positions.len() as u32;
         let identity = transform == Mat4::IDENTITY;
         // The identity is skipped, not applied: 1·x + 0·y would turn −0 into +0.
-        self.soup.positions.extend(part.positions.iter().map(|&p| {
+        merged.positions.extend(part.positions.iter().map(|&p| {
             if identity {
                 p
             } else {
@@ -189,54 +191,48 @@ impl Merged {
             Mat3::IDENTITY
         };
         let mirrored = transform.determinant() < 0.0;
-        let order = |start: usize, end: usize| -> Vec<usize> {
-            if mirrored {
-                (start..end).rev().collect()
-            } else {
-                (start..end).collect()
-            }
-        };
-        start_list(&mut self.normals, corners_before, &part.normals);
-        start_list(&mut self.uvs, corners_before, &part.uvs);
-        start_list(&mut self.colors, corners_before, &part.colors);
         for face in part.face_starts.windows(2) {
-            let corners = order(face[0] as usize, face[1] as usize);
-            let face_indices: Vec<u32> = corners
-                .iter()
-                .map(|&k| match part.indices[k] {
+            let corners = face[0] as usize..face[1] as usize;
+            let corners: Vec<usize> = if mirrored {
+                corners.rev().collect()
+            } else {
+                corners.collect()
+            };
+            for k in corners {
+                let index = match part.indices[k] {
                     NO_POSITION => NO_POSITION,
                     v => base + v,
-                })
-                .collect();
-            self.soup.push_face(&face_indices);
-            for &k in &corners {
-                if let Some(list) = &mut self.normals {
-                    list.push(corner(&part.normals, k).map(|n: Vec3| {
-                        if identity {
-                            n
-                        } else {
-                            (normal_matrix * n).normalize_or_zero()
-                        }
-                    }));
-                }
-                if let Some(list) = &mut self.uvs {
-                    list.push(corner(&part.uvs, k));
-                }
-                if let Some(list) = &mut self.colors {
-                    list.push(corner(&part.colors, k));
-                }
+                };
+                let normal = corner(&part.normals, k).map(|n: Vec3| {
+                    if identity {
+                        n
+                    } else {
+                        (normal_matrix * n).normalize_or_zero()
+                    }
+                });
+                merged.push_corner(index, normal, corner(&part.uvs, k), corner(&part.colors, k));
             }
+            merged.end_face();
         }
     }
 
     /// The soup, per-corner normals and colours gathered per vertex.
     pub fn into_soup(self) -> PolygonSoup {
-        let Merged {
-            mut soup,
+        let Part {
+            positions,
+            indices,
+            face_starts,
             normals,
             uvs,
             colors,
-        } = self;
+            ..
+        } = self.0;
+        let mut soup = PolygonSoup {
+            positions,
+            indices,
+            face_starts,
+            ..PolygonSoup::default()
+        };
         let n = soup.positions.len();
         if let Some(normals) = normals {
             attach_corner_normals(&mut soup, normals.into_iter());
@@ -275,16 +271,4 @@ impl Merged {
 /// Corner `k`'s value in a part's per-corner list, if it has one.
 fn corner<T: Copy>(list: &Option<Vec<Option<T>>>, k: usize) -> Option<T> {
     list.as_ref().and_then(|l| l.get(k).copied().flatten())
-}
-
-/// Starts a merged per-corner list (`None` for the `before` corners already merged) when the
-/// first part that has its values comes.
-fn start_list<T: Copy>(
-    list: &mut Option<Vec<Option<T>>>,
-    before: usize,
-    part: &Option<Vec<Option<T>>>,
-) {
-    if list.is_none() && part.is_some() {
-        *list = Some(vec![None; before]);
-    }
 }

@@ -592,10 +592,8 @@ const STRIP_RESTART: u32 = u32::MAX;
 /// degenerate ones strips use to turn corners.
 fn push_strips(soup: &mut PolygonSoup, list: &[u32]) {
     for strip in list.split(|&v| v == STRIP_RESTART) {
-        for [a, b, c] in strip_triangles(strip) {
-            if a != b && b != c && a != c {
-                soup.push_face(&[a, b, c]);
-            }
+        for triangle in strip_triangles(strip, |v| v) {
+            soup.push_face(&triangle);
         }
     }
 }

@@ -249,8 +249,9 @@ fn read_primitive(primitive: Node, layout: &Layout, part: &mut Part) -> Result<(
                         }
                     }
                     _ => {
-                        for triangle in strip_triangles(&corners) {
-                            push_triangle(part, layout, triangle);
+                        let vertex = layout.vertex.unwrap_or(0);
+                        for triangle in strip_triangles(&corners, |t| t[vertex]) {
+                            push_face(part, layout, &triangle);
                         }
                     }
                 }
@@ -261,8 +262,7 @@ fn read_primitive(primitive: Node, layout: &Layout, part: &mut Part) -> Result<(
     Ok(())
 }
 
-/// Pushes a fan's or strip's triangle, unless two of its corners are one position (a strip's
-/// way of turning: no face).
+/// Pushes a fan's triangle, unless two of its corners are one position (no face).
 fn push_triangle(part: &mut Part, layout: &Layout, corners: [&[u32]; 3]) {
     let vertex = layout.vertex.unwrap_or(0);
     let [a, b, c] = corners.map(|t| t[vertex]);
@@ -342,26 +342,22 @@ fn number<T: std::str::FromStr>(node: Node, name: &str) -> Result<Option<T>, Par
 
 /// An element's text as whitespace-separated floats.
 pub(super) fn floats(node: Node) -> Result<Vec<f32>, ParseError> {
-    let text = node.text().unwrap_or_default();
-    text.split_ascii_whitespace()
-        .map(|t| {
-            t.parse::<f32>()
-                .map_err(|_| ParseError::line(line_of(node), format!("`{t}` is not a number")))
-        })
-        .collect()
+    numbers(node, "a number")
 }
 
 /// An element's text as whitespace-separated non-negative integers.
 fn integers(node: Node) -> Result<Vec<u32>, ParseError> {
+    numbers(node, "an index (a non-negative integer)")
+}
+
+/// An element's text as whitespace-separated numbers of type `T`; a token that does not parse
+/// is an error naming the element's line and saying it is not `what`.
+fn numbers<T: std::str::FromStr>(node: Node, what: &str) -> Result<Vec<T>, ParseError> {
     let text = node.text().unwrap_or_default();
     text.split_ascii_whitespace()
         .map(|t| {
-            t.parse::<u32>().map_err(|_| {
-                ParseError::line(
-                    line_of(node),
-                    format!("`{t}` is not an index (a non-negative integer)"),
-                )
-            })
+            t.parse::<T>()
+                .map_err(|_| ParseError::line(line_of(node), format!("`{t}` is not {what}")))
         })
         .collect()
 }

@@ -28,7 +28,8 @@ use roxmltree::{Document, Node, ParsingOptions};
 use std::collections::HashMap;
 
 use super::ParseError;
-use super::parts::{Merged, Part, Skipped, check_budget, merged_objects_note};
+use super::parts::{Part, assemble};
+use super::skipped::Skipped;
 use crate::mesh::soup::PolygonSoup;
 
 /// Every element with an `id`, by id.
@@ -68,39 +69,24 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
         .filter_map(|n| Some((n.attribute("id")?, n)))
         .collect();
     let scene = scene::walk(root, &ids)?;
-    let mut parts = Parts::new();
-    for placement in &scene.placements {
-        if let std::collections::hash_map::Entry::Vacant(entry) =
-            parts.entry(placement.geometry.id())
-        {
-            let part = match child(placement.geometry, "mesh") {
-                Some(mesh) => Some(geometry::read_mesh(mesh, &ids)?),
-                None => None,
-            };
-            entry.insert(part);
+    let placements: Vec<_> = scene
+        .placements
+        .iter()
+        .map(|p| (p.geometry.id(), p.transform, p.name.as_str()))
+        .collect();
+    let (mut soup, parts) = assemble(&placements, |id| {
+        let geometry = document.get_node(id);
+        match geometry.and_then(|g| child(g, "mesh")) {
+            Some(mesh) => geometry::read_mesh(mesh, &ids).map(Some),
+            None => Ok(None),
         }
-    }
-    check_budget(
-        scene
-            .placements
-            .iter()
-            .filter_map(|p| parts.get(&p.geometry.id())?.as_ref()),
-    )?;
-    let mut merged = Merged::default();
-    let mut names = Vec::new();
-    for placement in &scene.placements {
-        if let Some(Some(part)) = parts.get(&placement.geometry.id()) {
-            merged.append(part, placement.transform);
-            names.push(placement.name.as_str());
-        }
-    }
-    let mut soup = merged.into_soup();
-    soup.notes.extend(notes(root, &scene, &parts, &names));
+    })?;
+    soup.notes.extend(notes(root, &scene, &parts));
     Ok(soup)
 }
 
-/// The sentences for the soup's notes: the objects merged, and what was skipped.
-fn notes(root: Node, scene: &scene::Scene, parts: &Parts, names: &[&str]) -> Vec<String> {
+/// The sentence for the soup's notes on what was skipped.
+fn notes(root: Node, scene: &scene::Scene, parts: &Parts) -> Option<String> {
     let mut skipped = Skipped::default();
     let library = |library: &'static str, element: &'static str| {
         children(root, library)
@@ -124,10 +110,7 @@ fn notes(root: Node, scene: &scene::Scene, parts: &Parts, names: &[&str]) -> Vec
         "geometry(ies) that are not polygon meshes",
         parts.values().filter(|p| p.is_none()).count(),
     );
-    merged_objects_note(names)
-        .into_iter()
-        .chain(skipped.note())
-        .collect()
+    skipped.note()
 }
 
 /// The first child element with this tag name.

@@ -27,11 +27,11 @@ use bevy::math::{Mat4, Vec2, Vec3};
 use bevy::platform::collections::HashMap as FastMap;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
-use std::collections::HashMap;
 use std::path::Path;
 
 use super::ParseError;
-use super::parts::{Merged, NO_POSITION, Part, Skipped, check_budget, merged_objects_note};
+use super::parts::{NO_POSITION, Part, assemble};
+use super::skipped::Skipped;
 use super::strips::strip_triangles;
 use crate::mesh::soup::PolygonSoup;
 use buffers::Buffers;
@@ -88,30 +88,18 @@ pub fn read(bytes: &[u8], folder: Option<&Path>) -> Result<PolygonSoup, ParseErr
     let document = gltf::Document::from_json(json).map_err(|e| error(e.to_string()))?;
     let buffers = Buffers::resolve(&document, blob, folder).map_err(error)?;
     let placements = placements(&document).map_err(error)?;
-    let mut parts: HashMap<usize, Part> = HashMap::new();
-    for (mesh, _, _) in &placements {
-        if let std::collections::hash_map::Entry::Vacant(entry) = parts.entry(mesh.index()) {
-            let part =
-                read_mesh(mesh, &buffers).map_err(|e| ParseError::byte(0, e).unsupported())?;
-            entry.insert(part);
-        }
-    }
-    check_budget(
-        placements
-            .iter()
-            .filter_map(|(mesh, _, _)| parts.get(&mesh.index())),
-    )?;
-    let mut merged = Merged::default();
-    let mut names = Vec::new();
-    for (mesh, transform, name) in &placements {
-        if let Some(part) = parts.get(&mesh.index()) {
-            merged.append(part, *transform);
-            names.push(name.as_str());
-        }
-    }
-    let mut soup = merged.into_soup();
+    let keyed: Vec<_> = placements
+        .iter()
+        .map(|(mesh, transform, name)| (mesh.index(), *transform, name.as_str()))
+        .collect();
+    let (mut soup, parts) = assemble(&keyed, |index| {
+        let mesh = document.meshes().nth(index);
+        mesh.map(|mesh| read_mesh(&mesh, &buffers))
+            .transpose()
+            .map_err(|e| ParseError::byte(0, e).unsupported())
+    })?;
     let mut skipped = Skipped::default();
-    for part in parts.values() {
+    for part in parts.values().flatten() {
         skipped.add(&part.skipped);
     }
     skipped.count(
@@ -122,11 +110,7 @@ pub fn read(bytes: &[u8], folder: Option<&Path>) -> Result<PolygonSoup, ParseErr
     skipped.count("camera(s)", document.cameras().count());
     skipped.count("material(s)", document.materials().count());
     skipped.count("texture(s)", document.textures().count());
-    soup.notes.extend(
-        merged_objects_note(&names)
-            .into_iter()
-            .chain(skipped.note()),
-    );
+    soup.notes.extend(skipped.note());
     Ok(soup)
 }
 
@@ -281,11 +265,7 @@ fn read_mesh(mesh: &gltf::Mesh, buffers: &Buffers) -> Result<Part, String> {
                 }
             }
             _ => {
-                for [a, b, c] in strip_triangles(&order) {
-                    if a != b && b != c && a != c {
-                        triangle([a, b, c]);
-                    }
-                }
+                strip_triangles(&order, |v| v).for_each(&mut triangle);
             }
         }
     }

@@ -106,11 +106,9 @@ fn attributes(
     chunks: &mut Chunks,
 ) -> serde_json::Map<String, Value> {
     let count = vertices.len();
-    let per_vertex = |values: &mut dyn FnMut(u32, [u32; 2]) -> Vec<u8>| -> Vec<u8> {
-        vertices.iter().flat_map(|&(v, uv)| values(v, uv)).collect()
+    let floats = |values: &[f32], out: &mut Vec<u8>| {
+        out.extend(values.iter().flat_map(|c| c.to_le_bytes()));
     };
-    let floats =
-        |values: &[f32]| -> Vec<u8> { values.iter().flat_map(|c| c.to_le_bytes()).collect() };
     let mut attributes = serde_json::Map::new();
     let positions: Vec<[f32; 3]> = vertices
         .iter()
@@ -119,7 +117,8 @@ fn attributes(
     let (min, max) = bounds(&positions);
     let accessor =
         json!({ "componentType": FLOAT, "count": count, "type": "VEC3", "min": min, "max": max });
-    let bytes = floats(positions.as_flattened());
+    let mut bytes = Vec::new();
+    floats(positions.as_flattened(), &mut bytes);
     attributes.insert(
         "POSITION".into(),
         json!(chunks.push(bytes, None, ARRAY_BUFFER, accessor)),
@@ -127,7 +126,9 @@ fn attributes(
     let vec = |kind: &str| json!({ "componentType": FLOAT, "count": count, "type": kind });
     let n = soup.positions.len();
     if let Some(normals) = soup.vertex_normals.as_ref().filter(|x| x.len() == n) {
-        let bytes = per_vertex(&mut |v, _| floats(&normals[v as usize].to_array()));
+        let bytes = per_vertex(vertices, |v, _, out| {
+            floats(&normals[v as usize].to_array(), out);
+        });
         attributes.insert(
             "NORMAL".into(),
             json!(chunks.push(bytes, None, ARRAY_BUFFER, vec("VEC3"))),
@@ -135,8 +136,9 @@ fn attributes(
     }
     if soup.attributes().uv {
         // glTF's v runs down the image.
-        let bytes =
-            per_vertex(&mut |_, [u, v]| floats(&[f32::from_bits(u), 1.0 - f32::from_bits(v)]));
+        let bytes = per_vertex(vertices, |_, [u, v], out| {
+            floats(&[f32::from_bits(u), 1.0 - f32::from_bits(v)], out);
+        });
         attributes.insert(
             "TEXCOORD_0".into(),
             json!(chunks.push(bytes, None, ARRAY_BUFFER, vec("VEC2"))),
@@ -144,9 +146,9 @@ fn attributes(
     }
     if let Some(colors) = soup.vertex_colors.as_ref().filter(|x| x.len() == n) {
         // Bytes, each colour padded to 4: vertex attributes are 4-byte aligned.
-        let bytes = per_vertex(&mut |v, _| {
+        let bytes = per_vertex(vertices, |v, _, out| {
             let [r, g, b] = colors[v as usize];
-            vec![r, g, b, 0]
+            out.extend([r, g, b, 0]);
         });
         let accessor = json!({ "componentType": UNSIGNED_BYTE, "normalized": true, "count": count, "type": "VEC3" });
         attributes.insert(
@@ -156,11 +158,9 @@ fn attributes(
     }
     // Which soup vertex each written one is (low and high 16 bits), so that Pappus joins
     // exactly the copies it split, not every two vertices that happen to coincide.
-    let bytes = per_vertex(&mut |v, _| {
-        [v as u16, (v >> 16) as u16]
-            .iter()
-            .flat_map(|h| h.to_le_bytes())
-            .collect()
+    let bytes = per_vertex(vertices, |v, _, out| {
+        out.extend((v as u16).to_le_bytes());
+        out.extend(((v >> 16) as u16).to_le_bytes());
     });
     let accessor = json!({ "componentType": UNSIGNED_SHORT, "count": count, "type": "VEC2" });
     attributes.insert(
@@ -168,6 +168,18 @@ fn attributes(
         json!(chunks.push(bytes, None, ARRAY_BUFFER, accessor)),
     );
     attributes
+}
+
+/// Every vertex's bytes, as `write` puts them, one vertex after another.
+fn per_vertex(
+    vertices: &[(u32, [u32; 2])],
+    mut write: impl FnMut(u32, [u32; 2], &mut Vec<u8>),
+) -> Vec<u8> {
+    let mut out = Vec::new();
+    for &(v, uv) in vertices {
+        write(v, uv, &mut out);
+    }
+    out
 }
 
 /// The vertices to write, as (soup vertex, UV bits), and each triangle's three vertex numbers.
