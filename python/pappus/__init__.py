@@ -14,7 +14,15 @@ processes.
 Errors: :class:`Refused` (an operation refused; the mesh is untouched), :class:`ParseError` (a
 malformed file, with the line), :class:`InvalidMesh` (``validate``), all :class:`PappusError`;
 ``ValueError`` for a parameter outside its range, ``OSError`` for the file system.
+
+A folder of meshes on a cluster: :func:`process_file` is ``pappus process`` for one input, a
+plain function of plain values, so any executor maps it (``dask.distributed``'s ``Client.map``,
+``concurrent.futures``, ``multiprocessing``); see the README's recipe.
 """
+
+import time
+import warnings
+from pathlib import Path
 
 from ._pappus import (
     SHAPES,
@@ -39,6 +47,8 @@ __all__ = [
     "__version__",
     "load",
     "memory_budget",
+    "output_stem",
+    "process_file",
     "set_memory_budget",
 ]
 
@@ -46,3 +56,62 @@ __all__ = [
 def _restore(state):
     """Rebuilds a pickled :class:`Mesh` from the state its ``__reduce__`` gave."""
     return Mesh._from_state(state)
+
+
+def output_stem(source):
+    """The ``{stem}`` of ``source`` as ``pappus process -o`` names it: a file's name without its
+    extension, or a shape's name and sizes joined by dashes (``shape:icosphere:3`` →
+    ``icosphere-3``)."""
+    source = str(source)
+    if source.startswith("shape:"):
+        return source[len("shape:") :].replace(":", "-")
+    return Path(source).stem
+
+
+def process_file(source, steps, output=None, *, info=False):
+    """Loads ``source``, runs ``steps`` in order, saves to ``output``: ``pappus process SOURCE
+    -o OUTPUT STEP...`` for one input, as one call of plain values that an executor can send to
+    another process or machine (the worker needs ``pappus`` installed and the files reachable).
+
+    ``source``: a mesh file or ``"shape:NAME"``. ``steps``: step strings exactly as the command
+    line writes them (``["triangulate", "simplify:0.5"]``). ``output``: a path, where ``{stem}``
+    is replaced as ``-o`` does (:func:`output_stem`); its folder is created; ``None`` saves
+    nothing. Returns a dict: ``source``, ``output`` (or None), ``steps`` (one dict per step:
+    ``step``, ``outcome`` ``"applied"`` or ``"refused"``, ``summary`` or ``reason``, ``ms``),
+    ``dropped`` (what the output format could not hold, as ``Mesh.save`` warns), ``vertices``
+    and ``faces`` (the result's counts), ``info`` (with ``info=True``: the result's
+    :meth:`Mesh.info`, whose curvature statistics can cost more than the steps; else None) and
+    ``ms`` (the whole call). A refused step is reported and the
+    rest go on, as on the command line; an unreadable input or unwritable output raises.
+    """
+    start = time.perf_counter()
+    mesh = load(source)
+    reports = []
+    for step in steps:
+        began = time.perf_counter()
+        try:
+            report = {"step": step, "outcome": "applied", "summary": mesh.step(step)}
+        except Refused as refusal:
+            report = {"step": step, "outcome": "refused", "reason": str(refusal)}
+        report["ms"] = (time.perf_counter() - began) * 1000.0
+        reports.append(report)
+    dropped = []
+    if output is not None:
+        output = Path(str(output).replace("{stem}", output_stem(source)))
+        output.parent.mkdir(parents=True, exist_ok=True)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            mesh.save(output)
+        dropped = [str(w.message) for w in caught]
+        output = str(output)
+    vertices, faces = mesh.arrays()
+    return {
+        "source": str(source),
+        "output": output,
+        "steps": reports,
+        "dropped": dropped,
+        "vertices": len(vertices),
+        "faces": len(faces),
+        "info": mesh.info() if info else None,
+        "ms": (time.perf_counter() - start) * 1000.0,
+    }

@@ -1,7 +1,7 @@
 """Type stubs for ``pappus``: what each call accepts, returns, and raises."""
 
 import os
-from typing import Callable, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -63,6 +63,28 @@ def set_memory_budget(limit: Union[int, str, None] = None) -> int:
 
 def memory_budget() -> Tuple[int, str]:
     """The budget now: ``(limit_bytes, how_it_was_chosen)``."""
+
+def output_stem(source: Union[str, os.PathLike]) -> str:
+    """``{stem}`` as ``pappus process -o`` names it: a file's name without its extension, or a
+    shape's name and sizes joined by dashes (``"shape:icosphere:3"`` → ``"icosphere-3"``)."""
+
+def process_file(
+    source: Union[str, os.PathLike],
+    steps: Iterable[str],
+    output: Union[str, os.PathLike, None] = None,
+    *,
+    info: bool = False,
+) -> Dict[str, Any]:
+    """``pappus process SOURCE -o OUTPUT STEP...`` for one input, as a call of plain values for an
+    executor (``dask.distributed``'s ``Client.map``, ``concurrent.futures``, ``multiprocessing``).
+
+    ``output``: ``{stem}`` replaced as ``-o`` does, its folder created; None saves nothing.
+    Returns ``source``, ``output``, ``steps`` (``step``, ``outcome``, ``summary`` or ``reason``,
+    ``ms`` each), ``dropped`` (what the format could not hold), ``vertices`` and ``faces`` (counts),
+    ``info`` (``Mesh.info()`` with ``info=True``, else None; its curvature statistics can cost more
+    than the steps), ``ms``.
+    A refused step is reported and the others run; an unreadable input or unwritable output raises.
+    """
 
 class Mesh:
     """One halfedge mesh (polygons allowed).
