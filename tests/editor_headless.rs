@@ -787,6 +787,153 @@ fn a_move_of_a_handle_with_anchors_marked_deforms_the_mesh_in_one_undo_step() {
     }
 }
 
+/// The quad grid opened with its left column as anchors and its right column selected (the
+/// handle); the vertices and their rest positions.
+fn grid_with_anchors_and_handle(app: &mut App) -> (Vec<pappus::mesh::VertexId>, Vec<Vec3>) {
+    use pappus::editor::requests::SelectionEdit;
+    open(app, "shape:quad-grid");
+    let vertices = pappus::mesh::MeshMembers::collect(app.world(), mesh(app)).vertices;
+    let before: Vec<Vec3> = {
+        let r = MeshRef::new(app.world());
+        vertices.iter().map(|&v| r.position(v)).collect()
+    };
+    let column = |x: f32| -> Vec<ElementId> {
+        (0..vertices.len())
+            .filter(|&i| (before[i].x - x).abs() < 1e-6)
+            .map(|i| ElementId::Vertex(vertices[i]))
+            .collect()
+    };
+    app.world_mut()
+        .write_message(Request::from(SelectionEdit::Replace(column(0.0))));
+    app.update();
+    press_with(app, KeyCode::ShiftLeft, KeyCode::KeyA);
+    app.world_mut()
+        .write_message(Request::from(SelectionEdit::Replace(column(1.0))));
+    app.update();
+    (vertices, before)
+}
+
+#[test]
+fn in_step_mode_an_arap_handle_drag_steps_an_iteration_at_a_time_and_ends_as_the_deformation() {
+    use pappus::editor::stepping::{Stepping, Steps};
+    use pappus::editor::transform::STEPPED_ITERATIONS;
+    use pappus::ops::deform::{DeformMethod, DeformParams};
+    let mut app = app_with_camera();
+    let (vertices, before) = grid_with_anchors_and_handle(&mut app);
+    let positions = |app: &App| -> Vec<Vec3> {
+        let r = MeshRef::new(app.world());
+        vertices.iter().map(|&v| r.position(v)).collect()
+    };
+    press(&mut app, KeyCode::F9);
+    for key in [
+        KeyCode::KeyG,
+        KeyCode::KeyZ,
+        KeyCode::Digit0,
+        KeyCode::Period,
+        KeyCode::Digit1,
+        KeyCode::Enter,
+    ] {
+        press(&mut app, key);
+    }
+    app.update();
+    let run_at = |app: &App| {
+        let run = app
+            .world()
+            .resource::<Stepping>()
+            .run
+            .as_ref()
+            .expect("a run");
+        (run.steps.at(), run.steps.made())
+    };
+    // Iteration 0: the gesture's move taken back, the handle placed, the rest as it was.
+    assert_eq!(run_at(&app), (0, STEPPED_ITERATIONS as usize));
+    let undo = |app: &App| {
+        app.world()
+            .resource::<pappus::editor::history::UndoHistory>()
+            .undo_entries()
+            .len()
+    };
+    assert_eq!(undo(&app), 0, "the gesture's move was taken back");
+    let at_start = positions(&app);
+    for (i, p) in at_start.iter().enumerate() {
+        let expected = match before[i].x == 1.0 {
+            true => before[i] + Vec3::Z * 0.1,
+            false => before[i],
+        };
+        assert_eq!(*p, expected, "vertex {i} at iteration 0");
+    }
+    // Three steps: each an iteration, the energy falling, each free vertex's rotation drawn.
+    for _ in 0..3 {
+        press(&mut app, KeyCode::ArrowRight);
+    }
+    assert_eq!(run_at(&app).0, 3);
+    let (energies, at_three, frames) = {
+        let run = app.world().resource::<Stepping>().run.as_ref().unwrap();
+        let Steps::Deform(d) = &run.steps else {
+            panic!("a deformation run")
+        };
+        let energies: Vec<f64> = d.iterations[1..]
+            .iter()
+            .map(|i| i.energy.unwrap())
+            .collect();
+        (
+            energies,
+            d.iterations[3].positions.clone(),
+            d.frames().count(),
+        )
+    };
+    assert_eq!(energies.len(), 3);
+    assert!(energies.windows(2).all(|w| w[1] <= w[0]), "{energies:?}");
+    let free = vertices.len() - 2 * 11;
+    assert_eq!(frames, free, "a rotation for every free vertex");
+    let drawn = app
+        .world()
+        .resource::<pappus::editor::overlay::Overlay>()
+        .shapes
+        .iter()
+        .filter(|s| matches!(s, pappus::editor::overlay::Shape::Line(_, _, c) if pappus::editor::overlay::AXIS_COLORS.contains(c)))
+        .count();
+    assert_eq!(drawn, 3 * free, "three axes a frame");
+    let after_three = positions(&app);
+    assert!(at_three.iter().all(|p| after_three.contains(p)));
+    // Back one and forward again: iteration 3 exactly as it was.
+    press(&mut app, KeyCode::ArrowLeft);
+    assert_eq!(run_at(&app).0, 2);
+    assert_ne!(positions(&app), after_three);
+    press(&mut app, KeyCode::ArrowRight);
+    assert_eq!(positions(&app), after_three);
+    // Kept: one undo entry, the mesh the unstepped deformation of three iterations gives.
+    press(&mut app, KeyCode::Enter);
+    assert!(app.world().resource::<Stepping>().run.is_none());
+    assert_eq!(undo(&app), 1);
+    let mut whole = app_with_camera();
+    let (vertices_whole, _) = grid_with_anchors_and_handle(&mut whole);
+    let column = |x: f32| -> Vec<pappus::mesh::VertexId> {
+        (0..vertices_whole.len())
+            .filter(|&i| (before[i].x - x).abs() < 1e-6)
+            .map(|i| vertices_whole[i])
+            .collect()
+    };
+    whole
+        .world_mut()
+        .write_message(Request::Edit(Edit::Deform(DeformParams {
+            method: DeformMethod::Arap,
+            fixed: column(0.0),
+            handle: column(1.0),
+            motion: bevy::math::Affine3A::from_translation(Vec3::Z * 0.1),
+            iterations: 3,
+        })));
+    whole.update();
+    let r = MeshRef::new(whole.world());
+    let unstepped: Vec<Vec3> = vertices_whole.iter().map(|&v| r.position(v)).collect();
+    assert_eq!(
+        unstepped, after_three,
+        "stepped to 3 = deformed with 3 iterations"
+    );
+    press_with(&mut app, KeyCode::ControlLeft, KeyCode::KeyZ);
+    assert_eq!(positions(&app), before);
+}
+
 #[test]
 fn hole_and_fairing_keys_fill_and_fair() {
     let mut app = app();

@@ -1,6 +1,7 @@
 //! What step mode shows on the mesh — QEM's next collapse (the edge, the point its ends merge
 //! at, the runners-up in the queue), what a remeshing pass touched, a subdivision level's new
-//! points and the selected element's stencil — and a window that drives the run.
+//! points and the selected element's stencil, an ARAP iteration's best rotation at each vertex
+//! as a small frame — and a window that drives the run.
 //!
 //! [`gather_step_overlay`] adds shapes to the frame's [`Overlay`] (logic side: headless tests
 //! see them); [`snapshot_steps`] copies what the window shows out of the world once a frame;
@@ -13,7 +14,7 @@ use crate::mesh::ids::ElementId;
 use crate::mesh::topology::MeshRef;
 
 use super::input::{Action, SHORTCUTS, UiState};
-use super::overlay::{Overlay, Shape};
+use super::overlay::{AXIS_COLORS, Overlay, Shape};
 use super::requests::Request;
 use super::requests::StepMove;
 use super::selection::Selection;
@@ -67,6 +68,16 @@ pub fn gather_step_overlay(world: &mut World) {
                 touched_shapes(&m, &report.touched, &mut shapes);
             }
         }
+        Steps::Deform(steps) => {
+            // Each rotation as a frame: where the vertex's X, Y and Z axes turn to.
+            let frames: Vec<_> = steps.frames().collect();
+            for i in even_sample(frames.len()) {
+                let (p, q) = frames[i];
+                for (axis, color) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().zip(AXIS_COLORS) {
+                    shapes.push(Shape::Line(p, p + q * axis * steps.frame_size, color));
+                }
+            }
+        }
         Steps::Subdivide(steps) => {
             let stencil = steps.selected_stencil(world);
             if let Some(points) = &steps.points {
@@ -91,15 +102,14 @@ pub fn gather_step_overlay(world: &mut World) {
 /// What a remeshing pass touched: its edges as thick lines, its vertices as dots, at most
 /// [`MAX_DRAWN`] of each (an even sample above that).
 fn touched_shapes(m: &MeshRef<'_>, touched: &Touched, out: &mut Vec<Shape>) {
-    let sample = |n: usize| (0..n.min(MAX_DRAWN)).map(move |i| i * n / n.clamp(1, MAX_DRAWN));
-    for i in sample(touched.edges.len()) {
+    for i in even_sample(touched.edges.len()) {
         let e = touched.edges[i];
         if m.try_edge(e).is_some() {
             let (a, b) = m.edge_vertices(e);
             out.push(Shape::Highlight(m.position(a), m.position(b), TOUCHED));
         }
     }
-    for i in sample(touched.vertices.len()) {
+    for i in even_sample(touched.vertices.len()) {
         let v = touched.vertices[i];
         if m.try_vertex(v).is_some() {
             let p = m.position(v);
@@ -110,6 +120,11 @@ fn touched_shapes(m: &MeshRef<'_>, touched: &Touched, out: &mut Vec<Shape>) {
             out.push(Shape::Dot(p, 0.15 * r.min(1.0e3), TOUCHED));
         }
     }
+}
+
+/// Indices into `n` things, at most [`MAX_DRAWN`] of them, evenly spread.
+fn even_sample(n: usize) -> impl Iterator<Item = usize> {
+    (0..n.min(MAX_DRAWN)).map(move |i| i * n / n.clamp(1, MAX_DRAWN))
 }
 
 /// What the step window shows, copied out of the world once a frame.
@@ -139,6 +154,8 @@ pub struct StepView {
     pub fate: Option<String>,
     /// Each remeshing pass so far.
     pub passes: Vec<String>,
+    /// A stepped deformation's energy at each iteration made, newest first.
+    pub energies: Vec<String>,
     /// The selected element's stencil, under subdivision.
     pub stencil: Option<Stencil>,
     /// Whether the run has made its last step.
@@ -180,6 +197,19 @@ pub fn snapshot_steps(world: &mut World) {
                     .collect();
             }
             Steps::Remesh(steps) => view.passes = steps.passes.clone(),
+            Steps::Deform(steps) => {
+                view.scrubs = true;
+                // The energy of iteration k's positions is what iteration k + 1's local step
+                // measured.
+                view.energies = (1..steps.iterations.len())
+                    .rev()
+                    .filter_map(|k| {
+                        let energy = steps.iterations[k].energy?;
+                        let shown = if k - 1 == steps.at { "  ◀" } else { "" };
+                        Some(format!("{:>3}: {energy:.6e}{shown}", k - 1))
+                    })
+                    .collect();
+            }
             Steps::Subdivide(steps) => view.stencil = steps.selected_stencil(world),
         }
     }
@@ -210,8 +240,9 @@ pub fn step_window(
                 .resizable(false)
                 .show(ctx, |ui| {
                     ui.label(
-                        "Simplify (Shift+S), remesh (M), Loop (L) and Catmull-Clark (Q) now run \
-                         a step at a time.",
+                        "Simplify (Shift+S), remesh (M), Loop (L), Catmull-Clark (Q) and an \
+                         as-rigid-as-possible handle drag (G, R, S with anchors) now run a step \
+                         at a time.",
                     );
                     if ui.button("Turn step mode off (F9)").clicked() {
                         pending.0.push(Action::ToggleStepMode);
@@ -270,12 +301,17 @@ pub fn step_window(
             if view.finished {
                 ui.label("the run is at its end: keep it (Enter) or cancel (Esc)");
             }
+            lines_section(
+                ui,
+                "energy by iteration (each vertex's best rotation drawn as a frame)",
+                view.energies.iter(),
+            );
             if !view.passes.is_empty() {
-                ui.separator();
-                ui.label(egui::RichText::new("passes (green: what the last one touched)").strong());
-                for line in view.passes.iter().rev().take(12) {
-                    ui.monospace(line);
-                }
+                lines_section(
+                    ui,
+                    "passes (green: what the last one touched)",
+                    view.passes.iter().rev(),
+                );
                 ui.checkbox(
                     &mut ui_state.histograms,
                     "edge-length and valence histograms",
@@ -284,7 +320,11 @@ pub fn step_window(
             if let Some(stencil) = &view.stencil {
                 ui.separator();
                 stencil_panel(ui, stencil);
-            } else if view.passes.is_empty() && view.next.is_none() && !view.scrubs {
+            } else if view.passes.is_empty()
+                && view.next.is_none()
+                && !view.scrubs
+                && view.energies.is_empty()
+            {
                 ui.label("select a vertex, an edge or a face to see its stencil");
             }
             if let Some(fate) = &view.fate {
@@ -327,4 +367,17 @@ pub fn step_window(
             });
         });
     Ok(())
+}
+
+/// A titled list of the first 12 `lines`, in monospace; nothing without lines.
+fn lines_section<'a>(ui: &mut egui::Ui, title: &str, lines: impl Iterator<Item = &'a String>) {
+    let mut lines = lines.take(12).peekable();
+    if lines.peek().is_none() {
+        return;
+    }
+    ui.separator();
+    ui.label(egui::RichText::new(title).strong());
+    for line in lines {
+        ui.monospace(line);
+    }
 }

@@ -21,6 +21,13 @@
 //!   weights, [`crate::ops::stencil`]) is drawn and listed meanwhile. Back takes back the
 //!   preview step of the level not yet committed.
 //!
+//! - **As-rigid-as-possible handle deformation** ([`DeformSteps`]), a step per iteration: a
+//!   `G` / `R` / `S` of a handle with anchors marked, in step mode, moves the handle alone and,
+//!   confirmed, starts the run from the rest of the mesh as it was (the handle placed, nothing
+//!   else moved yet). Each step is one local–global iteration (Sorkine & Alexa 2007); the best
+//!   rotation the local step fitted at each vertex is drawn as a small frame, and the energy of
+//!   every iteration is listed. Back shows an earlier iteration (each one's positions are kept).
+//!
 //! Every step is the operation's own step on the world, so a run stepped to the end leaves the
 //! same mesh, bit for bit, as the unstepped edit run in place (a large mesh runs the unstepped
 //! edit as a job, whose result gets other entity ids; a stepped run always runs in place).
@@ -35,15 +42,17 @@
 //! Elsewhere (collapses replayed or split back, remeshing passes) removed elements drop out of
 //! the selection.
 
+use bevy::math::{Quat, Vec3};
 use bevy::prelude::{Resource, World};
 
 use crate::edit::{Applied, Edit, Redraw, Scheme, Subdivision};
-use crate::mesh::Face;
 use crate::mesh::attributes::MeshAttributes;
-use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::members::of_kind;
 use crate::mesh::topology::MeshRef;
+use crate::mesh::{Edge, Face, Position};
 use crate::ops::Refusal;
+use crate::ops::deform::{DeformMethod, DeformParams, LiveDeform};
 use crate::ops::progressive::{ProgressiveMesh, SlotIndex};
 use crate::ops::remesh::{Pass, PassReport, RemeshRun};
 use crate::ops::simplify::{NextCollapse, QemRun, QueuedEdge, Refused};
@@ -97,6 +106,8 @@ pub enum Steps {
     Remesh(RemeshSteps),
     /// Subdivision, previewed then committed a level at a time.
     Subdivide(SubdivideSteps),
+    /// An as-rigid-as-possible deformation, an iteration a step.
+    Deform(DeformSteps),
 }
 
 impl Steps {
@@ -106,6 +117,7 @@ impl Steps {
             Steps::Qem(q) => q.at(),
             Steps::Remesh(r) => r.run.passes_done(),
             Steps::Subdivide(s) => s.at(),
+            Steps::Deform(d) => d.at,
         }
     }
 
@@ -115,6 +127,7 @@ impl Steps {
             Steps::Qem(q) => q.made(),
             Steps::Remesh(r) => r.run.passes_total(),
             Steps::Subdivide(s) => 2 * s.levels as usize,
+            Steps::Deform(d) => d.total,
         }
     }
 
@@ -124,7 +137,115 @@ impl Steps {
             Steps::Qem(q) => q.finished(),
             Steps::Remesh(r) => r.run.upcoming().is_none(),
             Steps::Subdivide(s) => s.done == s.levels,
+            Steps::Deform(d) => d.at == d.total,
         }
+    }
+}
+
+/// An as-rigid-as-possible deformation stepped iteration by iteration.
+pub struct DeformSteps {
+    live: Box<LiveDeform>,
+    /// The vertices each iteration places: the handle, then every vertex that is not held.
+    vertices: Vec<VertexId>,
+    /// Each iteration's result, the handle placed before the first (iteration 0).
+    pub iterations: Vec<DeformIteration>,
+    /// The iteration the mesh shows.
+    pub at: usize,
+    /// The iterations the run makes in all.
+    pub total: usize,
+    /// The length of the rotation frames drawn: 0.4 of the mesh's mean edge length.
+    pub frame_size: f32,
+}
+
+/// One iteration of a stepped deformation.
+pub struct DeformIteration {
+    /// Where the iteration put [`DeformSteps`]' vertices.
+    pub positions: Vec<Vec3>,
+    /// The rotation its local step fitted at each free vertex (after the handle's in
+    /// [`DeformSteps`]' order); none at iteration 0.
+    pub rotations: Vec<Quat>,
+    /// The energy its local step measured (of the positions it started from).
+    pub energy: Option<f64>,
+}
+
+impl DeformSteps {
+    /// Factors the system for the edit's anchors and handle on the mesh as it is (the rest
+    /// pose) and places the handle where the motion sends it: iteration 0.
+    fn start(world: &World, mesh: MeshId, params: &DeformParams) -> Result<Self, Refusal> {
+        let mut live = LiveDeform::new(world, mesh, params.method, &params.fixed, &params.handle)?;
+        live.measure_each_iteration();
+        let m = MeshRef::new(world);
+        let targets: Vec<Vec3> = params
+            .handle
+            .iter()
+            .map(|&v| params.motion.transform_point3(m.position(v)))
+            .collect();
+        let moves = live.solve(&targets, 0)?;
+        let edges: Vec<_> = of_kind::<Edge, _>(world, mesh, EdgeId);
+        let mean_edge = edges
+            .iter()
+            .map(|&e| {
+                let (a, b) = m.edge_vertices(e);
+                m.position(a).distance(m.position(b))
+            })
+            .sum::<f32>()
+            / edges.len().max(1) as f32;
+        Ok(Self {
+            live: Box::new(live),
+            vertices: moves.iter().map(|(v, _)| *v).collect(),
+            iterations: vec![DeformIteration {
+                positions: moves.iter().map(|(_, p)| *p).collect(),
+                rotations: Vec::new(),
+                energy: None,
+            }],
+            at: 0,
+            total: params.iterations as usize,
+            frame_size: 0.4 * mean_edge,
+        })
+    }
+
+    /// Each free vertex of the iteration shown, where it is and the rotation fitted there
+    /// (none at iteration 0).
+    pub fn frames(&self) -> impl Iterator<Item = (Vec3, Quat)> + '_ {
+        let shown = &self.iterations[self.at];
+        let handle = self.vertices.len() - self.live.free();
+        shown.positions[handle..]
+            .iter()
+            .copied()
+            .zip(shown.rotations.iter().copied())
+    }
+
+    /// The energy at the iteration shown (measured by the next iteration's local step, or by
+    /// this one's of where it started).
+    pub fn energy_line(&self) -> String {
+        let energy = |k: usize| self.iterations.get(k).and_then(|i| i.energy);
+        match (energy(self.at + 1), energy(self.at)) {
+            (Some(e), _) => format!("energy {e:.6e}"),
+            (None, Some(before)) => format!("energy before it {before:.6e}"),
+            (None, None) => "the handle placed, the rest as it was".into(),
+        }
+    }
+
+    /// Runs iterations up to `k` (at most the run's total) and shows iteration `k`.
+    fn go_to(&mut self, world: &mut World, mesh: MeshId, k: usize) -> Result<(), Refusal> {
+        let k = k.min(self.total);
+        while self.iterations.len() <= k {
+            self.live.iterate(1);
+            let moves = self.live.moves()?;
+            self.iterations.push(DeformIteration {
+                positions: moves.into_iter().map(|(_, p)| p).collect(),
+                rotations: self.live.free_rotations(),
+                energy: self.live.last_energy(),
+            });
+        }
+        self.at = k;
+        for (v, &p) in self.vertices.iter().zip(&self.iterations[k].positions) {
+            if let Some(mut at) = world.get_mut::<Position>(v.0) {
+                at.0 = p;
+            }
+        }
+        world.entity_mut(mesh.0).insert((MeshDirty, Modified));
+        Ok(())
     }
 }
 
@@ -250,10 +371,11 @@ pub fn next_collapse(world: &World) -> Option<NextCollapse> {
 
 /// Whether `edit` can be stepped through.
 pub fn steppable(edit: &Edit) -> bool {
-    matches!(
-        edit,
-        Edit::Simplify(_) | Edit::Remesh(_) | Edit::Subdivide(_)
-    )
+    match edit {
+        Edit::Simplify(_) | Edit::Remesh(_) | Edit::Subdivide(_) => true,
+        Edit::Deform(params) => params.method == DeformMethod::Arap,
+        _ => false,
+    }
 }
 
 /// Starts a stepped run of `edit` on the active mesh (ending the run in progress first).
@@ -294,6 +416,9 @@ pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
                 points: Some(points),
             })
         }
+        Edit::Deform(params) if params.method == DeformMethod::Arap => {
+            Steps::Deform(DeformSteps::start(world, mesh, params)?)
+        }
         _ => {
             return Err(Declined::Refused(Refusal::BadParameter(format!(
                 "{} cannot be stepped through",
@@ -309,7 +434,7 @@ pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
     let was_modified = world.get::<Modified>(mesh.0).is_some();
     let summary = format!("stepping {}: {}", edit.label(), describe(&steps));
     let previous_history = world.resource_mut::<SimplificationHistory>().pm.take();
-    world.resource_mut::<Stepping>().run = Some(SteppedRun {
+    let mut run = SteppedRun {
         mesh,
         edit: edit.clone(),
         pending,
@@ -318,7 +443,12 @@ pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
         fate: None,
         previous_history,
         was_modified,
-    });
+    };
+    // A deformation shows its iteration 0 (the handle placed) once the mesh before it is kept.
+    if let Steps::Deform(d) = &mut run.steps {
+        d.go_to(world, mesh, 0)?;
+    }
+    world.resource_mut::<Stepping>().run = Some(run);
     Ok(summary)
 }
 
@@ -363,6 +493,7 @@ pub fn describe(steps: &Steps) -> String {
                 None => format!("the end, {last}"),
             }
         }
+        Steps::Deform(d) => format!("iteration {} of {}: {}", d.at, d.total, d.energy_line()),
         Steps::Subdivide(s) => {
             let faces = s.counts.1;
             match (s.done == s.levels, s.moved_shown) {
@@ -426,6 +557,7 @@ fn go_to(world: &mut World, run: &mut SteppedRun, k: usize) -> Result<(), Refusa
     match &mut run.steps {
         Steps::Qem(steps) => qem_go_to(world, mesh, steps, &mut run.fate, k),
         Steps::Remesh(steps) => remesh_go_to(world, mesh, steps, k),
+        Steps::Deform(steps) => steps.go_to(world, mesh, k),
         Steps::Subdivide(steps) => {
             let result = subdivide_go_to(world, mesh, steps, k);
             // A later level refused still leaves the levels made: the entry names those.
@@ -668,6 +800,17 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
                 s.flips,
                 r.run.passes_done(),
                 r.run.passes_total()
+            );
+            (line, None)
+        }
+        Steps::Deform(d) => {
+            crate::edit::mark_normals_stale(world, mesh, &edit);
+            let line = format!(
+                "{} ARAP iterations (stepped; kept at iteration {} of {}), {}",
+                d.iterations.len() - 1,
+                d.at,
+                d.total,
+                d.energy_line()
             );
             (line, None)
         }

@@ -31,9 +31,13 @@
 //! selection (the handle) deforms the rest of the mesh, the anchors held
 //! ([`crate::ops::deform::LiveDeform`]): the system is factored when the gesture starts, each
 //! frame runs one as-rigid-as-possible iteration from the last frame's result (or the one
-//! thin-plate solve), and confirming runs [`FINAL_ITERATIONS`] more.
+//! thin-plate solve), and confirming runs [`FINAL_ITERATIONS`] more. In step mode (F9) an
+//! as-rigid-as-possible gesture moves the handle alone, and confirming it takes the move back
+//! and starts a stepped run of the same deformation ([`Edit::Deform`], [`STEPPED_ITERATIONS`]
+//! iterations), to be watched an iteration at a time ([`super::stepping`]).
 
 use bevy::input::mouse::MouseButton;
+use bevy::math::Affine3A;
 use bevy::math::primitives::InfinitePlane3d;
 use bevy::prelude::*;
 use bevy::window::PrimaryWindow;
@@ -43,12 +47,13 @@ use bevy::ecs::entity::EntityHashMap;
 use crate::edit::Edit;
 use crate::mesh::ids::VertexId;
 use crate::mesh::topology::MeshRef;
-use crate::ops::deform::{DeformMethod, LiveDeform, Proportional, distances};
+use crate::ops::deform::{DeformMethod, DeformParams, LiveDeform, Proportional, distances};
 use crate::ops::local::extrude_directions;
 
 use super::history::UndoHistory;
 use super::requests::Request;
 use super::selection::Selection;
+use super::stepping::Stepping;
 
 /// What a gesture does with the pointer.
 #[derive(Clone, Debug, PartialEq)]
@@ -106,10 +111,18 @@ pub struct Gesture {
     /// Confirmed by Enter with a last edit under way: the gesture ends next frame, once that
     /// edit has joined its undo step.
     pub closing: bool,
+    /// A handle deformation in step mode: the handle moves alone, and confirming starts a
+    /// stepped run.
+    pub stepped: bool,
+    /// The handle's motion now (a move, rotation or scale; for a stepped deformation).
+    pub motion: Option<Affine3A>,
 }
 
 /// ARAP iterations run when a handle deformation is confirmed (one runs each frame before).
 pub const FINAL_ITERATIONS: u32 = 10;
+
+/// ARAP iterations a handle deformation confirmed in step mode may be stepped through.
+pub const STEPPED_ITERATIONS: u32 = 100;
 
 /// The fixed region of handle deformation (Shift+A marks the selection's vertices), and how the
 /// rest follows the handle.
@@ -280,6 +293,11 @@ pub fn start(
         }
     };
     let follow = follow.filter(|_| deform.is_none());
+    let stepped = deform.is_some()
+        && world.get_resource::<Stepping>().is_some_and(|s| s.enabled)
+        && world
+            .get_resource::<Anchors>()
+            .is_some_and(|a| a.method == DeformMethod::Arap);
     let mut history = world.resource_mut::<UndoHistory>();
     let undo_mark = undo_mark.unwrap_or(history.mark());
     history.begin_gesture();
@@ -295,6 +313,8 @@ pub fn start(
         follow,
         deform,
         closing: false,
+        stepped,
+        motion: None,
     };
     gather(world, &mut gesture);
     world.resource_mut::<Gestures>().active = Some(gesture);
@@ -327,17 +347,46 @@ fn handle_deformation(
         return Ok(None);
     };
     let handle: Vec<VertexId> = start.iter().map(|(v, _)| *v).collect();
-    let handle_set: bevy::ecs::entity::EntityHashSet = handle.iter().map(|v| v.0).collect();
-    let m = MeshRef::new(world);
-    let fixed: Vec<VertexId> = anchors
-        .vertices
-        .iter()
-        .copied()
-        .filter(|v| m.try_vertex(*v).is_some() && !handle_set.contains(&v.0))
-        .collect();
+    let fixed = anchors_apart_from(world, &handle);
     let mut live = LiveDeform::new(world, mesh, anchors.method, &fixed, &handle)?;
     live.measure_each_iteration();
     Ok(Some(Box::new(live)))
+}
+
+/// The live anchors that are not part of `handle`.
+fn anchors_apart_from(world: &World, handle: &[VertexId]) -> Vec<VertexId> {
+    let handle_set: bevy::ecs::entity::EntityHashSet = handle.iter().map(|v| v.0).collect();
+    let m = MeshRef::new(world);
+    world
+        .get_resource::<Anchors>()
+        .map(|anchors| {
+            anchors
+                .vertices
+                .iter()
+                .copied()
+                .filter(|v| m.try_vertex(*v).is_some() && !handle_set.contains(&v.0))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// Ends a stepped handle deformation's gesture: takes its move back and asks for a stepped run
+/// of the deformation it showed (from the mesh as it was before the gesture).
+fn hand_to_step_mode(world: &mut World, mut g: Gesture, by_click: bool) {
+    let _ = positions(world, &mut g, 0);
+    end(world, by_click);
+    world.write_message(Request::Retract(g.undo_mark));
+    if let Some(motion) = g.motion {
+        let handle: Vec<VertexId> = g.start.iter().map(|(v, _)| *v).collect();
+        let params = DeformParams {
+            method: DeformMethod::Arap,
+            fixed: anchors_apart_from(world, &handle),
+            handle,
+            motion,
+            iterations: STEPPED_ITERATIONS,
+        };
+        world.write_message(Request::StartStepped(Edit::Deform(params)));
+    }
 }
 
 /// Takes along the vertices within the proportional radius that the gesture does not hold yet
@@ -431,6 +480,9 @@ pub fn drive_gesture(world: &mut World) {
                 world.write_message(Request::Retract(g.undo_mark));
                 return;
             }
+            KeyCode::Enter | KeyCode::NumpadEnter if g.stepped => {
+                return hand_to_step_mode(world, g, false);
+            }
             KeyCode::Enter | KeyCode::NumpadEnter => {
                 if g.deform.is_some()
                     && let Some(moves) = positions(world, &mut g, FINAL_ITERATIONS)
@@ -469,6 +521,9 @@ pub fn drive_gesture(world: &mut World) {
         resize(&mut g, 1.1f32.powf(wheel.clamp(-3.0, 3.0)));
     }
     gather(world, &mut g);
+    if clicked && g.stepped {
+        return hand_to_step_mode(world, g, true);
+    }
     if clicked {
         // Apply this frame's position, then stop.
         if let Some(moves) = positions(world, &mut g, FINAL_ITERATIONS) {
@@ -476,7 +531,8 @@ pub fn drive_gesture(world: &mut World) {
         }
         return end(world, true);
     }
-    if let Some(moves) = positions(world, &mut g, 1) {
+    let iterations = u32::from(!g.stepped);
+    if let Some(moves) = positions(world, &mut g, iterations) {
         let m = MeshRef::new(world);
         let changed = moves
             .iter()
@@ -603,6 +659,7 @@ fn positions(world: &mut World, g: &mut Gesture, iterations: u32) -> Option<Vec<
                 (None, None) => pointer,
             };
             g.value = delta.length();
+            g.motion = Some(Affine3A::from_translation(delta));
             Box::new(move |_, p, w| p + delta * w)
         }
         GestureKind::Rotate => {
@@ -617,6 +674,10 @@ fn positions(world: &mut World, g: &mut Gesture, iterations: u32) -> Option<Vec<
             let angle = typed.map_or(angle, f32::to_radians);
             g.value = angle.to_degrees();
             let pivot = g.pivot;
+            g.motion = Some(about_pivot(
+                pivot,
+                Affine3A::from_quat(Quat::from_axis_angle(about, angle)),
+            ));
             Box::new(move |_, p, w| pivot + Quat::from_axis_angle(about, angle * w) * (p - pivot))
         }
         GestureKind::Scale => {
@@ -624,6 +685,8 @@ fn positions(world: &mut World, g: &mut Gesture, iterations: u32) -> Option<Vec<
             let factor = typed.unwrap_or((now - pivot_px).length() / from);
             g.value = factor;
             let pivot = g.pivot;
+            let scale = axis.map_or(Vec3::splat(factor), |a| Vec3::ONE + a * (factor - 1.0));
+            g.motion = Some(about_pivot(pivot, Affine3A::from_scale(scale)));
             Box::new(move |_, p, w| {
                 let d = p - pivot;
                 // The selection (w = 1) scales by the factor itself, to the bit.
@@ -671,8 +734,14 @@ fn positions(world: &mut World, g: &mut Gesture, iterations: u32) -> Option<Vec<
     match g.deform.as_mut() {
         Some(live) => {
             let targets: Vec<Vec3> = moves.iter().map(|(_, p)| *p).collect();
-            // A frame whose solve is not finite moves nothing.
-            let moves = live.solve(&targets, iterations).ok();
+            // A frame whose solve is not finite moves nothing; without an iteration only the
+            // handle moves (the rest is where it was).
+            let moves = live.solve(&targets, iterations).ok().map(|mut moves| {
+                if iterations == 0 {
+                    moves.truncate(targets.len());
+                }
+                moves
+            });
             if let Some(mut anchors) = world.get_resource_mut::<Anchors>() {
                 anchors.progress = DeformProgress::of(live);
             }
@@ -680,4 +749,9 @@ fn positions(world: &mut World, g: &mut Gesture, iterations: u32) -> Option<Vec<
         }
         None => Some(moves),
     }
+}
+
+/// `transform` about `pivot`: the pivot stays.
+fn about_pivot(pivot: Vec3, transform: Affine3A) -> Affine3A {
+    Affine3A::from_translation(pivot) * transform * Affine3A::from_translation(-pivot)
 }

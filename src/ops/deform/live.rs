@@ -5,7 +5,7 @@
 
 use std::time::Instant;
 
-use bevy::math::{DVec3, Vec3};
+use bevy::math::{DVec3, Quat, Vec3};
 use bevy::prelude::World;
 
 use crate::mesh::MeshInfo;
@@ -203,6 +203,20 @@ impl LiveDeform {
             moves.push((self.vertices[r], p));
         }
         Ok(moves)
+    }
+
+    /// The rotation the last ARAP iteration's local step fitted at each vertex that is not
+    /// held, in [`LiveDeform::moves`]' order after the handle (identity before the first
+    /// iteration; empty for the thin plate, which has none).
+    pub fn free_rotations(&self) -> Vec<Quat> {
+        let Solver::Arap(arap) = &self.solver else {
+            return Vec::new();
+        };
+        arap.rotations()
+            .zip(&self.held)
+            .filter(|(_, held)| !**held)
+            .map(|(q, _)| q.as_quat())
+            .collect()
     }
 
     /// [`LiveDeform::place`], [`LiveDeform::iterate`] and [`LiveDeform::moves`]: one frame.
