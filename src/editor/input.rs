@@ -567,7 +567,7 @@ pub const SHORTCUTS: &[Shortcut] = &[
         KeyCode::F9,
         "F9",
         Action::ToggleStepMode,
-        "step mode on / off: Shift+S, M, L and Q then run a step at a time",
+        "step mode on / off: Shift+S, M, L, Q and an ARAP handle drag then run a step at a time",
     ),
     key(
         KeyCode::ArrowRight,

@@ -199,14 +199,11 @@ pub fn snapshot_steps(world: &mut World) {
             Steps::Remesh(steps) => view.passes = steps.passes.clone(),
             Steps::Deform(steps) => {
                 view.scrubs = true;
-                // The energy of iteration k's positions is what iteration k + 1's local step
-                // measured.
-                view.energies = (1..steps.iterations.len())
+                view.energies = (0..steps.iterations.len())
                     .rev()
-                    .filter_map(|k| {
-                        let energy = steps.iterations[k].energy?;
-                        let shown = if k - 1 == steps.at { "  ◀" } else { "" };
-                        Some(format!("{:>3}: {energy:.6e}{shown}", k - 1))
+                    .map(|k| {
+                        let shown = if k == steps.at { "  ◀" } else { "" };
+                        format!("{k:>3}: {:.6e}{shown}", steps.iterations[k].energy)
                     })
                     .collect();
             }

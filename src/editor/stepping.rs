@@ -24,8 +24,8 @@
 //! - **As-rigid-as-possible handle deformation** ([`DeformSteps`]), a step per iteration: a
 //!   `G` / `R` / `S` of a handle with anchors marked, in step mode, moves the handle alone and,
 //!   confirmed, starts the run from the rest of the mesh as it was (the handle placed, nothing
-//!   else moved yet). Each step is one local–global iteration (Sorkine & Alexa 2007); the best
-//!   rotation the local step fitted at each vertex is drawn as a small frame, and the energy of
+//!   else moved yet). Each step is one local–global iteration (Sorkine & Alexa 2007); each
+//!   vertex's best rotation for the positions shown is drawn as a small frame, and the energy of
 //!   every iteration is listed. Back shows an earlier iteration (each one's positions are kept).
 //!
 //! Every step is the operation's own step on the world, so a run stepped to the end leaves the
@@ -153,19 +153,22 @@ pub struct DeformSteps {
     pub at: usize,
     /// The iterations the run makes in all.
     pub total: usize,
-    /// The length of the rotation frames drawn: 0.4 of the mesh's mean edge length.
+    /// The length of the rotation frames drawn ([`FRAME_SIZE`] of the mean edge length).
     pub frame_size: f32,
 }
+
+/// The length of a stepped deformation's rotation frames, in mean edge lengths.
+pub const FRAME_SIZE: f32 = 0.7;
 
 /// One iteration of a stepped deformation.
 pub struct DeformIteration {
     /// Where the iteration put [`DeformSteps`]' vertices.
     pub positions: Vec<Vec3>,
-    /// The rotation its local step fitted at each free vertex (after the handle's in
-    /// [`DeformSteps`]' order); none at iteration 0.
+    /// Each free vertex's best rotation for these positions (after the handle's in
+    /// [`DeformSteps`]' order): what the next iteration's local step starts from.
     pub rotations: Vec<Quat>,
-    /// The energy its local step measured (of the positions it started from).
-    pub energy: Option<f64>,
+    /// The as-rigid-as-possible energy of these positions with those rotations.
+    pub energy: f64,
 }
 
 impl DeformSteps {
@@ -173,7 +176,6 @@ impl DeformSteps {
     /// pose) and places the handle where the motion sends it: iteration 0.
     fn start(world: &World, mesh: MeshId, params: &DeformParams) -> Result<Self, Refusal> {
         let mut live = LiveDeform::new(world, mesh, params.method, &params.fixed, &params.handle)?;
-        live.measure_each_iteration();
         let m = MeshRef::new(world);
         let targets: Vec<Vec3> = params
             .handle
@@ -181,6 +183,7 @@ impl DeformSteps {
             .map(|&v| params.motion.transform_point3(m.position(v)))
             .collect();
         let moves = live.solve(&targets, 0)?;
+        let energy = live.energy();
         let edges: Vec<_> = of_kind::<Edge, _>(world, mesh, EdgeId);
         let mean_edge = edges
             .iter()
@@ -191,21 +194,20 @@ impl DeformSteps {
             .sum::<f32>()
             / edges.len().max(1) as f32;
         Ok(Self {
-            live: Box::new(live),
             vertices: moves.iter().map(|(v, _)| *v).collect(),
             iterations: vec![DeformIteration {
                 positions: moves.iter().map(|(_, p)| *p).collect(),
-                rotations: Vec::new(),
-                energy: None,
+                rotations: live.free_rotations(),
+                energy,
             }],
+            live: Box::new(live),
             at: 0,
             total: params.iterations as usize,
-            frame_size: 0.4 * mean_edge,
+            frame_size: FRAME_SIZE * mean_edge,
         })
     }
 
-    /// Each free vertex of the iteration shown, where it is and the rotation fitted there
-    /// (none at iteration 0).
+    /// Each free vertex of the iteration shown, where it is and its best rotation.
     pub fn frames(&self) -> impl Iterator<Item = (Vec3, Quat)> + '_ {
         let shown = &self.iterations[self.at];
         let handle = self.vertices.len() - self.live.free();
@@ -215,14 +217,12 @@ impl DeformSteps {
             .zip(shown.rotations.iter().copied())
     }
 
-    /// The energy at the iteration shown (measured by the next iteration's local step, or by
-    /// this one's of where it started).
+    /// The energy at the iteration shown.
     pub fn energy_line(&self) -> String {
-        let energy = |k: usize| self.iterations.get(k).and_then(|i| i.energy);
-        match (energy(self.at + 1), energy(self.at)) {
-            (Some(e), _) => format!("energy {e:.6e}"),
-            (None, Some(before)) => format!("energy before it {before:.6e}"),
-            (None, None) => "the handle placed, the rest as it was".into(),
+        let energy = self.iterations[self.at].energy;
+        match self.at {
+            0 => format!("energy {energy:.6e}, the handle placed, the rest as it was"),
+            _ => format!("energy {energy:.6e}"),
         }
     }
 
@@ -232,10 +232,13 @@ impl DeformSteps {
         while self.iterations.len() <= k {
             self.live.iterate(1);
             let moves = self.live.moves()?;
+            // The next iteration's local step fits these rotations again from the same
+            // positions, so measuring here leaves every later iteration as it would be.
+            let energy = self.live.energy();
             self.iterations.push(DeformIteration {
                 positions: moves.into_iter().map(|(_, p)| p).collect(),
                 rotations: self.live.free_rotations(),
-                energy: self.live.last_energy(),
+                energy,
             });
         }
         self.at = k;
