@@ -5,10 +5,11 @@
 //! - **phases**: the soup as read; the build's peak above it (the repaired faces, the
 //!   connectivity tables, the spawned rows) and what it leaves (the World, the input numbering);
 //!   the save's peak (the soup read back out of the World, the file's bytes);
-//! - **per kind**: a fresh World, 2^20 entities spawned with exactly one kind's components (and
-//!   one with none, the entity floor), heap bytes per entity, beside the components' own sizes:
-//!   what is left is Bevy's per-row bookkeeping (the entity's location, change ticks) and the
-//!   capacity its tables hold spare.
+//! - **per kind**: a fresh World holding as many entities of one kind as the mesh has (and one
+//!   holding as many entities as the mesh has elements, with no component: the entity floor),
+//!   heap bytes per entity, beside the components' own sizes: what is left is Bevy's per-row
+//!   bookkeeping (the entity's location, change ticks) and the capacity its tables and entity
+//!   list hold spare after growing.
 //!
 //! Run: `cargo bench --bench world_bytes [-- MESH]` (default `shape:icosphere:8`, 1.3 M
 //! triangles; any file Pappus reads).
@@ -150,9 +151,10 @@ fn main() {
     );
     drop(world);
 
-    // Each kind on its own, 2^20 entities: a power of two, so the tables hold no spare capacity
-    // beyond what their growth leaves at exactly that count.
-    let n = 1 << 20;
+    // Each kind on its own, as many as the mesh has of it, in a fresh World (so each table and
+    // the entity list grow as they did there); the floor: as many entities as the mesh has
+    // elements, with no component.
+    let [vertices, halfedges, edges, faces_n] = counts;
     let mesh = InMesh(MeshId(Entity::PLACEHOLDER));
     let h = HalfedgeId(Entity::PLACEHOLDER);
     let halfedge = Halfedge {
@@ -171,30 +173,32 @@ fn main() {
             measured - own as f64
         );
     };
-    kind("no component", 0, bytes_per_entity(n, || ()));
+    kind("no component", 0, bytes_per_entity(elements, || ()));
     kind(
         "InMesh only",
         size_of::<InMesh>(),
-        bytes_per_entity(n, || mesh),
+        bytes_per_entity(elements, || mesh),
     );
     kind(
         "vertex: Vertex, Position, InMesh",
         size_of::<(Vertex, Position, InMesh)>(),
-        bytes_per_entity(n, || (Vertex { halfedge: h }, Position(Vec3::ZERO), mesh)),
+        bytes_per_entity(vertices, || {
+            (Vertex { halfedge: h }, Position(Vec3::ZERO), mesh)
+        }),
     );
     kind(
         "halfedge: Halfedge, InMesh",
         size_of::<Halfedge>() + size_of::<InMesh>(),
-        bytes_per_entity(n, || (halfedge, mesh)),
+        bytes_per_entity(halfedges, || (halfedge, mesh)),
     );
     kind(
         "edge: Edge, InMesh",
         size_of::<Edge>() + size_of::<InMesh>(),
-        bytes_per_entity(n, || (Edge { halfedge: h }, mesh)),
+        bytes_per_entity(edges, || (Edge { halfedge: h }, mesh)),
     );
     kind(
         "face: Face, InMesh",
         size_of::<Face>() + size_of::<InMesh>(),
-        bytes_per_entity(n, || (Face { halfedge: h }, mesh)),
+        bytes_per_entity(faces_n, || (Face { halfedge: h }, mesh)),
     );
 }
