@@ -421,13 +421,12 @@ fn body_values(
     len: usize,
 ) -> Result<PolygonSoup, ParseError> {
     let mut soup = PolygonSoup::default();
-    let mut face = Vec::new();
     // Per-vertex UVs (one per position when any vertex element has them), and per-corner ones
     // from faces' `texcoord` lists (one per corner of every face read, when any face has one).
     let mut vertex_uv: Option<Vec<Vec2>> = None;
     let mut face_uv: Option<Vec<Vec2>> = None;
     let mut bad_texcoords = 0usize;
-    let mut texcoord = Vec::new();
+    let mut lists = Lists::default();
     for element in elements {
         if element.properties.is_empty() {
             continue;
@@ -445,122 +444,34 @@ fn body_values(
             face_uv = Some(vec![Vec2::ZERO; soup.indices.len()]);
         }
         let is_vertex = element.name == "vertex";
-        let has = |role: Role| {
-            is_vertex
-                && element
-                    .properties
-                    .iter()
-                    .any(|p| matches!(p, Property::Scalar { role: r, .. } if *r == role))
-        };
-        let has_quality = has(Role::Quality);
-        let has_colors = (0..3).all(|k| has(Role::Color(k)));
-        let has_normals = (0..3).all(|k| has(Role::Normal(k)));
-        let has_uv = (0..2).all(|k| has(Role::Uv(k)));
         if is_vertex {
-            if has_uv {
-                let before = soup.positions.len();
-                vertex_uv.get_or_insert_with(|| vec![Vec2::ZERO; before]);
-            }
-            let n = cap(element.count, len / 12);
-            soup.positions.reserve(n);
-            // Vertices read before (another `vertex` element, in an odd file) get 0 and black,
-            // so that the attributes keep one value per position.
-            if has_quality {
-                let before = soup.positions.len();
-                let q = soup.vertex_quality.get_or_insert_with(|| vec![0.0; before]);
-                q.reserve(n);
-            }
-            if has_normals {
-                let before = soup.positions.len();
-                let v = soup
-                    .vertex_normals
-                    .get_or_insert_with(|| vec![Vec3::ZERO; before]);
-                v.reserve(n);
-            }
-            if has_colors {
-                let before = soup.positions.len();
-                let c = soup
-                    .vertex_colors
-                    .get_or_insert_with(|| vec![[0; 3]; before]);
-                c.reserve(n);
-            }
+            reserve_vertex_columns(element, &mut soup, &mut vertex_uv, len);
         }
         for _ in 0..element.count {
-            let mut p = [0.0f32; 3];
-            let mut quality = 0.0f32;
-            let mut color = [0u8; 3];
-            let mut normal = [0.0f32; 3];
-            let mut uv = [0.0f32; 2];
             let corners_before = soup.indices.len();
-            texcoord.clear();
+            lists.texcoord.clear();
+            let mut row = Row::default();
             for property in &element.properties {
                 match property {
                     Property::Scalar { name, ty, role } => {
-                        let v = values.next(*ty, name)?;
-                        match *role {
-                            Role::Coordinate(k) => p[k] = v as f32,
-                            Role::Quality => quality = v as f32,
-                            Role::Color(k) => color[k] = channel(v, *ty),
-                            Role::Normal(k) => normal[k] = v as f32,
-                            Role::Uv(k) => uv[k] = v as f32,
-                            Role::Corners | Role::Strip | Role::TexCoord | Role::Skip => {}
-                        }
+                        row.set(*role, *ty, values.next(*ty, name)?);
                     }
                     Property::List {
                         name,
                         count,
                         item,
                         role,
-                    } => {
-                        let n = values.next(*count, name)?;
-                        if n < 0.0 || n.fract() != 0.0 {
-                            return Err(values.error(format!("`{name}` has {n} items")));
-                        }
-                        let corners = matches!(role, Role::Corners | Role::Strip);
-                        let uvs = *role == Role::TexCoord;
-                        face.clear();
-                        for _ in 0..n as u64 {
-                            let v = values.next(*item, name)?;
-                            if uvs {
-                                texcoord.push(v as f32);
-                            }
-                            if corners {
-                                let restart = *role == Role::Strip && v == -1.0;
-                                if !restart
-                                    && (v < 0.0 || v.fract() != 0.0 || v > f64::from(u32::MAX))
-                                {
-                                    return Err(values.error(format!("bad vertex index {v}")));
-                                }
-                                face.push(if restart { STRIP_RESTART } else { v as u32 });
-                            }
-                        }
-                        match role {
-                            Role::Corners => soup.push_face(&face),
-                            Role::Strip => push_strips(&mut soup, &face),
-                            _ => {}
-                        }
-                    }
+                    } => lists.read(values, name, (*count, *item), *role, &mut soup)?,
                 }
             }
             if is_vertex {
-                soup.positions.push(Vec3::from_array(p));
-                if let Some(q) = &mut soup.vertex_quality {
-                    q.push(quality);
-                }
-                if let Some(c) = &mut soup.vertex_colors {
-                    c.push(color);
-                }
-                if let Some(v) = &mut soup.vertex_normals {
-                    v.push(Vec3::from_array(normal));
-                }
-                if let Some(v) = &mut vertex_uv {
-                    v.push(Vec2::from_array(uv));
-                }
+                row.push_vertex(&mut soup, &mut vertex_uv);
             }
             if let Some(face_uv) = &mut face_uv {
                 let corners = soup.indices.len() - corners_before;
-                if has_texcoord && texcoord.len() == 2 * corners {
-                    face_uv.extend(texcoord.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])));
+                if has_texcoord && lists.texcoord.len() == 2 * corners {
+                    let uvs = lists.texcoord.chunks_exact(2);
+                    face_uv.extend(uvs.map(|c| Vec2::new(c[0], c[1])));
                 } else {
                     if has_texcoord && corners > 0 {
                         bad_texcoords += 1;
@@ -583,6 +494,133 @@ fn body_values(
         })
     });
     Ok(soup)
+}
+
+/// Makes room for a `vertex` element's rows in the soup's columns, and starts the columns its
+/// properties bring (quality, normals, colours, UVs). Vertices read before (another `vertex`
+/// element, in an odd file) get 0 and black, so that the columns keep one value per position.
+fn reserve_vertex_columns(
+    element: &Element,
+    soup: &mut PolygonSoup,
+    vertex_uv: &mut Option<Vec<Vec2>>,
+    len: usize,
+) {
+    let has = |role: Role| {
+        element
+            .properties
+            .iter()
+            .any(|p| matches!(p, Property::Scalar { role: r, .. } if *r == role))
+    };
+    let before = soup.positions.len();
+    if (0..2).all(|k| has(Role::Uv(k))) {
+        vertex_uv.get_or_insert_with(|| vec![Vec2::ZERO; before]);
+    }
+    let n = cap(element.count, len / 12);
+    soup.positions.reserve(n);
+    if has(Role::Quality) {
+        let q = soup.vertex_quality.get_or_insert_with(|| vec![0.0; before]);
+        q.reserve(n);
+    }
+    if (0..3).all(|k| has(Role::Normal(k))) {
+        let v = soup
+            .vertex_normals
+            .get_or_insert_with(|| vec![Vec3::ZERO; before]);
+        v.reserve(n);
+    }
+    if (0..3).all(|k| has(Role::Color(k))) {
+        let c = soup
+            .vertex_colors
+            .get_or_insert_with(|| vec![[0; 3]; before]);
+        c.reserve(n);
+    }
+}
+
+/// One row's scalar properties, by role.
+#[derive(Default)]
+struct Row {
+    position: [f32; 3],
+    quality: f32,
+    color: [u8; 3],
+    normal: [f32; 3],
+    uv: [f32; 2],
+}
+
+impl Row {
+    fn set(&mut self, role: Role, ty: Scalar, v: f64) {
+        match role {
+            Role::Coordinate(k) => self.position[k] = v as f32,
+            Role::Quality => self.quality = v as f32,
+            Role::Color(k) => self.color[k] = channel(v, ty),
+            Role::Normal(k) => self.normal[k] = v as f32,
+            Role::Uv(k) => self.uv[k] = v as f32,
+            Role::Corners | Role::Strip | Role::TexCoord | Role::Skip => {}
+        }
+    }
+
+    /// Adds the row as a vertex, with a value in every column the soup has.
+    fn push_vertex(&self, soup: &mut PolygonSoup, vertex_uv: &mut Option<Vec<Vec2>>) {
+        soup.positions.push(Vec3::from_array(self.position));
+        if let Some(q) = &mut soup.vertex_quality {
+            q.push(self.quality);
+        }
+        if let Some(c) = &mut soup.vertex_colors {
+            c.push(self.color);
+        }
+        if let Some(v) = &mut soup.vertex_normals {
+            v.push(Vec3::from_array(self.normal));
+        }
+        if let Some(v) = vertex_uv {
+            v.push(Vec2::from_array(self.uv));
+        }
+    }
+}
+
+/// The list properties of the row being read: its corners (or strips) and its `texcoord`
+/// values.
+#[derive(Default)]
+struct Lists {
+    corners: Vec<u32>,
+    texcoord: Vec<f32>,
+}
+
+impl Lists {
+    /// Reads one list property (its count and item types in `types`): corners become a face
+    /// (strips their triangles), `texcoord` values are kept for the row, others are read past.
+    fn read(
+        &mut self,
+        values: &mut dyn Values,
+        name: &str,
+        (count, item): (Scalar, Scalar),
+        role: Role,
+        soup: &mut PolygonSoup,
+    ) -> Result<(), ParseError> {
+        let n = values.next(count, name)?;
+        if n < 0.0 || n.fract() != 0.0 {
+            return Err(values.error(format!("`{name}` has {n} items")));
+        }
+        let corners = matches!(role, Role::Corners | Role::Strip);
+        self.corners.clear();
+        for _ in 0..n as u64 {
+            let v = values.next(item, name)?;
+            if role == Role::TexCoord {
+                self.texcoord.push(v as f32);
+            }
+            if corners {
+                let restart = role == Role::Strip && v == -1.0;
+                if !restart && (v < 0.0 || v.fract() != 0.0 || v > f64::from(u32::MAX)) {
+                    return Err(values.error(format!("bad vertex index {v}")));
+                }
+                self.corners
+                    .push(if restart { STRIP_RESTART } else { v as u32 });
+            }
+        }
+        match role {
+            Role::Corners => soup.push_face(&self.corners),
+            Role::Strip => push_strips(soup, &self.corners),
+            _ => {}
+        }
+        Ok(())
+    }
 }
 
 /// A `-1` in a `tristrips` list: the strip ends and the next begins.
@@ -654,171 +692,215 @@ fn per_vertex_uv(soup: &PolygonSoup, uvs: &[Vec2]) -> Option<Vec<Vec2>> {
 /// carries them (one per position; an attribute of another length is left out), then faces
 /// (with a `texcoord` list per face when the UVs differ between corners of one vertex).
 pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
-    let n = soup.positions.len();
-    let quality = soup.vertex_quality.as_deref().filter(|q| q.len() == n);
-    let colors = soup.vertex_colors.as_deref().filter(|c| c.len() == n);
-    let normals = soup.vertex_normals.as_deref().filter(|v| v.len() == n);
-    let corner_uvs = soup
-        .corner_uvs
-        .as_deref()
-        .filter(|u| u.len() == soup.indices.len());
-    // Per vertex when every corner of each vertex has the same UV (bit for bit), else per
-    // corner in the faces' `texcoord` lists: never one UV lost.
-    let vertex_uv = corner_uvs.and_then(|uvs| per_vertex_uv(soup, uvs));
-    let face_uv = corner_uvs.filter(|_| vertex_uv.is_none());
-    let count_type = if soup.faces().any(|f| f.len() > 255) {
-        Scalar::I32
-    } else {
-        Scalar::U8
-    };
-    let index_type = if soup.indices.iter().any(|&i| i > i32::MAX as u32) {
-        Scalar::U32
-    } else {
-        Scalar::I32
-    };
-    let format = match encoding {
-        PlyEncoding::Ascii => "ascii",
-        PlyEncoding::BinaryLittleEndian => "binary_little_endian",
-        PlyEncoding::BinaryBigEndian => "binary_big_endian",
-    };
-    let type_name = |s: Scalar| match s {
-        Scalar::U8 => "uchar",
-        Scalar::U32 => "uint",
-        _ => "int",
-    };
-    let mut header = String::new();
-    let _ = write!(
-        header,
-        "ply\nformat {format} 1.0\ncomment written by Pappus\nelement vertex {n}\n\
-         property float x\nproperty float y\nproperty float z\n",
-    );
-    if normals.is_some() {
-        header.push_str("property float nx\nproperty float ny\nproperty float nz\n");
-    }
-    if colors.is_some() {
-        header.push_str("property uchar red\nproperty uchar green\nproperty uchar blue\n");
-    }
-    if quality.is_some() {
-        header.push_str("property float quality\n");
-    }
-    if vertex_uv.is_some() {
-        header.push_str("property float u\nproperty float v\n");
-    }
-    let _ = write!(
-        header,
-        "element face {}\nproperty list {} {} vertex_indices\n",
-        soup.face_count(),
-        type_name(count_type),
-        type_name(index_type),
-    );
-    // Two values a corner: a count above 255 needs `int`.
-    let texcoord_count = if soup.faces().any(|f| 2 * f.len() > 255) {
-        Scalar::I32
-    } else {
-        Scalar::U8
-    };
-    if face_uv.is_some() {
-        let _ = writeln!(
-            header,
-            "property list {} float texcoord",
-            type_name(texcoord_count)
-        );
-    }
-    header.push_str("end_header\n");
-    let mut out = header.into_bytes();
+    let layout = Layout::of(soup);
+    let mut out = layout.header(soup, encoding).into_bytes();
     match encoding {
         PlyEncoding::Ascii => {
-            let mut body = String::with_capacity(n * 48 + soup.indices.len() * 8);
-            for (i, p) in soup.positions.iter().enumerate() {
-                let _ = write!(body, "{} {} {}", p.x, p.y, p.z);
-                if let Some(normals) = normals {
-                    let v = normals[i];
-                    let _ = write!(body, " {} {} {}", v.x, v.y, v.z);
-                }
-                if let Some(colors) = colors {
-                    let [r, g, b] = colors[i];
-                    let _ = write!(body, " {r} {g} {b}");
-                }
-                if let Some(quality) = quality {
-                    let _ = write!(body, " {}", quality[i]);
-                }
-                if let Some(uv) = &vertex_uv {
-                    let _ = write!(body, " {} {}", uv[i].x, uv[i].y);
-                }
-                body.push('\n');
-            }
-            for (f, face) in soup.faces().enumerate() {
-                let _ = write!(body, "{}", face.len());
-                for &i in face {
-                    let _ = write!(body, " {i}");
-                }
-                if let Some(uvs) = face_uv {
-                    let start = soup.face_starts[f] as usize;
-                    let _ = write!(body, " {}", 2 * face.len());
-                    for uv in &uvs[start..start + face.len()] {
-                        let _ = write!(body, " {} {}", uv.x, uv.y);
-                    }
-                }
-                body.push('\n');
-            }
+            let mut body =
+                String::with_capacity(soup.positions.len() * 48 + soup.indices.len() * 8);
+            layout.ascii_vertices(soup, &mut body);
+            layout.ascii_faces(soup, &mut body);
             out.extend_from_slice(body.as_bytes());
         }
         PlyEncoding::BinaryLittleEndian | PlyEncoding::BinaryBigEndian => {
             let big = encoding == PlyEncoding::BinaryBigEndian;
-            let put = |bytes: [u8; 4], out: &mut Vec<u8>| {
-                if big {
-                    out.extend(bytes.iter().rev());
-                } else {
-                    out.extend_from_slice(&bytes);
-                }
-            };
-            out.reserve(n * 31 + soup.indices.len() * 4 + soup.face_count() * 4);
-            for (i, p) in soup.positions.iter().enumerate() {
-                for c in [p.x, p.y, p.z] {
-                    put(c.to_le_bytes(), &mut out);
-                }
-                if let Some(normals) = normals {
-                    for c in normals[i].to_array() {
-                        put(c.to_le_bytes(), &mut out);
-                    }
-                }
-                if let Some(colors) = colors {
-                    out.extend_from_slice(&colors[i]);
-                }
-                if let Some(quality) = quality {
-                    put(quality[i].to_le_bytes(), &mut out);
-                }
-                if let Some(uv) = &vertex_uv {
-                    put(uv[i].x.to_le_bytes(), &mut out);
-                    put(uv[i].y.to_le_bytes(), &mut out);
+            out.reserve(soup.positions.len() * 31 + soup.indices.len() * 4 + soup.face_count() * 4);
+            layout.binary_vertices(soup, big, &mut out);
+            layout.binary_faces(soup, big, &mut out);
+        }
+    }
+    out
+}
+
+/// What a written PLY holds: the vertex properties the soup has whole, where its UVs go, and the
+/// list types its faces need.
+struct Layout<'a> {
+    quality: Option<&'a [f32]>,
+    colors: Option<&'a [[u8; 3]]>,
+    normals: Option<&'a [Vec3]>,
+    /// One UV a vertex, when every corner of each vertex has the same UV (bit for bit).
+    vertex_uv: Option<Vec<Vec2>>,
+    /// Else the corners' UVs, in the faces' `texcoord` lists: never one UV lost.
+    face_uv: Option<&'a [Vec2]>,
+    /// A face's corner count: `uchar`, or `int` past 255.
+    count_type: Scalar,
+    /// `int`, or `uint` past `i32::MAX`.
+    index_type: Scalar,
+    /// A `texcoord` list's count (two values a corner): `uchar`, or `int` past 255.
+    texcoord_count: Scalar,
+}
+
+/// `value`'s four bytes in the file's byte order.
+fn put(value: [u8; 4], big: bool, out: &mut Vec<u8>) {
+    if big {
+        out.extend(value.iter().rev());
+    } else {
+        out.extend_from_slice(&value);
+    }
+}
+
+/// A list's count in its type (`uchar` or a four-byte integer).
+fn put_count(count: usize, scalar: Scalar, big: bool, out: &mut Vec<u8>) {
+    if scalar == Scalar::U8 {
+        out.push(count as u8);
+    } else {
+        put((count as u32).to_le_bytes(), big, out);
+    }
+}
+
+impl<'a> Layout<'a> {
+    fn of(soup: &'a PolygonSoup) -> Self {
+        let n = soup.positions.len();
+        let corner_uvs = soup
+            .corner_uvs
+            .as_deref()
+            .filter(|u| u.len() == soup.indices.len());
+        let vertex_uv = corner_uvs.and_then(|uvs| per_vertex_uv(soup, uvs));
+        let list_type = |longest_past_255: bool| match longest_past_255 {
+            true => Scalar::I32,
+            false => Scalar::U8,
+        };
+        Self {
+            quality: soup.vertex_quality.as_deref().filter(|q| q.len() == n),
+            colors: soup.vertex_colors.as_deref().filter(|c| c.len() == n),
+            normals: soup.vertex_normals.as_deref().filter(|v| v.len() == n),
+            face_uv: corner_uvs.filter(|_| vertex_uv.is_none()),
+            vertex_uv,
+            count_type: list_type(soup.faces().any(|f| f.len() > 255)),
+            index_type: match soup.indices.iter().any(|&i| i > i32::MAX as u32) {
+                true => Scalar::U32,
+                false => Scalar::I32,
+            },
+            texcoord_count: list_type(soup.faces().any(|f| 2 * f.len() > 255)),
+        }
+    }
+
+    fn header(&self, soup: &PolygonSoup, encoding: PlyEncoding) -> String {
+        let format = match encoding {
+            PlyEncoding::Ascii => "ascii",
+            PlyEncoding::BinaryLittleEndian => "binary_little_endian",
+            PlyEncoding::BinaryBigEndian => "binary_big_endian",
+        };
+        let type_name = |s: Scalar| match s {
+            Scalar::U8 => "uchar",
+            Scalar::U32 => "uint",
+            _ => "int",
+        };
+        let mut header = String::new();
+        let _ = write!(
+            header,
+            "ply\nformat {format} 1.0\ncomment written by Pappus\nelement vertex {}\n\
+             property float x\nproperty float y\nproperty float z\n",
+            soup.positions.len()
+        );
+        if self.normals.is_some() {
+            header.push_str("property float nx\nproperty float ny\nproperty float nz\n");
+        }
+        if self.colors.is_some() {
+            header.push_str("property uchar red\nproperty uchar green\nproperty uchar blue\n");
+        }
+        if self.quality.is_some() {
+            header.push_str("property float quality\n");
+        }
+        if self.vertex_uv.is_some() {
+            header.push_str("property float u\nproperty float v\n");
+        }
+        let _ = write!(
+            header,
+            "element face {}\nproperty list {} {} vertex_indices\n",
+            soup.face_count(),
+            type_name(self.count_type),
+            type_name(self.index_type),
+        );
+        if self.face_uv.is_some() {
+            let _ = writeln!(
+                header,
+                "property list {} float texcoord",
+                type_name(self.texcoord_count)
+            );
+        }
+        header.push_str("end_header\n");
+        header
+    }
+
+    fn ascii_vertices(&self, soup: &PolygonSoup, body: &mut String) {
+        for (i, p) in soup.positions.iter().enumerate() {
+            let _ = write!(body, "{} {} {}", p.x, p.y, p.z);
+            if let Some(normals) = self.normals {
+                let v = normals[i];
+                let _ = write!(body, " {} {} {}", v.x, v.y, v.z);
+            }
+            if let Some(colors) = self.colors {
+                let [r, g, b] = colors[i];
+                let _ = write!(body, " {r} {g} {b}");
+            }
+            if let Some(quality) = self.quality {
+                let _ = write!(body, " {}", quality[i]);
+            }
+            if let Some(uv) = &self.vertex_uv {
+                let _ = write!(body, " {} {}", uv[i].x, uv[i].y);
+            }
+            body.push('\n');
+        }
+    }
+
+    fn ascii_faces(&self, soup: &PolygonSoup, body: &mut String) {
+        for (f, face) in soup.faces().enumerate() {
+            let _ = write!(body, "{}", face.len());
+            for &i in face {
+                let _ = write!(body, " {i}");
+            }
+            if let Some(uvs) = self.face_uv {
+                let start = soup.face_starts[f] as usize;
+                let _ = write!(body, " {}", 2 * face.len());
+                for uv in &uvs[start..start + face.len()] {
+                    let _ = write!(body, " {} {}", uv.x, uv.y);
                 }
             }
-            for (f, face) in soup.faces().enumerate() {
-                if count_type == Scalar::U8 {
-                    out.push(face.len() as u8);
-                } else {
-                    put((face.len() as u32).to_le_bytes(), &mut out);
+            body.push('\n');
+        }
+    }
+
+    fn binary_vertices(&self, soup: &PolygonSoup, big: bool, out: &mut Vec<u8>) {
+        for (i, p) in soup.positions.iter().enumerate() {
+            for c in [p.x, p.y, p.z] {
+                put(c.to_le_bytes(), big, out);
+            }
+            if let Some(normals) = self.normals {
+                for c in normals[i].to_array() {
+                    put(c.to_le_bytes(), big, out);
                 }
-                // An index fits `int` unless `uint` was chosen; the bytes are the same.
-                for &i in face {
-                    put(i.to_le_bytes(), &mut out);
-                }
-                if let Some(uvs) = face_uv {
-                    let start = soup.face_starts[f] as usize;
-                    if texcoord_count == Scalar::U8 {
-                        out.push((2 * face.len()) as u8);
-                    } else {
-                        put((2 * face.len() as u32).to_le_bytes(), &mut out);
-                    }
-                    for uv in &uvs[start..start + face.len()] {
-                        put(uv.x.to_le_bytes(), &mut out);
-                        put(uv.y.to_le_bytes(), &mut out);
-                    }
+            }
+            if let Some(colors) = self.colors {
+                out.extend_from_slice(&colors[i]);
+            }
+            if let Some(quality) = self.quality {
+                put(quality[i].to_le_bytes(), big, out);
+            }
+            if let Some(uv) = &self.vertex_uv {
+                put(uv[i].x.to_le_bytes(), big, out);
+                put(uv[i].y.to_le_bytes(), big, out);
+            }
+        }
+    }
+
+    fn binary_faces(&self, soup: &PolygonSoup, big: bool, out: &mut Vec<u8>) {
+        for (f, face) in soup.faces().enumerate() {
+            put_count(face.len(), self.count_type, big, out);
+            // An index fits `int` unless `uint` was chosen; the bytes are the same.
+            for &i in face {
+                put(i.to_le_bytes(), big, out);
+            }
+            if let Some(uvs) = self.face_uv {
+                let start = soup.face_starts[f] as usize;
+                put_count(2 * face.len(), self.texcoord_count, big, out);
+                for uv in &uvs[start..start + face.len()] {
+                    put(uv.x.to_le_bytes(), big, out);
+                    put(uv.y.to_le_bytes(), big, out);
                 }
             }
         }
     }
-    out
 }
 
 #[cfg(test)]
