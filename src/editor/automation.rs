@@ -290,15 +290,7 @@ pub fn run_script(world: &mut World) {
             break;
         }
         if let Some((frames, start)) = script.measuring.take() {
-            let ms = start.elapsed().as_secs_f64() * 1000.0 / f64::from(frames.max(1));
-            bevy::log::info!("measure: mean frame time {ms:.1} ms over {frames} frames");
-            if let (Some(now), Some(then)) =
-                (super::frame_stats::process_cpu_ms(), script.measuring_cpu)
-            {
-                let cpu = (now - then) / f64::from(frames.max(1));
-                bevy::log::info!("measure: process CPU {cpu:.1} ms a frame (all threads)");
-            }
-            super::frame_stats::log_breakdown(world);
+            log_measurement(world, frames, start, script.measuring_cpu);
         }
         if script.shots_pending > 0 && pending.load(std::sync::atomic::Ordering::SeqCst) > 0 {
             break;
@@ -307,121 +299,150 @@ pub fn run_script(world: &mut World) {
         let Some(step) = script.steps.pop_front() else {
             break;
         };
-        match step {
-            ScriptStep::Wait(n) => script.waiting = n,
-            ScriptStep::Measure(n) => {
-                script.waiting = n;
-                script.measuring = Some((n, std::time::Instant::now()));
-                script.measuring_cpu = super::frame_stats::process_cpu_ms();
-                super::frame_stats::clear_history(world);
-            }
-            ScriptStep::Key(modifier, key) => {
-                // This frame: the modifier and the key go down; next step: both come up.
-                for k in modifier.into_iter().chain([key]) {
-                    send_key(world, k, ButtonState::Pressed);
-                }
-                script.release = modifier.into_iter().chain([key]).collect();
-                script.waiting = 2;
-            }
-            ScriptStep::SelectEdge(a, b) => {
-                let edge = input_edge(world, a, b);
-                match edge {
-                    Some(e) => {
-                        world.write_message(Request::Select(Some(e)));
-                    }
-                    None => bevy::log::warn!("script: no edge between input vertices {a} and {b}"),
-                }
-                script.waiting = 1;
-            }
-            ScriptStep::SelectVertex(a) => {
-                match input_vertex(world, a) {
-                    Some(v) => {
-                        world.write_message(Request::Select(Some(ElementId::Vertex(v))));
-                    }
-                    None => bevy::log::warn!("script: no input vertex {a}"),
-                }
-                script.waiting = 1;
-            }
-            ScriptStep::UvSelect(u, v) => {
-                let layout = world.resource::<super::uv_view::UvLayout>();
-                match super::uv_view::face_at(layout, Vec2::new(u, v)) {
-                    Some(f) => {
-                        world.write_message(Request::Select(Some(ElementId::Face(f))));
-                    }
-                    None => bevy::log::warn!("script: no face at UV ({u}, {v})"),
-                }
-                script.waiting = 1;
-            }
-            ScriptStep::Lod(faces) => {
-                world.write_message(Request::Edit(Edit::LevelOfDetail(faces)));
-                script.waiting = 2;
-            }
-            ScriptStep::Step(movement) => {
-                world.write_message(Request::Step(movement));
-                script.waiting = 2;
-            }
-            ScriptStep::Orbit(yaw, pitch) => {
-                super::scene::move_orbit(world, |orbit| {
-                    orbit.yaw += yaw.to_radians();
-                    orbit.pitch = (orbit.pitch + pitch.to_radians()).clamp(-1.55, 1.55);
-                });
-                script.waiting = 1;
-            }
-            ScriptStep::Zoom(factor) => {
-                super::scene::move_orbit(world, |orbit| orbit.radius *= factor);
-                script.waiting = 1;
-            }
-            ScriptStep::Colour(quantity) => {
-                world.resource_mut::<super::colouring::ColorBy>().0 = quantity;
-                script.waiting = 2;
-            }
-            ScriptStep::Open(path) => {
-                world.write_message(Request::Open(path));
-                script.waiting = 2;
-            }
-            ScriptStep::Select(id) => {
-                world.write_message(Request::Select(Some(id)));
-                script.waiting = 1;
-            }
-            ScriptStep::Box(from, to) => {
-                let size = world
-                    .query_filtered::<&Window, With<PrimaryWindow>>()
-                    .iter(world)
-                    .next()
-                    .map(|w| Vec2::new(w.width(), w.height()))
-                    .unwrap_or(Vec2::ONE);
-                let (a, b) = (from * size, to * size);
-                let elements = super::box_select::elements_in(world, a, b);
-                *world.resource_mut::<super::box_select::BoxSelect>() =
-                    super::box_select::BoxSelect {
-                        armed: true,
-                        drag: Some((a, b)),
-                    };
-                world.write_message(Request::Selection(super::requests::SelectionEdit::Replace(
-                    elements,
-                )));
-                script.waiting = 2;
-            }
-            ScriptStep::Shot(path) => {
-                pending.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-                let counter = pending.clone();
-                let mut save = save_to_disk(path);
-                world.spawn(Screenshot::primary_window()).observe(
-                    move |captured: On<bevy::render::view::screenshot::ScreenshotCaptured>| {
-                        save(captured);
-                        counter.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
-                    },
-                );
-                script.shots_pending = 1;
-                break;
-            }
-            ScriptStep::Exit => {
-                world.write_message(AppExit::Success);
-                break;
-            }
+        if !run_step(world, &mut script, step, &pending) {
+            break;
         }
     }
     world.insert_resource(script);
+}
+
+/// Logs the mean frame time (and the process's CPU time a frame) of a `measure:N` step.
+fn log_measurement(
+    world: &mut World,
+    frames: u32,
+    start: std::time::Instant,
+    cpu_then: Option<f64>,
+) {
+    let ms = start.elapsed().as_secs_f64() * 1000.0 / f64::from(frames.max(1));
+    bevy::log::info!("measure: mean frame time {ms:.1} ms over {frames} frames");
+    if let (Some(now), Some(then)) = (super::frame_stats::process_cpu_ms(), cpu_then) {
+        let cpu = (now - then) / f64::from(frames.max(1));
+        bevy::log::info!("measure: process CPU {cpu:.1} ms a frame (all threads)");
+    }
+    super::frame_stats::log_breakdown(world);
+}
+
+/// Selects `element` for a script step, or warns with `missing` when there is none.
+fn script_select(world: &mut World, element: Option<ElementId>, missing: String) {
+    match element {
+        Some(x) => {
+            world.write_message(Request::Select(Some(x)));
+        }
+        None => bevy::log::warn!("script: {missing}"),
+    }
+}
+
+/// Runs one step; `false` when the script yields the rest of the frame (a screenshot, exit).
+fn run_step(
+    world: &mut World,
+    script: &mut Script,
+    step: ScriptStep,
+    pending: &std::sync::Arc<std::sync::atomic::AtomicUsize>,
+) -> bool {
+    match step {
+        ScriptStep::Wait(n) => script.waiting = n,
+        ScriptStep::Measure(n) => {
+            script.waiting = n;
+            script.measuring = Some((n, std::time::Instant::now()));
+            script.measuring_cpu = super::frame_stats::process_cpu_ms();
+            super::frame_stats::clear_history(world);
+        }
+        ScriptStep::Key(modifier, key) => {
+            // This frame: the modifier and the key go down; next step: both come up.
+            for k in modifier.into_iter().chain([key]) {
+                send_key(world, k, ButtonState::Pressed);
+            }
+            script.release = modifier.into_iter().chain([key]).collect();
+            script.waiting = 2;
+        }
+        ScriptStep::SelectEdge(a, b) => {
+            let edge = input_edge(world, a, b);
+            script_select(
+                world,
+                edge,
+                format!("no edge between input vertices {a} and {b}"),
+            );
+            script.waiting = 1;
+        }
+        ScriptStep::SelectVertex(a) => {
+            let vertex = input_vertex(world, a).map(ElementId::Vertex);
+            script_select(world, vertex, format!("no input vertex {a}"));
+            script.waiting = 1;
+        }
+        ScriptStep::UvSelect(u, v) => {
+            let layout = world.resource::<super::uv_view::UvLayout>();
+            let face = super::uv_view::face_at(layout, Vec2::new(u, v)).map(ElementId::Face);
+            script_select(world, face, format!("no face at UV ({u}, {v})"));
+            script.waiting = 1;
+        }
+        ScriptStep::Lod(faces) => {
+            world.write_message(Request::Edit(Edit::LevelOfDetail(faces)));
+            script.waiting = 2;
+        }
+        ScriptStep::Step(movement) => {
+            world.write_message(Request::Step(movement));
+            script.waiting = 2;
+        }
+        ScriptStep::Orbit(yaw, pitch) => {
+            super::scene::move_orbit(world, |orbit| {
+                orbit.yaw += yaw.to_radians();
+                orbit.pitch = (orbit.pitch + pitch.to_radians()).clamp(-1.55, 1.55);
+            });
+            script.waiting = 1;
+        }
+        ScriptStep::Zoom(factor) => {
+            super::scene::move_orbit(world, |orbit| orbit.radius *= factor);
+            script.waiting = 1;
+        }
+        ScriptStep::Colour(quantity) => {
+            world.resource_mut::<super::colouring::ColorBy>().0 = quantity;
+            script.waiting = 2;
+        }
+        ScriptStep::Open(path) => {
+            world.write_message(Request::Open(path));
+            script.waiting = 2;
+        }
+        ScriptStep::Select(id) => {
+            world.write_message(Request::Select(Some(id)));
+            script.waiting = 1;
+        }
+        ScriptStep::Box(from, to) => {
+            let size = world
+                .query_filtered::<&Window, With<PrimaryWindow>>()
+                .iter(world)
+                .next()
+                .map(|w| Vec2::new(w.width(), w.height()))
+                .unwrap_or(Vec2::ONE);
+            let (a, b) = (from * size, to * size);
+            let elements = super::box_select::elements_in(world, a, b);
+            *world.resource_mut::<super::box_select::BoxSelect>() = super::box_select::BoxSelect {
+                armed: true,
+                drag: Some((a, b)),
+            };
+            world.write_message(Request::Selection(super::requests::SelectionEdit::Replace(
+                elements,
+            )));
+            script.waiting = 2;
+        }
+        ScriptStep::Shot(path) => {
+            pending.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+            let counter = pending.clone();
+            let mut save = save_to_disk(path);
+            world.spawn(Screenshot::primary_window()).observe(
+                move |captured: On<bevy::render::view::screenshot::ScreenshotCaptured>| {
+                    save(captured);
+                    counter.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
+                },
+            );
+            script.shots_pending = 1;
+            return false;
+        }
+        ScriptStep::Exit => {
+            world.write_message(AppExit::Success);
+            return false;
+        }
+    }
+    true
 }
 
 fn send_key(world: &mut World, key: KeyCode, state: ButtonState) {

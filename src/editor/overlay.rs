@@ -177,40 +177,14 @@ pub fn gather_overlay(world: &mut World) {
             }
         };
         let m = MeshRef::new(world);
-        if faces <= SMALL_MESH_FACES {
-            let members = MeshMembers::collect(world, mesh);
-            for &v in &members.vertices {
-                shapes.push(Shape::Dot(m.position(v), mean_edge_near(&m, v) * 0.04, DOT));
-            }
-            if settings.halfedges {
-                for &h in &members.halfedges {
-                    let (a, b) = halfedge_arrow(&m, h);
-                    shapes.push(Shape::Arrow(a, b, ARROW));
-                }
-            }
-        } else if settings.halfedges {
-            // Around the selection only.
-            let near: Vec<HalfedgeId> = match world.resource::<Selection>().element {
-                Some(ElementId::Face(f)) if m.try_face(f).is_some() => {
-                    m.face_halfedges(f).collect()
-                }
-                Some(ElementId::Vertex(v)) if m.try_vertex(v).is_some() => {
-                    m.vertex_outgoing(v).flat_map(|h| [h, m.twin(h)]).collect()
-                }
-                Some(ElementId::Halfedge(h)) if m.try_halfedge(h).is_some() => {
-                    m.loop_from(h).chain(m.loop_from(m.twin(h))).collect()
-                }
-                Some(ElementId::Edge(e)) if m.try_edge(e).is_some() => {
-                    let h = m.edge_halfedge(e);
-                    m.loop_from(h).chain(m.loop_from(m.twin(h))).collect()
-                }
-                _ => Vec::new(),
-            };
-            for h in near {
-                let (a, b) = halfedge_arrow(&m, h);
-                shapes.push(Shape::Arrow(a, b, ARROW));
-            }
-        }
+        dots_and_arrows(
+            world,
+            &m,
+            mesh,
+            faces <= SMALL_MESH_FACES,
+            settings,
+            &mut shapes,
+        );
         // Seam marks, over everything: the cut a parameterization will make.
         if crate::mesh::attributes::MeshAttributes::of(world, mesh).seams
             && let Some(mut seams) = world.try_query_filtered::<(Entity, &InMesh), With<Seam>>()
@@ -254,36 +228,86 @@ pub fn gather_overlay(world: &mut World) {
         if let Some(x) = selection.element {
             element_shapes(&m, x, SELECTED, &mut shapes);
         }
-        // The axis a transform is held to, through its pivot, in Blender's colours.
-        if let Some(gesture) = world
-            .get_resource::<super::transform::Gestures>()
-            .and_then(|g| g.active.as_ref())
-            && let Some(axis) = gesture.axis
-        {
-            let reach = Vec3::AXES[axis] * 1e3;
-            let p = gesture.pivot;
-            shapes.push(Shape::Line(p - reach, p + reach, AXIS_COLORS[axis]));
-        }
-        // The anchors of handle deformation.
-        if let Some(anchors) = world.get_resource::<super::transform::Anchors>() {
-            for &v in anchors.vertices.iter().take(MAX_SET_DRAWN) {
-                if m.try_vertex(v).is_some() {
-                    let r = mean_edge_near(&m, v) * 0.1;
-                    shapes.push(Shape::Dot(m.position(v), r, ANCHOR));
-                }
-            }
-        }
-        // Proportional editing's reach about the pivot.
-        if let Some(follow) = world
-            .get_resource::<super::transform::Gestures>()
-            .and_then(|g| g.active.as_ref())
-            .and_then(|g| Some((g.pivot, g.follow.as_ref()?)))
-        {
-            let (pivot, follow) = follow;
-            shapes.push(Shape::Ring(pivot, follow.settings.radius, PROPORTIONAL));
-        }
+        gesture_shapes(world, &m, &mut shapes);
     }
     world.resource_mut::<Overlay>().shapes = shapes;
+}
+
+/// Vertex dots and halfedge arrows: everywhere on a small mesh, else the arrows around the
+/// selection (when arrows are on).
+fn dots_and_arrows(
+    world: &World,
+    m: &MeshRef<'_>,
+    mesh: MeshId,
+    small: bool,
+    settings: ViewSettings,
+    shapes: &mut Vec<Shape>,
+) {
+    if small {
+        let members = MeshMembers::collect(world, mesh);
+        for &v in &members.vertices {
+            shapes.push(Shape::Dot(m.position(v), mean_edge_near(m, v) * 0.04, DOT));
+        }
+        if settings.halfedges {
+            for &h in &members.halfedges {
+                let (a, b) = halfedge_arrow(m, h);
+                shapes.push(Shape::Arrow(a, b, ARROW));
+            }
+        }
+    } else if settings.halfedges {
+        // Around the selection only.
+        let near: Vec<HalfedgeId> = match world.resource::<Selection>().element {
+            Some(ElementId::Face(f)) if m.try_face(f).is_some() => m.face_halfedges(f).collect(),
+            Some(ElementId::Vertex(v)) if m.try_vertex(v).is_some() => {
+                m.vertex_outgoing(v).flat_map(|h| [h, m.twin(h)]).collect()
+            }
+            Some(ElementId::Halfedge(h)) if m.try_halfedge(h).is_some() => {
+                m.loop_from(h).chain(m.loop_from(m.twin(h))).collect()
+            }
+            Some(ElementId::Edge(e)) if m.try_edge(e).is_some() => {
+                let h = m.edge_halfedge(e);
+                m.loop_from(h).chain(m.loop_from(m.twin(h))).collect()
+            }
+            _ => Vec::new(),
+        };
+        for h in near {
+            let (a, b) = halfedge_arrow(m, h);
+            shapes.push(Shape::Arrow(a, b, ARROW));
+        }
+    }
+}
+
+/// What a gesture shows: the axis it is held to, the anchors of handle deformation, and
+/// proportional editing's reach.
+fn gesture_shapes(world: &World, m: &MeshRef<'_>, shapes: &mut Vec<Shape>) {
+    // The axis a transform is held to, through its pivot, in Blender's colours.
+    if let Some(gesture) = world
+        .get_resource::<super::transform::Gestures>()
+        .and_then(|g| g.active.as_ref())
+        && let Some(axis) = gesture.axis
+    {
+        let reach = Vec3::AXES[axis] * 1e3;
+        let p = gesture.pivot;
+        shapes.push(Shape::Line(p - reach, p + reach, AXIS_COLORS[axis]));
+    }
+    // The anchors of handle deformation.
+    if let Some(anchors) = world.get_resource::<super::transform::Anchors>() {
+        for &v in anchors.vertices.iter().take(MAX_SET_DRAWN) {
+            if m.try_vertex(v).is_some() {
+                let r = mean_edge_near(m, v) * 0.1;
+                shapes.push(Shape::Dot(m.position(v), r, ANCHOR));
+            }
+        }
+    }
+    // Proportional editing's reach about the pivot.
+    if let Some(follow) = world
+        .get_resource::<super::transform::Gestures>()
+        .and_then(|g| g.active.as_ref())
+        .and_then(|g| Some((g.pivot, g.follow.as_ref()?)))
+    {
+        let (pivot, follow) = follow;
+        shapes.push(Shape::Ring(pivot, follow.settings.radius, PROPORTIONAL));
+    }
 }
 
 /// Draws the gathered shapes.

@@ -232,37 +232,12 @@ pub fn step_window(
     let ctx = contexts.ctx_mut()?;
     let Some(title) = &view.title else {
         if view.enabled {
-            egui::Window::new("Step mode")
-                .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-12.0, 12.0))
-                .resizable(false)
-                .show(ctx, |ui| {
-                    ui.label(
-                        "Simplify (Shift+S), remesh (M), Loop (L), Catmull-Clark (Q) and an \
-                         as-rigid-as-possible handle drag (G, R, S with anchors) now run a step \
-                         at a time.",
-                    );
-                    if ui.button("Turn step mode off (F9)").clicked() {
-                        pending.0.push(Action::ToggleStepMode);
-                    }
-                });
+            idle_window(ctx, &mut pending);
         }
         return Ok(());
     };
-    if let (Some(next), Ok((camera, eye))) = (view.next, camera.single())
-        && let Ok(p) = camera.world_to_viewport(eye, next.position)
-    {
-        let painter = ctx.layer_painter(egui::LayerId::new(
-            egui::Order::Background,
-            egui::Id::new("next collapse"),
-        ));
-        let text = format!("{}  cost {:.3e}", next.edge, next.cost);
-        let galley =
-            painter.layout_no_wrap(text, egui::FontId::proportional(15.0), egui::Color32::WHITE);
-        // Up and to the left of the point: the step window sits on the right.
-        let corner = egui::pos2(p.x - 14.0 - galley.size().x, p.y - 10.0 - galley.size().y);
-        let rect = egui::Rect::from_min_size(corner, galley.size()).expand(4.0);
-        painter.rect_filled(rect, 3.0, egui::Color32::from_rgb(190, 80, 10));
-        painter.galley(corner, galley, egui::Color32::WHITE);
+    if let (Some(next), Ok((camera, eye))) = (view.next, camera.single()) {
+        label_next_collapse(ctx, &next, camera, eye);
     }
     egui::Window::new(format!("Step through: {title}"))
         .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-12.0, 12.0))
@@ -377,4 +352,45 @@ fn lines_section<'a>(ui: &mut egui::Ui, title: &str, lines: impl Iterator<Item =
     for line in lines {
         ui.monospace(line);
     }
+}
+
+/// The step window with no run in progress: what step mode does, and a way out.
+fn idle_window(ctx: &egui::Context, pending: &mut PendingActions) {
+    egui::Window::new("Step mode")
+        .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-12.0, 12.0))
+        .resizable(false)
+        .show(ctx, |ui| {
+            ui.label(
+                "Simplify (Shift+S), remesh (M), Loop (L), Catmull-Clark (Q) and an \
+                 as-rigid-as-possible handle drag (G, R, S with anchors) now run a step \
+                 at a time.",
+            );
+            if ui.button("Turn step mode off (F9)").clicked() {
+                pending.0.push(Action::ToggleStepMode);
+            }
+        });
+}
+
+/// The next collapse's edge and cost, written on the mesh beside the point its ends merge at.
+fn label_next_collapse(
+    ctx: &egui::Context,
+    next: &QueuedEdge,
+    camera: &Camera,
+    eye: &GlobalTransform,
+) {
+    let Ok(p) = camera.world_to_viewport(eye, next.position) else {
+        return;
+    };
+    let painter = ctx.layer_painter(egui::LayerId::new(
+        egui::Order::Background,
+        egui::Id::new("next collapse"),
+    ));
+    let text = format!("{}  cost {:.3e}", next.edge, next.cost);
+    let galley =
+        painter.layout_no_wrap(text, egui::FontId::proportional(15.0), egui::Color32::WHITE);
+    // Up and to the left of the point: the step window sits on the right.
+    let corner = egui::pos2(p.x - 14.0 - galley.size().x, p.y - 10.0 - galley.size().y);
+    let rect = egui::Rect::from_min_size(corner, galley.size()).expand(4.0);
+    painter.rect_filled(rect, 3.0, egui::Color32::from_rgb(190, 80, 10));
+    painter.galley(corner, galley, egui::Color32::WHITE);
 }
