@@ -373,22 +373,6 @@ impl Step {
                 b.trim().parse().map_err(|_| bad())?,
             ))
         };
-        let levels = |scheme| -> Result<Step, String> {
-            let levels = match args {
-                "" => 1,
-                _ => args
-                    .parse::<u32>()
-                    .ok()
-                    .filter(|n| (1..=Subdivision::MAX_LEVELS).contains(n))
-                    .ok_or_else(|| {
-                        format!(
-                            "step `{text}`: levels must be a number from 1 to {}",
-                            Subdivision::MAX_LEVELS
-                        )
-                    })?,
-            };
-            Ok(Step::Edit(Edit::Subdivide(Subdivision { scheme, levels })))
-        };
         if let Some(edge) = args.strip_suffix(":fair").filter(|_| name == "fill-hole") {
             let (a, b) = edge
                 .split_once(',')
@@ -420,6 +404,28 @@ impl Step {
             op.check(&targets, &numbers).map_err(bad)?;
             return Ok(Step::Elements(op, targets, numbers));
         }
+        Self::parse_named(text, name, args)
+    }
+
+    /// The steps named by a word and parameters (not elements): `loop:2`, `simplify:0.25`,
+    /// `remesh`, `smooth:cotan`, `deform:…`, `fair:…`, `fill-holes`, `param:…`, `validate`.
+    fn parse_named(text: &str, name: &str, args: &str) -> Result<Step, String> {
+        let levels = |scheme| -> Result<Step, String> {
+            let levels = match args {
+                "" => 1,
+                _ => args
+                    .parse::<u32>()
+                    .ok()
+                    .filter(|n| (1..=Subdivision::MAX_LEVELS).contains(n))
+                    .ok_or_else(|| {
+                        format!(
+                            "step `{text}`: levels must be a number from 1 to {}",
+                            Subdivision::MAX_LEVELS
+                        )
+                    })?,
+            };
+            Ok(Step::Edit(Edit::Subdivide(Subdivision { scheme, levels })))
+        };
         let edit = match name {
             "validate" => return Ok(Step::Validate),
             "loop" => return levels(Scheme::Loop),
