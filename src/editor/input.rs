@@ -748,8 +748,25 @@ pub fn perform(world: &mut World, action: Action) {
             world.write_message(request);
         }
         Ok(None) => {}
-        Err(why) => report(world, format!("{action:?}").to_lowercase(), Err(why), 0.0),
+        Err(why) => report(world, action_words(action), Err(why), 0.0),
     }
+}
+
+/// An action in a person's words, for the status line ("flip", "split vertex back", "fill
+/// hole"): a local edge operation by its step name, the others by their name split into words.
+fn action_words(action: Action) -> String {
+    if let Action::OnEdge(kind) = action {
+        return crate::ops::named::Named::name(kind).to_string();
+    }
+    let name = format!("{action:?}");
+    let mut words = String::with_capacity(name.len() + 4);
+    for (i, c) in name.chars().take_while(|c| c.is_alphanumeric()).enumerate() {
+        if c.is_uppercase() && i > 0 {
+            words.push(' ');
+        }
+        words.extend(c.to_lowercase());
+    }
+    words
 }
 
 /// The request an action stands for (`None` for actions that only change a setting, done
@@ -1035,4 +1052,17 @@ fn mark_all_dirty(world: &mut World) {
 /// The selected element, for the UI.
 pub fn selected(world: &World) -> Option<ElementId> {
     world.resource::<Selection>().element
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn actions_are_named_in_words_on_the_status_line() {
+        assert_eq!(action_words(Action::OnEdge(LocalKind::Flip)), "flip");
+        assert_eq!(action_words(Action::SplitVertex), "split vertex");
+        assert_eq!(action_words(Action::FillFair), "fill fair");
+        assert_eq!(action_words(Action::Navigate(Relation::Twin)), "navigate");
+    }
 }

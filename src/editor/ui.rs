@@ -664,11 +664,20 @@ fn selection_section(
     );
     egui::Grid::new("relations").num_columns(2).show(ui, |ui| {
         for (relation, target) in &sel.relations {
+            // E and F go to a halfedge's edge and face (the keys extrude and fill otherwise).
             let key = SHORTCUTS
                 .iter()
                 .find(|s| s.action == Action::Navigate(*relation))
-                .map_or("", |s| s.keys);
-            ui.label(format!("{} ({key})", relation.name()));
+                .map(|s| s.keys)
+                .or(match (sel.id, relation) {
+                    (ElementId::Halfedge(_), Relation::Edge) => Some("E"),
+                    (ElementId::Halfedge(_), Relation::Face) => Some("F"),
+                    _ => None,
+                });
+            ui.label(match key {
+                Some(key) => format!("{} ({key})", relation.name()),
+                None => relation.name().to_string(),
+            });
             match target {
                 Some(t) => {
                     if ui
