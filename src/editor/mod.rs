@@ -25,6 +25,7 @@ pub mod input;
 pub mod jobs;
 pub mod overlay;
 pub mod pacing;
+pub mod panel_sections;
 pub mod picking;
 pub mod plots;
 pub mod readability;

@@ -50,6 +50,7 @@ impl Plugin for UiPlugin {
         app.add_systems(Startup, spawn_ui_camera);
         app.init_resource::<InspectorView>()
             .init_resource::<UiFields>()
+            .init_resource::<super::panel_sections::PanelSections>()
             .init_resource::<PendingActions>()
             .add_systems(
                 Update,
@@ -372,8 +373,11 @@ pub fn panels(
     log: Res<OutcomeLog>,
     mut fields: ResMut<UiFields>,
     mut ui_state: ResMut<UiState>,
-    mut mode: ResMut<SelectMode>,
-    mut settings: ResMut<ViewSettings>,
+    (mut mode, mut settings, mut sections): (
+        ResMut<SelectMode>,
+        ResMut<ViewSettings>,
+        ResMut<super::panel_sections::PanelSections>,
+    ),
     density: Res<super::readability::WireframeDensity>,
     mut captured: ResMut<KeyboardCaptured>,
     mut pointer: ResMut<super::drag::PointerCaptured>,
@@ -418,23 +422,7 @@ pub fn panels(
         .show(&mut root, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 ui.heading("Pappus");
-                file_section(ui, &mut fields, &mut ui_state, &mut requests);
-                ui.separator();
-                mesh_section(ui, &view);
-                colour_section(ui, &view, &mut colour_by, &mut ui_state.histograms);
-                ui.separator();
-                selection_section(ui, &view, &mut fields, &mut requests);
-                ui.separator();
-                let mut view_settings = *settings;
-                operations_section(
-                    ui,
-                    &mut mode,
-                    (&mut view_settings, &density),
-                    &mut pending,
-                    &mut ui_state,
-                    &mut anchors,
-                );
-                settings.set_if_neq(view_settings);
+                // A job's progress shows whatever sections are open.
                 if let Some((label, fraction, seconds)) = &view.job {
                     ui.horizontal(|ui| {
                         let text = format!("{label}: {:.0} % ({seconds:.1} s)", fraction * 100.0);
@@ -445,26 +433,54 @@ pub fn panels(
                         }
                     });
                 }
-                if let Some((coarsest, now, full)) = view.lod {
-                    let mut faces = now;
-                    let slider = egui::Slider::new(&mut faces, coarsest..=full)
-                        .text("faces (level of detail)");
-                    if ui.add(slider).changed() && faces != now {
-                        requests.write(Request::Edit(Edit::LevelOfDetail(faces)));
+                sections.show(ui, "File", |ui| {
+                    file_section(ui, &mut fields, &mut ui_state, &mut requests);
+                });
+                sections.show(ui, "Mesh", |ui| {
+                    mesh_section(ui, &view);
+                    let mut view_settings = *settings;
+                    view_toggles(ui, (&mut view_settings, &density), &mut pending);
+                    settings.set_if_neq(view_settings);
+                    budget_row(ui);
+                });
+                sections.show(ui, "Selection", |ui| {
+                    selection_controls(ui, &mut mode, &mut pending);
+                });
+                sections.show(ui, "Element", |ui| {
+                    selection_section(ui, &view, &mut fields, &mut requests);
+                });
+                sections.show(ui, "Modelling", |ui| {
+                    modelling_section(ui, &mut ui_state, &mut pending);
+                });
+                sections.show(ui, "Local operations", |ui| local_section(ui, &mut pending));
+                sections.show(ui, "Whole mesh", |ui| {
+                    whole_mesh_section(ui, &mut ui_state, &mut pending);
+                    if let Some((coarsest, now, full)) = view.lod {
+                        let mut faces = now;
+                        let slider = egui::Slider::new(&mut faces, coarsest..=full)
+                            .text("faces (level of detail)");
+                        if ui.add(slider).changed() && faces != now {
+                            requests.write(Request::Edit(Edit::LevelOfDetail(faces)));
+                        }
                     }
-                }
-                ui.separator();
-                history_section(ui, &view, &mut pending);
-                budget_row(ui);
-                ui.separator();
-                ui.label(egui::RichText::new("Log").strong());
-                for entry in log.entries.iter().rev().take(30) {
-                    let text = match &entry.result {
-                        Ok(s) => format!("✔ {}: {s}", entry.request),
-                        Err(r) => format!("x {}: {r}", entry.request),
-                    };
-                    ui.label(egui::RichText::new(text).small());
-                }
+                });
+                sections.show(ui, "Shape", |ui| {
+                    shape_section(ui, &mut ui_state, &mut anchors, &mut pending);
+                });
+                sections.show(ui, "UV", |ui| uv_section(ui, &mut ui_state, &mut pending));
+                sections.show(ui, "Analysis", |ui| {
+                    colour_section(ui, &view, &mut colour_by, &mut ui_state.histograms);
+                });
+                sections.show(ui, "History", |ui| history_section(ui, &view, &mut pending));
+                sections.show(ui, "Log", |ui| {
+                    for entry in log.entries.iter().rev().take(30) {
+                        let text = match &entry.result {
+                            Ok(s) => format!("✔ {}: {s}", entry.request),
+                            Err(r) => format!("x {}: {r}", entry.request),
+                        };
+                        ui.label(egui::RichText::new(text).small());
+                    }
+                });
             });
         });
 
@@ -722,7 +738,6 @@ fn selection_section(
 fn history_section(ui: &mut egui::Ui, view: &InspectorView, pending: &mut PendingActions) {
     let done = view.history.iter().filter(|(_, undone)| !undone).count();
     ui.horizontal(|ui| {
-        ui.label(egui::RichText::new("History").strong());
         let undo = format!("Undo ({})", shortcut_label(Action::Undo));
         if ui.add_enabled(done > 0, egui::Button::new(undo)).clicked() {
             pending.0.push(Action::Undo);
@@ -746,72 +761,27 @@ fn history_section(ui: &mut egui::Ui, view: &InspectorView, pending: &mut Pendin
     }
 }
 
-fn operations_section(
-    ui: &mut egui::Ui,
-    mode: &mut SelectMode,
-    (settings, density): (&mut ViewSettings, &super::readability::WireframeDensity),
-    pending: &mut PendingActions,
-    ui_state: &mut UiState,
-    anchors: &mut super::transform::Anchors,
-) {
-    ui.label(egui::RichText::new("Operations").strong());
+/// A button that runs `action`, its keys beside its name.
+fn button(ui: &mut egui::Ui, pending: &mut PendingActions, action: Action, name: &str) {
+    if ui
+        .button(format!("{name} ({})", shortcut_label(action)))
+        .clicked()
+    {
+        pending.0.push(action);
+    }
+}
+
+/// A row of [`button`]s.
+fn buttons(ui: &mut egui::Ui, pending: &mut PendingActions, row: &[(Action, &str)]) {
     ui.horizontal_wrapped(|ui| {
-        for (action, name) in [
-            (Action::Grab, "Move"),
-            (Action::Rotate, "Rotate"),
-            (Action::Scale, "Scale"),
-            (Action::Extrude, "Extrude"),
-            (Action::Inset, "Inset"),
-            (Action::Bevel, "Bevel"),
-            (Action::Erase, "Erase"),
-            (Action::Fill, "Fill hole"),
-            (Action::Weld, "Weld"),
-            (Action::OnEdge(LocalKind::Flip), "Flip"),
-            (Action::OnEdge(LocalKind::Split), "Split"),
-            (Action::OnEdge(LocalKind::Bisect), "Bisect"),
-            (Action::Collapse, "Collapse"),
-            (Action::Dissolve, "Dissolve"),
-            (Action::CutCorner, "Split face"),
-            (Action::SplitVertex, "Split vertex back"),
-            (Action::Triangulate, "Triangulate"),
-            (Action::ToggleStepMode, "Step mode"),
-            (Action::Frame, "Frame"),
-            (Action::DeleteMesh, "Delete mesh"),
-        ] {
-            if ui
-                .button(format!("{name} ({})", shortcut_label(action)))
-                .clicked()
-            {
-                pending.0.push(action);
-            }
+        for &(action, name) in row {
+            button(ui, pending, action, name);
         }
     });
-    ui.horizontal(|ui| {
-        ui.label("bevel");
-        ui.add(egui::Slider::new(&mut ui_state.bevel_amount, 0.01..=0.5).text("amount"));
-        ui.add(
-            egui::DragValue::new(&mut ui_state.bevel_depth)
-                .speed(0.005)
-                .prefix("depth "),
-        );
-    });
-    ui.horizontal_wrapped(|ui| {
-        for (action, name) in [
-            (Action::SelectAll, "All"),
-            (Action::SelectNone, "None"),
-            (Action::Grow, "More"),
-            (Action::Shrink, "Less"),
-            (Action::BoxSelect, "Box"),
-        ] {
-            if ui
-                .button(format!("{name} ({})", shortcut_label(action)))
-                .clicked()
-            {
-                pending.0.push(action);
-            }
-        }
-    });
-    parameters_section(ui, ui_state, anchors, pending);
+}
+
+/// What a click selects, and the selection's own operations.
+fn selection_controls(ui: &mut egui::Ui, mode: &mut SelectMode, pending: &mut PendingActions) {
     ui.horizontal(|ui| {
         ui.label("click selects");
         for m in [
@@ -824,6 +794,26 @@ fn operations_section(
             ui.selectable_value(mode, m, m.name());
         }
     });
+    buttons(
+        ui,
+        pending,
+        &[
+            (Action::SelectAll, "All"),
+            (Action::SelectNone, "None"),
+            (Action::Grow, "More"),
+            (Action::Shrink, "Less"),
+            (Action::BoxSelect, "Box"),
+        ],
+    );
+    ui.label("Alt-click: an edge loop; Ctrl+Alt-click: an edge ring.");
+}
+
+/// How the mesh is drawn: shading, wireframe, halfedge arrows, the UV checkerboard.
+fn view_toggles(
+    ui: &mut egui::Ui,
+    (settings, density): (&mut ViewSettings, &super::readability::WireframeDensity),
+    pending: &mut PendingActions,
+) {
     ui.horizontal_wrapped(|ui| {
         for (action, name, on) in [
             (Action::ToggleSmooth, "smooth", settings.smooth),
@@ -851,23 +841,74 @@ fn operations_section(
     }
 }
 
+/// Blender's edit-mode operations on the selection, with the bevel's parameters.
+fn modelling_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
+    buttons(
+        ui,
+        pending,
+        &[
+            (Action::Grab, "Move"),
+            (Action::Rotate, "Rotate"),
+            (Action::Scale, "Scale"),
+            (Action::Extrude, "Extrude"),
+            (Action::Inset, "Inset"),
+            (Action::Erase, "Erase"),
+            (Action::Fill, "Fill hole"),
+            (Action::Weld, "Weld"),
+            (Action::DeleteMesh, "Delete mesh"),
+        ],
+    );
+    ui.horizontal(|ui| {
+        button(ui, pending, Action::Bevel, "Bevel");
+        ui.add(egui::Slider::new(&mut state.bevel_amount, 0.01..=0.5).text("amount"));
+        ui.add(
+            egui::DragValue::new(&mut state.bevel_depth)
+                .speed(0.005)
+                .prefix("depth "),
+        );
+    });
+}
+
+/// The local operations of the halfedge mesh on the selected element.
+fn local_section(ui: &mut egui::Ui, pending: &mut PendingActions) {
+    buttons(
+        ui,
+        pending,
+        &[
+            (Action::OnEdge(LocalKind::Flip), "Flip"),
+            (Action::OnEdge(LocalKind::Split), "Split"),
+            (Action::OnEdge(LocalKind::Bisect), "Bisect"),
+            (Action::Collapse, "Collapse"),
+            (Action::Dissolve, "Dissolve"),
+            (Action::CutCorner, "Split face"),
+            (Action::SplitVertex, "Split vertex back"),
+            (Action::Frame, "Frame"),
+        ],
+    );
+}
+
 /// The whole-mesh edits with their parameters: the same structs and defaults as the command
 /// line's steps (`simplify:RATIO`, `simplify-faces:N`, `remesh:ITERATIONS:LENGTH`, `loop:N`,
-/// `param:METHOD:BOUNDARY`).
-fn parameters_section(
-    ui: &mut egui::Ui,
-    state: &mut UiState,
-    anchors: &mut super::transform::Anchors,
-    pending: &mut PendingActions,
-) {
-    let mut button = |ui: &mut egui::Ui, action: Action, name: &str| {
-        if ui
-            .button(format!("{name} ({})", shortcut_label(action)))
-            .clicked()
-        {
-            pending.0.push(action);
-        }
-    };
+/// `smooth:METHOD`), and step mode, which runs them a step at a time.
+fn whole_mesh_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
+    buttons(
+        ui,
+        pending,
+        &[
+            (Action::Triangulate, "Triangulate"),
+            (Action::ToggleStepMode, "Step mode"),
+        ],
+    );
+    // Subdivision: levels per press.
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::DragValue::new(&mut state.subdivision_levels)
+                .range(1..=Subdivision::MAX_LEVELS)
+                .suffix(" level(s)"),
+        );
+        button(ui, pending, Action::LoopSubdivide, "Loop");
+        button(ui, pending, Action::CatmullClark, "Catmull-Clark");
+    });
     // Simplify: a ratio of the faces, or a face count.
     ui.horizontal(|ui| {
         let params = &mut state.simplify;
@@ -896,7 +937,7 @@ fn parameters_section(
             (true, SimplifyTarget::Faces(_)) => SimplifyTarget::Ratio(0.5),
             (false, SimplifyTarget::Ratio(_)) => SimplifyTarget::Faces(1000),
         };
-        button(ui, Action::Simplify, "Simplify");
+        button(ui, pending, Action::Simplify, "Simplify");
     });
     // Remesh: target length (mean edge length when unset), iterations, feature angle.
     ui.horizontal_wrapped(|ui| {
@@ -924,7 +965,7 @@ fn parameters_section(
                 .range(0.0..=180.0)
                 .suffix("° features"),
         );
-        button(ui, Action::Remesh, "Remesh");
+        button(ui, pending, Action::Remesh, "Remesh");
     });
     // Smoothing: method, iterations, step, the boundary held or not.
     ui.horizontal_wrapped(|ui| {
@@ -957,32 +998,17 @@ fn parameters_section(
                 .prefix("λ "),
         );
         ui.checkbox(&mut params.hold_boundary, "hold boundary");
-        button(ui, Action::Smooth, "Smooth");
+        button(ui, pending, Action::Smooth, "Smooth");
     });
-    // Parameterization: method, boundary (fixed-boundary methods only), the UV view.
-    ui.horizontal_wrapped(|ui| {
-        let params = &mut state.param;
-        egui::ComboBox::from_id_salt("param method")
-            .selected_text(params.method.name())
-            .show_ui(ui, |ui| {
-                for &(method, name) in ParamMethod::ALL {
-                    ui.selectable_value(&mut params.method, method, name);
-                }
-            });
-        ui.add_enabled_ui(params.method.fixed_boundary(), |ui| {
-            egui::ComboBox::from_id_salt("param boundary")
-                .selected_text(params.boundary.name())
-                .show_ui(ui, |ui| {
-                    for &(shape, name) in BoundaryShape::ALL {
-                        ui.selectable_value(&mut params.boundary, shape, name);
-                    }
-                });
-        });
-        button(ui, Action::OnEdge(LocalKind::Seam), "Seam");
-        button(ui, Action::Parameterize, "Parameterize");
-        ui.checkbox(&mut state.uv_view, "UV view");
-    });
-    // Shape: fairing, holes, proportional editing.
+}
+
+/// Shaping the surface: fairing, holes filled fair, proportional editing, handle deformation.
+fn shape_section(
+    ui: &mut egui::Ui,
+    state: &mut UiState,
+    anchors: &mut super::transform::Anchors,
+    pending: &mut PendingActions,
+) {
     ui.horizontal_wrapped(|ui| {
         ui.add(
             egui::DragValue::new(&mut state.fair_k)
@@ -990,10 +1016,10 @@ fn parameters_section(
                 .prefix("k "),
         )
         .on_hover_text("1 membrane, 2 thin plate, 3 minimum variation");
-        button(ui, Action::Fair, "Fair");
-        button(ui, Action::FillFair, "Fill hole fair");
+        button(ui, pending, Action::Fair, "Fair");
+        button(ui, pending, Action::FillFair, "Fill hole fair");
         ui.checkbox(&mut state.fill_fair, "fair");
-        button(ui, Action::FillAll, "Fill all holes");
+        button(ui, pending, Action::FillAll, "Fill all holes");
     });
     ui.horizontal_wrapped(|ui| {
         let p = &mut state.proportional;
@@ -1021,7 +1047,7 @@ fn parameters_section(
     });
     // Handle deformation: the anchors, and how the rest follows a transform of the handle.
     ui.horizontal_wrapped(|ui| {
-        button(ui, Action::MarkAnchors, "Anchors");
+        button(ui, pending, Action::MarkAnchors, "Anchors");
         ui.label(format!("{} anchored", anchors.vertices.len()));
         egui::ComboBox::from_id_salt("deform method")
             .selected_text(anchors.method.name())
@@ -1038,15 +1064,31 @@ fn parameters_section(
     if let Some(progress) = anchors.progress {
         ui.label(format!("last deformation: {progress}"));
     }
-    // Subdivision: levels per press.
-    ui.horizontal(|ui| {
-        ui.add(
-            egui::DragValue::new(&mut state.subdivision_levels)
-                .range(1..=Subdivision::MAX_LEVELS)
-                .suffix(" level(s)"),
-        );
-        button(ui, Action::LoopSubdivide, "Loop");
-        button(ui, Action::CatmullClark, "Catmull-Clark");
+}
+
+/// Parameterization: method, boundary (fixed-boundary methods only), seams, the UV view.
+fn uv_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
+    ui.horizontal_wrapped(|ui| {
+        let params = &mut state.param;
+        egui::ComboBox::from_id_salt("param method")
+            .selected_text(params.method.name())
+            .show_ui(ui, |ui| {
+                for &(method, name) in ParamMethod::ALL {
+                    ui.selectable_value(&mut params.method, method, name);
+                }
+            });
+        ui.add_enabled_ui(params.method.fixed_boundary(), |ui| {
+            egui::ComboBox::from_id_salt("param boundary")
+                .selected_text(params.boundary.name())
+                .show_ui(ui, |ui| {
+                    for &(shape, name) in BoundaryShape::ALL {
+                        ui.selectable_value(&mut params.boundary, shape, name);
+                    }
+                });
+        });
+        button(ui, pending, Action::OnEdge(LocalKind::Seam), "Seam");
+        button(ui, pending, Action::Parameterize, "Parameterize");
+        ui.checkbox(&mut state.uv_view, "UV view");
     });
 }
 
