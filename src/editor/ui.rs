@@ -397,24 +397,7 @@ pub fn panels(
             .max_rect(ctx.viewport_rect()),
     );
 
-    let status = egui::Panel::bottom("status").show(&mut root, |ui| {
-        ui.horizontal(|ui| {
-            if let Some(hint) = &view.gesture {
-                ui.colored_label(egui::Color32::from_rgb(255, 190, 90), hint);
-                return;
-            }
-            match log.entries.last() {
-                Some(last) => match &last.result {
-                    Ok(s) => ui.label(format!("✔ {}: {s}", last.request)),
-                    Err(r) => ui.colored_label(
-                        egui::Color32::from_rgb(230, 120, 90),
-                        format!("x {}: {r}", last.request),
-                    ),
-                },
-                None => ui.label("Ready. Press F1 or ? for help."),
-            };
-        });
-    });
+    let status = status_bar(&mut root, &view, &log);
 
     let inspector = egui::Panel::left("inspector")
         .resizable(true)
@@ -423,15 +406,8 @@ pub fn panels(
             egui::ScrollArea::vertical().show(ui, |ui| {
                 ui.heading("Pappus");
                 // A job's progress shows whatever sections are open.
-                if let Some((label, fraction, seconds)) = &view.job {
-                    ui.horizontal(|ui| {
-                        let text = format!("{label}: {:.0} % ({seconds:.1} s)", fraction * 100.0);
-                        let bar = egui::ProgressBar::new(*fraction).text(text).animate(true);
-                        ui.add(bar.desired_width(ui.available_width() - 70.0));
-                        if ui.button("Cancel").clicked() {
-                            requests.write(Request::CancelJob);
-                        }
-                    });
+                if let Some(job) = &view.job {
+                    job_progress(ui, job, &mut requests);
                 }
                 sections.show(ui, "File", |ui| {
                     file_section(ui, &mut fields, &mut ui_state, &mut requests);
@@ -500,36 +476,83 @@ pub fn panels(
     histogram_window(&ctx, &view, ui_state.histograms);
 
     if ui_state.show_help {
-        let mut open = true;
-        egui::Window::new("Shortcuts")
-            .open(&mut open)
-            .collapsible(false)
-            .show(&ctx, |ui| {
-                egui::Grid::new("help").striped(true).show(ui, |ui| {
-                    for s in SHORTCUTS {
-                        ui.monospace(s.keys);
-                        ui.label(s.description);
-                        ui.end_row();
-                    }
-                    for (keys, what) in [
-                        ("left click", "select (mode: 1 2 3 4 `)"),
-                        ("middle / right drag", "orbit"),
-                        ("Shift + drag", "pan"),
-                        ("wheel", "zoom"),
-                        ("drop a file", "open it"),
-                    ] {
-                        ui.monospace(keys);
-                        ui.label(what);
-                        ui.end_row();
-                    }
-                });
-            });
-        ui_state.show_help = open;
+        ui_state.show_help = help_window(&ctx);
     }
 
     captured.0 = ctx.egui_wants_keyboard_input();
     pointer.0 = ctx.egui_wants_pointer_input() || ctx.is_pointer_over_egui();
     Ok(())
+}
+
+/// A running job's progress bar and its Cancel button.
+fn job_progress(
+    ui: &mut egui::Ui,
+    (label, fraction, seconds): &(String, f32, f32),
+    requests: &mut MessageWriter<Request>,
+) {
+    ui.horizontal(|ui| {
+        let text = format!("{label}: {:.0} % ({seconds:.1} s)", fraction * 100.0);
+        let bar = egui::ProgressBar::new(*fraction).text(text).animate(true);
+        ui.add(bar.desired_width(ui.available_width() - 70.0));
+        if ui.button("Cancel").clicked() {
+            requests.write(Request::CancelJob);
+        }
+    });
+}
+
+/// The status line: a gesture's hint, or the last outcome.
+fn status_bar(
+    root: &mut egui::Ui,
+    view: &InspectorView,
+    log: &OutcomeLog,
+) -> egui::InnerResponse<()> {
+    egui::Panel::bottom("status").show(root, |ui| {
+        ui.horizontal(|ui| {
+            if let Some(hint) = &view.gesture {
+                ui.colored_label(egui::Color32::from_rgb(255, 190, 90), hint);
+                return;
+            }
+            match log.entries.last() {
+                Some(last) => match &last.result {
+                    Ok(s) => ui.label(format!("✔ {}: {s}", last.request)),
+                    Err(r) => ui.colored_label(
+                        egui::Color32::from_rgb(230, 120, 90),
+                        format!("x {}: {r}", last.request),
+                    ),
+                },
+                None => ui.label("Ready. Press F1 or ? for help."),
+            };
+        });
+    })
+}
+
+/// The help window listing every key; returns whether it stays open.
+fn help_window(ctx: &egui::Context) -> bool {
+    let mut open = true;
+    egui::Window::new("Shortcuts")
+        .open(&mut open)
+        .collapsible(false)
+        .show(ctx, |ui| {
+            egui::Grid::new("help").striped(true).show(ui, |ui| {
+                for s in SHORTCUTS {
+                    ui.monospace(s.keys);
+                    ui.label(s.description);
+                    ui.end_row();
+                }
+                for (keys, what) in [
+                    ("left click", "select (mode: 1 2 3 4 `)"),
+                    ("middle / right drag", "orbit"),
+                    ("Shift + drag", "pan"),
+                    ("wheel", "zoom"),
+                    ("drop a file", "open it"),
+                ] {
+                    ui.monospace(keys);
+                    ui.label(what);
+                    ui.end_row();
+                }
+            });
+        });
+    open
 }
 
 fn file_section(
