@@ -706,47 +706,10 @@ fn a_proportional_move_takes_each_vertex_by_its_falloff() {
 
 #[test]
 fn a_move_of_a_handle_with_anchors_marked_deforms_the_mesh_in_one_undo_step() {
-    use pappus::editor::requests::SelectionEdit;
     let mut app = app_with_camera();
-    open(&mut app, "shape:quad-grid");
-    let m = mesh(&app);
-    let vertices = pappus::mesh::MeshMembers::collect(app.world(), m).vertices;
-    let before: Vec<Vec3> = {
-        let r = MeshRef::new(app.world());
-        vertices.iter().map(|&v| r.position(v)).collect()
-    };
-    let column = |x: f32| -> Vec<ElementId> {
-        (0..vertices.len())
-            .filter(|&i| (before[i].x - x).abs() < 1e-6)
-            .map(|i| ElementId::Vertex(vertices[i]))
-            .collect()
-    };
-    let select = |app: &mut App, xs: Vec<ElementId>| {
-        app.world_mut()
-            .write_message(Request::from(SelectionEdit::Replace(xs)));
-        app.update();
-    };
-    // Shift+A: the left column holds; the right column is the handle, lifted 0.1 along Z.
-    select(&mut app, column(0.0));
-    press_with(&mut app, KeyCode::ShiftLeft, KeyCode::KeyA);
-    assert!(
-        last_outcome(&app)
-            .result
-            .as_ref()
-            .unwrap()
-            .starts_with("11 anchor vertices")
-    );
-    select(&mut app, column(1.0));
-    for key in [
-        KeyCode::KeyG,
-        KeyCode::KeyZ,
-        KeyCode::Digit0,
-        KeyCode::Period,
-        KeyCode::Digit1,
-        KeyCode::Enter,
-    ] {
-        press(&mut app, key);
-    }
+    // The left column holds; the right column is the handle, lifted 0.1 along Z.
+    let (vertices, before) = grid_with_anchors_and_handle(&mut app);
+    lift_handle(&mut app);
     let r = MeshRef::new(app.world());
     for (i, &v) in vertices.iter().enumerate() {
         let p = r.position(v);
@@ -787,6 +750,20 @@ fn a_move_of_a_handle_with_anchors_marked_deforms_the_mesh_in_one_undo_step() {
     }
 }
 
+/// `G`, `Z`, 0.1 typed, Enter: the selection moved 0.1 along Z.
+fn lift_handle(app: &mut App) {
+    for key in [
+        KeyCode::KeyG,
+        KeyCode::KeyZ,
+        KeyCode::Digit0,
+        KeyCode::Period,
+        KeyCode::Digit1,
+        KeyCode::Enter,
+    ] {
+        press(app, key);
+    }
+}
+
 /// The quad grid opened with its left column as anchors and its right column selected (the
 /// handle); the vertices and their rest positions.
 fn grid_with_anchors_and_handle(app: &mut App) -> (Vec<pappus::mesh::VertexId>, Vec<Vec3>) {
@@ -807,6 +784,8 @@ fn grid_with_anchors_and_handle(app: &mut App) -> (Vec<pappus::mesh::VertexId>, 
         .write_message(Request::from(SelectionEdit::Replace(column(0.0))));
     app.update();
     press_with(app, KeyCode::ShiftLeft, KeyCode::KeyA);
+    let anchored = last_outcome(app).result.unwrap();
+    assert!(anchored.starts_with("11 anchor vertices"), "{anchored}");
     app.world_mut()
         .write_message(Request::from(SelectionEdit::Replace(column(1.0))));
     app.update();
@@ -825,16 +804,7 @@ fn in_step_mode_an_arap_handle_drag_steps_an_iteration_at_a_time_and_ends_as_the
         vertices.iter().map(|&v| r.position(v)).collect()
     };
     press(&mut app, KeyCode::F9);
-    for key in [
-        KeyCode::KeyG,
-        KeyCode::KeyZ,
-        KeyCode::Digit0,
-        KeyCode::Period,
-        KeyCode::Digit1,
-        KeyCode::Enter,
-    ] {
-        press(&mut app, key);
-    }
+    lift_handle(&mut app);
     app.update();
     let run_at = |app: &App| {
         let run = app

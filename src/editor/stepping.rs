@@ -172,17 +172,12 @@ pub struct DeformIteration {
 }
 
 impl DeformSteps {
-    /// Factors the system for the edit's anchors and handle on the mesh as it is (the rest
-    /// pose) and places the handle where the motion sends it: iteration 0.
+    /// Checks the edit and factors its system on the mesh as it is (the rest pose), then places
+    /// the handle where the motion sends it: iteration 0.
     fn start(world: &World, mesh: MeshId, params: &DeformParams) -> Result<Self, Refusal> {
-        let mut live = LiveDeform::new(world, mesh, params.method, &params.fixed, &params.handle)?;
-        let m = MeshRef::new(world);
-        let targets: Vec<Vec3> = params
-            .handle
-            .iter()
-            .map(|&v| params.motion.transform_point3(m.position(v)))
-            .collect();
+        let (mut live, targets) = crate::ops::deform::prepare(world, mesh, params)?;
         let moves = live.solve(&targets, 0)?;
+        let m = MeshRef::new(world);
         let energy = live.energy();
         let edges: Vec<_> = of_kind::<Edge, _>(world, mesh, EdgeId);
         let mean_edge = edges

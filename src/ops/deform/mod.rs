@@ -165,18 +165,16 @@ fn hold_loose_parts(n: usize, edges: &[(u32, u32, f64)], held: &mut [bool]) -> u
     loose.iter().filter(|x| **x).count()
 }
 
-/// Deforms `mesh`: the anchors stay, the handle moves by its motion, the rest follows by the
-/// method (see the module doc).
+/// Checks a deformation's parameters and factors its system on `mesh` as it is (the rest pose):
+/// the [`LiveDeform`] and where the motion sends each handle vertex, in the handle's order.
 ///
 /// # Refusals
-/// A stale mesh or vertex; an empty handle, a vertex both anchor and handle, a motion that is
-/// not finite, iterations outside 1–10 000 ([`Refusal::BadParameter`]); a system that cannot be
-/// solved. The mesh is then unchanged.
-pub fn deform(
-    world: &mut World,
+/// As [`deform`]'s.
+pub fn prepare(
+    world: &World,
     mesh: MeshId,
     params: &DeformParams,
-) -> Result<DeformSummary, Refusal> {
+) -> Result<(LiveDeform, Vec<Vec3>), Refusal> {
     let iterations_ok = (1..=DeformParams::MAX_ITERATIONS).contains(&params.iterations);
     if params.method == DeformMethod::Arap && !iterations_ok {
         return Err(Refusal::BadParameter(format!(
@@ -202,13 +200,29 @@ pub fn deform(
             ElementId::Vertex(*both)
         )));
     }
-    let mut live = LiveDeform::new(world, mesh, params.method, &params.fixed, &params.handle)?;
+    let live = LiveDeform::new(world, mesh, params.method, &params.fixed, &params.handle)?;
     let m = MeshRef::new(world);
     let targets: Vec<Vec3> = params
         .handle
         .iter()
         .map(|&v| params.motion.transform_point3(m.position(v)))
         .collect();
+    Ok((live, targets))
+}
+
+/// Deforms `mesh`: the anchors stay, the handle moves by its motion, the rest follows by the
+/// method (see the module doc).
+///
+/// # Refusals
+/// A stale mesh or vertex; an empty handle, a vertex both anchor and handle, a motion that is
+/// not finite, iterations outside 1–10 000 ([`Refusal::BadParameter`]); a system that cannot be
+/// solved. The mesh is then unchanged.
+pub fn deform(
+    world: &mut World,
+    mesh: MeshId,
+    params: &DeformParams,
+) -> Result<DeformSummary, Refusal> {
+    let (mut live, targets) = prepare(world, mesh, params)?;
     live.place(&targets);
     let energy_before = live.energy();
     let iterating = Instant::now();
