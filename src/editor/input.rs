@@ -224,6 +224,14 @@ const fn ctrl(
     }
 }
 
+/// The keys of `action` as the help lists them (`"Ctrl+T"`), if it has a shortcut.
+pub fn keys_of(action: Action) -> Option<&'static str> {
+    SHORTCUTS
+        .iter()
+        .find(|s| s.action == action)
+        .map(|s| s.keys)
+}
+
 /// Every shortcut of the editor.
 pub const SHORTCUTS: &[Shortcut] = &[
     key(

@@ -80,6 +80,10 @@ impl PanelSections {
     /// Draws the section titled `title` with `contents` when it is open; a click on the title
     /// folds it.
     pub fn show(&mut self, ui: &mut egui::Ui, title: &str, contents: impl FnOnce(&mut egui::Ui)) {
+        debug_assert!(
+            SECTIONS.iter().any(|(t, _)| *t == title),
+            "{title} is not in SECTIONS"
+        );
         let open = self.is_open(title);
         let shown = egui::CollapsingHeader::new(egui::RichText::new(title).strong())
             .id_salt(title)
@@ -95,15 +99,18 @@ impl PanelSections {
             return;
         };
         let text: String = self.open.iter().map(|t| format!("{t}\n")).collect();
-        let written = file
-            .parent()
-            .map_or(Ok(()), std::fs::create_dir_all)
-            .and_then(|()| std::fs::write(file, text));
-        if let Err(e) = written {
+        if let Some(folder) = file.parent()
+            && let Err(e) = std::fs::create_dir_all(folder)
+        {
             bevy::log::warn!(
                 "the panel's sections are not remembered: {}: {e}",
-                file.display()
+                folder.display()
             );
+            return;
+        }
+        // Written as a mesh is saved: a crash mid-write leaves the last list whole.
+        if let Err(e) = crate::io::replace_file(file, text.as_bytes()) {
+            bevy::log::warn!("the panel's sections are not remembered: {e}");
         }
     }
 }

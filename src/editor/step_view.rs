@@ -13,7 +13,7 @@ use bevy_egui::{EguiContexts, egui};
 use crate::mesh::ids::ElementId;
 use crate::mesh::topology::MeshRef;
 
-use super::input::{Action, SHORTCUTS, UiState};
+use super::input::{Action, UiState};
 use super::overlay::{AXIS_COLORS, Overlay, Shape};
 use super::requests::Request;
 use super::requests::StepMove;
@@ -214,10 +214,7 @@ pub fn snapshot_steps(world: &mut World) {
 }
 
 fn keys_of(action: Action) -> &'static str {
-    SHORTCUTS
-        .iter()
-        .find(|s| s.action == action)
-        .map_or("", |s| s.keys)
+    super::input::keys_of(action).unwrap_or("")
 }
 
 /// The step window, and the next edge's cost written beside it on the mesh.
@@ -292,11 +289,7 @@ pub fn step_window(
             if let Some(stencil) = &view.stencil {
                 ui.separator();
                 stencil_panel(ui, stencil);
-            } else if view.passes.is_empty()
-                && view.next.is_none()
-                && !view.scrubs
-                && view.energies.is_empty()
-            {
+            } else if view.passes.is_empty() && view.next.is_none() && !view.scrubs {
                 ui.label("select a vertex, an edge or a face to see its stencil");
             }
             if let Some(fate) = &view.fate {

@@ -205,7 +205,8 @@ impl DeformSteps {
     /// Each free vertex of the iteration shown, where it is and its best rotation.
     pub fn frames(&self) -> impl Iterator<Item = (Vec3, Quat)> + '_ {
         let shown = &self.iterations[self.at];
-        let handle = self.vertices.len() - self.live.free();
+        // The free vertices come last, one rotation each.
+        let handle = shown.positions.len() - shown.rotations.len();
         shown.positions[handle..]
             .iter()
             .copied()

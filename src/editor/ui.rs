@@ -356,10 +356,7 @@ fn describe(m: &MeshRef<'_>, id: ElementId) -> SelectedView {
 }
 
 fn shortcut_label(action: Action) -> &'static str {
-    SHORTCUTS
-        .iter()
-        .find(|s| s.action == action)
-        .map_or("", |s| s.keys)
+    super::input::keys_of(action).unwrap_or("")
 }
 
 /// Draws the panels and turns clicks into requests.
@@ -704,11 +701,8 @@ fn selection_section(
     egui::Grid::new("relations").num_columns(2).show(ui, |ui| {
         for (relation, target) in &sel.relations {
             // E and F go to a halfedge's edge and face (the keys extrude and fill otherwise).
-            let key = SHORTCUTS
-                .iter()
-                .find(|s| s.action == Action::Navigate(*relation))
-                .map(|s| s.keys)
-                .or(match (sel.id, relation) {
+            let key =
+                super::input::keys_of(Action::Navigate(*relation)).or(match (sel.id, relation) {
                     (ElementId::Halfedge(_), Relation::Edge) => Some("E"),
                     (ElementId::Halfedge(_), Relation::Face) => Some("F"),
                     _ => None,

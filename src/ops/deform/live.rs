@@ -205,9 +205,9 @@ impl LiveDeform {
         Ok(moves)
     }
 
-    /// The rotation the last ARAP iteration's local step fitted at each vertex that is not
-    /// held, in [`LiveDeform::moves`]' order after the handle (identity before the first
-    /// iteration; empty for the thin plate, which has none).
+    /// The rotation the last local step (an iteration's, or [`LiveDeform::energy`]'s) fitted at
+    /// each vertex that is not held, in [`LiveDeform::moves`]' order after the handle (identity
+    /// before any; empty for the thin plate, which has none).
     pub fn free_rotations(&self) -> Vec<Quat> {
         let Solver::Arap(arap) = &self.solver else {
             return Vec::new();
