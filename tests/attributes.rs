@@ -149,7 +149,7 @@ fn one_loop_level_interpolates_uvs_linearly_and_drops_normals() {
     );
     assert!(
         summary.ends_with(
-            "— normals dropped: subdivision carries UVs and colours, not normals or seam marks"
+            "— normals dropped: subdivision carries UVs, colours and groups, not normals or seam marks"
         ),
         "{summary}"
     );

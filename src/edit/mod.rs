@@ -465,7 +465,7 @@ impl Edit {
 
     /// Whether the edit carries the mesh's attributes (UVs, normals, colours) through; those
     /// that do not (remeshing, simplification, moves along the simplification history) drop
-    /// them, and [`Edit::run`] says so in the summary. Subdivision carries UVs and colours and
+    /// them, and [`Edit::run`] says so in the summary. Subdivision carries UVs, colours and groups and
     /// drops normals (see [`crate::ops::subdivide`]).
     pub fn carries_attributes(&self) -> bool {
         !matches!(
@@ -525,6 +525,9 @@ impl Edit {
         }
         if !self.carries_attributes() {
             drop_attributes(world, mesh);
+        } else if had.groups {
+            // Faces made where there was none take a neighbour's group.
+            crate::mesh::groups::settle(world, mesh);
         }
         self.lost_note(had, MeshAttributes::of(world, mesh))
     }
@@ -543,7 +546,7 @@ impl Edit {
                 "simplification does not carry attributes".into()
             }
             Edit::Subdivide(_) => {
-                "subdivision carries UVs and colours, not normals or seam marks".into()
+                "subdivision carries UVs, colours and groups, not normals or seam marks".into()
             }
             _ => format!("{} does not carry them", self.label()),
         }

@@ -6,6 +6,7 @@
 //! | UV        | [`CornerUv`]     | every face halfedge      | `Vec2`                     |
 //! | normal    | [`VertexNormal`] | every vertex             | `Vec3` (as the file gave)  |
 //! | colour    | [`VertexColor`]  | every vertex             | `[u8; 3]`, 8-bit sRGB      |
+//! | group     | [`FaceGroup`]    | every face               | a row of the [`GroupTable`] |
 //!
 //! # The corner convention
 //! A UV belongs to a **corner**: a vertex inside one face. The corner of face halfedge `h` is its
@@ -39,12 +40,18 @@
 //! - Remeshing, simplification, and what moves along the simplification history: dropped, and
 //!   the outcome says so ([`MeshAttributes::dropped_note`]).
 //!
+//! Face groups (OBJ's objects, groups, materials) have their own module,
+//! [`crate::mesh::groups`], which says who carries them.
+//!
 //! [`Connectivity`]: crate::mesh::tables::Connectivity
+//! [`FaceGroup`]: crate::mesh::groups::FaceGroup
+//! [`GroupTable`]: crate::mesh::groups::GroupTable
 
 use bevy::math::{Vec2, Vec3};
 use bevy::prelude::{Component, Entity, World};
 
 use super::elements::{Halfedge, InMesh, Vertex};
+use super::groups::{FaceGroups, remove_face_groups};
 use super::ids::{HalfedgeId, MeshId, VertexId};
 
 /// The texture coordinate of a corner: on a face halfedge `h`, the UV of `to_vertex(h)` inside
@@ -84,6 +91,9 @@ pub struct MeshAttributes {
     pub colors: bool,
     /// Edges may carry a [`Seam`] mark (when false, none does; when true, some may).
     pub seams: bool,
+    /// Every face has a [`crate::mesh::groups::FaceGroup`], and the mesh entity a
+    /// [`crate::mesh::groups::GroupTable`].
+    pub groups: bool,
 }
 
 impl MeshAttributes {
@@ -93,6 +103,7 @@ impl MeshAttributes {
         normals: false,
         colors: false,
         seams: false,
+        groups: false,
     };
 
     /// The record of `mesh` (none if it has no record or is gone).
@@ -112,16 +123,19 @@ impl MeshAttributes {
             normals: self.normals && !now.normals,
             colors: self.colors && !now.colors,
             seams: self.seams && !now.seams,
+            groups: self.groups && !now.groups,
         }
     }
 
-    /// Names for messages, in a fixed order: `UVs`, `normals`, `colours`.
+    /// Names for messages, in a fixed order: `UVs`, `normals`, `colours`, `seam marks`,
+    /// `groups`.
     pub fn names(self) -> Vec<&'static str> {
         [
             ("UVs", self.uv),
             ("normals", self.normals),
             ("colours", self.colors),
             ("seam marks", self.seams),
+            ("groups", self.groups),
         ]
         .into_iter()
         .filter_map(|(n, has)| has.then_some(n))
@@ -162,6 +176,8 @@ pub struct AttributeColumns {
     pub colors: Option<Vec<[u8; 3]>>,
     /// Seam marks, by edge row.
     pub seams: Option<Vec<bool>>,
+    /// Face groups, by face row, with their names.
+    pub groups: Option<FaceGroups>,
 }
 
 impl AttributeColumns {
@@ -172,6 +188,7 @@ impl AttributeColumns {
             normals: self.normals.is_some(),
             colors: self.colors.is_some(),
             seams: self.seams.is_some(),
+            groups: self.groups.is_some(),
         }
     }
 
@@ -186,6 +203,7 @@ impl AttributeColumns {
             + self.normals.as_ref().map_or(0, |v| v.capacity() * 12)
             + self.colors.as_ref().map_or(0, |v| v.capacity() * 3)
             + self.seams.as_ref().map_or(0, Vec::capacity)
+            + self.groups.as_ref().map_or(0, |g| g.of_face.capacity() * 4)
     }
 }
 
@@ -312,6 +330,9 @@ pub fn remove_attributes(world: &mut World, mesh: MeshId, which: MeshAttributes)
             }
         }
     }
+    if which.groups {
+        remove_face_groups(world, mesh);
+    }
     let now = MeshAttributes::of(world, mesh).lost_in(which);
     set_record(world, mesh, now);
 }
@@ -347,6 +368,7 @@ mod tests {
             normals: true,
             colors: true,
             seams: false,
+            groups: false,
         };
         assert_eq!(all.describe(), "UVs, normals and colours");
         let marked = MeshAttributes { seams: true, ..all };

@@ -12,6 +12,7 @@ use thiserror::Error;
 
 use super::attributes::AttributeColumns;
 use super::elements::MeshInfo;
+use super::groups::FaceGroups;
 use super::ids::{MeshId, VertexId};
 use super::members::MeshMembers;
 use super::repair::{RepairReport, RepairedFaces, repair};
@@ -121,6 +122,20 @@ fn attribute_columns(
     {
         columns.colors = Some(input.iter().map(|&i| colors[i as usize]).collect());
     }
+    if let Some(groups) = soup.face_groups.as_ref().filter(|_| has.groups) {
+        // Each repaired face takes the group of the input face its first corner came from.
+        let input_face = |corner: u32| soup.face_starts.partition_point(|&s| s <= corner) - 1;
+        let of_face = faces
+            .face_starts
+            .iter()
+            .take(faces.face_count())
+            .map(|&first| groups.of_face[input_face(source[first as usize])])
+            .collect();
+        columns.groups = Some(FaceGroups {
+            table: groups.table.clone(),
+            of_face,
+        });
+    }
     columns
 }
 
@@ -167,6 +182,7 @@ pub fn soup_of_tables(t: &Connectivity) -> PolygonSoup {
     soup.corner_uvs = uvs.map(|(_, out)| out);
     soup.vertex_normals.clone_from(&t.attributes.normals);
     soup.vertex_colors.clone_from(&t.attributes.colors);
+    soup.face_groups.clone_from(&t.attributes.groups);
     soup
 }
 

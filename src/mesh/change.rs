@@ -19,7 +19,7 @@
 //!
 //! States are compared bitwise (`-0.0` is not `0.0`), so an undo restores positions exactly.
 //! Attributes travel with their elements: a local record holds each element's UV, normal and
-//! colour beside its links (and an edge its seam mark), and the whole-mesh records hold the tables' attribute columns, whose
+//! colour beside its links (an edge its seam mark, a face its group), and the whole-mesh records hold the tables' attribute columns, whose
 //! writer also restores the mesh's [`crate::mesh::attributes::MeshAttributes`] record.
 
 use bevy::ecs::entity::{EntityHashMap, EntityHashSet};
@@ -28,6 +28,7 @@ use bevy::prelude::{Component, Entity, World};
 
 use super::attributes::{CornerUv, Seam, VertexColor, VertexNormal};
 use super::elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
+use super::groups::FaceGroup;
 use super::ids::{FaceId, MeshId, VertexId};
 use super::members::MeshMembers;
 use super::tables::write::write_tables;
@@ -78,8 +79,8 @@ pub enum ElementState {
     Halfedge(Halfedge, Option<Vec2>),
     /// An edge and whether it is marked a seam.
     Edge(Edge, bool),
-    /// A face.
-    Face(Face),
+    /// A face and its group (a row of its mesh's group table).
+    Face(Face, Option<u32>),
 }
 
 impl ElementState {
@@ -97,7 +98,8 @@ impl ElementState {
         } else if let Some(x) = r.get::<Edge>() {
             Some(Self::Edge(*x, r.contains::<Seam>()))
         } else {
-            r.get::<Face>().map(|f| Self::Face(*f))
+            r.get::<Face>()
+                .map(|f| Self::Face(*f, r.get::<FaceGroup>().map(|g| g.0)))
         }
     }
 
@@ -115,7 +117,7 @@ impl ElementState {
                         == y.map(|u| u.to_array().map(f32::to_bits))
             }
             (Self::Edge(a, x), Self::Edge(b, y)) => a == b && x == y,
-            (Self::Face(a), Self::Face(b)) => a == b,
+            (Self::Face(a, x), Self::Face(b, y)) => a == b && x == y,
             _ => false,
         }
     }
@@ -131,7 +133,7 @@ impl ElementState {
             Self::Vertex(v, ..) => Component::map_entities(v, map),
             Self::Halfedge(h, _) => Component::map_entities(h, map),
             Self::Edge(x, _) => Component::map_entities(x, map),
-            Self::Face(f) => Component::map_entities(f, map),
+            Self::Face(f, _) => Component::map_entities(f, map),
         }
     }
 
@@ -188,9 +190,17 @@ impl ElementState {
                     r.remove::<Seam>();
                 }
             }
-            Self::Face(f) => {
+            Self::Face(f, group) => {
                 if let Some(mut x) = r.get_mut::<Face>() {
                     *x = f;
+                }
+                match group {
+                    Some(g) => {
+                        r.insert(FaceGroup(g));
+                    }
+                    None => {
+                        r.remove::<FaceGroup>();
+                    }
                 }
             }
         }
@@ -218,7 +228,11 @@ impl ElementState {
                     x.insert(Seam);
                 }
             }),
-            Self::Face(f) => world.spawn_at(e, (f, member)).map(|_| ()),
+            Self::Face(f, group) => world.spawn_at(e, (f, member)).map(|mut x| {
+                if let Some(g) = group {
+                    x.insert(FaceGroup(g));
+                }
+            }),
         };
         // The entity was allocated just before: spawning it cannot fail.
         spawned.expect("a freshly allocated entity can be spawned");

@@ -24,6 +24,7 @@ pub mod attributes;
 pub mod build;
 pub mod change;
 pub mod elements;
+pub mod groups;
 pub mod ids;
 pub mod loops;
 pub mod members;

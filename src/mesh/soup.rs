@@ -12,6 +12,7 @@
 use bevy::math::{Vec2, Vec3};
 
 use super::attributes::MeshAttributes;
+use super::groups::FaceGroups;
 
 /// Positions and polygonal faces, unchecked.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -35,6 +36,9 @@ pub struct PolygonSoup {
     /// `indices` (`corner_uvs[k]` is the UV of vertex `indices[k]` inside its face), so two
     /// faces may give one vertex different UVs (a seam).
     pub corner_uvs: Option<Vec<Vec2>>,
+    /// The object, group, material and smoothing group of each face, when the soup carries
+    /// them (OBJ's `o`, `g`, `usemtl`, `s`): one per face, in face order.
+    pub face_groups: Option<FaceGroups>,
     /// What a reader had to approximate, one sentence each (corners of one vertex that gave it
     /// different normals, corners without a UV in a file with UVs), for the load message.
     pub notes: Vec<String>,
@@ -53,6 +57,7 @@ impl PolygonSoup {
             vertex_colors: None,
             vertex_normals: None,
             corner_uvs: None,
+            face_groups: None,
             notes: Vec::new(),
         }
     }
@@ -86,8 +91,8 @@ impl PolygonSoup {
             .collect()
     }
 
-    /// The attributes of the soup a mesh keeps: which of corner UVs, vertex normals and vertex
-    /// colours it carries with one value per corner / position.
+    /// The attributes of the soup a mesh keeps: which of corner UVs, vertex normals, vertex
+    /// colours and face groups it carries with one value per corner / position / face.
     pub fn attributes(&self) -> MeshAttributes {
         let n = self.positions.len();
         MeshAttributes {
@@ -98,6 +103,10 @@ impl PolygonSoup {
             normals: self.vertex_normals.as_ref().is_some_and(|v| v.len() == n),
             colors: self.vertex_colors.as_ref().is_some_and(|v| v.len() == n),
             seams: false,
+            groups: self
+                .face_groups
+                .as_ref()
+                .is_some_and(|g| g.fits(self.face_count())),
         }
     }
 

@@ -38,6 +38,7 @@ use bevy::prelude::World;
 
 use crate::mesh::MeshMembers;
 use crate::mesh::attributes::{AttributeColumns, mean_color};
+use crate::mesh::groups::FaceGroups;
 use crate::mesh::ids::{ElementId, FaceId, MeshId};
 use crate::mesh::tables::write::{reserve_rows_while, write_links};
 use crate::mesh::tables::{
@@ -438,32 +439,51 @@ pub fn loop_tables(t: &Connectivity) -> Result<Connectivity, FaceRow> {
     });
     // The attributes, by the same layout: per old face, per corner i `(v_i, m_i, m_{i−1})`,
     // then `(m0, m1, m2)`.
-    c.attributes = subdivided_attributes(t, &c, 3, |uv, out| {
-        for f in t.faces() {
-            let hs = rings.face(f);
-            // The UV at v_i inside f: the corner of the halfedge into it.
-            let at = |i: usize| uv[hs[(i + 2) % 3].index()];
-            let mid = |i: usize| (at(i) + at(i + 1)) * 0.5;
-            for i in 0..3 {
-                out.extend([at(i), mid(i), mid(i + 2)]);
+    c.attributes = subdivided_attributes(
+        t,
+        &c,
+        3,
+        |_| 4,
+        |uv, out| {
+            for f in t.faces() {
+                let hs = rings.face(f);
+                // The UV at v_i inside f: the corner of the halfedge into it.
+                let at = |i: usize| uv[hs[(i + 2) % 3].index()];
+                let mid = |i: usize| (at(i) + at(i + 1)) * 0.5;
+                for i in 0..3 {
+                    out.extend([at(i), mid(i), mid(i + 2)]);
+                }
+                out.extend([mid(0), mid(1), mid(2)]);
             }
-            out.extend([mid(0), mid(1), mid(2)]);
-        }
-    });
+        },
+    );
     Ok(c)
 }
 
-/// The attribute columns of a subdivided mesh `c` (faces of `sides` corners each) from those
-/// of `t`: UVs from `corner_uvs`, which pushes the UV at every new corner's vertex in `c`'s
-/// corner order; colours kept at old vertices, the mean of the edge's ends at edge points and
-/// of the face's corners at face points; normals dropped (the surface moved).
+/// The attribute columns of a subdivided mesh `c` (faces of `sides` corners each, the
+/// `children(f)` faces of old face `f` one after another, in old face order) from those of `t`:
+/// UVs from `corner_uvs`, which pushes the UV at every new corner's vertex in `c`'s corner
+/// order; colours kept at old vertices, the mean of the edge's ends at edge points and of the
+/// face's corners at face points; each new face in its old face's group; normals dropped (the
+/// surface moved).
 fn subdivided_attributes(
     t: &Connectivity,
     c: &Connectivity,
     sides: usize,
+    children: impl Fn(FaceRow) -> usize,
     corner_uvs: impl FnOnce(&[Vec2], &mut Vec<Vec2>),
 ) -> AttributeColumns {
     let mut out = AttributeColumns::default();
+    if let Some(groups) = &t.attributes.groups {
+        let of_face = t
+            .faces()
+            .flat_map(|f| std::iter::repeat_n(groups.of_face[f.index()], children(f)))
+            .collect();
+        out.groups = Some(FaceGroups {
+            table: groups.table.clone(),
+            of_face,
+        });
+    }
     if let Some(uv) = t
         .attributes
         .uv
@@ -600,18 +620,24 @@ pub fn catmull_clark_tables(t: &Connectivity) -> Connectivity {
     });
     // The attributes, by the same layout: per old face, per corner i
     // `(v_i, e_i, face point, e_{i−1})`.
-    c.attributes = subdivided_attributes(t, &c, 4, |uv, out| {
-        for f in t.faces() {
-            let hs = rings.face(f);
-            let k = hs.len();
-            let at = |i: usize| uv[hs[(i + k - 1) % k].index()];
-            let mid = |i: usize| (at(i) + at(i + 1)) * 0.5;
-            let centre = (0..k).map(at).sum::<Vec2>() / k as f32;
-            for i in 0..k {
-                out.extend([at(i), mid(i), centre, mid(i + k - 1)]);
+    c.attributes = subdivided_attributes(
+        t,
+        &c,
+        4,
+        |f| rings.face(f).len(),
+        |uv, out| {
+            for f in t.faces() {
+                let hs = rings.face(f);
+                let k = hs.len();
+                let at = |i: usize| uv[hs[(i + k - 1) % k].index()];
+                let mid = |i: usize| (at(i) + at(i + 1)) * 0.5;
+                let centre = (0..k).map(at).sum::<Vec2>() / k as f32;
+                for i in 0..k {
+                    out.extend([at(i), mid(i), centre, mid(i + k - 1)]);
+                }
             }
-        }
-    });
+        },
+    );
     c
 }
 

@@ -136,6 +136,8 @@ pub fn triangulate_face(world: &mut World, mesh: MeshId, f: FaceId) -> Option<us
             world.get_mut::<Face>(f.0).expect("face exists").halfedge = hs[0];
         } else {
             spawn(world, face.0, (Face { halfedge: hs[0] }, member));
+            let group = crate::mesh::groups::face_group(world, f);
+            crate::mesh::groups::set_face_group(world, face, group);
         }
     }
     for (h, x) in new_halfedges {

@@ -17,6 +17,7 @@ use crate::mesh::attributes::{
     AttributeColumns, CornerUv, MeshAttributes, Seam, VertexColor, VertexNormal,
 };
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
+use crate::mesh::groups::{FaceGroup, FaceGroups, GroupTable};
 use crate::mesh::ids::{HalfedgeId, MeshId, slot, slots_for};
 use crate::mesh::members::MeshMembers;
 
@@ -145,6 +146,16 @@ pub fn extract(world: &World, mesh: MeshId) -> MeshTables {
         let mut seams = vec![false; t.edge_halfedge.len()];
         for_each_element::<&Seam>(world, mesh, |e, _| seams[row(e)] = true);
         t.attributes.seams = Some(seams);
+    }
+    if has.groups
+        && let Some(table) = world.get::<GroupTable>(mesh.0)
+    {
+        let mut of_face = vec![0u32; t.face_halfedge.len()];
+        for_each_element::<&FaceGroup>(world, mesh, |e, g| of_face[row(e)] = g.0);
+        t.attributes.groups = Some(FaceGroups {
+            table: table.clone(),
+            of_face,
+        });
     }
     MeshTables { tables: t, members }
 }

@@ -26,6 +26,7 @@ use crate::mesh::attributes::{
     CornerUv, MeshAttributes, Seam, VertexColor, VertexNormal, remove_attributes, set_record,
 };
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
+use crate::mesh::groups::{FaceGroup, GroupTable};
 use crate::mesh::ids::{EdgeId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::process_memory;
@@ -300,11 +301,13 @@ pub(crate) fn write_attributes(
         .seams
         .as_deref()
         .filter(|v| v.len() == rows.edges.len());
+    let groups = columns.groups.as_ref().filter(|g| g.fits(rows.faces.len()));
     let now = MeshAttributes {
         uv: uv.is_some(),
         normals: normals.is_some(),
         colors: colors.is_some(),
         seams: seams.is_some(),
+        groups: groups.is_some(),
     };
     remove_attributes(world, mesh, before.lost_in(now));
     if let Some(uv) = uv {
@@ -339,6 +342,17 @@ pub(crate) fn write_attributes(
             .zip(seams)
             .map(|(e, &seam)| (e.0, seam.then_some(())));
         write_column(world, values.collect(), |()| Seam);
+    }
+    if let Some(groups) = groups {
+        if world.get::<GroupTable>(mesh.0) != Some(&groups.table) {
+            world.entity_mut(mesh.0).insert(groups.table.clone());
+        }
+        let values = rows
+            .faces
+            .iter()
+            .zip(&groups.of_face)
+            .map(|(f, &g)| (f.0, Some(g)));
+        write_column(world, values.collect(), FaceGroup);
     }
     set_record(world, mesh, now);
 }

@@ -61,6 +61,7 @@ use bevy::prelude::World;
 
 use crate::mesh::attributes::{self, MeshAttributes, VertexColor, VertexNormal};
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
+use crate::mesh::groups;
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 
@@ -303,6 +304,10 @@ pub(super) fn build_ring(world: &mut World, ring: &Ring) -> (Vec<FaceId>, Vec<Ve
         spawn_at(world, n.top_edge.0, (Edge { halfedge: s.h }, member));
         spawn_at(world, n.post.0, (Edge { halfedge: n.fall }, member));
         spawn_at(world, n.face.0, (Face { halfedge: n.bottom }, member));
+        // The side face takes the group of the region face it rises from.
+        let region_face = world.get::<Halfedge>(s.h.0).and_then(|x| x.face);
+        let group = region_face.and_then(|f| groups::face_group(world, f));
+        groups::set_face_group(world, n.face, group);
         let copy = (Vertex { halfedge: s.h }, Position(positions[r]), member);
         spawn_at(world, n.copy.0, copy);
         if has.normals

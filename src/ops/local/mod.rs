@@ -190,6 +190,8 @@ pub(crate) fn cut(
     }
     spawn_at(world, edge.0, (Edge { halfedge: n1 }, member));
     spawn_at(world, f2.0, (Face { halfedge: n2 }, member));
+    let group = crate::mesh::groups::face_group(world, f);
+    crate::mesh::groups::set_face_group(world, f2, group);
     world.get_mut::<Face>(f.0).expect("planned").halfedge = n1;
     if let Some((at_q, at_p)) = uvs {
         crate::mesh::attributes::set_corner_uv(world, n1, at_q);

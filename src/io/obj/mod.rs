@@ -27,10 +27,16 @@
 //! colour (0–1 per channel, rounded to 8 bits: see [`crate::mesh::attributes`]). A corner that
 //! names a `vt` or `vn` the file does not define (or number 0) is an error naming its line.
 //!
-//! A line ending in `\` continues on the next. Ignored, and counted in the soup's notes:
-//! materials (no `.mtl` is opened), groups and objects (all merged into one mesh), smoothing
-//! groups, points and lines, and any other statement; a vertex's `w` is ignored. A malformed
-//! `v`, `vt`, `vn` or `f` line is an error naming its line.
+//! Objects, groups, materials and smoothing groups (`o`, `g`, `usemtl`, `s`, and the `mtllib`
+//! lines) become the soup's face groups ([`groups`]): every face keeps the names it was read
+//! under, and the writer puts the statements back. The parts are merged into one mesh; the
+//! `.mtl` files are referenced, never opened or rewritten.
+//!
+//! A line ending in `\` continues on the next. Ignored, and counted in the soup's notes: points
+//! and lines, and any other statement; a vertex's `w` is ignored. A malformed `v`, `vt`, `vn`
+//! or `f` line is an error naming its line.
+
+mod groups;
 
 use bevy::math::{Vec2, Vec3};
 use std::borrow::Cow;
@@ -44,6 +50,7 @@ use super::skipped::Skipped;
 use super::text::{cap, check_text, float, lines, position};
 use crate::mesh::soup::PolygonSoup;
 use crate::process_memory;
+use groups::{GroupReader, GroupWriter, writable_in_order};
 
 /// The `f` lines, flat: each face's line and its corners as 0-based vertex numbers, not yet
 /// range-checked ([`NO_VERTEX`] for a number that can name no vertex, such as `0`).
@@ -134,6 +141,8 @@ struct Extras {
     corner_normal: CornerReferences,
     /// Statements read past, in order of first appearance.
     skipped: Skipped,
+    /// Objects, groups, materials and smoothing groups.
+    groups: GroupReader,
 }
 
 /// What a statement the reader reads past is, for the note.
@@ -141,9 +150,6 @@ fn skipped_statement(keyword: &str) -> Cow<'static, str> {
     match keyword {
         "l" => "line element(s) (`l`)".into(),
         "p" => "point element(s) (`p`)".into(),
-        "g" | "o" => format!("`{keyword}` statement(s) (all parts merged into one mesh)").into(),
-        "usemtl" | "mtllib" => format!("`{keyword}` statement(s) (materials are not kept)").into(),
-        "s" => "`s` smoothing group statement(s)".into(),
         other => format!("unknown statement(s) `{other}`").into(),
     }
 }
@@ -385,15 +391,21 @@ fn first_pass(bytes: &[u8]) -> Result<(Vec<Vec3>, RawFaces, Extras), ParseError>
                 }
                 faces.lines.push(line);
                 faces.starts.push(faces.corners.len());
+                extras.groups.face();
             }
-            Some(keyword) => extras.skipped.count(skipped_statement(keyword), 1),
+            Some(keyword) => {
+                // `text` starts with the keyword: the rest of the line is its argument.
+                if !extras.groups.statement(keyword, &text[keyword.len()..]) {
+                    extras.skipped.count(skipped_statement(keyword), 1);
+                }
+            }
             None => {}
         }
     }
     Ok((positions, faces, extras))
 }
 
-/// Puts the file's UVs, normals and colours on the soup: UVs per corner; a normal given per
+/// Puts the file's UVs, normals, colours and face groups on the soup: UVs per corner; a normal given per
 /// corner becomes its vertex's normal (exactly, when every corner of the vertex names the same
 /// one; the normalised mean of its corners' normals, with a note, when they differ); colours
 /// per vertex (black, with a note, for a vertex given without one). A corner without a UV in a
@@ -406,8 +418,10 @@ fn attach_extras(soup: &mut PolygonSoup, extras: Extras) -> Result<(), ParseErro
         any_color,
         corner_uv,
         corner_normal,
+        groups,
         ..
     } = extras;
+    soup.face_groups = groups.finish();
     let corners = soup.indices.len();
     if corner_uv.any() {
         let mut missing = 0usize;
@@ -575,10 +589,55 @@ fn faces_from_tobj(
 /// Writes OBJ text: `v` lines (shortest exact decimal form; `v x y z r g b` with colours, each
 /// channel `c / 255`), `vt` lines when the soup has corner UVs (each distinct UV once, in order
 /// of first use), `vn` lines when it has vertex normals (one per position, numbered as the
-/// positions), then `f` lines (1-based; `v/vt`, `v//vn` or `v/vt/vn`). Every number is written
-/// in the shortest form that reads back to the same `f32`, so a file Pappus wrote reads back
-/// bit for bit.
+/// positions), then `f` lines (1-based; `v/vt`, `v//vn` or `v/vt/vn`) with the soup's face
+/// groups as `mtllib`, `o`, `g`, `usemtl` and `s` statements ([`groups`]). Every number is
+/// written in the shortest form that reads back to the same `f32`, so a file Pappus wrote reads
+/// back bit for bit.
 pub fn write(soup: &PolygonSoup) -> Vec<u8> {
+    match soup
+        .face_groups
+        .as_ref()
+        .filter(|g| g.fits(soup.face_count()) && !writable_in_order(g))
+    {
+        Some(groups) => write_in_order(&faces_by_group(soup, groups)),
+        None => write_in_order(soup),
+    }
+}
+
+/// The soup with its faces (and their corner UVs and groups) in order of group row, stably.
+fn faces_by_group(soup: &PolygonSoup, groups: &crate::mesh::groups::FaceGroups) -> PolygonSoup {
+    let mut order: Vec<usize> = (0..soup.face_count()).collect();
+    order.sort_by_key(|&f| groups.of_face[f]);
+    let mut out = PolygonSoup::with_capacity(0, order.len(), soup.indices.len());
+    out.positions.clone_from(&soup.positions);
+    out.vertex_normals.clone_from(&soup.vertex_normals);
+    out.vertex_colors.clone_from(&soup.vertex_colors);
+    out.vertex_quality.clone_from(&soup.vertex_quality);
+    let uvs = soup
+        .corner_uvs
+        .as_deref()
+        .filter(|u| u.len() == soup.indices.len());
+    let mut sorted_uvs = uvs.map(|u| Vec::with_capacity(u.len()));
+    for &f in &order {
+        out.push_face(soup.face(f));
+        if let (Some(uvs), Some(out)) = (uvs, &mut sorted_uvs) {
+            let (a, b) = (
+                soup.face_starts[f] as usize,
+                soup.face_starts[f + 1] as usize,
+            );
+            out.extend_from_slice(&uvs[a..b]);
+        }
+    }
+    out.corner_uvs = sorted_uvs;
+    out.face_groups = Some(crate::mesh::groups::FaceGroups {
+        table: groups.table.clone(),
+        of_face: order.iter().map(|&f| groups.of_face[f]).collect(),
+    });
+    out
+}
+
+/// [`write`] with the faces in the soup's order.
+fn write_in_order(soup: &PolygonSoup) -> Vec<u8> {
     let n = soup.positions.len();
     let normals = soup.vertex_normals.as_deref().filter(|v| v.len() == n);
     let colors = soup.vertex_colors.as_deref().filter(|v| v.len() == n);
@@ -588,6 +647,11 @@ pub fn write(soup: &PolygonSoup) -> Vec<u8> {
         .filter(|u| u.len() == soup.indices.len());
     let mut out = String::with_capacity(n * 64 + soup.indices.len() * 16);
     out.push_str("# written by Pappus\n");
+    let groups = soup
+        .face_groups
+        .as_ref()
+        .filter(|g| g.fits(soup.face_count()));
+    let mut statements = groups.map(|g| GroupWriter::new(g, &mut out));
     for (i, p) in soup.positions.iter().enumerate() {
         let _ = write!(out, "v {} {} {}", p.x, p.y, p.z);
         if let Some(colors) = colors {
@@ -614,7 +678,10 @@ pub fn write(soup: &PolygonSoup) -> Vec<u8> {
         let _ = writeln!(out, "vn {} {} {}", n.x, n.y, n.z);
     }
     let mut corner = 0usize;
-    for face in soup.faces() {
+    for (f, face) in soup.faces().enumerate() {
+        if let Some(w) = &mut statements {
+            w.before_face(f, &mut out);
+        }
         out.push('f');
         for &i in face {
             let i = u64::from(i) + 1;
@@ -763,11 +830,83 @@ mod tests {
         assert_eq!(
             soup.notes,
             vec![
-                "skipped: 1 `mtllib` statement(s) (materials are not kept), 1 `o` statement(s) (all parts merged into one mesh), \
-2 `g` statement(s) (all parts merged into one mesh), 1 `usemtl` statement(s) (materials are not kept), \
-1 `s` smoothing group statement(s), 1 unknown statement(s) `vp`, 2 line element(s) (`l`), 1 point element(s) (`p`)"
+                "skipped: 1 unknown statement(s) `vp`, 2 line element(s) (`l`), 1 point element(s) (`p`)"
             ]
         );
+    }
+
+    /// Two objects, groups, materials switched back and forth, smoothing, two libraries, and
+    /// faces before any statement.
+    const GROUPED: &[u8] = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n\
+f 1 2 3\n\
+mtllib a.mtl\nmtllib b c.mtl\no box\ng side top\nusemtl red\ns 1\nf 1 3 4\n\
+usemtl blue\nf 2 5 6\nusemtl red\nf 2 6 3\n\
+o lid\ng\ns off\nf 4 3 6\n";
+
+    #[test]
+    fn objects_groups_and_materials_are_kept_per_face() {
+        let soup = read(GROUPED).unwrap();
+        assert!(soup.notes.is_empty(), "{:?}", soup.notes);
+        let groups = soup.face_groups.as_ref().unwrap();
+        assert_eq!(groups.table.material_libraries, ["a.mtl", "b c.mtl"]);
+        assert_eq!(groups.of_face, [0, 1, 2, 1, 3]);
+        let names: Vec<String> = groups.table.groups.iter().map(|g| g.describe()).collect();
+        assert_eq!(
+            names,
+            [
+                "no group",
+                "object box · group side top · material red · smoothing 1",
+                "object box · group side top · material blue · smoothing 1",
+                "object lid · group  · material red · smoothing off",
+            ]
+        );
+    }
+
+    #[test]
+    fn statements_are_written_back_where_they_were() {
+        let soup = read(GROUPED).unwrap();
+        let written = String::from_utf8(write(&soup)).unwrap();
+        let statements: Vec<&str> = written
+            .lines()
+            .filter(|l| !l.starts_with('v') && !l.starts_with('#'))
+            .collect();
+        assert_eq!(
+            statements,
+            [
+                "mtllib a.mtl",
+                "mtllib b c.mtl",
+                "f 1 2 3",
+                "o box",
+                "g side top",
+                "usemtl red",
+                "s 1",
+                "f 1 3 4",
+                "usemtl blue",
+                "f 2 5 6",
+                "usemtl red",
+                "f 2 6 3",
+                "o lid",
+                "g",
+                "s off",
+                "f 4 3 6",
+            ]
+        );
+        let back = read(written.as_bytes()).unwrap();
+        assert_eq!(back.face_groups, soup.face_groups);
+        assert_eq!(back.indices, soup.indices);
+    }
+
+    #[test]
+    fn a_face_that_would_unset_a_name_is_written_with_its_group() {
+        let mut soup = read(GROUPED).unwrap();
+        // As an edit could leave it: a face of the first (nameless) group made last.
+        soup.push_face(&[5, 6, 3]);
+        soup.face_groups.as_mut().unwrap().of_face.push(0);
+        let back = read(&write(&soup)).unwrap();
+        // Faces by group row, in their order within each: the red box faces together.
+        assert_eq!(back.face(1), &[5, 6, 3]);
+        assert_eq!(back.face(3), &[1, 5, 2]);
+        assert_eq!(back.face_groups.unwrap().of_face, [0, 0, 1, 1, 2, 3]);
     }
 
     #[test]
