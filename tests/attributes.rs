@@ -302,6 +302,7 @@ fn undo_restores_attributes_exactly() {
             normals: true,
             colors: true,
             seams: false,
+            groups: false,
         }
     );
     assert_every_corner_has_a_uv(&world, mesh);

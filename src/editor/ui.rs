@@ -13,7 +13,7 @@ use std::path::PathBuf;
 
 use crate::mesh::ids::{ElementId, parse_element};
 use crate::mesh::topology::MeshRef;
-use crate::mesh::{MeshInfo, MeshStats, mesh_stats, validate};
+use crate::mesh::{InMesh, MeshInfo, MeshStats, mesh_stats, validate};
 use crate::ops::named::Named;
 
 use crate::edit::{Edit, LocalKind, Subdivision};
@@ -283,6 +283,14 @@ pub fn snapshot(world: &mut World) {
         .element
         .filter(|&x| super::selection::exists(&m, x))
         .map(|id| describe(&m, id));
+    // The group (object, group, material) of a selected face, where the mesh has groups.
+    if let Some(selected) = view.selected.as_mut()
+        && let ElementId::Face(f) = selected.id
+        && let Some(mesh) = world.get::<InMesh>(f.0).map(|m| m.0)
+        && let Some(group) = crate::mesh::groups::describe_face_group(world, mesh, f)
+    {
+        selected.facts.push(("group".into(), group));
+    }
     // The value of the quantity on display at a selected vertex.
     if let Some(selected) = view.selected.as_mut()
         && let ElementId::Vertex(v) = selected.id

@@ -104,9 +104,9 @@ impl Format {
 /// What the soup carries that a file at `path` (its format by extension) cannot hold, in a
 /// person's words (`"UVs"`, `"normals"`, `"colours"`, `"quality"`, `"groups"`, then `"polygon
 /// faces (written as triangles)"`), in that order: empty when a save keeps everything, or when
-/// the extension names no format Pappus writes (the save itself then fails). OBJ holds all but
-/// the quality, glTF all but the quality and the groups, PLY all but the groups, OFF and STL
-/// none of them; STL and glTF hold triangles only.
+/// the extension names no format Pappus writes (the save itself then fails). OBJ and glTF hold
+/// all but the quality, PLY all but the groups, OFF and STL none of them; STL and glTF hold
+/// triangles only.
 pub fn dropped(path: &Path, soup: &PolygonSoup) -> Vec<&'static str> {
     let Ok(format) = Format::from_path(path) else {
         return Vec::new();
@@ -121,8 +121,7 @@ pub fn dropped(path: &Path, soup: &PolygonSoup) -> Vec<&'static str> {
     ];
     let holds = |what: &str| match format {
         Format::Ply => what != "groups",
-        Format::Obj => what != "quality",
-        Format::Gltf | Format::Glb => what != "quality" && what != "groups",
+        Format::Obj | Format::Gltf | Format::Glb => what != "quality",
         Format::Off | Format::Stl | Format::Collada => false,
     };
     let triangles_only = matches!(format, Format::Stl | Format::Gltf | Format::Glb);

@@ -4,6 +4,12 @@
 //! (normals by the inverse transpose, the winding reversed under a mirroring transform so
 //! faces keep facing out; the identity skipped so positions keep their bits), per-corner
 //! normals and colours then gathered per vertex ([`super::corners`]), UVs kept per corner.
+//!
+//! Each face also keeps its object and material as a face group ([`crate::mesh::groups`]):
+//! the material its primitive names, the object the name of the placement (node) it was read
+//! through — so a scene of several objects saved to OBJ writes an `o` line for each. A part
+//! whose groups are exact (a file Pappus wrote records each face's whole group) keeps them as
+//! they are.
 
 use bevy::math::{Mat3, Mat4, Vec2, Vec3};
 use std::collections::HashMap;
@@ -14,6 +20,7 @@ use super::ParseError;
 use super::corners::{attach_corner_normals, per_vertex};
 use super::skipped::Skipped;
 use crate::memory_budget;
+use crate::mesh::groups::{FaceGroups, Group, GroupTable};
 use crate::mesh::soup::PolygonSoup;
 
 /// A corner index that names no position.
@@ -36,6 +43,16 @@ pub(super) struct Part {
     pub colors: Option<Vec<Option<Vec3>>>,
     /// What the geometry held that is not read.
     pub skipped: Skipped,
+    /// The groups its faces are in (empty: every face in the empty group).
+    pub groups: Vec<Group>,
+    /// Each face's row in `groups`.
+    pub face_group: Vec<u32>,
+    /// The row faces ended from now on take.
+    current_group: u32,
+    /// Whether `groups` name the object too (else a placement's name does).
+    pub exact_groups: bool,
+    /// The material libraries the file names (OBJ's `mtllib`, kept through a file Pappus wrote).
+    pub material_libraries: Vec<String>,
 }
 
 impl Part {
@@ -67,6 +84,18 @@ impl Part {
     /// Ends the face whose corners were pushed since the last one ended.
     pub fn end_face(&mut self) {
         self.face_starts.push(self.indices.len() as u32);
+        self.face_group.push(self.current_group);
+    }
+
+    /// Puts the faces ended from now on into `group` (a primitive's material).
+    pub fn use_group(&mut self, group: Group) {
+        self.current_group = match self.groups.iter().position(|g| *g == group) {
+            Some(row) => row as u32,
+            None => {
+                self.groups.push(group);
+                (self.groups.len() - 1) as u32
+            }
+        };
     }
 }
 
@@ -128,7 +157,7 @@ pub(super) fn assemble<K: Copy + Eq + Hash>(
     let mut merged = Merged::default();
     let mut names = Vec::new();
     for (part, transform, name) in placed() {
-        merged.append(part, *transform);
+        merged.append(part, *transform, name);
         names.push(*name);
     }
     let mut soup = merged.into_soup();
@@ -161,18 +190,39 @@ fn check_budget<'p>(placed: impl Iterator<Item = &'p Part>) -> Result<(), ParseE
     .map_err(|refusal| ParseError::byte(0, refusal.to_string()).unsupported())
 }
 
-/// The parts appended one after another into one part, per-corner values kept until the end.
-struct Merged(Part);
+/// The parts appended one after another into one part, per-corner values kept until the end,
+/// and the rows of the merged groups.
+struct Merged(Part, HashMap<Group, u32>);
 
 impl Default for Merged {
     fn default() -> Self {
-        Merged(Part::new())
+        Merged(Part::new(), HashMap::new())
     }
 }
 
 impl Merged {
-    /// Appends a copy of `part` placed by `transform`.
-    pub fn append(&mut self, part: &Part, transform: Mat4) {
+    /// Appends a copy of `part` placed by `transform`, its faces in the object `name` (unless
+    /// its groups are exact).
+    pub fn append(&mut self, part: &Part, transform: Mat4, name: &str) {
+        // The merged row of each of the part's groups.
+        let rows: Vec<u32> = (0..part.groups.len().max(1))
+            .map(|row| {
+                let mut group = part.groups.get(row).cloned().unwrap_or_default();
+                if !part.exact_groups && !name.is_empty() {
+                    group.object = Some(name.to_owned());
+                }
+                let next = self.0.groups.len() as u32;
+                *self.1.entry(group.clone()).or_insert_with(|| {
+                    self.0.groups.push(group);
+                    next
+                })
+            })
+            .collect();
+        for library in &part.material_libraries {
+            if !self.0.material_libraries.contains(library) {
+                self.0.material_libraries.push(library.clone());
+            }
+        }
         let merged = &mut self.0;
         let base = merged.positions.len() as u32;
         let identity = transform == Mat4::IDENTITY;
@@ -191,7 +241,8 @@ impl Merged {
             Mat3::IDENTITY
         };
         let mirrored = transform.determinant() < 0.0;
-        for face in part.face_starts.windows(2) {
+        for (f, face) in part.face_starts.windows(2).enumerate() {
+            merged.current_group = rows[part.face_group.get(f).copied().unwrap_or(0) as usize];
             let corners = face[0] as usize..face[1] as usize;
             let corners: Vec<usize> = if mirrored {
                 corners.rev().collect()
@@ -216,7 +267,8 @@ impl Merged {
         }
     }
 
-    /// The soup, per-corner normals and colours gathered per vertex.
+    /// The soup, per-corner normals and colours gathered per vertex; face groups where any
+    /// face has a name.
     pub fn into_soup(self) -> PolygonSoup {
         let Part {
             positions,
@@ -225,12 +277,23 @@ impl Merged {
             normals,
             uvs,
             colors,
+            groups,
+            face_group,
+            material_libraries,
             ..
         } = self.0;
+        let named = groups.iter().any(|g| *g != Group::default());
         let mut soup = PolygonSoup {
             positions,
             indices,
             face_starts,
+            face_groups: (named || !material_libraries.is_empty()).then(|| FaceGroups {
+                table: GroupTable {
+                    material_libraries,
+                    groups,
+                },
+                of_face: face_group,
+            }),
             ..PolygonSoup::default()
         };
         let n = soup.positions.len();

@@ -24,6 +24,7 @@ use crate::io::ParseError;
 use crate::io::obj::channel;
 use crate::io::parts::{NO_POSITION, Part};
 use crate::io::strips::strip_triangles;
+use crate::mesh::groups::Group;
 
 /// A `<source>`'s numbers and how to read items from them.
 struct Source {
@@ -162,6 +163,10 @@ pub(super) fn read_mesh(mesh: Node, ids: &Ids) -> Result<Part, ParseError> {
                 format!("<{name}> without a VERTEX input"),
             ));
         }
+        part.use_group(Group {
+            material: primitive.attribute("material").map(str::to_owned),
+            ..Group::default()
+        });
         read_primitive(primitive, &layout, &mut part)?;
     }
     Ok(part)

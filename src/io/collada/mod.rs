@@ -95,7 +95,10 @@ fn notes(root: Node, scene: &scene::Scene, parts: &Parts) -> Option<String> {
     };
     skipped.count("camera(s)", library("library_cameras", "camera"));
     skipped.count("light(s)", library("library_lights", "light"));
-    skipped.count("material(s)", library("library_materials", "material"));
+    skipped.count(
+        "material(s) (their names kept as face groups, not their properties)",
+        library("library_materials", "material"),
+    );
     skipped.count("image(s)", library("library_images", "image"));
     skipped.count("animation(s)", library("library_animations", "animation"));
     skipped.count(

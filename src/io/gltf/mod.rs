@@ -4,8 +4,9 @@
 //! **Reading** walks the default scene (else the first; a file without scenes places each mesh
 //! once) with every node's transform applied, and reads every primitive drawn as `TRIANGLES`,
 //! `TRIANGLE_STRIP` or `TRIANGLE_FAN` ([`super::strips`] for strips); points and lines are
-//! counted in the notes, as are skins, animations, morph targets, cameras, materials and
-//! textures. Attributes: `POSITION`, `NORMAL`, `TEXCOORD_0` (any component type, normalised
+//! counted in the notes, as are skins, animations, morph targets, cameras, materials' properties
+//! and textures. Each face keeps its primitive's material name and its node's name as its face
+//! group ([`super::parts`]). Attributes: `POSITION`, `NORMAL`, `TEXCOORD_0` (any component type, normalised
 //! integers scaled to 0–1; glTF's `v` runs down the image, so it is flipped, `v = 1 − v′`, as
 //! OBJ and Blender count it), `COLOR_0` (RGB or RGBA, alpha dropped); indices of any width;
 //! sparse accessors. glTF splits a vertex wherever an attribute differs (a UV seam, a hard
@@ -33,6 +34,7 @@ use super::ParseError;
 use super::parts::{NO_POSITION, Part, assemble};
 use super::skipped::Skipped;
 use super::strips::strip_triangles;
+use crate::mesh::groups::Group;
 use crate::mesh::soup::PolygonSoup;
 use buffers::Buffers;
 pub(super) use write::write;
@@ -108,7 +110,10 @@ pub fn read(bytes: &[u8], folder: Option<&Path>) -> Result<PolygonSoup, ParseErr
     );
     skipped.count("animation(s)", document.animations().count());
     skipped.count("camera(s)", document.cameras().count());
-    skipped.count("material(s)", document.materials().count());
+    skipped.count(
+        "material(s) (their names kept as face groups, not their properties)",
+        document.materials().count(),
+    );
     skipped.count("texture(s)", document.textures().count());
     soup.notes.extend(skipped.note());
     Ok(soup)
@@ -204,6 +209,9 @@ struct Vertices {
 /// Reads a mesh's triangle primitives into one part, welding vertices at the same position.
 fn read_mesh(mesh: &gltf::Mesh, buffers: &Buffers) -> Result<Part, String> {
     let mut part = Part::new();
+    part.material_libraries = extras_field(mesh.extras(), LIBRARIES_EXTRA)
+        .and_then(|v| serde_json::from_value(v).ok())
+        .unwrap_or_default();
     let mut welded: FastMap<Weld, u32> = FastMap::default();
     for primitive in mesh.primitives() {
         let mode = primitive.mode();
@@ -241,6 +249,8 @@ fn read_mesh(mesh: &gltf::Mesh, buffers: &Buffers) -> Result<Part, String> {
                 })
             })
             .collect();
+        part.use_group(primitive_group(&primitive));
+        part.exact_groups |= vertices.ids.is_some();
         let order = read_indices(&primitive, buffers, vertices.positions.len())?;
         let mut triangle = |corners: [u32; 3]| {
             for i in corners {
@@ -270,6 +280,45 @@ fn read_mesh(mesh: &gltf::Mesh, buffers: &Buffers) -> Result<Part, String> {
         }
     }
     Ok(part)
+}
+
+/// The key of a primitive's `extras` under which Pappus records its faces' whole group (object,
+/// group, material, smoothing group: each a string or absent), so that a file Pappus wrote
+/// gives the groups back exactly. Other readers ignore it.
+const GROUP_EXTRA: &str = "pappus_group";
+
+/// The key of a mesh's `extras` under which Pappus records the material libraries (OBJ's
+/// `mtllib`) of the mesh it wrote.
+const LIBRARIES_EXTRA: &str = "pappus_material_libraries";
+
+/// The value under `key` in an `extras` object, if it has one.
+fn extras_field(extras: &gltf::json::Extras, key: &str) -> Option<serde_json::Value> {
+    let raw = extras.as_ref()?;
+    let mut value: serde_json::Value = serde_json::from_str(raw.get()).ok()?;
+    Some(value.get_mut(key)?.take())
+}
+
+/// A primitive's faces' group: the one Pappus recorded, else the name of its material
+/// (`material N` for one without a name; no material, no name).
+fn primitive_group(primitive: &gltf::Primitive) -> Group {
+    if let Some(recorded) = extras_field(primitive.extras(), GROUP_EXTRA) {
+        let name = |key: &str| recorded.get(key)?.as_str().map(str::to_owned);
+        return Group {
+            object: name("object"),
+            group: name("group"),
+            material: name("material"),
+            smoothing: name("smoothing"),
+        };
+    }
+    let material = primitive.material();
+    Group {
+        material: material.index().map(|i| {
+            material
+                .name()
+                .map_or_else(|| format!("material {i}"), str::to_owned)
+        }),
+        ..Group::default()
+    }
 }
 
 /// Vertex `i`'s value of an attribute the primitive may not have.

@@ -244,3 +244,78 @@ fn broken_files_are_errors_not_panics() {
         let _ = read(&damaged, None);
     }
 }
+
+/// The seamed cube with its top and bottom in a red lid group and its sides in a blue body,
+/// and a library.
+fn grouped_cube() -> PolygonSoup {
+    use crate::mesh::groups::{FaceGroups, Group, GroupTable};
+    let mut soup = seamed_cube();
+    let group = |g: &str, m: &str| Group {
+        object: Some("cube".into()),
+        group: Some(g.into()),
+        material: Some(m.into()),
+        smoothing: None,
+    };
+    // Faces alternate between the groups, so writing reorders them by group.
+    let of_face = (0..soup.face_count() as u32).map(|f| f % 2).collect();
+    soup.face_groups = Some(FaceGroups {
+        table: GroupTable {
+            material_libraries: vec!["cube.mtl".into()],
+            groups: vec![group("body", "blue"), group("lid", "red")],
+        },
+        of_face,
+    });
+    soup
+}
+
+#[test]
+fn groups_are_written_as_primitives_with_materials_and_read_back_exactly() {
+    let soup = grouped_cube();
+    let bytes = write(&soup, false);
+    let json: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+    let primitives = json["meshes"][0]["primitives"].as_array().unwrap();
+    assert_eq!(primitives.len(), 2);
+    assert_eq!(
+        json["materials"],
+        json!([{"name": "blue"}, {"name": "red"}])
+    );
+    assert_eq!(primitives[1]["material"], json!(1));
+    let back = read(&bytes, None).unwrap();
+    let groups = back.face_groups.as_ref().unwrap();
+    assert_eq!(groups.table, soup.face_groups.as_ref().unwrap().table);
+    // Each quad comes back as two triangles in its group, the faces of a group together.
+    let expected: Vec<u32> = [0, 1]
+        .iter()
+        .flat_map(|&g| std::iter::repeat_n(g, soup.face_count()))
+        .collect();
+    assert_eq!(groups.of_face, expected);
+    // Read again and written again: the same bytes.
+    assert_eq!(
+        write(&back, false),
+        write(&read(&write(&back, false), None).unwrap(), false)
+    );
+}
+
+#[test]
+fn other_files_give_each_face_its_material_and_node_as_groups() {
+    let mut value: serde_json::Value = serde_json::from_slice(&document(
+        &SQUARE,
+        &[0, 1, 2, 0, 2, 3],
+        4,
+        json!([{"mesh": 0, "name": "Plane"}]),
+    ))
+    .unwrap();
+    value["meshes"][0]["primitives"][0]["material"] = json!(0);
+    value["materials"] = json!([{"name": "Wood"}]);
+    let soup = read(&serde_json::to_vec(&value).unwrap(), None).unwrap();
+    let groups = soup.face_groups.unwrap();
+    assert_eq!(groups.of_face, [0, 0]);
+    assert_eq!(
+        groups.table.groups[0].describe(),
+        "object Plane · material Wood"
+    );
+    assert_eq!(
+        soup.notes,
+        ["skipped: 1 material(s) (their names kept as face groups, not their properties)"]
+    );
+}

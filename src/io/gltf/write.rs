@@ -1,4 +1,8 @@
-//! Writing glTF 2.0: one scene, one node, one mesh of one `TRIANGLES` primitive.
+//! Writing glTF 2.0: one scene, one node, one mesh of `TRIANGLES` primitives: one, or with
+//! face groups one per group, each with the material of that name (materials without
+//! properties, named so that Blender and other editors show the slots) and the whole group in
+//! its `extras` (`pappus_group`; the `mtllib` names in the mesh's), read back exactly by
+//! Pappus. All primitives share one set of vertex accessors.
 //!
 //! A vertex is written once per distinct (position, UV) pair — once per position when the soup
 //! has no UVs, in the soup's order — so only a UV seam splits a vertex, as glTF requires.
@@ -26,7 +30,7 @@ const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 
 /// Encodes `soup` as a `.glb` (`binary`) or a `.gltf` with its buffer embedded.
 pub fn write(soup: &PolygonSoup, binary: bool) -> Vec<u8> {
-    let (vertices, indices) = vertices_and_triangles(soup);
+    let (vertices, indices, triangle_face) = vertices_and_triangles(soup);
     let mut chunks = Chunks::default();
     let mut document = json!({
         "asset": { "version": "2.0", "generator": concat!("Pappus ", env!("CARGO_PKG_VERSION")) },
@@ -37,15 +41,64 @@ pub fn write(soup: &PolygonSoup, binary: bool) -> Vec<u8> {
     // glTF accessors hold at least one item: a mesh without faces is a scene without a mesh.
     if !indices.is_empty() {
         let attributes = attributes(soup, &vertices, &mut chunks);
-        let bytes = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
-        let accessor =
-            json!({ "componentType": UNSIGNED_INT, "count": indices.len(), "type": "SCALAR" });
-        let indices = chunks.push(bytes, None, ELEMENT_ARRAY_BUFFER, accessor);
+        let mut index_accessor = |indices: &[u32]| {
+            let bytes = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+            let accessor =
+                json!({ "componentType": UNSIGNED_INT, "count": indices.len(), "type": "SCALAR" });
+            chunks.push(bytes, None, ELEMENT_ARRAY_BUFFER, accessor)
+        };
+        let groups = soup
+            .face_groups
+            .as_ref()
+            .filter(|g| g.fits(soup.face_count()));
+        let mut mesh = json!({ "name": "Pappus mesh" });
+        match groups {
+            None => {
+                let indices = index_accessor(&indices);
+                mesh["primitives"] =
+                    json!([{ "attributes": attributes, "indices": indices, "mode": 4 }]);
+            }
+            Some(groups) => {
+                let mut materials: Vec<&str> = Vec::new();
+                let mut primitives = Vec::new();
+                for (row, triangles) in triangles_by_group(groups, &indices, &triangle_face) {
+                    let group = &groups.table.groups[row as usize];
+                    let mut primitive = json!({
+                        "attributes": attributes,
+                        "indices": index_accessor(&triangles),
+                        "mode": 4,
+                        "extras": { "pappus_group": {
+                            "object": group.object,
+                            "group": group.group,
+                            "material": group.material,
+                            "smoothing": group.smoothing,
+                        } },
+                    });
+                    if let Some(name) = group.material.as_deref() {
+                        let index =
+                            materials
+                                .iter()
+                                .position(|&m| m == name)
+                                .unwrap_or_else(|| {
+                                    materials.push(name);
+                                    materials.len() - 1
+                                });
+                        primitive["material"] = json!(index);
+                    }
+                    primitives.push(primitive);
+                }
+                mesh["primitives"] = json!(primitives);
+                mesh["extras"] =
+                    json!({ "pappus_material_libraries": groups.table.material_libraries });
+                if !materials.is_empty() {
+                    let materials: Vec<Value> =
+                        materials.iter().map(|m| json!({ "name": m })).collect();
+                    document["materials"] = json!(materials);
+                }
+            }
+        }
         document["nodes"][0]["mesh"] = json!(0);
-        document["meshes"] = json!([{
-            "name": "Pappus mesh",
-            "primitives": [{ "attributes": attributes, "indices": indices, "mode": 4 }],
-        }]);
+        document["meshes"] = json!([mesh]);
         document["accessors"] = json!(chunks.accessors);
         document["bufferViews"] = json!(chunks.views);
         let mut entry = json!({ "byteLength": chunks.buffer.len() });
@@ -182,16 +235,37 @@ fn per_vertex(
     out
 }
 
-/// The vertices to write, as (soup vertex, UV bits), and each triangle's three vertex numbers.
+/// The triangles of each group row that has any, rows in order: `indices` three per triangle,
+/// `triangle_face` the soup face of each.
+fn triangles_by_group(
+    groups: &crate::mesh::groups::FaceGroups,
+    indices: &[u32],
+    triangle_face: &[u32],
+) -> Vec<(u32, Vec<u32>)> {
+    let mut by_row: Vec<Vec<u32>> = vec![Vec::new(); groups.table.groups.len()];
+    for (triangle, &face) in indices.chunks_exact(3).zip(triangle_face) {
+        by_row[groups.of_face[face as usize] as usize].extend_from_slice(triangle);
+    }
+    by_row
+        .into_iter()
+        .enumerate()
+        .filter(|(_, t)| !t.is_empty())
+        .map(|(row, t)| (row as u32, t))
+        .collect()
+}
+
+/// The vertices to write, as (soup vertex, UV bits), each triangle's three vertex numbers, and
+/// the soup face each triangle is part of.
 /// Vertices are in the soup's order, a vertex's UV copies together in order of first use (every
 /// position, used or not, when the soup has no UVs): so a reader that welds by position gets
 /// the soup's vertices back in their order.
-fn vertices_and_triangles(soup: &PolygonSoup) -> (Vec<(u32, [u32; 2])>, Vec<u32>) {
+fn vertices_and_triangles(soup: &PolygonSoup) -> (Vec<(u32, [u32; 2])>, Vec<u32>, Vec<u32>) {
     let uvs = soup.corner_uvs.as_ref().filter(|_| soup.attributes().uv);
     let n = soup.positions.len() as u32;
     // Each corner's key, for the triangles of every face that names existing vertices.
     let mut corners: Vec<(u32, [u32; 2])> = Vec::new();
     let mut triangles: Vec<[usize; 3]> = Vec::new();
+    let mut triangle_face: Vec<u32> = Vec::new();
     // Only polygons need the edges (to choose their diagonals).
     let mut edges = if soup.faces().any(|f| f.len() > 3) {
         Edges::of(soup)
@@ -214,6 +288,7 @@ fn vertices_and_triangles(soup: &PolygonSoup) -> (Vec<(u32, [u32; 2])>, Vec<u32>
             let at = |j: usize| first + (apex + j) % m;
             [at(0), at(i), at(i + 1)]
         }));
+        triangle_face.extend(std::iter::repeat_n(f as u32, m - 2));
     }
     let vertices: Vec<(u32, [u32; 2])> = match uvs {
         None => (0..n).map(|v| (v, [0, 0])).collect(),
@@ -239,7 +314,7 @@ fn vertices_and_triangles(soup: &PolygonSoup) -> (Vec<(u32, [u32; 2])>, Vec<u32>
         .flatten()
         .map(|&k| numbers[&corners[k]])
         .collect();
-    (vertices, indices)
+    (vertices, indices, triangle_face)
 }
 
 /// The mesh's edges, and the diagonals fans add, to triangulate polygons without making an
