@@ -15,6 +15,13 @@ CI does not run it. For each shared model it checks, and prints one line:
    boundary loop (Blender's split vertices welded), and the bounding box where Blender put it
    (Blender's z-up world turned y-up: (x, y, z) → (x, z, −y)).
 
+3. Objects and materials: Blender imports spot and suzanne as two objects, gives suzanne two
+   materials (faces alternating) and spot one, and exports OBJ (with `.mtl`), `.glb` and `.dae`.
+   `pappus convert` of the OBJ to OBJ writes every face with the same `o`, `g`, `usemtl`, `s` and
+   vertices, and the same `mtllib`; of the `.glb` and `.dae` to OBJ, as many faces under each
+   (object, material) as Blender's triangles (glb) or polygons (dae) of it; Pappus's `.glb` of
+   Blender's OBJ, imported by Blender, has each material's triangle count.
+
 A closed model whose exported file already has non-manifold edges (Blender's glTF exporter
 triangulates, and a quad's diagonal can be an edge already) is noted, not failed. Exits with
 status 1 when any check fails.
@@ -81,9 +88,105 @@ def pappus_json(*args):
     return json.loads(out.stdout)
 
 
+def obj_faces(path):
+    """Each face of an OBJ file with the statements in force: ((o, g, usemtl, s), vertices),
+    and the mtllib lines."""
+    state, faces, libraries = {"o": None, "g": None, "usemtl": None, "s": None}, [], []
+    with open(path) as f:
+        for line in f:
+            keyword, _, rest = line.strip().partition(" ")
+            if keyword in state:
+                state[keyword] = rest.strip()
+            elif keyword == "mtllib":
+                libraries.append(rest.strip())
+            elif keyword == "f":
+                vertices = tuple(int(c.split("/")[0]) for c in rest.split())
+                faces.append((tuple(state.values()), vertices))
+    return faces, libraries
+
+
+def per_object_material(faces):
+    """Faces per (object, material) of `obj_faces`' list."""
+    counts = {}
+    for (o, _, m, _), _ in faces:
+        counts[(o, m)] = counts.get((o, m), 0) + 1
+    return counts
+
+
+def blender_per_object_material(triangles):
+    """Blender's triangles (or polygons) per (object, material)."""
+    counts = {}
+    for o in bpy.context.scene.objects:
+        if o.type != "MESH":
+            continue
+        for p in o.data.polygons:
+            slot = o.material_slots[p.material_index].name if o.material_slots else None
+            key = (o.name, slot)
+            counts[key] = counts.get(key, 0) + (len(p.vertices) - 2 if triangles else 1)
+    return counts
+
+
+def check_groups(folder, failures):
+    """Check 3 of the module doc; returns the line to print."""
+    reset()
+    for name in ["spot", "suzanne"]:
+        bpy.ops.wm.obj_import(filepath=os.path.join(MODELS, name + ".obj"))
+    colours = {"spot": ["Hide"], "suzanne": ["Skin", "Eyes"]}
+    for o in list(bpy.context.scene.objects):
+        names = colours[o.name.split(".")[0]]
+        o.data.materials.clear()
+        for m in names:
+            o.data.materials.append(bpy.data.materials.get(m) or bpy.data.materials.new(m))
+        for p in o.data.polygons:
+            p.material_index = p.index % len(names)
+    exported = os.path.join(folder, "groups-blender.obj")
+    bpy.ops.wm.obj_export(filepath=exported, export_materials=True, export_object_groups=False,
+                          export_material_groups=False, export_smooth_groups=True)
+    polygons = blender_per_object_material(False)
+    triangles = blender_per_object_material(True)
+    glb, dae = (os.path.join(folder, "groups-blender." + e) for e in ["glb", "dae"])
+    bpy.ops.export_scene.gltf(filepath=glb, export_format="GLB")
+    bpy.ops.wm.collada_export(filepath=dae, triangulate=False)
+    results = []
+    # OBJ → Pappus → OBJ: every face under the same statements.
+    back = os.path.join(folder, "groups-back.obj")
+    subprocess.run([PAPPUS, "convert", exported, back], check=True, capture_output=True)
+    theirs, ours = obj_faces(exported), obj_faces(back)
+    same = theirs == ours
+    results.append(f"obj {len(ours[0])} faces {'same' if same else 'DIFFER'}")
+    if not same:
+        failures.append(f"groups: the OBJ round trip changed faces or statements ({len(theirs[0])} → {len(ours[0])})")
+    # glb and dae → Pappus → OBJ: faces per (object, material).
+    for path, expected in [(glb, triangles), (dae, polygons)]:
+        out = path + ".obj"
+        subprocess.run([PAPPUS, "convert", path, out], check=True, capture_output=True)
+        got = per_object_material(obj_faces(out)[0])
+        ext = path.rsplit(".", 1)[1]
+        # COLLADA names a material by its symbol (`Skin-material`), not its name.
+        if sorted(got.values()) != sorted(expected.values()):
+            failures.append(f"groups.{ext}: faces per object and material {got}, Blender {expected}")
+        results.append(f"{ext} {len(got)} groups {'ok' if sorted(got.values()) == sorted(expected.values()) else 'DIFFER'}")
+    # Pappus's glb of Blender's OBJ, imported by Blender.
+    ours_glb = os.path.join(folder, "groups-pappus.glb")
+    subprocess.run([PAPPUS, "convert", exported, ours_glb], check=True, capture_output=True)
+    reset()
+    bpy.ops.import_scene.gltf(filepath=ours_glb)
+    per_material = {}
+    for (_, m), n in blender_per_object_material(True).items():
+        per_material[m] = per_material.get(m, 0) + n
+    wanted = {}
+    for (_, m), n in triangles.items():
+        wanted[m] = wanted.get(m, 0) + n
+    if per_material != wanted:
+        failures.append(f"groups: Blender read Pappus's glb as {per_material}, expected {wanted}")
+    results.append(f"P→B glb {'ok' if per_material == wanted else 'DIFFER'}")
+    return "; ".join(results)
+
+
 def main():
     failures, notes = [], []
     folder = tempfile.mkdtemp(prefix="pappus-blender-")
+    print("objects and materials:", check_groups(folder, failures))
     print(f"{'model':<16} {'P→B tris':>17} {'B→P glb faces/loops':>22} {'B→P dae faces/loops':>22} bbox")
     for name in NAMES:
         model = os.path.join(MODELS, name + ".obj")

@@ -62,12 +62,17 @@ struct Input<'s> {
     offset: usize,
 }
 
-/// Reads a `<geometry>` element's mesh.
+/// Reads a `<geometry>` element's mesh; each primitive's faces in the group of the material its
+/// `material` symbol is bound to (`materials`: symbol → name).
 ///
 /// # Errors
 /// A missing `<mesh>` is not an error (the caller checks); a malformed number, a reference to
 /// an element that does not exist, or a `<vertices>` without `POSITION` is, naming its line.
-pub(super) fn read_mesh(mesh: Node, ids: &Ids) -> Result<Part, ParseError> {
+pub(super) fn read_mesh(
+    mesh: Node,
+    ids: &Ids,
+    materials: &HashMap<&str, &str>,
+) -> Result<Part, ParseError> {
     let mut sources = HashMap::new();
     for node in children(mesh, "source") {
         if let Some(id) = node.attribute("id") {
@@ -163,8 +168,12 @@ pub(super) fn read_mesh(mesh: Node, ids: &Ids) -> Result<Part, ParseError> {
                 format!("<{name}> without a VERTEX input"),
             ));
         }
+        // The material the primitive's symbol is bound to, else the symbol itself.
+        let material = primitive
+            .attribute("material")
+            .map(|symbol| materials.get(symbol).copied().unwrap_or(symbol).to_owned());
         part.use_group(Group {
-            material: primitive.attribute("material").map(str::to_owned),
+            material,
             ..Group::default()
         });
         read_primitive(primitive, &layout, &mut part)?;

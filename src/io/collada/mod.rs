@@ -10,10 +10,12 @@
 //!
 //! Several placed geometries become one mesh of several components: the editor holds one mesh
 //! at a time, and the course scenes hold one mesh each beside a camera and a light. The notes
-//! name the objects merged. Per-corner normals and colours become per-vertex ones
+//! name the objects merged, and each face keeps its object (the node's name) and its material
+//! (the one its primitive's symbol is bound to) as its face group, so a save to OBJ writes them
+//! as `o` and `usemtl` lines. Per-corner normals and colours become per-vertex ones
 //! ([`super::corners`]); UVs stay per corner.
 //!
-//! What is not read is said in the soup's notes: cameras, lights, materials, images,
+//! What is not read is said in the soup's notes: cameras, lights, materials' properties, images,
 //! animations, skin weights (a skinned mesh is read in its bind pose), line primitives,
 //! polygon holes, `<skew>` transforms, and geometries that are not meshes (splines, B-reps).
 //! Pappus does not write COLLADA: `roxmltree` only reads, and glTF is the exchange format the
@@ -69,6 +71,7 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
         .filter_map(|n| Some((n.attribute("id")?, n)))
         .collect();
     let scene = scene::walk(root, &ids)?;
+    let materials = material_names(root, &ids);
     let placements: Vec<_> = scene
         .placements
         .iter()
@@ -77,12 +80,33 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     let (mut soup, parts) = assemble(&placements, |id| {
         let geometry = document.get_node(id);
         match geometry.and_then(|g| child(g, "mesh")) {
-            Some(mesh) => geometry::read_mesh(mesh, &ids).map(Some),
+            Some(mesh) => geometry::read_mesh(mesh, &ids, &materials).map(Some),
             None => Ok(None),
         }
     })?;
     soup.notes.extend(notes(root, &scene, &parts));
     Ok(soup)
+}
+
+/// The material each symbol a primitive may name stands for, by the scene's bindings
+/// (`<instance_material symbol target>`): the material's `name`, else its id. A symbol bound to
+/// different materials in different instances keeps its first binding.
+fn material_names<'a>(root: Node<'a, '_>, ids: &Ids<'a, '_>) -> HashMap<&'a str, &'a str> {
+    let mut names = HashMap::new();
+    for binding in root
+        .descendants()
+        .filter(|n| n.has_tag_name("instance_material"))
+    {
+        let (Some(symbol), Some(target)) =
+            (binding.attribute("symbol"), binding.attribute("target"))
+        else {
+            continue;
+        };
+        let id = reference(target);
+        let name = ids.get(id).and_then(|m| m.attribute("name")).unwrap_or(id);
+        names.entry(symbol).or_insert(name);
+    }
+    names
 }
 
 /// The sentence for the soup's notes on what was skipped.

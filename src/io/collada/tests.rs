@@ -305,3 +305,27 @@ fn damaged_documents_never_panic() {
         let _ = read(&damaged);
     }
 }
+
+#[test]
+fn each_face_keeps_its_node_and_its_bound_material_as_its_group() {
+    let primitives = r##"<triangles count="1" material="wood-symbol"><input semantic="VERTEX" source="#sq-v" offset="0"/><p>0 1 2</p></triangles>
+        <triangles count="1" material="unbound"><input semantic="VERTEX" source="#sq-v" offset="0"/><p>0 2 3</p></triangles>"##;
+    let nodes = r##"<node name="Table"><instance_geometry url="#sq"><bind_material><technique_common>
+            <instance_material symbol="wood-symbol" target="#wood-id"/>
+        </technique_common></bind_material></instance_geometry></node>"##;
+    let text = document("Y_UP", &square("sq", "", primitives), nodes).replace(
+        "<library_geometries>",
+        r##"<library_materials><material id="wood-id" name="Wood"/></library_materials><library_geometries>"##,
+    );
+    let soup = read_text(&text);
+    let groups = soup.face_groups.unwrap();
+    assert_eq!(groups.of_face, [0, 1]);
+    let names: Vec<String> = groups.table.groups.iter().map(|g| g.describe()).collect();
+    assert_eq!(
+        names,
+        [
+            "object Table · material Wood",
+            "object Table · material unbound"
+        ]
+    );
+}
