@@ -328,7 +328,7 @@ pub fn info_json(world: &World, mesh: MeshId, report: &RepairReport) -> Map<Stri
     let has = MeshAttributes::of(world, mesh);
     out.insert(
         "attributes".into(),
-        json!({ "uv": has.uv, "normals": has.normals, "colors": has.colors, "seams": has.seams }),
+        json!({ "uv": has.uv, "normals": has.normals, "colors": has.colors, "seams": has.seams, "groups": has.groups }),
     );
     let (curvature, normals) = geometry_json(world, mesh, s.euler_characteristic);
     out.insert("curvature".into(), Value::Object(curvature));

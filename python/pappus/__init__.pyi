@@ -111,6 +111,11 @@ class Mesh:
     def corner_uvs(self) -> Optional[npt.NDArray[np.float32]]:
         """K×2 float32 UVs, one per face corner in the order of ``faces``; None without UVs."""
     @property
+    def face_groups(self) -> Optional[Dict[str, Any]]:
+        """Each face's object, group, material and smoothing group (OBJ's ``o g usemtl s``):
+        ``{"groups": [{"object", "group", "material", "smoothing"}, ...], "face": uint32 row per
+        face in the order of ``faces``, "material_libraries": [...]}``; None without groups."""
+    @property
     def name(self) -> str:
         """The file name, the shape's name, or ``"arrays"``."""
     def arrays(

@@ -31,6 +31,7 @@ use pappus::cli::info_with_load_times;
 use pappus::edit::{EditContext, Step};
 use pappus::io::{self, IoError};
 use pappus::memory_budget::Budget;
+use pappus::mesh::groups::{FaceGroups, Group, GroupTable};
 use pappus::mesh::{
     MeshId, MeshInfo, MeshMembers, PolygonSoup, RepairReport, VertexId, build_mesh, to_soup,
     validate,
@@ -276,6 +277,10 @@ impl Mesh {
             })
             .transpose()?;
         state.set_item("vertex_colors", colors)?;
+        state.set_item(
+            "face_groups",
+            face_groups_dict(py, soup.face_groups.as_ref())?,
+        )?;
         state.set_item("name", self.name())?;
         let repairs: Vec<usize> = self.report.entries().iter().map(|&(_, n)| n).collect();
         state.set_item("repairs", repairs)?;
@@ -289,6 +294,57 @@ impl Mesh {
             .get::<MeshInfo>(self.mesh.0)
             .map_or_else(String::new, |i| i.name.clone())
     }
+}
+
+/// A mesh's face groups as Python sees them (`Mesh.face_groups`): a dict of `groups` (one
+/// dict of `object`, `group`, `material`, `smoothing` per row, each a string or None), `face`
+/// (each face's row, uint32, in `faces` order) and `material_libraries`; None without groups.
+fn face_groups_dict<'py>(
+    py: Python<'py>,
+    groups: Option<&FaceGroups>,
+) -> PyResult<Option<Bound<'py, PyDict>>> {
+    let Some(groups) = groups else {
+        return Ok(None);
+    };
+    let rows = PyList::empty(py);
+    for g in &groups.table.groups {
+        let row = PyDict::new(py);
+        row.set_item("object", &g.object)?;
+        row.set_item("group", &g.group)?;
+        row.set_item("material", &g.material)?;
+        row.set_item("smoothing", &g.smoothing)?;
+        rows.append(row)?;
+    }
+    let out = PyDict::new(py);
+    out.set_item("groups", rows)?;
+    out.set_item("face", PyArray1::from_slice(py, &groups.of_face))?;
+    out.set_item("material_libraries", &groups.table.material_libraries)?;
+    Ok(Some(out))
+}
+
+/// The inverse of [`face_groups_dict`].
+fn face_groups_from(value: &Bound<'_, PyAny>) -> PyResult<FaceGroups> {
+    let name = |row: &Bound<'_, PyAny>, key: &str| -> PyResult<Option<String>> {
+        row.get_item(key)?.extract()
+    };
+    let mut table = GroupTable {
+        material_libraries: value.get_item("material_libraries")?.extract()?,
+        groups: Vec::new(),
+    };
+    for row in value.get_item("groups")?.try_iter()? {
+        let row = row?;
+        table.groups.push(Group {
+            object: name(&row, "object")?,
+            group: name(&row, "group")?,
+            material: name(&row, "material")?,
+            smoothing: name(&row, "smoothing")?,
+        });
+    }
+    let face: PyReadonlyArray1<'_, u32> = value.get_item("face")?.extract()?;
+    Ok(FaceGroups {
+        table,
+        of_face: face.as_array().to_vec(),
+    })
 }
 
 /// `N×3` float32 array of points.
@@ -525,6 +581,16 @@ impl Mesh {
             .as_ref()
             .map(|uv| vec2_array(py, uv))
             .transpose()
+    }
+
+    /// The object, group, material and smoothing group of each face (OBJ's `o`, `g`, `usemtl`,
+    /// `s`; glTF's and COLLADA's node and material names): a dict of `groups` (one dict of
+    /// `object`, `group`, `material`, `smoothing` per distinct combination, each a string or
+    /// None), `face` (each face's row in `groups`, uint32, in the order of `faces`) and
+    /// `material_libraries` (the `mtllib` names); None when the mesh has none.
+    #[getter]
+    fn face_groups<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        face_groups_dict(py, self.soup().face_groups.as_ref())
     }
 
     /// The mesh's name: the file name, the shape's name, or `arrays`.
@@ -904,7 +970,7 @@ impl Mesh {
         self.copy(py)
     }
 
-    /// Pickling: the vertices, faces, attributes (UVs, normals, colours), name, repair counts
+    /// Pickling: the vertices, faces, attributes (UVs, normals, colours, face groups), name, repair counts
     /// and the input-vertex numbering, so operations name the same vertices after unpickling.
     /// The simplification history and seam marks are not carried.
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
@@ -989,6 +1055,10 @@ impl Mesh {
             let c: PyReadonlyArray2<'_, u8> = c.extract()?;
             let flat: Vec<u8> = c.as_array().iter().copied().collect();
             soup.vertex_colors = Some(flat.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect());
+        }
+        // Absent from the state of an older version.
+        if let Some(groups) = state.get_item("face_groups")?.filter(|g| !g.is_none()) {
+            soup.face_groups = Some(face_groups_from(&groups)?);
         }
         let name: String = get("name")?.extract()?;
         let read_ms: f64 = get("read_ms")?.extract()?;

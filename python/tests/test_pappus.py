@@ -116,6 +116,52 @@ def test_a_save_that_drops_attributes_says_so_and_dae_is_read_only(tmp_path):
         beast.save(tmp_path / "beast.dae")
 
 
+GROUPED_OBJ = """mtllib box.mtl
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0.5 0.5 1
+o box
+usemtl wood
+f 1 4 3 2
+usemtl paint
+f 1 2 5
+f 2 3 5
+f 3 4 5
+f 4 1 5
+"""
+
+
+def test_face_groups_are_read_kept_through_pickles_and_edits_and_said_when_dropped(tmp_path):
+    path = tmp_path / "box.obj"
+    path.write_text(GROUPED_OBJ)
+    mesh = pappus.load(path)
+    groups = mesh.face_groups
+    assert groups["material_libraries"] == ["box.mtl"]
+    assert [g["material"] for g in groups["groups"]] == ["wood", "paint"]
+    assert {g["object"] for g in groups["groups"]} == {"box"}
+    np.testing.assert_array_equal(groups["face"], [0, 1, 1, 1, 1])
+    assert mesh.info()["attributes"]["groups"]
+    back = pickle.loads(pickle.dumps(mesh))
+    assert back.face_groups["groups"] == groups["groups"]
+    np.testing.assert_array_equal(back.face_groups["face"], groups["face"])
+    # Triangulated, the quad's two triangles stay wood.
+    mesh.triangulate()
+    assert sorted(mesh.face_groups["face"].tolist()) == [0, 0, 1, 1, 1, 1]
+    with pytest.warns(UserWarning, match=r"box\.ply: groups dropped \(PLY cannot hold it\)"):
+        mesh.save(tmp_path / "box.ply")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        mesh.save(tmp_path / "again.obj")
+        mesh.save(tmp_path / "again.glb")
+        assert pappus.load(tmp_path / "again.glb").face_groups["groups"] == groups["groups"]
+    text = (tmp_path / "again.obj").read_text()
+    assert "mtllib box.mtl" in text and "usemtl wood" in text and "o box" in text
+    models()
+    assert pappus.load(MODELS / "spot.obj").face_groups is None
+
+
 def test_glb_round_trips_positions_bit_for_bit_and_edited_normals_are_recomputed(tmp_path):
     models()
     spot = pappus.load(MODELS / "spot.obj")

@@ -110,10 +110,14 @@ pub fn read(bytes: &[u8], folder: Option<&Path>) -> Result<PolygonSoup, ParseErr
     );
     skipped.count("animation(s)", document.animations().count());
     skipped.count("camera(s)", document.cameras().count());
-    skipped.count(
-        "material(s) (their names kept as face groups, not their properties)",
-        document.materials().count(),
-    );
+    // A file Pappus wrote has materials of a name only, which its groups keep.
+    let written_by_pappus = parts.values().flatten().any(|p| p.exact_groups);
+    if !written_by_pappus {
+        skipped.count(
+            "material(s) (their names kept as face groups, not their properties)",
+            document.materials().count(),
+        );
+    }
     skipped.count("texture(s)", document.textures().count());
     soup.notes.extend(skipped.note());
     Ok(soup)
