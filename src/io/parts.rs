@@ -287,7 +287,7 @@ impl Merged {
             positions,
             indices,
             face_starts,
-            face_groups: (named || !material_libraries.is_empty()).then(|| FaceGroups {
+            face_groups: (named || !material_libraries.is_empty()).then_some(FaceGroups {
                 table: GroupTable {
                     material_libraries,
                     groups,

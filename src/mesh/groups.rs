@@ -26,9 +26,8 @@
 
 use bevy::prelude::{Component, Entity, With, Without, World};
 
-use super::elements::{Face, InMesh};
+use super::elements::{Face, Halfedge, InMesh};
 use super::ids::{FaceId, MeshId};
-use super::topology::MeshRef;
 
 /// One combination of names a face can carry; `None` where the file set none.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
@@ -135,18 +134,10 @@ pub fn settle(world: &mut World, mesh: MeshId) {
         .map(|(e, _)| FaceId(e))
         .collect();
     while !pending.is_empty() {
-        let found: Vec<(FaceId, u32)> = {
-            let m = MeshRef::new(world);
-            pending
-                .iter()
-                .filter_map(|&f| {
-                    m.face_halfedges(f)
-                        .filter_map(|h| m.face(m.twin(h)))
-                        .find_map(|g| face_group(world, g))
-                        .map(|g| (f, g))
-                })
-                .collect()
-        };
+        let found: Vec<(FaceId, u32)> = pending
+            .iter()
+            .filter_map(|&f| neighbours_group(world, f).map(|g| (f, g)))
+            .collect();
         if found.is_empty() {
             for f in pending.drain(..) {
                 set_face_group(world, f, Some(0));
@@ -157,6 +148,27 @@ pub fn settle(world: &mut World, mesh: MeshId) {
             set_face_group(world, f, Some(g));
         }
         pending.retain(|f| face_group(world, *f).is_none());
+    }
+}
+
+/// The group of the first face across one of `f`'s sides that has one (read from the links
+/// directly: this module sits below [`super::topology`]).
+fn neighbours_group(world: &World, f: FaceId) -> Option<u32> {
+    let halfedge = |h: super::ids::HalfedgeId| world.get::<Halfedge>(h.0);
+    let first = world.get::<Face>(f.0)?.halfedge;
+    let mut h = first;
+    loop {
+        let link = halfedge(h)?;
+        if let Some(g) = halfedge(link.twin)
+            .and_then(|t| t.face)
+            .and_then(|across| face_group(world, across))
+        {
+            return Some(g);
+        }
+        h = link.next;
+        if h == first {
+            return None;
+        }
     }
 }
 

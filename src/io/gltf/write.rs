@@ -235,6 +235,10 @@ fn per_vertex(
     out
 }
 
+/// [`vertices_and_triangles`]' result: the vertices to write (soup vertex, UV bits), three
+/// vertex numbers a triangle, and each triangle's soup face.
+type Triangulated = (Vec<(u32, [u32; 2])>, Vec<u32>, Vec<u32>);
+
 /// The triangles of each group row that has any, rows in order: `indices` three per triangle,
 /// `triangle_face` the soup face of each.
 fn triangles_by_group(
@@ -259,7 +263,7 @@ fn triangles_by_group(
 /// Vertices are in the soup's order, a vertex's UV copies together in order of first use (every
 /// position, used or not, when the soup has no UVs): so a reader that welds by position gets
 /// the soup's vertices back in their order.
-fn vertices_and_triangles(soup: &PolygonSoup) -> (Vec<(u32, [u32; 2])>, Vec<u32>, Vec<u32>) {
+fn vertices_and_triangles(soup: &PolygonSoup) -> Triangulated {
     let uvs = soup.corner_uvs.as_ref().filter(|_| soup.attributes().uv);
     let n = soup.positions.len() as u32;
     // Each corner's key, for the triangles of every face that names existing vertices.

@@ -393,12 +393,9 @@ fn first_pass(bytes: &[u8]) -> Result<(Vec<Vec3>, RawFaces, Extras), ParseError>
                 faces.starts.push(faces.corners.len());
                 extras.groups.face();
             }
-            Some(keyword) => {
-                // `text` starts with the keyword: the rest of the line is its argument.
-                if !extras.groups.statement(keyword, &text[keyword.len()..]) {
-                    extras.skipped.count(skipped_statement(keyword), 1);
-                }
-            }
+            // `text` starts with the keyword: the rest of the line is its argument.
+            Some(keyword) if extras.groups.statement(keyword, &text[keyword.len()..]) => {}
+            Some(keyword) => extras.skipped.count(skipped_statement(keyword), 1),
             None => {}
         }
     }
