@@ -1068,6 +1068,24 @@ fn a_save_that_would_drop_the_beasts_uvs_asks_first() {
 }
 
 #[test]
+fn a_file_dropped_on_the_window_opens() {
+    let Some(cube) = common::model("course/cube.dae") else {
+        return;
+    };
+    let mut app = app();
+    open(&mut app, "shape:torus");
+    app.world_mut()
+        .write_message(bevy::window::FileDragAndDrop::DroppedFile {
+            window: Entity::PLACEHOLDER,
+            path_buf: cube,
+        });
+    app.update();
+    let opened = last_outcome(&app).result.unwrap();
+    assert!(opened.contains("cube.dae"), "{opened}");
+    assert_eq!(counts(&app), (8, 18, 12));
+}
+
+#[test]
 fn unsaved_changes_are_not_lost_to_an_open() {
     let mut app = app();
     open(&mut app, "shape:torus");

@@ -76,6 +76,8 @@ impl Plugin for EditorLogicPlugin {
     fn build(&self, app: &mut App) {
         app.add_message::<Request>()
             .add_message::<EditOutcome>()
+            // The window plugin adds it too; headless, a test writes it.
+            .add_message::<bevy::window::FileDragAndDrop>()
             .add_message::<picking::PickRequest>()
             .init_resource::<Selection>()
             .init_resource::<Hover>()
@@ -125,6 +127,8 @@ impl Plugin for EditorLogicPlugin {
                     )
                         .chain()
                         .in_set(EditorSystems::Input),
+                    // Whatever has the keyboard: a file dropped on the window opens.
+                    open_dropped_files.in_set(EditorSystems::Input),
                     picking::resolve_picks.in_set(EditorSystems::Request),
                     (jobs::finish_jobs, apply::apply_requests, recovery::autosave)
                         .chain()
@@ -163,7 +167,7 @@ impl Plugin for EditorWindowPlugin {
             .add_systems(
                 Update,
                 (
-                    (scene::orbit_controls, open_dropped_files)
+                    scene::orbit_controls
                         .run_if(|k: Res<input::KeyboardCaptured>| !k.0)
                         .in_set(EditorSystems::Input),
                     frame_new_meshes
@@ -219,7 +223,7 @@ impl Plugin for EditorWindowPlugin {
     }
 }
 
-/// Opens files dropped on the window.
+/// Opens files dropped on the window, as Ctrl+O would (unsaved changes are asked about first).
 fn open_dropped_files(
     mut drops: MessageReader<bevy::window::FileDragAndDrop>,
     mut requests: MessageWriter<Request>,
