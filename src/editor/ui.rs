@@ -404,9 +404,12 @@ pub fn panels(
 
     let status = status_bar(&mut root, &view, &log);
 
+    // Never narrower than its rows (with every section closed it would shrink to the titles,
+    // and a job's progress bar with it).
     let inspector = egui::Panel::left("inspector")
         .resizable(true)
         .default_size(300.0)
+        .min_size(260.0)
         .show(&mut root, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 ui.heading("Pappus");
