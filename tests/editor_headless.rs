@@ -1085,6 +1085,48 @@ fn a_file_dropped_on_the_window_opens() {
     assert_eq!(counts(&app), (8, 18, 12));
 }
 
+/// A large file (here any: the threshold set to 0) is read on another thread: the window
+/// keeps going, edits wait, and the file replaces the mesh when ready, as one undo step; a
+/// cancelled read leaves the mesh as it was.
+#[test]
+fn a_large_file_opens_in_the_background_and_can_be_cancelled() {
+    use pappus::editor::jobs::JobSettings;
+    use pappus::editor::opening::Opening;
+    let Some(spot) = common::model("spot.obj") else {
+        return;
+    };
+    let mut app = app();
+    open(&mut app, "shape:torus");
+    let torus = counts(&app);
+    app.world_mut().resource_mut::<JobSettings>().min_open_bytes = 0;
+    let reading = |app: &App| app.world().resource::<Opening>().0.is_some();
+    // Cancelled: the torus stays.
+    open(&mut app, spot.to_str().unwrap());
+    assert!(reading(&app));
+    app.world_mut().write_message(Request::CancelJob);
+    app.update();
+    assert!(!reading(&app));
+    assert_eq!(counts(&app), torus);
+    // Read to the end.
+    open(&mut app, spot.to_str().unwrap());
+    let started = last_outcome(&app).result.unwrap();
+    assert!(started.contains("reading in the background"), "{started}");
+    let e = some_interior_edge(&app);
+    app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
+    app.update();
+    if reading(&app) {
+        let refused = last_outcome(&app).result.unwrap_err().to_string();
+        assert!(refused.contains("open spot.obj"), "{refused}");
+    }
+    update_until(&mut app, |app| !reading(app));
+    let opened = last_outcome(&app).result.unwrap();
+    assert!(opened.contains("2930 vertices, 5856 faces"), "{opened}");
+    assert_eq!(counts(&app), (2930, 8784, 5856));
+    app.world_mut().write_message(Request::Undo);
+    app.update();
+    assert_eq!(counts(&app), torus, "one undo brings the torus back");
+}
+
 #[test]
 fn unsaved_changes_are_not_lost_to_an_open() {
     let mut app = app();

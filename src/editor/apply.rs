@@ -13,11 +13,12 @@ use std::path::Path;
 use crate::edit::{Edit, EditContext};
 use crate::io;
 use crate::mesh::topology::MeshRef;
-use crate::mesh::{MeshInfo, build_mesh, despawn_mesh};
+use crate::mesh::{MeshInfo, despawn_mesh};
 
 use super::finish::{Finished, finish_edit, report};
 use super::history::{self, Redraw, UndoHistory};
 use super::jobs::{self, Jobs};
+use super::opening::{self, open};
 use super::requests::{ConfirmDiscard, Declined, PendingDiscard, Request};
 use super::select_many::apply_selection_edit;
 use super::selection::{ActiveMesh, MeshDirty, Selection, exists, mark_faces_dirty, navigate};
@@ -69,9 +70,14 @@ pub fn close_requested(
 /// See [`Declined`].
 pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
     if request.edits()
-        && let Some(job) = &world.resource::<Jobs>().running
+        && let Some(label) = world
+            .resource::<Jobs>()
+            .running
+            .as_ref()
+            .map(|job| job.label.clone())
+            .or_else(|| opening::busy(world))
     {
-        return Err(Declined::Busy(job.label.clone()));
+        return Err(Declined::Busy(label));
     }
     // Any other edit, undo, save or file request ends a stepped run first, as one undo entry
     // (a new stepped run ends it once it has been planned).
@@ -102,7 +108,10 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
             })
         }
         Request::Redo => undo_or_redo(world, true),
-        Request::CancelJob => jobs::cancel(world),
+        Request::CancelJob => match opening::cancel(world) {
+            Some(cancelled) => Ok(cancelled),
+            None => jobs::cancel(world),
+        },
         Request::Select(element) => {
             if let Some(x) = element
                 && !exists(&MeshRef::new(world), *x)
@@ -239,45 +248,6 @@ fn undo_or_redo(world: &mut World, redo: bool) -> Result<String, Declined> {
         "{} {}",
         if redo { "redid" } else { "undid" },
         stepped.label
-    ))
-}
-
-/// Opens a mesh, replacing the active one only once the new one has been read and built.
-pub(super) fn open(world: &mut World, path: &Path) -> Result<String, Declined> {
-    let (soup, info) =
-        crate::source::read_source(path).map_err(|e| Declined::File(e.to_string()))?;
-    let pending = history::begin_replace(world);
-    let built = build_mesh(world, &soup, info)
-        .map_err(|e| Declined::File(format!("{}: {e}", path.display())))?;
-    if let Some(old) = world.resource::<ActiveMesh>().0 {
-        despawn_mesh(world, old);
-    }
-    world.resource_mut::<ActiveMesh>().0 = Some(built.mesh);
-    world.resource_mut::<Selection>().select_only(None);
-    world.resource_mut::<SimplificationHistory>().pm = None;
-    world.entity_mut(built.mesh.0).insert(MeshDirty);
-    if let Some(pending) = pending {
-        history::commit(world, pending, format!("open {}", path.display()));
-    }
-    let stats = crate::mesh::mesh_stats(world, built.mesh);
-    let dropped = soup.vertex_attributes();
-    let mut dropped = match dropped.is_empty() {
-        true => String::new(),
-        false => format!(
-            "; the file's vertex {} is not kept (saving writes positions, faces, UVs, normals and colours)",
-            dropped.join(", ")
-        ),
-    };
-    for note in &soup.notes {
-        dropped.push_str("; ");
-        dropped.push_str(note);
-    }
-    Ok(format!(
-        "{}: {} vertices, {} faces; {}{dropped}",
-        path.display(),
-        stats.vertices,
-        stats.faces,
-        built.report
     ))
 }
 

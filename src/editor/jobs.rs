@@ -43,11 +43,17 @@ pub struct JobSettings {
     /// Meshes with at least this many faces run whole-mesh operations as jobs. Default 20 000
     /// (below that every operation takes well under a tenth of a second).
     pub min_faces: usize,
+    /// Files of at least this many bytes open in the background ([`super::opening`]).
+    /// Default 8 MB (a 300 k-face binary PLY; the shared models open in a fraction of a second).
+    pub min_open_bytes: u64,
 }
 
 impl Default for JobSettings {
     fn default() -> Self {
-        Self { min_faces: 20_000 }
+        Self {
+            min_faces: 20_000,
+            min_open_bytes: 8 << 20,
+        }
     }
 }
 

@@ -23,6 +23,7 @@ pub mod frame_stats;
 pub mod history;
 pub mod input;
 pub mod jobs;
+pub mod opening;
 pub mod overlay;
 pub mod pacing;
 pub mod panel_sections;
@@ -89,6 +90,7 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<history::UndoHistory>()
             .init_resource::<jobs::Jobs>()
             .init_resource::<jobs::JobSettings>()
+            .init_resource::<opening::Opening>()
             .init_resource::<requests::ConfirmDiscard>()
             .init_resource::<render_sync::ViewSettings>()
             .init_resource::<colouring::ColorBy>()
@@ -130,7 +132,12 @@ impl Plugin for EditorLogicPlugin {
                     // Whatever has the keyboard: a file dropped on the window opens.
                     open_dropped_files.in_set(EditorSystems::Input),
                     picking::resolve_picks.in_set(EditorSystems::Request),
-                    (jobs::finish_jobs, apply::apply_requests, recovery::autosave)
+                    (
+                        jobs::finish_jobs,
+                        opening::finish_opening,
+                        apply::apply_requests,
+                        recovery::autosave,
+                    )
                         .chain()
                         .in_set(EditorSystems::Apply),
                     (

@@ -255,6 +255,17 @@ pub fn snapshot(world: &mut World) {
             ),
     );
     view.history_bytes = history.bytes();
+    let opening = world
+        .resource::<super::opening::Opening>()
+        .0
+        .as_ref()
+        .map(|o| {
+            (
+                o.label.clone(),
+                o.progress.fraction(),
+                o.started.elapsed().as_secs_f32(),
+            )
+        });
     view.job = world
         .resource::<super::jobs::Jobs>()
         .running
@@ -265,7 +276,8 @@ pub fn snapshot(world: &mut World) {
                 j.progress.fraction(),
                 j.started.elapsed().as_secs_f32(),
             )
-        });
+        })
+        .or(opening);
     let selection = world.resource::<Selection>();
     let drawn = super::overlay::MAX_SET_DRAWN;
     view.selected_set = match selection.len() {

@@ -47,15 +47,30 @@ pub struct BuiltMesh {
     pub input_vertices: Vec<Option<VertexId>>,
 }
 
-/// Builds a mesh from `soup` into `world`, repairing what it must (see [`super::repair`]).
+/// A soup repaired and laid out as tables, not yet in any world: what [`build_mesh`] computes
+/// before it spawns, so that it can run away from the world (the editor opens a large file on
+/// another thread and only spawns on its own).
+#[derive(Clone, Debug)]
+pub struct PreparedMesh {
+    connectivity: Connectivity,
+    report: RepairReport,
+    /// For each input vertex, its vertex row ([`NONE`] if dropped).
+    input_vertex: Vec<u32>,
+}
+
+impl PreparedMesh {
+    /// The repairs made.
+    pub fn report(&self) -> &RepairReport {
+        &self.report
+    }
+}
+
+/// Repairs `soup` and lays it out as tables (see [`super::repair`]); touches no world.
 ///
 /// # Errors
-/// [`BuildError::NoFaces`] if no face survives the repairs; the world is then untouched.
-pub fn build_mesh(
-    world: &mut World,
-    soup: &PolygonSoup,
-    info: MeshInfo,
-) -> Result<BuiltMesh, BuildError> {
+/// [`BuildError::NoFaces`] if no face survives the repairs, [`BuildError::TooLarge`] past
+/// 32-bit indices.
+pub fn prepare_mesh(soup: &PolygonSoup) -> Result<PreparedMesh, BuildError> {
     if soup.indices.len() >= 1 << 31 {
         return Err(BuildError::TooLarge(soup.indices.len()));
     }
@@ -68,18 +83,41 @@ pub fn build_mesh(
     }
     let mut connectivity = Connectivity::from_corners(faces.corners());
     connectivity.attributes = attribute_columns(soup, &faces, &connectivity);
-    let (mesh, rows) = spawn_connectivity(world, &connectivity, info);
+    Ok(PreparedMesh {
+        connectivity,
+        report,
+        input_vertex: faces.input_vertex,
+    })
+}
+
+/// Spawns a prepared mesh into `world`: every element once, already linked.
+pub fn spawn_prepared(world: &mut World, prepared: PreparedMesh, info: MeshInfo) -> BuiltMesh {
+    let (mesh, rows) = spawn_connectivity(world, &prepared.connectivity, info);
     let vertices = rows.vertices;
-    let input_vertices = faces
+    let input_vertices = prepared
         .input_vertex
         .iter()
         .map(|&v| (v != NONE).then(|| vertices[v as usize]))
         .collect();
-    Ok(BuiltMesh {
+    BuiltMesh {
         mesh,
-        report,
+        report: prepared.report,
         input_vertices,
-    })
+    }
+}
+
+/// Builds a mesh from `soup` into `world`, repairing what it must (see [`super::repair`]):
+/// [`prepare_mesh`] then [`spawn_prepared`].
+///
+/// # Errors
+/// [`BuildError::NoFaces`] if no face survives the repairs; the world is then untouched.
+pub fn build_mesh(
+    world: &mut World,
+    soup: &PolygonSoup,
+    info: MeshInfo,
+) -> Result<BuiltMesh, BuildError> {
+    let prepared = prepare_mesh(soup)?;
+    Ok(spawn_prepared(world, prepared, info))
 }
 
 /// The soup's corner UVs, normals and colours as table columns for the repaired faces laid out

@@ -36,7 +36,10 @@ pub mod tables;
 pub mod topology;
 pub mod validate;
 
-pub use build::{BuildError, BuiltMesh, build_mesh, despawn_mesh, soup_of_tables, to_soup};
+pub use build::{
+    BuildError, BuiltMesh, PreparedMesh, build_mesh, despawn_mesh, prepare_mesh, soup_of_tables,
+    spawn_prepared, to_soup,
+};
 pub use elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
 pub use ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 pub use members::MeshMembers;
