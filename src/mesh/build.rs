@@ -63,6 +63,14 @@ impl PreparedMesh {
     pub fn report(&self) -> &RepairReport {
         &self.report
     }
+
+    /// How many vertices and faces the mesh will have.
+    pub fn counts(&self) -> (usize, usize) {
+        (
+            self.connectivity.vertex_count(),
+            self.connectivity.face_count(),
+        )
+    }
 }
 
 /// Repairs `soup` and lays it out as tables (see [`super::repair`]); touches no world.
