@@ -1127,6 +1127,48 @@ fn a_large_file_opens_in_the_background_and_can_be_cancelled() {
     assert_eq!(counts(&app), torus, "one undo brings the torus back");
 }
 
+/// A large mesh's panel figures are counted on a thread (the last ones shown meanwhile), and its
+/// validity is checked when the panel asks.
+#[test]
+fn a_large_meshs_figures_are_counted_apart_and_its_validity_when_asked() {
+    use pappus::editor::jobs::JobSettings;
+    use pappus::editor::ui::{InspectorView, snapshot};
+    let mut app = app();
+    app.init_resource::<InspectorView>()
+        .add_systems(Update, snapshot.in_set(pappus::editor::EditorSystems::Ui));
+    app.world_mut()
+        .resource_mut::<JobSettings>()
+        .min_faces_figures_apart = 100;
+    open(&mut app, "shape:icosphere");
+    let view = |app: &App| {
+        app.world()
+            .resource::<InspectorView>()
+            .mesh
+            .clone()
+            .unwrap()
+    };
+    update_until(&mut app, |app| {
+        let shown = view(app);
+        shown.stats.is_some() && !shown.counting
+    });
+    let shown = view(&app);
+    let stats = shown.stats.unwrap();
+    assert_eq!(stats, pappus::mesh::mesh_stats(app.world(), mesh(&app)));
+    assert_eq!((stats.faces, stats.euler_characteristic), (1280, 2));
+    assert!(shown.validation.is_none(), "not checked unasked");
+    assert!(
+        !app.world()
+            .resource::<InspectorView>()
+            .histograms
+            .is_empty()
+    );
+    app.world_mut()
+        .resource_mut::<pappus::editor::input::UiState>()
+        .check_validity = true;
+    app.update();
+    assert_eq!(view(&app).validation, Some(Ok(())));
+}
+
 #[test]
 fn unsaved_changes_are_not_lost_to_an_open() {
     let mut app = app();

@@ -653,6 +653,9 @@ pub struct UiState {
     pub smooth: SmoothParams,
     /// Show the histograms even when the mesh is not coloured by a quantity.
     pub histograms: bool,
+    /// The panel asked to check the validity of a large mesh (see
+    /// [`super::mesh_figures`]).
+    pub check_validity: bool,
     /// Parameterization: method and boundary shape (no seams; a closed genus-0 mesh is cut
     /// automatically).
     pub param: ParamParams,
@@ -681,6 +684,7 @@ impl Default for UiState {
             subdivision_levels: 1,
             smooth: SmoothParams::default(),
             histograms: false,
+            check_validity: false,
             param: ParamParams::default(),
             uv_view: false,
             bevel_amount: 0.25,

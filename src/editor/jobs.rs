@@ -46,6 +46,9 @@ pub struct JobSettings {
     /// Files of at least this many bytes open in the background ([`super::opening`]).
     /// Default 8 MB (a 300 k-face binary PLY; the shared models open in a fraction of a second).
     pub min_open_bytes: u64,
+    /// Meshes of at least this many faces have the panel's figures counted on a thread and
+    /// their validity checked when asked ([`super::mesh_figures`]). Default 200 000.
+    pub min_faces_figures_apart: usize,
 }
 
 impl Default for JobSettings {
@@ -53,6 +56,7 @@ impl Default for JobSettings {
         Self {
             min_faces: 20_000,
             min_open_bytes: 8 << 20,
+            min_faces_figures_apart: 200_000,
         }
     }
 }

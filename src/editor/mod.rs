@@ -23,6 +23,7 @@ pub mod frame_stats;
 pub mod history;
 pub mod input;
 pub mod jobs;
+pub mod mesh_figures;
 pub mod opening;
 pub mod overlay;
 pub mod pacing;
@@ -91,6 +92,7 @@ impl Plugin for EditorLogicPlugin {
             .init_resource::<jobs::Jobs>()
             .init_resource::<jobs::JobSettings>()
             .init_resource::<opening::Opening>()
+            .init_resource::<mesh_figures::Counting>()
             .init_resource::<requests::ConfirmDiscard>()
             .init_resource::<render_sync::ViewSettings>()
             .init_resource::<colouring::ColorBy>()

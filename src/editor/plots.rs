@@ -7,7 +7,7 @@ use bevy_egui::egui;
 use egui_plot::{Bar, BarChart, Plot};
 
 use crate::mesh::MeshId;
-use crate::mesh::tables::extract;
+use crate::mesh::tables::{Connectivity, extract};
 use crate::ops::geometry::Quantity;
 use crate::ops::geometry::quantity::corner_angles_deg;
 
@@ -53,10 +53,14 @@ impl Histogram {
 /// The panel's histograms of `mesh`: valence (one bin per value), corner angles (5° bins),
 /// edge lengths (30 bins up to the 99th percentile), and `shown`'s values over its colour range.
 pub fn histograms(world: &World, mesh: MeshId, shown: Option<&VertexValues>) -> Vec<Histogram> {
-    let t = extract(world, mesh).tables;
-    let valence = Quantity::Valence.per_vertex(&t, None);
+    histograms_of_tables(&extract(world, mesh).tables, shown)
+}
+
+/// [`histograms`] of a mesh's tables (computable away from the world).
+pub fn histograms_of_tables(t: &Connectivity, shown: Option<&VertexValues>) -> Vec<Histogram> {
+    let valence = Quantity::Valence.per_vertex(t, None);
     let most = valence.iter().copied().fold(3.0, f64::max).min(16.0);
-    let angles: Vec<f64> = t.faces().flat_map(|f| corner_angles_deg(&t, f)).collect();
+    let angles: Vec<f64> = t.faces().flat_map(|f| corner_angles_deg(t, f)).collect();
     let mut lengths: Vec<f64> = t
         .edges()
         .map(|e| {

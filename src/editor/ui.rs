@@ -13,7 +13,7 @@ use std::path::PathBuf;
 
 use crate::mesh::ids::{ElementId, parse_element};
 use crate::mesh::topology::MeshRef;
-use crate::mesh::{InMesh, MeshInfo, MeshStats, mesh_stats, validate};
+use crate::mesh::{InMesh, MeshInfo};
 use crate::ops::named::Named;
 
 use crate::edit::{Edit, LocalKind, Subdivision};
@@ -26,7 +26,8 @@ use super::EditorSystems;
 use super::colouring::{ColorBy, VertexValues};
 use super::dialog::PathPurpose;
 use super::input::{Action, KeyboardCaptured, SHORTCUTS, UiState, perform};
-use super::plots::{Histogram, histograms};
+use super::mesh_figures::MeshView;
+use super::plots::Histogram;
 use super::render_sync::{RenderStats, ViewSettings};
 use super::requests::{OutcomeLog, Relation, Request};
 use super::selection::{ActiveMesh, SelectMode, Selection, navigate};
@@ -119,19 +120,6 @@ pub struct InspectorView {
     pub colour: Option<(String, ColorMap, Range)>,
 }
 
-/// The active mesh as shown.
-#[derive(Debug, Clone)]
-pub struct MeshView {
-    /// Its name.
-    pub name: String,
-    /// Its file.
-    pub path: Option<PathBuf>,
-    /// Its statistics.
-    pub stats: MeshStats,
-    /// `Ok` or the first broken invariant.
-    pub validation: Result<(), String>,
-}
-
 /// The selected element as shown.
 #[derive(Debug, Clone)]
 pub struct SelectedView {
@@ -222,16 +210,19 @@ pub fn snapshot(world: &mut World) {
             }
             let stale = changed && !dragging && due;
             if view.mesh.is_none() || stale {
-                let info = world.get::<MeshInfo>(mesh.0).cloned().unwrap_or_default();
-                view.mesh = Some(MeshView {
-                    name: info.name,
-                    path: info.path,
-                    stats: mesh_stats(world, mesh),
-                    validation: validate(world, mesh).map_err(|e| e.to_string()),
-                });
-                view.histograms = histograms(world, mesh, world.get::<VertexValues>(mesh.0));
+                super::mesh_figures::count(
+                    world,
+                    &mut view.mesh,
+                    &mut view.histograms,
+                    mesh,
+                    generation,
+                );
                 view.stats_generation = generation;
                 view.after_quiet = false;
+            }
+            super::mesh_figures::collect(world, &mut view.mesh, &mut view.histograms, generation);
+            if std::mem::take(&mut world.resource_mut::<UiState>().check_validity) {
+                super::mesh_figures::check_validity(world, &mut view.mesh, mesh);
             }
         }
     }
@@ -433,7 +424,7 @@ pub fn panels(
                     file_section(ui, &mut fields, &mut ui_state, &mut requests);
                 });
                 sections.show(ui, "Mesh", |ui| {
-                    mesh_section(ui, &view);
+                    mesh_section(ui, &view, &mut ui_state.check_validity);
                     let mut view_settings = *settings;
                     view_toggles(ui, (&mut view_settings, &density), &mut pending);
                     settings.set_if_neq(view_settings);
@@ -627,7 +618,7 @@ fn file_section(
     });
 }
 
-fn mesh_section(ui: &mut egui::Ui, view: &InspectorView) {
+fn mesh_section(ui: &mut egui::Ui, view: &InspectorView, check_validity: &mut bool) {
     let Some(mesh) = &view.mesh else {
         ui.label("No mesh. Open a file or drop one on the window.");
         return;
@@ -636,7 +627,13 @@ fn mesh_section(ui: &mut egui::Ui, view: &InspectorView) {
     if let Some(p) = &mesh.path {
         ui.label(egui::RichText::new(p.display().to_string()).small());
     }
-    let s = &mesh.stats;
+    let Some(s) = &mesh.stats else {
+        ui.label("counting …");
+        return;
+    };
+    if mesh.counting {
+        ui.label(egui::RichText::new("counting the changed mesh …").small());
+    }
     egui::Grid::new("stats").num_columns(2).show(ui, |ui| {
         let sizes: Vec<String> = s
             .face_sizes
@@ -668,11 +665,18 @@ fn mesh_section(ui: &mut egui::Ui, view: &InspectorView) {
         }
     });
     match &mesh.validation {
-        Ok(()) => ui.colored_label(egui::Color32::from_rgb(120, 200, 120), "valid"),
-        Err(e) => ui.colored_label(
+        Some(Ok(())) => ui.colored_label(egui::Color32::from_rgb(120, 200, 120), "valid"),
+        Some(Err(e)) => ui.colored_label(
             egui::Color32::from_rgb(230, 120, 90),
             format!("INVALID: {e}"),
         ),
+        None => {
+            let check = ui
+                .button("check validity")
+                .on_hover_text("a large mesh is checked when asked: a few seconds of waiting");
+            *check_validity |= check.clicked();
+            check
+        }
     };
 }
 

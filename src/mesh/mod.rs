@@ -45,6 +45,6 @@ pub use ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 pub use members::MeshMembers;
 pub use repair::RepairReport;
 pub use soup::PolygonSoup;
-pub use stats::{MeshStats, mesh_stats};
+pub use stats::{MeshStats, mesh_stats, stats_of_tables};
 pub use topology::MeshRef;
 pub use validate::{Invalid, Rule, validate};
