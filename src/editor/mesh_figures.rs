@@ -38,9 +38,12 @@ pub struct MeshView {
     pub counting: bool,
 }
 
+/// What a counting thread hands back.
+type Figures = (MeshStats, Vec<Histogram>);
+
 /// Figures being counted on a thread: the mesh generation they are for, and the thread.
 #[derive(Resource, Default)]
-pub struct Counting(Option<(usize, JoinHandle<(MeshStats, Vec<Histogram>)>)>);
+pub struct Counting(Option<(usize, JoinHandle<Figures>)>);
 
 /// Counts the figures of `mesh` (at mesh `generation`) into `view`: at once for a small mesh,
 /// by starting a thread for a large one (see the module doc).
