@@ -5,23 +5,13 @@ mod common;
 
 use bevy::math::{Vec2, Vec3};
 use bevy::prelude::World;
-use pappus::edit::{Edit, EditContext, Scheme, Subdivision};
+use pappus::edit::{Edit, Scheme, Subdivision};
 use pappus::mesh::attributes::{CornerUv, MeshAttributes, Seam, VertexColor, VertexNormal};
 use pappus::mesh::change::{LocalRecorder, SavedContents};
 use pappus::mesh::{MeshId, MeshMembers, MeshRef, PolygonSoup, VertexId, shapes, to_soup};
 use pappus::ops::remesh::RemeshParams;
 
-/// Runs `edit` on `mesh`; its summary.
-fn run(world: &mut World, mesh: MeshId, edit: &Edit) -> String {
-    let mut history = None;
-    let mut context = EditContext {
-        history: &mut history,
-        progress: &mut |_| true,
-    };
-    edit.run(world, mesh, &mut context)
-        .expect("applied")
-        .summary
-}
+use common::run_edit as run;
 
 /// The invariant of the record: every face halfedge has a UV, no boundary one does.
 fn assert_every_corner_has_a_uv(world: &World, mesh: MeshId) {

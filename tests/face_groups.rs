@@ -5,7 +5,7 @@
 mod common;
 
 use bevy::prelude::World;
-use pappus::edit::{Edit, EditContext, Scheme, Subdivision};
+use pappus::edit::{Edit, Scheme, Subdivision};
 use pappus::io::{self, Format};
 use pappus::mesh::attributes::MeshAttributes;
 use pappus::mesh::change::{LocalRecorder, SavedContents};
@@ -49,17 +49,7 @@ fn cube() -> (World, MeshId) {
     (world, built.mesh)
 }
 
-/// Runs `edit` on `mesh`; its summary.
-fn run(world: &mut World, mesh: MeshId, edit: &Edit) -> String {
-    let mut history = None;
-    let mut context = EditContext {
-        history: &mut history,
-        progress: &mut |_| true,
-    };
-    edit.run(world, mesh, &mut context)
-        .expect("applied")
-        .summary
-}
+use common::run_edit as run;
 
 /// Every face's group, checking the invariant: the record says groups and every face has one
 /// naming a row of the table.

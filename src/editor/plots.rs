@@ -61,16 +61,7 @@ pub fn histograms_of_tables(t: &Connectivity, shown: Option<&VertexValues>) -> V
     let valence = Quantity::Valence.per_vertex(t, None);
     let most = valence.iter().copied().fold(3.0, f64::max).min(16.0);
     let angles: Vec<f64> = t.faces().flat_map(|f| corner_angles_deg(t, f)).collect();
-    let mut lengths: Vec<f64> = t
-        .edges()
-        .map(|e| {
-            let h = t.edge_halfedge(e);
-            f64::from(
-                t.position(t.from_vertex(h))
-                    .distance(t.position(t.to_vertex(h))),
-            )
-        })
-        .collect();
+    let mut lengths: Vec<f64> = t.edges().map(|e| f64::from(t.edge_length(e))).collect();
     let mut out = vec![
         Histogram::of("valence", &valence, 0.5, most + 0.5, most as usize),
         Histogram::of("corner angles (°)", &angles, 0.0, 180.0, 36),

@@ -84,16 +84,7 @@ pub fn stats_of_tables(t: &Connectivity) -> MeshStats {
 
     let boundary_loops = count_boundary_loops(t);
     let components = count_components(t);
-    let total_length: f64 = t
-        .edges()
-        .map(|e| {
-            let h = t.edge_halfedge(e);
-            f64::from(
-                t.position(t.from_vertex(h))
-                    .distance(t.position(t.to_vertex(h))),
-            )
-        })
-        .sum();
+    let total_length: f64 = t.edges().map(|e| f64::from(t.edge_length(e))).sum();
     let (v, e, f) = (
         t.vertex_count() as i64,
         t.edge_count() as i64,

@@ -183,3 +183,22 @@ pub fn last_ok(app: &App) -> String {
         Err(why) => panic!("{} was declined: {why}", last.request),
     }
 }
+
+/// Runs `edit` on `mesh` as the command line does (no undo history, no progress); its summary.
+///
+/// # Panics
+/// If the edit is refused.
+pub fn run_edit(
+    world: &mut World,
+    mesh: pappus::mesh::MeshId,
+    edit: &pappus::edit::Edit,
+) -> String {
+    let mut history = None;
+    let mut context = pappus::edit::EditContext {
+        history: &mut history,
+        progress: &mut |_| true,
+    };
+    edit.run(world, mesh, &mut context)
+        .expect("applied")
+        .summary
+}

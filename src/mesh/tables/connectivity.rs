@@ -306,6 +306,14 @@ impl Connectivity {
         HalfedgeRow::new(self.face_halfedge[f.index()])
     }
 
+    /// The length of edge `e` (the distance between its ends).
+    #[inline]
+    pub fn edge_length(&self, e: EdgeRow) -> f32 {
+        let h = self.edge_halfedge(e);
+        self.position(self.from_vertex(h))
+            .distance(self.position(self.to_vertex(h)))
+    }
+
     /// `v`'s position.
     #[inline]
     pub fn position(&self, v: VertexRow) -> Vec3 {
