@@ -479,12 +479,12 @@ fn info_reports_attributes_and_files_keep_them() {
     let v = json(&out);
     assert_eq!(
         v["attributes"],
-        serde_json::json!({ "uv": true, "normals": true, "colors": true, "seams": false })
+        serde_json::json!({ "uv": true, "normals": true, "colors": true, "seams": false, "groups": false })
     );
     let v = json(&pappus(&["info", "shape:cube", "--json"]));
     assert_eq!(
         v["attributes"],
-        serde_json::json!({ "uv": false, "normals": false, "colors": false, "seams": false })
+        serde_json::json!({ "uv": false, "normals": false, "colors": false, "seams": false, "groups": false })
     );
     // OBJ → PLY → OBJ keeps every value; saving over the file writes the same bytes again.
     let ply = tmp("attributed.ply");
