@@ -549,6 +549,71 @@ fn local_edits_redraw_only_the_chunks_they_touch() {
     }
 }
 
+/// A move of most of the mesh (an ARAP frame) keeps the chunks and their triangles and
+/// refreshes their positions; a topological edit in the same frame is drawn too.
+#[test]
+fn a_move_of_most_of_the_mesh_refreshes_positions_in_the_chunks_it_has() {
+    use pappus::editor::render_sync::ChunkVertices;
+    let mut app = app();
+    open(&mut app, "shape:icosphere:6");
+    let chunk_entities = |app: &mut App| -> Vec<Entity> {
+        let mut e: Vec<Entity> = app
+            .world_mut()
+            .query_filtered::<Entity, With<TriangleFaces>>()
+            .iter(app.world())
+            .collect();
+        e.sort();
+        e
+    };
+    let before = chunk_entities(&mut app);
+    let vertices = pappus::mesh::MeshMembers::collect(app.world(), mesh(&app)).vertices;
+    let moves: Vec<_> = {
+        let m = MeshRef::new(app.world());
+        vertices.iter().map(|&v| (v, m.position(v) * 2.0)).collect()
+    };
+    app.world_mut()
+        .write_message(Request::Edit(Edit::MoveVertices(moves)));
+    app.update();
+    assert!(last_outcome(&app).result.is_ok());
+    assert_eq!(chunk_entities(&mut app), before, "the same chunks");
+    assert_every_face_drawn_once(&mut app);
+    // Every render vertex is where its mesh vertex now is.
+    let drawn: Vec<(Vec<[f32; 3]>, Vec<pappus::mesh::VertexId>)> = app
+        .world_mut()
+        .query::<(&Mesh3d, &ChunkVertices)>()
+        .iter(app.world())
+        .map(|(handle, vertices)| {
+            let meshes = app.world().resource::<Assets<Mesh>>();
+            let positions = meshes
+                .get(&handle.0)
+                .unwrap()
+                .attribute(Mesh::ATTRIBUTE_POSITION)
+                .unwrap()
+                .as_float3()
+                .unwrap()
+                .to_vec();
+            (positions, vertices.0.clone())
+        })
+        .collect();
+    let m = MeshRef::new(app.world());
+    for (positions, vertices) in drawn {
+        for (p, v) in positions.iter().zip(vertices) {
+            assert_eq!(*p, m.position(v).to_array());
+        }
+    }
+    // A flip and a move of everything in one frame: both drawn.
+    let e = some_interior_edge(&app);
+    let moves: Vec<_> = {
+        let m = MeshRef::new(app.world());
+        vertices.iter().map(|&v| (v, m.position(v) * 0.5)).collect()
+    };
+    app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
+    app.world_mut()
+        .write_message(Request::Edit(Edit::MoveVertices(moves)));
+    app.update();
+    assert_every_face_drawn_once(&mut app);
+}
+
 #[test]
 fn dragging_the_selected_vertex_moves_it_in_the_view_plane() {
     use bevy::input::mouse::{MouseButton, MouseButtonInput};

@@ -189,6 +189,9 @@ pub enum Redraw {
     },
     /// The whole mesh.
     Whole,
+    /// Only vertex positions changed (a move of most of the mesh): every face keeps its
+    /// corners, so a render copy keeps its triangles and refreshes its positions.
+    Positions,
 }
 
 /// An edit carried out.
@@ -1095,9 +1098,9 @@ fn element_corners(world: &World, x: ElementId) -> Vec<VertexId> {
 }
 
 /// Moves vertices; returns what to redraw: the faces around them and their neighbours (whose
-/// smooth normals change too), or the whole mesh when the moves reach a quarter of its
+/// smooth normals change too), or every position when the moves reach a quarter of its
 /// vertices (an ARAP frame moves most of them, and walking every one-ring then costs more than
-/// the whole redraw it leads to).
+/// the refresh it leads to).
 ///
 /// # Refusals
 /// [`Refusal::NotFinite`] for a position that is not finite, [`Refusal::Stale`] for a vertex
@@ -1122,7 +1125,7 @@ fn move_vertices(world: &mut World, moves: &[(VertexId, Vec3)]) -> Result<Redraw
                 4 * moves.len() > vertices.len()
             });
     let redraw = if many {
-        Redraw::Whole
+        Redraw::Positions
     } else {
         let mut ring: Vec<VertexId> = moves
             .iter()
@@ -1219,7 +1222,7 @@ mod tests {
         };
         let recorder = LocalRecorder::begin_vertices(&world, mesh, &seeds);
         let applied = many.run(&mut world, built.mesh, &mut context).unwrap();
-        assert_eq!(applied.redraw, Redraw::Whole);
+        assert_eq!(applied.redraw, Redraw::Positions);
         let change = recorder.finish(&world);
         assert_eq!(change.counts(), (0, 0, vertices.len()));
         change.apply(&mut world);

@@ -15,7 +15,9 @@ use crate::ops::Refusal;
 
 use super::history::{self, Pending};
 use super::requests::{Declined, EditOutcome, OutcomeLog};
-use super::selection::{MeshDirty, Selection, keep_live_selection, mark_faces_dirty};
+use super::selection::{
+    MeshDirty, PositionsDirty, Selection, keep_live_selection, mark_faces_dirty,
+};
 use super::session::{Modified, PreviousShape, SimplificationHistory};
 
 /// An edit that has run, with what its bookkeeping needs.
@@ -62,6 +64,9 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
             world.entity_mut(mesh.0).insert(MeshDirty);
         }
         Redraw::Near { faces, .. } => mark_faces_dirty(world, mesh, faces),
+        Redraw::Positions => {
+            world.entity_mut(mesh.0).insert(PositionsDirty);
+        }
     }
     match applied.made {
         Some(made) => world.resource_mut::<Selection>().select_only(Some(made)),

@@ -9,7 +9,9 @@
 //!
 //! In the `Sync` set, a mesh marked [`MeshDirty`] (opened, globally edited) is redrawn whole; a
 //! mesh carrying [`DirtyFaces`](super::selection::DirtyFaces) (a local edit) has only the
-//! chunks holding those faces redrawn, new faces joining the last chunk. A mesh coloured by a
+//! chunks holding those faces redrawn, new faces joining the last chunk; a mesh marked
+//! [`PositionsDirty`] (most of its vertices moved, as in an ARAP drag) keeps its chunks and
+//! their triangles and has only their positions (smooth normals, wireframe lines) refreshed. A mesh coloured by a
 //! quantity ([`VertexValues`]) gets vertex colours; a mesh with UVs, while
 //! [`ViewSettings::checker`] is on, gets texture coordinates (one render vertex per distinct
 //! vertex and UV, so a seam splits them) and the shader draws a checkerboard. A 1M-face mesh thus re-renders an edit in milliseconds,
@@ -32,7 +34,7 @@ use crate::mesh::ids::{FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 
 use super::colouring::VertexValues;
-use super::selection::{DirtyFaces, MeshDirty};
+use super::selection::{DirtyFaces, MeshDirty, PositionsDirty};
 
 /// The render entity of a mesh: carries its [`Mesh3d`] and [`TriangleFaces`].
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
@@ -205,10 +207,14 @@ fn push_vertex(m: &MeshRef<'_>, out: &mut RenderData, v: VertexId, smooth: bool)
     out.positions.push(m.position(v).to_array());
     out.vertices.push(v);
     if smooth {
-        let n: Vec3 = m.vertex_faces(v).map(|g| m.face_area_vector(g)).sum();
-        out.normals
-            .push(n.try_normalize().unwrap_or(Vec3::Z).to_array());
+        out.normals.push(smooth_normal(m, v));
     }
+}
+
+/// The smooth-shading normal of `v`: the area-weighted normal of all its faces.
+fn smooth_normal(m: &MeshRef<'_>, v: VertexId) -> [f32; 3] {
+    let n: Vec3 = m.vertex_faces(v).map(|g| m.face_area_vector(g)).sum();
+    n.try_normalize().unwrap_or(Vec3::Z).to_array()
 }
 
 /// Fans face `f` (its render vertices `corners`) into triangles, and counts its sides.
@@ -237,13 +243,22 @@ fn fan(out: &mut RenderData, corners: &[u32], f: FaceId) {
 /// took 27.
 pub fn edge_lines(world: &World, faces: &[FaceId]) -> Vec<(Vec3, Vec3, Color)> {
     let m = MeshRef::new(world);
+    edge_line_ends(world, faces)
+        .into_iter()
+        .map(|(a, b, color)| (m.position(a), m.position(b), color))
+        .collect()
+}
+
+/// [`edge_lines`] by their end vertices, which a refresh of positions reads again.
+fn edge_line_ends(world: &World, faces: &[FaceId]) -> Vec<(VertexId, VertexId, Color)> {
+    let m = MeshRef::new(world);
     let mut out = Vec::with_capacity(faces.len() * 2);
-    let mut ring: Vec<(HalfedgeId, HalfedgeId, Vec3)> = Vec::new();
+    let mut ring: Vec<(HalfedgeId, HalfedgeId, VertexId)> = Vec::new();
     for &f in faces {
         ring.clear();
         ring.extend(m.face_halfedges(f).map(|h| {
             let x = m.halfedge(h);
-            (h, x.twin, m.position(x.vertex))
+            (h, x.twin, x.vertex)
         }));
         let Some(&(_, _, mut from)) = ring.last() else {
             continue;
@@ -275,7 +290,9 @@ pub fn sync_render_meshes(world: &mut World) {
     for entity in dirty {
         let start = Instant::now();
         let triangles = rebuild_all(world, MeshId(entity), settings);
-        world.entity_mut(entity).remove::<(MeshDirty, DirtyFaces)>();
+        world
+            .entity_mut(entity)
+            .remove::<(MeshDirty, DirtyFaces, PositionsDirty)>();
         record(world, MeshId(entity), triangles, start);
     }
     let partial: Vec<Entity> = world
@@ -289,6 +306,20 @@ pub fn sync_render_meshes(world: &mut World) {
             .take::<DirtyFaces>()
             .unwrap_or_default();
         let triangles = rebuild_some(world, MeshId(entity), &faces.0, settings);
+        record(world, MeshId(entity), triangles, start);
+    }
+    // After the partial redraws: a chunk whose faces changed has its vertex list anew.
+    let moved: Vec<Entity> = world
+        .query_filtered::<Entity, (With<MeshInfo>, With<PositionsDirty>)>()
+        .iter(world)
+        .collect();
+    for entity in moved {
+        let start = Instant::now();
+        world.entity_mut(entity).remove::<PositionsDirty>();
+        let triangles = match refresh_positions(world, MeshId(entity), settings) {
+            Some(triangles) => triangles,
+            None => rebuild_all(world, MeshId(entity), settings),
+        };
         record(world, MeshId(entity), triangles, start);
     }
 }
@@ -474,11 +505,11 @@ fn chunk_lines(
     faces: &[FaceId],
     wireframe: bool,
     settings: ViewSettings,
-) -> Option<Vec<(Vec3, Vec3, Color)>> {
+) -> Option<Vec<(VertexId, VertexId, Color)>> {
     (settings.wireframe && world.contains_resource::<Assets<bevy::gizmos::GizmoAsset>>()).then(
         || {
             if wireframe {
-                edge_lines(world, faces)
+                edge_line_ends(world, faces)
             } else {
                 Vec::new()
             }
@@ -493,7 +524,7 @@ fn upload_chunk(
     chunk: Entity,
     wire: Entity,
     surface: ChunkSurface,
-    lines: Option<Vec<(Vec3, Vec3, Color)>>,
+    lines: Option<Vec<(VertexId, VertexId, Color)>>,
 ) -> usize {
     let ChunkSurface { data, colours } = surface;
     let triangles = data.triangle_faces.len();
@@ -521,25 +552,113 @@ fn upload_chunk(
     e.insert((
         Mesh3d(handle),
         TriangleFaces(data.triangle_faces),
+        ChunkVertices(data.vertices),
         Transform::default(),
         Visibility::default(),
     ));
     if let Some(material) = material {
         e.insert(bevy::pbr::MeshMaterial3d(material));
     }
-    if let Some(lines) = lines {
-        let mut asset = bevy::gizmos::GizmoAsset::default();
-        for (a, b, color) in lines {
-            asset.line(a, b, color);
-        }
+    if let Some(ends) = lines {
+        let asset = line_asset(world, &ends);
         let handle = world
             .resource_mut::<Assets<bevy::gizmos::GizmoAsset>>()
             .add(asset);
         world
             .entity_mut(wire)
-            .insert((wire_gizmo(handle.clone()), WireLines(handle)));
+            .insert((wire_gizmo(handle.clone()), WireLines(handle), WireEnds(ends)));
     }
     triangles
+}
+
+/// The wireframe lines between these ends, at the vertices' positions now.
+fn line_asset(world: &World, ends: &[(VertexId, VertexId, Color)]) -> bevy::gizmos::GizmoAsset {
+    let m = MeshRef::new(world);
+    let mut asset = bevy::gizmos::GizmoAsset::default();
+    for &(a, b, color) in ends {
+        asset.line(m.position(a), m.position(b), color);
+    }
+    asset
+}
+
+/// The mesh vertex behind each render vertex of a chunk ([`RenderData::vertices`]): what a
+/// refresh of positions reads.
+#[derive(Component, Debug, Clone, Default)]
+pub struct ChunkVertices(pub Vec<VertexId>);
+
+/// The end vertices of a chunk's wireframe lines, with their colours.
+#[derive(Component, Debug, Clone, Default)]
+pub struct WireEnds(pub Vec<(VertexId, VertexId, Color)>);
+
+/// Refreshes the positions of every chunk of `mesh` whose vertices moved and whose faces did
+/// not: each chunk's render positions (and smooth normals) are read again on the compute
+/// threads, written into its existing mesh asset, and its wireframe lines redrawn from their
+/// ends; triangles, the triangle → face tables and the chunks themselves stay. `None` (and
+/// nothing done) where that cannot serve and the caller draws the mesh whole: no chunks yet,
+/// colours by a quantity (they follow the positions), or a chunk without its vertex list.
+fn refresh_positions(world: &mut World, mesh: MeshId, settings: ViewSettings) -> Option<usize> {
+    let chunks = world.get::<RenderChunks>(mesh.0)?;
+    if world.get::<VertexValues>(mesh.0).is_some() {
+        return None;
+    }
+    let pairs: Vec<(Entity, Entity)> = chunks
+        .chunks
+        .iter()
+        .copied()
+        .zip(chunks.wires.iter().copied())
+        .collect();
+    if pairs
+        .iter()
+        .any(|&(c, _)| world.get::<ChunkVertices>(c).is_none())
+    {
+        return None;
+    }
+    let pool = ComputeTaskPool::get_or_init(TaskPool::default);
+    let world_ref: &World = world;
+    let refreshed = pairs.par_chunk_map(pool, 1, |_, pair| {
+        let (chunk, wire) = pair[0];
+        let m = MeshRef::new(world_ref);
+        let vertices = &world_ref.get::<ChunkVertices>(chunk).expect("checked").0;
+        // A vertex gone (an edit beside the move) leaves the positions unknown: drawn whole.
+        let positions: Vec<[f32; 3]> = vertices
+            .iter()
+            .map(|&v| m.try_position(v).map(Vec3::to_array))
+            .collect::<Option<_>>()?;
+        let normals: Vec<[f32; 3]> = if settings.smooth {
+            vertices.iter().map(|&v| smooth_normal(&m, v)).collect()
+        } else {
+            Vec::new()
+        };
+        let ends = world_ref.get::<WireEnds>(wire);
+        if ends.is_some_and(|e| e.0.iter().any(|&(a, b, _)| m.try_vertex(a).is_none() || m.try_vertex(b).is_none())) {
+            return None;
+        }
+        let lines = ends.map(|ends| line_asset(world_ref, &ends.0));
+        Some((positions, normals, lines))
+    });
+    let refreshed: Vec<_> = refreshed.into_iter().collect::<Option<_>>()?;
+    let mut triangles = 0;
+    for ((chunk, wire), (positions, normals, lines)) in pairs.into_iter().zip(refreshed) {
+        let handle = world.get::<Mesh3d>(chunk).map(|m| m.0.clone());
+        triangles += world.get::<TriangleFaces>(chunk).map_or(0, |t| t.0.len());
+        if let Some(handle) = handle {
+            let mut meshes = world.resource_mut::<Assets<Mesh>>();
+            if let Some(mut render) = meshes.get_mut(&handle) {
+                render.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
+                if !normals.is_empty() {
+                    render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
+                }
+            }
+        }
+        let wire_handle = world.get::<WireLines>(wire).map(|l| l.0.clone());
+        if let (Some(handle), Some(lines)) = (wire_handle, lines) {
+            let mut assets = world.resource_mut::<Assets<bevy::gizmos::GizmoAsset>>();
+            if let Some(mut asset) = assets.get_mut(&handle) {
+                *asset = lines;
+            }
+        }
+    }
+    Some(triangles)
 }
 
 /// The lines of a chunk's wireframe, kept while the wireframe is hidden. Bevy draws a retained

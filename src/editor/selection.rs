@@ -162,6 +162,13 @@ impl SelectMode {
 #[derive(Resource, Default, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ActiveMesh(pub Option<MeshId>);
 
+/// Marks a mesh whose vertices moved and nothing else changed: its render copy keeps its
+/// triangles and refreshes its positions (set by a move of most of the mesh, cleared by
+/// render sync).
+#[derive(Component, Default, Debug, Clone, Copy)]
+#[component(storage = "SparseSet")]
+pub struct PositionsDirty;
+
 /// Marks a mesh whose render copy must be rebuilt (set by every edit, cleared by render sync).
 #[derive(Component, Default, Debug, Clone, Copy)]
 #[component(storage = "SparseSet")]
