@@ -564,9 +564,11 @@ fn upload_chunk(
         let handle = world
             .resource_mut::<Assets<bevy::gizmos::GizmoAsset>>()
             .add(asset);
-        world
-            .entity_mut(wire)
-            .insert((wire_gizmo(handle.clone()), WireLines(handle), WireEnds(ends)));
+        world.entity_mut(wire).insert((
+            wire_gizmo(handle.clone()),
+            WireLines(handle),
+            WireEnds(ends),
+        ));
     }
     triangles
 }
@@ -622,7 +624,7 @@ fn refresh_positions(world: &mut World, mesh: MeshId, settings: ViewSettings) ->
         // A vertex gone (an edit beside the move) leaves the positions unknown: drawn whole.
         let positions: Vec<[f32; 3]> = vertices
             .iter()
-            .map(|&v| m.try_position(v).map(Vec3::to_array))
+            .map(|&v| m.try_position(v).map(|p| p.to_array()))
             .collect::<Option<_>>()?;
         let normals: Vec<[f32; 3]> = if settings.smooth {
             vertices.iter().map(|&v| smooth_normal(&m, v)).collect()
@@ -630,7 +632,10 @@ fn refresh_positions(world: &mut World, mesh: MeshId, settings: ViewSettings) ->
             Vec::new()
         };
         let ends = world_ref.get::<WireEnds>(wire);
-        if ends.is_some_and(|e| e.0.iter().any(|&(a, b, _)| m.try_vertex(a).is_none() || m.try_vertex(b).is_none())) {
+        if ends.is_some_and(|e| {
+            e.0.iter()
+                .any(|&(a, b, _)| m.try_vertex(a).is_none() || m.try_vertex(b).is_none())
+        }) {
             return None;
         }
         let lines = ends.map(|ends| line_asset(world_ref, &ends.0));
