@@ -20,7 +20,7 @@ use super::ParseError;
 use super::corners::{attach_corner_normals, per_vertex};
 use super::skipped::Skipped;
 use crate::memory_budget;
-use crate::mesh::groups::{FaceGroups, Group, GroupTable};
+use crate::mesh::groups::{FaceGroups, Group, GroupRows, GroupTable};
 use crate::mesh::soup::PolygonSoup;
 
 /// A corner index that names no position.
@@ -191,12 +191,12 @@ fn check_budget<'p>(placed: impl Iterator<Item = &'p Part>) -> Result<(), ParseE
 }
 
 /// The parts appended one after another into one part, per-corner values kept until the end,
-/// and the rows of the merged groups.
-struct Merged(Part, HashMap<Group, u32>);
+/// and the merged groups by row.
+struct Merged(Part, GroupRows);
 
 impl Default for Merged {
     fn default() -> Self {
-        Merged(Part::new(), HashMap::new())
+        Merged(Part::new(), GroupRows::default())
     }
 }
 
@@ -211,11 +211,7 @@ impl Merged {
                 if !part.exact_groups && !name.is_empty() {
                     group.object = Some(name.to_owned());
                 }
-                let next = self.0.groups.len() as u32;
-                *self.1.entry(group.clone()).or_insert_with(|| {
-                    self.0.groups.push(group);
-                    next
-                })
+                self.1.row(&group)
             })
             .collect();
         for library in &part.material_libraries {
@@ -277,11 +273,11 @@ impl Merged {
             normals,
             uvs,
             colors,
-            groups,
             face_group,
             material_libraries,
             ..
         } = self.0;
+        let groups = self.1.into_groups();
         let named = groups.iter().any(|g| *g != Group::default());
         let mut soup = PolygonSoup {
             positions,

@@ -72,6 +72,32 @@ pub struct GroupTable {
     pub groups: Vec<Group>,
 }
 
+/// The rows of a table being filled: each distinct group gets the next row the first time it
+/// is asked for, the same row after (how readers build a [`GroupTable`]).
+#[derive(Default)]
+pub struct GroupRows {
+    rows: std::collections::HashMap<Group, u32>,
+    groups: Vec<Group>,
+}
+
+impl GroupRows {
+    /// The row of `group`, added at the end if it is new.
+    pub fn row(&mut self, group: &Group) -> u32 {
+        if let Some(&row) = self.rows.get(group) {
+            return row;
+        }
+        let row = self.groups.len() as u32;
+        self.rows.insert(group.clone(), row);
+        self.groups.push(group.clone());
+        row
+    }
+
+    /// The groups, by row.
+    pub fn into_groups(self) -> Vec<Group> {
+        self.groups
+    }
+}
+
 /// A face's row in its mesh's [`GroupTable`].
 #[derive(Component, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct FaceGroup(pub u32);

@@ -14,10 +14,9 @@
 //! that), the faces are written grouped by row instead, rows in table order: rows in order of
 //! first use only ever gain parts.
 
-use std::collections::HashMap;
 use std::fmt::Write as _;
 
-use crate::mesh::groups::{FaceGroups, Group, GroupTable};
+use crate::mesh::groups::{FaceGroups, Group, GroupRows, GroupTable};
 
 /// The grouping state while a file is read, and the group of each face so far.
 #[derive(Default)]
@@ -25,8 +24,8 @@ pub(super) struct GroupReader {
     current: Group,
     /// The row of `current` in the table, once a face has used it.
     current_row: Option<u32>,
-    rows: HashMap<Group, u32>,
-    table: GroupTable,
+    rows: GroupRows,
+    material_libraries: Vec<String>,
     of_face: Vec<u32>,
     /// Whether any grouping statement was read.
     any: bool,
@@ -39,7 +38,7 @@ impl GroupReader {
         let name = Some(rest.trim().to_string());
         let part = match keyword {
             "mtllib" => {
-                self.table.material_libraries.push(rest.trim().to_string());
+                self.material_libraries.push(rest.trim().to_string());
                 self.any = true;
                 return true;
             }
@@ -62,11 +61,7 @@ impl GroupReader {
         let row = match self.current_row {
             Some(row) => row,
             None => {
-                let next = self.table.groups.len() as u32;
-                let row = *self.rows.entry(self.current.clone()).or_insert(next);
-                if row == next {
-                    self.table.groups.push(self.current.clone());
-                }
+                let row = self.rows.row(&self.current);
                 self.current_row = Some(row);
                 row
             }
@@ -76,15 +71,19 @@ impl GroupReader {
 
     /// The groups of the faces read, if the file had any grouping statement. A file whose
     /// faces all came before its statements gets the one empty group.
-    pub fn finish(mut self) -> Option<FaceGroups> {
+    pub fn finish(self) -> Option<FaceGroups> {
         if !self.any {
             return None;
         }
-        if self.table.groups.is_empty() {
-            self.table.groups.push(Group::default());
+        let mut groups = self.rows.into_groups();
+        if groups.is_empty() {
+            groups.push(Group::default());
         }
         Some(FaceGroups {
-            table: self.table,
+            table: GroupTable {
+                material_libraries: self.material_libraries,
+                groups,
+            },
             of_face: self.of_face,
         })
     }
