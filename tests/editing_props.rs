@@ -162,7 +162,7 @@ proptest! {
     #[test]
     fn random_editing_keeps_the_mesh_valid_and_undoes_exactly(
         which in 0u8..SHAPES,
-        ops in proptest::collection::vec((0u8..KINDS, any::<u32>(), 0.05f32..0.95), 400),
+        ops in proptest::collection::vec((0u8..KINDS, any::<u32>(), common::edge_fraction()), 400),
     ) {
         let (mut world, built) = common::build(&shape(which));
         let mesh = built.mesh;

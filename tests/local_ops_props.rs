@@ -56,7 +56,7 @@ proptest! {
     #[test]
     fn random_local_edits_keep_the_mesh_valid(
         which in 0u8..SHAPES,
-        ops in proptest::collection::vec((0u8..7, any::<u32>(), 0.05f32..0.95), 400),
+        ops in proptest::collection::vec((0u8..7, any::<u32>(), common::edge_fraction()), 400),
     ) {
         let (mut world, built) = common::build(&shape(which));
         let mesh = built.mesh;

@@ -202,3 +202,12 @@ pub fn run_edit(
         .expect("applied")
         .summary
 }
+
+/// A proptest strategy for a parameter along an edge, in [0.05, 0.95) in steps of 1/1000.
+///
+/// Drawn as an integer and scaled: proptest 1.12's `Range<f32>` sampler can fail its own
+/// assertion (`self.low - result < initial.step`) on some seeds, which failed a CI run.
+pub fn edge_fraction() -> impl proptest::strategy::Strategy<Value = f32> {
+    use proptest::strategy::Strategy;
+    (50u16..950).prop_map(|thousandths| f32::from(thousandths) / 1000.0)
+}
