@@ -8,8 +8,8 @@
 use bevy::prelude::*;
 use criterion::{Criterion, criterion_group, criterion_main};
 use pappus::edit::Edit;
-use pappus::editor::requests::{OutcomeLog, Request};
-use pappus::editor::selection::ActiveMesh;
+use pappus::editor::session::requests::{OutcomeLog, Request};
+use pappus::editor::session::selection::ActiveMesh;
 use pappus::mesh::{MeshMembers, MeshRef};
 use std::time::{Duration, Instant};
 

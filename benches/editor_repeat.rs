@@ -14,8 +14,8 @@
 
 use bevy::prelude::App;
 use pappus::edit::{Edit, Scheme, Subdivision};
-use pappus::editor::jobs::Jobs;
-use pappus::editor::requests::{OutcomeLog, Request};
+use pappus::editor::pipeline::jobs::Jobs;
+use pappus::editor::session::requests::{OutcomeLog, Request};
 use std::path::Path;
 use std::time::{Duration, Instant};
 

@@ -9,9 +9,9 @@
 
 use bevy::prelude::*;
 use criterion::{Criterion, criterion_group, criterion_main};
-use pappus::editor::requests::StepMove;
-use pappus::editor::requests::{OutcomeLog, Request};
-use pappus::editor::stepping::Stepping;
+use pappus::editor::pipeline::stepping::Stepping;
+use pappus::editor::session::requests::StepMove;
+use pappus::editor::session::requests::{OutcomeLog, Request};
 use pappus::mesh::{MeshId, MeshInfo, build_mesh};
 use pappus::ops::progressive::{ProgressiveMesh, SlotIndex};
 use pappus::ops::simplify::{QemRun, SimplifyParams};

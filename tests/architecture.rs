@@ -1,5 +1,7 @@
-//! The layering rules of DESIGN §1, checked on the source: no two modules of `src/editor`,
-//! `src/mesh` or `src/ops` import each other, directly or round a longer cycle.
+//! The layering rules of DESIGN §1, checked on the source: no two modules of `src/editor`, of
+//! each of its rooms, of `src/mesh` or of `src/ops` import each other, directly or round a
+//! longer cycle; no room imports the editor's root back; no folder of the editor holds more
+//! than 12 files.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -107,14 +109,93 @@ fn find_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>>
         .find_map(|n| visit(n, graph, &mut Vec::new(), &mut done))
 }
 
+/// The editor's rooms: its sub-folders, as paths under `src` (`editor/session`, …).
+fn editor_rooms() -> Vec<String> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src/editor");
+    let mut rooms: Vec<String> = std::fs::read_dir(root)
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.is_dir())
+        .map(|path| format!("editor/{}", path.file_name().unwrap().to_string_lossy()))
+        .collect();
+    rooms.sort();
+    rooms
+}
+
 #[test]
 fn no_module_pair_imports_each_other() {
-    for folder in ["editor", "mesh", "ops", "ops/local"] {
-        let graph = import_graph(folder);
+    let rooms = editor_rooms();
+    assert!(rooms.len() >= 5, "the editor has rooms: {rooms:?}");
+    let folders = ["editor", "mesh", "ops", "ops/local"]
+        .into_iter()
+        .map(String::from)
+        .chain(rooms);
+    for folder in folders {
+        let graph = import_graph(&folder);
         assert!(graph.len() > 2, "{folder}: found no modules");
         if let Some(cycle) = find_cycle(&graph) {
             panic!("src/{folder}: import cycle {}", cycle.join(" -> "));
         }
+    }
+}
+
+/// The editor's root (`editor/mod.rs`) adds every room's plugin; a room that named one of the
+/// root's own items (`crate::editor::Item`, `super::super::`) would import it back.
+#[test]
+fn no_room_imports_the_editor_root() {
+    let rooms: BTreeSet<String> = editor_rooms()
+        .iter()
+        .map(|r| r.trim_start_matches("editor/").to_string())
+        .collect();
+    for room in &rooms {
+        let folder = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("src/editor")
+            .join(room);
+        for entry in std::fs::read_dir(&folder).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_none_or(|e| e != "rs") {
+                continue;
+            }
+            let text = std::fs::read_to_string(&path).unwrap();
+            for (n, line) in text.lines().enumerate() {
+                let code = line.split("//").next().unwrap_or("");
+                let back_up = code.contains("super::super::")
+                    || code.match_indices("crate::editor::").any(|(i, m)| {
+                        let name: String = code[i + m.len()..]
+                            .chars()
+                            .take_while(|c| c.is_alphanumeric() || *c == '_')
+                            .collect();
+                        !rooms.contains(&name)
+                    });
+                assert!(
+                    !back_up,
+                    "{}:{}: a room imports the editor's root: {}",
+                    path.display(),
+                    n + 1,
+                    line.trim()
+                );
+            }
+        }
+    }
+}
+
+/// A folder a newcomer can take in at a glance: no folder of the editor holds more than 12
+/// files (its `mod.rs` and shaders included).
+#[test]
+fn no_editor_folder_holds_more_than_twelve_files() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src/editor");
+    let mut stack = vec![root];
+    while let Some(dir) = stack.pop() {
+        let mut files = 0;
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else {
+                files += 1;
+            }
+        }
+        assert!(files <= 12, "{} holds {files} files", dir.display());
     }
 }
 

@@ -8,10 +8,10 @@ use bevy::input::ButtonState;
 use bevy::input::keyboard::{Key, KeyboardInput, NativeKey};
 use bevy::prelude::*;
 use pappus::edit::Edit;
-use pappus::editor::picking::pick_in_face;
-use pappus::editor::render_sync::{RenderOf, RenderStats, TriangleFaces};
-use pappus::editor::requests::{EditOutcome, OutcomeLog, Request};
-use pappus::editor::selection::{ActiveMesh, SelectMode, Selection};
+use pappus::editor::gestures::picking::pick_in_face;
+use pappus::editor::session::requests::{EditOutcome, OutcomeLog, Request};
+use pappus::editor::session::selection::{ActiveMesh, SelectMode, Selection};
+use pappus::editor::view::render_sync::{RenderOf, RenderStats, TriangleFaces};
 use pappus::mesh::ids::ElementId;
 use pappus::mesh::{MeshRef, validate};
 use pappus::ops::simplify::SimplifyParams;
@@ -327,7 +327,7 @@ fn each_operation_key_applies_its_operation() {
     assert_eq!(counts(&app), before);
     let history = app
         .world()
-        .resource::<pappus::editor::history::UndoHistory>()
+        .resource::<pappus::editor::session::history::UndoHistory>()
         .undo_entries()
         .len();
     assert_eq!(history, 11, "one undo step per applied edit");
@@ -512,7 +512,7 @@ fn assert_every_face_drawn_once(app: &mut App) {
 
 #[test]
 fn local_edits_redraw_only_the_chunks_they_touch() {
-    use pappus::editor::render_sync::CHUNK_FACES;
+    use pappus::editor::view::render_sync::CHUNK_FACES;
     let mut app = app();
     open(&mut app, "shape:icosphere:6");
     let chunks = app
@@ -553,7 +553,7 @@ fn local_edits_redraw_only_the_chunks_they_touch() {
 /// refreshes their positions; a topological edit in the same frame is drawn too.
 #[test]
 fn a_move_of_most_of_the_mesh_refreshes_positions_in_the_chunks_it_has() {
-    use pappus::editor::render_sync::ChunkVertices;
+    use pappus::editor::view::render_sync::ChunkVertices;
     let mut app = app();
     open(&mut app, "shape:icosphere:6");
     let chunk_entities = |app: &mut App| -> Vec<Entity> {
@@ -619,7 +619,7 @@ fn dragging_the_selected_vertex_moves_it_in_the_view_plane() {
     use bevy::input::mouse::{MouseButton, MouseButtonInput};
     use bevy::window::PrimaryWindow;
     use pappus::editor::EditorSystems;
-    use pappus::editor::drag::{VertexDrag, drive_vertex_drag};
+    use pappus::editor::gestures::drag::{VertexDrag, drive_vertex_drag};
     // Looking straight down -z at the unit quad grid in the z = 0 plane.
     let mut app = app_with_camera();
     app.init_resource::<VertexDrag>();
@@ -706,7 +706,7 @@ fn app_with_camera() -> App {
 
 #[test]
 fn a_proportional_move_takes_each_vertex_by_its_falloff() {
-    use pappus::editor::input::UiState;
+    use pappus::editor::input::keyboard::UiState;
     use pappus::ops::deform::{Falloff, Proportional};
     use pappus::ops::named::Named;
     let radius = 0.35;
@@ -762,7 +762,7 @@ fn a_proportional_move_takes_each_vertex_by_its_falloff() {
         assert_eq!(m.position(vertices[0]), before[0]);
         let undo = app
             .world()
-            .resource::<pappus::editor::history::UndoHistory>()
+            .resource::<pappus::editor::session::history::UndoHistory>()
             .undo_entries()
             .len();
         assert_eq!(undo, 1, "{name}: one undo step");
@@ -796,17 +796,17 @@ fn a_move_of_a_handle_with_anchors_marked_deforms_the_mesh_in_one_undo_step() {
     assert!(at(0.3, 0.5) < at(0.7, 0.5));
     let undo = app
         .world()
-        .resource::<pappus::editor::history::UndoHistory>()
+        .resource::<pappus::editor::session::history::UndoHistory>()
         .undo_entries()
         .len();
     assert_eq!(undo, 1, "one undo step");
     // The panel's row: the iterations run (one a frame, ten more on Enter) and the energy.
     let progress = app
         .world()
-        .resource::<pappus::editor::transform::Anchors>()
+        .resource::<pappus::editor::gestures::transform::Anchors>()
         .progress
         .expect("an ARAP gesture reports its progress");
-    assert!(progress.iterations > pappus::editor::transform::FINAL_ITERATIONS);
+    assert!(progress.iterations > pappus::editor::gestures::transform::FINAL_ITERATIONS);
     assert!(progress.energy.is_finite() && progress.energy > 0.0);
     press_with(&mut app, KeyCode::ControlLeft, KeyCode::KeyZ);
     let r = MeshRef::new(app.world());
@@ -832,7 +832,7 @@ fn lift_handle(app: &mut App) {
 /// The quad grid opened with its left column as anchors and its right column selected (the
 /// handle); the vertices and their rest positions.
 fn grid_with_anchors_and_handle(app: &mut App) -> (Vec<pappus::mesh::VertexId>, Vec<Vec3>) {
-    use pappus::editor::requests::SelectionEdit;
+    use pappus::editor::session::requests::SelectionEdit;
     open(app, "shape:quad-grid");
     let vertices = pappus::mesh::MeshMembers::collect(app.world(), mesh(app)).vertices;
     let before: Vec<Vec3> = {
@@ -859,8 +859,8 @@ fn grid_with_anchors_and_handle(app: &mut App) -> (Vec<pappus::mesh::VertexId>, 
 
 #[test]
 fn in_step_mode_an_arap_handle_drag_steps_an_iteration_at_a_time_and_ends_as_the_deformation() {
-    use pappus::editor::stepping::{Stepping, Steps};
-    use pappus::editor::transform::STEPPED_ITERATIONS;
+    use pappus::editor::gestures::transform::STEPPED_ITERATIONS;
+    use pappus::editor::pipeline::stepping::{Stepping, Steps};
     use pappus::ops::deform::{DeformMethod, DeformParams};
     let mut app = app_with_camera();
     let (vertices, before) = grid_with_anchors_and_handle(&mut app);
@@ -884,7 +884,7 @@ fn in_step_mode_an_arap_handle_drag_steps_an_iteration_at_a_time_and_ends_as_the
     assert_eq!(run_at(&app), (0, STEPPED_ITERATIONS as usize));
     let undo = |app: &App| {
         app.world()
-            .resource::<pappus::editor::history::UndoHistory>()
+            .resource::<pappus::editor::session::history::UndoHistory>()
             .undo_entries()
             .len()
     };
@@ -920,10 +920,10 @@ fn in_step_mode_an_arap_handle_drag_steps_an_iteration_at_a_time_and_ends_as_the
     assert_eq!(frames, free, "a rotation for every free vertex");
     let drawn = app
         .world()
-        .resource::<pappus::editor::overlay::Overlay>()
+        .resource::<pappus::editor::gestures::overlay::Overlay>()
         .shapes
         .iter()
-        .filter(|s| matches!(s, pappus::editor::overlay::Shape::Line(_, _, c) if pappus::editor::overlay::AXIS_COLORS.contains(c)))
+        .filter(|s| matches!(s, pappus::editor::gestures::overlay::Shape::Line(_, _, c) if pappus::editor::gestures::overlay::AXIS_COLORS.contains(c)))
         .count();
     assert_eq!(drawn, 3 * free, "three axes a frame");
     let after_three = positions(&app);
@@ -1034,7 +1034,7 @@ fn shift_s_simplifies_to_the_panel_ratio() {
 
 #[test]
 fn level_of_detail_and_vertex_split_follow_the_simplification() {
-    use pappus::editor::session::SimplificationHistory as History;
+    use pappus::editor::session::state::SimplificationHistory as History;
     let mut app = app();
     open(&mut app, "shape:icosphere");
     let m = mesh(&app);
@@ -1155,8 +1155,8 @@ fn a_file_dropped_on_the_window_opens() {
 /// cancelled read leaves the mesh as it was.
 #[test]
 fn a_large_file_opens_in_the_background_and_can_be_cancelled() {
-    use pappus::editor::jobs::JobSettings;
-    use pappus::editor::opening::Opening;
+    use pappus::editor::pipeline::jobs::JobSettings;
+    use pappus::editor::pipeline::opening::Opening;
     let Some(spot) = common::model("spot.obj") else {
         return;
     };
@@ -1196,8 +1196,8 @@ fn a_large_file_opens_in_the_background_and_can_be_cancelled() {
 /// validity is checked when the panel asks.
 #[test]
 fn a_large_meshs_figures_are_counted_apart_and_its_validity_when_asked() {
-    use pappus::editor::jobs::JobSettings;
-    use pappus::editor::ui::{InspectorView, snapshot};
+    use pappus::editor::panels::ui::{InspectorView, snapshot};
+    use pappus::editor::pipeline::jobs::JobSettings;
     let mut app = app();
     app.init_resource::<InspectorView>()
         .add_systems(Update, snapshot.in_set(pappus::editor::EditorSystems::Ui));
@@ -1228,7 +1228,7 @@ fn a_large_meshs_figures_are_counted_apart_and_its_validity_when_asked() {
             .is_empty()
     );
     app.world_mut()
-        .resource_mut::<pappus::editor::input::UiState>()
+        .resource_mut::<pappus::editor::input::keyboard::UiState>()
         .check_validity = true;
     app.update();
     assert_eq!(view(&app).validation, Some(Ok(())));
@@ -1287,7 +1287,7 @@ fn unsaved_changes_are_not_lost_to_an_open() {
 
 #[test]
 fn colouring_by_a_quantity_paints_the_render_copy_and_goes_away() {
-    use pappus::editor::colouring::{ColorBy, VertexValues};
+    use pappus::editor::view::colouring::{ColorBy, VertexValues};
     use pappus::ops::geometry::Quantity;
     let mut app = app();
     open(&mut app, "shape:icosphere");
@@ -1332,7 +1332,7 @@ fn colouring_by_a_quantity_paints_the_render_copy_and_goes_away() {
 
 #[test]
 fn the_distance_colouring_measures_against_the_mesh_before_a_whole_mesh_edit() {
-    use pappus::editor::colouring::{ColorBy, VertexValues};
+    use pappus::editor::view::colouring::{ColorBy, VertexValues};
     use pappus::ops::geometry::Quantity;
     let mut app = app();
     open(&mut app, "shape:icosphere");
@@ -1353,7 +1353,7 @@ fn the_distance_colouring_measures_against_the_mesh_before_a_whole_mesh_edit() {
 
 #[test]
 fn smoothing_as_a_job_holds_the_vertex_the_editor_named() {
-    use pappus::editor::jobs::{JobSettings, Jobs};
+    use pappus::editor::pipeline::jobs::{JobSettings, Jobs};
     use pappus::ops::smooth::{SmoothMethod, SmoothParams};
     let mut app = app();
     app.world_mut().resource_mut::<JobSettings>().min_faces = 100;
@@ -1388,7 +1388,7 @@ fn smoothing_as_a_job_holds_the_vertex_the_editor_named() {
 /// subdivision (run on the tables) keeps the selected vertices, whose ids it keeps.
 #[test]
 fn a_job_keeps_the_selected_set() {
-    use pappus::editor::jobs::{JobSettings, Jobs};
+    use pappus::editor::pipeline::jobs::{JobSettings, Jobs};
     use pappus::ops::smooth::{SmoothMethod, SmoothParams};
     let mut app = app();
     app.world_mut().resource_mut::<JobSettings>().min_faces = 100;
@@ -1428,7 +1428,7 @@ fn a_job_keeps_the_selected_set() {
         selection
             .elements()
             .iter()
-            .all(|&x| pappus::editor::selection::exists(&m, x))
+            .all(|&x| pappus::editor::session::selection::exists(&m, x))
     );
     select(&mut app);
     run(
@@ -1470,9 +1470,9 @@ fn renders_uvs(app: &mut App) -> bool {
 
 #[test]
 fn shift_u_parameterizes_as_a_job_draws_a_checker_and_undo_removes_the_uvs() {
-    use pappus::editor::jobs::{JobSettings, Jobs};
-    use pappus::editor::render_sync::ViewSettings;
-    use pappus::editor::uv_view::UvLayout;
+    use pappus::editor::panels::uv_view::UvLayout;
+    use pappus::editor::pipeline::jobs::{JobSettings, Jobs};
+    use pappus::editor::view::render_sync::ViewSettings;
     use pappus::mesh::attributes::MeshAttributes;
     let mut app = app();
     app.world_mut().resource_mut::<JobSettings>().min_faces = 100;
@@ -1527,7 +1527,7 @@ fn shift_u_parameterizes_as_a_job_draws_a_checker_and_undo_removes_the_uvs() {
     // The UV view opened by itself and holds the layout; clicking a face's UV centroid picks it.
     assert!(
         app.world()
-            .resource::<pappus::editor::input::UiState>()
+            .resource::<pappus::editor::input::keyboard::UiState>()
             .uv_view
     );
     {
@@ -1536,7 +1536,7 @@ fn shift_u_parameterizes_as_a_job_draws_a_checker_and_undo_removes_the_uvs() {
         assert!(!layout.seams.is_empty());
         let centroid = layout.face_corners(5).iter().copied().sum::<Vec2>() / 3.0;
         assert_eq!(
-            pappus::editor::uv_view::face_at(layout, centroid),
+            pappus::editor::panels::uv_view::face_at(layout, centroid),
             Some(layout.faces[5])
         );
     }
@@ -1544,13 +1544,13 @@ fn shift_u_parameterizes_as_a_job_draws_a_checker_and_undo_removes_the_uvs() {
     app.world_mut().resource_mut::<ViewSettings>().checker = false;
     app.world_mut()
         .entity_mut(m.0)
-        .insert(pappus::editor::selection::MeshDirty);
+        .insert(pappus::editor::session::selection::MeshDirty);
     app.update();
     assert!(!renders_uvs(&mut app));
     app.world_mut().resource_mut::<ViewSettings>().checker = true;
     app.world_mut()
         .entity_mut(m.0)
-        .insert(pappus::editor::selection::MeshDirty);
+        .insert(pappus::editor::session::selection::MeshDirty);
     app.update();
     assert!(renders_uvs(&mut app));
     // Undo takes the UVs away, from the mesh, the render copy and the UV view.
@@ -1584,7 +1584,7 @@ fn update_until(app: &mut App, done: impl Fn(&App) -> bool) {
 /// at once), which gives the mesh back bit for bit; a save removes it.
 #[test]
 fn an_idle_editor_keeps_its_unsaved_mesh_in_a_recovery_file_until_it_is_saved() {
-    use pappus::editor::recovery::Autosave;
+    use pappus::editor::pipeline::recovery::Autosave;
     let dir = recovery_folder("autosave");
     let mut app = app();
     let mut autosave = Autosave::into_folder(Some(dir.clone()));
@@ -1622,8 +1622,8 @@ fn an_idle_editor_keeps_its_unsaved_mesh_in_a_recovery_file_until_it_is_saved() 
     app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
     update_until(&mut app, |_| !pappus::recovery::list(&dir).is_empty());
     app.world_mut()
-        .resource_mut::<pappus::editor::requests::ConfirmDiscard>()
-        .0 = Some(pappus::editor::requests::PendingDiscard::Quit);
+        .resource_mut::<pappus::editor::session::requests::ConfirmDiscard>()
+        .0 = Some(pappus::editor::session::requests::PendingDiscard::Quit);
     app.world_mut().write_message(Request::ConfirmDiscard(true));
     app.update();
     assert!(
@@ -1637,9 +1637,9 @@ fn an_idle_editor_keeps_its_unsaved_mesh_in_a_recovery_file_until_it_is_saved() 
 /// unsaved work on the source file, and the recovery is removed.
 #[test]
 fn a_recovery_newer_than_its_source_is_offered_at_start_and_restores() {
-    use pappus::editor::recovery::{Autosave, RecoveryOffer};
-    use pappus::editor::requests::RecoveryAnswer;
-    use pappus::editor::session::is_modified;
+    use pappus::editor::pipeline::recovery::{Autosave, RecoveryOffer};
+    use pappus::editor::session::requests::RecoveryAnswer;
+    use pappus::editor::session::state::is_modified;
     let dir = recovery_folder("offer");
     std::fs::create_dir_all(&dir).unwrap();
     let source = dir.join("torus.obj");
@@ -1698,7 +1698,7 @@ fn a_recovery_newer_than_its_source_is_offered_at_start_and_restores() {
 #[test]
 fn a_subdivision_past_the_memory_budget_is_refused_and_changes_nothing() {
     use pappus::edit::{Scheme, Subdivision};
-    use pappus::editor::jobs::{JobSettings, Jobs};
+    use pappus::editor::pipeline::jobs::{JobSettings, Jobs};
     for min_faces in [usize::MAX, 100] {
         let mut app = app();
         app.world_mut().resource_mut::<JobSettings>().min_faces = min_faces;

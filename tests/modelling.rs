@@ -9,11 +9,11 @@ use common::{last_ok, press, send};
 
 use bevy::prelude::*;
 use pappus::edit::Edit;
-use pappus::editor::history::UndoHistory;
-use pappus::editor::requests::Request;
-use pappus::editor::requests::SelectionEdit;
-use pappus::editor::selection::{ActiveMesh, SelectMode, Selection};
-use pappus::editor::transform::Gestures;
+use pappus::editor::gestures::transform::Gestures;
+use pappus::editor::session::history::UndoHistory;
+use pappus::editor::session::requests::Request;
+use pappus::editor::session::requests::SelectionEdit;
+use pappus::editor::session::selection::{ActiveMesh, SelectMode, Selection};
 use pappus::mesh::ids::ElementId;
 use pappus::mesh::{MeshMembers, MeshRef, mesh_stats, validate};
 

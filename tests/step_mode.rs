@@ -10,13 +10,13 @@ mod common;
 use common::{last_ok, press, send};
 
 use bevy::prelude::*;
-use pappus::editor::history::UndoHistory;
-use pappus::editor::overlay::{Overlay, Shape};
-use pappus::editor::requests::StepMove;
-use pappus::editor::requests::{OutcomeLog, Request};
-use pappus::editor::selection::{ActiveMesh, Selection};
-use pappus::editor::step_view::NEXT;
-use pappus::editor::stepping::{SteppedRun, Stepping};
+use pappus::editor::gestures::overlay::{Overlay, Shape};
+use pappus::editor::panels::step_view::NEXT;
+use pappus::editor::pipeline::stepping::{SteppedRun, Stepping};
+use pappus::editor::session::history::UndoHistory;
+use pappus::editor::session::requests::StepMove;
+use pappus::editor::session::requests::{OutcomeLog, Request};
+use pappus::editor::session::selection::{ActiveMesh, Selection};
 use pappus::mesh::ids::ElementId;
 use pappus::mesh::{MeshRef, to_soup, validate};
 
@@ -73,7 +73,7 @@ fn run(app: &App) -> &SteppedRun {
 /// The collapse the QEM run in progress makes next.
 fn qem_next(app: &App) -> pappus::ops::simplify::NextCollapse {
     match &run(app).steps {
-        pappus::editor::stepping::Steps::Qem(q) => q.next.expect("a next collapse"),
+        pappus::editor::pipeline::stepping::Steps::Qem(q) => q.next.expect("a next collapse"),
         _ => panic!("a QEM run"),
     }
 }
@@ -237,7 +237,7 @@ fn a_collapsed_selection_follows_to_what_it_became_and_esc_puts_the_mesh_back() 
     // removes it moves it on.
     press(&mut app, Some(KeyCode::ControlLeft), KeyCode::ArrowRight);
     let selected = app.world().resource::<Selection>().element.unwrap();
-    assert!(pappus::editor::selection::exists(
+    assert!(pappus::editor::session::selection::exists(
         &MeshRef::new(app.world()),
         selected
     ));
@@ -289,7 +289,7 @@ fn a_transform_started_during_a_run_keeps_the_run_when_it_is_cancelled() {
     send(&mut app, Request::Step(StepMove::Forward(20)));
     send(
         &mut app,
-        Request::Selection(pappus::editor::requests::SelectionEdit::All),
+        Request::Selection(pappus::editor::session::requests::SelectionEdit::All),
     );
     press(&mut app, None, KeyCode::KeyG);
     assert!(app.world().resource::<Stepping>().run.is_none());
@@ -337,7 +337,7 @@ fn a_remeshing_run_steps_pass_by_pass_highlights_each_and_ends_as_the_unstepped_
             "{}",
             last_ok(&app)
         );
-        let pappus::editor::stepping::Steps::Remesh(steps) = &run(&app).steps else {
+        let pappus::editor::pipeline::stepping::Steps::Remesh(steps) = &run(&app).steps else {
             panic!("a remeshing run")
         };
         let report = steps.last.as_ref().unwrap();
@@ -349,13 +349,13 @@ fn a_remeshing_run_steps_pass_by_pass_highlights_each_and_ends_as_the_unstepped_
             .iter()
             .filter(|s| {
                 matches!(s, Shape::Dot(_, _, c) | Shape::Highlight(_, _, c)
-                    if *c == pappus::editor::step_view::TOUCHED)
+                    if *c == pappus::editor::panels::step_view::TOUCHED)
             })
             .count();
         let touched = report.touched.vertices.len() + report.touched.edges.len();
         assert_eq!(
             drawn,
-            touched.min(2 * pappus::editor::step_view::MAX_DRAWN),
+            touched.min(2 * pappus::editor::panels::step_view::MAX_DRAWN),
             "{pass}"
         );
     }
@@ -396,7 +396,7 @@ fn a_subdivision_run_shows_new_points_then_moved_vertices_then_commits_the_level
         send(&mut app, Request::Select(Some(ElementId::Vertex(v))));
         let view = |app: &App| {
             app.world()
-                .resource::<pappus::editor::step_view::StepView>()
+                .resource::<pappus::editor::panels::step_view::StepView>()
                 .clone()
         };
         let stencil = view(&app).stencil.expect("the selected vertex's stencil");

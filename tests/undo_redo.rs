@@ -12,9 +12,9 @@ use bevy::input::mouse::{MouseButton, MouseButtonInput};
 use bevy::prelude::*;
 use common::canonical;
 use pappus::edit::{Edit, Scheme, Subdivision};
-use pappus::editor::history::UndoHistory;
-use pappus::editor::requests::{EditOutcome, Request};
-use pappus::editor::selection::{ActiveMesh, Selection};
+use pappus::editor::session::history::UndoHistory;
+use pappus::editor::session::requests::{EditOutcome, Request};
+use pappus::editor::session::selection::{ActiveMesh, Selection};
 use pappus::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
 use pappus::mesh::{MeshMembers, MeshRef, mesh_stats, to_soup, validate};
 use pappus::ops::remesh::RemeshParams;
@@ -191,7 +191,7 @@ fn every_local_edit_undoes_and_redoes_exactly() {
 
 #[test]
 fn every_global_edit_undoes_and_redoes_exactly() {
-    use pappus::editor::session::SimplificationHistory as History;
+    use pappus::editor::session::state::SimplificationHistory as History;
     let mut app = app();
     open(&mut app, "shape:cube");
     round_trip(
@@ -539,13 +539,15 @@ fn remeshing_history_is_smaller_than_the_mesh() {
 
 fn job_running(app: &App) -> bool {
     app.world()
-        .resource::<pappus::editor::jobs::Jobs>()
+        .resource::<pappus::editor::pipeline::jobs::Jobs>()
         .running
         .is_some()
 }
 
 fn job_progress(app: &App) -> f32 {
-    let jobs = app.world().resource::<pappus::editor::jobs::Jobs>();
+    let jobs = app
+        .world()
+        .resource::<pappus::editor::pipeline::jobs::Jobs>();
     jobs.running.as_ref().map_or(1.0, |j| j.progress.fraction())
 }
 
@@ -567,7 +569,7 @@ fn frames_until(app: &mut App, done: impl Fn(&App) -> bool) -> u32 {
 
 fn jobs_from(app: &mut App, faces: usize) {
     app.world_mut()
-        .resource_mut::<pappus::editor::jobs::JobSettings>()
+        .resource_mut::<pappus::editor::pipeline::jobs::JobSettings>()
         .min_faces = faces;
 }
 
@@ -619,7 +621,7 @@ fn a_cancelled_job_leaves_the_mesh_exactly_as_it_was() {
 
 #[test]
 fn a_finished_job_commits_as_one_undo_entry() {
-    use pappus::editor::session::SimplificationHistory as History;
+    use pappus::editor::session::state::SimplificationHistory as History;
     let mut app = app();
     jobs_from(&mut app, 100);
     open(&mut app, "shape:icosphere:3");
@@ -769,7 +771,7 @@ fn a_subdivision_job_commits_exactly_what_the_edit_makes_at_once() {
 
 #[test]
 fn loop_refuses_a_quad_mesh_as_a_job_naming_a_face_of_the_mesh() {
-    use pappus::editor::requests::Declined;
+    use pappus::editor::session::requests::Declined;
     use pappus::ops::Refusal;
     let mut app = app();
     jobs_from(&mut app, 1);

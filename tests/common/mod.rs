@@ -129,9 +129,9 @@ pub fn headless_editor() -> App {
 
 #[cfg(feature = "editor")]
 /// The editor's last outcome (the request's label and what became of it).
-pub fn last_outcome(app: &App) -> pappus::editor::requests::EditOutcome {
+pub fn last_outcome(app: &App) -> pappus::editor::session::requests::EditOutcome {
     app.world()
-        .resource::<pappus::editor::requests::OutcomeLog>()
+        .resource::<pappus::editor::session::requests::OutcomeLog>()
         .entries
         .last()
         .expect("an outcome")
@@ -140,7 +140,7 @@ pub fn last_outcome(app: &App) -> pappus::editor::requests::EditOutcome {
 
 #[cfg(feature = "editor")]
 /// Writes `request` and lets the editor run one update.
-pub fn send(app: &mut App, request: impl Into<pappus::editor::requests::Request>) {
+pub fn send(app: &mut App, request: impl Into<pappus::editor::session::requests::Request>) {
     app.world_mut().write_message(request.into());
     app.update();
 }

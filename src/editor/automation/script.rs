@@ -1,0 +1,513 @@
+//! Scripted runs of the real editor, for screenshots and the windowed test.
+//!
+//! `PAPPUS_SCRIPT` holds steps separated by `;`, run one after another, each once the previous
+//! is done:
+//!
+//! | step | meaning |
+//! |---|---|
+//! | `wait:N` | let N frames pass |
+//! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:3`, `key:.`, `key:Period`, `key:Enter`, `key:Escape`, `key:Delete`, `key:Backspace`, `key:Minus`, `key:Equal`, `key:F9`, `key:Right`, `key:Left`, `key:End`, `key:PageUp`, `key:PageDown`); `key:Shift+S`, `key:Ctrl+T`, `key:Alt+M` hold a modifier |
+//! | `select-edge:A,B` | select the edge between the input file's vertices A and B (0-based) |
+//! | `select-vertex:A` | select the input file's vertex A |
+//! | `select:ID` | select an element by id (`f12v0`) |
+//! | `box:X0,Y0,X1,Y1` | box select the rectangle between these fractions of the window (0–1, from the top left), as B and a drag would; the box stays drawn until the next `key:Escape` |
+//! | `uv-select:U,V` | select the face whose UV polygon holds (U, V), as a click in the UV view does (`uv-select:0.5,0.5`) |
+//! | `open:PATH` | open a file (or `shape:NAME`) as Ctrl+O would |
+//! | `lod:FACES` | move the level-of-detail slider (after a simplification) |
+//! | `step:N`, `step:back:N`, `step:to:K`, `step:end`, `step:finish`, `step:cancel` | move the stepped run in progress (start one with `key:F9;key:Shift+S`) |
+//! | `orbit:YAW,PITCH` | turn the camera about what it looks at by these degrees (`orbit:180,-60` looks from behind and below) |
+//! | `zoom:F` | multiply the camera's distance to what it looks at by F (`zoom:0.5` comes twice as close) |
+//! | `colour:NAME` | colour the mesh by a quantity (`colour:mean`, names as `process --quantity`; `colour:none`) |
+//! | `shot:PATH` | save a screenshot of the window to PATH (PNG) and wait until it is written |
+//! | `measure:N` | let N frames pass and log their mean frame time |
+//! | `exit` | quit |
+//!
+//! Example: `PAPPUS_SCRIPT='wait:5;select-edge:0,1;shot:before.png;key:Alt+R;wait:3;shot:after.png;exit'`.
+
+use bevy::input::ButtonState;
+use bevy::input::keyboard::{Key, KeyboardInput};
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{Screenshot, save_to_disk};
+use bevy::window::PrimaryWindow;
+use std::path::PathBuf;
+
+use crate::mesh::ids::{ElementId, parse_element};
+use crate::mesh::topology::MeshRef;
+use crate::ops::named::Named;
+
+use crate::edit::Edit;
+use crate::ops::geometry::Quantity;
+
+use crate::editor::session::requests::Request;
+use crate::editor::session::requests::StepMove;
+use crate::editor::session::selection::ActiveMesh;
+
+/// One scripted step (see the module doc).
+#[derive(Clone, Debug, PartialEq)]
+pub enum ScriptStep {
+    /// Let frames pass.
+    Wait(u32),
+    /// Press and release a key, holding a modifier (Shift or Control) if given.
+    Key(Option<KeyCode>, KeyCode),
+    /// Select the edge between two input vertices.
+    SelectEdge(u32, u32),
+    /// Select an input vertex.
+    SelectVertex(u32),
+    /// Select an element by id.
+    Select(ElementId),
+    /// Box select between two corners, as fractions of the window.
+    Box(Vec2, Vec2),
+    /// Select the face at a point of the UV layout.
+    UvSelect(f32, f32),
+    /// Open a file.
+    Open(PathBuf),
+    /// Move the level-of-detail slider.
+    Lod(usize),
+    /// Move the stepped run.
+    Step(StepMove),
+    /// Multiply the camera's distance to its focus (below 1: closer).
+    Zoom(f32),
+    /// Turn the camera about its focus by these degrees (yaw, pitch).
+    Orbit(f32, f32),
+    /// Colour by a quantity (or by nothing).
+    Colour(Option<Quantity>),
+    /// Save a screenshot.
+    Shot(PathBuf),
+    /// Measure the mean frame time over N frames.
+    Measure(u32),
+    /// Quit.
+    Exit,
+}
+
+/// The steps still to run.
+#[derive(Resource, Debug, Default)]
+pub struct Script {
+    steps: std::collections::VecDeque<ScriptStep>,
+    waiting: u32,
+    shots_pending: usize,
+    measuring: Option<(u32, std::time::Instant)>,
+    /// The process's CPU time when the measurement began.
+    measuring_cpu: Option<f64>,
+    /// Keys to release at the next step (so a held modifier is seen with its key).
+    release: Vec<KeyCode>,
+}
+
+/// Screenshots requested by the script that are not yet on disk.
+#[derive(Resource, Debug, Default, Clone)]
+pub struct PendingShots(pub std::sync::Arc<std::sync::atomic::AtomicUsize>);
+
+impl Script {
+    /// Whether steps, waits or screenshots are still to come (the editor then draws every
+    /// frame instead of waiting for input).
+    pub fn is_running(&self) -> bool {
+        !self.steps.is_empty()
+            || self.waiting > 0
+            || self.shots_pending > 0
+            || self.measuring.is_some()
+            || !self.release.is_empty()
+    }
+
+    /// Parses a script (see the module doc).
+    ///
+    /// # Errors
+    /// The step that could not be read.
+    pub fn parse(text: &str) -> Result<Script, String> {
+        let mut steps = std::collections::VecDeque::new();
+        for raw in text.split(';').map(str::trim).filter(|s| !s.is_empty()) {
+            let (name, arg) = raw.split_once(':').unwrap_or((raw, ""));
+            let bad = || format!("bad script step `{raw}`");
+            steps.push_back(match name {
+                "wait" => ScriptStep::Wait(arg.parse().map_err(|_| bad())?),
+                "measure" => ScriptStep::Measure(arg.parse().map_err(|_| bad())?),
+                "key" => match arg.split_once('+') {
+                    Some((modifier, k)) => {
+                        let modifier = match modifier {
+                            "Shift" => KeyCode::ShiftLeft,
+                            "Ctrl" => KeyCode::ControlLeft,
+                            "Alt" => KeyCode::AltLeft,
+                            _ => return Err(bad()),
+                        };
+                        ScriptStep::Key(Some(modifier), key_code(k).ok_or_else(bad)?)
+                    }
+                    None => ScriptStep::Key(None, key_code(arg).ok_or_else(bad)?),
+                },
+                "select-edge" => {
+                    let (a, b) = arg.split_once(',').ok_or_else(bad)?;
+                    ScriptStep::SelectEdge(
+                        a.trim().parse().map_err(|_| bad())?,
+                        b.trim().parse().map_err(|_| bad())?,
+                    )
+                }
+                "select" => ScriptStep::Select(parse_element(arg).ok_or_else(bad)?),
+                "select-vertex" => ScriptStep::SelectVertex(arg.trim().parse().map_err(|_| bad())?),
+                "box" => {
+                    let v: Vec<f32> = arg
+                        .split(',')
+                        .map(|x| {
+                            x.trim()
+                                .parse()
+                                .ok()
+                                .filter(|x: &f32| (0.0..=1.0).contains(x))
+                        })
+                        .collect::<Option<_>>()
+                        .ok_or_else(bad)?;
+                    match v[..] {
+                        [x0, y0, x1, y1] => ScriptStep::Box(Vec2::new(x0, y0), Vec2::new(x1, y1)),
+                        _ => return Err(bad()),
+                    }
+                }
+                "uv-select" => {
+                    let (u, v) = arg.split_once(',').ok_or_else(bad)?;
+                    ScriptStep::UvSelect(
+                        u.trim().parse().map_err(|_| bad())?,
+                        v.trim().parse().map_err(|_| bad())?,
+                    )
+                }
+                "shot" => ScriptStep::Shot(PathBuf::from(arg)),
+                "open" => ScriptStep::Open(PathBuf::from(arg)),
+                "lod" => ScriptStep::Lod(arg.parse().map_err(|_| bad())?),
+                "step" => ScriptStep::Step(match arg.split_once(':') {
+                    Some(("back", n)) => StepMove::Back(n.parse().map_err(|_| bad())?),
+                    Some(("to", k)) => StepMove::To(k.parse().map_err(|_| bad())?),
+                    None if arg == "end" => StepMove::Forward(usize::MAX),
+                    None if arg == "finish" => StepMove::Finish,
+                    None if arg == "cancel" => StepMove::Cancel,
+                    None => StepMove::Forward(arg.parse().map_err(|_| bad())?),
+                    Some(_) => return Err(bad()),
+                }),
+                "orbit" => {
+                    let (yaw, pitch) = arg.split_once(',').ok_or_else(bad)?;
+                    ScriptStep::Orbit(
+                        yaw.trim().parse().map_err(|_| bad())?,
+                        pitch.trim().parse().map_err(|_| bad())?,
+                    )
+                }
+                "zoom" => ScriptStep::Zoom(
+                    arg.parse()
+                        .ok()
+                        .filter(|f: &f32| *f > 0.0 && f.is_finite())
+                        .ok_or_else(bad)?,
+                ),
+                "colour" if arg == "none" => ScriptStep::Colour(None),
+                "colour" => ScriptStep::Colour(Some(Quantity::from_name(arg).ok_or_else(bad)?)),
+                "exit" => ScriptStep::Exit,
+                _ => return Err(bad()),
+            });
+        }
+        Ok(Script {
+            steps,
+            waiting: 0,
+            shots_pending: 0,
+            measuring: None,
+            measuring_cpu: None,
+            release: Vec::new(),
+        })
+    }
+}
+
+fn key_code(name: &str) -> Option<KeyCode> {
+    let single = |c: char| -> Option<KeyCode> {
+        const LETTERS: [KeyCode; 26] = [
+            KeyCode::KeyA,
+            KeyCode::KeyB,
+            KeyCode::KeyC,
+            KeyCode::KeyD,
+            KeyCode::KeyE,
+            KeyCode::KeyF,
+            KeyCode::KeyG,
+            KeyCode::KeyH,
+            KeyCode::KeyI,
+            KeyCode::KeyJ,
+            KeyCode::KeyK,
+            KeyCode::KeyL,
+            KeyCode::KeyM,
+            KeyCode::KeyN,
+            KeyCode::KeyO,
+            KeyCode::KeyP,
+            KeyCode::KeyQ,
+            KeyCode::KeyR,
+            KeyCode::KeyS,
+            KeyCode::KeyT,
+            KeyCode::KeyU,
+            KeyCode::KeyV,
+            KeyCode::KeyW,
+            KeyCode::KeyX,
+            KeyCode::KeyY,
+            KeyCode::KeyZ,
+        ];
+        const DIGITS: [KeyCode; 10] = [
+            KeyCode::Digit0,
+            KeyCode::Digit1,
+            KeyCode::Digit2,
+            KeyCode::Digit3,
+            KeyCode::Digit4,
+            KeyCode::Digit5,
+            KeyCode::Digit6,
+            KeyCode::Digit7,
+            KeyCode::Digit8,
+            KeyCode::Digit9,
+        ];
+        let c = c.to_ascii_uppercase();
+        match c {
+            'A'..='Z' => Some(LETTERS[(c as u8 - b'A') as usize]),
+            '0'..='9' => Some(DIGITS[(c as u8 - b'0') as usize]),
+            '.' => Some(KeyCode::Period),
+            _ => None,
+        }
+    };
+    match name {
+        "Period" => Some(KeyCode::Period),
+        "Escape" => Some(KeyCode::Escape),
+        "F1" => Some(KeyCode::F1),
+        "F9" => Some(KeyCode::F9),
+        "Right" => Some(KeyCode::ArrowRight),
+        "Left" => Some(KeyCode::ArrowLeft),
+        "End" => Some(KeyCode::End),
+        "PageUp" => Some(KeyCode::PageUp),
+        "PageDown" => Some(KeyCode::PageDown),
+        "Delete" => Some(KeyCode::Delete),
+        "Enter" => Some(KeyCode::Enter),
+        "Backspace" => Some(KeyCode::Backspace),
+        "Minus" | "-" => Some(KeyCode::Minus),
+        "Equal" | "=" => Some(KeyCode::Equal),
+        _ if name.chars().count() == 1 => single(name.chars().next()?),
+        _ => None,
+    }
+}
+
+/// Runs the script a step at a time (in the `Input` set, so pressed keys are seen this frame).
+pub fn run_script(world: &mut World) {
+    let Some(mut script) = world.remove_resource::<Script>() else {
+        return;
+    };
+    let pending = world.resource::<PendingShots>().0.clone();
+    for key in std::mem::take(&mut script.release) {
+        send_key(world, key, ButtonState::Released);
+    }
+    loop {
+        if script.waiting > 0 {
+            script.waiting -= 1;
+            break;
+        }
+        if let Some((frames, start)) = script.measuring.take() {
+            log_measurement(world, frames, start, script.measuring_cpu);
+        }
+        if script.shots_pending > 0 && pending.load(std::sync::atomic::Ordering::SeqCst) > 0 {
+            break;
+        }
+        script.shots_pending = 0;
+        let Some(step) = script.steps.pop_front() else {
+            break;
+        };
+        if !run_step(world, &mut script, step, &pending) {
+            break;
+        }
+    }
+    world.insert_resource(script);
+}
+
+/// Logs the mean frame time (and the process's CPU time a frame) of a `measure:N` step.
+fn log_measurement(
+    world: &mut World,
+    frames: u32,
+    start: std::time::Instant,
+    cpu_then: Option<f64>,
+) {
+    let ms = start.elapsed().as_secs_f64() * 1000.0 / f64::from(frames.max(1));
+    bevy::log::info!("measure: mean frame time {ms:.1} ms over {frames} frames");
+    if let (Some(now), Some(then)) = (super::frame_stats::process_cpu_ms(), cpu_then) {
+        let cpu = (now - then) / f64::from(frames.max(1));
+        bevy::log::info!("measure: process CPU {cpu:.1} ms a frame (all threads)");
+    }
+    super::frame_stats::log_breakdown(world);
+}
+
+/// Selects `element` for a script step, or warns with `missing` when there is none.
+fn script_select(world: &mut World, element: Option<ElementId>, missing: String) {
+    match element {
+        Some(x) => {
+            world.write_message(Request::Select(Some(x)));
+        }
+        None => bevy::log::warn!("script: {missing}"),
+    }
+}
+
+/// Runs one step; `false` when the script yields the rest of the frame (a screenshot, exit).
+fn run_step(
+    world: &mut World,
+    script: &mut Script,
+    step: ScriptStep,
+    pending: &std::sync::Arc<std::sync::atomic::AtomicUsize>,
+) -> bool {
+    match step {
+        ScriptStep::Wait(n) => script.waiting = n,
+        ScriptStep::Measure(n) => {
+            script.waiting = n;
+            script.measuring = Some((n, std::time::Instant::now()));
+            script.measuring_cpu = super::frame_stats::process_cpu_ms();
+            super::frame_stats::clear_history(world);
+        }
+        ScriptStep::Key(modifier, key) => {
+            // This frame: the modifier and the key go down; next step: both come up.
+            for k in modifier.into_iter().chain([key]) {
+                send_key(world, k, ButtonState::Pressed);
+            }
+            script.release = modifier.into_iter().chain([key]).collect();
+            script.waiting = 2;
+        }
+        ScriptStep::SelectEdge(a, b) => {
+            let edge = input_edge(world, a, b);
+            script_select(
+                world,
+                edge,
+                format!("no edge between input vertices {a} and {b}"),
+            );
+            script.waiting = 1;
+        }
+        ScriptStep::SelectVertex(a) => {
+            let vertex = input_vertex(world, a).map(ElementId::Vertex);
+            script_select(world, vertex, format!("no input vertex {a}"));
+            script.waiting = 1;
+        }
+        ScriptStep::UvSelect(u, v) => {
+            let layout = world.resource::<crate::editor::panels::uv_view::UvLayout>();
+            let face = crate::editor::panels::uv_view::face_at(layout, Vec2::new(u, v))
+                .map(ElementId::Face);
+            script_select(world, face, format!("no face at UV ({u}, {v})"));
+            script.waiting = 1;
+        }
+        ScriptStep::Lod(faces) => {
+            world.write_message(Request::Edit(Edit::LevelOfDetail(faces)));
+            script.waiting = 2;
+        }
+        ScriptStep::Step(movement) => {
+            world.write_message(Request::Step(movement));
+            script.waiting = 2;
+        }
+        ScriptStep::Orbit(yaw, pitch) => {
+            crate::editor::view::scene::move_orbit(world, |orbit| {
+                orbit.yaw += yaw.to_radians();
+                orbit.pitch = (orbit.pitch + pitch.to_radians()).clamp(-1.55, 1.55);
+            });
+            script.waiting = 1;
+        }
+        ScriptStep::Zoom(factor) => {
+            crate::editor::view::scene::move_orbit(world, |orbit| orbit.radius *= factor);
+            script.waiting = 1;
+        }
+        ScriptStep::Colour(quantity) => {
+            world
+                .resource_mut::<crate::editor::view::colouring::ColorBy>()
+                .0 = quantity;
+            script.waiting = 2;
+        }
+        ScriptStep::Open(path) => {
+            world.write_message(Request::Open(path));
+            script.waiting = 2;
+        }
+        ScriptStep::Select(id) => {
+            world.write_message(Request::Select(Some(id)));
+            script.waiting = 1;
+        }
+        ScriptStep::Box(from, to) => {
+            let size = world
+                .query_filtered::<&Window, With<PrimaryWindow>>()
+                .iter(world)
+                .next()
+                .map(|w| Vec2::new(w.width(), w.height()))
+                .unwrap_or(Vec2::ONE);
+            let (a, b) = (from * size, to * size);
+            let elements = crate::editor::gestures::box_select::elements_in(world, a, b);
+            *world.resource_mut::<crate::editor::gestures::box_select::BoxSelect>() =
+                crate::editor::gestures::box_select::BoxSelect {
+                    armed: true,
+                    drag: Some((a, b)),
+                };
+            world.write_message(Request::Selection(
+                crate::editor::session::requests::SelectionEdit::Replace(elements),
+            ));
+            script.waiting = 2;
+        }
+        ScriptStep::Shot(path) => {
+            pending.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+            let counter = pending.clone();
+            let mut save = save_to_disk(path);
+            world.spawn(Screenshot::primary_window()).observe(
+                move |captured: On<bevy::render::view::screenshot::ScreenshotCaptured>| {
+                    save(captured);
+                    counter.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
+                },
+            );
+            script.shots_pending = 1;
+            return false;
+        }
+        ScriptStep::Exit => {
+            world.write_message(AppExit::Success);
+            return false;
+        }
+    }
+    true
+}
+
+fn send_key(world: &mut World, key: KeyCode, state: ButtonState) {
+    let window = world
+        .query_filtered::<Entity, With<PrimaryWindow>>()
+        .iter(world)
+        .next()
+        .unwrap_or(Entity::PLACEHOLDER);
+    world.write_message(KeyboardInput {
+        key_code: key,
+        logical_key: Key::Unidentified(bevy::input::keyboard::NativeKey::Unidentified),
+        state,
+        text: None,
+        repeat: false,
+        window,
+    });
+}
+
+/// The edge between two vertices named by their index in the input file: vertices are listed
+/// in file order by a freshly built mesh, so the index is the position in that list.
+fn input_vertex(world: &World, a: u32) -> Option<crate::mesh::VertexId> {
+    let mesh = world.resource::<ActiveMesh>().0?;
+    let vertices =
+        crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(world, mesh, crate::mesh::VertexId);
+    vertices.get(a as usize).copied()
+}
+
+fn input_edge(world: &World, a: u32, b: u32) -> Option<ElementId> {
+    let mesh = world.resource::<ActiveMesh>().0?;
+    let vertices =
+        crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(world, mesh, crate::mesh::VertexId);
+    let (va, vb) = (*vertices.get(a as usize)?, *vertices.get(b as usize)?);
+    let m = MeshRef::new(world);
+    m.find_halfedge(va, vb).map(|h| ElementId::Edge(m.edge(h)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_letter_and_digit_key_can_be_scripted() {
+        for c in ('A'..='Z').chain('0'..='9') {
+            assert!(key_code(&c.to_string()).is_some(), "{c}");
+        }
+        assert_eq!(key_code("m"), Some(KeyCode::KeyM));
+        assert_eq!(key_code("7"), Some(KeyCode::Digit7));
+        assert_eq!(key_code("Escape"), Some(KeyCode::Escape));
+        assert_eq!(key_code("MM"), None);
+        let script = Script::parse("uv-select:0.25, 0.5").unwrap();
+        assert_eq!(script.steps[0], ScriptStep::UvSelect(0.25, 0.5));
+        assert!(Script::parse("uv-select:0.25").is_err());
+        let script = Script::parse("key:M;key:Ctrl+Z;key:Ctrl+Y").unwrap();
+        let keys: Vec<ScriptStep> = script.steps.into_iter().collect();
+        assert_eq!(
+            keys,
+            vec![
+                ScriptStep::Key(None, KeyCode::KeyM),
+                ScriptStep::Key(Some(KeyCode::ControlLeft), KeyCode::KeyZ),
+                ScriptStep::Key(Some(KeyCode::ControlLeft), KeyCode::KeyY),
+            ]
+        );
+    }
+}

@@ -1,0 +1,1080 @@
+//! Keyboard shortcuts: one table, read by the input system and listed by the help overlay.
+//!
+//! Shortcuts only write [`Request`]s or flip view settings; they never touch a mesh. An edit's
+//! parameters are the panel's ([`UiState`]), the same structs and defaults as the command
+//! line's. Shortcuts are ignored while egui wants the keyboard (typing in a text field), which
+//! the UI reports through [`KeyboardCaptured`](crate::editor::session::schedule::KeyboardCaptured).
+
+use crate::editor::pipeline::stepping::Stepping;
+use crate::editor::session::requests::StepMove;
+use bevy::prelude::*;
+
+use crate::edit::{Edit, LocalKind, Scheme, Subdivision};
+use crate::mesh::MeshRef;
+use crate::mesh::ids::ElementId;
+use crate::ops::deform::{FairParams, Proportional};
+use crate::ops::local::faces_of;
+use crate::ops::param::ParamParams;
+use crate::ops::remesh::RemeshParams;
+use crate::ops::simplify::SimplifyParams;
+use crate::ops::smooth::SmoothParams;
+
+use crate::editor::gestures::box_select::BoxSelect;
+use crate::editor::gestures::transform::{Anchors, GestureKind, Gestures};
+use crate::editor::pipeline::jobs::Jobs;
+use crate::editor::session::dialog::{OpenDialog, PathPurpose};
+use crate::editor::session::finish::report;
+use crate::editor::session::requests::SelectionEdit;
+use crate::editor::session::requests::{Declined, Relation, Request};
+use crate::editor::session::selection::{
+    ActiveMesh, MeshDirty, SelectMode, Selection, selected_edge, selected_faces,
+};
+use crate::editor::view::render_sync::{ViewSettings, set_wireframes_visible};
+
+/// What a shortcut does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Action {
+    /// A local edit of the selected edge (or halfedge's edge): flip, split, bisect, collapse,
+    /// dissolve.
+    OnEdge(LocalKind),
+    /// Cut a corner off the selected halfedge's face: join its tip to the vertex two corners
+    /// ahead.
+    CutCorner,
+    /// Extrude the selected faces as one region, then drag the distance (with a halfedge
+    /// active: go to its edge, as in Scotty3D).
+    Extrude,
+    /// Inset each selected face, then drag the amount.
+    Inset,
+    /// Bevel the active vertex or edge, or the selected faces (the panel's amount and depth).
+    Bevel,
+    /// Erase the selected elements: their faces become holes.
+    Erase,
+    /// Fill the hole beside the selected boundary edge (with a halfedge active: go to its face).
+    Fill,
+    /// Fill the hole beside the selected boundary edge with a fair patch of triangles.
+    FillFair,
+    /// Fill every hole of the active mesh (fair patches, or one face each: the panel's choice).
+    FillAll,
+    /// Fair the selected vertices (the panel's order k; every other vertex held).
+    Fair,
+    /// Proportional editing on / off.
+    ToggleProportional,
+    /// The selection's vertices become the anchors of handle deformation (nothing selected:
+    /// no anchors).
+    MarkAnchors,
+    /// Dissolve the active vertex (merge its faces) or edge (merge its two faces).
+    Dissolve,
+    /// Collapse the active edge or face.
+    Collapse,
+    /// Weld the first two selected boundary edges.
+    Weld,
+    /// Triangulate the active mesh.
+    Triangulate,
+    /// Simplify the active mesh (QEM) with the panel's parameters.
+    Simplify,
+    /// Split the selected vertex back (undo its last collapse from the simplification).
+    SplitVertex,
+    /// Loop-subdivide the active mesh (the panel's levels).
+    LoopSubdivide,
+    /// Catmull–Clark-subdivide the active mesh (the panel's levels).
+    CatmullClark,
+    /// Remesh the active mesh (isotropic, the panel's parameters).
+    Remesh,
+    /// Smooth the active mesh (the panel's method, iterations, step; the selected vertex held).
+    Smooth,
+    /// Parameterize the active mesh (the panel's method and boundary): a UV per corner.
+    Parameterize,
+    /// Move the selection along a relation.
+    Navigate(Relation),
+    /// Change what a click selects.
+    Mode(SelectMode),
+    /// Select nothing.
+    ClearSelection,
+    /// Select nothing (never cancels a job, unlike Esc).
+    SelectNone,
+    /// Select every element of the click mode's kind.
+    SelectAll,
+    /// One ring more.
+    Grow,
+    /// One ring less.
+    Shrink,
+    /// Drag a box to select what is inside.
+    BoxSelect,
+    /// Move the selection with the pointer (G).
+    Grab,
+    /// Rotate the selection (R).
+    Rotate,
+    /// Scale the selection (S).
+    Scale,
+    /// Frame the selection (or the mesh).
+    Frame,
+    /// Flat / smooth shading.
+    ToggleSmooth,
+    /// Wireframe on / off.
+    ToggleWireframe,
+    /// Halfedge arrows on / off.
+    ToggleHalfedges,
+    /// The UV checkerboard on / off.
+    ToggleChecker,
+    /// Delete the active mesh.
+    DeleteMesh,
+    /// Undo the last edit.
+    Undo,
+    /// Redo the last undone edit.
+    Redo,
+    /// Open a file (focuses the path field).
+    Open,
+    /// Save to the mesh's file.
+    Save,
+    /// Save to another file (focuses the path field).
+    SaveAs,
+    /// Show or hide the help overlay.
+    Help,
+    /// Step mode on / off: global operations start a stepped run instead of running through.
+    ToggleStepMode,
+    /// Move the stepped run in progress.
+    Step(StepMove),
+}
+
+/// A key with modifiers, and what it does.
+#[derive(Clone, Copy, Debug)]
+pub struct Shortcut {
+    /// The key.
+    pub key: KeyCode,
+    /// Ctrl must be held.
+    pub ctrl: bool,
+    /// Shift must be held.
+    pub shift: bool,
+    /// Alt must be held.
+    pub alt: bool,
+    /// The action.
+    pub action: Action,
+    /// How the help overlay writes the key.
+    pub keys: &'static str,
+    /// What the help overlay says it does.
+    pub description: &'static str,
+}
+
+const fn key(
+    key: KeyCode,
+    keys: &'static str,
+    action: Action,
+    description: &'static str,
+) -> Shortcut {
+    Shortcut {
+        key,
+        ctrl: false,
+        shift: false,
+        alt: false,
+        action,
+        keys,
+        description,
+    }
+}
+
+const fn shift(
+    key: KeyCode,
+    keys: &'static str,
+    action: Action,
+    description: &'static str,
+) -> Shortcut {
+    Shortcut {
+        key,
+        ctrl: false,
+        shift: true,
+        alt: false,
+        action,
+        keys,
+        description,
+    }
+}
+
+const fn alt(
+    key: KeyCode,
+    keys: &'static str,
+    action: Action,
+    description: &'static str,
+) -> Shortcut {
+    Shortcut {
+        key,
+        ctrl: false,
+        shift: false,
+        alt: true,
+        action,
+        keys,
+        description,
+    }
+}
+
+const fn ctrl(
+    key: KeyCode,
+    shift: bool,
+    keys: &'static str,
+    action: Action,
+    description: &'static str,
+) -> Shortcut {
+    Shortcut {
+        key,
+        ctrl: true,
+        shift,
+        alt: false,
+        action,
+        keys,
+        description,
+    }
+}
+
+/// The keys of `action` as the help lists them (`"Ctrl+T"`), if it has a shortcut.
+pub fn keys_of(action: Action) -> Option<&'static str> {
+    SHORTCUTS
+        .iter()
+        .find(|s| s.action == action)
+        .map(|s| s.keys)
+}
+
+/// Every shortcut of the editor.
+pub const SHORTCUTS: &[Shortcut] = &[
+    key(
+        KeyCode::KeyG,
+        "G",
+        Action::Grab,
+        "move the selection (then X/Y/Z, a typed value, Enter or click; Esc cancels)",
+    ),
+    key(
+        KeyCode::KeyR,
+        "R",
+        Action::Rotate,
+        "rotate the selection about its centre (as G)",
+    ),
+    key(
+        KeyCode::KeyS,
+        "S",
+        Action::Scale,
+        "scale the selection about its centre (as G)",
+    ),
+    key(
+        KeyCode::KeyA,
+        "A",
+        Action::SelectAll,
+        "select all (vertices, or the click mode's kind)",
+    ),
+    alt(KeyCode::KeyA, "Alt+A", Action::SelectNone, "select nothing"),
+    key(
+        KeyCode::KeyB,
+        "B",
+        Action::BoxSelect,
+        "box select: drag a rectangle (Shift at release adds)",
+    ),
+    ctrl(
+        KeyCode::Equal,
+        false,
+        "Ctrl+=",
+        Action::Grow,
+        "select more: one ring around the selection",
+    ),
+    ctrl(
+        KeyCode::Minus,
+        false,
+        "Ctrl+-",
+        Action::Shrink,
+        "select less: one ring off the selection",
+    ),
+    alt(
+        KeyCode::KeyR,
+        "Alt+R",
+        Action::OnEdge(LocalKind::Flip),
+        "flip (rotate) the selected edge",
+    ),
+    alt(
+        KeyCode::KeyS,
+        "Alt+S",
+        Action::OnEdge(LocalKind::Split),
+        "split the selected edge at its midpoint",
+    ),
+    key(
+        KeyCode::KeyK,
+        "K",
+        Action::OnEdge(LocalKind::Bisect),
+        "bisect the selected edge: a vertex at its midpoint, no face cut",
+    ),
+    key(
+        KeyCode::KeyC,
+        "C",
+        Action::Collapse,
+        "collapse the active edge (to its midpoint) or face (to its centroid)",
+    ),
+    key(
+        KeyCode::KeyD,
+        "D",
+        Action::Dissolve,
+        "dissolve the active edge (merge its two faces) or vertex (merge its faces)",
+    ),
+    key(
+        KeyCode::KeyE,
+        "E",
+        Action::Extrude,
+        "extrude the selected faces as one region, then drag (halfedge active: go to edge)",
+    ),
+    key(
+        KeyCode::KeyI,
+        "I",
+        Action::Inset,
+        "inset each selected face, then drag the amount",
+    ),
+    ctrl(
+        KeyCode::KeyB,
+        false,
+        "Ctrl+B",
+        Action::Bevel,
+        "bevel the active vertex or edge, or the selected faces (amount in the panel)",
+    ),
+    key(
+        KeyCode::KeyX,
+        "X",
+        Action::Erase,
+        "erase the selection: its faces become holes",
+    ),
+    key(
+        KeyCode::Delete,
+        "Delete",
+        Action::Erase,
+        "erase the selection: its faces become holes",
+    ),
+    key(
+        KeyCode::KeyF,
+        "F",
+        Action::Fill,
+        "fill the hole beside the selected boundary edge (halfedge active: go to face)",
+    ),
+    alt(
+        KeyCode::KeyF,
+        "Alt+F",
+        Action::FillFair,
+        "fill the hole beside the selected boundary edge with faired triangles",
+    ),
+    shift(
+        KeyCode::KeyF,
+        "Shift+F",
+        Action::FillAll,
+        "fill every hole (faired triangles or one face each, as set in the panel)",
+    ),
+    shift(
+        KeyCode::KeyO,
+        "Shift+O",
+        Action::Fair,
+        "fair the selected vertices (k-harmonic, k in the panel; the rest held)",
+    ),
+    shift(
+        KeyCode::KeyA,
+        "Shift+A",
+        Action::MarkAnchors,
+        "anchors: the selection stays, G/R/S on a handle then deform the rest (again, empty: none)",
+    ),
+    alt(
+        KeyCode::KeyO,
+        "Alt+O",
+        Action::ToggleProportional,
+        "proportional editing on / off (G, R, S take the vertices within the radius along)",
+    ),
+    alt(
+        KeyCode::KeyM,
+        "Alt+M",
+        Action::Weld,
+        "weld the first two selected boundary edges",
+    ),
+    key(
+        KeyCode::KeyJ,
+        "J",
+        Action::CutCorner,
+        "split the selected halfedge's face: join its tip to the corner two ahead",
+    ),
+    ctrl(
+        KeyCode::KeyT,
+        false,
+        "Ctrl+T",
+        Action::Triangulate,
+        "triangulate every polygon",
+    ),
+    key(
+        KeyCode::KeyU,
+        "U",
+        Action::SplitVertex,
+        "split the selected vertex back (after Shift+S: undoes its collapse)",
+    ),
+    shift(
+        KeyCode::KeyS,
+        "Shift+S",
+        Action::Simplify,
+        "simplify (QEM) to the target set in the panel",
+    ),
+    key(
+        KeyCode::KeyL,
+        "L",
+        Action::LoopSubdivide,
+        "Loop subdivision (triangles; levels in the panel)",
+    ),
+    key(
+        KeyCode::KeyQ,
+        "Q",
+        Action::CatmullClark,
+        "Catmull-Clark subdivision (to quads; levels in the panel)",
+    ),
+    key(
+        KeyCode::KeyM,
+        "M",
+        Action::Remesh,
+        "isotropic remeshing (length, iterations, feature angle in the panel)",
+    ),
+    key(
+        KeyCode::KeyO,
+        "O",
+        Action::Smooth,
+        "smooth with the panel's method (the boundary and the selected vertex held)",
+    ),
+    ctrl(
+        KeyCode::KeyE,
+        false,
+        "Ctrl+E",
+        Action::OnEdge(LocalKind::Seam),
+        "mark the selected edge as a seam for parameterizing (or unmark it)",
+    ),
+    shift(
+        KeyCode::KeyU,
+        "Shift+U",
+        Action::Parameterize,
+        "parameterize (unwrap) with the panel's method: a UV per corner",
+    ),
+    key(
+        KeyCode::KeyH,
+        "H",
+        Action::Navigate(Relation::Halfedge),
+        "go to the element's halfedge",
+    ),
+    key(
+        KeyCode::KeyT,
+        "T",
+        Action::Navigate(Relation::Twin),
+        "go to twin",
+    ),
+    key(
+        KeyCode::KeyN,
+        "N",
+        Action::Navigate(Relation::Next),
+        "go to next",
+    ),
+    key(
+        KeyCode::KeyP,
+        "P",
+        Action::Navigate(Relation::Prev),
+        "go to prev",
+    ),
+    key(
+        KeyCode::KeyV,
+        "V",
+        Action::Navigate(Relation::Vertex),
+        "go to vertex (tip)",
+    ),
+    key(
+        KeyCode::Digit1,
+        "1",
+        Action::Mode(SelectMode::Vertex),
+        "click selects vertices",
+    ),
+    key(
+        KeyCode::Digit2,
+        "2",
+        Action::Mode(SelectMode::Edge),
+        "click selects edges",
+    ),
+    key(
+        KeyCode::Digit3,
+        "3",
+        Action::Mode(SelectMode::Face),
+        "click selects faces",
+    ),
+    key(
+        KeyCode::Digit4,
+        "4",
+        Action::Mode(SelectMode::Halfedge),
+        "click selects halfedges",
+    ),
+    key(
+        KeyCode::Backquote,
+        "`",
+        Action::Mode(SelectMode::Auto),
+        "click selects the nearest element",
+    ),
+    key(
+        KeyCode::Escape,
+        "Esc",
+        Action::ClearSelection,
+        "cancel the running operation or stepped run, else select nothing",
+    ),
+    key(
+        KeyCode::Period,
+        ".",
+        Action::Frame,
+        "frame the selection (or the next collapse while stepping, or the mesh)",
+    ),
+    key(
+        KeyCode::Home,
+        "Home",
+        Action::Frame,
+        "frame the selection (or the next collapse while stepping, or the mesh)",
+    ),
+    key(
+        KeyCode::KeyZ,
+        "Z",
+        Action::ToggleSmooth,
+        "flat / smooth shading",
+    ),
+    key(
+        KeyCode::KeyW,
+        "W",
+        Action::ToggleWireframe,
+        "wireframe on / off",
+    ),
+    shift(
+        KeyCode::KeyW,
+        "Shift+W",
+        Action::ToggleHalfedges,
+        "halfedge arrows on / off",
+    ),
+    shift(
+        KeyCode::KeyC,
+        "Shift+C",
+        Action::ToggleChecker,
+        "UV checkerboard on / off (meshes with UVs)",
+    ),
+    ctrl(
+        KeyCode::Delete,
+        false,
+        "Ctrl+Delete",
+        Action::DeleteMesh,
+        "delete the mesh",
+    ),
+    ctrl(
+        KeyCode::KeyO,
+        false,
+        "Ctrl+O",
+        Action::Open,
+        "open a file: a dialog, the path field, or drop one on the window",
+    ),
+    ctrl(KeyCode::KeyS, false, "Ctrl+S", Action::Save, "save"),
+    ctrl(KeyCode::KeyZ, false, "Ctrl+Z", Action::Undo, "undo"),
+    ctrl(KeyCode::KeyZ, true, "Ctrl+Shift+Z", Action::Redo, "redo"),
+    ctrl(KeyCode::KeyY, false, "Ctrl+Y", Action::Redo, "redo"),
+    ctrl(
+        KeyCode::KeyS,
+        true,
+        "Ctrl+Shift+S",
+        Action::SaveAs,
+        "save as",
+    ),
+    key(
+        KeyCode::F9,
+        "F9",
+        Action::ToggleStepMode,
+        "step mode on / off: Shift+S, M, L, Q and an ARAP handle drag then run a step at a time",
+    ),
+    key(
+        KeyCode::ArrowRight,
+        "Right",
+        Action::Step(StepMove::Forward(1)),
+        "step mode: one step forward",
+    ),
+    shift(
+        KeyCode::ArrowRight,
+        "Shift+Right",
+        Action::Step(StepMove::Forward(10)),
+        "step mode: 10 steps forward",
+    ),
+    ctrl(
+        KeyCode::ArrowRight,
+        false,
+        "Ctrl+Right",
+        Action::Step(StepMove::Forward(100)),
+        "step mode: 100 steps forward",
+    ),
+    key(
+        KeyCode::End,
+        "End",
+        Action::Step(StepMove::Forward(usize::MAX)),
+        "step mode: to the end",
+    ),
+    key(
+        KeyCode::ArrowLeft,
+        "Left",
+        Action::Step(StepMove::Back(1)),
+        "step mode: one step back",
+    ),
+    shift(
+        KeyCode::ArrowLeft,
+        "Shift+Left",
+        Action::Step(StepMove::Back(10)),
+        "step mode: 10 steps back",
+    ),
+    ctrl(
+        KeyCode::ArrowLeft,
+        false,
+        "Ctrl+Left",
+        Action::Step(StepMove::Back(100)),
+        "step mode: 100 steps back",
+    ),
+    key(
+        KeyCode::Enter,
+        "Enter",
+        Action::Step(StepMove::Finish),
+        "step mode: keep the mesh where the run is (one undo step)",
+    ),
+    key(KeyCode::F1, "F1", Action::Help, "show / hide this help"),
+    shift(KeyCode::Slash, "?", Action::Help, "show / hide this help"),
+];
+
+/// UI state that shortcuts read and change: the overlay, the path field, and the parameters
+/// of the whole-mesh edits (set in the panel; the command line's defaults).
+#[derive(Resource, Debug, Clone)]
+pub struct UiState {
+    /// The help overlay is open.
+    pub show_help: bool,
+    /// The path field should take the keyboard focus (for Open / Save as).
+    pub focus_path: Option<PathPurpose>,
+    /// Simplification: its target (a ratio or a face count) and limits.
+    pub simplify: SimplifyParams,
+    /// Remeshing: target length, iterations, feature angle.
+    pub remesh: RemeshParams,
+    /// Subdivision levels per press (1–[`Subdivision::MAX_LEVELS`]).
+    pub subdivision_levels: u32,
+    /// Smoothing: method, iterations, step, whether the boundary is held.
+    pub smooth: SmoothParams,
+    /// Show the histograms even when the mesh is not coloured by a quantity.
+    pub histograms: bool,
+    /// The panel asked to check the validity of a large mesh (see
+    /// [`crate::editor::panels::mesh_figures`]).
+    pub check_validity: bool,
+    /// Parameterization: method and boundary shape (no seams; a closed genus-0 mesh is cut
+    /// automatically).
+    pub param: ParamParams,
+    /// The UV layout window is open (it opens by itself when the mesh first gets UVs).
+    pub uv_view: bool,
+    /// Bevel: how far along the edges the new corners go (0–0.5), or for faces how far
+    /// towards the centre (0–1).
+    pub bevel_amount: f32,
+    /// Bevel of faces: how far the inset face moves along its normal.
+    pub bevel_depth: f32,
+    /// Fairing's order k (1–3).
+    pub fair_k: u32,
+    /// Fill every hole with faired triangles (else one face each).
+    pub fill_fair: bool,
+    /// Proportional editing: on or off, falloff, radius, distances along edges.
+    pub proportional: Proportional,
+}
+
+impl Default for UiState {
+    fn default() -> Self {
+        Self {
+            show_help: false,
+            focus_path: None,
+            simplify: SimplifyParams::default(),
+            remesh: RemeshParams::default(),
+            subdivision_levels: 1,
+            smooth: SmoothParams::default(),
+            histograms: false,
+            check_validity: false,
+            param: ParamParams::default(),
+            uv_view: false,
+            bevel_amount: 0.25,
+            bevel_depth: 0.0,
+            fair_k: 2,
+            fill_fair: true,
+            proportional: Proportional::default(),
+        }
+    }
+}
+
+/// The shortcut matching a key press with exactly the given modifiers, if any.
+pub fn shortcut_for(key: KeyCode, ctrl: bool, shift: bool, alt: bool) -> Option<&'static Shortcut> {
+    SHORTCUTS
+        .iter()
+        .find(|s| s.key == key && s.ctrl == ctrl && s.shift == shift && s.alt == alt)
+}
+
+/// Reads key presses and performs their actions (the `Input` set).
+pub fn keyboard_shortcuts(world: &mut World) {
+    let gesture = world
+        .get_resource::<Gestures>()
+        .is_some_and(|g| g.active.is_some() || g.keys_taken);
+    if gesture
+        || world
+            .get_resource::<crate::editor::session::schedule::KeyboardCaptured>()
+            .is_some_and(|k| k.0)
+    {
+        return;
+    }
+    let keys = world.resource::<ButtonInput<KeyCode>>();
+    let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
+    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
+    let alt = keys.any_pressed([KeyCode::AltLeft, KeyCode::AltRight]);
+    let pressed: Vec<KeyCode> = keys.get_just_pressed().copied().collect();
+    for key in pressed {
+        // Once a key starts a transform (or an extrusion whose height one follows), the other
+        // keys of the frame are the gesture's (`X` constrains rather than erases).
+        let gesture = world
+            .get_resource::<Gestures>()
+            .is_some_and(|g| g.active.is_some() || g.after_edit.is_some());
+        if gesture {
+            break;
+        }
+        if let Some(shortcut) = shortcut_for(key, ctrl, shift, alt) {
+            perform(world, shortcut.action);
+        }
+    }
+}
+
+/// Performs an action: writes the request it stands for, or changes a setting.
+pub fn perform(world: &mut World, action: Action) {
+    // A box armed before a transform (or an extrusion's height) would take its confirming click.
+    if matches!(
+        action,
+        Action::Grab | Action::Rotate | Action::Scale | Action::Extrude | Action::Inset
+    ) && let Some(mut armed) = world.get_resource_mut::<BoxSelect>()
+    {
+        *armed = BoxSelect::default();
+    }
+    // A gesture counts the undo entries when it starts, to take back to them on Esc: a
+    // stepped run ends first, so its entry is counted and stays.
+    if matches!(
+        action,
+        Action::Grab | Action::Rotate | Action::Scale | Action::Extrude | Action::Inset
+    ) && world.resource::<Stepping>().run.is_some()
+    {
+        let ended = crate::editor::pipeline::stepping::end_run(world)
+            .map(|()| "the stepped run is kept".into());
+        report(world, "end the stepped run".into(), ended, 0.0);
+    }
+    match request_for(world, action) {
+        Ok(Some(request)) => {
+            world.write_message(request);
+        }
+        Ok(None) => {}
+        Err(why) => report(world, action_words(action), Err(why), 0.0),
+    }
+}
+
+/// An action in a person's words, for the status line ("flip", "split vertex back", "fill
+/// hole"): a local edge operation by its step name, the others by their name split into words.
+fn action_words(action: Action) -> String {
+    if let Action::OnEdge(kind) = action {
+        return crate::ops::named::Named::name(kind).to_string();
+    }
+    let name = format!("{action:?}");
+    let mut words = String::with_capacity(name.len() + 4);
+    for (i, c) in name.chars().take_while(|c| c.is_alphanumeric()).enumerate() {
+        if c.is_uppercase() && i > 0 {
+            words.push(' ');
+        }
+        words.extend(c.to_lowercase());
+    }
+    words
+}
+
+/// The request an action stands for (`None` for actions that only change a setting, done
+/// here), or why it cannot be asked now.
+fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Declined> {
+    let selection = world.resource::<Selection>().element;
+    let m = MeshRef::new(world);
+    let edit = match action {
+        Action::SplitVertex => match selection {
+            Some(ElementId::Vertex(v)) => Edit::SplitVertex(v),
+            _ => return Err(Declined::SelectFirst("a vertex")),
+        },
+        Action::CutCorner => {
+            let target = match selection {
+                Some(ElementId::Halfedge(h)) if m.try_halfedge(h).is_some() => m
+                    .face(h)
+                    .map(|f| (f, m.to_vertex(h), m.to_vertex(m.next(m.next(h))))),
+                _ => None,
+            };
+            let (f, a, b) = target.ok_or(Declined::SelectFirst("a halfedge of a face (mode 4)"))?;
+            Edit::SplitFace(f, a, b)
+        }
+        Action::Extrude | Action::Fill
+            if matches!(selection, Some(ElementId::Halfedge(_)))
+                && world.resource::<Selection>().len() == 1 =>
+        {
+            let to = match action {
+                Action::Extrude => Relation::Edge,
+                _ => Relation::Face,
+            };
+            return Ok(Some(Request::Navigate(to)));
+        }
+        Action::Fill | Action::FillFair => {
+            let edge =
+                selected_edge(&m, selection).ok_or(Declined::SelectFirst("a boundary edge"))?;
+            match action {
+                Action::Fill => Edit::FillHole(edge),
+                _ => Edit::FillHoleFair(edge),
+            }
+        }
+        Action::FillAll => {
+            world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
+            Edit::FillHoles(world.resource::<UiState>().fill_fair)
+        }
+        Action::Fair => {
+            let vertices = crate::editor::gestures::transform::selected_vertices(world);
+            if vertices.is_empty() {
+                return Err(Declined::SelectFirst("vertices to fair"));
+            }
+            Edit::Fair(FairParams {
+                vertices,
+                k: world.resource::<UiState>().fair_k.clamp(1, 3),
+            })
+        }
+        Action::MarkAnchors => {
+            let vertices = crate::editor::gestures::transform::selected_vertices(world);
+            let count = vertices.len();
+            world.resource_mut::<Anchors>().vertices = vertices;
+            let summary = match count {
+                0 => "no anchors: G, R and S move the selection alone".to_string(),
+                n => format!("{n} anchor vertices: G, R and S on a handle now deform the mesh"),
+            };
+            report(world, "anchors".into(), Ok(summary), 0.0);
+            return Ok(None);
+        }
+        Action::ToggleProportional => {
+            let mut ui = world.resource_mut::<UiState>();
+            ui.proportional.enabled = !ui.proportional.enabled;
+            return Ok(None);
+        }
+        Action::Extrude | Action::Inset => {
+            let faces = selected_faces(world);
+            if faces.is_empty() {
+                return Err(Declined::SelectFirst("faces (mode 3)"));
+            }
+            let edit = match action {
+                Action::Extrude => Edit::Extrude(faces, 0.0),
+                _ => Edit::Inset(faces, 0.0, 0.0),
+            };
+            let undo_mark = world
+                .resource::<crate::editor::session::history::UndoHistory>()
+                .mark();
+            world.resource_mut::<Gestures>().after_edit =
+                Some(crate::editor::gestures::transform::FollowUp {
+                    label: edit.label(),
+                    inset: action == Action::Inset,
+                    undo_mark,
+                });
+            edit
+        }
+        Action::Bevel => {
+            let ui = world.resource::<UiState>();
+            let (amount, depth) = (ui.bevel_amount, ui.bevel_depth);
+            match selection {
+                Some(ElementId::Vertex(v)) => Edit::BevelVertex(v, amount),
+                Some(ElementId::Face(_)) => Edit::Inset(selected_faces(world), amount, depth),
+                _ => match selected_edge(&m, selection) {
+                    Some(e) => Edit::BevelEdge(e, amount.min(0.5)),
+                    None => return Err(Declined::SelectFirst("a vertex, an edge or faces")),
+                },
+            }
+        }
+        Action::Erase => {
+            // The set holds live elements only (stale ones drop out after every edit).
+            let faces = faces_of(world, world.resource::<Selection>().elements())?;
+            if faces.is_empty() {
+                return Err(Declined::SelectFirst("elements to erase"));
+            }
+            Edit::Erase(faces)
+        }
+        Action::Dissolve | Action::Collapse => match (action, selection) {
+            (Action::Dissolve, Some(ElementId::Vertex(v))) => Edit::DissolveVertex(v),
+            (Action::Collapse, Some(ElementId::Face(f))) => Edit::CollapseFace(f),
+            _ => {
+                let edge =
+                    selected_edge(&m, selection).ok_or(Declined::SelectFirst(match action {
+                        Action::Dissolve => "a vertex or an edge",
+                        _ => "an edge or a face",
+                    }))?;
+                match action {
+                    Action::Dissolve => Edit::Dissolve(edge),
+                    _ => Edit::Collapse(edge),
+                }
+            }
+        },
+        Action::Weld => {
+            let edges: Vec<_> = world
+                .resource::<Selection>()
+                .elements()
+                .iter()
+                .filter_map(|&x| selected_edge(&m, Some(x)))
+                .collect();
+            match edges[..] {
+                [a, b, ..] => Edit::Weld(a, b),
+                _ => return Err(Declined::SelectFirst("two boundary edges (Shift-click)")),
+            }
+        }
+        Action::OnEdge(kind) => {
+            let edge = selected_edge(&m, selection)
+                .ok_or(Declined::SelectFirst("an edge (or halfedge)"))?;
+            kind.on_edge(edge)
+                .ok_or(Declined::SelectFirst("a halfedge of a face (mode 4)"))?
+        }
+        Action::Triangulate
+        | Action::LoopSubdivide
+        | Action::CatmullClark
+        | Action::Remesh
+        | Action::Smooth
+        | Action::Parameterize
+        | Action::Simplify => {
+            if world.resource::<ActiveMesh>().0.is_none() {
+                return Err(Declined::NoMesh);
+            }
+            let ui = world.resource::<UiState>();
+            let levels = ui.subdivision_levels.clamp(1, Subdivision::MAX_LEVELS);
+            match action {
+                Action::Triangulate => Edit::Triangulate,
+                Action::Remesh => Edit::Remesh(ui.remesh),
+                Action::Simplify => Edit::Simplify(ui.simplify),
+                Action::Parameterize => Edit::Parameterize(ui.param.clone()),
+                Action::Smooth => Edit::Smooth(SmoothParams {
+                    held: match selection {
+                        Some(ElementId::Vertex(v)) => vec![v],
+                        _ => Vec::new(),
+                    },
+                    ..ui.smooth.clone()
+                }),
+                Action::LoopSubdivide => Edit::Subdivide(Subdivision {
+                    scheme: Scheme::Loop,
+                    levels,
+                }),
+                _ => Edit::Subdivide(Subdivision {
+                    scheme: Scheme::CatmullClark,
+                    levels,
+                }),
+            }
+        }
+        Action::Navigate(relation) => return Ok(Some(Request::Navigate(relation))),
+        // Esc first stops a running operation, as in Blender.
+        Action::ClearSelection if world.resource::<Jobs>().running.is_some() => {
+            return Ok(Some(Request::CancelJob));
+        }
+        Action::ClearSelection if world.resource::<Stepping>().run.is_some() => {
+            return Ok(Some(Request::Step(StepMove::Cancel)));
+        }
+        // The arrows, End and Enter do nothing without a run (Enter may end a text field).
+        Action::Step(_) if world.resource::<Stepping>().run.is_none() => return Ok(None),
+        Action::Step(movement) => return Ok(Some(Request::Step(movement))),
+        Action::ToggleStepMode => {
+            let mut stepping = world.resource_mut::<Stepping>();
+            stepping.enabled = !stepping.enabled;
+            return Ok(None);
+        }
+        Action::ClearSelection | Action::SelectNone => return Ok(Some(Request::Select(None))),
+        Action::SelectAll => return Ok(Some(SelectionEdit::All.into())),
+        Action::Grow => return Ok(Some(SelectionEdit::Grow.into())),
+        Action::Shrink => return Ok(Some(SelectionEdit::Shrink.into())),
+        Action::BoxSelect => {
+            world.resource_mut::<BoxSelect>().armed = true;
+            return Ok(None);
+        }
+        Action::Grab | Action::Rotate | Action::Scale => {
+            let kind = match action {
+                Action::Grab => GestureKind::Grab,
+                Action::Rotate => GestureKind::Rotate,
+                _ => GestureKind::Scale,
+            };
+            if world.resource::<Selection>().is_empty() {
+                return Err(Declined::SelectFirst("something to transform"));
+            }
+            let proportional = world.resource::<UiState>().proportional;
+            crate::editor::gestures::transform::start(world, kind, None, Some(proportional));
+            return Ok(None);
+        }
+        Action::DeleteMesh => return Ok(Some(Request::DeleteMesh)),
+        Action::Undo => return Ok(Some(Request::Undo)),
+        Action::Redo => return Ok(Some(Request::Redo)),
+        Action::Save => return Ok(Some(Request::Save(None))),
+        Action::Mode(mode) => {
+            *world.resource_mut::<SelectMode>() = mode;
+            return Ok(None);
+        }
+        Action::Frame => {
+            crate::editor::gestures::camera::frame_selection(world);
+            return Ok(None);
+        }
+        Action::ToggleSmooth => {
+            let mut settings = world.resource_mut::<ViewSettings>();
+            settings.smooth = !settings.smooth;
+            mark_all_dirty(world);
+            return Ok(None);
+        }
+        Action::ToggleWireframe => {
+            let mut settings = world.resource_mut::<ViewSettings>();
+            settings.wireframe = !settings.wireframe;
+            let visible = settings.wireframe;
+            set_wireframes_visible(world, visible);
+            if visible {
+                mark_all_dirty(world);
+            }
+            return Ok(None);
+        }
+        Action::ToggleChecker => {
+            let mut settings = world.resource_mut::<ViewSettings>();
+            settings.checker = !settings.checker;
+            mark_all_dirty(world);
+            return Ok(None);
+        }
+        Action::ToggleHalfedges => {
+            let mut settings = world.resource_mut::<ViewSettings>();
+            settings.halfedges = !settings.halfedges;
+            return Ok(None);
+        }
+        Action::Open | Action::SaveAs | Action::Help => {
+            let purpose = match action {
+                Action::Open => Some(PathPurpose::Open),
+                Action::SaveAs => Some(PathPurpose::SaveAs),
+                _ => None,
+            };
+            let mut ui = world.resource_mut::<UiState>();
+            match purpose {
+                Some(purpose) => ui.focus_path = Some(purpose),
+                None => ui.show_help = !ui.show_help,
+            }
+            if let Some(purpose) = purpose
+                && world.contains_resource::<OpenDialog>()
+            {
+                crate::editor::session::dialog::show(world, purpose);
+            }
+            return Ok(None);
+        }
+    };
+    if world.resource::<Stepping>().enabled && crate::editor::pipeline::stepping::steppable(&edit) {
+        return Ok(Some(Request::StartStepped(edit)));
+    }
+    Ok(Some(Request::Edit(edit)))
+}
+
+fn mark_all_dirty(world: &mut World) {
+    let meshes = crate::mesh::members::meshes(world);
+    for m in meshes {
+        world.entity_mut(m.0).insert(MeshDirty);
+    }
+}
+
+/// The selected element, for the UI.
+pub fn selected(world: &World) -> Option<ElementId> {
+    world.resource::<Selection>().element
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn actions_are_named_in_words_on_the_status_line() {
+        assert_eq!(action_words(Action::OnEdge(LocalKind::Flip)), "flip");
+        assert_eq!(action_words(Action::SplitVertex), "split vertex");
+        assert_eq!(action_words(Action::FillFair), "fill fair");
+        assert_eq!(action_words(Action::Navigate(Relation::Twin)), "navigate");
+    }
+}

@@ -1,0 +1,91 @@
+//! The end of every request: one path for the bookkeeping after an edit, whether it was
+//! applied at once or came back from a job, and one for reporting any outcome.
+//!
+//! After an applied edit, [`finish_edit`]: records the undo entry, ends the simplification
+//! history unless the edit keeps it, marks the mesh modified, marks what must be redrawn, moves
+//! the selection to what the edit made (or keeps it where its element survived). (The edit has
+//! validated the mesh already in debug builds: see [`Edit::run`].) [`report`] then logs the
+//! outcome and writes it as an [`EditOutcome`] message.
+
+use bevy::prelude::World;
+
+use crate::edit::{Applied, Edit, Redraw};
+use crate::mesh::MeshId;
+use crate::ops::Refusal;
+
+use super::history::{self, Pending};
+use super::requests::{Declined, EditOutcome, OutcomeLog};
+use super::selection::{
+    MeshDirty, PositionsDirty, Selection, keep_live_selection, mark_faces_dirty,
+};
+use super::state::{Modified, PreviousShape, SimplificationHistory};
+
+/// An edit that has run, with what its bookkeeping needs.
+pub struct Finished {
+    /// The edit.
+    pub edit: Edit,
+    /// The mesh it ran on.
+    pub mesh: MeshId,
+    /// What it did, or why it refused (the world is then as it was).
+    pub result: Result<Applied, Refusal>,
+    /// The undo record captured before it ran.
+    pub pending: Option<Pending>,
+}
+
+/// Does the bookkeeping of an edit that ran (see the module doc). Returns its summary, or its
+/// refusal.
+///
+/// # Errors
+/// The edit's refusal; nothing is recorded then.
+pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Declined> {
+    let Finished {
+        edit,
+        mesh,
+        result,
+        pending,
+    } = finished;
+    let applied = result?;
+    if let Some(before) = pending.as_ref().and_then(Pending::tables) {
+        let tables = before.tables.clone();
+        world.resource_mut::<PreviousShape>().set(mesh, tables);
+    }
+    if let Some(pending) = pending {
+        history::commit(world, pending, edit.label());
+    }
+    if !edit.keeps_history() {
+        world.resource_mut::<SimplificationHistory>().pm = None;
+    }
+    if world.get_entity(mesh.0).is_err() {
+        return Ok(applied.summary);
+    }
+    world.entity_mut(mesh.0).insert(Modified);
+    match applied.redraw {
+        Redraw::Whole => {
+            world.entity_mut(mesh.0).insert(MeshDirty);
+        }
+        Redraw::Near { faces, .. } => mark_faces_dirty(world, mesh, faces),
+        Redraw::Positions => {
+            world.entity_mut(mesh.0).insert(PositionsDirty);
+        }
+    }
+    match applied.made {
+        Some(made) => world.resource_mut::<Selection>().select_only(Some(made)),
+        None => {
+            let kept = edit.keeps_ids();
+            keep_live_selection(world, |x| kept.keeps(x));
+        }
+    }
+    Ok(applied.summary)
+}
+
+/// Logs an outcome and hands it to the status line, the log panel and any reader of
+/// [`EditOutcome`] messages.
+pub fn report(world: &mut World, request: String, result: Result<String, Declined>, ms: f64) {
+    match &result {
+        Ok(summary) => bevy::log::info!("{request}: {summary} ({ms:.2} ms)"),
+        Err(reason) => bevy::log::info!("{request}: declined: {reason}"),
+    }
+    let outcome = EditOutcome { request, result };
+    world.write_message(outcome.clone());
+    world.resource_mut::<OutcomeLog>().push(outcome);
+}
