@@ -29,25 +29,23 @@ use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::tables::{Connectivity, MeshTables};
 use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
-use crate::ops::deform::{DeformMethod, DeformParams, DeformSummary, FairParams, deform, fair};
-use crate::ops::hole::{fill_hole_fair, fill_holes};
+use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
 use crate::ops::local::{
-    BevelEdgePlan, BevelVertexPlan, CollapseFacePlan, CollapseOptions, DissolveVertexPlan,
-    ErasePlan, ExtrudePlan, InsetPlan, WeldPlan, apply_bevel_edge, apply_bevel_vertex,
-    apply_collapse_face, apply_dissolve_vertex, apply_erase, apply_extrude, apply_inset,
-    apply_weld, bisect_edge, collapse_edge, dissolve_edge, fill_hole, flip_edge, plan_bevel_edge,
+    BevelEdgePlan, BevelVertexPlan, CollapseFacePlan, DissolveVertexPlan, ErasePlan, ExtrudePlan,
+    InsetPlan, WeldPlan, apply_bevel_edge, apply_bevel_vertex, apply_collapse_face,
+    apply_dissolve_vertex, apply_erase, apply_extrude, apply_inset, apply_weld, plan_bevel_edge,
     plan_bevel_vertex, plan_collapse_face, plan_dissolve_vertex, plan_erase, plan_extrude,
-    plan_inset, plan_weld, split_edge, split_face,
+    plan_inset, plan_weld,
 };
 use crate::ops::named::Named;
-use crate::ops::param::{ParamParams, parameterize_in_place};
+use crate::ops::param::ParamParams;
 use crate::ops::progressive::ProgressiveMesh;
-use crate::ops::remesh::{RemeshParams, remesh_with_progress};
+use crate::ops::remesh::RemeshParams;
 use crate::ops::simplify::{SimplifyParams, SimplifyTarget};
-use crate::ops::smooth::{SmoothParams, smooth_with_progress};
+use crate::ops::smooth::SmoothParams;
 use crate::ops::subdivide::SubdivisionSummary;
-use crate::ops::triangulate::triangulate;
 
+mod apply;
 mod save;
 mod step;
 pub use save::{RECOMPUTED_NORMALS, mark_normals_stale, soup_to_save};
@@ -598,320 +596,6 @@ impl Edit {
         }
         Ok(applied)
     }
-
-    fn apply(
-        &self,
-        world: &mut World,
-        mesh: MeshId,
-        context: &mut EditContext<'_>,
-    ) -> Result<Applied, Refusal> {
-        let near = |world: &World, faces: Vec<FaceId>, vertices: Vec<VertexId>| Redraw::Near {
-            faces: [faces_around(world, &vertices), faces].concat(),
-            vertices,
-        };
-        let whole = |summary: String| Applied {
-            summary,
-            redraw: Redraw::Whole,
-            made: None,
-        };
-        if world.get::<MeshInfo>(mesh.0).is_none() {
-            return Err(Refusal::Stale(ElementId::Mesh(mesh)));
-        }
-        Ok(match self {
-            Edit::Flip(e) => {
-                let before = faces_around(world, &edge_ends(world, *e));
-                let flipped = flip_edge(world, *e)?;
-                Applied {
-                    summary: format!("flipped to {flipped}"),
-                    redraw: near(world, before, edge_ends(world, flipped)),
-                    made: Some(ElementId::Edge(flipped)),
-                }
-            }
-            Edit::Split(e) => {
-                let before = faces_around(world, &edge_ends(world, *e));
-                let v = split_edge(world, *e, 0.5)?;
-                Applied {
-                    summary: format!("new vertex {v}"),
-                    redraw: near(world, before, vec![v]),
-                    made: Some(ElementId::Vertex(v)),
-                }
-            }
-            Edit::Bisect(e) => {
-                let before = faces_around(world, &edge_ends(world, *e));
-                let v = bisect_edge(world, *e, 0.5)?;
-                Applied {
-                    summary: format!("new vertex {v} on {e}"),
-                    redraw: near(world, before, vec![v]),
-                    made: Some(ElementId::Vertex(v)),
-                }
-            }
-            Edit::Collapse(e) => {
-                let before = faces_around(world, &edge_ends(world, *e));
-                let r = collapse_edge(world, *e, CollapseOptions::default())?;
-                Applied {
-                    summary: format!("kept {}, removed {}", r.kept, r.removed),
-                    redraw: near(world, before, vec![r.kept]),
-                    made: Some(ElementId::Vertex(r.kept)),
-                }
-            }
-            Edit::Dissolve(e) => {
-                let ends = edge_ends(world, *e);
-                let before = faces_around(world, &ends);
-                let f = dissolve_edge(world, *e)?;
-                Applied {
-                    summary: format!("merged into {f}"),
-                    redraw: near(world, before, ends),
-                    made: Some(ElementId::Face(f)),
-                }
-            }
-            Edit::ToggleSeam(e) => {
-                let marked = toggle_seam(world, *e)?;
-                Applied {
-                    summary: if marked {
-                        format!("{e} is a seam")
-                    } else {
-                        format!("{e} is no longer a seam")
-                    },
-                    redraw: near(world, Vec::new(), edge_ends(world, *e)),
-                    made: None,
-                }
-            }
-            Edit::FillHole(e) => {
-                let f = fill_hole(world, *e)?;
-                let m = MeshRef::new(world);
-                let ring: Vec<VertexId> = m.face_vertices(f).collect();
-                Applied {
-                    summary: format!("new face {f} of {} sides", ring.len()),
-                    redraw: near(world, Vec::new(), ring),
-                    made: Some(ElementId::Face(f)),
-                }
-            }
-            Edit::SplitFace(f, a, b) => {
-                let before = faces_around(world, &[*a, *b]);
-                let e = split_face(world, *f, *a, *b)?;
-                Applied {
-                    summary: format!("new edge {e}"),
-                    redraw: near(world, before, vec![*a, *b]),
-                    made: Some(ElementId::Edge(e)),
-                }
-            }
-            Edit::Extrude(..)
-            | Edit::Inset(..)
-            | Edit::BevelVertex(..)
-            | Edit::BevelEdge(..)
-            | Edit::Erase(_)
-            | Edit::DissolveVertex(_)
-            | Edit::CollapseFace(_)
-            | Edit::Weld(..) => {
-                let plan = self.plan(world).expect("a planned edit")?;
-                let seeds = plan.seeds();
-                let before = faces_around(world, &seeds);
-                let (summary, made) = plan.apply(world);
-                // What is new lies around the seeds that survive and what the edit made.
-                let mut after = seeds;
-                if let Some(x) = made {
-                    after.extend(element_corners(world, x));
-                }
-                Applied {
-                    summary,
-                    redraw: near(world, before, after),
-                    made,
-                }
-            }
-            Edit::MoveVertex(v, p) => Applied {
-                summary: format!("{v} at {p}"),
-                redraw: move_vertices(world, &[(*v, *p)])?,
-                made: None,
-            },
-            Edit::MoveVertices(moves) => Applied {
-                summary: format!("{} vertices moved", moves.len()),
-                redraw: move_vertices(world, moves)?,
-                made: None,
-            },
-            Edit::SplitVertex(v) => {
-                let pm = context.history.as_mut().ok_or(Refusal::NoHistory)?;
-                let b = pm.refine_vertex(world, *v)?;
-                Applied {
-                    summary: format!("split back {b}"),
-                    redraw: Redraw::Whole,
-                    made: Some(ElementId::Vertex(*v)),
-                }
-            }
-            Edit::LevelOfDetail(faces) => {
-                let pm = context.history.as_mut().ok_or(Refusal::NoHistory)?;
-                let before = pm.faces();
-                // Only the faces around the vertices each step touches are redrawn, unless the
-                // move rewrote the whole mesh (a long refine).
-                let mut touched: Vec<FaceId> = Vec::new();
-                // Progress by the steps taken of those the move needs (a collapse or a split
-                // changes the faces by two), every 1000 steps; a move cannot stop half-way.
-                let needed = (before.abs_diff((*faces).min(pm.full_faces)) / 2).max(1);
-                let mut steps = 0usize;
-                let progress = &mut *context.progress;
-                let moved = pm.go_to_faces_watching(world, *faces, |w, v| {
-                    touched.extend(faces_around(w, &[v]));
-                    steps += 1;
-                    if steps.is_multiple_of(1000) {
-                        progress((steps as f32 / needed as f32).min(0.99));
-                    }
-                });
-                (context.progress)(1.0);
-                let now = pm.faces();
-                match moved {
-                    Ok(moved) => Applied {
-                        summary: format!("{} step(s), {now} faces", moved.steps),
-                        redraw: if moved.rewritten {
-                            Redraw::Whole
-                        } else {
-                            Redraw::Near {
-                                faces: touched,
-                                vertices: Vec::new(),
-                            }
-                        },
-                        made: None,
-                    },
-                    // A bulk refine that stopped on a refusal has still rewritten the mesh.
-                    Err(refusal) if now != before => {
-                        whole(format!("stopped at {now} faces: {refusal}"))
-                    }
-                    Err(refusal) => return Err(refusal),
-                }
-            }
-            Edit::Triangulate => {
-                let s = triangulate(world, mesh);
-                (context.progress)(1.0);
-                let left = match s.left {
-                    0 => String::new(),
-                    n => format!(
-                        "; {n} polygon(s) left whole: any cut would make an edge that exists"
-                    ),
-                };
-                whole(format!(
-                    "{} polygon(s) cut into triangles, {} face(s) added{left}",
-                    s.polygons, s.added_faces
-                ))
-            }
-            Edit::Simplify(params) => {
-                let (pm, s) = ProgressiveMesh::simplify_with_progress(
-                    world,
-                    mesh,
-                    params,
-                    &mut *context.progress,
-                )?;
-                *context.history = Some(pm);
-                let reached = if s.reached_target {
-                    ""
-                } else {
-                    " (no legal collapse left before the target)"
-                };
-                whole(format!(
-                    "{} -> {} faces in {} collapses{reached}",
-                    s.faces_before, s.faces_after, s.collapses
-                ))
-            }
-            Edit::Subdivide(subdivision) => {
-                let s = subdivision.scheme.subdivide_with_progress(
-                    world,
-                    mesh,
-                    subdivision.levels,
-                    &mut *context.progress,
-                )?;
-                (context.progress)(1.0);
-                whole(s.describe())
-            }
-            Edit::Remesh(params) => {
-                let s = remesh_with_progress(world, mesh, params, &mut *context.progress)?;
-                whole(format!(
-                    "L {:.5}: {} splits, {} collapses, {} flips",
-                    s.target_length, s.splits, s.collapses, s.flips
-                ))
-            }
-            Edit::Smooth(params) => {
-                let s = smooth_with_progress(world, mesh, params, &mut *context.progress)?;
-                let stopped = if s.iterations < params.iterations {
-                    format!(
-                        " (stopped after {} of {} iterations)",
-                        s.iterations, params.iterations
-                    )
-                } else {
-                    String::new()
-                };
-                whole(format!(
-                    "{} free vertices moved {:.3e} on average{stopped}",
-                    s.free, s.mean_move
-                ))
-            }
-            Edit::Deform(params) => whole(deformed(&deform(world, mesh, params)?)),
-            Edit::Fair(params) => {
-                let s = fair(world, mesh, params)?;
-                let loose = loose_note(s.loose_parts);
-                Applied {
-                    summary: format!(
-                        "{} faired (k = {}), moved {:.3e} on average{loose}",
-                        count(s.free, "vertex"),
-                        params.k,
-                        s.mean_move
-                    ),
-                    redraw: near(world, Vec::new(), params.vertices.clone()),
-                    made: None,
-                }
-            }
-            Edit::FillHoleFair(e) => {
-                let r = fill_hole_fair(world, *e)?;
-                Applied {
-                    summary: format!(
-                        "a hole of {} sides filled with {}, {} new",
-                        r.sides,
-                        count(r.triangles, "triangle"),
-                        count(r.new_vertices, "vertex")
-                    ),
-                    redraw: Redraw::Whole,
-                    made: Some(ElementId::Face(r.face)),
-                }
-            }
-            Edit::FillHoles(fair) => {
-                let r = fill_holes(world, mesh, *fair)?;
-                if r.filled == 0 {
-                    return Err(Refusal::BadParameter(match r.refused.first() {
-                        None => "the mesh has no holes".into(),
-                        Some(_) => format!("no hole could be filled: {}", r.refused.join("; ")),
-                    }));
-                }
-                let open = match r.refused.len() {
-                    0 => String::new(),
-                    n => format!("; {n} left open: {}", r.refused.join("; ")),
-                };
-                whole(format!(
-                    "{} filled: {} and {} added{open}",
-                    count(r.filled, "hole"),
-                    count(r.faces, "face"),
-                    count(r.vertices, "vertex")
-                ))
-            }
-            Edit::Parameterize(params) => {
-                let r = parameterize_in_place(world, mesh, params, &mut *context.progress)?;
-                (context.progress)(1.0);
-                let cut = match (r.seam_edges, r.filled_holes) {
-                    (0, 0) => String::new(),
-                    (0, h) => format!(", {h} inner holes filled for the solve"),
-                    (s, _) => format!(", cut along {s} edges"),
-                };
-                let degenerate = match r.degenerate {
-                    0 => String::new(),
-                    n => format!(" ({n} laid flat)"),
-                };
-                whole(format!(
-                    "{} flipped of {} triangles{degenerate}, angle distortion {:.2}°, area \
-                     distortion {:.3}, conformal energy {:.4}{cut}",
-                    r.flipped,
-                    r.triangles,
-                    r.angle_distortion_deg,
-                    r.area_distortion,
-                    r.conformal_energy
-                ))
-            }
-        })
-    }
 }
 
 /// Edits that merge into the undo step before them while the mouse button stays down.
@@ -1030,39 +714,6 @@ impl Planned {
     }
 }
 
-/// The summary of a deformation.
-fn deformed(s: &DeformSummary) -> String {
-    let loose = loose_note(s.loose_parts);
-    let ms = |seconds: f64| seconds * 1e3;
-    if s.iterations == 0 {
-        return format!(
-            "thin plate: {} moved; factored in {:.1} ms, solved in {:.1} ms{loose}",
-            count(s.free, "free vertex"),
-            ms(s.factor_seconds),
-            ms(s.iteration_seconds)
-        );
-    }
-    format!(
-        "ARAP: {} moved, {} iterations, energy {:.4e} -> {:.4e}; factored in {:.1} ms, \
-         {:.2} ms an iteration{loose}",
-        count(s.free, "free vertex"),
-        s.iterations,
-        s.energy_before,
-        s.energy,
-        ms(s.factor_seconds),
-        ms(s.iteration_seconds)
-    )
-}
-
-/// The note on parts of the mesh a solve left alone (none held there).
-fn loose_note(parts: usize) -> String {
-    match parts {
-        0 => String::new(),
-        n => format!(" ({} with nothing held stayed)", count(n, "part")),
-    }
-}
-
-/// "1 face", "3 faces" ("vertex" → "vertices", "free vertex" → "free vertices").
 /// The memory check of an edit that adds rows in proportion to its selection (extrusion,
 /// inset): at most, each corner of the selection gains a vertex, a quad beside it, two edges
 /// and eight halfedges (12 rows), which bounds both.
@@ -1078,98 +729,13 @@ fn check_growth(what: &str, faces: usize, corners: usize) -> Result<(), Refusal>
     })
 }
 
+/// "1 face", "3 faces" ("vertex" → "vertices", "free vertex" → "free vertices").
 fn count(n: usize, what: &str) -> String {
     match (n, what) {
         (1, _) => format!("1 {what}"),
         (_, w) if w.ends_with("vertex") => format!("{n} {}ices", &w[..w.len() - 2]),
         _ => format!("{n} {what}s"),
     }
-}
-
-/// The corners of a live element (none if it is gone).
-fn element_corners(world: &World, x: ElementId) -> Vec<VertexId> {
-    let m = MeshRef::new(world);
-    match x {
-        ElementId::Vertex(v) if m.try_vertex(v).is_some() => vec![v],
-        ElementId::Edge(e) => edge_ends(world, e),
-        ElementId::Face(f) if m.try_face(f).is_some() => m.face_vertices(f).collect(),
-        _ => Vec::new(),
-    }
-}
-
-/// Moves vertices; returns what to redraw: the faces around them and their neighbours (whose
-/// smooth normals change too), or every position when the moves reach a quarter of its
-/// vertices (an ARAP frame moves most of them, and walking every one-ring then costs more than
-/// the refresh it leads to).
-///
-/// # Refusals
-/// [`Refusal::NotFinite`] for a position that is not finite, [`Refusal::Stale`] for a vertex
-/// that is gone; both before anything moves.
-fn move_vertices(world: &mut World, moves: &[(VertexId, Vec3)]) -> Result<Redraw, Refusal> {
-    let m = MeshRef::new(world);
-    for &(v, p) in moves {
-        if !p.is_finite() {
-            return Err(Refusal::NotFinite(p));
-        }
-        m.try_vertex(v)
-            .ok_or(Refusal::Stale(ElementId::Vertex(v)))?;
-    }
-    let many = moves.len() >= WHOLE_REDRAW_MOVES
-        && moves
-            .first()
-            .and_then(|(v, _)| world.get::<InMesh>(v.0))
-            .is_some_and(|mesh| {
-                let vertices = crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(
-                    world, mesh.0, VertexId,
-                );
-                4 * moves.len() > vertices.len()
-            });
-    let redraw = if many {
-        Redraw::Positions
-    } else {
-        let mut ring: Vec<VertexId> = moves
-            .iter()
-            .flat_map(|&(v, _)| m.vertex_neighbors(v).chain([v]))
-            .collect();
-        ring.sort_unstable();
-        ring.dedup();
-        Redraw::Near {
-            faces: faces_around(world, &ring),
-            vertices: ring,
-        }
-    };
-    for &(v, p) in moves {
-        if let Some(mut position) = world.get_mut::<crate::mesh::Position>(v.0) {
-            position.0 = p;
-        }
-    }
-    Ok(redraw)
-}
-
-/// Moves of fewer vertices than this are always redrawn by their neighbourhoods (counting the
-/// mesh's vertices is not free either).
-const WHOLE_REDRAW_MOVES: usize = 1024;
-
-/// The two ends of an edge (none if it is gone).
-fn edge_ends(world: &World, e: EdgeId) -> Vec<VertexId> {
-    let m = MeshRef::new(world);
-    if m.try_edge(e).is_none() {
-        return Vec::new();
-    }
-    let (a, b) = m.edge_vertices(e);
-    vec![a, b]
-}
-
-/// The faces around some vertices (dead vertices skipped).
-fn faces_around(world: &World, vertices: &[VertexId]) -> Vec<FaceId> {
-    let m = MeshRef::new(world);
-    let mut faces = Vec::new();
-    for &v in vertices {
-        if m.try_vertex(v).is_some() {
-            faces.extend(m.vertex_faces(v));
-        }
-    }
-    faces
 }
 
 #[cfg(test)]
@@ -1201,7 +767,7 @@ mod tests {
         let mut world = World::new();
         let built = build_mesh(&mut world, &shapes::icosphere(4), MeshInfo::default()).unwrap();
         let vertices = MeshMembers::collect(&world, built.mesh).vertices;
-        assert!(vertices.len() > 2 * WHOLE_REDRAW_MOVES);
+        assert!(vertices.len() > 2 * apply::WHOLE_REDRAW_MOVES);
         let m = MeshRef::new(&world);
         let before: Vec<Vec3> = vertices.iter().map(|&v| m.position(v)).collect();
         let mut context = EditContext {

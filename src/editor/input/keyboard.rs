@@ -781,6 +781,33 @@ fn action_words(action: Action) -> String {
 /// The request an action stands for (`None` for actions that only change a setting, done
 /// here), or why it cannot be asked now.
 fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Declined> {
+    let edit = match selection_edit(world, action)? {
+        Some(edit) => edit,
+        None => match whole_mesh_edit(world, action)? {
+            Some(edit) => edit,
+            None => return act(world, action),
+        },
+    };
+    if world.resource::<Stepping>().enabled && crate::editor::pipeline::stepping::steppable(&edit) {
+        return Ok(Some(Request::StartStepped(edit)));
+    }
+    Ok(Some(Request::Edit(edit)))
+}
+
+/// E and F on a single halfedge walk to its edge and face, as the inspector's keys do.
+fn walks_instead(world: &World, action: Action) -> bool {
+    let selection = world.resource::<Selection>();
+    matches!(action, Action::Extrude | Action::Fill)
+        && matches!(selection.element, Some(ElementId::Halfedge(_)))
+        && selection.len() == 1
+}
+
+/// The edit an action asks of the selection (`None` for an action that is not one), or what
+/// must be selected first.
+fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Declined> {
+    if walks_instead(world, action) {
+        return Ok(None);
+    }
     let selection = world.resource::<Selection>().element;
     let m = MeshRef::new(world);
     let edit = match action {
@@ -798,16 +825,6 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             let (f, a, b) = target.ok_or(Declined::SelectFirst("a halfedge of a face (mode 4)"))?;
             Edit::SplitFace(f, a, b)
         }
-        Action::Extrude | Action::Fill
-            if matches!(selection, Some(ElementId::Halfedge(_)))
-                && world.resource::<Selection>().len() == 1 =>
-        {
-            let to = match action {
-                Action::Extrude => Relation::Edge,
-                _ => Relation::Face,
-            };
-            return Ok(Some(Request::Navigate(to)));
-        }
         Action::Fill | Action::FillFair => {
             let edge =
                 selected_edge(&m, selection).ok_or(Declined::SelectFirst("a boundary edge"))?;
@@ -815,10 +832,6 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
                 Action::Fill => Edit::FillHole(edge),
                 _ => Edit::FillHoleFair(edge),
             }
-        }
-        Action::FillAll => {
-            world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
-            Edit::FillHoles(world.resource::<UiState>().fill_fair)
         }
         Action::Fair => {
             let vertices = crate::editor::gestures::transform::selected_vertices(world);
@@ -829,22 +842,6 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
                 vertices,
                 k: world.resource::<UiState>().fair_k.clamp(1, 3),
             })
-        }
-        Action::MarkAnchors => {
-            let vertices = crate::editor::gestures::transform::selected_vertices(world);
-            let count = vertices.len();
-            world.resource_mut::<Anchors>().vertices = vertices;
-            let summary = match count {
-                0 => "no anchors: G, R and S move the selection alone".to_string(),
-                n => format!("{n} anchor vertices: G, R and S on a handle now deform the mesh"),
-            };
-            report(world, "anchors".into(), Ok(summary), 0.0);
-            return Ok(None);
-        }
-        Action::ToggleProportional => {
-            let mut ui = world.resource_mut::<UiState>();
-            ui.proportional.enabled = !ui.proportional.enabled;
-            return Ok(None);
         }
         Action::Extrude | Action::Inset => {
             let faces = selected_faces(world);
@@ -919,6 +916,20 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             kind.on_edge(edge)
                 .ok_or(Declined::SelectFirst("a halfedge of a face (mode 4)"))?
         }
+        _ => return Ok(None),
+    };
+    Ok(Some(edit))
+}
+
+/// The whole-mesh edit an action asks for, with the panel's parameters (`None` for an action
+/// that is not one), or that there is no mesh.
+fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Declined> {
+    let selection = world.resource::<Selection>().element;
+    let edit = match action {
+        Action::FillAll => {
+            world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
+            Edit::FillHoles(world.resource::<UiState>().fill_fair)
+        }
         Action::Triangulate
         | Action::LoopSubdivide
         | Action::CatmullClark
@@ -953,29 +964,61 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
                 }),
             }
         }
-        Action::Navigate(relation) => return Ok(Some(Request::Navigate(relation))),
+        _ => return Ok(None),
+    };
+    Ok(Some(edit))
+}
+
+/// What an action that is not an edit does: a request (walk, select, undo, save, step) or a
+/// setting changed here (view toggles, modes, a gesture started, a dialog shown).
+fn act(world: &mut World, action: Action) -> Result<Option<Request>, Declined> {
+    match action {
+        Action::Extrude | Action::Fill if walks_instead(world, action) => {
+            let to = match action {
+                Action::Extrude => Relation::Edge,
+                _ => Relation::Face,
+            };
+            Ok(Some(Request::Navigate(to)))
+        }
+        Action::MarkAnchors => {
+            let vertices = crate::editor::gestures::transform::selected_vertices(world);
+            let count = vertices.len();
+            world.resource_mut::<Anchors>().vertices = vertices;
+            let summary = match count {
+                0 => "no anchors: G, R and S move the selection alone".to_string(),
+                n => format!("{n} anchor vertices: G, R and S on a handle now deform the mesh"),
+            };
+            report(world, "anchors".into(), Ok(summary), 0.0);
+            Ok(None)
+        }
+        Action::ToggleProportional => {
+            let mut ui = world.resource_mut::<UiState>();
+            ui.proportional.enabled = !ui.proportional.enabled;
+            Ok(None)
+        }
+        Action::Navigate(relation) => Ok(Some(Request::Navigate(relation))),
         // Esc first stops a running operation, as in Blender.
         Action::ClearSelection if world.resource::<Jobs>().running.is_some() => {
-            return Ok(Some(Request::CancelJob));
+            Ok(Some(Request::CancelJob))
         }
         Action::ClearSelection if world.resource::<Stepping>().run.is_some() => {
-            return Ok(Some(Request::Step(StepMove::Cancel)));
+            Ok(Some(Request::Step(StepMove::Cancel)))
         }
         // The arrows, End and Enter do nothing without a run (Enter may end a text field).
-        Action::Step(_) if world.resource::<Stepping>().run.is_none() => return Ok(None),
-        Action::Step(movement) => return Ok(Some(Request::Step(movement))),
+        Action::Step(_) if world.resource::<Stepping>().run.is_none() => Ok(None),
+        Action::Step(movement) => Ok(Some(Request::Step(movement))),
         Action::ToggleStepMode => {
             let mut stepping = world.resource_mut::<Stepping>();
             stepping.enabled = !stepping.enabled;
-            return Ok(None);
+            Ok(None)
         }
-        Action::ClearSelection | Action::SelectNone => return Ok(Some(Request::Select(None))),
-        Action::SelectAll => return Ok(Some(SelectionEdit::All.into())),
-        Action::Grow => return Ok(Some(SelectionEdit::Grow.into())),
-        Action::Shrink => return Ok(Some(SelectionEdit::Shrink.into())),
+        Action::ClearSelection | Action::SelectNone => Ok(Some(Request::Select(None))),
+        Action::SelectAll => Ok(Some(SelectionEdit::All.into())),
+        Action::Grow => Ok(Some(SelectionEdit::Grow.into())),
+        Action::Shrink => Ok(Some(SelectionEdit::Shrink.into())),
         Action::BoxSelect => {
             world.resource_mut::<BoxSelect>().armed = true;
-            return Ok(None);
+            Ok(None)
         }
         Action::Grab | Action::Rotate | Action::Scale => {
             let kind = match action {
@@ -988,46 +1031,26 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             }
             let proportional = world.resource::<UiState>().proportional;
             crate::editor::gestures::transform::start(world, kind, None, Some(proportional));
-            return Ok(None);
+            Ok(None)
         }
-        Action::DeleteMesh => return Ok(Some(Request::DeleteMesh)),
-        Action::Undo => return Ok(Some(Request::Undo)),
-        Action::Redo => return Ok(Some(Request::Redo)),
-        Action::Save => return Ok(Some(Request::Save(None))),
+        Action::DeleteMesh => Ok(Some(Request::DeleteMesh)),
+        Action::Undo => Ok(Some(Request::Undo)),
+        Action::Redo => Ok(Some(Request::Redo)),
+        Action::Save => Ok(Some(Request::Save(None))),
         Action::Mode(mode) => {
             *world.resource_mut::<SelectMode>() = mode;
-            return Ok(None);
+            Ok(None)
         }
         Action::Frame => {
             crate::editor::gestures::camera::frame_selection(world);
-            return Ok(None);
+            Ok(None)
         }
-        Action::ToggleSmooth => {
-            let mut settings = world.resource_mut::<ViewSettings>();
-            settings.smooth = !settings.smooth;
-            mark_all_dirty(world);
-            return Ok(None);
-        }
-        Action::ToggleWireframe => {
-            let mut settings = world.resource_mut::<ViewSettings>();
-            settings.wireframe = !settings.wireframe;
-            let visible = settings.wireframe;
-            set_wireframes_visible(world, visible);
-            if visible {
-                mark_all_dirty(world);
-            }
-            return Ok(None);
-        }
-        Action::ToggleChecker => {
-            let mut settings = world.resource_mut::<ViewSettings>();
-            settings.checker = !settings.checker;
-            mark_all_dirty(world);
-            return Ok(None);
-        }
-        Action::ToggleHalfedges => {
-            let mut settings = world.resource_mut::<ViewSettings>();
-            settings.halfedges = !settings.halfedges;
-            return Ok(None);
+        Action::ToggleSmooth
+        | Action::ToggleWireframe
+        | Action::ToggleChecker
+        | Action::ToggleHalfedges => {
+            toggle_view(world, action);
+            Ok(None)
         }
         Action::Open | Action::SaveAs | Action::Help => {
             let purpose = match action {
@@ -1045,13 +1068,35 @@ fn request_for(world: &mut World, action: Action) -> Result<Option<Request>, Dec
             {
                 crate::editor::session::dialog::show(world, purpose);
             }
-            return Ok(None);
+            Ok(None)
         }
-    };
-    if world.resource::<Stepping>().enabled && crate::editor::pipeline::stepping::steppable(&edit) {
-        return Ok(Some(Request::StartStepped(edit)));
+        _ => Ok(None),
     }
-    Ok(Some(Request::Edit(edit)))
+}
+
+/// Turns a view setting on or off (smooth shading, wireframe, checker, halfedge arrows) and
+/// marks what must be drawn again.
+fn toggle_view(world: &mut World, action: Action) {
+    let mut settings = world.resource_mut::<ViewSettings>();
+    match action {
+        Action::ToggleSmooth => settings.smooth = !settings.smooth,
+        Action::ToggleChecker => settings.checker = !settings.checker,
+        Action::ToggleHalfedges => {
+            // The overlay draws the arrows each frame; nothing to redraw.
+            settings.halfedges = !settings.halfedges;
+            return;
+        }
+        Action::ToggleWireframe => {
+            settings.wireframe = !settings.wireframe;
+            let visible = settings.wireframe;
+            set_wireframes_visible(world, visible);
+            if !visible {
+                return;
+            }
+        }
+        _ => return,
+    }
+    mark_all_dirty(world);
 }
 
 fn mark_all_dirty(world: &mut World) {
