@@ -168,10 +168,76 @@ pub fn plan_collapse_face(world: &World, f: FaceId) -> Result<CollapseFacePlan, 
     let start = m.try_face(f).ok_or(stale.clone())?.halfedge;
     m.try_halfedge(start).ok_or(stale)?;
     let ring: Vec<HalfedgeId> = m.face_halfedges(f).collect();
-    let n = ring.len();
     let corners: Vec<VertexId> = ring.iter().map(|&h| m.from_vertex(h)).collect();
-    let mut sides = Vec::with_capacity(n);
-    for &h in &ring {
+    let sides = sides_across(&m, &ring)?;
+    let mut removed_faces = vec![f];
+    for s in &sides {
+        if let Side::Triangle { face, .. } = *s
+            && !removed_faces.contains(&face)
+        {
+            removed_faces.push(face);
+        }
+    }
+    if component_within(&m, f, removed_faces.len()) {
+        return Err(Refusal::TooSmall);
+    }
+    let boundary: Vec<VertexId> = corners
+        .iter()
+        .copied()
+        .filter(|&c| m.is_boundary_vertex(c))
+        .collect();
+    if let [_, second, ..] = boundary[..] {
+        return Err(Refusal::PinchedVertex(ElementId::Vertex(second)));
+    }
+    check_faces_around(&m, f, &corners, &sides)?;
+    let joins = Joins::count(&m, &corners, &sides)?;
+    let rows = Rows::find(&m, &ring, &sides)?;
+    check_valences(&m, &joins, &corners, boundary.is_empty())?;
+    let position = m.face_centroid(f);
+    if !position.is_finite() {
+        return Err(Refusal::NotFinite(position));
+    }
+    let gone: EntityHashSet = rows.removed_halfedges.iter().map(|h| h.0).collect();
+    let mut retarget = Vec::new();
+    for &c in &corners[1..] {
+        for o in m.vertex_outgoing(c) {
+            let into = m.twin(o);
+            if !gone.contains(&into.0) {
+                retarget.push(into);
+            }
+        }
+    }
+    let kept_halfedge = match boundary.first() {
+        Some(&c) => m.vertex_halfedge(c),
+        None => corners
+            .iter()
+            .flat_map(|&c| m.vertex_outgoing(c))
+            .find(|h| !gone.contains(&h.0))
+            .ok_or(Refusal::TooSmall)?,
+    };
+    Ok(CollapseFacePlan {
+        face: f,
+        ring,
+        corners,
+        around: joins.around,
+        position,
+        sides,
+        glues: rows.glues,
+        retarget,
+        kept_halfedge,
+        removed_halfedges: rows.removed_halfedges,
+        removed_edges: rows.removed_edges,
+        removed_faces,
+    })
+}
+
+/// The face across each side of the face whose halfedges are `ring`.
+///
+/// # Refusals
+/// [`Refusal::BoundaryEdge`] for a side on the boundary.
+fn sides_across(m: &MeshRef<'_>, ring: &[HalfedgeId]) -> Result<Vec<Side>, Refusal> {
+    let mut sides = Vec::with_capacity(ring.len());
+    for &h in ring {
         let t = m.twin(h);
         let Some(face) = m.face(t) else {
             return Err(Refusal::BoundaryEdge(ElementId::Edge(m.edge(h))));
@@ -192,30 +258,24 @@ pub fn plan_collapse_face(world: &World, f: FaceId) -> Result<CollapseFacePlan, 
             }
         });
     }
-    let mut removed_faces = vec![f];
-    for s in &sides {
-        if let Side::Triangle { face, .. } = *s
-            && !removed_faces.contains(&face)
-        {
-            removed_faces.push(face);
-        }
-    }
-    if component_within(&m, f, removed_faces.len()) {
-        return Err(Refusal::TooSmall);
-    }
-    let boundary: Vec<VertexId> = corners
-        .iter()
-        .copied()
-        .filter(|&c| m.is_boundary_vertex(c))
-        .collect();
-    if let [_, second, ..] = boundary[..] {
-        return Err(Refusal::PinchedVertex(ElementId::Vertex(second)));
-    }
+    Ok(sides)
+}
+
+/// Every face but `f` may hold one corner, or the two ends of the one side it shares with `f`.
+///
+/// # Refusals
+/// [`Refusal::DegenerateFace`] for a face that holds more.
+fn check_faces_around(
+    m: &MeshRef<'_>,
+    f: FaceId,
+    corners: &[VertexId],
+    sides: &[Side],
+) -> Result<(), Refusal> {
+    let n = corners.len();
     let is_corner: EntityHashSet = corners.iter().map(|c| c.0).collect();
-    // Every other face may hold one corner, or the two ends of the one side it shares with f.
     let mut checked = EntityHashSet::default();
     checked.insert(f.0);
-    for &c in &corners {
+    for &c in corners {
         for g in m.vertex_faces(c) {
             if !checked.insert(g.0) {
                 continue;
@@ -237,86 +297,140 @@ pub fn plan_collapse_face(world: &World, f: FaceId) -> Result<CollapseFacePlan, 
             }
         }
     }
-    // Every other vertex joined to corners: by how many edges, and the third corner of how
-    // many triangles beside f (each folds two of those edges into one).
-    let mut around: Vec<VertexId> = Vec::new();
-    let mut joins: EntityHashMap<(usize, usize)> = EntityHashMap::default();
-    for &c in &corners {
-        for h in m.vertex_outgoing(c) {
-            let w = m.to_vertex(h);
-            if is_corner.contains(&w.0) {
+    Ok(())
+}
+
+/// Every other vertex joined to the corners (`around`, in the order met), and for each by how
+/// many edges and as the third corner of how many triangles beside the face (each folds two of
+/// those edges into one).
+struct Joins {
+    around: Vec<VertexId>,
+    counts: EntityHashMap<(usize, usize)>,
+}
+
+impl Joins {
+    /// Counts the joins.
+    ///
+    /// # Refusals
+    /// [`Refusal::LinkCondition`] for a vertex joined to two corners other than through a row
+    /// of triangles.
+    fn count(m: &MeshRef<'_>, corners: &[VertexId], sides: &[Side]) -> Result<Joins, Refusal> {
+        let is_corner: EntityHashSet = corners.iter().map(|c| c.0).collect();
+        let mut around: Vec<VertexId> = Vec::new();
+        let mut counts: EntityHashMap<(usize, usize)> = EntityHashMap::default();
+        for &c in corners {
+            for h in m.vertex_outgoing(c) {
+                let w = m.to_vertex(h);
+                if is_corner.contains(&w.0) {
+                    continue;
+                }
+                let entry = counts.entry(w.0).or_insert((0, 0));
+                if entry.0 == 0 {
+                    around.push(w);
+                }
+                entry.0 += 1;
+            }
+        }
+        for s in sides {
+            if let Some(apex) = s.apex() {
+                counts.entry(apex.0).or_insert((0, 0)).1 += 1;
+            }
+        }
+        for &w in &around {
+            let (edges, triangles) = counts[&w.0];
+            if edges.saturating_sub(triangles) > 1 {
+                return Err(Refusal::LinkCondition(ElementId::Vertex(w)));
+            }
+        }
+        Ok(Joins { around, counts })
+    }
+}
+
+/// The rows of triangles with one apex across consecutive sides, each glued into one edge, and
+/// every halfedge and edge the collapse removes.
+struct Rows {
+    glues: Vec<Glue>,
+    removed_halfedges: Vec<HalfedgeId>,
+    removed_edges: Vec<EdgeId>,
+}
+
+impl Rows {
+    /// Finds the rows.
+    ///
+    /// # Refusals
+    /// [`Refusal::DanglingEdge`] for a row whose two outer sides are on the boundary,
+    /// [`Refusal::TooSmall`] for one apex all round (a closed pyramid).
+    fn find(m: &MeshRef<'_>, ring: &[HalfedgeId], sides: &[Side]) -> Result<Rows, Refusal> {
+        let n = ring.len();
+        let same_row = |i: usize, j: usize| matches!((sides[i].apex(), sides[j].apex()), (Some(p), Some(q)) if p == q);
+        let mut glues = Vec::new();
+        let mut removed_halfedges: Vec<HalfedgeId> = Vec::new();
+        let mut removed_edges: Vec<EdgeId> = ring.iter().map(|&h| m.edge(h)).collect();
+        for &h in ring {
+            removed_halfedges.extend([h, m.twin(h)]);
+        }
+        for s in 0..n {
+            let Side::Triangle { face, x, apex, .. } = sides[s] else {
+                continue;
+            };
+            if same_row((s + n - 1) % n, s) {
                 continue;
             }
-            let entry = joins.entry(w.0).or_insert((0, 0));
-            if entry.0 == 0 {
-                around.push(w);
+            let mut row = vec![s];
+            while row.len() < n && same_row(row[row.len() - 1], (row[row.len() - 1] + 1) % n) {
+                row.push((row[row.len() - 1] + 1) % n);
             }
-            entry.0 += 1;
-        }
-    }
-    for s in &sides {
-        if let Some(apex) = s.apex() {
-            joins.entry(apex.0).or_insert((0, 0)).1 += 1;
-        }
-    }
-    for &w in &around {
-        let (edges, triangles) = joins[&w.0];
-        if edges.saturating_sub(triangles) > 1 {
-            return Err(Refusal::LinkCondition(ElementId::Vertex(w)));
-        }
-    }
-    // Rows of triangles with one apex across consecutive sides.
-    let same_row = |i: usize, j: usize| matches!((sides[i].apex(), sides[j].apex()), (Some(p), Some(q)) if p == q);
-    let mut glues = Vec::new();
-    let mut removed_halfedges: Vec<HalfedgeId> = Vec::new();
-    let mut removed_edges: Vec<EdgeId> = ring.iter().map(|&h| m.edge(h)).collect();
-    for &h in &ring {
-        removed_halfedges.extend([h, m.twin(h)]);
-    }
-    for s in 0..n {
-        let Side::Triangle { face, x, apex, .. } = sides[s] else {
-            continue;
-        };
-        if same_row((s + n - 1) % n, s) {
-            continue;
-        }
-        let mut row = vec![s];
-        while row.len() < n && same_row(row[row.len() - 1], (row[row.len() - 1] + 1) % n) {
-            row.push((row[row.len() - 1] + 1) % n);
-        }
-        let Side::Triangle { y: last_y, .. } = sides[row[row.len() - 1]] else {
-            unreachable!("a row holds triangles only");
-        };
-        let (o1, o2) = (m.twin(x), m.twin(last_y));
-        if m.is_boundary(o1) && m.is_boundary(o2) {
-            return Err(Refusal::DanglingEdge(ElementId::Face(face)));
-        }
-        let mut row_halfedges = Vec::new();
-        for &k in &row {
-            if let Side::Triangle { x, y, .. } = sides[k] {
-                row_halfedges.extend([x, y]);
-                removed_edges.push(m.edge(y));
+            let mut row_halfedges = Vec::new();
+            let mut last_y = x;
+            for &k in &row {
+                if let Side::Triangle { x, y, .. } = sides[k] {
+                    row_halfedges.extend([x, y]);
+                    removed_edges.push(m.edge(y));
+                    last_y = y;
+                }
             }
+            let (o1, o2) = (m.twin(x), m.twin(last_y));
+            if m.is_boundary(o1) && m.is_boundary(o2) {
+                return Err(Refusal::DanglingEdge(ElementId::Face(face)));
+            }
+            let apex_halfedge = row_halfedges
+                .contains(&m.vertex_halfedge(apex))
+                .then_some(o1);
+            removed_halfedges.extend(row_halfedges);
+            glues.push(Glue {
+                apex,
+                o1,
+                o2,
+                edge: m.edge(x),
+                interior: if m.is_boundary(o1) { o2 } else { o1 },
+                apex_halfedge,
+            });
         }
-        let apex_halfedge = row_halfedges
-            .contains(&m.vertex_halfedge(apex))
-            .then_some(o1);
-        removed_halfedges.extend(row_halfedges);
-        glues.push(Glue {
-            apex,
-            o1,
-            o2,
-            edge: m.edge(x),
-            interior: if m.is_boundary(o1) { o2 } else { o1 },
-            apex_halfedge,
-        });
+        if glues.is_empty() && sides.iter().all(|s| s.apex().is_some()) {
+            // One apex all round: a closed pyramid, which the size check has refused.
+            return Err(Refusal::TooSmall);
+        }
+        Ok(Rows {
+            glues,
+            removed_halfedges,
+            removed_edges,
+        })
     }
-    if glues.is_empty() && sides.iter().all(|s| s.apex().is_some()) {
-        // One apex all round: a closed pyramid, which the size check has refused.
-        return Err(Refusal::TooSmall);
-    }
-    for &w in &around {
-        let (edges, triangles) = joins[&w.0];
+}
+
+/// The third corner of every triangle beside the face, and the merged vertex, keep at least 3
+/// edges (2 on the boundary).
+///
+/// # Refusals
+/// [`Refusal::ValenceTooLow`] naming the vertex that would not.
+fn check_valences(
+    m: &MeshRef<'_>,
+    joins: &Joins,
+    corners: &[VertexId],
+    closed: bool,
+) -> Result<(), Refusal> {
+    for &w in &joins.around {
+        let (edges, triangles) = joins.counts[&w.0];
         if triangles == 0 {
             continue;
         }
@@ -325,49 +439,14 @@ pub fn plan_collapse_face(world: &World, f: FaceId) -> Result<CollapseFacePlan, 
             return Err(Refusal::ValenceTooLow(ElementId::Vertex(w), minimum));
         }
     }
-    let minimum = if boundary.is_empty() { 3 } else { 2 };
-    if around.len() < minimum {
+    let minimum = if closed { 3 } else { 2 };
+    if joins.around.len() < minimum {
         return Err(Refusal::ValenceTooLow(
             ElementId::Vertex(corners[0]),
             minimum,
         ));
     }
-    let position = m.face_centroid(f);
-    if !position.is_finite() {
-        return Err(Refusal::NotFinite(position));
-    }
-    let gone: EntityHashSet = removed_halfedges.iter().map(|h| h.0).collect();
-    let mut retarget = Vec::new();
-    for &c in &corners[1..] {
-        for o in m.vertex_outgoing(c) {
-            let into = m.twin(o);
-            if !gone.contains(&into.0) {
-                retarget.push(into);
-            }
-        }
-    }
-    let kept_halfedge = match boundary.first() {
-        Some(&c) => m.vertex_halfedge(c),
-        None => corners
-            .iter()
-            .flat_map(|&c| m.vertex_outgoing(c))
-            .find(|h| !gone.contains(&h.0))
-            .expect("the merged vertex keeps an edge"),
-    };
-    Ok(CollapseFacePlan {
-        face: f,
-        ring,
-        corners,
-        around,
-        position,
-        sides,
-        glues,
-        retarget,
-        kept_halfedge,
-        removed_halfedges,
-        removed_edges,
-        removed_faces,
-    })
+    Ok(())
 }
 
 /// What a face collapse needs to carry the mesh's attributes (read before anything changes).
