@@ -1,7 +1,7 @@
 //! The layering rules of DESIGN §1, checked on the source: no two modules of `src/editor`, of
 //! each of its rooms, of `src/mesh` or of `src/ops` import each other, directly or round a
 //! longer cycle; no room imports the editor's root back; no folder of the editor holds more
-//! than 12 files.
+//! than 12 files; no function outside the tests runs over 120 lines.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -197,6 +197,95 @@ fn no_editor_folder_holds_more_than_twelve_files() {
         }
         assert!(files <= 12, "{} holds {files} files", dir.display());
     }
+}
+
+/// The functions of a Rust source over `limit` lines (signature to closing brace), before its
+/// `#[cfg(test)]` module: as `(name, first line, lines)`.
+fn long_functions(text: &str, limit: usize) -> Vec<(String, usize, usize)> {
+    let lines: Vec<&str> = text
+        .lines()
+        .take_while(|l| l.trim() != "#[cfg(test)]")
+        .collect();
+    let mut long = Vec::new();
+    let mut i = 0;
+    while i < lines.len() {
+        let line = lines[i];
+        let code = line.trim_start();
+        let indent = &line[..line.len() - code.len()];
+        let signature = code
+            .trim_start_matches("pub ")
+            .trim_start_matches("pub(crate) ")
+            .trim_start_matches("pub(super) ")
+            .trim_start_matches("const ")
+            .trim_start_matches("unsafe ");
+        let Some(rest) = signature.strip_prefix("fn ") else {
+            i += 1;
+            continue;
+        };
+        let name: String = rest
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        // The body opens at the first line ending in `{` (a declaration ends in `;`).
+        let Some(open) = (i..lines.len()).find(|&j| {
+            let l = lines[j].trim_end();
+            l.ends_with('{') || l.ends_with(';')
+        }) else {
+            break;
+        };
+        if lines[open].trim_end().ends_with(';') {
+            i = open + 1;
+            continue;
+        }
+        let close = (open + 1..lines.len())
+            .find(|&j| lines[j] == format!("{indent}}}"))
+            .unwrap_or(lines.len() - 1);
+        let count = close - i + 1;
+        if count > limit {
+            long.push((name, i + 1, count));
+        }
+        i = close + 1;
+    }
+    long
+}
+
+/// A function a reader can hold in their head: none outside the tests runs over 120 lines
+/// (signature to closing brace, as rustfmt lays it out).
+#[test]
+fn no_function_runs_over_120_lines() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let mut stack = vec![root.join("src"), root.join("python/src")];
+    let mut long = Vec::new();
+    while let Some(dir) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        for entry in entries {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                let text = std::fs::read_to_string(&path).unwrap();
+                for (name, line, count) in long_functions(&text, 120) {
+                    long.push(format!("{}:{line} {name}: {count} lines", path.display()));
+                }
+            }
+        }
+    }
+    assert!(
+        long.is_empty(),
+        "functions over 120 lines:\n{}",
+        long.join("\n")
+    );
+}
+
+#[test]
+fn the_length_check_measures_functions() {
+    let body = "    let x = 1;\n".repeat(5);
+    let text = format!(
+        "fn short() {{\n{body}}}\n\npub fn long(\n    a: u32,\n) -> u32 {{\n{body}{body}    a\n}}\n"
+    );
+    assert_eq!(long_functions(&text, 7), vec![("long".to_string(), 9, 15)]);
 }
 
 #[test]

@@ -180,56 +180,106 @@ pub fn snapshot(world: &mut World) {
     let mut view = std::mem::take(&mut *world.resource_mut::<InspectorView>());
     match active.filter(|m| world.get::<MeshInfo>(m.0).is_some()) {
         None => view.mesh = None,
-        Some(mesh) => {
-            // Statistics and validation are O(mesh): they wait for the end of a drag (the
-            // mouse button held on a vertex or a panel field, a G / R / S gesture) instead of slowing
-            // each frame.
-            let dragging = world
-                .get_resource::<ButtonInput<MouseButton>>()
-                .is_some_and(|b| b.pressed(MouseButton::Left))
-                || world
-                    .get_resource::<crate::editor::gestures::transform::Gestures>()
-                    .is_some_and(|g| g.active.is_some());
-            // They take ~150 ms on the bunny (100 of it validation). The first change after a
-            // quiet spell is counted in the next frame; changes that follow within `STATS_QUIET`
-            // (a key held down in step mode, flips one after another) wait until the mesh has
-            // stood still that long, so they run at the frame rate.
-            let now = std::time::Instant::now();
-            let quiet = |at: Option<std::time::Instant>| at.is_none_or(|t| now - t >= STATS_QUIET);
-            // Never in the frame of the change itself: that frame hands the changed mesh to the
-            // renderer, which draws it while the next frame counts.
-            let just_changed = view.seen_generation != generation;
-            if just_changed {
-                view.seen_generation = generation;
-                view.after_quiet = quiet(view.changed_at);
-                view.changed_at = Some(now);
-            }
-            let changed = view.stats_generation != generation;
-            let due = !just_changed && (view.after_quiet || quiet(view.changed_at));
-            if changed && !due {
-                world.write_message(bevy::window::RequestRedraw);
-            }
-            let stale = changed && !dragging && due;
-            if view.mesh.is_none() || stale {
-                super::mesh_figures::count(
-                    world,
-                    &mut view.mesh,
-                    &mut view.histograms,
-                    mesh,
-                    generation,
-                );
-                view.stats_generation = generation;
-                view.after_quiet = false;
-            }
-            super::mesh_figures::collect(world, &mut view.mesh, &mut view.histograms, generation);
-            if std::mem::take(&mut world.resource_mut::<UiState>().check_validity) {
-                super::mesh_figures::check_validity(world, &mut view.mesh, mesh);
-            }
-        }
+        Some(mesh) => refresh_figures(world, &mut view, mesh, generation),
     }
     view.colour = active
         .and_then(|m| world.get::<VertexValues>(m.0))
         .map(|v| (v.quantity.label().to_string(), v.map, v.range));
+    show_history_and_work(world, &mut view);
+    let selection = world.resource::<Selection>();
+    let drawn = crate::editor::gestures::overlay::MAX_SET_DRAWN;
+    view.selected_set = match selection.len() {
+        0 | 1 => String::new(),
+        n if n > drawn => format!(
+            "{} (the first {drawn} drawn)",
+            crate::editor::session::select_many::describe(selection)
+        ),
+        _ => crate::editor::session::select_many::describe(selection),
+    };
+    view.gesture = world
+        .resource::<crate::editor::gestures::transform::Gestures>()
+        .hint();
+    let m = MeshRef::new(world);
+    view.selected = world
+        .resource::<Selection>()
+        .element
+        .filter(|&x| crate::editor::session::selection::exists(&m, x))
+        .map(|id| describe(&m, id));
+    // The group (object, group, material) of a selected face, where the mesh has groups.
+    if let Some(selected) = view.selected.as_mut()
+        && let ElementId::Face(f) = selected.id
+        && let Some(mesh) = world.get::<InMesh>(f.0).map(|m| m.0)
+        && let Some(group) = crate::mesh::groups::describe_face_group(world, mesh, f)
+    {
+        selected.facts.push(("group".into(), group));
+    }
+    // The value of the quantity on display at a selected vertex.
+    if let Some(selected) = view.selected.as_mut()
+        && let ElementId::Vertex(v) = selected.id
+        && let Some(values) = active.and_then(|mesh| world.get::<VertexValues>(mesh.0))
+        && let Some(value) = values.values.get(&v.0)
+    {
+        selected
+            .facts
+            .push((values.quantity.label().to_string(), format!("{value:.6}")));
+    }
+    *world.resource_mut::<InspectorView>() = view;
+}
+
+/// Counts the mesh's statistics, validity and histograms when they are due. They are O(mesh):
+/// they wait for the end of a drag (the mouse button held on a vertex or a panel field, a
+/// G / R / S gesture) instead of slowing each frame.
+fn refresh_figures(
+    world: &mut World,
+    view: &mut InspectorView,
+    mesh: crate::mesh::MeshId,
+    generation: usize,
+) {
+    let dragging = world
+        .get_resource::<ButtonInput<MouseButton>>()
+        .is_some_and(|b| b.pressed(MouseButton::Left))
+        || world
+            .get_resource::<crate::editor::gestures::transform::Gestures>()
+            .is_some_and(|g| g.active.is_some());
+    // They take ~150 ms on the bunny (100 of it validation). The first change after a
+    // quiet spell is counted in the next frame; changes that follow within `STATS_QUIET`
+    // (a key held down in step mode, flips one after another) wait until the mesh has
+    // stood still that long, so they run at the frame rate.
+    let now = std::time::Instant::now();
+    let quiet = |at: Option<std::time::Instant>| at.is_none_or(|t| now - t >= STATS_QUIET);
+    // Never in the frame of the change itself: that frame hands the changed mesh to the
+    // renderer, which draws it while the next frame counts.
+    let just_changed = view.seen_generation != generation;
+    if just_changed {
+        view.seen_generation = generation;
+        view.after_quiet = quiet(view.changed_at);
+        view.changed_at = Some(now);
+    }
+    let changed = view.stats_generation != generation;
+    let due = !just_changed && (view.after_quiet || quiet(view.changed_at));
+    if changed && !due {
+        world.write_message(bevy::window::RequestRedraw);
+    }
+    let stale = changed && !dragging && due;
+    if view.mesh.is_none() || stale {
+        super::mesh_figures::count(
+            world,
+            &mut view.mesh,
+            &mut view.histograms,
+            mesh,
+            generation,
+        );
+        view.stats_generation = generation;
+        view.after_quiet = false;
+    }
+    super::mesh_figures::collect(world, &mut view.mesh, &mut view.histograms, generation);
+    if std::mem::take(&mut world.resource_mut::<UiState>().check_validity) {
+        super::mesh_figures::check_validity(world, &mut view.mesh, mesh);
+    }
+}
+
+/// The undo history, the simplification's levels and the job or opening under way.
+fn show_history_and_work(world: &World, view: &mut InspectorView) {
     view.lod = world.resource::<SimplificationHistory>().levels();
     let history = world.resource::<crate::editor::session::history::UndoHistory>();
     view.history.clear();
@@ -270,44 +320,6 @@ pub fn snapshot(world: &mut World) {
             )
         })
         .or(opening);
-    let selection = world.resource::<Selection>();
-    let drawn = crate::editor::gestures::overlay::MAX_SET_DRAWN;
-    view.selected_set = match selection.len() {
-        0 | 1 => String::new(),
-        n if n > drawn => format!(
-            "{} (the first {drawn} drawn)",
-            crate::editor::session::select_many::describe(selection)
-        ),
-        _ => crate::editor::session::select_many::describe(selection),
-    };
-    view.gesture = world
-        .resource::<crate::editor::gestures::transform::Gestures>()
-        .hint();
-    let m = MeshRef::new(world);
-    view.selected = world
-        .resource::<Selection>()
-        .element
-        .filter(|&x| crate::editor::session::selection::exists(&m, x))
-        .map(|id| describe(&m, id));
-    // The group (object, group, material) of a selected face, where the mesh has groups.
-    if let Some(selected) = view.selected.as_mut()
-        && let ElementId::Face(f) = selected.id
-        && let Some(mesh) = world.get::<InMesh>(f.0).map(|m| m.0)
-        && let Some(group) = crate::mesh::groups::describe_face_group(world, mesh, f)
-    {
-        selected.facts.push(("group".into(), group));
-    }
-    // The value of the quantity on display at a selected vertex.
-    if let Some(selected) = view.selected.as_mut()
-        && let ElementId::Vertex(v) = selected.id
-        && let Some(values) = active.and_then(|mesh| world.get::<VertexValues>(mesh.0))
-        && let Some(value) = values.values.get(&v.0)
-    {
-        selected
-            .facts
-            .push((values.quantity.label().to_string(), format!("{value:.6}")));
-    }
-    *world.resource_mut::<InspectorView>() = view;
 }
 
 fn describe(m: &MeshRef<'_>, id: ElementId) -> SelectedView {

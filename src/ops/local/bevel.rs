@@ -356,19 +356,9 @@ fn apply_ring(world: &mut World, mesh: MeshId, ring: &Ring, amount: f32) -> Face
     let twins: Vec<HalfedgeId> = spokes.iter().map(|&s| m.twin(s)).collect();
     let faces: Vec<Option<FaceId>> = spokes.iter().map(|&s| m.face(s)).collect();
     let origins: Vec<VertexId> = spokes.iter().map(|&s| m.from_vertex(s)).collect();
-    // UVs of u_j: `inside[j]` in the face of twin(s_j) (the old corner of the removed vertex
-    // there), `ahead[j]` in the face of s_j (the corner of side j's twin).
-    let uvs = has.uv.then(|| {
-        let uv = |x: HalfedgeId| attributes::corner_uv(world, x).unwrap_or_default();
-        let inside: Vec<Option<Vec2>> = twins
-            .iter()
-            .map(|&x| m.face(x).map(|_| along(uv(x), uv(m.prev(x)), amount)))
-            .collect();
-        let ahead: Vec<Option<Vec2>> = (0..n)
-            .map(|j| faces[j].map(|_| along(uv(before[j]), uv(spokes[j]), amount)))
-            .collect();
-        (inside, ahead)
-    });
+    let uvs = has
+        .uv
+        .then(|| RingUvs::read(world, spokes, &before, &twins, amount));
     let carried: Vec<(Option<VertexNormal>, Option<VertexColor>)> = origins
         .iter()
         .map(|v| {
@@ -465,22 +455,67 @@ fn apply_ring(world: &mut World, mesh: MeshId, ring: &Ring, amount: f32) -> Face
         }
     }
     spawn_at(world, face.0, (Face { halfedge: inner[0] }, member));
-    if let Some((inside, ahead)) = uvs {
+    if let Some(uvs) = uvs {
+        uvs.write(world, &twins, &outer, &inner);
+    }
+    face
+}
+
+/// The UVs of the new corners `u_j`: `inside[j]` in the face of `twin(s_j)` (the old corner of
+/// the removed vertex there), `ahead[j]` in the face of `s_j` (the corner of side j's twin);
+/// `None` where there is no face.
+struct RingUvs {
+    inside: Vec<Option<Vec2>>,
+    ahead: Vec<Option<Vec2>>,
+}
+
+impl RingUvs {
+    /// Reads them `amount` along each spoke, before anything moves.
+    fn read(
+        world: &World,
+        spokes: &[HalfedgeId],
+        before: &[HalfedgeId],
+        twins: &[HalfedgeId],
+        amount: f32,
+    ) -> Self {
+        let m = MeshRef::new(world);
+        let uv = |x: HalfedgeId| attributes::corner_uv(world, x).unwrap_or_default();
+        let inside = twins
+            .iter()
+            .map(|&x| m.face(x).map(|_| along(uv(x), uv(m.prev(x)), amount)))
+            .collect();
+        let ahead = spokes
+            .iter()
+            .zip(before)
+            .map(|(&s, &b)| m.face(s).map(|_| along(uv(b), uv(s), amount)))
+            .collect();
+        Self { inside, ahead }
+    }
+
+    /// Writes them at the corners of the twins, the outer halfedges and the new face's inner
+    /// ones.
+    fn write(
+        &self,
+        world: &mut World,
+        twins: &[HalfedgeId],
+        outer: &[HalfedgeId],
+        inner: &[HalfedgeId],
+    ) {
+        let n = twins.len();
         for j in 0..n {
-            if let Some(x) = inside[j] {
+            if let Some(x) = self.inside[j] {
                 attributes::set_corner_uv(world, twins[j], x);
             }
-            if let Some(x) = ahead[j] {
+            if let Some(x) = self.ahead[j] {
                 attributes::set_corner_uv(world, outer[j], x);
             }
             // F's corner at u_{j+1}: as in the face across side j (the face of twin(s_{j+1})),
             // or, where side j is on the boundary, as in the face of s_{j+1}.
-            let k = next(j);
-            let x = inside[k].or(ahead[k]).unwrap_or_default();
+            let k = (j + 1) % n;
+            let x = self.inside[k].or(self.ahead[k]).unwrap_or_default();
             attributes::set_corner_uv(world, inner[j], x);
         }
     }
-    face
 }
 
 #[cfg(test)]

@@ -132,36 +132,24 @@ pub fn apply_bisect(world: &mut World, p: BisectPlan) -> VertexId {
     he(world, t).vertex = mid;
     he(world, t).twin = h2;
     he(world, t).edge = e2;
-    spawn_at(
-        world,
-        h2.0,
-        (
-            Halfedge {
-                twin: t,
-                next: hn,
-                prev: h,
-                vertex: b,
-                edge: e2,
-                face: f,
-            },
-            member,
-        ),
-    );
-    spawn_at(
-        world,
-        t2.0,
-        (
-            Halfedge {
-                twin: h,
-                next: tn,
-                prev: t,
-                vertex: a,
-                edge: p.edge,
-                face: g,
-            },
-            member,
-        ),
-    );
+    let after_mid_in_f = Halfedge {
+        twin: t,
+        next: hn,
+        prev: h,
+        vertex: b,
+        edge: e2,
+        face: f,
+    };
+    let after_mid_in_g = Halfedge {
+        twin: h,
+        next: tn,
+        prev: t,
+        vertex: a,
+        edge: p.edge,
+        face: g,
+    };
+    spawn_at(world, h2.0, (after_mid_in_f, member));
+    spawn_at(world, t2.0, (after_mid_in_g, member));
     link(world, h, h2);
     link(world, h2, hn);
     link(world, t, t2);
@@ -173,29 +161,16 @@ pub fn apply_bisect(world: &mut World, p: BisectPlan) -> VertexId {
     } else {
         h2
     };
-    spawn_at(
-        world,
-        mid.0,
-        (
-            Vertex {
-                halfedge: boundary_out,
-            },
-            Position(p.position),
-            member,
-        ),
-    );
+    let vertex = Vertex {
+        halfedge: boundary_out,
+    };
+    spawn_at(world, mid.0, (vertex, Position(p.position), member));
     // Each edge names an interior halfedge where it has one.
     world.get_mut::<Edge>(p.edge.0).expect("planned").halfedge = if f.is_some() { h } else { t2 };
-    spawn_at(
-        world,
-        e2.0,
-        (
-            Edge {
-                halfedge: if f.is_some() { h2 } else { t },
-            },
-            member,
-        ),
-    );
+    let new_edge = Edge {
+        halfedge: if f.is_some() { h2 } else { t },
+    };
+    spawn_at(world, e2.0, (new_edge, member));
     // The new corners: at `mid` interpolated along each side; `h2` and `t2` take the corners
     // `h` and `t` had (at b inside f, at a inside g).
     if let Some(((fa, fb), (ga, gb))) = uvs {

@@ -383,87 +383,9 @@ fn plan_halfedge(
         Side::Triangle { opposite, .. } => Some(opposite),
         _ => None,
     });
-    // Link condition, vertex part.
-    for n in around_b.iter().map(|s| s.links.vertex) {
-        if n != a && around_a.iter().any(|s| s.links.vertex == n) && !opposite.contains(&Some(n)) {
-            return Err(Refusal::LinkCondition(vx(n)));
-        }
-    }
-    // Link condition, edge part (the tetrahedron): triangles a c d and b c d both present
-    // (their sides then join c and d). The face left of a triangle spoke is centre, its tip,
-    // and the next spoke's tip.
-    if let [Some(c), Some(d)] = opposite {
-        let has_triangle = |ring: &[Spoke]| {
-            ring.iter().enumerate().any(|(i, s)| {
-                let o = ring[(i + 1) % ring.len()].links.vertex;
-                s.triangle && ((s.links.vertex == c && o == d) || (s.links.vertex == d && o == c))
-            })
-        };
-        if has_triangle(&around_a) && has_triangle(&around_b) {
-            let closed_tiny = !boundary_edge && count_vertices(&m, a) <= 4;
-            return Err(if closed_tiny {
-                Refusal::TooSmall
-            } else {
-                Refusal::LinkCondition(vx(c))
-            });
-        }
-    }
-    for s in &sides {
-        match *s {
-            Side::Triangle { face, opposite, .. } => {
-                // The two rings already show both sides of the edges to the wing.
-                let (Some(from_a), Some(from_b)) = (
-                    seen_from(&around_a, opposite),
-                    seen_from(&around_b, opposite),
-                ) else {
-                    unreachable!("{opposite} is a corner of a triangle on the edge {a} {b}");
-                };
-                if from_a.open && from_b.open {
-                    return Err(Refusal::DanglingEdge(ElementId::Face(face)));
-                }
-                // a, b and a distinct corner across each of the wing's two edges are four
-                // neighbours, which clear any minimum; else count them.
-                let across = |seen: &Sighting, other: VertexId| {
-                    seen.beyond.into_iter().flatten().find(|&n| n != other)
-                };
-                if !matches!(
-                    (across(&from_a, b), across(&from_b, a)),
-                    (Some(p), Some(q)) if p != q
-                ) {
-                    let minimum = if m.is_boundary_vertex(opposite) { 2 } else { 3 };
-                    // Only whether the valence exceeds the minimum matters: stop counting past it.
-                    if m.vertex_outgoing(opposite).take(minimum + 1).count() <= minimum {
-                        return Err(Refusal::ValenceTooLow(vx(opposite), minimum));
-                    }
-                }
-            }
-            Side::Polygon { face, .. } => {
-                if m.face_degree(face) <= 3 {
-                    return Err(Refusal::DegenerateFace(ElementId::Face(face)));
-                }
-            }
-            Side::Boundary { x, .. } => {
-                // Only whether the loop has more than three sides matters: stop counting at four.
-                if m.loop_from(x).take(4).count() <= 3 {
-                    return Err(Refusal::DegenerateFace(ElementId::Edge(e)));
-                }
-            }
-        }
-    }
-    // No other face may hold both a and b (it would visit the merged vertex twice). A triangle
-    // holding both would hold the edge a b, so it is one of the edge's own faces: only polygons
-    // need looking at.
-    let own_face = |f: FaceId| {
-        sides.iter().any(
-            |s| matches!(*s, Side::Triangle { face, .. } | Side::Polygon { face, .. } if face == f),
-        )
-    };
-    for s in &around_b {
-        let Some(f) = s.links.face else { continue };
-        if !s.triangle && !own_face(f) && m.face_vertices(f).any(|v| v == a) {
-            return Err(Refusal::DegenerateFace(ElementId::Face(f)));
-        }
-    }
+    check_link(&m, (a, &around_a), &around_b, opposite, boundary_edge)?;
+    check_sides(&m, e, (a, &around_a), (b, &around_b), &sides)?;
+    check_no_face_holds_both(&m, a, &around_b, &sides)?;
     // The merged vertex: its neighbours are both endpoints' neighbours but a and b, with the
     // opposite vertices (the only shared ones, by the link condition) counted once. Two quads
     // glued along an edge chain, for instance, would leave it with two edges inside the surface.
@@ -501,6 +423,122 @@ fn plan_halfedge(
         around: [around_a, around_b],
         merged_boundary,
     })
+}
+
+/// The link condition (Dey, Edelsbrunner et al. 1999) for the edge a b: no vertex but the
+/// wings (`opposite`) is a neighbour of both, and the triangles a c d and b c d are not both
+/// there (a tetrahedron, which is [`Refusal::TooSmall`] when it is the whole closed mesh).
+fn check_link(
+    m: &MeshRef<'_>,
+    (a, around_a): (VertexId, &[Spoke]),
+    around_b: &[Spoke],
+    opposite: [Option<VertexId>; 2],
+    boundary_edge: bool,
+) -> Result<(), Refusal> {
+    let vx = |v: VertexId| ElementId::Vertex(v);
+    // The vertex part.
+    for n in around_b.iter().map(|s| s.links.vertex) {
+        if n != a && around_a.iter().any(|s| s.links.vertex == n) && !opposite.contains(&Some(n)) {
+            return Err(Refusal::LinkCondition(vx(n)));
+        }
+    }
+    // The edge part (the tetrahedron): triangles a c d and b c d both present
+    // (their sides then join c and d). The face left of a triangle spoke is centre, its tip,
+    // and the next spoke's tip.
+    if let [Some(c), Some(d)] = opposite {
+        let has_triangle = |ring: &[Spoke]| {
+            ring.iter().enumerate().any(|(i, s)| {
+                let o = ring[(i + 1) % ring.len()].links.vertex;
+                s.triangle && ((s.links.vertex == c && o == d) || (s.links.vertex == d && o == c))
+            })
+        };
+        if has_triangle(around_a) && has_triangle(around_b) {
+            let closed_tiny = !boundary_edge && count_vertices(m, a) <= 4;
+            return Err(if closed_tiny {
+                Refusal::TooSmall
+            } else {
+                Refusal::LinkCondition(vx(c))
+            });
+        }
+    }
+    Ok(())
+}
+
+/// What each side of the edge a b allows: a triangle's wing keeps a face beside it and enough
+/// edges, a polygon keeps at least three corners, a boundary loop more than three sides.
+fn check_sides(
+    m: &MeshRef<'_>,
+    e: EdgeId,
+    (a, around_a): (VertexId, &[Spoke]),
+    (b, around_b): (VertexId, &[Spoke]),
+    sides: &[Side; 2],
+) -> Result<(), Refusal> {
+    let vx = |v: VertexId| ElementId::Vertex(v);
+    for s in sides {
+        match *s {
+            Side::Triangle { face, opposite, .. } => {
+                // The two rings already show both sides of the edges to the wing.
+                let (Some(from_a), Some(from_b)) =
+                    (seen_from(around_a, opposite), seen_from(around_b, opposite))
+                else {
+                    unreachable!("{opposite} is a corner of a triangle on the edge {a} {b}");
+                };
+                if from_a.open && from_b.open {
+                    return Err(Refusal::DanglingEdge(ElementId::Face(face)));
+                }
+                // a, b and a distinct corner across each of the wing's two edges are four
+                // neighbours, which clear any minimum; else count them.
+                let across = |seen: &Sighting, other: VertexId| {
+                    seen.beyond.into_iter().flatten().find(|&n| n != other)
+                };
+                if !matches!(
+                    (across(&from_a, b), across(&from_b, a)),
+                    (Some(p), Some(q)) if p != q
+                ) {
+                    let minimum = if m.is_boundary_vertex(opposite) { 2 } else { 3 };
+                    // Only whether the valence exceeds the minimum matters: stop counting past it.
+                    if m.vertex_outgoing(opposite).take(minimum + 1).count() <= minimum {
+                        return Err(Refusal::ValenceTooLow(vx(opposite), minimum));
+                    }
+                }
+            }
+            Side::Polygon { face, .. } => {
+                if m.face_degree(face) <= 3 {
+                    return Err(Refusal::DegenerateFace(ElementId::Face(face)));
+                }
+            }
+            Side::Boundary { x, .. } => {
+                // Only whether the loop has more than three sides matters: stop counting at four.
+                if m.loop_from(x).take(4).count() <= 3 {
+                    return Err(Refusal::DegenerateFace(ElementId::Edge(e)));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// No other face may hold both a and b (it would visit the merged vertex twice). A triangle
+/// holding both would hold the edge a b, so it is one of the edge's own faces: only polygons
+/// need looking at.
+fn check_no_face_holds_both(
+    m: &MeshRef<'_>,
+    a: VertexId,
+    around_b: &[Spoke],
+    sides: &[Side; 2],
+) -> Result<(), Refusal> {
+    let own_face = |f: FaceId| {
+        sides.iter().any(
+            |s| matches!(*s, Side::Triangle { face, .. } | Side::Polygon { face, .. } if face == f),
+        )
+    };
+    for s in around_b {
+        let Some(f) = s.links.face else { continue };
+        if !s.triangle && !own_face(f) && m.face_vertices(f).any(|v| v == a) {
+            return Err(Refusal::DegenerateFace(ElementId::Face(f)));
+        }
+    }
+    Ok(())
 }
 
 fn count_vertices(m: &MeshRef<'_>, v: VertexId) -> usize {
@@ -744,26 +782,9 @@ pub(crate) fn apply_collapse_deferred(
         Ok(&p),
         "stale collapse plan"
     );
-    let [around_a, around_b] = &p.around;
-    let wing = |s: &Side| match *s {
-        Side::Triangle { opposite, .. } => (Some(opposite), true),
-        Side::Boundary { .. } => (None, true),
-        Side::Polygon { .. } => (None, false),
-    };
-    let ((left, left_ok), (right, right_ok)) = (wing(&p.sides[0]), wing(&p.sides[1]));
-    let record = CollapseRecord {
-        kept: p.a,
-        kept_position: around_b[0].tip,
-        removed_position: around_a[0].tip,
-        left,
-        right,
-        invertible: left_ok && right_ok && (left.is_some() || right.is_some()),
-    };
-    let gone = |h: HalfedgeId| {
-        p.sides
-            .iter()
-            .any(|s| s.removed_halfedges().contains(&Some(h)))
-    };
+    let around_b = &p.around[1];
+    let record = p.record();
+    let gone = |h: HalfedgeId| p.removes(h);
     let mut removed_edges = [Some(p.edge), None, None];
     removed.push(p.edge.0);
     // Every halfedge into b now points at a.
@@ -782,39 +803,15 @@ pub(crate) fn apply_collapse_deferred(
                 opposite,
                 ..
             } => {
-                // Around the side's own end, the spoke after `x` runs back along `prev` to the
-                // wing; around the other end, the spoke before `x`'s twin is `next`. Their twins
-                // `op` and `on` become each other's, on the edge of the one from a (the other
-                // edge touches b and goes).
-                let (own, other) = (&p.around[i], &p.around[1 - i]);
-                let (to_wing, along_next) = (own[1 % own.len()], other[other.len() - 1]);
-                debug_assert_eq!((to_wing.links.twin, along_next.id), (prev, next));
-                let (on, op) = (along_next.links.twin, to_wing.id);
-                let (from_a, from_b) = if i == 0 {
-                    (to_wing, along_next)
-                } else {
-                    (along_next, to_wing)
+                let fold = Fold {
+                    side: i,
+                    next,
+                    prev,
+                    opposite,
                 };
-                let (keep, drop) = (from_a.links.edge, from_b.links.edge);
+                let drop = fold_triangle(world, &p, fold);
                 removed.extend([face.0, drop.0]);
                 removed_edges[1 + i] = Some(drop);
-                let interior = if MeshRef::new(world).is_boundary(on) {
-                    op
-                } else {
-                    on
-                };
-                for (x, twin) in [(on, op), (op, on)] {
-                    let mut links = he(world, x);
-                    links.twin = twin;
-                    links.edge = keep;
-                }
-                world.get_mut::<Edge>(keep.0).expect("planned").halfedge = interior;
-                // The wing's outgoing halfedge may be `prev`, which goes: `on` leaves it too.
-                // (On the boundary it is the boundary halfedge, which stays.)
-                let mut w = world.get_mut::<Vertex>(opposite.0).expect("planned");
-                if w.halfedge == prev {
-                    w.halfedge = on;
-                }
             }
             Side::Polygon {
                 face, next, prev, ..
@@ -827,33 +824,7 @@ pub(crate) fn apply_collapse_deferred(
     }
     removed.push(p.b.0);
     world.get_mut::<Position>(p.a.0).expect("planned").0 = p.position;
-    // The merged vertex's halfedges are both ends' that stay. On the boundary it takes its
-    // boundary one. Inside, it keeps its own if that stays; else it takes the one to a wing
-    // that the collapse glued, else one of b's.
-    let best = if p.merged_boundary {
-        around_a
-            .iter()
-            .chain(around_b)
-            .find(|s| s.links.face.is_none() && !gone(s.id))
-            .map(|s| s.id)
-    } else {
-        let own = world.get::<Vertex>(p.a.0).expect("planned").halfedge;
-        let to_wing = |i: usize| {
-            let ring = &p.around[i];
-            matches!(p.sides[i], Side::Triangle { .. }).then(|| ring[1 % ring.len()].id)
-        };
-        (!gone(own))
-            .then_some(own)
-            .or_else(|| to_wing(0))
-            .or_else(|| to_wing(1))
-            .or_else(|| {
-                around_b
-                    .iter()
-                    .find(|s| !gone(s.id) && !gone(s.links.twin))
-                    .map(|s| s.id)
-            })
-    };
-    let Some(best) = best else {
+    let Some(best) = merged_vertex_halfedge(world, &p) else {
         unreachable!("{} keeps at least one edge after a planned collapse", p.a);
     };
     world.get_mut::<Vertex>(p.a.0).expect("planned").halfedge = best;
@@ -863,6 +834,110 @@ pub(crate) fn apply_collapse_deferred(
         record,
     };
     (result, removed_edges)
+}
+
+impl CollapsePlan {
+    /// What a vertex split needs to undo this collapse.
+    fn record(&self) -> CollapseRecord {
+        let [around_a, around_b] = &self.around;
+        let wing = |s: &Side| match *s {
+            Side::Triangle { opposite, .. } => (Some(opposite), true),
+            Side::Boundary { .. } => (None, true),
+            Side::Polygon { .. } => (None, false),
+        };
+        let ((left, left_ok), (right, right_ok)) = (wing(&self.sides[0]), wing(&self.sides[1]));
+        CollapseRecord {
+            kept: self.a,
+            kept_position: around_b[0].tip,
+            removed_position: around_a[0].tip,
+            left,
+            right,
+            invertible: left_ok && right_ok && (left.is_some() || right.is_some()),
+        }
+    }
+
+    /// Whether the collapse removes halfedge `h`.
+    fn removes(&self, h: HalfedgeId) -> bool {
+        self.sides
+            .iter()
+            .any(|s| s.removed_halfedges().contains(&Some(h)))
+    }
+}
+
+/// A triangle beside the collapsing edge, on side `side` (0: left of the halfedge): the
+/// halfedges `next` and `prev` of its two other sides, and its wing vertex `opposite`.
+#[derive(Clone, Copy)]
+struct Fold {
+    side: usize,
+    next: HalfedgeId,
+    prev: HalfedgeId,
+    opposite: VertexId,
+}
+
+/// Folds a triangle beside the edge into one edge: its two sides to the wing become one, on
+/// the edge of the one from a. Returns the edge that goes.
+fn fold_triangle(world: &mut World, p: &CollapsePlan, fold: Fold) -> EdgeId {
+    // Around the side's own end, the spoke after `x` runs back along `prev` to the
+    // wing; around the other end, the spoke before `x`'s twin is `next`. Their twins
+    // `op` and `on` become each other's, on the edge of the one from a (the other
+    // edge touches b and goes).
+    let (own, other) = (&p.around[fold.side], &p.around[1 - fold.side]);
+    let (to_wing, along_next) = (own[1 % own.len()], other[other.len() - 1]);
+    debug_assert_eq!((to_wing.links.twin, along_next.id), (fold.prev, fold.next));
+    let (on, op) = (along_next.links.twin, to_wing.id);
+    let (from_a, from_b) = if fold.side == 0 {
+        (to_wing, along_next)
+    } else {
+        (along_next, to_wing)
+    };
+    let (keep, drop) = (from_a.links.edge, from_b.links.edge);
+    let interior = if MeshRef::new(world).is_boundary(on) {
+        op
+    } else {
+        on
+    };
+    for (x, twin) in [(on, op), (op, on)] {
+        let mut links = he(world, x);
+        links.twin = twin;
+        links.edge = keep;
+    }
+    world.get_mut::<Edge>(keep.0).expect("planned").halfedge = interior;
+    // The wing's outgoing halfedge may be `prev`, which goes: `on` leaves it too.
+    // (On the boundary it is the boundary halfedge, which stays.)
+    let mut w = world.get_mut::<Vertex>(fold.opposite.0).expect("planned");
+    if w.halfedge == fold.prev {
+        w.halfedge = on;
+    }
+    drop
+}
+
+/// The merged vertex's halfedge: on the boundary its boundary one; inside, its own if that
+/// stays, else the one to a wing that the collapse glued, else one of b's.
+fn merged_vertex_halfedge(world: &World, p: &CollapsePlan) -> Option<HalfedgeId> {
+    let [around_a, around_b] = &p.around;
+    if p.merged_boundary {
+        around_a
+            .iter()
+            .chain(around_b)
+            .find(|s| s.links.face.is_none() && !p.removes(s.id))
+            .map(|s| s.id)
+    } else {
+        let own = world.get::<Vertex>(p.a.0).expect("planned").halfedge;
+        let to_wing = |i: usize| {
+            let ring = &p.around[i];
+            matches!(p.sides[i], Side::Triangle { .. }).then(|| ring[1 % ring.len()].id)
+        };
+        (!p.removes(own))
+            .then_some(own)
+            .or_else(|| to_wing(0))
+            .or_else(|| to_wing(1))
+            .or_else(|| {
+                around_b
+                    .iter()
+                    .find(|s| !p.removes(s.id) && !p.removes(s.links.twin))
+                    .map(|s| s.id)
+            })
+    }
 }
 
 /// Collapses `e` (see the module doc): plan, then apply.

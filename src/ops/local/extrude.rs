@@ -236,7 +236,6 @@ pub(super) fn plan_ring(
 /// faces and the copies, both by side.
 pub(super) fn build_ring(world: &mut World, ring: &Ring) -> (Vec<FaceId>, Vec<VertexId>) {
     let has = MeshAttributes::of(world, ring.mesh);
-    let region: EntityHashSet = ring.faces.iter().map(|f| f.0).collect();
     let (twins, positions, uvs) = {
         let m = MeshRef::new(world);
         let twins: Vec<HalfedgeId> = ring.sides.iter().map(|s| m.twin(s.h)).collect();
@@ -251,32 +250,7 @@ pub(super) fn build_ring(world: &mut World, ring: &Ring) -> (Vec<FaceId>, Vec<Ve
         });
         (twins, positions, uvs)
     };
-    struct New {
-        copy: VertexId,
-        bottom: HalfedgeId,
-        rise: HalfedgeId,
-        top: HalfedgeId,
-        fall: HalfedgeId,
-        top_edge: EdgeId,
-        post: EdgeId,
-        face: FaceId,
-    }
-    let made: Vec<New> = {
-        let alloc = world.entity_allocator();
-        ring.sides
-            .iter()
-            .map(|_| New {
-                copy: VertexId(alloc.alloc()),
-                bottom: HalfedgeId(alloc.alloc()),
-                rise: HalfedgeId(alloc.alloc()),
-                top: HalfedgeId(alloc.alloc()),
-                fall: HalfedgeId(alloc.alloc()),
-                top_edge: EdgeId(alloc.alloc()),
-                post: EdgeId(alloc.alloc()),
-                face: FaceId(alloc.alloc()),
-            })
-            .collect()
-    };
+    let made = Wall::allocate(world, ring.sides.len());
     let member = InMesh(ring.mesh);
     for (r, s) in ring.sides.iter().enumerate() {
         let (n, after, before) = (&made[r], &made[s.after], &made[s.before]);
@@ -332,8 +306,52 @@ pub(super) fn build_ring(world: &mut World, ring: &Ring) -> (Vec<FaceId>, Vec<Ve
             }
         }
     }
-    // Rewire the old elements: the rim halfedge moves onto the top edge, its old twin faces
-    // the bottom; the fan's corners end at the copy.
+    rewire(world, ring, &made, &twins);
+    (
+        made.iter().map(|n| n.face).collect(),
+        made.iter().map(|n| n.copy).collect(),
+    )
+}
+
+/// The elements a side of the ring rises into: the copy of its start vertex `a`, the side
+/// quad's four halfedges (bottom, rise, top, fall), its top edge, the post at `a` (a a') and
+/// the quad itself.
+struct Wall {
+    copy: VertexId,
+    bottom: HalfedgeId,
+    rise: HalfedgeId,
+    top: HalfedgeId,
+    fall: HalfedgeId,
+    top_edge: EdgeId,
+    post: EdgeId,
+    face: FaceId,
+}
+
+impl Wall {
+    /// Ids for `sides` walls.
+    fn allocate(world: &World, sides: usize) -> Vec<Wall> {
+        let alloc = world.entity_allocator();
+        (0..sides)
+            .map(|_| Wall {
+                copy: VertexId(alloc.alloc()),
+                bottom: HalfedgeId(alloc.alloc()),
+                rise: HalfedgeId(alloc.alloc()),
+                top: HalfedgeId(alloc.alloc()),
+                fall: HalfedgeId(alloc.alloc()),
+                top_edge: EdgeId(alloc.alloc()),
+                post: EdgeId(alloc.alloc()),
+                face: FaceId(alloc.alloc()),
+            })
+            .collect()
+    }
+}
+
+/// Rewires the old elements once the walls stand: the rim halfedge moves onto the top edge,
+/// its old twin faces the bottom, the fan's corners end at the copy, and a rim vertex whose
+/// halfedge now leaves a copy takes the bottom of one of its sides (an interior halfedge: a
+/// boundary vertex's halfedge is a boundary one, which stays).
+fn rewire(world: &mut World, ring: &Ring, made: &[Wall], twins: &[HalfedgeId]) {
+    let region: EntityHashSet = ring.faces.iter().map(|f| f.0).collect();
     for (r, s) in ring.sides.iter().enumerate() {
         let n = &made[r];
         he(world, twins[r]).twin = n.bottom;
@@ -350,8 +368,6 @@ pub(super) fn build_ring(world: &mut World, ring: &Ring) -> (Vec<FaceId>, Vec<Ve
             edge.halfedge = n.bottom;
         }
     }
-    // A rim vertex whose halfedge now leaves a copy takes the bottom of one of its sides
-    // (an interior halfedge: a boundary vertex's halfedge is a boundary one, which stays).
     for (r, s) in ring.sides.iter().enumerate() {
         let out = MeshRef::new(world).vertex_halfedge(s.a);
         let moved = MeshRef::new(world)
@@ -361,10 +377,6 @@ pub(super) fn build_ring(world: &mut World, ring: &Ring) -> (Vec<FaceId>, Vec<Ve
             world.get_mut::<Vertex>(s.a.0).expect("planned").halfedge = made[r].bottom;
         }
     }
-    (
-        made.iter().map(|n| n.face).collect(),
-        made.iter().map(|n| n.copy).collect(),
-    )
 }
 
 /// The distinct vertices of `faces`, in order of first appearance.
