@@ -356,6 +356,37 @@ fn triangulate_key_needs_ctrl_and_applies() {
     assert_eq!((s.faces, s.face_sizes.get(&3).copied()), (12, Some(12)));
 }
 
+/// Alt+N turns every face round (Blender's Flip Normals): the counts stay, each face's normal
+/// points the other way, and Ctrl+Z turns them back.
+#[test]
+fn reverse_key_turns_every_face_round_and_undoes() {
+    let mut app = app();
+    open(&mut app, "shape:cube");
+    let m = mesh(&app);
+    let normals = |app: &App| -> Vec<Vec3> {
+        let world = app.world();
+        let r = MeshRef::new(world);
+        pappus::mesh::MeshMembers::collect(world, m)
+            .faces
+            .iter()
+            .map(|&f| r.face_area_vector(f))
+            .collect()
+    };
+    let (before, counts_before) = (normals(&app), counts(&app));
+    press_with(&mut app, KeyCode::AltLeft, KeyCode::KeyN);
+    let outcome = last_outcome(&app);
+    assert_eq!(outcome.request, "reverse orientation");
+    assert_eq!(outcome.result.ok().as_deref(), Some("6 faces turned round"));
+    assert_eq!(counts(&app), counts_before);
+    for (now, then) in normals(&app).iter().zip(&before) {
+        assert!((*now + *then).length() < 1e-6, "{now} {then}");
+    }
+    validate(app.world(), m).unwrap();
+    app.world_mut().write_message(Request::Undo);
+    app.update();
+    assert_eq!(normals(&app), before);
+}
+
 #[test]
 fn stale_and_bad_requests_are_refused_and_change_nothing() {
     let mut app = app();

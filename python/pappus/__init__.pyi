@@ -150,6 +150,8 @@ class Mesh:
         """Catmull–Clark subdivision (any polygons, gives quads), 1 to 8 levels."""
     def triangulate(self, *, progress: Progress = None) -> str:
         """Cuts every polygon into triangles."""
+    def reverse(self) -> str:
+        """Turns every face round: corners in the opposite order, normals the other way."""
     def smooth(
         self,
         method: str = "uniform",

@@ -730,6 +730,12 @@ impl Mesh {
         self.run_text(py, "triangulate", progress)
     }
 
+    /// Turns every face round (its corners in the opposite order, its normal the other way);
+    /// ids, UVs and groups stay, vertex normals change sign. Returns the summary.
+    fn reverse(&mut self, py: Python<'_>) -> PyResult<String> {
+        self.run_text(py, "reverse", None)
+    }
+
     /// Smooths with `method` (`uniform`, `cotan`, `implicit`, `taubin`), `iterations` times
     /// (1–10000) with `step` (default 0.5; implicit: 1.0, in units of the squared mean edge
     /// length). The boundary stays. Returns the summary; GIL released.

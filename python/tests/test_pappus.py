@@ -233,6 +233,22 @@ def test_whole_mesh_operations():
         assert grid.parameterize(method, boundary).startswith("0 flipped")
 
 
+def test_reverse_turns_every_face_round_and_twice_gives_the_mesh_back():
+    mesh = pappus.load("shape:cube")
+    faces = mesh.faces
+    uvs_before = mesh.corner_uvs
+    assert mesh.reverse() == "6 faces turned round"
+    turned = mesh.faces
+    for old, new in zip(faces, turned):
+        # The same corners, the other way round (up to where the face starts).
+        reversed_old = list(old[::-1])
+        assert any(list(np.roll(new, k)) == reversed_old for k in range(len(new)))
+    assert mesh.corner_uvs is None and uvs_before is None
+    mesh.validate()
+    mesh.reverse()
+    assert (mesh.faces == faces).all()
+
+
 def test_edge_operations_by_input_vertex_numbers():
     mesh = two_triangles()
     assert mesh.flip(0, 2).startswith("flipped to")

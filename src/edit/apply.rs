@@ -21,6 +21,7 @@ use crate::ops::local::{
 use crate::ops::param::{ParamParams, parameterize_in_place};
 use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::remesh::{RemeshParams, remesh_with_progress};
+use crate::ops::reverse::reverse_orientation;
 use crate::ops::simplify::SimplifyParams;
 use crate::ops::smooth::{SmoothParams, smooth_with_progress};
 use crate::ops::triangulate::triangulate;
@@ -68,6 +69,10 @@ impl Edit {
             Edit::SplitVertex(v) => split_vertex(world, *v, context),
             Edit::LevelOfDetail(faces) => level_of_detail(world, *faces, context),
             Edit::Triangulate => Ok(triangulated(world, mesh, context)),
+            Edit::Reverse => Ok(whole(format!(
+                "{} turned round",
+                count(reverse_orientation(world, mesh).faces, "face")
+            ))),
             Edit::Simplify(params) => simplify(world, mesh, params, context),
             Edit::Subdivide(subdivision) => subdivide(world, mesh, subdivision, context),
             Edit::Remesh(params) => remesh(world, mesh, params, context),

@@ -51,6 +51,10 @@ mod step;
 pub use save::{RECOMPUTED_NORMALS, mark_normals_stale, soup_to_save};
 pub use step::{LocalKind, STEP_SYNTAX, Step};
 
+/// What an operation declares about itself (defined beside the operations, in
+/// [`crate::ops::declaration`], so that `ops` need not import this layer).
+pub use crate::ops::declaration::{Carries, Declaration, IdsKept};
+
 /// A subdivision scheme (defined beside the schemes, in [`crate::ops::subdivide`], so that
 /// `ops` need not import this layer).
 pub use crate::ops::subdivide::Scheme;
@@ -124,6 +128,8 @@ pub enum Edit {
     LevelOfDetail(usize),
     /// Cut every polygon into triangles.
     Triangulate,
+    /// Turn every face round: its corners in the opposite order, its normal the other way.
+    Reverse,
     /// QEM simplification, recording the history that [`Edit::LevelOfDetail`] moves along.
     Simplify(SimplifyParams),
     /// Subdivision.
@@ -156,22 +162,6 @@ pub enum Reach {
     Vertices(MeshId, Vec<VertexId>),
     /// Any element of this mesh.
     Whole(MeshId),
-}
-
-/// Which element ids mean the same element after an edit.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum IdsKept {
-    /// Every element that survives keeps its id.
-    All,
-    /// Only vertices keep theirs (the tables were rewritten: subdivision).
-    VerticesOnly,
-}
-
-impl IdsKept {
-    /// Whether `x`'s id still names the same element after the edit (if it survived).
-    pub fn keeps(self, x: ElementId) -> bool {
-        self == IdsKept::All || matches!(x, ElementId::Vertex(_))
-    }
 }
 
 /// What to redraw after an edit.
@@ -247,6 +237,7 @@ impl Edit {
             Edit::LevelOfDetail(usize::MAX) => "full level of detail".into(),
             Edit::LevelOfDetail(n) => format!("level of detail {n} faces"),
             Edit::Triangulate => "triangulate".into(),
+            Edit::Reverse => "reverse orientation".into(),
             Edit::Simplify(p) => match p.target {
                 SimplifyTarget::Ratio(r) => format!("simplify to {:.0} %", r * 100.0),
                 SimplifyTarget::Faces(n) => format!("simplify to {n} faces"),
@@ -354,6 +345,7 @@ impl Edit {
             }
             Edit::LevelOfDetail(_)
             | Edit::Triangulate
+            | Edit::Reverse
             | Edit::Simplify(_)
             | Edit::Subdivide(_)
             | Edit::Remesh(_)
@@ -433,46 +425,71 @@ impl Edit {
         })
     }
 
+    /// What the operation behind the edit declares about itself, beside its algorithm (its
+    /// step's name, whether it may run as a job, which ids and whether the simplification
+    /// history survive it, what becomes of the attributes).
+    pub fn declaration(&self) -> &'static Declaration {
+        use crate::ops::{deform, hole, local, param, progressive, remesh, simplify, smooth};
+        use crate::ops::{subdivide, triangulate};
+        match self {
+            Edit::Flip(_) => &local::FLIP,
+            Edit::Split(_) => &local::SPLIT,
+            Edit::Bisect(_) => &local::BISECT,
+            Edit::Collapse(_) => &local::COLLAPSE,
+            Edit::Dissolve(_) => &local::DISSOLVE,
+            Edit::ToggleSeam(_) => &SEAM,
+            Edit::FillHole(_) => &local::FILL_HOLE,
+            Edit::SplitFace(..) => &local::SPLIT_FACE,
+            Edit::Extrude(..) => &local::EXTRUDE,
+            Edit::Inset(..) => &local::INSET,
+            Edit::BevelVertex(..) | Edit::BevelEdge(..) => &local::BEVEL,
+            Edit::Erase(_) => &local::ERASE,
+            Edit::DissolveVertex(_) => &local::DISSOLVE_VERTEX,
+            Edit::CollapseFace(_) => &local::COLLAPSE_FACE,
+            Edit::Weld(..) => &local::WELD,
+            Edit::MoveVertex(..) | Edit::MoveVertices(_) => &MOVE,
+            Edit::SplitVertex(_) => &local::VERTEX_SPLIT,
+            Edit::LevelOfDetail(_) => &progressive::LEVEL_OF_DETAIL,
+            Edit::Triangulate => &triangulate::TRIANGULATE,
+            Edit::Reverse => &crate::ops::reverse::REVERSE,
+            Edit::Simplify(_) => &simplify::SIMPLIFY,
+            Edit::Subdivide(s) => match s.scheme {
+                Scheme::Loop => &subdivide::LOOP,
+                Scheme::CatmullClark => &subdivide::CATMULL_CLARK,
+            },
+            Edit::Remesh(_) => &remesh::REMESH,
+            Edit::Smooth(_) => &smooth::SMOOTH,
+            Edit::Parameterize(_) => &param::PARAMETERIZE,
+            Edit::Deform(_) => &deform::DEFORM,
+            Edit::Fair(_) => &deform::FAIR,
+            Edit::FillHoleFair(_) => &hole::FILL_HOLE_FAIR,
+            Edit::FillHoles(_) => &hole::FILL_HOLES,
+        }
+    }
+
     /// Whether the edit may run as a job (on a copy of the mesh, on a thread of its own) when
     /// the mesh is large: the whole-mesh operations that compute a new mesh from the old.
     pub fn may_run_as_job(&self) -> bool {
-        matches!(
-            self,
-            Edit::Triangulate
-                | Edit::Simplify(_)
-                | Edit::Subdivide(_)
-                | Edit::Remesh(_)
-                | Edit::Smooth(_)
-                | Edit::Parameterize(_)
-        )
+        self.declaration().job
     }
 
     /// Which element ids keep their meaning through the edit.
     pub fn keeps_ids(&self) -> IdsKept {
-        match self {
-            Edit::Subdivide(_) => IdsKept::VerticesOnly,
-            _ => IdsKept::All,
-        }
+        self.declaration().ids
     }
 
     /// Whether the simplification history still describes the mesh after the edit (the edits
     /// that move along it, and the simplification that makes it). Any other edit ends it.
     pub fn keeps_history(&self) -> bool {
-        matches!(
-            self,
-            Edit::SplitVertex(_) | Edit::LevelOfDetail(_) | Edit::Simplify(_)
-        )
+        self.declaration().keeps_history
     }
 
-    /// Whether the edit carries the mesh's attributes (UVs, normals, colours) through; those
-    /// that do not (remeshing, simplification, moves along the simplification history) drop
-    /// them, and [`Edit::run`] says so in the summary. Subdivision carries UVs, colours and groups and
-    /// drops normals (see [`crate::ops::subdivide`]).
+    /// Whether the edit carries the mesh's attributes (UVs, normals, colours, groups) through;
+    /// those that do not (remeshing, simplification, moves along the simplification history)
+    /// drop them, and [`Edit::run`] says so in the summary. Subdivision carries UVs, colours
+    /// and groups and drops normals (see [`crate::ops::subdivide`]).
     pub fn carries_attributes(&self) -> bool {
-        !matches!(
-            self,
-            Edit::Remesh(_) | Edit::Simplify(_) | Edit::LevelOfDetail(_) | Edit::SplitVertex(_)
-        )
+        !matches!(self.declaration().carries, Carries::None(_))
     }
 
     /// Whether [`Edit::run_on_tables`] computes the edit (subdivision).
@@ -541,15 +558,9 @@ impl Edit {
 
     /// Why the edit dropped attributes, for the summary's note.
     fn why_dropped(&self) -> String {
-        match self {
-            Edit::Remesh(_) => "remeshing does not carry attributes".into(),
-            Edit::Simplify(_) | Edit::LevelOfDetail(_) | Edit::SplitVertex(_) => {
-                "simplification does not carry attributes".into()
-            }
-            Edit::Subdivide(_) => {
-                "subdivision carries UVs, colours and groups, not normals or seam marks".into()
-            }
-            _ => format!("{} does not carry them", self.label()),
+        match self.declaration().carries {
+            Carries::Some(why) | Carries::None(why) => why.into(),
+            Carries::All => format!("{} does not carry them", self.label()),
         }
     }
 
@@ -608,6 +619,12 @@ pub enum MergeKey {
     /// Moves along the level-of-detail history.
     LevelOfDetail,
 }
+
+/// Marking a seam (the `seam:A,B` step): a local edit of one edge's mark.
+pub const SEAM: Declaration = Declaration::new("seam");
+
+/// Moving vertices (a drag, a transform of the selection): the editor's own edit, no step.
+pub const MOVE: Declaration = Declaration::new("move").editor_only();
 
 /// Marks `e` as a seam, or unmarks it; returns whether it is one now. The mesh's attribute
 /// record says it may have seam marks from the first one on.
@@ -756,6 +773,91 @@ mod tests {
             Edit::MoveVertex(v, Vec3::ZERO).merge_key(),
             Some(MergeKey::Move(v))
         );
+    }
+
+    /// Every operation declares itself, and every declared step is one the command line
+    /// documents; the properties the pipeline asks for are the declaration's.
+    #[test]
+    fn every_edit_has_a_declaration_and_every_declared_step_exists() {
+        use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
+        let v = VertexId(bevy::prelude::Entity::PLACEHOLDER);
+        let e = EdgeId(bevy::prelude::Entity::PLACEHOLDER);
+        let f = FaceId(bevy::prelude::Entity::PLACEHOLDER);
+        let every = [
+            Edit::Flip(e),
+            Edit::Split(e),
+            Edit::Bisect(e),
+            Edit::Collapse(e),
+            Edit::Dissolve(e),
+            Edit::ToggleSeam(e),
+            Edit::FillHole(e),
+            Edit::SplitFace(f, v, v),
+            Edit::Extrude(vec![f], 0.1),
+            Edit::Inset(vec![f], 0.1, 0.0),
+            Edit::BevelVertex(v, 0.2),
+            Edit::BevelEdge(e, 0.2),
+            Edit::Erase(vec![f]),
+            Edit::DissolveVertex(v),
+            Edit::CollapseFace(f),
+            Edit::Weld(e, e),
+            Edit::MoveVertex(v, Vec3::ZERO),
+            Edit::MoveVertices(vec![(v, Vec3::ZERO)]),
+            Edit::SplitVertex(v),
+            Edit::LevelOfDetail(10),
+            Edit::Triangulate,
+            Edit::Reverse,
+            Edit::Simplify(SimplifyParams::default()),
+            Edit::Subdivide(Subdivision::once(Scheme::Loop)),
+            Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)),
+            Edit::Remesh(RemeshParams::default()),
+            Edit::Smooth(SmoothParams::default()),
+            Edit::Parameterize(ParamParams::default()),
+            Edit::Deform(DeformParams {
+                method: DeformMethod::Arap,
+                fixed: Vec::new(),
+                handle: vec![v],
+                motion: bevy::math::Affine3A::IDENTITY,
+                iterations: 1,
+            }),
+            Edit::Fair(FairParams {
+                vertices: vec![v],
+                k: 2,
+            }),
+            Edit::FillHoleFair(e),
+            Edit::FillHoles(true),
+        ];
+        let documented: Vec<&str> = STEP_SYNTAX
+            .split(|c: char| !(c.is_alphanumeric() || c == '-'))
+            .collect();
+        let mut jobs = Vec::new();
+        for edit in &every {
+            let d = edit.declaration();
+            assert_eq!(
+                d.is_step,
+                documented.contains(&d.name),
+                "{}: declared step `{}`",
+                edit.label(),
+                d.name
+            );
+            assert_eq!(edit.may_run_as_job(), d.job);
+            assert_eq!(edit.keeps_ids(), d.ids);
+            if d.job {
+                jobs.push(d.name);
+            }
+        }
+        assert_eq!(
+            jobs,
+            [
+                "triangulate",
+                "simplify",
+                "loop",
+                "catmull-clark",
+                "remesh",
+                "smooth",
+                "param"
+            ]
+        );
+        assert!(!Edit::MoveVertex(v, Vec3::ZERO).declaration().is_step);
     }
 
     /// A move of most of a mesh redraws it whole and is recorded (and undone) by its vertices

@@ -343,7 +343,7 @@ fn element_at(
 
 /// The step syntax, for usage texts.
 pub const STEP_SYNTAX: &str = "\
-validate | triangulate | flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
+validate | triangulate | reverse | flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
 dissolve:A,B | split-face:A,B | fill-hole:A,B | seam:A,B (mark, for param) |
 loop[:N] | catmull-clark[:N] |
 simplify:RATIO | simplify-faces:N |
@@ -431,6 +431,7 @@ impl Step {
             "loop" => return levels(Scheme::Loop),
             "catmull-clark" => return levels(Scheme::CatmullClark),
             "triangulate" => Edit::Triangulate,
+            "reverse" => Edit::Reverse,
             "simplify" => match args.parse::<f64>() {
                 Ok(r) if r > 0.0 && r <= 1.0 => Edit::Simplify(SimplifyParams::ratio(r)),
                 _ => {
@@ -650,6 +651,7 @@ impl std::fmt::Display for Step {
             }
             Step::Edit(edit) => match edit {
                 Edit::Triangulate => write!(f, "triangulate"),
+                Edit::Reverse => write!(f, "reverse"),
                 Edit::Simplify(p) => match p.target {
                     SimplifyTarget::Ratio(r) => write!(f, "simplify:{r}"),
                     SimplifyTarget::Faces(n) => write!(f, "simplify-faces:{n}"),
@@ -685,6 +687,7 @@ mod tests {
         for text in [
             "validate",
             "triangulate",
+            "reverse",
             "flip:3,17",
             "split:0,1",
             "bisect:0,1",

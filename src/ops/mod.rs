@@ -9,6 +9,7 @@
 //! Operations are plain functions over `&World` / `&mut World`, callable from a unit test, the
 //! command line and the editor alike; the editor's systems are thin adapters around them.
 
+pub mod declaration;
 pub mod deform;
 pub mod geometry;
 pub mod hole;
@@ -18,6 +19,7 @@ pub mod named;
 pub mod param;
 pub mod progressive;
 pub mod remesh;
+pub mod reverse;
 pub mod simplify;
 pub mod smooth;
 pub mod stencil;

@@ -31,6 +31,18 @@ use super::indexed_heap::IndexedHeap;
 mod run;
 pub use run::{NextCollapse, QemRun, QueuedEdge, Refused};
 
+use crate::ops::declaration::Declaration;
+
+/// Why a simplification, and the moves along its history, drop the attributes.
+pub const DROPS_ATTRIBUTES: &str = "simplification does not carry attributes";
+
+/// QEM simplification: a job on a large mesh; it makes the history that level of detail and
+/// vertex splits move along, and drops attributes.
+pub const SIMPLIFY: Declaration = Declaration::new("simplify")
+    .as_job()
+    .keeping_history()
+    .dropping(DROPS_ATTRIBUTES);
+
 /// How many faces a simplification keeps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SimplifyTarget {

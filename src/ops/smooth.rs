@@ -35,6 +35,11 @@ use super::Refusal;
 use super::geometry::{Surface, cotan_edges, mixed_areas};
 use super::named::Named;
 
+use crate::ops::declaration::Declaration;
+
+/// Smoothing: a job on a large mesh; only positions change.
+pub const SMOOTH: Declaration = Declaration::new("smooth").as_job();
+
 /// Which Laplacian moves the vertices.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SmoothMethod {

@@ -49,6 +49,23 @@ use crate::mesh::tables::{
 use super::Refusal;
 use crate::memory_budget::Estimate;
 
+use crate::ops::declaration::Declaration;
+
+/// What subdivision carries and what it drops (see the module doc).
+const CARRIES_SOME: &str = "subdivision carries UVs, colours and groups, not normals or seam marks";
+
+/// Loop subdivision: a job on a large mesh that rewrites the tables (only vertex ids survive).
+pub const LOOP: Declaration = Declaration::new("loop")
+    .as_job()
+    .renumbering()
+    .carrying_some(CARRIES_SOME);
+
+/// Catmull–Clark subdivision: as [`LOOP`].
+pub const CATMULL_CLARK: Declaration = Declaration::new("catmull-clark")
+    .as_job()
+    .renumbering()
+    .carrying_some(CARRIES_SOME);
+
 /// A subdivision scheme (the edit layer names it as `crate::edit::Scheme`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Scheme {

@@ -23,6 +23,11 @@ use crate::mesh::ids::{EdgeId, FaceId, HalfedgeId, MeshId};
 use crate::mesh::members::{MeshMembers, of_kind};
 use crate::mesh::topology::{MeshRef, newell_area_vector};
 
+use crate::ops::declaration::Declaration;
+
+/// Triangulating every polygon: a whole-mesh edit that may run as a job.
+pub const TRIANGULATE: Declaration = Declaration::new("triangulate").as_job();
+
 /// What triangulating a mesh did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TriangulateSummary {

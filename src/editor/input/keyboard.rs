@@ -70,6 +70,8 @@ pub enum Action {
     Weld,
     /// Triangulate the active mesh.
     Triangulate,
+    /// Reverse the active mesh's orientation.
+    Reverse,
     /// Simplify the active mesh (QEM) with the panel's parameters.
     Simplify,
     /// Split the selected vertex back (undo its last collapse from the simplification).
@@ -394,6 +396,12 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "Ctrl+T",
         Action::Triangulate,
         "triangulate every polygon",
+    ),
+    alt(
+        KeyCode::KeyN,
+        "Alt+N",
+        Action::Reverse,
+        "reverse the orientation: every face turned round, its normal the other way",
     ),
     key(
         KeyCode::KeyU,
@@ -931,6 +939,7 @@ fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, De
             Edit::FillHoles(world.resource::<UiState>().fill_fair)
         }
         Action::Triangulate
+        | Action::Reverse
         | Action::LoopSubdivide
         | Action::CatmullClark
         | Action::Remesh
@@ -944,6 +953,7 @@ fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, De
             let levels = ui.subdivision_levels.clamp(1, Subdivision::MAX_LEVELS);
             match action {
                 Action::Triangulate => Edit::Triangulate,
+                Action::Reverse => Edit::Reverse,
                 Action::Remesh => Edit::Remesh(ui.remesh),
                 Action::Simplify => Edit::Simplify(ui.simplify),
                 Action::Parameterize => Edit::Parameterize(ui.param.clone()),

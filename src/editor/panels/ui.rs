@@ -959,6 +959,7 @@ fn whole_mesh_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
         pending,
         &[
             (Action::Triangulate, "Triangulate"),
+            (Action::Reverse, "Reverse orientation"),
             (Action::ToggleStepMode, "Step mode"),
         ],
     );

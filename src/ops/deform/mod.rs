@@ -28,6 +28,15 @@ mod live;
 mod region;
 mod rotation;
 mod system;
+
+use crate::ops::declaration::Declaration;
+
+/// Handle deformation (ARAP or thin plate): only positions change.
+pub const DEFORM: Declaration = Declaration::new("deform");
+
+/// Fairing a region: only its positions change.
+pub const FAIR: Declaration = Declaration::new("fair");
+
 #[cfg(test)]
 mod tests;
 

@@ -31,6 +31,14 @@ use super::local::{FillHolePlan, apply_fill_hole, fill_hole, plan_fill_hole, spl
 use patch::Patch;
 use triangulation::{HoleLoop, triangulate};
 
+use crate::ops::declaration::Declaration;
+
+/// Filling one hole with a faired patch (the `fill-hole:A,B:fair` step).
+pub const FILL_HOLE_FAIR: Declaration = Declaration::new("fill-hole");
+
+/// Filling every hole, faired or with one polygon each.
+pub const FILL_HOLES: Declaration = Declaration::new("fill-holes");
+
 /// The longest loop a fair fill triangulates: 600 sides take about a second.
 pub const MAX_LOOP: usize = 600;
 

@@ -33,6 +33,11 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link, live_edge, spawn_at};
 
+use crate::ops::declaration::Declaration;
+
+/// Bisecting an edge: a local edit.
+pub const BISECT: Declaration = Declaration::new("bisect");
+
 /// Everything a bisection touches, collected by [`plan_bisect`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BisectPlan {

@@ -72,6 +72,11 @@ use crate::mesh::topology::{MAX_LOOP, MeshRef, newell_area_vector};
 
 use super::{Refusal, he, link, live_edge};
 
+use crate::ops::declaration::Declaration;
+
+/// Collapsing an edge: a local edit.
+pub const COLLAPSE: Declaration = Declaration::new("collapse");
+
 /// How to collapse.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CollapseOptions {

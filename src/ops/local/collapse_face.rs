@@ -56,6 +56,11 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link};
 
+use crate::ops::declaration::Declaration;
+
+/// Collapsing a face (the `collapse:A,B,C` step): a local edit.
+pub const COLLAPSE_FACE: Declaration = Declaration::new("collapse");
+
 /// The face across one side `t` (the twin of the face's side) of the collapsing face.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Side {

@@ -20,6 +20,11 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link, live_edge};
 
+use crate::ops::declaration::Declaration;
+
+/// Dissolving an edge: a local edit.
+pub const DISSOLVE: Declaration = Declaration::new("dissolve");
+
 /// What a dissolve touches, collected by [`plan_dissolve`].
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct DissolvePlan {

@@ -55,6 +55,11 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link};
 
+use crate::ops::declaration::Declaration;
+
+/// Dissolving a vertex (the `dissolve:A` step): a local edit.
+pub const DISSOLVE_VERTEX: Declaration = Declaration::new("dissolve");
+
 /// The new side of a boundary dissolve, made from `v`'s outgoing boundary edge.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Closing {

@@ -45,6 +45,11 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link, live_edge};
 
+use crate::ops::declaration::Declaration;
+
+/// Erasing faces: a local edit.
+pub const ERASE: Declaration = Declaration::new("erase");
+
 /// What an erase removed.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Erased {

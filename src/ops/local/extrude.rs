@@ -67,6 +67,11 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, spawn_at};
 
+use crate::ops::declaration::Declaration;
+
+/// Extruding a region of faces: a local edit (the walls take the region's groups).
+pub const EXTRUDE: Declaration = Declaration::new("extrude");
+
 /// What an extrusion (or an inset, [`super::inset_faces`]) made.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Extruded {

@@ -43,6 +43,11 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link, live_edge};
 
+use crate::ops::declaration::Declaration;
+
+/// Flipping an edge: a local edit that keeps every id and attribute.
+pub const FLIP: Declaration = Declaration::new("flip");
+
 /// Everything a flip touches, collected by [`plan_flip`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FlipPlan {

@@ -53,6 +53,11 @@ use crate::mesh::topology::MeshRef;
 use super::Refusal;
 use super::extrude::{Extruded, Ring, build_ring, check_faces, face_vertices, plan_ring};
 
+use crate::ops::declaration::Declaration;
+
+/// Insetting faces (with a depth, Scotty3D's bevel face): a local edit.
+pub const INSET: Declaration = Declaration::new("inset");
+
 /// One face's ring and where its copies go.
 #[derive(Clone, Debug, PartialEq)]
 struct InsetFace {

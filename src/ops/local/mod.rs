@@ -67,7 +67,15 @@ pub use inset::{InsetPlan, apply_inset, inset_faces, plan_inset};
 pub use split::{SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint};
 pub use split_face::{SplitFacePlan, apply_split_face, plan_split_face, split_face};
 pub use vertex_split::vertex_split;
+
 pub use weld::{WeldPlan, apply_weld, plan_weld, weld_edges};
+/// Each local operation's declaration (see [`crate::ops::declaration`]).
+pub use {
+    bevel::BEVEL, bisect::BISECT, collapse::COLLAPSE, collapse_face::COLLAPSE_FACE,
+    dissolve::DISSOLVE, dissolve_vertex::DISSOLVE_VERTEX, erase::ERASE, extrude::EXTRUDE,
+    fill_hole::FILL_HOLE, flip::FLIP, inset::INSET, split::SPLIT, split_face::SPLIT_FACE,
+    vertex_split::VERTEX_SPLIT, weld::WELD,
+};
 
 use bevy::prelude::{Entity, World};
 

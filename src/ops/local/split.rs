@@ -50,6 +50,11 @@ use crate::mesh::topology::MeshRef;
 use super::bisect::{BisectPlan, apply_bisect, plan_bisect};
 use super::{Refusal, cut};
 
+use crate::ops::declaration::Declaration;
+
+/// Splitting an edge: a local edit.
+pub const SPLIT: Declaration = Declaration::new("split");
+
 /// Everything a split touches: the bisection's plan (a split is a bisection, then a cut of each
 /// face from the new vertex).
 pub type SplitPlan = BisectPlan;

@@ -49,6 +49,11 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link, live_edge};
 
+use crate::ops::declaration::Declaration;
+
+/// Welding two boundary edges: a local edit.
+pub const WELD: Declaration = Declaration::new("weld");
+
 /// One pair of vertices that become one: `keep` survives at `position`; `gone` (when it is
 /// another vertex) is removed, and the halfedges into it point at `keep`.
 #[derive(Clone, Debug, PartialEq)]

@@ -62,6 +62,11 @@ pub use distortion::Distortion;
 pub use params::{BoundaryShape, ParamError, ParamMethod, ParamParams, UnknownName};
 pub use tutte::Solver;
 
+use crate::ops::declaration::Declaration;
+
+/// Parameterization: a job on a large mesh; only UVs change.
+pub const PARAMETERIZE: Declaration = Declaration::new("param").as_job();
+
 /// What a parameterization did and how good it is.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ParamReport {

@@ -63,6 +63,14 @@ mod pass;
 mod relax;
 mod run;
 mod split;
+
+use crate::ops::declaration::Declaration;
+
+/// Isotropic remeshing: a job on a large mesh; a mesh made anew, without attributes.
+pub const REMESH: Declaration = Declaration::new("remesh")
+    .as_job()
+    .dropping("remeshing does not carry attributes");
+
 #[cfg(test)]
 mod tests;
 
