@@ -1,0 +1,814 @@
+//! `pappus.Mesh`: one World holding one halfedge mesh, its input numbering and its
+//! simplification history, with one method per `process` step.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use bevy::prelude::World;
+use numpy::{
+    AllowTypeChange, PyArray1, PyArrayLike2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
+};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use bevy::math::{Vec2, Vec3};
+use pappus::cli::info_with_load_times;
+use pappus::edit::{EditContext, Step};
+use pappus::io;
+use pappus::mesh::{
+    MeshId, MeshInfo, MeshMembers, PolygonSoup, RepairReport, VertexId, build_mesh, to_soup,
+    validate,
+};
+use pappus::ops::progressive::ProgressiveMesh;
+
+use crate::arrays::{
+    faces_array, float_rows, positions_and_faces, read_faces, vec2_array, vec3_array,
+};
+use crate::elements::{element_text, elements_text, number};
+use crate::errors::{InvalidMesh, Refused, io_error, user_warning, with_outcome_note};
+use crate::groups::{face_groups_dict, face_groups_from};
+use crate::ms_since;
+
+/// One halfedge mesh (polygons allowed), owned by Python.
+///
+/// Operations name elements by the indices of the vertices the mesh was made from (the file's
+/// vertex numbers, or the rows of the `vertices` array given to the constructor), as the command
+/// line's steps do; those numbers keep meaning the same vertices across edits for as long as
+/// the vertices live.
+#[pyclass(module = "pappus", name = "Mesh")]
+pub struct Mesh {
+    /// The world holding the mesh's entities, and nothing else.
+    world: World,
+    /// The mesh entity.
+    mesh: MeshId,
+    /// What building the mesh repaired.
+    report: RepairReport,
+    /// For each vertex the mesh was made from, the vertex it became (`None`: dropped).
+    input_vertices: Vec<Option<VertexId>>,
+    /// The simplification history (`simplify` records it, `refine` moves along it).
+    history: Option<ProgressiveMesh>,
+    /// What reading the source took, in ms (array conversion, for a mesh made from arrays).
+    read_ms: f64,
+    /// What building the entities took, in ms.
+    build_ms: f64,
+}
+
+impl Mesh {
+    /// Builds `soup` into a fresh world.
+    pub(crate) fn build(soup: &PolygonSoup, info: MeshInfo, read_ms: f64) -> Result<Mesh, String> {
+        let start = Instant::now();
+        let mut world = World::new();
+        let built = build_mesh(&mut world, soup, info).map_err(|e| e.to_string())?;
+        Ok(Mesh {
+            world,
+            mesh: built.mesh,
+            report: built.report,
+            input_vertices: built.input_vertices,
+            history: None,
+            read_ms,
+            build_ms: ms_since(start),
+        })
+    }
+
+    /// The mesh as a soup: vertices in table order, faces as vertex cycles, attributes.
+    pub(crate) fn soup(&self) -> PolygonSoup {
+        to_soup(&self.world, self.mesh)
+    }
+
+    /// Runs a parsed step, the GIL released, reporting to `progress` if given. Returns the
+    /// summary; a refusal becomes `Refused`. `progress` returning `False` stops the edit where
+    /// it can stop (the summary says so). An exception raised by `progress` is never a
+    /// half-told result: the callback is not called again, the edit runs to its end (or its
+    /// refusal, which changes nothing), and the exception is re-raised with a note that says
+    /// which ([`with_outcome_note`]).
+    pub(crate) fn run_step(
+        &mut self,
+        py: Python<'_>,
+        step: Step,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<String> {
+        let Mesh {
+            world,
+            mesh,
+            input_vertices,
+            history,
+            ..
+        } = self;
+        let (outcome, failure) = py.detach(|| {
+            let mut failure: Option<PyErr> = None;
+            let mut report = |fraction: f32| -> bool {
+                let Some(callback) = &progress else {
+                    return true;
+                };
+                if failure.is_some() {
+                    return true;
+                }
+                Python::attach(|py| match callback.call1(py, (fraction,)) {
+                    // None (or any true value) goes on; False stops where the edit can.
+                    Ok(answer) => answer.is_none(py) || answer.is_truthy(py).unwrap_or(true),
+                    // The edit goes on to its end: stopping it here would change the mesh
+                    // and then report a failure.
+                    Err(e) => {
+                        failure = Some(e);
+                        true
+                    }
+                })
+            };
+            let outcome = match &step {
+                // Whole-mesh edits run here rather than through `Step::run` so that they can
+                // report progress; the rest is the same (the history goes unless kept).
+                Step::Edit(edit) => {
+                    let mut context = EditContext {
+                        history,
+                        progress: &mut report,
+                    };
+                    let applied = edit.run(world, *mesh, &mut context);
+                    if applied.is_ok() && !edit.keeps_history() {
+                        *history = None;
+                    }
+                    applied.map(|a| a.summary)
+                }
+                other => other.run(world, *mesh, input_vertices, history),
+            };
+            (outcome, failure)
+        });
+        if let Some(e) = failure {
+            return Err(with_outcome_note(py, e, &outcome));
+        }
+        outcome.map_err(|refusal| Refused::new_err(refusal.to_string()))
+    }
+
+    /// Parses `text` as a `process` step (a malformed one is a `ValueError` with the command
+    /// line's message) and runs it.
+    pub(crate) fn run_text(
+        &mut self,
+        py: Python<'_>,
+        text: &str,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<String> {
+        let step = Step::parse(text).map_err(PyValueError::new_err)?;
+        self.run_step(py, step, progress)
+    }
+
+    /// The state a pickle carries: arrays of the soup, the input-vertex map as rows of those
+    /// arrays, the name and the repair counts.
+    pub(crate) fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let members = MeshMembers::collect(&self.world, self.mesh);
+        let rows = members.vertex_rows();
+        let input_rows: Vec<i64> = self
+            .input_vertices
+            .iter()
+            .map(|v| {
+                v.and_then(|v| rows.get(&v.0).copied())
+                    .map_or(-1, i64::from)
+            })
+            .collect();
+        let soup = self.soup();
+        let state = PyDict::new(py);
+        state.set_item("vertices", vec3_array(py, &soup.positions)?)?;
+        state.set_item("indices", PyArray1::from_slice(py, &soup.indices))?;
+        state.set_item("face_starts", PyArray1::from_slice(py, &soup.face_starts))?;
+        state.set_item("input_rows", PyArray1::from_vec(py, input_rows))?;
+        let uvs = soup
+            .corner_uvs
+            .as_ref()
+            .map(|uv| vec2_array(py, uv))
+            .transpose()?;
+        state.set_item("corner_uvs", uvs)?;
+        let normals = soup
+            .vertex_normals
+            .as_ref()
+            .map(|n| vec3_array(py, n))
+            .transpose()?;
+        state.set_item("vertex_normals", normals)?;
+        let colors = soup
+            .vertex_colors
+            .as_ref()
+            .map(|c| {
+                let flat: Vec<u8> = c.iter().flatten().copied().collect();
+                PyArray1::from_vec(py, flat).reshape([c.len(), 3])
+            })
+            .transpose()?;
+        state.set_item("vertex_colors", colors)?;
+        state.set_item(
+            "face_groups",
+            face_groups_dict(py, soup.face_groups.as_ref())?,
+        )?;
+        state.set_item("name", self.name())?;
+        let repairs: Vec<usize> = self.report.entries().iter().map(|&(_, n)| n).collect();
+        state.set_item("repairs", repairs)?;
+        state.set_item("read_ms", self.read_ms)?;
+        Ok(state)
+    }
+
+    /// The mesh's name (the file name, the shape, or `arrays`).
+    pub(crate) fn name(&self) -> String {
+        self.world
+            .get::<MeshInfo>(self.mesh.0)
+            .map_or_else(String::new, |i| i.name.clone())
+    }
+}
+
+#[pymethods]
+impl Mesh {
+    /// Makes a mesh from arrays: `vertices` an N×3 array-like of floats (any float dtype, kept
+    /// as float32), `faces` an M×3 or M×4 integer array or a sequence of index sequences
+    /// (polygons of any sizes, 0-based rows of `vertices`).
+    ///
+    /// The input is repaired as a file is (see `info()["repairs"]`): faces that repeat a vertex
+    /// dropped, faces turned to agree with their neighbours, non-manifold vertices split.
+    /// Raises `ValueError` for an index outside `vertices`, a wrong shape, or when no face is
+    /// left after the repairs.
+    #[new]
+    fn new(
+        py: Python<'_>,
+        vertices: PyArrayLike2<'_, f32, AllowTypeChange>,
+        faces: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        let start = Instant::now();
+        let flat = float_rows(&vertices, 3, "vertices")?;
+        let positions: Vec<Vec3> = flat
+            .chunks_exact(3)
+            .map(|p| Vec3::new(p[0], p[1], p[2]))
+            .collect();
+        let faces = read_faces(faces, positions.len())?;
+        let soup = PolygonSoup::from_faces(positions, &faces);
+        let read_ms = ms_since(start);
+        let info = MeshInfo {
+            name: "arrays".into(),
+            path: None,
+        };
+        py.detach(|| Mesh::build(&soup, info, read_ms))
+            .map_err(PyValueError::new_err)
+    }
+
+    /// The vertex positions, N×3 float32 (the mesh's storage precision), in the mesh's table
+    /// order: the order they were given in, less what the repairs dropped or added, until an
+    /// edit renumbers them. A copy: writing to it does not move the mesh.
+    #[getter]
+    fn vertices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let m = pappus::mesh::MeshRef::new(&self.world);
+        let members = MeshMembers::collect(&self.world, self.mesh);
+        let positions: Vec<Vec3> = members.vertices.iter().map(|&v| m.position(v)).collect();
+        vec3_array(py, &positions)
+    }
+
+    /// The faces as rows of `vertices`: an M×k int64 array when every face has k sides, else a
+    /// list of int64 arrays (one per face). A copy.
+    #[getter]
+    fn faces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let (_, indices, starts) = positions_and_faces(&self.world, self.mesh);
+        faces_array(py, &indices, &starts)
+    }
+
+    /// `(vertices, faces)` in one pass over the mesh: what the two properties give.
+    fn arrays<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        let (positions, indices, starts) = positions_and_faces(&self.world, self.mesh);
+        Ok((
+            vec3_array(py, &positions)?,
+            faces_array(py, &indices, &starts)?,
+        ))
+    }
+
+    /// The texture coordinates per face corner, K×2 float32 in the order of the faces' corners
+    /// (face by face, as `faces` lists them), or None when the mesh has none.
+    #[getter]
+    fn corner_uvs<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.soup()
+            .corner_uvs
+            .as_ref()
+            .map(|uv| vec2_array(py, uv))
+            .transpose()
+    }
+
+    /// The object, group, material and smoothing group of each face (OBJ's `o`, `g`, `usemtl`,
+    /// `s`; glTF's and COLLADA's node and material names): a dict of `groups` (one dict of
+    /// `object`, `group`, `material`, `smoothing` per distinct combination, each a string or
+    /// None), `face` (each face's row in `groups`, uint32, in the order of `faces`) and
+    /// `material_libraries` (the `mtllib` names); None when the mesh has none.
+    #[getter]
+    fn face_groups<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        face_groups_dict(py, self.soup().face_groups.as_ref())
+    }
+
+    /// The mesh's name: the file name, the shape's name, or `arrays`.
+    #[getter(name)]
+    fn py_name(&self) -> String {
+        self.name()
+    }
+
+    /// Statistics, validation and repairs: a dict with the keys of `pappus info --json`
+    /// (`vertices`, `faces`, `genus`, `valid`, `repairs`, `curvature`, …, `read_ms`, `build_ms`,
+    /// `load_ms`), computed by the command line's own code.
+    fn info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let object = py.detach(|| {
+            info_with_load_times(
+                &self.world,
+                self.mesh,
+                &self.report,
+                self.read_ms,
+                self.build_ms,
+            )
+        });
+        let text = serde_json::Value::Object(object).to_string();
+        py.import("json")?.call_method1("loads", (text,))
+    }
+
+    /// Checks every invariant of the halfedge structure. Returns None when they all hold;
+    /// raises `InvalidMesh` naming the broken rule and element otherwise.
+    fn validate(&self, py: Python<'_>) -> PyResult<()> {
+        py.detach(|| validate(&self.world, self.mesh))
+            .map_err(|e| InvalidMesh::new_err(e.to_string()))
+    }
+
+    /// Writes the mesh to `path`, the format chosen by its extension (.obj .off .ply .stl .glb .gltf), with
+    /// the attributes it has (UVs, normals, colours). Writes a temporary file and renames it
+    /// over the target, so a failed save leaves the old file. Raises `ValueError` for an unknown
+    /// extension or `.dae` (read only), `OSError` when the file system refuses. What the format
+    /// cannot hold (OFF and STL: UVs, normals, colours; STL and glTF: polygons, written as
+    /// triangles) is dropped with a `UserWarning` naming it.
+    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        let (soup, recomputed) = pappus::edit::soup_to_save(&self.world, self.mesh);
+        let dropped = io::dropped(&path, &soup);
+        py.detach(|| io::write(&path, &soup))
+            .map_err(|e| io_error(py, e))?;
+        if let Some(note) = recomputed {
+            user_warning(py, format!("{}: {note}", path.display()))?;
+        }
+        if dropped.is_empty() {
+            Ok(())
+        } else {
+            user_warning(py, io::dropped_note(&path, &dropped))
+        }
+    }
+
+    /// Runs one command-line step as `pappus process` writes it (`"simplify:0.25"`,
+    /// `"flip:3,17"`, `"extrude:0,1,2:0.5"`, …) and returns its summary. Raises `ValueError` for a
+    /// malformed step, `Refused` when the step is refused.
+    #[pyo3(signature = (step, *, progress=None))]
+    fn step(
+        &mut self,
+        py: Python<'_>,
+        step: &str,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<String> {
+        self.run_text(py, step, progress)
+    }
+
+    /// QEM simplification (Garland–Heckbert) to `ratio` (0–1] of the faces or to `faces` faces
+    /// (give at most one; neither: half the faces), recording the history `refine` splits back.
+    /// Returns the summary. The GIL is released; `progress(fraction)` is called now and then
+    /// (return False to stop early: the mesh stays valid, partly simplified).
+    #[pyo3(signature = (ratio=None, faces=None, *, progress=None))]
+    fn simplify(
+        &mut self,
+        py: Python<'_>,
+        ratio: Option<f64>,
+        faces: Option<usize>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<String> {
+        let text = match (ratio, faces) {
+            (Some(_), Some(_)) => {
+                return Err(PyValueError::new_err(
+                    "give a ratio or a face count, not both",
+                ));
+            }
+            (None, Some(n)) => format!("simplify-faces:{n}"),
+            (r, None) => format!("simplify:{}", number(r.unwrap_or(0.5))),
+        };
+        self.run_text(py, &text, progress)
+    }
+
+    /// Isotropic remeshing (Botsch–Kobbelt): `iterations` (1–100) rounds of split, collapse,
+    /// flip and relax toward edges of `length` (default: the mean edge length), features over
+    /// 45° kept. Triangulates first. Returns the summary; GIL released, `progress` as for
+    /// `simplify`.
+    #[pyo3(signature = (iterations=5, length=None, *, progress=None))]
+    fn remesh(
+        &mut self,
+        py: Python<'_>,
+        iterations: u32,
+        length: Option<f64>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<String> {
+        let text = match length {
+            None => format!("remesh:{iterations}"),
+            Some(l) => format!("remesh:{iterations}:{}", number(l)),
+        };
+        self.run_text(py, &text, progress)
+    }
+
+    /// Loop subdivision, `levels` (1–8) times; triangles only (`Refused` otherwise). Returns the
+    /// summary; GIL released, `progress` as for `simplify`.
+    #[pyo3(name = "loop", signature = (levels=1, *, progress=None))]
+    fn loop_subdivide(
+        &mut self,
+        py: Python<'_>,
+        levels: u32,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<String> {
+        self.run_text(py, &format!("loop:{levels}"), progress)
+    }
+
+    /// Catmull–Clark subdivision, `levels` (1–8) times: any polygons become quads. Returns the
+    /// summary; GIL released, `progress` as for `simplify`.
+    #[pyo3(signature = (levels=1, *, progress=None))]
+    fn catmull_clark(
+        &mut self,
+        py: Python<'_>,
+        levels: u32,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<String> {
+        self.run_text(py, &format!("catmull-clark:{levels}"), progress)
+    }
+
+    /// Cuts every polygon into triangles. Returns the summary; GIL released.
+    #[pyo3(signature = (*, progress=None))]
+    fn triangulate(&mut self, py: Python<'_>, progress: Option<Py<PyAny>>) -> PyResult<String> {
+        self.run_text(py, "triangulate", progress)
+    }
+
+    /// Turns every face round (its corners in the opposite order, its normal the other way);
+    /// ids, UVs and groups stay, vertex normals change sign. Returns the summary.
+    fn reverse(&mut self, py: Python<'_>) -> PyResult<String> {
+        self.run_text(py, "reverse", None)
+    }
+
+    /// Smooths with `method` (`uniform`, `cotan`, `implicit`, `taubin`), `iterations` times
+    /// (1–10000) with `step` (default 0.5; implicit: 1.0, in units of the squared mean edge
+    /// length). The boundary stays. Returns the summary; GIL released.
+    #[pyo3(signature = (method="uniform", iterations=1, step=None, *, progress=None))]
+    fn smooth(
+        &mut self,
+        py: Python<'_>,
+        method: &str,
+        iterations: u32,
+        step: Option<f64>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<String> {
+        let text = match step {
+            None => format!("smooth:{method}:{iterations}"),
+            Some(s) => format!("smooth:{method}:{iterations}:{}", number(s)),
+        };
+        self.run_text(py, &text, progress)
+    }
+
+    /// A UV per face corner: `method` `uniform`, `mean-value`, `harmonic` (the boundary on a
+    /// `circle` or a `square`) or `lscm` (free boundary). A closed genus-0 mesh is cut open
+    /// automatically (or along the edges marked with `seam`); anything else not a disk is
+    /// `Refused`, naming its genus and loops. Returns the summary (flipped triangles,
+    /// distortion); GIL released.
+    #[pyo3(signature = (method="mean-value", boundary="circle", *, progress=None))]
+    fn parameterize(
+        &mut self,
+        py: Python<'_>,
+        method: &str,
+        boundary: &str,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<String> {
+        self.run_text(py, &format!("param:{method}:{boundary}"), progress)
+    }
+
+    /// Splits the last `simplify`'s collapses back, up to `faces` faces (default: all of them,
+    /// exactly the mesh before the simplification). `Refused` with no history (none recorded, or
+    /// an edit since that does not keep it). Returns the summary; GIL released.
+    #[pyo3(signature = (faces=None, *, progress=None))]
+    fn refine(
+        &mut self,
+        py: Python<'_>,
+        faces: Option<usize>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<String> {
+        let text = match faces {
+            None => "refine".to_string(),
+            Some(n) => format!("refine:{n}"),
+        };
+        self.run_text(py, &text, progress)
+    }
+
+    /// Flips the edge between input vertices `a` and `b` (two triangles). `Refused` on a boundary
+    /// edge, when the new edge exists, or when no edge joins them.
+    fn flip(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
+        self.run_text(py, &format!("flip:{a},{b}"), None)
+    }
+
+    /// Splits the edge between input vertices `a` and `b` at its midpoint (the faces beside it
+    /// are cut in two).
+    fn split(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
+        self.run_text(py, &format!("split:{a},{b}"), None)
+    }
+
+    /// Puts a vertex at the midpoint of edge `a`–`b` without cutting a face (each gains a side).
+    fn bisect(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
+        self.run_text(py, &format!("bisect:{a},{b}"), None)
+    }
+
+    /// Collapses the edge `a`–`b` to its midpoint. `Refused` when the link condition fails (the
+    /// mesh would stop being a manifold), as on any edge of a tetrahedron.
+    fn collapse(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
+        self.run_text(py, &format!("collapse:{a},{b}"), None)
+    }
+
+    /// Merges the two faces of edge `a`–`b` into one polygon. `Refused` on a boundary edge.
+    fn dissolve(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
+        self.run_text(py, &format!("dissolve:{a},{b}"), None)
+    }
+
+    /// Fills the hole beside the boundary edge `a`–`b`: its loop becomes one face, or with
+    /// `fair=True` a patch of triangles at the surrounding density that continues the surface's
+    /// curvature (Liepa 2003). `Refused` on an interior edge.
+    #[pyo3(signature = (a, b, *, fair=false))]
+    fn fill_hole(&mut self, py: Python<'_>, a: u32, b: u32, fair: bool) -> PyResult<String> {
+        let suffix = if fair { ":fair" } else { "" };
+        self.run_text(py, &format!("fill-hole:{a},{b}{suffix}"), None)
+    }
+
+    /// Fills every hole: with fair patches of triangles (`fair=True`, the default), else one
+    /// polygon each. Holes a fair fill refuses are left open and named in the summary; `Refused`
+    /// when the mesh has none.
+    #[pyo3(signature = (fair=true))]
+    fn fill_holes(&mut self, py: Python<'_>, fair: bool) -> PyResult<String> {
+        let text = if fair {
+            "fill-holes:fair"
+        } else {
+            "fill-holes"
+        };
+        self.run_text(py, text, None)
+    }
+
+    /// Handle deformation: the input vertices `fixed` stay, `handle` moves by `offset`
+    /// (dx, dy, dz), the rest follows by `method`: `"arap"` (as-rigid-as-possible,
+    /// `iterations` local/global steps, default 10) or `"laplace"` (thin plate, one solve).
+    /// Returns the summary (energy before and after, the factor and iteration times). `Refused`
+    /// for an empty handle or a vertex in both lists; GIL released.
+    #[pyo3(signature = (method, fixed, handle, offset, iterations=10))]
+    fn deform(
+        &mut self,
+        py: Python<'_>,
+        method: &str,
+        fixed: Vec<u32>,
+        handle: Vec<u32>,
+        offset: (f64, f64, f64),
+        iterations: u32,
+    ) -> PyResult<String> {
+        let list = |v: &[u32]| v.iter().map(u32::to_string).collect::<Vec<_>>().join("/");
+        let text = format!(
+            "deform:{method}:{}:{}:{},{},{}:{iterations}",
+            list(&fixed),
+            list(&handle),
+            number(offset.0),
+            number(offset.1),
+            number(offset.2)
+        );
+        self.run_text(py, &text, None)
+    }
+
+    /// Fairs the input vertices `vertices`: they solve the k-harmonic equation (`k` 1, 2 or 3,
+    /// default 2), every other vertex held. Returns the summary.
+    #[pyo3(signature = (vertices, k=2))]
+    fn fair(&mut self, py: Python<'_>, vertices: Vec<u32>, k: u32) -> PyResult<String> {
+        let list: Vec<String> = vertices.iter().map(u32::to_string).collect();
+        self.run_text(py, &format!("fair:{}:{k}", list.join("/")), None)
+    }
+
+    /// Splits the face that input vertices `a` and `b` share with a new edge between them.
+    fn split_face(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
+        self.run_text(py, &format!("split-face:{a},{b}"), None)
+    }
+
+    /// Marks the edge `a`–`b` as a seam for `parameterize` to cut along (again: unmarks it).
+    fn seam(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
+        self.run_text(py, &format!("seam:{a},{b}"), None)
+    }
+
+    /// Extrudes `faces` (one face as its corners `(a, b, c, …)`, or a sequence of them) as one
+    /// region, pushed `distance` along its normals on a wall of quads.
+    fn extrude(
+        &mut self,
+        py: Python<'_>,
+        faces: &Bound<'_, PyAny>,
+        distance: f64,
+    ) -> PyResult<String> {
+        let text = format!("extrude:{}:{}", elements_text(faces)?, number(distance));
+        self.run_text(py, &text, None)
+    }
+
+    /// Insets each of `faces`: a ring of quads inside it, its corners moved `amount` (0–1) of
+    /// the way to its centre and `depth` along its normal.
+    #[pyo3(signature = (faces, amount, depth=0.0))]
+    fn inset(
+        &mut self,
+        py: Python<'_>,
+        faces: &Bound<'_, PyAny>,
+        amount: f64,
+        depth: f64,
+    ) -> PyResult<String> {
+        let mut text = format!("inset:{}:{}", elements_text(faces)?, number(amount));
+        if depth != 0.0 {
+            text += &format!(":{}", number(depth));
+        }
+        self.run_text(py, &text, None)
+    }
+
+    /// Bevels one element: a vertex (`a`) or an edge (`(a, b)`) becomes a face whose corners
+    /// lie `amount` (0–0.5) along its edges; a face (`(a, b, c, …)`) is inset by `amount` with
+    /// `depth`.
+    #[pyo3(signature = (element, amount=0.25, depth=0.0))]
+    fn bevel(
+        &mut self,
+        py: Python<'_>,
+        element: &Bound<'_, PyAny>,
+        amount: f64,
+        depth: f64,
+    ) -> PyResult<String> {
+        let mut text = format!("bevel:{}:{}", element_text(element)?, number(amount));
+        if depth != 0.0 {
+            text += &format!(":{}", number(depth));
+        }
+        self.run_text(py, &text, None)
+    }
+
+    /// Erases elements (vertices, edges, faces; one or a sequence): their faces become holes,
+    /// and edges and vertices left with no face go too.
+    fn erase(&mut self, py: Python<'_>, elements: &Bound<'_, PyAny>) -> PyResult<String> {
+        let text = format!("erase:{}", elements_text(elements)?);
+        self.run_text(py, &text, None)
+    }
+
+    /// Merges the faces around input vertex `a` into one polygon and removes the vertex.
+    fn dissolve_vertex(&mut self, py: Python<'_>, a: u32) -> PyResult<String> {
+        self.run_text(py, &format!("dissolve:{a}"), None)
+    }
+
+    /// Collapses the face with corners `(a, b, c, …)` to its centroid.
+    fn collapse_face(&mut self, py: Python<'_>, face: &Bound<'_, PyAny>) -> PyResult<String> {
+        let text = format!("collapse:{}", element_text(face)?);
+        self.run_text(py, &text, None)
+    }
+
+    /// Glues boundary edge `second` (a pair of input vertices) onto boundary edge `first`;
+    /// their ends merge at the midpoints.
+    fn weld(
+        &mut self,
+        py: Python<'_>,
+        first: &Bound<'_, PyAny>,
+        second: &Bound<'_, PyAny>,
+    ) -> PyResult<String> {
+        let text = format!("weld:{}/{}", element_text(first)?, element_text(second)?);
+        self.run_text(py, &text, None)
+    }
+
+    /// An independent copy (same vertex numbering for the operations; the simplification
+    /// history and seam marks are not copied).
+    fn copy(&self, py: Python<'_>) -> PyResult<Mesh> {
+        Mesh::from_state(&self.state(py)?)
+    }
+
+    /// `copy.copy(mesh)`: as `copy()`.
+    fn __copy__(&self, py: Python<'_>) -> PyResult<Mesh> {
+        self.copy(py)
+    }
+
+    /// `copy.deepcopy(mesh)`: as `copy()`.
+    fn __deepcopy__(&self, py: Python<'_>, _memo: &Bound<'_, PyAny>) -> PyResult<Mesh> {
+        self.copy(py)
+    }
+
+    /// Pickling: the vertices, faces, attributes (UVs, normals, colours, face groups), name, repair counts
+    /// and the input-vertex numbering, so operations name the same vertices after unpickling.
+    /// The simplification history and seam marks are not carried.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let restore = py.import("pappus")?.getattr("_restore")?;
+        let state = self.state(py)?;
+        Ok((restore, (state,)).into_pyobject(py)?.into_any())
+    }
+
+    /// Rebuilds a mesh from `__reduce__`'s state dict.
+    #[staticmethod]
+    fn _from_state(state: &Bound<'_, PyDict>) -> PyResult<Mesh> {
+        Mesh::from_state(state)
+    }
+
+    /// `<pappus.Mesh 'name': V vertices, F faces>`.
+    fn __repr__(&self) -> String {
+        let members = MeshMembers::collect(&self.world, self.mesh);
+        format!(
+            "<pappus.Mesh '{}': {} vertices, {} faces>",
+            self.name(),
+            members.vertices.len(),
+            members.faces.len()
+        )
+    }
+}
+
+impl Mesh {
+    /// The inverse of [`Mesh::state`].
+    pub(crate) fn from_state(state: &Bound<'_, PyDict>) -> PyResult<Mesh> {
+        let py = state.py();
+        let get = |key: &str| -> PyResult<Bound<'_, PyAny>> {
+            state
+                .get_item(key)?
+                .ok_or_else(|| PyValueError::new_err(format!("mesh state without `{key}`")))
+        };
+        let vertices: PyArrayLike2<'_, f32, AllowTypeChange> = get("vertices")?.extract()?;
+        let flat = float_rows(&vertices, 3, "vertices")?;
+        let positions: Vec<Vec3> = flat
+            .chunks_exact(3)
+            .map(|p| Vec3::new(p[0], p[1], p[2]))
+            .collect();
+        let indices: PyReadonlyArray1<'_, u32> = get("indices")?.extract()?;
+        let starts: PyReadonlyArray1<'_, u32> = get("face_starts")?.extract()?;
+        let mut soup = PolygonSoup::with_capacity(positions.len(), 0, 0);
+        soup.positions = positions;
+        soup.indices = indices.as_array().to_vec();
+        soup.face_starts = starts.as_array().to_vec();
+        let valid_starts = soup.face_starts.first().is_none_or(|&s| s == 0)
+            && soup.face_starts.windows(2).all(|w| w[0] <= w[1])
+            && soup
+                .face_starts
+                .last()
+                .is_none_or(|&s| s as usize == soup.indices.len());
+        if !valid_starts {
+            return Err(PyValueError::new_err(
+                "mesh state with malformed face_starts",
+            ));
+        }
+        let optional = |key: &str| -> PyResult<Option<Bound<'_, PyAny>>> {
+            let value = get(key)?;
+            Ok((!value.is_none()).then_some(value))
+        };
+        if let Some(uv) = optional("corner_uvs")? {
+            let uv: PyArrayLike2<'_, f32, AllowTypeChange> = uv.extract()?;
+            let flat = float_rows(&uv, 2, "corner_uvs")?;
+            soup.corner_uvs = Some(
+                flat.chunks_exact(2)
+                    .map(|p| Vec2::new(p[0], p[1]))
+                    .collect(),
+            );
+        }
+        if let Some(n) = optional("vertex_normals")? {
+            let n: PyArrayLike2<'_, f32, AllowTypeChange> = n.extract()?;
+            let flat = float_rows(&n, 3, "vertex_normals")?;
+            soup.vertex_normals = Some(
+                flat.chunks_exact(3)
+                    .map(|p| Vec3::new(p[0], p[1], p[2]))
+                    .collect(),
+            );
+        }
+        if let Some(c) = optional("vertex_colors")? {
+            let c: PyReadonlyArray2<'_, u8> = c.extract()?;
+            let flat: Vec<u8> = c.as_array().iter().copied().collect();
+            soup.vertex_colors = Some(flat.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect());
+        }
+        // Absent from the state of an older version.
+        if let Some(groups) = state.get_item("face_groups")?.filter(|g| !g.is_none()) {
+            soup.face_groups = Some(face_groups_from(&groups)?);
+        }
+        let name: String = get("name")?.extract()?;
+        let read_ms: f64 = get("read_ms")?.extract()?;
+        let rows: PyReadonlyArray1<'_, i64> = get("input_rows")?.extract()?;
+        let rows = rows.as_array().to_vec();
+        let repairs: Vec<usize> = get("repairs")?.extract()?;
+        let info = MeshInfo { name, path: None };
+        let mut mesh = py
+            .detach(|| Mesh::build(&soup, info, read_ms))
+            .map_err(PyValueError::new_err)?;
+        // The soup was the mesh's own, so it builds with no repairs and its rows are the new
+        // mesh's vertices: the input numbering maps through them.
+        let built_rows = std::mem::take(&mut mesh.input_vertices);
+        mesh.input_vertices = rows
+            .iter()
+            .map(|&r| {
+                usize::try_from(r)
+                    .ok()
+                    .and_then(|r| built_rows.get(r).copied().flatten())
+            })
+            .collect();
+        mesh.report = report_from(&repairs);
+        Ok(mesh)
+    }
+}
+
+/// A repair report from its counts in [`RepairReport::entries`] order (missing ones zero).
+pub(crate) fn report_from(counts: &[usize]) -> RepairReport {
+    let mut report = RepairReport::default();
+    let names = report.entries().map(|(name, _)| name);
+    for (name, &n) in names.iter().zip(counts) {
+        let field = match *name {
+            "unreferenced_vertices" => &mut report.unreferenced_vertices,
+            "too_few_corners" => &mut report.too_few_corners,
+            "out_of_range_faces" => &mut report.out_of_range_faces,
+            "repeated_vertex_faces" => &mut report.repeated_vertex_faces,
+            "non_finite_faces" => &mut report.non_finite_faces,
+            "non_manifold_edge_faces" => &mut report.non_manifold_edge_faces,
+            "non_orientable_faces" => &mut report.non_orientable_faces,
+            "reoriented_faces" => &mut report.reoriented_faces,
+            "non_manifold_vertices" => &mut report.non_manifold_vertices,
+            "added_vertices" => &mut report.added_vertices,
+            _ => continue,
+        };
+        *field = n;
+    }
+    report
+}
