@@ -21,7 +21,10 @@ use std::time::Instant;
 
 use serde_json::{Value, json};
 
-use super::{ProcessArg, ProcessJob, check_output, ms_since, process_file, round};
+use super::args::ProcessArg;
+use super::ms_since;
+use super::process::{ProcessJob, check_output, process_file};
+use super::report::round;
 use crate::edit::Step;
 
 /// Whether `text` is a glob pattern (holds `*`, `?` or `[`).

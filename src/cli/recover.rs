@@ -84,7 +84,7 @@ fn restore(chosen: &Recovery, output: &Path) -> Result<(), String> {
     let soup = chosen
         .read()
         .map_err(|e| format!("the recovery is damaged: {e}"))?;
-    super::write_mesh(output, &soup, &mut |message| eprintln!("pappus: {message}"))?;
+    super::process::write_mesh(output, &soup, &mut |message| eprintln!("pappus: {message}"))?;
     Ok(())
 }
 

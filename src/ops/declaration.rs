@@ -8,6 +8,10 @@
 //! [`crate::edit::Edit::declaration`] maps every edit to one, and the undo history, the job
 //! runner, the attribute bookkeeping and the step syntax's checks read it.
 
+/// Why a simplification, and the moves along its history (level of detail, vertex splits),
+/// drop the attributes: the summary's note.
+pub const DROPPED_BY_SIMPLIFICATION: &str = "simplification does not carry attributes";
+
 /// Which element ids mean the same element after an edit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum IdsKept {

@@ -31,13 +31,13 @@ use super::local::{
 use super::simplify::{SimplifyParams, SimplifySummary, simplify_recorded};
 use super::table_split::{SplitMismatch, TableSplit, split_in_tables};
 
-use crate::ops::declaration::Declaration;
+use crate::ops::declaration::{DROPPED_BY_SIMPLIFICATION, Declaration};
 
 /// Moving along the simplification history (the `refine` step, the level-of-detail slider):
 /// the history survives, and like the simplification it drops attributes.
 pub const LEVEL_OF_DETAIL: Declaration = Declaration::new("refine")
     .keeping_history()
-    .dropping(super::simplify::DROPS_ATTRIBUTES);
+    .dropping(DROPPED_BY_SIMPLIFICATION);
 
 /// Refining takes the bulk path (tables, then one write of the whole mesh) when it makes at
 /// least one split for every this many faces the mesh has now. Measured on the bunny: one

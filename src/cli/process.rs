@@ -1,0 +1,245 @@
+//! `process` on one input: the steps run in order, the result checked against what the
+//! output format holds and written, with the per-vertex quantity and normals asked for.
+
+use bevy::prelude::World;
+use serde_json::{Map, Value, json};
+use std::path::Path;
+use std::time::Instant;
+
+use crate::colormap::Range;
+use crate::edit::Step;
+use crate::io;
+use crate::mesh::attributes::MeshAttributes;
+use crate::mesh::tables::extract;
+use crate::mesh::{MeshId, PolygonSoup, to_soup};
+use crate::ops::geometry::closest::Reference;
+use crate::ops::geometry::{NormalWeighting, Quantity, Surface, vertex_normals};
+use crate::ops::named::Named;
+
+use super::loading::load_for;
+use super::ms_since;
+use super::report::{info_json, info_text, round};
+
+/// What `process` does to each input: the steps and the output options.
+#[derive(Clone, Debug)]
+pub(super) struct ProcessJob {
+    /// The steps, in order.
+    pub(super) steps: Vec<Step>,
+    /// JSON instead of text.
+    pub(super) json: bool,
+    /// A per-vertex quantity to write into the output.
+    pub(super) quantity: Option<Quantity>,
+    /// Vertex normals to write into the output.
+    pub(super) normals: Option<NormalWeighting>,
+}
+
+/// Checks that `output`'s format can hold what `job` writes beside the mesh.
+///
+/// # Errors
+/// A format Pappus does not write, `--normals` into a format without normals, `--quantity`
+/// into anything but PLY.
+pub(super) fn check_output(job: &ProcessJob, output: &Path) -> Result<(), String> {
+    if let Ok(format) = io::Format::from_path(output)
+        && !format.writes()
+    {
+        return Err(io::IoError::ReadOnly(output.to_path_buf()).to_string());
+    }
+    if job.normals.is_some()
+        && !matches!(
+            io::Format::from_path(output),
+            Ok(io::Format::Ply | io::Format::Obj)
+        )
+    {
+        return Err(format!(
+            "--normals writes vertex normals, which OBJ and PLY hold: {} is neither",
+            output.display()
+        ));
+    }
+    if job.quantity.is_some() && !matches!(io::Format::from_path(output), Ok(io::Format::Ply)) {
+        return Err(format!(
+            "--quantity writes vertex quality and colours, which only PLY holds: {} is not a .ply file",
+            output.display()
+        ));
+    }
+    Ok(())
+}
+
+/// Runs `job` on one input and writes `output`. Text lines (when not `job.json`) go to
+/// `text` as they come, warnings to `warn` (without the `pappus: ` prefix). Returns the JSON
+/// report: `{"steps": […], "result": {info keys}, "dropped": [what the output's format could
+/// not hold: "UVs", "normals", "colours", "quality"], "quantity"?: {…}}`.
+///
+/// # Errors
+/// A message naming the file: it could not be read, built or written.
+pub(super) fn process_file(
+    job: &ProcessJob,
+    input: &str,
+    output: &Path,
+    text: &mut dyn FnMut(&str),
+    warn: &mut dyn FnMut(&str),
+) -> Result<Value, String> {
+    let ProcessJob {
+        steps,
+        json,
+        quantity,
+        normals,
+    } = job;
+    let (json, quantity, normals) = (*json, *quantity, *normals);
+    let mut loaded = load_for(input, steps)?;
+    let mesh = loaded.built.mesh;
+    // The distance quantity measures how far the steps moved the mesh from the input.
+    let reference = (quantity == Some(Quantity::Distance))
+        .then(|| Reference::of_tables(&extract(&loaded.world, mesh).tables));
+    let mut records = Vec::new();
+    let mut history = None;
+    for step in steps {
+        let start = Instant::now();
+        let had = MeshAttributes::of(&loaded.world, mesh);
+        let outcome = step.run(
+            &mut loaded.world,
+            mesh,
+            &loaded.built.input_vertices,
+            &mut history,
+        );
+        let ms = round(ms_since(start), 3);
+        let lost = had.lost_in(MeshAttributes::of(&loaded.world, mesh));
+        if !lost.is_empty() {
+            warn(&format!(
+                "{step}: {} dropped (the output will not have them)",
+                lost.describe()
+            ));
+        }
+        let mut record = Map::new();
+        record.insert("step".into(), json!(step.to_string()));
+        match &outcome {
+            Ok(summary) => {
+                record.insert("outcome".into(), json!("applied"));
+                record.insert("summary".into(), json!(summary));
+                if !json {
+                    text(&format!("{step}: applied ({summary}) in {ms} ms\n"));
+                }
+            }
+            Err(reason) => {
+                record.insert("outcome".into(), json!("refused"));
+                record.insert("reason".into(), json!(reason.to_string()));
+                if !json {
+                    text(&format!("{step}: refused: {reason}\n"));
+                }
+            }
+        }
+        record.insert("ms".into(), json!(ms));
+        records.push(Value::Object(record));
+    }
+    // `--normals` writes normals of its own: stale ones need no recomputing first.
+    let (mut soup, recomputed) = match normals {
+        Some(_) => (to_soup(&loaded.world, mesh), None),
+        None => crate::edit::soup_to_save(&loaded.world, mesh),
+    };
+    let quantity =
+        quantity.map(|q| attach_quantity(&loaded.world, mesh, q, reference.as_ref(), &mut soup));
+    if let Some(weighting) = normals {
+        // The soup's vertices are the mesh's table rows (see `to_soup`).
+        let surface = Surface::from_tables(&extract(&loaded.world, mesh).tables);
+        let n = vertex_normals(&surface, weighting);
+        soup.vertex_normals = Some(n.iter().map(|v| v.as_vec3()).collect());
+    }
+    let dropped = write_mesh(output, &soup, warn)?;
+    if let Some(note) = recomputed {
+        warn(&format!("{}: {note}", output.display()));
+    }
+    if MeshAttributes::of(&loaded.world, mesh).seams {
+        warn(&format!(
+            "{}: seam marks are not written (the format has no place for them; \
+             a param step after them keeps the cut in the UVs)",
+            output.display()
+        ));
+    }
+    let result = info_json(&loaded.world, mesh, &loaded.built.report);
+    if !json {
+        text(&info_text(
+            &output.display().to_string(),
+            &result,
+            &loaded.built.report,
+        ));
+    }
+    let mut report =
+        json!({ "steps": records, "result": Value::Object(result), "dropped": dropped });
+    if let Some(q) = quantity {
+        report["quantity"] = Value::Object(q);
+    }
+    Ok(report)
+}
+
+/// Writes `soup` to `output` and says on `warn` (without the `pappus: ` prefix) what the
+/// output's format could not hold; returns that, for `--json`'s `"dropped"`.
+///
+/// # Errors
+/// The write's error, naming the file.
+pub(super) fn write_mesh(
+    output: &Path,
+    soup: &PolygonSoup,
+    warn: &mut dyn FnMut(&str),
+) -> Result<Vec<&'static str>, String> {
+    let dropped = io::dropped(output, soup);
+    io::write(output, soup).map_err(|e| e.to_string())?;
+    if !dropped.is_empty() {
+        warn(&io::dropped_note(output, &dropped));
+    }
+    Ok(dropped)
+}
+
+/// Parses a `--normals` weighting.
+pub(super) fn parse_weighting(name: &str) -> Result<NormalWeighting, String> {
+    match name {
+        "angle" => Ok(NormalWeighting::Angle),
+        "area" => Ok(NormalWeighting::Area),
+        _ => Err(format!("unknown weighting `{name}`; known: angle, area")),
+    }
+}
+
+/// Parses a `--quantity` name.
+pub(super) fn parse_quantity(name: &str) -> Result<Quantity, String> {
+    Quantity::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Quantity::ALL.iter().map(|(_, n)| *n).collect();
+        format!("unknown quantity `{name}`; known: {}", names.join(", "))
+    })
+}
+
+/// Computes `quantity` on `mesh` (a distance to `input`) and puts it into `soup` (whose vertices
+/// are the mesh's table rows, as [`to_soup`] writes them) as quality and colours. Returns its
+/// JSON summary.
+pub(super) fn attach_quantity(
+    world: &World,
+    mesh: MeshId,
+    quantity: Quantity,
+    input: Option<&Reference>,
+    soup: &mut crate::mesh::PolygonSoup,
+) -> Map<String, Value> {
+    let start = Instant::now();
+    let values = quantity.per_vertex(&extract(world, mesh).tables, input);
+    let ms = ms_since(start);
+    let map = quantity.colormap();
+    let range = Range::robust(&values, 1.0, map);
+    soup.vertex_colors = Some(values.iter().map(|&v| map.at(range.fraction(v))).collect());
+    soup.vertex_quality = Some(values.iter().map(|&v| v as f32).collect());
+    let finite: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+    let mean = finite.iter().sum::<f64>() / finite.len().max(1) as f64;
+    let (min, max) = finite
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let mut out = Map::new();
+    for (k, v) in [
+        ("name", json!(quantity.name())),
+        ("ms", json!(round(ms, 3))),
+        ("min", json!(min)),
+        ("max", json!(max)),
+        ("mean", json!(mean)),
+        ("colour_low", json!(range.low)),
+        ("colour_high", json!(range.high)),
+    ] {
+        out.insert(k.to_string(), v);
+    }
+    out
+}
