@@ -94,12 +94,12 @@ fn turn_vertex(world: &mut World, v: VertexId) {
 mod tests {
     use super::*;
     use crate::mesh::ids::FaceId;
-    use crate::mesh::{MeshInfo, PolygonSoup, build_mesh, mesh_stats, shapes, validate};
+    use crate::mesh::{MeshInfo, build_mesh, mesh_stats, shapes, validate};
     use bevy::math::Vec3;
 
     /// A grid with holes (so with boundaries), each corner's UV its position's x and y and each
-    /// vertex's normal its position.
-    fn holed_grid_with_attributes() -> PolygonSoup {
+    /// vertex's normal its position plus z, built into a world of its own.
+    fn holed_grid_with_attributes() -> (World, crate::mesh::BuiltMesh) {
         let mut soup = shapes::grid_with_holes(2);
         soup.corner_uvs = Some(
             soup.indices
@@ -108,7 +108,9 @@ mod tests {
                 .collect(),
         );
         soup.vertex_normals = Some(soup.positions.iter().map(|p| *p + Vec3::Z).collect());
-        soup
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
+        (world, built)
     }
 
     /// Each face's corners and their UVs, in order from the face's halfedge.
@@ -127,13 +129,7 @@ mod tests {
 
     #[test]
     fn every_face_turns_round_with_its_uvs_and_the_mesh_stays_valid() {
-        let mut world = World::new();
-        let built = build_mesh(
-            &mut world,
-            &holed_grid_with_attributes(),
-            MeshInfo::default(),
-        )
-        .unwrap();
+        let (mut world, built) = holed_grid_with_attributes();
         let mesh = built.mesh;
         let members = MeshMembers::collect(&world, mesh);
         let before_stats = mesh_stats(&world, mesh);
@@ -181,13 +177,7 @@ mod tests {
 
     #[test]
     fn reversing_twice_gives_back_every_link_bit_for_bit() {
-        let mut world = World::new();
-        let built = build_mesh(
-            &mut world,
-            &holed_grid_with_attributes(),
-            MeshInfo::default(),
-        )
-        .unwrap();
+        let (mut world, built) = holed_grid_with_attributes();
         let members = MeshMembers::collect(&world, built.mesh);
         let snapshot = |world: &World| {
             let links: Vec<Halfedge> = members
