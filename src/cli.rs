@@ -10,8 +10,11 @@
 //! `FILE` may also be `shape:NAME` for a procedural shape (`shape:torus`, see
 //! [`crate::mesh::shapes::SHAPE_NAMES`]). This is a contract that scripts and benchmarks rely
 //! on: the keys of the JSON output are stable. Errors go to stderr with exit code 1 (2 for a
-//! usage error). Steps parse into the editor's own [`crate::edit::Edit`] ([`Step`]), so the two
-//! apply the same operations with the same parameters and defaults.
+//! usage error). Steps parse into the editor's own [`crate::edit::Edit`]
+//! ([`crate::edit::Step`]), so the two apply the same operations with the same parameters and
+//! defaults. The files: `args` (what clap parses), `loading` (an input read and built),
+//! `report` (what `info` prints), `process` (one input's steps and output), `batch` (many
+//! inputs on threads), `recover` (the editor's recoveries).
 
 use serde_json::Value;
 use std::time::Instant;

@@ -303,7 +303,7 @@ pub fn track_presses(
     history.pressed = buttons.pressed(MouseButton::Left);
 }
 
-/// What [`begin`] captured before an edit.
+/// What [`begin_edit`] or [`begin_replace`] captured before an edit.
 pub struct Pending {
     kind: PendingKind,
     selection: Option<ElementId>,

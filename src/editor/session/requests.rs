@@ -188,7 +188,7 @@ impl StepMove {
 /// A change of the selected set.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SelectionEdit {
-    /// Shift-click: see [`Selection::toggle`].
+    /// Shift-click: see [`Selection::toggle`](crate::editor::session::selection::Selection::toggle).
     Toggle(ElementId),
     /// Add these elements (a box with Shift held).
     Add(Vec<ElementId>),
