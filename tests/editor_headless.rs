@@ -357,7 +357,8 @@ fn triangulate_key_needs_ctrl_and_applies() {
 }
 
 /// Alt+N turns every face round (Blender's Flip Normals): the counts stay, each face's normal
-/// points the other way, and Ctrl+Z turns them back.
+/// points the other way; Shift+N (Recalculate Outside) turns the inside-out cube back, and
+/// undo walks it all back.
 #[test]
 fn reverse_key_turns_every_face_round_and_undoes() {
     let mut app = app();
@@ -372,7 +373,13 @@ fn reverse_key_turns_every_face_round_and_undoes() {
             .map(|&f| r.face_area_vector(f))
             .collect()
     };
-    let (before, counts_before) = (normals(&app), counts(&app));
+    let undo_steps = |app: &App| {
+        app.world()
+            .resource::<pappus::editor::session::history::UndoHistory>()
+            .undo_entries()
+            .len()
+    };
+    let (before, counts_before, steps_before) = (normals(&app), counts(&app), undo_steps(&app));
     press_with(&mut app, KeyCode::AltLeft, KeyCode::KeyN);
     let outcome = last_outcome(&app);
     assert_eq!(outcome.request, "reverse orientation");
@@ -382,8 +389,24 @@ fn reverse_key_turns_every_face_round_and_undoes() {
         assert!((*now + *then).length() < 1e-6, "{now} {then}");
     }
     validate(app.world(), m).unwrap();
-    app.world_mut().write_message(Request::Undo);
-    app.update();
+    // Shift+N turns the inside-out cube back outward: the same links, so the same normals.
+    press_with(&mut app, KeyCode::ShiftLeft, KeyCode::KeyN);
+    let outcome = last_outcome(&app);
+    assert_eq!(outcome.request, "orient outside");
+    assert_eq!(
+        outcome.result.ok().as_deref(),
+        Some("1 of 1 part turned outward (6 faces turned round)")
+    );
+    assert_eq!(normals(&app), before);
+    press_with(&mut app, KeyCode::ShiftLeft, KeyCode::KeyN);
+    assert_eq!(
+        last_outcome(&app).result.ok().as_deref(),
+        Some("no part faces inward (1 part)")
+    );
+    for _ in steps_before..undo_steps(&app) {
+        app.world_mut().write_message(Request::Undo);
+        app.update();
+    }
     assert_eq!(normals(&app), before);
 }
 

@@ -152,6 +152,8 @@ class Mesh:
         """Cuts every polygon into triangles."""
     def reverse(self) -> str:
         """Turns every face round: corners in the opposite order, normals the other way."""
+    def orient_outside(self) -> str:
+        """Turns round each part (faces joined across edges) whose faces point inward."""
     def smooth(
         self,
         method: str = "uniform",

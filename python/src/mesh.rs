@@ -435,6 +435,12 @@ impl Mesh {
         self.run_text(py, "reverse", None)
     }
 
+    /// Turns round each part (faces joined across edges) whose faces point inward, as
+    /// Blender's Recalculate Outside does. Returns the summary.
+    fn orient_outside(&mut self, py: Python<'_>) -> PyResult<String> {
+        self.run_text(py, "orient-outside", None)
+    }
+
     /// Smooths with `method` (`uniform`, `cotan`, `implicit`, `taubin`), `iterations` times
     /// (1–10000) with `step` (default 0.5; implicit: 1.0, in units of the squared mean edge
     /// length). The boundary stays. Returns the summary; GIL released.

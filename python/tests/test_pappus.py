@@ -233,7 +233,7 @@ def test_whole_mesh_operations():
         assert grid.parameterize(method, boundary).startswith("0 flipped")
 
 
-def test_reverse_turns_every_face_round_and_twice_gives_the_mesh_back():
+def test_reverse_turns_every_face_round_and_orient_outside_turns_it_back():
     mesh = pappus.load("shape:cube")
     faces = mesh.faces
     uvs_before = mesh.corner_uvs
@@ -245,8 +245,9 @@ def test_reverse_turns_every_face_round_and_twice_gives_the_mesh_back():
         assert any(list(np.roll(new, k)) == reversed_old for k in range(len(new)))
     assert mesh.corner_uvs is None and uvs_before is None
     mesh.validate()
-    mesh.reverse()
+    assert mesh.orient_outside() == "1 of 1 part turned outward (6 faces turned round)"
     assert (mesh.faces == faces).all()
+    assert mesh.orient_outside() == "no part faces inward (1 part)"
 
 
 def test_edge_operations_by_input_vertex_numbers():

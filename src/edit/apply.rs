@@ -21,7 +21,7 @@ use crate::ops::local::{
 use crate::ops::param::{ParamParams, parameterize_in_place};
 use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::remesh::{RemeshParams, remesh_with_progress};
-use crate::ops::reverse::reverse_orientation;
+use crate::ops::reverse::{OrientSummary, orient_outward, reverse_orientation};
 use crate::ops::simplify::SimplifyParams;
 use crate::ops::smooth::{SmoothParams, smooth_with_progress};
 use crate::ops::triangulate::triangulate;
@@ -73,6 +73,7 @@ impl Edit {
                 "{} turned round",
                 count(reverse_orientation(world, mesh).faces, "face")
             ))),
+            Edit::OrientOutside => Ok(whole(oriented(orient_outward(world, mesh)))),
             Edit::Simplify(params) => simplify(world, mesh, params, context),
             Edit::Subdivide(subdivision) => subdivide(world, mesh, subdivision, context),
             Edit::Remesh(params) => remesh(world, mesh, params, context),
@@ -264,6 +265,25 @@ fn level_of_detail(
         // A bulk refine that stopped on a refusal has still rewritten the mesh.
         Err(refusal) if now != before => Ok(whole(format!("stopped at {now} faces: {refusal}"))),
         Err(refusal) => Err(refusal),
+    }
+}
+
+/// The summary of orienting a mesh's parts outward.
+fn oriented(s: OrientSummary) -> String {
+    let turned = match s.turned {
+        0 => format!("no part faces inward ({})", count(s.parts, "part")),
+        n => format!(
+            "{n} of {} turned outward ({} turned round)",
+            count(s.parts, "part"),
+            count(s.faces, "face")
+        ),
+    };
+    match s.undecided {
+        0 => turned,
+        n => format!(
+            "{turned}; {} left as found (no clear inside)",
+            count(n, "open part")
+        ),
     }
 }
 

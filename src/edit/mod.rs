@@ -130,6 +130,8 @@ pub enum Edit {
     Triangulate,
     /// Turn every face round: its corners in the opposite order, its normal the other way.
     Reverse,
+    /// Turn round each part (faces joined across edges) whose faces point inward.
+    OrientOutside,
     /// QEM simplification, recording the history that [`Edit::LevelOfDetail`] moves along.
     Simplify(SimplifyParams),
     /// Subdivision.
@@ -238,6 +240,7 @@ impl Edit {
             Edit::LevelOfDetail(n) => format!("level of detail {n} faces"),
             Edit::Triangulate => "triangulate".into(),
             Edit::Reverse => "reverse orientation".into(),
+            Edit::OrientOutside => "orient outside".into(),
             Edit::Simplify(p) => match p.target {
                 SimplifyTarget::Ratio(r) => format!("simplify to {:.0} %", r * 100.0),
                 SimplifyTarget::Faces(n) => format!("simplify to {n} faces"),
@@ -346,6 +349,7 @@ impl Edit {
             Edit::LevelOfDetail(_)
             | Edit::Triangulate
             | Edit::Reverse
+            | Edit::OrientOutside
             | Edit::Simplify(_)
             | Edit::Subdivide(_)
             | Edit::Remesh(_)
@@ -452,6 +456,7 @@ impl Edit {
             Edit::LevelOfDetail(_) => &progressive::LEVEL_OF_DETAIL,
             Edit::Triangulate => &triangulate::TRIANGULATE,
             Edit::Reverse => &crate::ops::reverse::REVERSE,
+            Edit::OrientOutside => &crate::ops::reverse::ORIENT_OUTSIDE,
             Edit::Simplify(_) => &simplify::SIMPLIFY,
             Edit::Subdivide(s) => match s.scheme {
                 Scheme::Loop => &subdivide::LOOP,
@@ -806,6 +811,7 @@ mod tests {
             Edit::LevelOfDetail(10),
             Edit::Triangulate,
             Edit::Reverse,
+            Edit::OrientOutside,
             Edit::Simplify(SimplifyParams::default()),
             Edit::Subdivide(Subdivision::once(Scheme::Loop)),
             Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)),

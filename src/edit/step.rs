@@ -343,7 +343,8 @@ fn element_at(
 
 /// The step syntax, for usage texts.
 pub const STEP_SYNTAX: &str = "\
-validate | triangulate | reverse | flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
+validate | triangulate | reverse | orient-outside | flip:A,B | split:A,B | bisect:A,B |
+collapse:A,B |
 dissolve:A,B | split-face:A,B | fill-hole:A,B | seam:A,B (mark, for param) |
 loop[:N] | catmull-clark[:N] |
 simplify:RATIO | simplify-faces:N |
@@ -432,6 +433,7 @@ impl Step {
             "catmull-clark" => return levels(Scheme::CatmullClark),
             "triangulate" => Edit::Triangulate,
             "reverse" => Edit::Reverse,
+            "orient-outside" => Edit::OrientOutside,
             "simplify" => match args.parse::<f64>() {
                 Ok(r) if r > 0.0 && r <= 1.0 => Edit::Simplify(SimplifyParams::ratio(r)),
                 _ => {
@@ -652,6 +654,7 @@ impl std::fmt::Display for Step {
             Step::Edit(edit) => match edit {
                 Edit::Triangulate => write!(f, "triangulate"),
                 Edit::Reverse => write!(f, "reverse"),
+                Edit::OrientOutside => write!(f, "orient-outside"),
                 Edit::Simplify(p) => match p.target {
                     SimplifyTarget::Ratio(r) => write!(f, "simplify:{r}"),
                     SimplifyTarget::Faces(n) => write!(f, "simplify-faces:{n}"),
@@ -688,6 +691,7 @@ mod tests {
             "validate",
             "triangulate",
             "reverse",
+            "orient-outside",
             "flip:3,17",
             "split:0,1",
             "bisect:0,1",

@@ -11,13 +11,16 @@
 //!
 //! Every id survives and V, E, F and χ do not change; reversing twice gives back the same
 //! links, UVs and normals, bit for bit. It never refuses.
+//!
+//! [`orient_outward`] (Blender's Recalculate Outside) turns only the parts that face inward:
+//! each set of faces joined across edges whose signed volume about its centroid is negative.
 
-use bevy::math::Vec2;
+use bevy::math::{DVec3, Vec2};
 use bevy::prelude::World;
 
 use crate::mesh::attributes::{CornerUv, VertexNormal};
 use crate::mesh::elements::{Halfedge, Vertex};
-use crate::mesh::ids::{HalfedgeId, MeshId, VertexId};
+use crate::mesh::ids::{FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::topology::MeshRef;
 use crate::ops::declaration::Declaration;
@@ -33,15 +36,152 @@ pub struct ReverseSummary {
     pub faces: usize,
 }
 
+/// Orienting every part outward (Blender's Recalculate Outside): a whole-mesh edit that
+/// keeps every id and attribute.
+pub const ORIENT_OUTSIDE: Declaration = Declaration::new("orient-outside");
+
+/// What orienting a mesh's parts outward did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OrientSummary {
+    /// Parts (faces joined across edges) of the mesh.
+    pub parts: usize,
+    /// Parts that faced inward and were turned round.
+    pub turned: usize,
+    /// Parts too flat or too open to tell which way they face, left as they were.
+    pub undecided: usize,
+    /// Faces turned round.
+    pub faces: usize,
+}
+
 /// Reverses the orientation of every face of `mesh` (see the module doc).
 pub fn reverse_orientation(world: &mut World, mesh: MeshId) -> ReverseSummary {
     let members = MeshMembers::collect(world, mesh);
+    turn(world, &members.halfedges, &members.vertices);
+    ReverseSummary {
+        faces: members.faces.len(),
+    }
+}
+
+/// Turns round each part of `mesh` (a set of faces joined across edges) whose signed volume,
+/// measured about the part's centroid, is negative: its faces pointed inward. A closed part
+/// faces outward exactly when that volume is positive (it is left as it is when the volume is
+/// nought to within 1e-9 of the cube of its bounding box's diagonal: flat). An open part has
+/// no inside, so it is judged only when it clearly wraps round its centroid — a scan with
+/// holes, a bowl: a volume of at least 1 % of that cube — and otherwise left as it is (a
+/// strip or a gently curved patch could face either way).
+pub fn orient_outward(world: &mut World, mesh: MeshId) -> OrientSummary {
+    let members = MeshMembers::collect(world, mesh);
+    let parts = parts(world, &members.faces);
+    let mut summary = OrientSummary {
+        parts: parts.len(),
+        ..OrientSummary::default()
+    };
+    for part in &parts {
+        match signed_volume(world, part) {
+            None => {
+                summary.undecided += 1;
+                continue;
+            }
+            Some(volume) if volume > 0.0 => continue,
+            Some(_) => {}
+        }
+        // Whole parts only: every halfedge of the part's faces, and the boundary ones beside.
+        let (halfedges, vertices) = {
+            let m = MeshRef::new(world);
+            let mut halfedges = Vec::new();
+            let mut seen = bevy::ecs::entity::EntityHashSet::default();
+            let mut vertices = Vec::new();
+            for &f in part {
+                for h in m.face_halfedges(f) {
+                    halfedges.push(h);
+                    let t = m.twin(h);
+                    if m.face(t).is_none() {
+                        halfedges.push(t);
+                    }
+                    let v = m.to_vertex(h);
+                    if seen.insert(v.0) {
+                        vertices.push(v);
+                    }
+                }
+            }
+            (halfedges, vertices)
+        };
+        turn(world, &halfedges, &vertices);
+        summary.turned += 1;
+        summary.faces += part.len();
+    }
+    summary
+}
+
+/// The parts of a mesh: its faces grouped by whether they are joined across edges.
+fn parts(world: &World, faces: &[FaceId]) -> Vec<Vec<FaceId>> {
+    let m = MeshRef::new(world);
+    let mut seen = bevy::ecs::entity::EntityHashSet::default();
+    let mut parts = Vec::new();
+    for &start in faces {
+        if !seen.insert(start.0) {
+            continue;
+        }
+        let mut part = vec![start];
+        let mut i = 0;
+        while i < part.len() {
+            for h in m.face_halfedges(part[i]) {
+                if let Some(g) = m.face(m.twin(h))
+                    && seen.insert(g.0)
+                {
+                    part.push(g);
+                }
+            }
+            i += 1;
+        }
+        parts.push(part);
+    }
+    parts
+}
+
+/// The signed volume the faces of `part` enclose about their corners' centroid (each polygon
+/// as a fan), in f64; `None` when it is too small, against the cube of the bounding box's
+/// diagonal, to tell which way the part faces (see [`orient_outward`]).
+fn signed_volume(world: &World, part: &[FaceId]) -> Option<f64> {
+    let m = MeshRef::new(world);
+    let open = part
+        .iter()
+        .any(|&f| m.face_halfedges(f).any(|h| m.face(m.twin(h)).is_none()));
+    let corners: Vec<Vec<DVec3>> = part
+        .iter()
+        .map(|&f| {
+            m.face_vertices(f)
+                .map(|v| m.position(v).as_dvec3())
+                .collect()
+        })
+        .collect();
+    let count = corners.iter().map(Vec::len).sum::<usize>().max(1);
+    let centre = corners.iter().flatten().sum::<DVec3>() / count as f64;
+    let (mut low, mut high) = (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN));
+    let mut volume = 0.0;
+    for face in &corners {
+        for p in face {
+            low = low.min(*p);
+            high = high.max(*p);
+        }
+        let a = face[0] - centre;
+        for pair in face[1..].windows(2) {
+            volume += a.dot((pair[0] - centre).cross(pair[1] - centre)) / 6.0;
+        }
+    }
+    let scale = (high - low).length().powi(3);
+    let telling = if open { 1e-2 } else { 1e-9 };
+    (volume.abs() >= telling * scale).then_some(volume)
+}
+
+/// Turns round `halfedges` (each face halfedge of some faces and the boundary halfedges beside
+/// them) and points each of `vertices` (their corners) at an outgoing halfedge of the result.
+fn turn(world: &mut World, halfedges: &[HalfedgeId], vertices: &[VertexId]) {
     // Everything read before anything changes: each halfedge's new links, and the UV of the
     // corner it will run into.
     let turned: Vec<(HalfedgeId, Halfedge, Option<Vec2>)> = {
         let m = MeshRef::new(world);
-        members
-            .halfedges
+        halfedges
             .iter()
             .map(|&h| {
                 let old = *m.halfedge(h);
@@ -64,11 +204,8 @@ pub fn reverse_orientation(world: &mut World, mesh: MeshId) -> ReverseSummary {
             world.entity_mut(h.0).insert(CornerUv(uv));
         }
     }
-    for &v in &members.vertices {
+    for &v in vertices {
         turn_vertex(world, v);
-    }
-    ReverseSummary {
-        faces: members.faces.len(),
     }
 }
 
@@ -93,8 +230,7 @@ fn turn_vertex(world: &mut World, v: VertexId) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::ids::FaceId;
-    use crate::mesh::{MeshInfo, build_mesh, mesh_stats, shapes, validate};
+    use crate::mesh::{MeshInfo, PolygonSoup, build_mesh, mesh_stats, shapes, validate};
     use bevy::math::Vec3;
 
     /// A grid with holes (so with boundaries), each corner's UV its position's x and y and each
@@ -206,5 +342,75 @@ mod tests {
         assert_eq!(after.0, before.0);
         assert_eq!(after.1, before.1);
         assert_eq!(after.2, before.2);
+    }
+
+    /// Two cubes side by side, the second with every face wound the other way (inside out).
+    fn cube_and_inverted_cube() -> PolygonSoup {
+        let cube = shapes::cube();
+        let mut soup = cube.clone();
+        let offset = soup.positions.len() as u32;
+        soup.positions
+            .extend(cube.positions.iter().map(|p| *p + Vec3::new(3.0, 0.0, 0.0)));
+        for w in cube.face_starts.windows(2) {
+            let face = &cube.indices[w[0] as usize..w[1] as usize];
+            soup.indices.extend(face.iter().rev().map(|&i| i + offset));
+            soup.face_starts.push(soup.indices.len() as u32);
+        }
+        soup
+    }
+
+    /// Whether every face of `mesh` points away from the centre of its part (each cube's).
+    fn every_face_points_out(world: &World, mesh: MeshId) -> bool {
+        let m = MeshRef::new(world);
+        MeshMembers::collect(world, mesh).faces.iter().all(|&f| {
+            let c = m.face_centroid(f);
+            let centre = if c.x > 1.5 {
+                Vec3::new(3.0, 0.0, 0.0)
+            } else {
+                Vec3::ZERO
+            };
+            m.face_area_vector(f).dot(c - centre) > 0.0
+        })
+    }
+
+    #[test]
+    fn only_the_parts_that_face_inward_are_turned() {
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &cube_and_inverted_cube(), MeshInfo::default()).unwrap();
+        let mesh = built.mesh;
+        assert!(!every_face_points_out(&world, mesh));
+        let summary = orient_outward(&mut world, mesh);
+        assert_eq!(
+            summary,
+            OrientSummary {
+                parts: 2,
+                turned: 1,
+                undecided: 0,
+                faces: 6
+            }
+        );
+        validate(&world, mesh).unwrap();
+        assert!(every_face_points_out(&world, mesh));
+        // Outward already: nothing to turn.
+        assert_eq!(orient_outward(&mut world, mesh).turned, 0);
+        // Inside out as a whole: both turned back.
+        reverse_orientation(&mut world, mesh);
+        assert_eq!(orient_outward(&mut world, mesh).turned, 2);
+        validate(&world, mesh).unwrap();
+        assert!(every_face_points_out(&world, mesh));
+    }
+
+    #[test]
+    fn a_flat_part_is_left_as_it_is_and_said_undecided() {
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &shapes::grid(4, 4), MeshInfo::default()).unwrap();
+        let undecided = OrientSummary {
+            parts: 1,
+            undecided: 1,
+            ..OrientSummary::default()
+        };
+        assert_eq!(orient_outward(&mut world, built.mesh), undecided);
+        reverse_orientation(&mut world, built.mesh);
+        assert_eq!(orient_outward(&mut world, built.mesh), undecided);
     }
 }

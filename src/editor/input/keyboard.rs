@@ -72,6 +72,8 @@ pub enum Action {
     Triangulate,
     /// Reverse the active mesh's orientation.
     Reverse,
+    /// Turn the active mesh's inward-facing parts outward.
+    OrientOutside,
     /// Simplify the active mesh (QEM) with the panel's parameters.
     Simplify,
     /// Split the selected vertex back (undo its last collapse from the simplification).
@@ -402,6 +404,12 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "Alt+N",
         Action::Reverse,
         "reverse the orientation: every face turned round, its normal the other way",
+    ),
+    shift(
+        KeyCode::KeyN,
+        "Shift+N",
+        Action::OrientOutside,
+        "orient outside: turn round each part whose faces point inward",
     ),
     key(
         KeyCode::KeyU,
@@ -940,6 +948,7 @@ fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, De
         }
         Action::Triangulate
         | Action::Reverse
+        | Action::OrientOutside
         | Action::LoopSubdivide
         | Action::CatmullClark
         | Action::Remesh
@@ -954,6 +963,7 @@ fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, De
             match action {
                 Action::Triangulate => Edit::Triangulate,
                 Action::Reverse => Edit::Reverse,
+                Action::OrientOutside => Edit::OrientOutside,
                 Action::Remesh => Edit::Remesh(ui.remesh),
                 Action::Simplify => Edit::Simplify(ui.simplify),
                 Action::Parameterize => Edit::Parameterize(ui.param.clone()),

@@ -960,6 +960,7 @@ fn whole_mesh_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
         &[
             (Action::Triangulate, "Triangulate"),
             (Action::Reverse, "Reverse orientation"),
+            (Action::OrientOutside, "Orient outside"),
             (Action::ToggleStepMode, "Step mode"),
         ],
     );
