@@ -72,7 +72,7 @@ impl Mesh {
     }
 
     /// The mesh as a soup: vertices in table order, faces as vertex cycles, attributes.
-    pub(crate) fn soup(&self) -> PolygonSoup {
+    fn soup(&self) -> PolygonSoup {
         to_soup(&self.world, self.mesh)
     }
 
@@ -82,7 +82,7 @@ impl Mesh {
     /// half-told result: the callback is not called again, the edit runs to its end (or its
     /// refusal, which changes nothing), and the exception is re-raised with a note that says
     /// which ([`with_outcome_note`]).
-    pub(crate) fn run_step(
+    fn run_step(
         &mut self,
         py: Python<'_>,
         step: Step,
@@ -141,7 +141,7 @@ impl Mesh {
 
     /// Parses `text` as a `process` step (a malformed one is a `ValueError` with the command
     /// line's message) and runs it.
-    pub(crate) fn run_text(
+    fn run_text(
         &mut self,
         py: Python<'_>,
         text: &str,
@@ -153,7 +153,7 @@ impl Mesh {
 
     /// The state a pickle carries: arrays of the soup, the input-vertex map as rows of those
     /// arrays, the name and the repair counts.
-    pub(crate) fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let members = MeshMembers::collect(&self.world, self.mesh);
         let rows = members.vertex_rows();
         let input_rows: Vec<i64> = self
@@ -203,7 +203,7 @@ impl Mesh {
     }
 
     /// The mesh's name (the file name, the shape, or `arrays`).
-    pub(crate) fn name(&self) -> String {
+    fn name(&self) -> String {
         self.world
             .get::<MeshInfo>(self.mesh.0)
             .map_or_else(String::new, |i| i.name.clone())
@@ -710,7 +710,7 @@ impl Mesh {
 
 impl Mesh {
     /// The inverse of [`Mesh::state`].
-    pub(crate) fn from_state(state: &Bound<'_, PyDict>) -> PyResult<Mesh> {
+    fn from_state(state: &Bound<'_, PyDict>) -> PyResult<Mesh> {
         let py = state.py();
         let get = |key: &str| -> PyResult<Bound<'_, PyAny>> {
             state
@@ -797,7 +797,7 @@ impl Mesh {
 }
 
 /// A repair report from its counts in [`RepairReport::entries`] order (missing ones zero).
-pub(crate) fn report_from(counts: &[usize]) -> RepairReport {
+fn report_from(counts: &[usize]) -> RepairReport {
     let mut report = RepairReport::default();
     let names = report.entries().map(|(name, _)| name);
     for (name, &n) in names.iter().zip(counts) {

@@ -34,7 +34,7 @@ pub struct Cli {
 }
 
 /// What a FILE may be.
-pub(super) const FILE_HELP: &str = "FILE: .obj .off .ply .stl .glb .gltf .dae (read only), or shape:NAME (tetrahedron cube icosahedron \
+const FILE_HELP: &str = "FILE: .obj .off .ply .stl .glb .gltf .dae (read only), or shape:NAME (tetrahedron cube icosahedron \
 icosphere torus grid quad-grid grid-with-holes double-torus)";
 
 /// The batch commands.
@@ -135,13 +135,13 @@ impl ProcessArg {
 }
 
 /// How `recover` is used.
-pub(super) const RECOVER_HELP: &str = "The editor keeps unsaved work in $XDG_STATE_HOME/pappus/recovery \
+const RECOVER_HELP: &str = "The editor keeps unsaved work in $XDG_STATE_HOME/pappus/recovery \
 (default ~/.local/state/pappus/recovery) a few seconds after each edit, and removes it on save. \
 `pappus recover --list` lists what is kept; `pappus recover --latest -o bunny.obj` writes the \
 newest back as a mesh file.";
 
 /// How `process` takes several inputs.
-pub(super) const PROCESS_HELP: &str = "Several inputs: `pappus process a.obj b.off 'scans/*.ply' -o out/{stem}.ply -j 2 STEP...`: \
+const PROCESS_HELP: &str = "Several inputs: `pappus process a.obj b.off 'scans/*.ply' -o out/{stem}.ply -j 2 STEP...`: \
 each input runs the steps in its own World; a failed input is reported and the others go on \
 (exit code 1 if any failed); --json prints one line per input, with `input` and `output` (or \
 `error`) beside the single-file keys.";

@@ -52,7 +52,7 @@ pub(super) fn load_for(input: &str, steps: &[Step]) -> Result<Loaded, String> {
 }
 
 /// Reads `input` and builds it into a fresh world.
-pub(super) fn read_and_build(input: &str) -> Result<Loaded, String> {
+fn read_and_build(input: &str) -> Result<Loaded, String> {
     let start = Instant::now();
     let (soup, info) = crate::source::read_source(Path::new(input)).map_err(|e| e.to_string())?;
     let read_ms = ms_since(start);
@@ -83,7 +83,7 @@ pub(super) fn read_and_build(input: &str) -> Result<Loaded, String> {
 /// four times the rows it starts from. Only the first level: warming for the second (16 times
 /// the rows) would still be under way while the first level runs, the two contending for the
 /// two cores. 0 when no step subdivides or `input` is not a file.
-pub(super) fn subdivision_bytes(input: &str, steps: &[Step]) -> usize {
+fn subdivision_bytes(input: &str, steps: &[Step]) -> usize {
     let subdivides = steps
         .iter()
         .any(|step| matches!(step, Step::Edit(Edit::Subdivide(_))));

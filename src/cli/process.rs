@@ -208,7 +208,7 @@ pub(super) fn parse_quantity(name: &str) -> Result<Quantity, String> {
 /// Computes `quantity` on `mesh` (a distance to `input`) and puts it into `soup` (whose vertices
 /// are the mesh's table rows, as [`to_soup`] writes them) as quality and colours. Returns its
 /// JSON summary.
-pub(super) fn attach_quantity(
+fn attach_quantity(
     world: &World,
     mesh: MeshId,
     quantity: Quantity,

@@ -86,7 +86,7 @@ pub fn info_with_load_times(
 /// The curvature and normal summaries of `info --json`: each curvature's min, median and max
 /// over the vertices; the total angle defect beside 2πχ (Gauss–Bonnet: equal); faces and
 /// vertices whose normal is undefined (zero area).
-pub(super) fn geometry_json(
+fn geometry_json(
     world: &World,
     mesh: MeshId,
     chi: i64,

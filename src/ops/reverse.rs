@@ -19,7 +19,7 @@ use bevy::math::{DVec3, Vec2};
 use bevy::prelude::World;
 
 use crate::mesh::attributes::{CornerUv, VertexNormal};
-use crate::mesh::elements::{Halfedge, Vertex};
+use crate::mesh::elements::{Face, Halfedge, Vertex};
 use crate::mesh::ids::{FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::topology::MeshRef;
@@ -70,8 +70,8 @@ pub fn reverse_orientation(world: &mut World, mesh: MeshId) -> ReverseSummary {
 /// holes, a bowl: a volume of at least 1 % of that cube — and otherwise left as it is (a
 /// strip or a gently curved patch could face either way).
 pub fn orient_outward(world: &mut World, mesh: MeshId) -> OrientSummary {
-    let members = MeshMembers::collect(world, mesh);
-    let parts = parts(world, &members.faces);
+    let faces = crate::mesh::members::of_kind::<Face, _>(world, mesh, FaceId);
+    let parts = parts(world, &faces);
     let mut summary = OrientSummary {
         parts: parts.len(),
         ..OrientSummary::default()
