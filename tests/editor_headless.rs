@@ -110,7 +110,7 @@ fn a_change_triggers_exactly_one_rebuild() {
     open(&mut app, "shape:cube");
     let before = app.world().resource::<RenderStats>().rebuilds;
     app.world_mut()
-        .write_message(Request::Edit(Edit::Triangulate));
+        .write_message(Request::Edit(Edit::registered("triangulate").unwrap()));
     app.update();
     assert!(last_outcome(&app).result.is_ok());
     assert_eq!(app.world().resource::<RenderStats>().rebuilds, before + 1);
@@ -290,7 +290,7 @@ fn each_operation_key_applies_its_operation() {
     assert_eq!(counts(&app), (v, e + 1, f + 1));
     // The bisection left polygons (Ctrl+T is tested on its own below).
     app.world_mut()
-        .write_message(Request::Edit(Edit::Triangulate));
+        .write_message(Request::Edit(Edit::registered("triangulate").unwrap()));
     app.update();
     // Whole-mesh edits: Loop quadruples the triangles, Catmull–Clark makes a quad of every
     // corner, M remeshes to a valid triangle mesh, each recorded as one undo step.
@@ -357,8 +357,9 @@ fn triangulate_key_needs_ctrl_and_applies() {
 }
 
 /// Alt+N turns every face round (Blender's Flip Normals): the counts stay, each face's normal
-/// points the other way; Shift+N (Recalculate Outside) turns the inside-out cube back, and
-/// undo walks it all back.
+/// points the other way; Shift+N (Recalculate Outside) turns the inside-out cube back; Alt+C
+/// (a key only the normalize operation's declaration names) centres and fits it; and undo
+/// walks it all back.
 #[test]
 fn reverse_key_turns_every_face_round_and_undoes() {
     let mut app = app();
@@ -403,6 +404,21 @@ fn reverse_key_turns_every_face_round_and_undoes() {
         last_outcome(&app).result.ok().as_deref(),
         Some("no part faces inward (1 part)")
     );
+    // Alt+C, declared by the normalize operation alone: the box centred, its longest side 1.
+    press_with(&mut app, KeyCode::AltLeft, KeyCode::KeyC);
+    let outcome = last_outcome(&app);
+    assert_eq!(outcome.request, "normalize (size 1)");
+    assert!(outcome.result.as_ref().unwrap().starts_with("centred"));
+    let (lo, hi) = {
+        let r = MeshRef::new(app.world());
+        pappus::mesh::MeshMembers::collect(app.world(), m)
+            .vertices
+            .iter()
+            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(r.position(v)), hi.max(r.position(v)))
+            })
+    };
+    assert!(((lo + hi) / 2.0).length() < 1e-6 && ((hi - lo).max_element() - 1.0).abs() < 1e-6);
     for _ in steps_before..undo_steps(&app) {
         app.world_mut().write_message(Request::Undo);
         app.update();
@@ -1324,7 +1340,7 @@ fn unsaved_changes_are_not_lost_to_an_open() {
     // Saving clears the mark: edit, save, open without a question.
     let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("saved-cube.off");
     app.world_mut()
-        .write_message(Request::Edit(Edit::Triangulate));
+        .write_message(Request::Edit(Edit::registered("triangulate").unwrap()));
     app.world_mut()
         .write_message(Request::Save(Some(path.clone())));
     app.world_mut()

@@ -126,7 +126,7 @@ fn faces_made_from_a_face_keep_its_group() {
     run(&mut world, mesh, &Edit::Extrude(vec![bottom], 0.5));
     assert_eq!(counts(&world, mesh), [9, 2]);
     // Triangulate: each quad's two triangles in its group.
-    run(&mut world, mesh, &Edit::Triangulate);
+    run(&mut world, mesh, &Edit::registered("triangulate").unwrap());
     assert_eq!(counts(&world, mesh), [18, 2]);
     // Subdivide: every child in its parent's group.
     let summary = run(
@@ -184,7 +184,7 @@ fn undo_brings_groups_back_and_remeshing_says_it_drops_them() {
     redo.apply(&mut world);
     assert_eq!(counts(&world, mesh), [5, 2]);
 
-    run(&mut world, mesh, &Edit::Triangulate);
+    run(&mut world, mesh, &Edit::registered("triangulate").unwrap());
     assert_eq!(counts(&world, mesh), [10, 2]);
     let saved = SavedContents::capture(&world, mesh);
     let summary = run(&mut world, mesh, &Edit::Remesh(RemeshParams::default()));

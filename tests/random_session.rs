@@ -88,7 +88,11 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
         }),
         51..=52 => vertex(rng).map(Edit::SplitVertex),
         53..=54 => Some(Edit::LevelOfDetail(rng.below(2 * faces + 2))),
-        55 => Some(Edit::Triangulate),
+        // Any registered operation: triangulate, reverse, orient outside, normalize, …
+        55 => {
+            let op = pappus::ops::OPERATIONS[rng.below(pappus::ops::OPERATIONS.len())];
+            Some(Edit::Operation(pappus::edit::Invocation::with_defaults(op)))
+        }
         56..=57 => Some(Edit::Simplify(SimplifyParams::ratio(
             0.5 + rng.below(40) as f64 / 100.0,
         ))),

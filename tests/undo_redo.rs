@@ -198,7 +198,10 @@ fn every_global_edit_undoes_and_redoes_exactly() {
         &mut app,
         Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::CatmullClark))),
     );
-    round_trip(&mut app, Request::Edit(Edit::Triangulate));
+    round_trip(
+        &mut app,
+        Request::Edit(Edit::registered("triangulate").unwrap()),
+    );
     round_trip(
         &mut app,
         Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::Loop))),
@@ -445,7 +448,11 @@ fn the_memory_cap_drops_the_oldest_entries() {
         Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::CatmullClark))),
     )
     .unwrap();
-    request(&mut app, Request::Edit(Edit::Triangulate)).unwrap();
+    request(
+        &mut app,
+        Request::Edit(Edit::registered("triangulate").unwrap()),
+    )
+    .unwrap();
     request(
         &mut app,
         Request::Edit(Edit::Remesh(RemeshParams::default())),

@@ -4,7 +4,7 @@
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 
-use crate::edit::{STEP_SYNTAX, Step};
+use crate::edit::{Step, step_syntax};
 use crate::io;
 use crate::memory_budget::Budget;
 use crate::ops::geometry::{NormalWeighting, Quantity};
@@ -58,7 +58,7 @@ pub enum Command {
         output: PathBuf,
     },
     /// Run steps in order, then write the result.
-    #[command(after_help = format!("{PROCESS_HELP}\n\nSTEP: {STEP_SYNTAX}\n\n{FILE_HELP}"))]
+    #[command(after_help = format!("{PROCESS_HELP}\n\nSTEP: {}\n\n{FILE_HELP}", step_syntax()))]
     Process {
         /// Source file (or shape:NAME, or a glob pattern such as 'models/*.obj').
         input: String,
@@ -178,7 +178,9 @@ mod tests {
                 input: "a.obj".into(),
                 output: "b.ply".into(),
                 steps: vec![
-                    ProcessArg::Step(Step::Edit(crate::edit::Edit::Triangulate)),
+                    ProcessArg::Step(Step::Edit(
+                        crate::edit::Edit::registered("triangulate").unwrap()
+                    )),
                     ProcessArg::Step(Step::Validate)
                 ],
                 json: true,

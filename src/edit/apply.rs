@@ -21,10 +21,8 @@ use crate::ops::local::{
 use crate::ops::param::{ParamParams, parameterize_in_place};
 use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::remesh::{RemeshParams, remesh_with_progress};
-use crate::ops::reverse::{OrientSummary, orient_outward, reverse_orientation};
 use crate::ops::simplify::SimplifyParams;
 use crate::ops::smooth::{SmoothParams, smooth_with_progress};
-use crate::ops::triangulate::triangulate;
 
 use super::{Applied, Edit, EditContext, Redraw, Subdivision, count, toggle_seam};
 
@@ -68,12 +66,7 @@ impl Edit {
             }),
             Edit::SplitVertex(v) => split_vertex(world, *v, context),
             Edit::LevelOfDetail(faces) => level_of_detail(world, *faces, context),
-            Edit::Triangulate => Ok(triangulated(world, mesh, context)),
-            Edit::Reverse => Ok(whole(format!(
-                "{} turned round",
-                count(reverse_orientation(world, mesh).faces, "face")
-            ))),
-            Edit::OrientOutside => Ok(whole(oriented(orient_outward(world, mesh)))),
+            Edit::Operation(op) => op.apply(world, mesh, context),
             Edit::Simplify(params) => simplify(world, mesh, params, context),
             Edit::Subdivide(subdivision) => subdivide(world, mesh, subdivision, context),
             Edit::Remesh(params) => remesh(world, mesh, params, context),
@@ -269,37 +262,6 @@ fn level_of_detail(
 }
 
 /// The summary of orienting a mesh's parts outward.
-fn oriented(s: OrientSummary) -> String {
-    let turned = match s.turned {
-        0 => format!("no part faces inward ({})", count(s.parts, "part")),
-        n => format!(
-            "{n} of {} turned outward ({} turned round)",
-            count(s.parts, "part"),
-            count(s.faces, "face")
-        ),
-    };
-    match s.undecided {
-        0 => turned,
-        n => format!(
-            "{turned}; {} left as found (no clear inside)",
-            count(n, "open part")
-        ),
-    }
-}
-
-fn triangulated(world: &mut World, mesh: MeshId, context: &mut EditContext<'_>) -> Applied {
-    let s = triangulate(world, mesh);
-    (context.progress)(1.0);
-    let left = match s.left {
-        0 => String::new(),
-        n => format!("; {n} polygon(s) left whole: any cut would make an edge that exists"),
-    };
-    whole(format!(
-        "{} polygon(s) cut into triangles, {} face(s) added{left}",
-        s.polygons, s.added_faces
-    ))
-}
-
 /// Simplifies, and keeps the history for level of detail and vertex splits.
 fn simplify(
     world: &mut World,

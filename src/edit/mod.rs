@@ -17,9 +17,11 @@
 //! [`Applied`] — a summary that prints, what to redraw and what to select — or a [`Refusal`],
 //! and then the world is exactly as it was.
 //!
-//! Adding an operation: its file in `ops/`, one variant here (its parameters, its arms in the
-//! `match`es below), its test. The command line, the editor's pipeline, undo and jobs then
-//! handle it; a key or a button is one row in the editor's shortcut table.
+//! Adding a whole-mesh operation with numeric parameters: its file in `ops/`, declaring itself
+//! whole ([`crate::ops::operation::MeshOperation`]), and its line in [`crate::ops::OPERATIONS`];
+//! [`Edit::Operation`] carries it, and the step parser, the keymap and the panel read its
+//! declaration. Any other operation: its file in `ops/`, one variant here (its parameters, its
+//! arms in the `match`es below), its step, key and button (see `docs/architecture.md`).
 
 use bevy::math::Vec3;
 use bevy::prelude::World;
@@ -39,7 +41,6 @@ use crate::ops::local::{
 };
 use crate::ops::named::Named;
 use crate::ops::param::ParamParams;
-use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::remesh::RemeshParams;
 use crate::ops::simplify::{SimplifyParams, SimplifyTarget};
 use crate::ops::smooth::SmoothParams;
@@ -49,11 +50,16 @@ mod apply;
 mod save;
 mod step;
 pub use save::{RECOMPUTED_NORMALS, mark_normals_stale, soup_to_save};
-pub use step::{LocalKind, STEP_SYNTAX, Step};
+pub use step::{LocalKind, Step, step_syntax};
 
 /// What an operation declares about itself (defined beside the operations, in
 /// [`crate::ops::declaration`], so that `ops` need not import this layer).
 pub use crate::ops::declaration::{Carries, Declaration, IdsKept};
+
+use crate::ops::operation::count;
+/// What an edit returns and runs with, and one use of an operation that declares itself
+/// whole (defined in [`crate::ops::operation`], so that those operations can return them).
+pub use crate::ops::operation::{Applied, EditContext, Invocation, Redraw};
 
 /// A subdivision scheme (defined beside the schemes, in [`crate::ops::subdivide`], so that
 /// `ops` need not import this layer).
@@ -126,12 +132,9 @@ pub enum Edit {
     /// Move along the simplification history to the level nearest this many faces
     /// (`usize::MAX`: the full level).
     LevelOfDetail(usize),
-    /// Cut every polygon into triangles.
-    Triangulate,
-    /// Turn every face round: its corners in the opposite order, its normal the other way.
-    Reverse,
-    /// Turn round each part (faces joined across edges) whose faces point inward.
-    OrientOutside,
+    /// A whole-mesh operation that declares itself whole ([`crate::ops::OPERATIONS`]:
+    /// triangulate, reverse, orient outside, normalize, …), with its parameters' values.
+    Operation(Invocation),
     /// QEM simplification, recording the history that [`Edit::LevelOfDetail`] moves along.
     Simplify(SimplifyParams),
     /// Subdivision.
@@ -166,49 +169,13 @@ pub enum Reach {
     Whole(MeshId),
 }
 
-/// What to redraw after an edit.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Redraw {
-    /// The faces around these vertices (as they are now), and these faces (from before the
-    /// edit; they may be gone).
-    Near {
-        /// Faces from before the edit.
-        faces: Vec<FaceId>,
-        /// Vertices around which the faces changed.
-        vertices: Vec<VertexId>,
-    },
-    /// The whole mesh.
-    Whole,
-    /// Only vertex positions changed (a move of most of the mesh): every face keeps its
-    /// corners, so a render copy keeps its triangles and refreshes its positions.
-    Positions,
-}
-
-/// An edit carried out.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Applied {
-    /// One line for the status bar, the log and the command line's report.
-    pub summary: String,
-    /// What changed, for a renderer.
-    pub redraw: Redraw,
-    /// What the edit made, for the selection to move to (`None`: keep the selection, if its
-    /// element survived).
-    pub made: Option<ElementId>,
-}
-
-/// What an edit runs with beside the world: the simplification history, and the progress
-/// callback that long edits report to.
-pub struct EditContext<'a> {
-    /// The simplification history: [`Edit::Simplify`] replaces it, [`Edit::LevelOfDetail`] and
-    /// [`Edit::SplitVertex`] move along it. The caller drops it after an edit that does not
-    /// [`Edit::keeps_history`].
-    pub history: &'a mut Option<ProgressiveMesh>,
-    /// Called with the fraction done (0–1) now and then by long edits; returning `false` asks
-    /// the edit to stop early where it can (the mesh is then valid, the edit partly done).
-    pub progress: &'a mut dyn FnMut(f32) -> bool,
-}
-
 impl Edit {
+    /// The registered operation whose step is called `name` ([`crate::ops::OPERATIONS`]),
+    /// with its parameters' defaults.
+    pub fn registered(name: &str) -> Option<Self> {
+        crate::ops::operation(name).map(|op| Edit::Operation(Invocation::with_defaults(op)))
+    }
+
     /// A short label for logs and the undo history.
     pub fn label(&self) -> String {
         match self {
@@ -238,9 +205,7 @@ impl Edit {
             Edit::SplitVertex(v) => format!("split {v} back"),
             Edit::LevelOfDetail(usize::MAX) => "full level of detail".into(),
             Edit::LevelOfDetail(n) => format!("level of detail {n} faces"),
-            Edit::Triangulate => "triangulate".into(),
-            Edit::Reverse => "reverse orientation".into(),
-            Edit::OrientOutside => "orient outside".into(),
+            Edit::Operation(op) => op.label(),
             Edit::Simplify(p) => match p.target {
                 SimplifyTarget::Ratio(r) => format!("simplify to {:.0} %", r * 100.0),
                 SimplifyTarget::Faces(n) => format!("simplify to {n} faces"),
@@ -347,9 +312,7 @@ impl Edit {
                 world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh))
             }
             Edit::LevelOfDetail(_)
-            | Edit::Triangulate
-            | Edit::Reverse
-            | Edit::OrientOutside
+            | Edit::Operation(_)
             | Edit::Simplify(_)
             | Edit::Subdivide(_)
             | Edit::Remesh(_)
@@ -433,8 +396,8 @@ impl Edit {
     /// step's name, whether it may run as a job, which ids and whether the simplification
     /// history survive it, what becomes of the attributes).
     pub fn declaration(&self) -> &'static Declaration {
+        use crate::ops::subdivide;
         use crate::ops::{deform, hole, local, param, progressive, remesh, simplify, smooth};
-        use crate::ops::{subdivide, triangulate};
         match self {
             Edit::Flip(_) => &local::FLIP,
             Edit::Split(_) => &local::SPLIT,
@@ -454,9 +417,7 @@ impl Edit {
             Edit::MoveVertex(..) | Edit::MoveVertices(_) => &MOVE,
             Edit::SplitVertex(_) => &local::VERTEX_SPLIT,
             Edit::LevelOfDetail(_) => &progressive::LEVEL_OF_DETAIL,
-            Edit::Triangulate => &triangulate::TRIANGULATE,
-            Edit::Reverse => &crate::ops::reverse::REVERSE,
-            Edit::OrientOutside => &crate::ops::reverse::ORIENT_OUTSIDE,
+            Edit::Operation(op) => op.declaration(),
             Edit::Simplify(_) => &simplify::SIMPLIFY,
             Edit::Subdivide(s) => match s.scheme {
                 Scheme::Loop => &subdivide::LOOP,
@@ -751,15 +712,6 @@ fn check_growth(what: &str, faces: usize, corners: usize) -> Result<(), Refusal>
     })
 }
 
-/// "1 face", "3 faces" ("vertex" → "vertices", "free vertex" → "free vertices").
-fn count(n: usize, what: &str) -> String {
-    match (n, what) {
-        (1, _) => format!("1 {what}"),
-        (_, w) if w.ends_with("vertex") => format!("{n} {}ices", &w[..w.len() - 2]),
-        _ => format!("{n} {what}s"),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -772,7 +724,8 @@ mod tests {
         assert!(loop1.may_run_as_job() && Edit::Remesh(RemeshParams::default()).may_run_as_job());
         assert!(!Edit::Flip(e).may_run_as_job() && !Edit::LevelOfDetail(5).may_run_as_job());
         assert_eq!(loop1.keeps_ids(), IdsKept::VerticesOnly);
-        assert_eq!(Edit::Triangulate.keeps_ids(), IdsKept::All);
+        let triangulate = Edit::registered("triangulate").unwrap();
+        assert_eq!(triangulate.keeps_ids(), IdsKept::All);
         assert!(Edit::SplitVertex(v).keeps_history() && !Edit::Flip(e).keeps_history());
         assert_eq!(
             Edit::MoveVertex(v, Vec3::ZERO).merge_key(),
@@ -788,51 +741,54 @@ mod tests {
         let v = VertexId(bevy::prelude::Entity::PLACEHOLDER);
         let e = EdgeId(bevy::prelude::Entity::PLACEHOLDER);
         let f = FaceId(bevy::prelude::Entity::PLACEHOLDER);
-        let every = [
-            Edit::Flip(e),
-            Edit::Split(e),
-            Edit::Bisect(e),
-            Edit::Collapse(e),
-            Edit::Dissolve(e),
-            Edit::ToggleSeam(e),
-            Edit::FillHole(e),
-            Edit::SplitFace(f, v, v),
-            Edit::Extrude(vec![f], 0.1),
-            Edit::Inset(vec![f], 0.1, 0.0),
-            Edit::BevelVertex(v, 0.2),
-            Edit::BevelEdge(e, 0.2),
-            Edit::Erase(vec![f]),
-            Edit::DissolveVertex(v),
-            Edit::CollapseFace(f),
-            Edit::Weld(e, e),
-            Edit::MoveVertex(v, Vec3::ZERO),
-            Edit::MoveVertices(vec![(v, Vec3::ZERO)]),
-            Edit::SplitVertex(v),
-            Edit::LevelOfDetail(10),
-            Edit::Triangulate,
-            Edit::Reverse,
-            Edit::OrientOutside,
-            Edit::Simplify(SimplifyParams::default()),
-            Edit::Subdivide(Subdivision::once(Scheme::Loop)),
-            Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)),
-            Edit::Remesh(RemeshParams::default()),
-            Edit::Smooth(SmoothParams::default()),
-            Edit::Parameterize(ParamParams::default()),
-            Edit::Deform(DeformParams {
-                method: DeformMethod::Arap,
-                fixed: Vec::new(),
-                handle: vec![v],
-                motion: bevy::math::Affine3A::IDENTITY,
-                iterations: 1,
-            }),
-            Edit::Fair(FairParams {
-                vertices: vec![v],
-                k: 2,
-            }),
-            Edit::FillHoleFair(e),
-            Edit::FillHoles(true),
-        ];
-        let documented: Vec<&str> = STEP_SYNTAX
+        let registered = crate::ops::OPERATIONS
+            .iter()
+            .map(|&op| Edit::Operation(Invocation::with_defaults(op)));
+        let every: Vec<Edit> = registered
+            .chain([
+                Edit::Flip(e),
+                Edit::Split(e),
+                Edit::Bisect(e),
+                Edit::Collapse(e),
+                Edit::Dissolve(e),
+                Edit::ToggleSeam(e),
+                Edit::FillHole(e),
+                Edit::SplitFace(f, v, v),
+                Edit::Extrude(vec![f], 0.1),
+                Edit::Inset(vec![f], 0.1, 0.0),
+                Edit::BevelVertex(v, 0.2),
+                Edit::BevelEdge(e, 0.2),
+                Edit::Erase(vec![f]),
+                Edit::DissolveVertex(v),
+                Edit::CollapseFace(f),
+                Edit::Weld(e, e),
+                Edit::MoveVertex(v, Vec3::ZERO),
+                Edit::MoveVertices(vec![(v, Vec3::ZERO)]),
+                Edit::SplitVertex(v),
+                Edit::LevelOfDetail(10),
+                Edit::Simplify(SimplifyParams::default()),
+                Edit::Subdivide(Subdivision::once(Scheme::Loop)),
+                Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)),
+                Edit::Remesh(RemeshParams::default()),
+                Edit::Smooth(SmoothParams::default()),
+                Edit::Parameterize(ParamParams::default()),
+                Edit::Deform(DeformParams {
+                    method: DeformMethod::Arap,
+                    fixed: Vec::new(),
+                    handle: vec![v],
+                    motion: bevy::math::Affine3A::IDENTITY,
+                    iterations: 1,
+                }),
+                Edit::Fair(FairParams {
+                    vertices: vec![v],
+                    k: 2,
+                }),
+                Edit::FillHoleFair(e),
+                Edit::FillHoles(true),
+            ])
+            .collect();
+        let syntax = step_syntax();
+        let documented: Vec<&str> = syntax
             .split(|c: char| !(c.is_alphanumeric() || c == '-'))
             .collect();
         let mut jobs = Vec::new();

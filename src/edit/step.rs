@@ -21,7 +21,7 @@ use crate::ops::remesh::RemeshParams;
 use crate::ops::simplify::{SimplifyParams, SimplifyTarget};
 use crate::ops::smooth::{SmoothMethod, SmoothParams};
 
-use super::{Edit, EditContext, Scheme, Subdivision};
+use super::{Edit, EditContext, Invocation, Scheme, Subdivision};
 
 /// A local edit as a `process` step writes it: by the input file's vertex numbers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -341,10 +341,20 @@ fn element_at(
     }
 }
 
-/// The step syntax, for usage texts.
-pub const STEP_SYNTAX: &str = "\
-validate | triangulate | reverse | orient-outside | flip:A,B | split:A,B | bisect:A,B |
-collapse:A,B |
+/// The step syntax, for usage texts: `validate`, each registered operation's (from its
+/// declaration, with its help line), then the others'.
+pub fn step_syntax() -> String {
+    let mut text = String::from("validate |\n");
+    for op in crate::ops::OPERATIONS {
+        text.push_str(&op.declaration().syntax());
+        text.push_str(" |\n");
+    }
+    text + OTHER_STEPS
+}
+
+/// The syntax of the steps that are not registered operations.
+const OTHER_STEPS: &str = "\
+flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
 dissolve:A,B | split-face:A,B | fill-hole:A,B | seam:A,B (mark, for param) |
 loop[:N] | catmull-clark[:N] |
 simplify:RATIO | simplify-faces:N |
@@ -431,9 +441,6 @@ impl Step {
             "validate" => return Ok(Step::Validate),
             "loop" => return levels(Scheme::Loop),
             "catmull-clark" => return levels(Scheme::CatmullClark),
-            "triangulate" => Edit::Triangulate,
-            "reverse" => Edit::Reverse,
-            "orient-outside" => Edit::OrientOutside,
             "simplify" => match args.parse::<f64>() {
                 Ok(r) if r > 0.0 && r <= 1.0 => Edit::Simplify(SimplifyParams::ratio(r)),
                 _ => {
@@ -507,9 +514,15 @@ impl Step {
                 )
             })?),
             _ => {
-                return Err(format!(
-                    "unknown step `{text}` (see `pappus process --help`)"
-                ));
+                let op = crate::ops::operation(name).ok_or_else(|| {
+                    format!("unknown step `{text}` (see `pappus process --help`)")
+                })?;
+                Edit::Operation(Invocation::parse(op, args).map_err(|why| {
+                    format!(
+                        "step `{text}`: {why}; expected {}",
+                        op.declaration().syntax()
+                    )
+                })?)
             }
         };
         Ok(Step::Edit(edit))
@@ -652,9 +665,7 @@ impl std::fmt::Display for Step {
                 numbers.iter().try_for_each(|x| write!(f, ":{x}"))
             }
             Step::Edit(edit) => match edit {
-                Edit::Triangulate => write!(f, "triangulate"),
-                Edit::Reverse => write!(f, "reverse"),
-                Edit::OrientOutside => write!(f, "orient-outside"),
+                Edit::Operation(op) => write!(f, "{op}"),
                 Edit::Simplify(p) => match p.target {
                     SimplifyTarget::Ratio(r) => write!(f, "simplify:{r}"),
                     SimplifyTarget::Faces(n) => write!(f, "simplify-faces:{n}"),
@@ -692,6 +703,7 @@ mod tests {
             "triangulate",
             "reverse",
             "orient-outside",
+            "normalize:2",
             "flip:3,17",
             "split:0,1",
             "bisect:0,1",
@@ -739,6 +751,7 @@ mod tests {
             "param:mean-value:circle"
         );
         assert_eq!(Step::parse("remesh").unwrap().to_string(), "remesh:5");
+        assert_eq!(Step::parse("normalize").unwrap().to_string(), "normalize:1");
         assert_eq!(
             Step::parse("smooth:cotan").unwrap().to_string(),
             "smooth:cotan:1:0.5"
@@ -777,6 +790,9 @@ mod tests {
             ("fair:1/2:4", "K 1, 2 or 3"),
             ("fill-hole:0:fair", "fill-hole:A,B:fair"),
             ("fill-holes:smooth", "fill-holes:fair"),
+            ("normalize:0", "SIZE must be a number from"),
+            ("normalize:x", "expected normalize[:SIZE]"),
+            ("reverse:1", "reverse takes no parameters"),
         ] {
             let e = Step::parse(text).unwrap_err();
             assert!(e.contains(expected), "{text}: {e}");

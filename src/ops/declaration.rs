@@ -1,6 +1,9 @@
 //! What an operation declares about itself, once, beside its algorithm: the name of its
 //! `process` step, whether it may run as a job, which element ids survive it, whether the
-//! simplification history does, and what becomes of the mesh's attributes.
+//! simplification history does, and what becomes of the mesh's attributes — and, for the
+//! operations that declare themselves whole ([`crate::ops::operation::MeshOperation`]), its
+//! title, help line, key and parameters, from which the step parser, the usage text, the
+//! keymap, the help overlay and the panel are built.
 //!
 //! Blender's operators are the model: a class declares its id and flags (`bl_idname`,
 //! `bl_options = {'UNDO'}`), and the keymap, the menus and the undo system read them instead of
@@ -42,11 +45,21 @@ pub enum Carries {
 /// An operation's declaration. Built with [`Declaration::new`] and the `const` setters below,
 /// so that a declaration reads as a sentence beside the operation:
 /// `Declaration::new("simplify").as_job().keeping_history().dropping(WHY)`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Declaration {
     /// The name of its `process` step (and Python method), or of the edit where it has no
     /// step (`"move"`).
     pub name: &'static str,
+    /// Its name in a person's words, capitalised, for its button ("Reverse orientation");
+    /// lower-cased, it labels the edit in the log and the undo history.
+    pub title: &'static str,
+    /// What it does, in one line, for the help overlay, the usage text and the button's
+    /// hover text (empty where the operation has not declared one).
+    pub help: &'static str,
+    /// Its key in the editor, if it has one.
+    pub key: Option<KeyChord>,
+    /// Its numeric parameters, in the order a step gives them.
+    pub parameters: &'static [Parameter],
     /// Whether it has a `process` step of that name.
     pub is_step: bool,
     /// Whether it may run as a job (on a copy of the mesh, on a thread of its own) when the
@@ -66,11 +79,57 @@ impl Declaration {
     pub const fn new(name: &'static str) -> Self {
         Self {
             name,
+            title: name,
+            help: "",
+            key: None,
+            parameters: &[],
             is_step: true,
             job: false,
             ids: IdsKept::All,
             keeps_history: false,
             carries: Carries::All,
+        }
+    }
+
+    /// Its title, for its button and (lower-cased) its label.
+    pub const fn titled(self, title: &'static str) -> Self {
+        Self { title, ..self }
+    }
+
+    /// What it does, in one line.
+    pub const fn described(self, help: &'static str) -> Self {
+        Self { help, ..self }
+    }
+
+    /// Its key in the editor.
+    pub const fn on_key(self, key: KeyChord) -> Self {
+        Self {
+            key: Some(key),
+            ..self
+        }
+    }
+
+    /// Its parameters (at most [`crate::ops::operation::Invocation::MAX_PARAMETERS`]).
+    pub const fn with_parameters(self, parameters: &'static [Parameter]) -> Self {
+        Self { parameters, ..self }
+    }
+
+    /// Its step's syntax for the usage text: the name, each parameter as `[:NAME]`, and the
+    /// help line with the defaults (`normalize[:SIZE]   (centre …; SIZE 1 by default)`).
+    pub fn syntax(&self) -> String {
+        let mut text = self.name.to_string();
+        for p in self.parameters {
+            text.push_str(&format!("[:{}]", p.name));
+        }
+        let defaults: Vec<String> = self
+            .parameters
+            .iter()
+            .map(|p| format!("{} {} by default", p.name, p.default))
+            .collect();
+        match (self.help, defaults.is_empty()) {
+            ("", true) => text,
+            (help, true) => format!("{text}   ({help})"),
+            (help, false) => format!("{text}   ({help}; {})", defaults.join(", ")),
         }
     }
 
@@ -116,6 +175,114 @@ impl Declaration {
         Self {
             carries: Carries::None(why),
             ..self
+        }
+    }
+}
+
+/// One numeric parameter of an operation: its name (in the usage text, the panel and labels),
+/// its default and the closed range it must lie in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Parameter {
+    /// Its name, in capitals in the usage text (`normalize[:SIZE]`).
+    pub name: &'static str,
+    /// Its value when the step or the panel gives none.
+    pub default: f32,
+    /// The least value it takes.
+    pub min: f32,
+    /// The greatest value it takes.
+    pub max: f32,
+    /// Whether it takes whole numbers only (iterations, levels).
+    pub whole: bool,
+}
+
+impl Parameter {
+    /// A real parameter in `min..=max`.
+    pub const fn real(name: &'static str, default: f32, min: f32, max: f32) -> Self {
+        Self {
+            name,
+            default,
+            min,
+            max,
+            whole: false,
+        }
+    }
+
+    /// A whole-number parameter in `min..=max`.
+    pub const fn whole(name: &'static str, default: u32, min: u32, max: u32) -> Self {
+        Self {
+            name,
+            default: default as f32,
+            min: min as f32,
+            max: max as f32,
+            whole: true,
+        }
+    }
+
+    /// Whether `x` is a value it takes.
+    pub fn admits(&self, x: f32) -> bool {
+        (self.min..=self.max).contains(&x) && (!self.whole || x.fract() == 0.0)
+    }
+
+    /// Its range in words, for refusals: "a number from 0.001 to 1000", "a whole number from 1
+    /// to 100".
+    pub fn range_words(&self) -> String {
+        let kind = if self.whole {
+            "a whole number"
+        } else {
+            "a number"
+        };
+        format!("{kind} from {} to {}", self.min, self.max)
+    }
+}
+
+/// A key with modifiers, as an operation declares it (`KeyChord::alt(KeyCode::KeyC, "Alt+C")`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct KeyChord {
+    /// The key.
+    pub key: bevy::input::keyboard::KeyCode,
+    /// Ctrl must be held.
+    pub ctrl: bool,
+    /// Shift must be held.
+    pub shift: bool,
+    /// Alt must be held.
+    pub alt: bool,
+    /// How the help overlay and the panel write it.
+    pub keys: &'static str,
+}
+
+impl KeyChord {
+    /// The key alone.
+    pub const fn plain(key: bevy::input::keyboard::KeyCode, keys: &'static str) -> Self {
+        Self {
+            key,
+            ctrl: false,
+            shift: false,
+            alt: false,
+            keys,
+        }
+    }
+
+    /// The key with Ctrl.
+    pub const fn ctrl(key: bevy::input::keyboard::KeyCode, keys: &'static str) -> Self {
+        Self {
+            ctrl: true,
+            ..Self::plain(key, keys)
+        }
+    }
+
+    /// The key with Shift.
+    pub const fn shift(key: bevy::input::keyboard::KeyCode, keys: &'static str) -> Self {
+        Self {
+            shift: true,
+            ..Self::plain(key, keys)
+        }
+    }
+
+    /// The key with Alt.
+    pub const fn alt(key: bevy::input::keyboard::KeyCode, keys: &'static str) -> Self {
+        Self {
+            alt: true,
+            ..Self::plain(key, keys)
         }
     }
 }

@@ -16,6 +16,8 @@ pub mod hole;
 pub mod indexed_heap;
 pub mod local;
 pub mod named;
+pub mod normalize;
+pub mod operation;
 pub mod param;
 pub mod progressive;
 pub mod remesh;
@@ -29,6 +31,26 @@ pub mod triangulate;
 
 use crate::mesh::ids::ElementId;
 use thiserror::Error;
+
+use operation::MeshOperation;
+
+/// Every operation that declares itself whole ([`MeshOperation`]), in the order the panel,
+/// the help overlay and the usage text list them. Adding one is its module above and one line
+/// here; the step parser, the keymap, the panel, undo and jobs then know it.
+pub const OPERATIONS: &[&dyn MeshOperation] = &[
+    &triangulate::Triangulate,
+    &reverse::Reverse,
+    &reverse::OrientOutside,
+    &normalize::Normalize,
+];
+
+/// The registered operation whose step is called `name`.
+pub fn operation(name: &str) -> Option<&'static dyn MeshOperation> {
+    OPERATIONS
+        .iter()
+        .copied()
+        .find(|op| op.declaration().name == name)
+}
 
 /// Why an operation was not carried out. Expected, shown to the user, never a bug.
 #[derive(Clone, Debug, PartialEq, Error)]

@@ -15,6 +15,7 @@
 //! [`orient_outward`] (Blender's Recalculate Outside) turns only the parts that face inward:
 //! each set of faces joined across edges whose signed volume about its centroid is negative.
 
+use bevy::input::keyboard::KeyCode;
 use bevy::math::{DVec3, Vec2};
 use bevy::prelude::World;
 
@@ -23,11 +24,39 @@ use crate::mesh::elements::{Face, Halfedge, Vertex};
 use crate::mesh::ids::{FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::topology::MeshRef;
-use crate::ops::declaration::Declaration;
+use crate::ops::Refusal;
+use crate::ops::declaration::{Declaration, KeyChord};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, count};
 
 /// Reversing the orientation: a whole-mesh edit (every halfedge turns round) that keeps every
 /// id and attribute, done in one pass, never a job.
-pub const REVERSE: Declaration = Declaration::new("reverse");
+pub const REVERSE: Declaration = Declaration::new("reverse")
+    .titled("Reverse orientation")
+    .described("reverse the orientation: every face turned round, its normal the other way")
+    .on_key(KeyChord::alt(KeyCode::KeyN, "Alt+N"));
+
+/// [`reverse_orientation`] as an operation (the `reverse` step, Alt+N).
+pub struct Reverse;
+
+impl MeshOperation for Reverse {
+    fn declaration(&self) -> &'static Declaration {
+        &REVERSE
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        _: &[f32],
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let turned = reverse_orientation(world, mesh).faces;
+        Ok(Applied::whole(format!(
+            "{} turned round",
+            count(turned, "face")
+        )))
+    }
+}
 
 /// What reversing a mesh did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -38,7 +67,29 @@ pub struct ReverseSummary {
 
 /// Orienting every part outward (Blender's Recalculate Outside): a whole-mesh edit that
 /// keeps every id and attribute.
-pub const ORIENT_OUTSIDE: Declaration = Declaration::new("orient-outside");
+pub const ORIENT_OUTSIDE: Declaration = Declaration::new("orient-outside")
+    .titled("Orient outside")
+    .described("orient outside: turn round each part whose faces point inward")
+    .on_key(KeyChord::shift(KeyCode::KeyN, "Shift+N"));
+
+/// [`orient_outward`] as an operation (the `orient-outside` step, Shift+N).
+pub struct OrientOutside;
+
+impl MeshOperation for OrientOutside {
+    fn declaration(&self) -> &'static Declaration {
+        &ORIENT_OUTSIDE
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        _: &[f32],
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        Ok(Applied::whole(orient_outward(world, mesh).describe()))
+    }
+}
 
 /// What orienting a mesh's parts outward did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -51,6 +102,28 @@ pub struct OrientSummary {
     pub undecided: usize,
     /// Faces turned round.
     pub faces: usize,
+}
+
+impl OrientSummary {
+    /// The summary's line: "no part faces inward (3 parts)", "1 of 2 parts turned outward
+    /// (40 faces turned round)", and the open parts left as found, if any.
+    pub fn describe(&self) -> String {
+        let turned = match self.turned {
+            0 => format!("no part faces inward ({})", count(self.parts, "part")),
+            n => format!(
+                "{n} of {} turned outward ({} turned round)",
+                count(self.parts, "part"),
+                count(self.faces, "face")
+            ),
+        };
+        match self.undecided {
+            0 => turned,
+            n => format!(
+                "{turned}; {} left as found (no clear inside)",
+                count(n, "open part")
+            ),
+        }
+    }
 }
 
 /// Reverses the orientation of every face of `mesh` (see the module doc).

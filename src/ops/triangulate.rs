@@ -15,6 +15,7 @@
 //! halfedges) and one face, and the original face entity becomes the first triangle. Ids of
 //! everything that existed before survive.
 
+use bevy::input::keyboard::KeyCode;
 use bevy::math::{Vec2, Vec3};
 use bevy::prelude::World;
 
@@ -23,10 +24,44 @@ use crate::mesh::ids::{EdgeId, FaceId, HalfedgeId, MeshId};
 use crate::mesh::members::{MeshMembers, of_kind};
 use crate::mesh::topology::{MeshRef, newell_area_vector};
 
-use crate::ops::declaration::Declaration;
+use crate::ops::Refusal;
+use crate::ops::declaration::{Declaration, KeyChord};
+use crate::ops::operation::{Applied, EditContext, MeshOperation};
 
 /// Triangulating every polygon: a whole-mesh edit that may run as a job.
-pub const TRIANGULATE: Declaration = Declaration::new("triangulate").as_job();
+pub const TRIANGULATE: Declaration = Declaration::new("triangulate")
+    .titled("Triangulate")
+    .described("triangulate every polygon")
+    .on_key(KeyChord::ctrl(KeyCode::KeyT, "Ctrl+T"))
+    .as_job();
+
+/// [`triangulate`] as an operation (the `triangulate` step, Ctrl+T).
+pub struct Triangulate;
+
+impl MeshOperation for Triangulate {
+    fn declaration(&self) -> &'static Declaration {
+        &TRIANGULATE
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        _: &[f32],
+        context: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let s = triangulate(world, mesh);
+        (context.progress)(1.0);
+        let left = match s.left {
+            0 => String::new(),
+            n => format!("; {n} polygon(s) left whole: any cut would make an edge that exists"),
+        };
+        Ok(Applied::whole(format!(
+            "{} polygon(s) cut into triangles, {} face(s) added{left}",
+            s.polygons, s.added_faces
+        )))
+    }
+}
 
 /// What triangulating a mesh did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -1,4 +1,5 @@
-//! Keyboard shortcuts: one table, read by the input system and listed by the help overlay.
+//! Keyboard shortcuts: the editor's table and the keys the registered operations declare
+//! ([`shortcuts`]), read by the input system and listed by the help overlay.
 //!
 //! Shortcuts only write [`Request`]s or flip view settings; they never touch a mesh. An edit's
 //! parameters are the panel's ([`UiState`]), the same structs and defaults as the command
@@ -9,11 +10,13 @@ use crate::editor::pipeline::stepping::Stepping;
 use crate::editor::session::requests::StepMove;
 use bevy::prelude::*;
 
-use crate::edit::{Edit, LocalKind, Scheme, Subdivision};
+use crate::edit::{Edit, Invocation, LocalKind, Scheme, Subdivision};
 use crate::mesh::MeshRef;
 use crate::mesh::ids::ElementId;
+use crate::ops::Refusal;
 use crate::ops::deform::{FairParams, Proportional};
 use crate::ops::local::faces_of;
+use crate::ops::operation::MeshOperation;
 use crate::ops::param::ParamParams;
 use crate::ops::remesh::RemeshParams;
 use crate::ops::simplify::SimplifyParams;
@@ -68,12 +71,9 @@ pub enum Action {
     Collapse,
     /// Weld the first two selected boundary edges.
     Weld,
-    /// Triangulate the active mesh.
-    Triangulate,
-    /// Reverse the active mesh's orientation.
-    Reverse,
-    /// Turn the active mesh's inward-facing parts outward.
-    OrientOutside,
+    /// Run the registered operation of this step name ([`crate::ops::OPERATIONS`]) on the
+    /// active mesh, with the panel's values of its parameters.
+    Operation(&'static str),
     /// Simplify the active mesh (QEM) with the panel's parameters.
     Simplify,
     /// Split the selected vertex back (undo its last collapse from the simplification).
@@ -230,13 +230,29 @@ const fn ctrl(
 
 /// The keys of `action` as the help lists them (`"Ctrl+T"`), if it has a shortcut.
 pub fn keys_of(action: Action) -> Option<&'static str> {
-    SHORTCUTS
-        .iter()
-        .find(|s| s.action == action)
-        .map(|s| s.keys)
+    shortcuts().find(|s| s.action == action).map(|s| s.keys)
 }
 
-/// Every shortcut of the editor.
+/// Every shortcut of the editor: the table below, then the keys the registered operations
+/// declare ([`crate::ops::OPERATIONS`]).
+pub fn shortcuts() -> impl Iterator<Item = Shortcut> {
+    let declared = crate::ops::OPERATIONS.iter().filter_map(|op| {
+        let d = op.declaration();
+        let chord = d.key?;
+        Some(Shortcut {
+            key: chord.key,
+            ctrl: chord.ctrl,
+            shift: chord.shift,
+            alt: chord.alt,
+            action: Action::Operation(d.name),
+            keys: chord.keys,
+            description: d.help,
+        })
+    });
+    SHORTCUTS.iter().copied().chain(declared)
+}
+
+/// The editor's own shortcuts (see [`shortcuts`] for all of them).
 pub const SHORTCUTS: &[Shortcut] = &[
     key(
         KeyCode::KeyG,
@@ -391,25 +407,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "J",
         Action::CutCorner,
         "split the selected halfedge's face: join its tip to the corner two ahead",
-    ),
-    ctrl(
-        KeyCode::KeyT,
-        false,
-        "Ctrl+T",
-        Action::Triangulate,
-        "triangulate every polygon",
-    ),
-    alt(
-        KeyCode::KeyN,
-        "Alt+N",
-        Action::Reverse,
-        "reverse the orientation: every face turned round, its normal the other way",
-    ),
-    shift(
-        KeyCode::KeyN,
-        "Shift+N",
-        Action::OrientOutside,
-        "orient outside: turn round each part whose faces point inward",
     ),
     key(
         KeyCode::KeyU,
@@ -684,6 +681,29 @@ pub struct UiState {
     pub fill_fair: bool,
     /// Proportional editing: on or off, falloff, radius, distances along edges.
     pub proportional: Proportional,
+    /// The panel's values of each registered operation's parameters (their defaults until
+    /// changed), one invocation per operation of [`crate::ops::OPERATIONS`].
+    pub operations: Vec<Invocation>,
+}
+
+impl UiState {
+    /// `op` with the panel's values of its parameters.
+    pub fn invocation(&self, op: &'static dyn MeshOperation) -> Invocation {
+        let name = op.declaration().name;
+        self.operations
+            .iter()
+            .find(|i| i.declaration().name == name)
+            .copied()
+            .unwrap_or_else(|| Invocation::with_defaults(op))
+    }
+}
+
+/// The registered operation an action runs, if it runs one.
+fn registered(action: Action) -> Option<&'static dyn MeshOperation> {
+    match action {
+        Action::Operation(name) => crate::ops::operation(name),
+        _ => None,
+    }
 }
 
 impl Default for UiState {
@@ -704,15 +724,17 @@ impl Default for UiState {
             fair_k: 2,
             fill_fair: true,
             proportional: Proportional::default(),
+            operations: crate::ops::OPERATIONS
+                .iter()
+                .map(|&op| Invocation::with_defaults(op))
+                .collect(),
         }
     }
 }
 
 /// The shortcut matching a key press with exactly the given modifiers, if any.
-pub fn shortcut_for(key: KeyCode, ctrl: bool, shift: bool, alt: bool) -> Option<&'static Shortcut> {
-    SHORTCUTS
-        .iter()
-        .find(|s| s.key == key && s.ctrl == ctrl && s.shift == shift && s.alt == alt)
+pub fn shortcut_for(key: KeyCode, ctrl: bool, shift: bool, alt: bool) -> Option<Shortcut> {
+    shortcuts().find(|s| s.key == key && s.ctrl == ctrl && s.shift == shift && s.alt == alt)
 }
 
 /// Reads key presses and performs their actions (the `Input` set).
@@ -782,6 +804,9 @@ pub fn perform(world: &mut World, action: Action) {
 fn action_words(action: Action) -> String {
     if let Action::OnEdge(kind) = action {
         return crate::ops::named::Named::name(kind).to_string();
+    }
+    if let Some(op) = registered(action) {
+        return op.declaration().title.to_lowercase();
     }
     let name = format!("{action:?}");
     let mut words = String::with_capacity(name.len() + 4);
@@ -946,10 +971,13 @@ fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, De
             world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
             Edit::FillHoles(world.resource::<UiState>().fill_fair)
         }
-        Action::Triangulate
-        | Action::Reverse
-        | Action::OrientOutside
-        | Action::LoopSubdivide
+        Action::Operation(name) => {
+            world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
+            let op = crate::ops::operation(name)
+                .ok_or_else(|| Refusal::BadParameter(format!("no operation is called `{name}`")))?;
+            Edit::Operation(world.resource::<UiState>().invocation(op))
+        }
+        Action::LoopSubdivide
         | Action::CatmullClark
         | Action::Remesh
         | Action::Smooth
@@ -961,9 +989,6 @@ fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, De
             let ui = world.resource::<UiState>();
             let levels = ui.subdivision_levels.clamp(1, Subdivision::MAX_LEVELS);
             match action {
-                Action::Triangulate => Edit::Triangulate,
-                Action::Reverse => Edit::Reverse,
-                Action::OrientOutside => Edit::OrientOutside,
                 Action::Remesh => Edit::Remesh(ui.remesh),
                 Action::Simplify => Edit::Simplify(ui.simplify),
                 Action::Parameterize => Edit::Parameterize(ui.param.clone()),
@@ -1141,5 +1166,35 @@ mod tests {
         assert_eq!(action_words(Action::SplitVertex), "split vertex");
         assert_eq!(action_words(Action::FillFair), "fill fair");
         assert_eq!(action_words(Action::Navigate(Relation::Twin)), "navigate");
+        assert_eq!(
+            action_words(Action::Operation("orient-outside")),
+            "orient outside"
+        );
+    }
+
+    /// The keymap holds every key a registered operation declares, with its help line, and
+    /// no two shortcuts (declared or the editor's own) share a key with the same modifiers.
+    #[test]
+    fn declared_keys_join_the_keymap_and_no_two_shortcuts_collide() {
+        let all: Vec<Shortcut> = shortcuts().collect();
+        for op in crate::ops::OPERATIONS {
+            let d = op.declaration();
+            let Some(chord) = d.key else { continue };
+            let found = shortcut_for(chord.key, chord.ctrl, chord.shift, chord.alt).unwrap();
+            assert_eq!(found.action, Action::Operation(d.name));
+            assert_eq!((found.keys, found.description), (chord.keys, d.help));
+            assert_eq!(keys_of(Action::Operation(d.name)), Some(chord.keys));
+        }
+        for (i, a) in all.iter().enumerate() {
+            for b in &all[i + 1..] {
+                assert!(
+                    (a.key, a.ctrl, a.shift, a.alt) != (b.key, b.ctrl, b.shift, b.alt),
+                    "{} is both {:?} and {:?}",
+                    a.keys,
+                    a.action,
+                    b.action
+                );
+            }
+        }
     }
 }

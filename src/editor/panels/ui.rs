@@ -25,7 +25,7 @@ use crate::ops::smooth::SmoothMethod;
 use super::mesh_figures::MeshView;
 use super::plots::Histogram;
 use crate::colormap::{ColorMap, Range};
-use crate::editor::input::keyboard::{Action, SHORTCUTS, UiState, perform};
+use crate::editor::input::keyboard::{Action, UiState, perform, shortcuts};
 use crate::editor::session::dialog::PathPurpose;
 use crate::editor::session::requests::{OutcomeLog, Relation, Request};
 use crate::editor::session::schedule::EditorSystems;
@@ -560,7 +560,7 @@ fn help_window(ctx: &egui::Context) -> bool {
         .collapsible(false)
         .show(ctx, |ui| {
             egui::Grid::new("help").striped(true).show(ui, |ui| {
-                for s in SHORTCUTS {
+                for s in shortcuts() {
                     ui.monospace(s.keys);
                     ui.label(s.description);
                     ui.end_row();
@@ -823,11 +823,57 @@ fn history_section(ui: &mut egui::Ui, view: &InspectorView, pending: &mut Pendin
 
 /// A button that runs `action`, its keys beside its name.
 fn button(ui: &mut egui::Ui, pending: &mut PendingActions, action: Action, name: &str) {
-    if ui
-        .button(format!("{name} ({})", shortcut_label(action)))
-        .clicked()
-    {
+    let text = match shortcut_label(action) {
+        "" => name.to_string(),
+        keys => format!("{name} ({keys})"),
+    };
+    if ui.button(text).clicked() {
         pending.0.push(action);
+    }
+}
+
+/// The registered operations ([`crate::ops::OPERATIONS`]), drawn from their declarations: a
+/// button each (its help line on hover), after the fields of its parameters, whose values
+/// the button and the key use.
+fn registered_operations(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
+    ui.horizontal_wrapped(|ui| {
+        for invocation in &state.operations {
+            let d = invocation.declaration();
+            if !d.parameters.is_empty() {
+                continue;
+            }
+            ui.scope(|ui| button(ui, pending, Action::Operation(d.name), d.title))
+                .response
+                .on_hover_text(d.help);
+        }
+        button(ui, pending, Action::ToggleStepMode, "Step mode");
+    });
+    for invocation in &mut state.operations {
+        let d = invocation.declaration();
+        if d.parameters.is_empty() {
+            continue;
+        }
+        ui.horizontal(|ui| {
+            for (i, p) in d.parameters.iter().enumerate() {
+                let mut x = invocation.values()[i];
+                let field = egui::DragValue::new(&mut x)
+                    .range(p.min..=p.max)
+                    .speed(if p.whole { 1.0 } else { 0.01 })
+                    .prefix(format!("{} ", p.name.to_lowercase()));
+                let field = match p.whole {
+                    true => field.fixed_decimals(0),
+                    false => field,
+                };
+                if ui.add(field).changed() {
+                    let x = if p.whole { x.round() } else { x };
+                    // The field keeps `x` in range; a value it cannot take is left as it was.
+                    let _ = invocation.set(i, x);
+                }
+            }
+            button(ui, pending, Action::Operation(d.name), d.title);
+        })
+        .response
+        .on_hover_text(d.help);
     }
 }
 
@@ -954,16 +1000,7 @@ fn local_section(ui: &mut egui::Ui, pending: &mut PendingActions) {
 /// line's steps (`simplify:RATIO`, `simplify-faces:N`, `remesh:ITERATIONS:LENGTH`, `loop:N`,
 /// `smooth:METHOD`), and step mode, which runs them a step at a time.
 fn whole_mesh_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
-    buttons(
-        ui,
-        pending,
-        &[
-            (Action::Triangulate, "Triangulate"),
-            (Action::Reverse, "Reverse orientation"),
-            (Action::OrientOutside, "Orient outside"),
-            (Action::ToggleStepMode, "Step mode"),
-        ],
-    );
+    registered_operations(ui, state, pending);
     // Subdivision: levels per press.
     ui.horizontal(|ui| {
         ui.add(
