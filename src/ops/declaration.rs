@@ -56,8 +56,9 @@ pub struct Declaration {
     /// What it does, in one line, for the help overlay, the usage text and the button's
     /// hover text (empty where the operation has not declared one).
     pub help: &'static str,
-    /// Its key in the editor, if it has one.
-    pub key: Option<KeyChord>,
+    /// Its key in the editor, if it has one, as the help overlay writes it: modifiers and a
+    /// key joined by `+` (`"Alt+C"`, `"Ctrl+T"`, `"Shift+N"`); the editor's keymap reads it.
+    pub key: Option<&'static str>,
     /// Its numeric parameters, in the order a step gives them.
     pub parameters: &'static [Parameter],
     /// Whether it has a `process` step of that name.
@@ -101,8 +102,8 @@ impl Declaration {
         Self { help, ..self }
     }
 
-    /// Its key in the editor.
-    pub const fn on_key(self, key: KeyChord) -> Self {
+    /// Its key in the editor (`"Alt+C"`).
+    pub const fn on_key(self, key: &'static str) -> Self {
         Self {
             key: Some(key),
             ..self
@@ -232,58 +233,6 @@ impl Parameter {
             "a number"
         };
         format!("{kind} from {} to {}", self.min, self.max)
-    }
-}
-
-/// A key with modifiers, as an operation declares it (`KeyChord::alt(KeyCode::KeyC, "Alt+C")`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct KeyChord {
-    /// The key.
-    pub key: bevy::input::keyboard::KeyCode,
-    /// Ctrl must be held.
-    pub ctrl: bool,
-    /// Shift must be held.
-    pub shift: bool,
-    /// Alt must be held.
-    pub alt: bool,
-    /// How the help overlay and the panel write it.
-    pub keys: &'static str,
-}
-
-impl KeyChord {
-    /// The key alone.
-    pub const fn plain(key: bevy::input::keyboard::KeyCode, keys: &'static str) -> Self {
-        Self {
-            key,
-            ctrl: false,
-            shift: false,
-            alt: false,
-            keys,
-        }
-    }
-
-    /// The key with Ctrl.
-    pub const fn ctrl(key: bevy::input::keyboard::KeyCode, keys: &'static str) -> Self {
-        Self {
-            ctrl: true,
-            ..Self::plain(key, keys)
-        }
-    }
-
-    /// The key with Shift.
-    pub const fn shift(key: bevy::input::keyboard::KeyCode, keys: &'static str) -> Self {
-        Self {
-            shift: true,
-            ..Self::plain(key, keys)
-        }
-    }
-
-    /// The key with Alt.
-    pub const fn alt(key: bevy::input::keyboard::KeyCode, keys: &'static str) -> Self {
-        Self {
-            alt: true,
-            ..Self::plain(key, keys)
-        }
     }
 }
 

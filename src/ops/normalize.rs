@@ -16,7 +16,6 @@
 //! the panel's button and its parameter, undo and Python's `Mesh.step` come from the
 //! declaration.
 
-use bevy::input::keyboard::KeyCode;
 use bevy::math::DVec3;
 use bevy::prelude::World;
 
@@ -24,14 +23,14 @@ use crate::mesh::elements::{Position, Vertex};
 use crate::mesh::ids::{MeshId, VertexId};
 use crate::mesh::members::of_kind;
 use crate::ops::Refusal;
-use crate::ops::declaration::{Declaration, KeyChord, Parameter};
+use crate::ops::declaration::{Declaration, Parameter};
 use crate::ops::operation::{Applied, EditContext, MeshOperation, Redraw};
 
 /// Normalizing: positions only, every id and attribute kept.
 pub const NORMALIZE: Declaration = Declaration::new("normalize")
     .titled("Normalize")
     .described("centre the mesh's box at the origin and scale it so its longest side is SIZE")
-    .on_key(KeyChord::alt(KeyCode::KeyC, "Alt+C"))
+    .on_key("Alt+C")
     .with_parameters(&[Parameter::real("SIZE", 1.0, 1e-6, 1e6)]);
 
 /// [`normalize`] as an operation (the `normalize[:SIZE]` step, Alt+C).

@@ -15,7 +15,6 @@
 //! [`orient_outward`] (Blender's Recalculate Outside) turns only the parts that face inward:
 //! each set of faces joined across edges whose signed volume about its centroid is negative.
 
-use bevy::input::keyboard::KeyCode;
 use bevy::math::{DVec3, Vec2};
 use bevy::prelude::World;
 
@@ -25,7 +24,7 @@ use crate::mesh::ids::{FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
-use crate::ops::declaration::{Declaration, KeyChord};
+use crate::ops::declaration::Declaration;
 use crate::ops::operation::{Applied, EditContext, MeshOperation, count};
 
 /// Reversing the orientation: a whole-mesh edit (every halfedge turns round) that keeps every
@@ -33,7 +32,7 @@ use crate::ops::operation::{Applied, EditContext, MeshOperation, count};
 pub const REVERSE: Declaration = Declaration::new("reverse")
     .titled("Reverse orientation")
     .described("reverse the orientation: every face turned round, its normal the other way")
-    .on_key(KeyChord::alt(KeyCode::KeyN, "Alt+N"));
+    .on_key("Alt+N");
 
 /// [`reverse_orientation`] as an operation (the `reverse` step, Alt+N).
 pub struct Reverse;
@@ -70,7 +69,7 @@ pub struct ReverseSummary {
 pub const ORIENT_OUTSIDE: Declaration = Declaration::new("orient-outside")
     .titled("Orient outside")
     .described("orient outside: turn round each part whose faces point inward")
-    .on_key(KeyChord::shift(KeyCode::KeyN, "Shift+N"));
+    .on_key("Shift+N");
 
 /// [`orient_outward`] as an operation (the `orient-outside` step, Shift+N).
 pub struct OrientOutside;

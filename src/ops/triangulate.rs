@@ -15,7 +15,6 @@
 //! halfedges) and one face, and the original face entity becomes the first triangle. Ids of
 //! everything that existed before survive.
 
-use bevy::input::keyboard::KeyCode;
 use bevy::math::{Vec2, Vec3};
 use bevy::prelude::World;
 
@@ -25,14 +24,14 @@ use crate::mesh::members::{MeshMembers, of_kind};
 use crate::mesh::topology::{MeshRef, newell_area_vector};
 
 use crate::ops::Refusal;
-use crate::ops::declaration::{Declaration, KeyChord};
+use crate::ops::declaration::Declaration;
 use crate::ops::operation::{Applied, EditContext, MeshOperation};
 
 /// Triangulating every polygon: a whole-mesh edit that may run as a job.
 pub const TRIANGULATE: Declaration = Declaration::new("triangulate")
     .titled("Triangulate")
     .described("triangulate every polygon")
-    .on_key(KeyChord::ctrl(KeyCode::KeyT, "Ctrl+T"))
+    .on_key("Ctrl+T")
     .as_job();
 
 /// [`triangulate`] as an operation (the `triangulate` step, Ctrl+T).

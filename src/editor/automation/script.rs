@@ -38,6 +38,7 @@ use crate::ops::named::Named;
 use crate::edit::Edit;
 use crate::ops::geometry::Quantity;
 
+use crate::editor::input::key_names::key_code;
 use crate::editor::session::requests::Request;
 use crate::editor::session::requests::StepMove;
 use crate::editor::session::selection::ActiveMesh;
@@ -202,76 +203,6 @@ impl Script {
             measuring_cpu: None,
             release: Vec::new(),
         })
-    }
-}
-
-fn key_code(name: &str) -> Option<KeyCode> {
-    let single = |c: char| -> Option<KeyCode> {
-        const LETTERS: [KeyCode; 26] = [
-            KeyCode::KeyA,
-            KeyCode::KeyB,
-            KeyCode::KeyC,
-            KeyCode::KeyD,
-            KeyCode::KeyE,
-            KeyCode::KeyF,
-            KeyCode::KeyG,
-            KeyCode::KeyH,
-            KeyCode::KeyI,
-            KeyCode::KeyJ,
-            KeyCode::KeyK,
-            KeyCode::KeyL,
-            KeyCode::KeyM,
-            KeyCode::KeyN,
-            KeyCode::KeyO,
-            KeyCode::KeyP,
-            KeyCode::KeyQ,
-            KeyCode::KeyR,
-            KeyCode::KeyS,
-            KeyCode::KeyT,
-            KeyCode::KeyU,
-            KeyCode::KeyV,
-            KeyCode::KeyW,
-            KeyCode::KeyX,
-            KeyCode::KeyY,
-            KeyCode::KeyZ,
-        ];
-        const DIGITS: [KeyCode; 10] = [
-            KeyCode::Digit0,
-            KeyCode::Digit1,
-            KeyCode::Digit2,
-            KeyCode::Digit3,
-            KeyCode::Digit4,
-            KeyCode::Digit5,
-            KeyCode::Digit6,
-            KeyCode::Digit7,
-            KeyCode::Digit8,
-            KeyCode::Digit9,
-        ];
-        let c = c.to_ascii_uppercase();
-        match c {
-            'A'..='Z' => Some(LETTERS[(c as u8 - b'A') as usize]),
-            '0'..='9' => Some(DIGITS[(c as u8 - b'0') as usize]),
-            '.' => Some(KeyCode::Period),
-            _ => None,
-        }
-    };
-    match name {
-        "Period" => Some(KeyCode::Period),
-        "Escape" => Some(KeyCode::Escape),
-        "F1" => Some(KeyCode::F1),
-        "F9" => Some(KeyCode::F9),
-        "Right" => Some(KeyCode::ArrowRight),
-        "Left" => Some(KeyCode::ArrowLeft),
-        "End" => Some(KeyCode::End),
-        "PageUp" => Some(KeyCode::PageUp),
-        "PageDown" => Some(KeyCode::PageDown),
-        "Delete" => Some(KeyCode::Delete),
-        "Enter" => Some(KeyCode::Enter),
-        "Backspace" => Some(KeyCode::Backspace),
-        "Minus" | "-" => Some(KeyCode::Minus),
-        "Equal" | "=" => Some(KeyCode::Equal),
-        _ if name.chars().count() == 1 => single(name.chars().next()?),
-        _ => None,
     }
 }
 

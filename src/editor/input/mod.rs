@@ -3,6 +3,7 @@
 //! (session, pipeline, view, gestures); the panels and the automation read it.
 
 pub mod dropped_files;
+pub mod key_names;
 pub mod keyboard;
 
 use bevy::prelude::*;
