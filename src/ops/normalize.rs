@@ -52,12 +52,21 @@ impl MeshOperation for Normalize {
         Ok(Applied {
             summary: format!(
                 "centred (moved by {:.4}, {:.4}, {:.4}) and scaled by {:.4}: longest side {}",
-                -done.centre.x, -done.centre.y, -done.centre.z, done.scale, values[0]
+                tidy(-done.centre.x),
+                tidy(-done.centre.y),
+                tidy(-done.centre.z),
+                done.scale,
+                values[0]
             ),
             redraw: Redraw::Positions,
             made: None,
         })
     }
+}
+
+/// `x`, or 0 where it would print as `-0.0000`.
+fn tidy(x: f64) -> f64 {
+    if x.abs() < 5e-5 { 0.0 } else { x }
 }
 
 /// What normalizing did.

@@ -555,30 +555,41 @@ fn status_bar(
 /// The help window listing every key; returns whether it stays open.
 fn help_window(ctx: &egui::Context) -> bool {
     let mut open = true;
+    // Taller than a laptop's screen: the list scrolls, in a window as tall as the screen.
+    let room = ctx.content_rect().height() - 120.0;
     egui::Window::new("Shortcuts")
         .open(&mut open)
         .collapsible(false)
+        .default_height(room)
         .show(ctx, |ui| {
-            egui::Grid::new("help").striped(true).show(ui, |ui| {
-                for s in shortcuts() {
-                    ui.monospace(s.keys);
-                    ui.label(s.description);
-                    ui.end_row();
-                }
-                for (keys, what) in [
-                    ("left click", "select (mode: 1 2 3 4 `)"),
-                    ("middle / right drag", "orbit"),
-                    ("Shift + drag", "pan"),
-                    ("wheel", "zoom"),
-                    ("drop a file", "open it"),
-                ] {
-                    ui.monospace(keys);
-                    ui.label(what);
-                    ui.end_row();
-                }
-            });
+            egui::ScrollArea::vertical()
+                .max_height(room)
+                .min_scrolled_height(room)
+                .show(ui, help_grid);
         });
     open
+}
+
+/// Every shortcut (the editor's and the operations' declared keys), then the mouse.
+fn help_grid(ui: &mut egui::Ui) {
+    egui::Grid::new("help").striped(true).show(ui, |ui| {
+        for s in shortcuts() {
+            ui.monospace(s.keys);
+            ui.label(s.description);
+            ui.end_row();
+        }
+        for (keys, what) in [
+            ("left click", "select (mode: 1 2 3 4 `)"),
+            ("middle / right drag", "orbit"),
+            ("Shift + drag", "pan"),
+            ("wheel", "zoom"),
+            ("drop a file", "open it"),
+        ] {
+            ui.monospace(keys);
+            ui.label(what);
+            ui.end_row();
+        }
+    });
 }
 
 fn file_section(
@@ -822,14 +833,21 @@ fn history_section(ui: &mut egui::Ui, view: &InspectorView, pending: &mut Pendin
 }
 
 /// A button that runs `action`, its keys beside its name.
-fn button(ui: &mut egui::Ui, pending: &mut PendingActions, action: Action, name: &str) {
+fn button(
+    ui: &mut egui::Ui,
+    pending: &mut PendingActions,
+    action: Action,
+    name: &str,
+) -> egui::Response {
     let text = match shortcut_label(action) {
         "" => name.to_string(),
         keys => format!("{name} ({keys})"),
     };
-    if ui.button(text).clicked() {
+    let response = ui.button(text);
+    if response.clicked() {
         pending.0.push(action);
     }
+    response
 }
 
 /// The registered operations ([`crate::ops::OPERATIONS`]), drawn from their declarations: a
@@ -842,9 +860,7 @@ fn registered_operations(ui: &mut egui::Ui, state: &mut UiState, pending: &mut P
             if !d.parameters.is_empty() {
                 continue;
             }
-            ui.scope(|ui| button(ui, pending, Action::Operation(d.name), d.title))
-                .response
-                .on_hover_text(d.help);
+            button(ui, pending, Action::Operation(d.name), d.title).on_hover_text(d.help);
         }
         button(ui, pending, Action::ToggleStepMode, "Step mode");
     });
@@ -870,10 +886,8 @@ fn registered_operations(ui: &mut egui::Ui, state: &mut UiState, pending: &mut P
                     let _ = invocation.set(i, x);
                 }
             }
-            button(ui, pending, Action::Operation(d.name), d.title);
-        })
-        .response
-        .on_hover_text(d.help);
+            button(ui, pending, Action::Operation(d.name), d.title).on_hover_text(d.help);
+        });
     }
 }
 
