@@ -250,6 +250,18 @@ def test_reverse_turns_every_face_round_and_orient_outside_turns_it_back():
     assert mesh.orient_outside() == "no part faces inward (1 part)"
 
 
+def test_a_registered_operation_runs_as_a_step_with_its_declared_parameter():
+    mesh = pappus.load("shape:torus")
+    faces = mesh.faces
+    assert mesh.step("normalize:2").startswith("centred")
+    lo, hi = mesh.vertices.min(axis=0), mesh.vertices.max(axis=0)
+    assert np.allclose((lo + hi) / 2, 0, atol=1e-6)
+    assert abs((hi - lo).max() - 2) < 1e-5
+    assert (mesh.faces == faces).all()
+    with pytest.raises(ValueError, match="SIZE must be a number from"):
+        mesh.step("normalize:-1")
+
+
 def test_edge_operations_by_input_vertex_numbers():
     mesh = two_triangles()
     assert mesh.flip(0, 2).startswith("flipped to")
