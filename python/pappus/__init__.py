@@ -34,6 +34,7 @@ from ._pappus import (
     __version__,
     load,
     memory_budget,
+    operations,
     set_memory_budget,
 )
 
@@ -47,6 +48,7 @@ __all__ = [
     "__version__",
     "load",
     "memory_budget",
+    "operations",
     "output_stem",
     "process_file",
     "set_memory_budget",

@@ -64,6 +64,12 @@ def set_memory_budget(limit: Union[int, str, None] = None) -> int:
 def memory_budget() -> Tuple[int, str]:
     """The budget now: ``(limit_bytes, how_it_was_chosen)``."""
 
+def operations() -> List[Dict[str, Any]]:
+    """Every operation that declares itself whole, as the command line, the editor's keys and
+    panel know them: ``{"name", "title", "help", "key", "job", "parameters": [{"name",
+    "default", "min", "max", "whole"}]}``, in the panel's order. Each runs as
+    ``mesh.step("NAME[:VALUE...]")``, missing values taking their defaults."""
+
 def output_stem(source: Union[str, os.PathLike]) -> str:
     """``{stem}`` as ``pappus process -o`` names it: a file's name without its extension, or a
     shape's name and sizes joined by dashes (``"shape:icosphere:3"`` → ``"icosphere-3"``)."""

@@ -18,6 +18,7 @@ use std::time::Instant;
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use pappus::memory_budget::Budget;
 use pappus::source::{SourceError, read_source};
@@ -97,13 +98,50 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
         .map_err(|e| PyValueError::new_err(format!("{name}: {e}")))
 }
 
+/// Every operation that declares itself whole (`pappus::ops::OPERATIONS`), as the command
+/// line's steps, the editor's keys and its panel know them: one dict each, `{"name", "title",
+/// "help", "key", "job", "parameters": [{"name", "default", "min", "max", "whole"}]}`, in the
+/// panel's order. Each runs as `mesh.step("NAME[:VALUE…]")`, missing values taking their
+/// defaults.
+#[pyfunction]
+fn operations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
+    pappus::ops::OPERATIONS
+        .iter()
+        .map(|op| {
+            let d = op.declaration();
+            let parameters = d
+                .parameters
+                .iter()
+                .map(|p| {
+                    let x = PyDict::new(py);
+                    x.set_item("name", p.name)?;
+                    x.set_item("default", p.default)?;
+                    x.set_item("min", p.min)?;
+                    x.set_item("max", p.max)?;
+                    x.set_item("whole", p.whole)?;
+                    Ok(x)
+                })
+                .collect::<PyResult<Vec<_>>>()?;
+            let x = PyDict::new(py);
+            x.set_item("name", d.name)?;
+            x.set_item("title", d.title)?;
+            x.set_item("help", d.help)?;
+            x.set_item("key", d.key)?;
+            x.set_item("job", d.job)?;
+            x.set_item("parameters", parameters)?;
+            Ok(x)
+        })
+        .collect()
+}
+
 /// Pappus from Python: load, build, edit and save halfedge meshes with the command line's
 /// operations (see the `pappus` package's documentation).
 #[pymodule]
 mod _pappus {
     #[pymodule_export]
     use super::{
-        InvalidMesh, Mesh, PappusError, ParseError, Refused, load, memory_budget, set_memory_budget,
+        InvalidMesh, Mesh, PappusError, ParseError, Refused, load, memory_budget, operations,
+        set_memory_budget,
     };
 
     use pyo3::prelude::*;

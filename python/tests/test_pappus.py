@@ -262,6 +262,24 @@ def test_a_registered_operation_runs_as_a_step_with_its_declared_parameter():
         mesh.step("normalize:-1")
 
 
+def test_every_declared_operation_is_listed_and_runs_with_its_defaults():
+    declared = pappus.operations()
+    names = [op["name"] for op in declared]
+    assert names[:4] == ["triangulate", "reverse", "orient-outside", "normalize"]
+    normalize = declared[names.index("normalize")]
+    assert normalize["key"] == "Alt+C" and normalize["title"] == "Normalize"
+    assert normalize["parameters"] == [
+        {"name": "SIZE", "default": 1.0, "min": pytest.approx(1e-6), "max": 1e6, "whole": False}
+    ]
+    for op in declared:
+        assert op["help"], op["name"]
+        for p in op["parameters"]:
+            assert p["min"] <= p["default"] <= p["max"]
+        mesh = pappus.load("shape:torus")
+        assert mesh.step(op["name"]), op["name"]
+        mesh.validate()
+
+
 def test_edge_operations_by_input_vertex_numbers():
     mesh = two_triangles()
     assert mesh.flip(0, 2).startswith("flipped to")
