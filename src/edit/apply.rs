@@ -71,7 +71,7 @@ impl Edit {
             Edit::Subdivide(subdivision) => subdivide(world, mesh, subdivision, context),
             Edit::Remesh(params) => remesh(world, mesh, params, context),
             Edit::Smooth(params) => smooth(world, mesh, params, context),
-            Edit::Deform(params) => Ok(whole(deformed(&deform(world, mesh, params)?))),
+            Edit::Deform(params) => Ok(Applied::whole(deformed(&deform(world, mesh, params)?))),
             Edit::Fair(params) => fair_region(world, mesh, params),
             Edit::FillHoleFair(e) => fill_one_hole_fair(world, *e),
             Edit::FillHoles(fair) => fill_every_hole(world, mesh, *fair),
@@ -107,15 +107,6 @@ fn near(world: &World, faces: Vec<FaceId>, vertices: Vec<VertexId>) -> Redraw {
     Redraw::Near {
         faces: [faces_around(world, &vertices), faces].concat(),
         vertices,
-    }
-}
-
-/// A whole-mesh edit's result: redraw everything, keep the selection.
-fn whole(summary: String) -> Applied {
-    Applied {
-        summary,
-        redraw: Redraw::Whole,
-        made: None,
     }
 }
 
@@ -256,7 +247,9 @@ fn level_of_detail(
             made: None,
         }),
         // A bulk refine that stopped on a refusal has still rewritten the mesh.
-        Err(refusal) if now != before => Ok(whole(format!("stopped at {now} faces: {refusal}"))),
+        Err(refusal) if now != before => {
+            Ok(Applied::whole(format!("stopped at {now} faces: {refusal}")))
+        }
         Err(refusal) => Err(refusal),
     }
 }
@@ -277,7 +270,7 @@ fn simplify(
     } else {
         " (no legal collapse left before the target)"
     };
-    Ok(whole(format!(
+    Ok(Applied::whole(format!(
         "{} -> {} faces in {} collapses{reached}",
         s.faces_before, s.faces_after, s.collapses
     )))
@@ -296,7 +289,7 @@ fn subdivide(
         &mut *context.progress,
     )?;
     (context.progress)(1.0);
-    Ok(whole(s.describe()))
+    Ok(Applied::whole(s.describe()))
 }
 
 fn remesh(
@@ -306,7 +299,7 @@ fn remesh(
     context: &mut EditContext<'_>,
 ) -> Result<Applied, Refusal> {
     let s = remesh_with_progress(world, mesh, params, &mut *context.progress)?;
-    Ok(whole(format!(
+    Ok(Applied::whole(format!(
         "L {:.5}: {} splits, {} collapses, {} flips",
         s.target_length, s.splits, s.collapses, s.flips
     )))
@@ -327,7 +320,7 @@ fn smooth(
     } else {
         String::new()
     };
-    Ok(whole(format!(
+    Ok(Applied::whole(format!(
         "{} free vertices moved {:.3e} on average{stopped}",
         s.free, s.mean_move
     )))
@@ -375,7 +368,7 @@ fn fill_every_hole(world: &mut World, mesh: MeshId, fair: bool) -> Result<Applie
         0 => String::new(),
         n => format!("; {n} left open: {}", r.refused.join("; ")),
     };
-    Ok(whole(format!(
+    Ok(Applied::whole(format!(
         "{} filled: {} and {} added{open}",
         count(r.filled, "hole"),
         count(r.faces, "face"),
@@ -400,7 +393,7 @@ fn parameterize(
         0 => String::new(),
         n => format!(" ({n} laid flat)"),
     };
-    Ok(whole(format!(
+    Ok(Applied::whole(format!(
         "{} flipped of {} triangles{degenerate}, angle distortion {:.2}°, area distortion \
          {:.3}, conformal energy {:.4}{cut}",
         r.flipped, r.triangles, r.angle_distortion_deg, r.area_distortion, r.conformal_energy
