@@ -254,7 +254,6 @@ fn level_of_detail(
     }
 }
 
-/// The summary of orienting a mesh's parts outward.
 /// Simplifies, and keeps the history for level of detail and vertex splits.
 fn simplify(
     world: &mut World,

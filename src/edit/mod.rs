@@ -587,7 +587,7 @@ pub enum MergeKey {
 }
 
 /// Marking a seam (the `seam:A,B` step): a local edit of one edge's mark.
-pub const SEAM: Declaration = Declaration::new("seam");
+pub const SEAM: Declaration = Declaration::new("seam").keeping_normals();
 
 /// Moving vertices (a drag, a transform of the selection): the editor's own edit, no step.
 pub const MOVE: Declaration = Declaration::new("move").editor_only();

@@ -15,12 +15,12 @@ use crate::ops::geometry::{NormalWeighting, Surface, vertex_normals};
 /// The note a save gives when it recomputed the normals.
 pub const RECOMPUTED_NORMALS: &str = "vertex normals recomputed (angle-weighted): edits had changed the surface since they were read";
 
-/// Marks `mesh`'s normals stale when it has normals: `edit` changed its surface (every edit
-/// but a seam mark does). [`super::Edit::run`] calls it, and the editor's job commit, whose
+/// Marks `mesh`'s normals stale when it has normals and `edit` does not declare that they
+/// still describe the surface (a seam mark, a reversal, a normalization do). [`super::Edit::run`] calls it, and the editor's job commit, whose
 /// edit ran on a copy.
 pub fn mark_normals_stale(world: &mut World, mesh: MeshId, edit: &super::Edit) {
     if MeshAttributes::of(world, mesh).normals
-        && !matches!(edit, super::Edit::ToggleSeam(_))
+        && !edit.declaration().keeps_normals
         && let Ok(mut entity) = world.get_entity_mut(mesh.0)
     {
         entity.insert(StaleNormals);
@@ -68,11 +68,31 @@ mod tests {
             bits(saved.vertex_normals.as_ref().unwrap()),
             bits(soup.vertex_normals.as_ref().unwrap())
         );
-        let v = MeshMembers::collect(&world, mesh).vertices[0];
         let mut context = EditContext {
             history: &mut None,
             progress: &mut |_| true,
         };
+        // Reversing and normalizing declare that the normals still hold (turned and moved
+        // with the surface): written as they are, with no note.
+        for step in ["reverse", "normalize"] {
+            let edit = Edit::registered(step).unwrap();
+            edit.run(&mut world, mesh, &mut context).unwrap();
+            assert_eq!(soup_to_save(&world, mesh).1, None, "{step}");
+        }
+        let (saved, _) = soup_to_save(&world, mesh);
+        assert_eq!(
+            bits(saved.vertex_normals.as_ref().unwrap()),
+            bits(
+                &soup
+                    .vertex_normals
+                    .as_ref()
+                    .unwrap()
+                    .iter()
+                    .map(|n| -*n)
+                    .collect()
+            )
+        );
+        let v = MeshMembers::collect(&world, mesh).vertices[0];
         Edit::MoveVertex(v, Vec3::new(0.0, 0.0, 2.0))
             .run(&mut world, mesh, &mut context)
             .unwrap();

@@ -758,6 +758,29 @@ mod tests {
         );
     }
 
+    /// Every registered operation has its own name (no built-in step hides it), a title and
+    /// a help line, defaults its ranges admit, and parses by its name alone to itself with them.
+    #[test]
+    fn every_registered_operation_parses_by_its_name_to_its_defaults() {
+        let mut names = std::collections::HashSet::new();
+        for &op in crate::ops::OPERATIONS {
+            let d = op.declaration();
+            assert!(names.insert(d.name), "{} registered twice", d.name);
+            assert!(!d.title.is_empty() && !d.help.is_empty(), "{}", d.name);
+            assert!(
+                d.parameters.iter().all(|p| p.admits(p.default)),
+                "{}",
+                d.name
+            );
+            assert_eq!(
+                Step::parse(d.name).unwrap(),
+                Step::Edit(Edit::Operation(Invocation::with_defaults(op))),
+                "{}",
+                d.name
+            );
+        }
+    }
+
     #[test]
     fn malformed_steps_say_what_is_expected() {
         for (text, expected) in [

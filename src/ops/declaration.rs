@@ -70,6 +70,10 @@ pub struct Declaration {
     pub ids: IdsKept,
     /// Whether the simplification history still describes the mesh after it.
     pub keeps_history: bool,
+    /// Whether the vertex normals it leaves still describe the surface (it moves nothing, or
+    /// turns and scales them with it), so a save writes them as they are rather than
+    /// recomputing them.
+    pub keeps_normals: bool,
     /// What becomes of the attributes.
     pub carries: Carries,
 }
@@ -88,6 +92,7 @@ impl Declaration {
             job: false,
             ids: IdsKept::All,
             keeps_history: false,
+            keeps_normals: false,
             carries: Carries::All,
         }
     }
@@ -110,9 +115,22 @@ impl Declaration {
         }
     }
 
-    /// Its parameters (at most [`crate::ops::operation::Invocation::MAX_PARAMETERS`]).
+    /// Its parameters: at most four (`Invocation::MAX_PARAMETERS`), or the declaration does
+    /// not compile.
     pub const fn with_parameters(self, parameters: &'static [Parameter]) -> Self {
+        assert!(
+            parameters.len() <= 4,
+            "an operation declares at most 4 parameters"
+        );
         Self { parameters, ..self }
+    }
+
+    /// The vertex normals it leaves still describe the surface.
+    pub const fn keeping_normals(self) -> Self {
+        Self {
+            keeps_normals: true,
+            ..self
+        }
     }
 
     /// Its step's syntax for the usage text: the name, each parameter as `[:NAME]`, and the

@@ -8,7 +8,7 @@
 //! Each position becomes `(p − c) · SIZE / L`, with `c` the box's centre and `L` its longest
 //! side, computed in double precision. Only positions change: every id, the connectivity, the
 //! UVs, seams and groups stay, and vertex normals keep their directions (a uniform scale by a
-//! positive factor turns none). A mesh whose vertices all lie at one point has no size to
+//! positive factor turns none), so a save writes a file's normals as they were read. A mesh whose vertices all lie at one point has no size to
 //! scale, and is refused.
 //!
 //! It is the operation that shows what a self-declaring operation costs: this file and its
@@ -31,7 +31,8 @@ pub const NORMALIZE: Declaration = Declaration::new("normalize")
     .titled("Normalize")
     .described("centre the mesh's box at the origin and scale it so its longest side is SIZE")
     .on_key("Alt+C")
-    .with_parameters(&[Parameter::real("SIZE", 1.0, 1e-6, 1e6)]);
+    .with_parameters(&[Parameter::real("SIZE", 1.0, 1e-6, 1e6)])
+    .keeping_normals();
 
 /// [`normalize`] as an operation (the `normalize[:SIZE]` step, Alt+C).
 pub struct Normalize;

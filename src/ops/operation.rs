@@ -108,7 +108,8 @@ pub struct Invocation {
 }
 
 impl Invocation {
-    /// The most parameters an operation may declare.
+    /// The most parameters an operation may declare (`Declaration::with_parameters` refuses
+    /// more when it is compiled).
     pub const MAX_PARAMETERS: usize = 4;
 
     /// `operation` with its defaults.
@@ -153,10 +154,11 @@ impl Invocation {
             "" => Vec::new(),
             _ => args
                 .split(':')
-                .map(|x| {
-                    x.trim()
+                .map(|x| match x.trim() {
+                    "" => Err("a value is missing".to_string()),
+                    x => x
                         .parse::<f32>()
-                        .map_err(|_| format!("`{x}` is not a number"))
+                        .map_err(|_| format!("`{x}` is not a number")),
                 })
                 .collect::<Result<_, _>>()?,
         };
@@ -321,6 +323,10 @@ mod tests {
         assert_eq!(
             Invocation::parse(&Scale, "x").unwrap_err(),
             "`x` is not a number"
+        );
+        assert_eq!(
+            Invocation::parse(&Scale, ":2").unwrap_err(),
+            "a value is missing"
         );
         assert_ne!(defaults, given);
         let mut set = defaults;

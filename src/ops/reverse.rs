@@ -32,7 +32,8 @@ use crate::ops::operation::{Applied, EditContext, MeshOperation, count};
 pub const REVERSE: Declaration = Declaration::new("reverse")
     .titled("Reverse orientation")
     .described("reverse the orientation: every face turned round, its normal the other way")
-    .on_key("Alt+N");
+    .on_key("Alt+N")
+    .keeping_normals();
 
 /// [`reverse_orientation`] as an operation (the `reverse` step, Alt+N).
 pub struct Reverse;

@@ -21,14 +21,7 @@ pub struct Chord {
 /// for a name it does not know or a modifier given twice.
 pub fn chord(text: &str) -> Option<Chord> {
     let mut parts: Vec<&str> = text.split('+').collect();
-    // `Ctrl+-`, `Ctrl++`: a key named by a sign.
-    let key = match parts.as_slice() {
-        [.., "", ""] => {
-            parts.truncate(parts.len() - 2);
-            "+"
-        }
-        _ => parts.pop()?,
-    };
+    let key = parts.pop()?;
     let mut chord = Chord {
         key: key_code(key)?,
         ctrl: false,

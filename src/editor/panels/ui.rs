@@ -556,7 +556,7 @@ fn status_bar(
 fn help_window(ctx: &egui::Context) -> bool {
     let mut open = true;
     // Taller than a laptop's screen: the list scrolls, in a window as tall as the screen.
-    let room = ctx.content_rect().height() - 120.0;
+    let room = (ctx.content_rect().height() - 120.0).max(200.0);
     egui::Window::new("Shortcuts")
         .open(&mut open)
         .collapsible(false)
