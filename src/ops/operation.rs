@@ -136,11 +136,8 @@ impl Invocation {
             });
         }
         let mut invocation = Self::with_defaults(operation);
-        for ((slot, &x), p) in invocation.values.iter_mut().zip(given).zip(parameters) {
-            if !p.admits(x) {
-                return Err(format!("{} must be {}", p.name, p.range_words()));
-            }
-            *slot = x;
+        for (i, &x) in given.iter().enumerate() {
+            invocation.set(i, x)?;
         }
         Ok(invocation)
     }

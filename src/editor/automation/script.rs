@@ -38,7 +38,7 @@ use crate::ops::named::Named;
 use crate::edit::Edit;
 use crate::ops::geometry::Quantity;
 
-use crate::editor::input::key_names::key_code;
+use crate::editor::input::key_names::chord;
 use crate::editor::session::requests::Request;
 use crate::editor::session::requests::StepMove;
 use crate::editor::session::selection::ActiveMesh;
@@ -120,18 +120,23 @@ impl Script {
             steps.push_back(match name {
                 "wait" => ScriptStep::Wait(arg.parse().map_err(|_| bad())?),
                 "measure" => ScriptStep::Measure(arg.parse().map_err(|_| bad())?),
-                "key" => match arg.split_once('+') {
-                    Some((modifier, k)) => {
-                        let modifier = match modifier {
-                            "Shift" => KeyCode::ShiftLeft,
-                            "Ctrl" => KeyCode::ControlLeft,
-                            "Alt" => KeyCode::AltLeft,
-                            _ => return Err(bad()),
-                        };
-                        ScriptStep::Key(Some(modifier), key_code(k).ok_or_else(bad)?)
+                // A key, read as the keymap reads declared keys, with at most one modifier.
+                "key" => {
+                    let c = chord(arg).ok_or_else(bad)?;
+                    let held: Vec<KeyCode> = [
+                        (c.shift, KeyCode::ShiftLeft),
+                        (c.ctrl, KeyCode::ControlLeft),
+                        (c.alt, KeyCode::AltLeft),
+                    ]
+                    .into_iter()
+                    .filter_map(|(held, k)| held.then_some(k))
+                    .collect();
+                    match held.as_slice() {
+                        [] => ScriptStep::Key(None, c.key),
+                        [modifier] => ScriptStep::Key(Some(*modifier), c.key),
+                        _ => return Err(bad()),
                     }
-                    None => ScriptStep::Key(None, key_code(arg).ok_or_else(bad)?),
-                },
+                }
                 "select-edge" => {
                     let (a, b) = arg.split_once(',').ok_or_else(bad)?;
                     ScriptStep::SelectEdge(
@@ -419,14 +424,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_letter_and_digit_key_can_be_scripted() {
-        for c in ('A'..='Z').chain('0'..='9') {
-            assert!(key_code(&c.to_string()).is_some(), "{c}");
-        }
-        assert_eq!(key_code("m"), Some(KeyCode::KeyM));
-        assert_eq!(key_code("7"), Some(KeyCode::Digit7));
-        assert_eq!(key_code("Escape"), Some(KeyCode::Escape));
-        assert_eq!(key_code("MM"), None);
+    fn scripted_keys_and_uv_clicks_parse() {
         let script = Script::parse("uv-select:0.25, 0.5").unwrap();
         assert_eq!(script.steps[0], ScriptStep::UvSelect(0.25, 0.5));
         assert!(Script::parse("uv-select:0.25").is_err());
@@ -440,5 +438,9 @@ mod tests {
                 ScriptStep::Key(Some(KeyCode::ControlLeft), KeyCode::KeyY),
             ]
         );
+        // One modifier at most, and only the three the keymap knows.
+        for bad in ["key:Ctrl+Shift+S", "key:Hyper+S", "key:Shift+", "key:MM"] {
+            assert!(Script::parse(bad).is_err(), "{bad}");
+        }
     }
 }

@@ -119,6 +119,17 @@ mod tests {
     use super::*;
 
     #[test]
+    fn every_letter_and_digit_key_has_a_name() {
+        for c in ('A'..='Z').chain('0'..='9') {
+            assert!(key_code(&c.to_string()).is_some(), "{c}");
+        }
+        assert_eq!(key_code("m"), Some(KeyCode::KeyM));
+        assert_eq!(key_code("7"), Some(KeyCode::Digit7));
+        assert_eq!(key_code("Escape"), Some(KeyCode::Escape));
+        assert_eq!(key_code("MM"), None);
+    }
+
+    #[test]
     fn chords_read_as_the_help_writes_them() {
         assert_eq!(
             chord("Alt+C"),
