@@ -75,10 +75,9 @@ fn editor(path: &std::path::Path) -> App {
 }
 
 fn start_run(app: &mut App) {
-    app.world_mut()
-        .write_message(Request::StartStepped(pappus::edit::Edit::Simplify(
-            SimplifyParams::ratio(0.25),
-        )));
+    app.world_mut().write_message(Request::StartStepped(
+        pappus::edit::Edit::invoked("simplify:0.25").unwrap(),
+    ));
     app.update();
 }
 

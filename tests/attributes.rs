@@ -9,7 +9,6 @@ use pappus::edit::{Edit, Scheme, Subdivision};
 use pappus::mesh::attributes::{CornerUv, MeshAttributes, Seam, VertexColor, VertexNormal};
 use pappus::mesh::change::{LocalRecorder, SavedContents};
 use pappus::mesh::{MeshId, MeshMembers, MeshRef, PolygonSoup, VertexId, shapes, to_soup};
-use pappus::ops::remesh::RemeshParams;
 
 use common::run_edit as run;
 
@@ -202,11 +201,7 @@ fn remeshing_and_simplifying_say_they_dropped_the_attributes() {
     );
     soup.vertex_colors = Some(vec![[9, 9, 9]; soup.positions.len()]);
     let (mut world, built) = common::build(&soup);
-    let summary = run(
-        &mut world,
-        built.mesh,
-        &Edit::Remesh(RemeshParams::default()),
-    );
+    let summary = run(&mut world, built.mesh, &Edit::registered("remesh").unwrap());
     assert!(
         summary.ends_with(" — UVs and colours dropped: remeshing does not carry attributes"),
         "{summary}"
@@ -278,7 +273,7 @@ fn undo_restores_attributes_exactly() {
     assert!(same(&to_soup(&world, mesh), &after));
     // A whole-mesh edit that drops them: the undo brings them back.
     let saved = SavedContents::capture(&world, mesh);
-    run(&mut world, mesh, &Edit::Remesh(RemeshParams::default()));
+    run(&mut world, mesh, &Edit::registered("remesh").unwrap());
     assert!(MeshAttributes::of(&world, mesh).is_empty());
     saved.apply(&mut world);
     assert_eq!(
@@ -317,7 +312,7 @@ fn a_seam_mark_undoes_and_survives_a_whole_mesh_record() {
     // The whole-mesh record carries the marks: a remesh drops them (and says so), undo brings
     // them back on the same edge.
     let saved = SavedContents::capture(&world, mesh);
-    let summary = run(&mut world, mesh, &Edit::Remesh(RemeshParams::default()));
+    let summary = run(&mut world, mesh, &Edit::registered("remesh").unwrap());
     assert!(summary.contains("seam marks"), "{summary}");
     assert!(!MeshAttributes::of(&world, mesh).seams);
     saved.apply(&mut world);

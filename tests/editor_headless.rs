@@ -14,7 +14,6 @@ use pappus::editor::session::selection::{ActiveMesh, SelectMode, Selection};
 use pappus::editor::view::render_sync::{RenderOf, RenderStats, TriangleFaces};
 use pappus::mesh::ids::ElementId;
 use pappus::mesh::{MeshRef, validate};
-use pappus::ops::simplify::SimplifyParams;
 
 fn app() -> App {
     common::headless_editor()
@@ -1063,10 +1062,14 @@ fn hole_and_fairing_keys_fill_and_fair() {
         pappus::mesh::mesh_stats(app.world(), m).boundary_loops,
         loops - 1
     );
-    // Shift+F: every other hole.
+    // Shift+F: every other hole, faired as the panel's drop-down now says.
+    app.world_mut()
+        .resource_mut::<pappus::editor::input::keyboard::UiState>()
+        .set_parameter("fill-holes", 0, Some(1.0))
+        .unwrap();
     press_with(&mut app, KeyCode::ShiftLeft, KeyCode::KeyF);
     let outcome = last_outcome(&app);
-    assert_eq!(outcome.request, "fill every hole (fair)");
+    assert_eq!(outcome.request, "fill all holes (fair)");
     assert!(outcome.result.is_ok(), "{outcome:?}");
     let stats = pappus::mesh::mesh_stats(app.world(), m);
     assert!(stats.closed && stats.euler_characteristic == 2, "{stats:?}");
@@ -1109,7 +1112,7 @@ fn level_of_detail_and_vertex_split_follow_the_simplification() {
     open(&mut app, "shape:icosphere");
     let m = mesh(&app);
     app.world_mut()
-        .write_message(Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.25))));
+        .write_message(Request::Edit(Edit::invoked("simplify:0.25").unwrap()));
     app.update();
     assert!(
         last_outcome(&app)
@@ -1412,7 +1415,7 @@ fn the_distance_colouring_measures_against_the_mesh_before_a_whole_mesh_edit() {
     let values = app.world().get::<VertexValues>(mesh(&app).0).unwrap();
     assert!(values.values.values().all(|d| d.is_nan()));
     app.world_mut()
-        .write_message(Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.25))));
+        .write_message(Request::Edit(Edit::invoked("simplify:0.25").unwrap()));
     app.update();
     let values = app.world().get::<VertexValues>(mesh(&app).0).unwrap();
     let most = values.values.values().copied().fold(0.0, f64::max);

@@ -11,7 +11,6 @@ use pappus::mesh::attributes::MeshAttributes;
 use pappus::mesh::change::{LocalRecorder, SavedContents};
 use pappus::mesh::groups::{FaceGroup, face_group};
 use pappus::mesh::{FaceId, MeshId, MeshMembers, MeshRef, PolygonSoup, to_soup};
-use pappus::ops::remesh::RemeshParams;
 use std::path::Path;
 
 /// A unit cube: the top a lid in red, the other five sides the body in blue, with the library
@@ -187,7 +186,7 @@ fn undo_brings_groups_back_and_remeshing_says_it_drops_them() {
     run(&mut world, mesh, &Edit::registered("triangulate").unwrap());
     assert_eq!(counts(&world, mesh), [10, 2]);
     let saved = SavedContents::capture(&world, mesh);
-    let summary = run(&mut world, mesh, &Edit::Remesh(RemeshParams::default()));
+    let summary = run(&mut world, mesh, &Edit::registered("remesh").unwrap());
     assert!(
         summary.ends_with(" — groups dropped: remeshing does not carry attributes"),
         "{summary}"

@@ -17,8 +17,6 @@ use pappus::editor::session::selection::ActiveMesh;
 use pappus::mesh::ids::{EdgeId, ElementId, FaceId, VertexId};
 use pappus::mesh::{MeshMembers, MeshRef, to_soup, validate};
 use pappus::ops::named::Named;
-use pappus::ops::remesh::RemeshParams;
-use pappus::ops::simplify::SimplifyParams;
 use pappus::ops::smooth::{SmoothMethod, SmoothParams};
 
 /// How many requests the session makes.
@@ -93,17 +91,14 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
             let op = pappus::ops::OPERATIONS[rng.below(pappus::ops::OPERATIONS.len())];
             Some(Edit::Operation(pappus::edit::Invocation::with_defaults(op)))
         }
-        56..=57 => Some(Edit::Simplify(SimplifyParams::ratio(
-            0.5 + rng.below(40) as f64 / 100.0,
-        ))),
+        56..=57 => Some(
+            Edit::invoked(&format!("simplify:{}", 0.5 + rng.below(40) as f64 / 100.0)).unwrap(),
+        ),
         58 if faces < GROW_BELOW_FACES => Some(Edit::Subdivide(Subdivision::once(Scheme::Loop))),
         59 if faces < GROW_BELOW_FACES => {
             Some(Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)))
         }
-        60 => Some(Edit::Remesh(RemeshParams {
-            iterations: 1,
-            ..RemeshParams::default()
-        })),
+        60 => Some(Edit::invoked("remesh:1").unwrap()),
         61 => Some(Edit::Smooth(SmoothParams {
             iterations: 2,
             ..SmoothParams::new(SmoothMethod::ALL[rng.below(4)].0)

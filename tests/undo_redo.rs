@@ -17,8 +17,6 @@ use pappus::editor::session::requests::{EditOutcome, Request};
 use pappus::editor::session::selection::{ActiveMesh, Selection};
 use pappus::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
 use pappus::mesh::{MeshMembers, MeshRef, mesh_stats, to_soup, validate};
-use pappus::ops::remesh::RemeshParams;
-use pappus::ops::simplify::SimplifyParams;
 
 fn app() -> App {
     common::headless_editor()
@@ -206,19 +204,16 @@ fn every_global_edit_undoes_and_redoes_exactly() {
         &mut app,
         Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::Loop))),
     );
+    round_trip(&mut app, Request::Edit(Edit::registered("remesh").unwrap()));
     round_trip(
         &mut app,
-        Request::Edit(Edit::Remesh(RemeshParams::default())),
-    );
-    round_trip(
-        &mut app,
-        Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.5))),
+        Request::Edit(Edit::invoked("simplify:0.5").unwrap()),
     );
     // Undo and redo end the simplification's own history; simplify again for the slider and
     // for splitting a vertex back.
     request(
         &mut app,
-        Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.5))),
+        Request::Edit(Edit::invoked("simplify:0.5").unwrap()),
     )
     .unwrap();
     let next = {
@@ -228,7 +223,7 @@ fn every_global_edit_undoes_and_redoes_exactly() {
     round_trip(&mut app, Request::Edit(Edit::SplitVertex(next)));
     request(
         &mut app,
-        Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.5))),
+        Request::Edit(Edit::invoked("simplify:0.5").unwrap()),
     )
     .unwrap();
     let full = app
@@ -349,7 +344,7 @@ fn mixed_history_keeps_ids_valid_across_global_restores() {
         Box::new(move |_| Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::Loop)))),
         Box::new(move |a| Request::Edit(Edit::Collapse(edge_where(a, interior)))),
         Box::new(move |a| Request::Edit(Edit::Split(edge_where(a, interior)))),
-        Box::new(move |_| Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.6)))),
+        Box::new(move |_| Request::Edit(Edit::invoked("simplify:0.6").unwrap())),
         Box::new(move |a| Request::Edit(Edit::Dissolve(edge_where(a, interior)))),
         Box::new(move |_| Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)))),
         Box::new(move |a| Request::Edit(Edit::Collapse(edge_where(a, interior)))),
@@ -453,11 +448,7 @@ fn the_memory_cap_drops_the_oldest_entries() {
         Request::Edit(Edit::registered("triangulate").unwrap()),
     )
     .unwrap();
-    request(
-        &mut app,
-        Request::Edit(Edit::Remesh(RemeshParams::default())),
-    )
-    .unwrap();
+    request(&mut app, Request::Edit(Edit::registered("remesh").unwrap())).unwrap();
     let whole = app.world().resource::<UndoHistory>().undo_entries()[2].bytes();
     // Room for two and a half whole-mesh entries of this size.
     let cap = whole * 5 / 2;
@@ -465,11 +456,7 @@ fn the_memory_cap_drops_the_oldest_entries() {
     for _ in 0..4 {
         let e = edge_where(&app, is_interior);
         request(&mut app, Request::Edit(Edit::Flip(e))).unwrap();
-        request(
-            &mut app,
-            Request::Edit(Edit::Remesh(RemeshParams::default())),
-        )
-        .unwrap();
+        request(&mut app, Request::Edit(Edit::registered("remesh").unwrap())).unwrap();
     }
     let e = edge_where(&app, is_interior);
     request(&mut app, Request::Edit(Edit::Flip(e))).unwrap();
@@ -521,16 +508,8 @@ fn remeshing_history_is_smaller_than_the_mesh() {
     let mesh = active(&app).unwrap();
     let own = pappus::mesh::change::component_bytes(app.world(), mesh);
     let before = app.world().resource::<UndoHistory>().bytes();
-    request(
-        &mut app,
-        Request::Edit(Edit::Remesh(RemeshParams::default())),
-    )
-    .unwrap();
-    request(
-        &mut app,
-        Request::Edit(Edit::Remesh(RemeshParams::default())),
-    )
-    .unwrap();
+    request(&mut app, Request::Edit(Edit::registered("remesh").unwrap())).unwrap();
+    request(&mut app, Request::Edit(Edit::registered("remesh").unwrap())).unwrap();
     let held = app.world().resource::<UndoHistory>().bytes() - before;
     // Two remeshes of 5 iterations: two whole-mesh entries.
     assert!(
@@ -589,7 +568,7 @@ fn a_cancelled_job_leaves_the_mesh_exactly_as_it_was() {
     let depth = undo_depth(&app);
     let started = request(
         &mut app,
-        Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.02))),
+        Request::Edit(Edit::invoked("simplify:0.02").unwrap()),
     )
     .unwrap();
     assert!(started.contains("running"), "{started}");
@@ -640,7 +619,7 @@ fn a_finished_job_commits_as_one_undo_entry() {
     assert!(
         request(
             &mut app,
-            Request::Edit(Edit::Simplify(SimplifyParams::ratio(0.5)))
+            Request::Edit(Edit::invoked("simplify:0.5").unwrap())
         )
         .is_ok()
     );

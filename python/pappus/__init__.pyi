@@ -66,8 +66,11 @@ def memory_budget() -> Tuple[int, str]:
 
 def operations() -> List[Dict[str, Any]]:
     """Every operation that declares itself whole, as the command line, the editor's keys and
-    panel know them: ``{"name", "title", "help", "key", "job", "parameters": [{"name",
-    "default", "min", "max", "whole"}]}``, in the panel's order. Each runs as
+    panel know them: ``{"name", "title", "help", "key", "job", "parameters": [...]}``, in the
+    panel's order, each parameter ``{"name", "kind", "default", "automatic"}`` with ``"min"``
+    and ``"max"`` for a ``"real"`` or ``"whole"`` kind and ``"choices"`` for a ``"choice"``;
+    the default as a step writes it (a number, a choice's word, or ``"auto"``, where
+    ``"automatic"`` says what the operation then does). Each runs as
     ``mesh.step("NAME[:VALUE...]")``, missing values taking their defaults."""
 
 def output_stem(source: Union[str, os.PathLike]) -> str:

@@ -100,9 +100,11 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
 
 /// Every operation that declares itself whole (`pappus::ops::OPERATIONS`), as the command
 /// line's steps, the editor's keys and its panel know them: one dict each, `{"name", "title",
-/// "help", "key", "job", "parameters": [{"name", "default", "min", "max", "whole"}]}`, in the
-/// panel's order. Each runs as `mesh.step("NAME[:VALUE…]")`, missing values taking their
-/// defaults.
+/// "help", "key", "job", "parameters": [...]}`, in the panel's order, each parameter
+/// `{"name", "kind", "default", "automatic"}` with `"min"`, `"max"` for a `"real"` or
+/// `"whole"` kind and `"choices"` for a `"choice"`; the default is written as a step writes it
+/// (a number, a choice's word, or `"auto"` where `"automatic"` says what the operation then
+/// does). Each runs as `mesh.step("NAME[:VALUE…]")`, missing values taking their defaults.
 #[pyfunction]
 fn operations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
     pappus::ops::OPERATIONS
@@ -112,15 +114,7 @@ fn operations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
             let parameters = d
                 .parameters
                 .iter()
-                .map(|p| {
-                    let x = PyDict::new(py);
-                    x.set_item("name", p.name)?;
-                    x.set_item("default", p.default)?;
-                    x.set_item("min", p.min)?;
-                    x.set_item("max", p.max)?;
-                    x.set_item("whole", p.whole)?;
-                    Ok(x)
-                })
+                .map(|p| parameter(py, p))
                 .collect::<PyResult<Vec<_>>>()?;
             let x = PyDict::new(py);
             x.set_item("name", d.name)?;
@@ -132,6 +126,35 @@ fn operations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
             Ok(x)
         })
         .collect()
+}
+
+/// One declared parameter as [`operations`] lists it.
+fn parameter<'py>(
+    py: Python<'py>,
+    p: &pappus::ops::declaration::Parameter,
+) -> PyResult<Bound<'py, PyDict>> {
+    use pappus::ops::declaration::ParameterKind;
+    let x = PyDict::new(py);
+    x.set_item("name", p.name)?;
+    match p.kind {
+        ParameterKind::Choice(words) => {
+            x.set_item("kind", "choice")?;
+            x.set_item("choices", words.to_vec())?;
+            x.set_item("default", p.write(p.default))?;
+        }
+        ParameterKind::Real { min, max } | ParameterKind::Whole { min, max } => {
+            let whole = matches!(p.kind, ParameterKind::Whole { .. });
+            x.set_item("kind", if whole { "whole" } else { "real" })?;
+            x.set_item("min", min)?;
+            x.set_item("max", max)?;
+            match p.default {
+                Some(d) => x.set_item("default", d)?,
+                None => x.set_item("default", "auto")?,
+            }
+        }
+    }
+    x.set_item("automatic", p.automatic)?;
+    Ok(x)
 }
 
 /// Pappus from Python: load, build, edit and save halfedge meshes with the command line's

@@ -269,12 +269,18 @@ def test_every_declared_operation_is_listed_and_runs_with_its_defaults():
     normalize = declared[names.index("normalize")]
     assert normalize["key"] == "Alt+C" and normalize["title"] == "Normalize"
     assert normalize["parameters"] == [
-        {"name": "SIZE", "default": 1.0, "min": pytest.approx(1e-6), "max": 1e6, "whole": False}
+        {"name": "SIZE", "kind": "real", "default": 1.0, "min": pytest.approx(1e-6),
+         "max": 1e6, "automatic": None}
     ]
     for op in declared:
         assert op["help"], op["name"]
         for p in op["parameters"]:
-            assert p["min"] <= p["default"] <= p["max"]
+            if p["kind"] == "choice":
+                assert p["default"] in p["choices"], p
+            elif p["default"] == "auto":
+                assert p["automatic"], p
+            else:
+                assert p["min"] <= p["default"] <= p["max"], p
         mesh = pappus.load("shape:torus")
         assert mesh.step(op["name"]), op["name"]
         mesh.validate()

@@ -223,6 +223,10 @@ mod tests {
             assert!(text.contains("Usage: pappus"), "{text}");
         }
         let process = parse("process --help").unwrap_err().to_string();
-        assert!(process.contains("simplify:RATIO"), "{process}");
+        assert!(process.contains("simplify[:RATIO]"), "{process}");
+        assert!(
+            process.contains("param[:uniform|mean-value|harmonic|lscm]"),
+            "{process}"
+        );
     }
 }

@@ -13,15 +13,11 @@ use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::deform::{DeformSummary, FairParams, deform, fair};
-use crate::ops::hole::{fill_hole_fair, fill_holes};
+use crate::ops::hole::fill_hole_fair;
 use crate::ops::local::{
     CollapseOptions, bisect_edge, collapse_edge, dissolve_edge, fill_hole, flip_edge, split_edge,
     split_face,
 };
-use crate::ops::param::{ParamParams, parameterize_in_place};
-use crate::ops::progressive::ProgressiveMesh;
-use crate::ops::remesh::{RemeshParams, remesh_with_progress};
-use crate::ops::simplify::SimplifyParams;
 use crate::ops::smooth::{SmoothParams, smooth_with_progress};
 
 use super::{Applied, Edit, EditContext, Redraw, Subdivision, count, toggle_seam};
@@ -67,15 +63,11 @@ impl Edit {
             Edit::SplitVertex(v) => split_vertex(world, *v, context),
             Edit::LevelOfDetail(faces) => level_of_detail(world, *faces, context),
             Edit::Operation(op) => op.apply(world, mesh, context),
-            Edit::Simplify(params) => simplify(world, mesh, params, context),
             Edit::Subdivide(subdivision) => subdivide(world, mesh, subdivision, context),
-            Edit::Remesh(params) => remesh(world, mesh, params, context),
             Edit::Smooth(params) => smooth(world, mesh, params, context),
             Edit::Deform(params) => Ok(Applied::whole(deformed(&deform(world, mesh, params)?))),
             Edit::Fair(params) => fair_region(world, mesh, params),
             Edit::FillHoleFair(e) => fill_one_hole_fair(world, *e),
-            Edit::FillHoles(fair) => fill_every_hole(world, mesh, *fair),
-            Edit::Parameterize(params) => parameterize(world, mesh, params, context),
         }
     }
 
@@ -255,26 +247,6 @@ fn level_of_detail(
 }
 
 /// Simplifies, and keeps the history for level of detail and vertex splits.
-fn simplify(
-    world: &mut World,
-    mesh: MeshId,
-    params: &SimplifyParams,
-    context: &mut EditContext<'_>,
-) -> Result<Applied, Refusal> {
-    let (pm, s) =
-        ProgressiveMesh::simplify_with_progress(world, mesh, params, &mut *context.progress)?;
-    *context.history = Some(pm);
-    let reached = if s.reached_target {
-        ""
-    } else {
-        " (no legal collapse left before the target)"
-    };
-    Ok(Applied::whole(format!(
-        "{} -> {} faces in {} collapses{reached}",
-        s.faces_before, s.faces_after, s.collapses
-    )))
-}
-
 fn subdivide(
     world: &mut World,
     mesh: MeshId,
@@ -289,19 +261,6 @@ fn subdivide(
     )?;
     (context.progress)(1.0);
     Ok(Applied::whole(s.describe()))
-}
-
-fn remesh(
-    world: &mut World,
-    mesh: MeshId,
-    params: &RemeshParams,
-    context: &mut EditContext<'_>,
-) -> Result<Applied, Refusal> {
-    let s = remesh_with_progress(world, mesh, params, &mut *context.progress)?;
-    Ok(Applied::whole(format!(
-        "L {:.5}: {} splits, {} collapses, {} flips",
-        s.target_length, s.splits, s.collapses, s.flips
-    )))
 }
 
 fn smooth(
@@ -352,51 +311,6 @@ fn fill_one_hole_fair(world: &mut World, e: EdgeId) -> Result<Applied, Refusal> 
         redraw: Redraw::Whole,
         made: Some(ElementId::Face(r.face)),
     })
-}
-
-/// Fills every hole; refused when none could be (or there are none).
-fn fill_every_hole(world: &mut World, mesh: MeshId, fair: bool) -> Result<Applied, Refusal> {
-    let r = fill_holes(world, mesh, fair)?;
-    if r.filled == 0 {
-        return Err(Refusal::BadParameter(match r.refused.first() {
-            None => "the mesh has no holes".into(),
-            Some(_) => format!("no hole could be filled: {}", r.refused.join("; ")),
-        }));
-    }
-    let open = match r.refused.len() {
-        0 => String::new(),
-        n => format!("; {n} left open: {}", r.refused.join("; ")),
-    };
-    Ok(Applied::whole(format!(
-        "{} filled: {} and {} added{open}",
-        count(r.filled, "hole"),
-        count(r.faces, "face"),
-        count(r.vertices, "vertex")
-    )))
-}
-
-fn parameterize(
-    world: &mut World,
-    mesh: MeshId,
-    params: &ParamParams,
-    context: &mut EditContext<'_>,
-) -> Result<Applied, Refusal> {
-    let r = parameterize_in_place(world, mesh, params, &mut *context.progress)?;
-    (context.progress)(1.0);
-    let cut = match (r.seam_edges, r.filled_holes) {
-        (0, 0) => String::new(),
-        (0, h) => format!(", {h} inner holes filled for the solve"),
-        (s, _) => format!(", cut along {s} edges"),
-    };
-    let degenerate = match r.degenerate {
-        0 => String::new(),
-        n => format!(" ({n} laid flat)"),
-    };
-    Ok(Applied::whole(format!(
-        "{} flipped of {} triangles{degenerate}, angle distortion {:.2}°, area distortion \
-         {:.3}, conformal energy {:.4}{cut}",
-        r.flipped, r.triangles, r.angle_distortion_deg, r.area_distortion, r.conformal_energy
-    )))
 }
 
 /// The summary of a deformation.

@@ -40,9 +40,6 @@ use crate::ops::local::{
     plan_inset, plan_weld,
 };
 use crate::ops::named::Named;
-use crate::ops::param::ParamParams;
-use crate::ops::remesh::RemeshParams;
-use crate::ops::simplify::{SimplifyParams, SimplifyTarget};
 use crate::ops::smooth::SmoothParams;
 use crate::ops::subdivide::SubdivisionSummary;
 
@@ -135,17 +132,10 @@ pub enum Edit {
     /// A whole-mesh operation that declares itself whole ([`crate::ops::OPERATIONS`]:
     /// triangulate, reverse, orient outside, normalize, …), with its parameters' values.
     Operation(Invocation),
-    /// QEM simplification, recording the history that [`Edit::LevelOfDetail`] moves along.
-    Simplify(SimplifyParams),
     /// Subdivision.
     Subdivide(Subdivision),
-    /// Isotropic remeshing.
-    Remesh(RemeshParams),
     /// Smoothing: vertices move, the connectivity stays.
     Smooth(SmoothParams),
-    /// A UV layout for every corner (Tutte with uniform, mean-value or harmonic weights, or
-    /// LSCM), cutting a closed genus-0 mesh open automatically. Only UVs change.
-    Parameterize(ParamParams),
     /// Handle deformation: the anchors stay, the handle moves by its motion, the rest follows
     /// (thin-plate or as-rigid-as-possible). Only positions change.
     Deform(DeformParams),
@@ -153,8 +143,6 @@ pub enum Edit {
     Fair(FairParams),
     /// Fill the hole beside a boundary edge with a fair patch of triangles.
     FillHoleFair(EdgeId),
-    /// Fill every hole of the mesh: with fair patches (`true`) or one polygon each.
-    FillHoles(bool),
 }
 
 /// What an edit may change, so that an undo record can capture it first.
@@ -174,6 +162,18 @@ impl Edit {
     /// with its parameters' defaults.
     pub fn registered(name: &str) -> Option<Self> {
         crate::ops::operation(name).map(|op| Edit::Operation(Invocation::with_defaults(op)))
+    }
+
+    /// The registered operation invoked as a step writes it (`"remesh:1"`, `"param:lscm"`).
+    ///
+    /// # Errors
+    /// No registered operation of that name, or values it does not take (the message says
+    /// what it takes).
+    pub fn invoked(step: &str) -> Result<Self, String> {
+        let (name, args) = step.split_once(':').unwrap_or((step, ""));
+        let op = crate::ops::operation(name)
+            .ok_or_else(|| format!("no registered operation is called `{name}`"))?;
+        Invocation::parse(op, args).map(Edit::Operation)
     }
 
     /// A short label for logs and the undo history.
@@ -206,10 +206,6 @@ impl Edit {
             Edit::LevelOfDetail(usize::MAX) => "full level of detail".into(),
             Edit::LevelOfDetail(n) => format!("level of detail {n} faces"),
             Edit::Operation(op) => op.label(),
-            Edit::Simplify(p) => match p.target {
-                SimplifyTarget::Ratio(r) => format!("simplify to {:.0} %", r * 100.0),
-                SimplifyTarget::Faces(n) => format!("simplify to {n} faces"),
-            },
             Edit::Subdivide(s) => {
                 let name = match s.scheme {
                     Scheme::Loop => "Loop",
@@ -220,28 +216,18 @@ impl Edit {
                     n => format!("{name} subdivision x{n}"),
                 }
             }
-            Edit::Remesh(p) => match p.target_length {
-                Some(l) => format!("remesh (L {l}, {} iterations)", p.iterations),
-                None => format!("remesh ({} iterations)", p.iterations),
-            },
             Edit::Smooth(p) => format!(
                 "smooth ({}, {} iterations, step {})",
                 p.method.name(),
                 p.iterations,
                 p.step
             ),
-            Edit::Parameterize(p) => match p.method.fixed_boundary() {
-                true => format!("parameterize ({}, {})", p.method, p.boundary),
-                false => format!("parameterize ({})", p.method),
-            },
             Edit::Deform(p) => match p.method {
                 DeformMethod::Arap => format!("ARAP deformation ({} iterations)", p.iterations),
                 DeformMethod::Laplace => "thin-plate deformation".into(),
             },
             Edit::Fair(p) => format!("fair {} (k = {})", count(p.vertices.len(), "vertex"), p.k),
             Edit::FillHoleFair(e) => format!("fill the hole at {e} (fair)"),
-            Edit::FillHoles(true) => "fill every hole (fair)".into(),
-            Edit::FillHoles(false) => "fill every hole".into(),
         }
     }
 
@@ -308,16 +294,12 @@ impl Edit {
                 only(p.vertices.first().map(|_| p.vertices.clone())?)
             }
             // A deformation moves any vertex; a fair fill makes vertices away from the loop.
-            Edit::Deform(_) | Edit::FillHoleFair(_) | Edit::FillHoles(_) => {
+            Edit::Deform(_) | Edit::FillHoleFair(_) => {
                 world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh))
             }
-            Edit::LevelOfDetail(_)
-            | Edit::Operation(_)
-            | Edit::Simplify(_)
-            | Edit::Subdivide(_)
-            | Edit::Remesh(_)
-            | Edit::Smooth(_)
-            | Edit::Parameterize(_) => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
+            Edit::LevelOfDetail(_) | Edit::Operation(_) | Edit::Subdivide(_) | Edit::Smooth(_) => {
+                world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh))
+            }
         }
     }
 
@@ -397,7 +379,7 @@ impl Edit {
     /// history survive it, what becomes of the attributes).
     pub fn declaration(&self) -> &'static Declaration {
         use crate::ops::subdivide;
-        use crate::ops::{deform, hole, local, param, progressive, remesh, simplify, smooth};
+        use crate::ops::{deform, hole, local, progressive, smooth};
         match self {
             Edit::Flip(_) => &local::FLIP,
             Edit::Split(_) => &local::SPLIT,
@@ -418,18 +400,14 @@ impl Edit {
             Edit::SplitVertex(_) => &local::VERTEX_SPLIT,
             Edit::LevelOfDetail(_) => &progressive::LEVEL_OF_DETAIL,
             Edit::Operation(op) => op.declaration(),
-            Edit::Simplify(_) => &simplify::SIMPLIFY,
             Edit::Subdivide(s) => match s.scheme {
                 Scheme::Loop => &subdivide::LOOP,
                 Scheme::CatmullClark => &subdivide::CATMULL_CLARK,
             },
-            Edit::Remesh(_) => &remesh::REMESH,
             Edit::Smooth(_) => &smooth::SMOOTH,
-            Edit::Parameterize(_) => &param::PARAMETERIZE,
             Edit::Deform(_) => &deform::DEFORM,
             Edit::Fair(_) => &deform::FAIR,
             Edit::FillHoleFair(_) => &hole::FILL_HOLE_FAIR,
-            Edit::FillHoles(_) => &hole::FILL_HOLES,
         }
     }
 
@@ -721,7 +699,7 @@ mod tests {
         let v = VertexId(bevy::prelude::Entity::PLACEHOLDER);
         let e = EdgeId(bevy::prelude::Entity::PLACEHOLDER);
         let loop1 = Edit::Subdivide(Subdivision::once(Scheme::Loop));
-        assert!(loop1.may_run_as_job() && Edit::Remesh(RemeshParams::default()).may_run_as_job());
+        assert!(loop1.may_run_as_job() && Edit::registered("remesh").unwrap().may_run_as_job());
         assert!(!Edit::Flip(e).may_run_as_job() && !Edit::LevelOfDetail(5).may_run_as_job());
         assert_eq!(loop1.keeps_ids(), IdsKept::VerticesOnly);
         let triangulate = Edit::registered("triangulate").unwrap();
@@ -766,12 +744,9 @@ mod tests {
                 Edit::MoveVertices(vec![(v, Vec3::ZERO)]),
                 Edit::SplitVertex(v),
                 Edit::LevelOfDetail(10),
-                Edit::Simplify(SimplifyParams::default()),
                 Edit::Subdivide(Subdivision::once(Scheme::Loop)),
                 Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)),
-                Edit::Remesh(RemeshParams::default()),
                 Edit::Smooth(SmoothParams::default()),
-                Edit::Parameterize(ParamParams::default()),
                 Edit::Deform(DeformParams {
                     method: DeformMethod::Arap,
                     fixed: Vec::new(),
@@ -784,7 +759,6 @@ mod tests {
                     k: 2,
                 }),
                 Edit::FillHoleFair(e),
-                Edit::FillHoles(true),
             ])
             .collect();
         let syntax = step_syntax();
@@ -812,11 +786,12 @@ mod tests {
             [
                 "triangulate",
                 "simplify",
+                "simplify-faces",
+                "remesh",
+                "param",
                 "loop",
                 "catmull-clark",
-                "remesh",
-                "smooth",
-                "param"
+                "smooth"
             ]
         );
         assert!(!Edit::MoveVertex(v, Vec3::ZERO).declaration().is_step);

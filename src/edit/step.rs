@@ -15,10 +15,7 @@ use crate::ops::Refusal;
 use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
 use crate::ops::local::faces_of;
 use crate::ops::named::Named;
-use crate::ops::param::{BoundaryShape, ParamMethod, ParamParams};
 use crate::ops::progressive::ProgressiveMesh;
-use crate::ops::remesh::RemeshParams;
-use crate::ops::simplify::{SimplifyParams, SimplifyTarget};
 use crate::ops::smooth::{SmoothMethod, SmoothParams};
 
 use super::{Edit, EditContext, Invocation, Scheme, Subdivision};
@@ -357,15 +354,12 @@ const OTHER_STEPS: &str = "\
 flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
 dissolve:A,B | split-face:A,B | fill-hole:A,B | seam:A,B (mark, for param) |
 loop[:N] | catmull-clark[:N] |
-simplify:RATIO | simplify-faces:N |
 refine[:FACES]   (split simplify's collapses back, up to FACES faces or all) |
-remesh[:ITERATIONS[:LENGTH]]   (isotropic; LENGTH defaults to the mean edge length) |
 smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held) |
-param:uniform|mean-value|harmonic|lscm[:circle|square]   (UVs; written as OBJ vt / PLY u v)
 extrude:FACES:DISTANCE | inset:FACES:AMOUNT[:DEPTH] | bevel:ELEMENT[:AMOUNT[:DEPTH]] |
 erase:ELEMENTS | dissolve:A | collapse:A,B,C | weld:A,B/C,D |
 deform:arap|laplace:FIXED:HANDLE:DX,DY,DZ[:ITERATIONS]   (FIXED stays, HANDLE moves by DX,DY,DZ) |
-fair:VERTICES[:K]   (k-harmonic, K 1-3, default 2) | fill-hole:A,B:fair | fill-holes[:fair]
+fair:VERTICES[:K]   (k-harmonic, K 1-3, default 2) | fill-hole:A,B:fair
 A, B, C: 0-based indices of the input file's vertices: A a vertex, A,B the edge between two,
 A,B,C the face with those consecutive corners; several elements joined by /";
 
@@ -441,44 +435,10 @@ impl Step {
             "validate" => return Ok(Step::Validate),
             "loop" => return levels(Scheme::Loop),
             "catmull-clark" => return levels(Scheme::CatmullClark),
-            "simplify" => match args.parse::<f64>() {
-                Ok(r) if r > 0.0 && r <= 1.0 => Edit::Simplify(SimplifyParams::ratio(r)),
-                _ => {
-                    return Err(format!(
-                        "step `{text}`: the ratio must be in (0, 1], as in `simplify:0.25`"
-                    ));
-                }
-            },
-            "simplify-faces" => Edit::Simplify(SimplifyParams::faces(
-                args.parse::<usize>().map_err(|_| {
-                    format!("step `{text}`: expected a face count, as in `simplify-faces:1000`")
-                })?,
-            )),
             "refine" if args.is_empty() => Edit::LevelOfDetail(usize::MAX),
             "refine" => Edit::LevelOfDetail(args.parse::<usize>().map_err(|_| {
                 format!("step `{text}`: expected a face count, as in `refine:5000`")
             })?),
-            "remesh" => {
-                let bad = || format!("step `{text}`: expected remesh[:ITERATIONS[:LENGTH]]");
-                let mut parts = args.split(':').filter(|p| !p.is_empty());
-                let mut params = RemeshParams::default();
-                if let Some(n) = parts.next() {
-                    params.iterations = n
-                        .parse::<u32>()
-                        .ok()
-                        .filter(|n| (1..=100).contains(n))
-                        .ok_or_else(bad)?;
-                }
-                if let Some(l) = parts.next() {
-                    params.target_length = Some(
-                        l.parse::<f32>()
-                            .ok()
-                            .filter(|l| *l > 0.0 && l.is_finite())
-                            .ok_or_else(bad)?,
-                    );
-                }
-                Edit::Remesh(params)
-            }
             "smooth" => Edit::Smooth(parse_smooth(args).ok_or_else(|| {
                 format!(
                     "step `{text}`: expected smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]"
@@ -503,16 +463,6 @@ impl Step {
                     .ok_or_else(bad)?;
                 return Ok(Step::Fair(vertices, k));
             }
-            "fill-holes" => match args {
-                "" => Edit::FillHoles(false),
-                "fair" => Edit::FillHoles(true),
-                _ => return Err(format!("step `{text}`: expected fill-holes or fill-holes:fair")),
-            },
-            "param" => Edit::Parameterize(parse_param(args).map_err(|why| {
-                format!(
-                    "step `{text}`: {why}; expected param:uniform|mean-value|harmonic|lscm[:circle|square]"
-                )
-            })?),
             _ => {
                 let op = crate::ops::operation(name).ok_or_else(|| {
                     format!("unknown step `{text}` (see `pappus process --help`)")
@@ -602,24 +552,6 @@ impl Step {
     }
 }
 
-/// `METHOD[:SHAPE]` of a `param` step.
-fn parse_param(args: &str) -> Result<ParamParams, String> {
-    let mut parts = args.split(':');
-    let method: ParamMethod = parts
-        .next()
-        .unwrap_or("")
-        .parse()
-        .map_err(|e| format!("{e}"))?;
-    let mut params = ParamParams::new(method);
-    if let Some(shape) = parts.next() {
-        params.boundary = shape.parse::<BoundaryShape>().map_err(|e| format!("{e}"))?;
-    }
-    match parts.next() {
-        Some(extra) => Err(format!("unexpected `{extra}`")),
-        None => Ok(params),
-    }
-}
-
 /// `METHOD[:ITERATIONS[:STEP]]` of a `smooth` step.
 fn parse_smooth(args: &str) -> Option<SmoothParams> {
     let mut parts = args.split(':');
@@ -666,26 +598,15 @@ impl std::fmt::Display for Step {
             }
             Step::Edit(edit) => match edit {
                 Edit::Operation(op) => write!(f, "{op}"),
-                Edit::Simplify(p) => match p.target {
-                    SimplifyTarget::Ratio(r) => write!(f, "simplify:{r}"),
-                    SimplifyTarget::Faces(n) => write!(f, "simplify-faces:{n}"),
-                },
                 Edit::LevelOfDetail(usize::MAX) => write!(f, "refine"),
                 Edit::LevelOfDetail(n) => write!(f, "refine:{n}"),
                 Edit::Subdivide(s) => match s.scheme {
                     Scheme::Loop => write!(f, "loop:{}", s.levels),
                     Scheme::CatmullClark => write!(f, "catmull-clark:{}", s.levels),
                 },
-                Edit::Remesh(p) => match p.target_length {
-                    None => write!(f, "remesh:{}", p.iterations),
-                    Some(l) => write!(f, "remesh:{}:{l}", p.iterations),
-                },
                 Edit::Smooth(p) => {
                     write!(f, "smooth:{}:{}:{}", p.method.name(), p.iterations, p.step)
                 }
-                Edit::Parameterize(p) => write!(f, "param:{}:{}", p.method, p.boundary),
-                Edit::FillHoles(false) => write!(f, "fill-holes"),
-                Edit::FillHoles(true) => write!(f, "fill-holes:fair"),
                 other => write!(f, "{}", other.label()),
             },
         }
@@ -715,14 +636,16 @@ mod tests {
             "loop:1",
             "catmull-clark:2",
             "simplify:0.25",
-            "simplify-faces:1000",
+            "simplify-faces:500",
             "refine",
             "refine:5000",
-            "remesh:5",
+            "remesh",
+            "remesh:3",
             "remesh:3:0.5",
+            "remesh:5:auto:30",
             "smooth:taubin:10:0.5",
             "smooth:implicit:1:2",
-            "param:harmonic:circle",
+            "param:harmonic",
             "param:lscm:square",
             "extrude:0,1,2/1,2,3:0.5",
             "inset:0,1,2:0.3",
@@ -740,6 +663,7 @@ mod tests {
             "fill-hole:0,1:fair",
             "fill-holes",
             "fill-holes:fair",
+            "param",
         ] {
             let step = Step::parse(text).unwrap();
             assert_eq!(step.to_string(), text);
@@ -747,11 +671,18 @@ mod tests {
         }
         assert_eq!(Step::parse("loop").unwrap().to_string(), "loop:1");
         assert_eq!(
-            Step::parse("param:mean-value").unwrap().to_string(),
-            "param:mean-value:circle"
+            Step::parse("param:mean-value:circle").unwrap().to_string(),
+            "param"
         );
-        assert_eq!(Step::parse("remesh").unwrap().to_string(), "remesh:5");
-        assert_eq!(Step::parse("normalize").unwrap().to_string(), "normalize:1");
+        assert_eq!(
+            Step::parse("remesh:5:auto:45").unwrap().to_string(),
+            "remesh"
+        );
+        assert_eq!(Step::parse("normalize:1").unwrap().to_string(), "normalize");
+        assert_eq!(
+            Step::parse("fill-holes:polygon").unwrap().to_string(),
+            "fill-holes"
+        );
         assert_eq!(
             Step::parse("smooth:cotan").unwrap().to_string(),
             "smooth:cotan:1:0.5"
@@ -768,7 +699,9 @@ mod tests {
             assert!(names.insert(d.name), "{} registered twice", d.name);
             assert!(!d.title.is_empty() && !d.help.is_empty(), "{}", d.name);
             assert!(
-                d.parameters.iter().all(|p| p.admits(p.default)),
+                d.parameters
+                    .iter()
+                    .all(|p| p.admits(p.default) && p.admits(Some(p.suggested))),
                 "{}",
                 d.name
             );
@@ -787,8 +720,12 @@ mod tests {
             ("frobnicate", "unknown step"),
             ("flip:3", "two vertex numbers"),
             ("loop:9", "from 1 to 8"),
-            ("simplify:0", "(0, 1]"),
-            ("simplify:1.5", "(0, 1]"),
+            ("simplify:0", "RATIO must be a number from 0.000001 to 1"),
+            ("simplify:1.5", "RATIO must be a number from 0.000001 to 1"),
+            (
+                "simplify-faces:0.5",
+                "FACES must be a whole number from 1 to",
+            ),
             ("remesh:0", "ITERATIONS"),
             ("remesh:3:-1", "LENGTH"),
             ("refine:lots", "face count"),
@@ -796,10 +733,16 @@ mod tests {
             ("smooth:uniform:0", "ITERATIONS"),
             (
                 "param:spectral",
-                "unknown parameterization method `spectral`",
+                "METHOD must be one of uniform, mean-value, harmonic, lscm",
             ),
-            ("param:harmonic:hexagon", "unknown boundary shape"),
-            ("param:harmonic:circle:x", "unexpected `x`"),
+            (
+                "param:harmonic:hexagon",
+                "BOUNDARY must be one of circle, square",
+            ),
+            (
+                "param:harmonic:circle:x",
+                "param takes at most 2 parameter(s)",
+            ),
             ("extrude:0,1,2", "a distance"),
             ("extrude:0,1:0.5", "faces and a distance"),
             ("weld:0,1", "two boundary edges"),
@@ -812,7 +755,7 @@ mod tests {
             ("deform:arap:0:1:1,2,3:0", "iterations"),
             ("fair:1/2:4", "K 1, 2 or 3"),
             ("fill-hole:0:fair", "fill-hole:A,B:fair"),
-            ("fill-holes:smooth", "fill-holes:fair"),
+            ("fill-holes:smooth", "FILL must be one of polygon, fair"),
             ("normalize:0", "SIZE must be a number from"),
             ("normalize:x", "expected normalize[:SIZE]"),
             ("reverse:1", "reverse takes no parameters"),

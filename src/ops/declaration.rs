@@ -59,8 +59,10 @@ pub struct Declaration {
     /// Its key in the editor, if it has one, as the help overlay writes it: modifiers and a
     /// key joined by `+` (`"Alt+C"`, `"Ctrl+T"`, `"Shift+N"`); the editor's keymap reads it.
     pub key: Option<&'static str>,
-    /// Its numeric parameters, in the order a step gives them.
+    /// Its parameters, in the order a step gives them.
     pub parameters: &'static [Parameter],
+    /// The section of the editor's panel that shows its button and parameters.
+    pub section: Section,
     /// Whether it has a `process` step of that name.
     pub is_step: bool,
     /// Whether it may run as a job (on a copy of the mesh, on a thread of its own) when the
@@ -88,6 +90,7 @@ impl Declaration {
             help: "",
             key: None,
             parameters: &[],
+            section: Section::WholeMesh,
             is_step: true,
             job: false,
             ids: IdsKept::All,
@@ -125,6 +128,11 @@ impl Declaration {
         Self { parameters, ..self }
     }
 
+    /// Its button goes in `section` of the editor's panel (*Whole mesh* unless said).
+    pub const fn in_section(self, section: Section) -> Self {
+        Self { section, ..self }
+    }
+
     /// The vertex normals it leaves still describe the surface.
     pub const fn keeping_normals(self) -> Self {
         Self {
@@ -133,22 +141,26 @@ impl Declaration {
         }
     }
 
-    /// Its step's syntax for the usage text: the name, each parameter as `[:NAME]`, and the
-    /// help line with the defaults (`normalize[:SIZE]   (centre …; SIZE 1 by default)`).
+    /// Its step's syntax for the usage text: the name, each parameter as `[:NAME]` (a choice
+    /// as its words), and the help line with the defaults (`normalize[:SIZE]   (centre …; by
+    /// default SIZE 1)`).
     pub fn syntax(&self) -> String {
         let mut text = self.name.to_string();
         for p in self.parameters {
-            text.push_str(&format!("[:{}]", p.name));
+            text.push_str(&format!("[:{}]", p.placeholder()));
         }
         let defaults: Vec<String> = self
             .parameters
             .iter()
-            .map(|p| format!("{} {} by default", p.name, p.default))
+            .map(|p| match (p.default, p.automatic) {
+                (None, Some(what)) => format!("{} auto ({what})", p.name),
+                (x, _) => format!("{} {}", p.name, p.write(x)),
+            })
             .collect();
         match (self.help, defaults.is_empty()) {
             ("", true) => text,
             (help, true) => format!("{text}   ({help})"),
-            (help, false) => format!("{text}   ({help}; {})", defaults.join(", ")),
+            (help, false) => format!("{text}   ({help}; by default {})", defaults.join(", ")),
         }
     }
 
@@ -198,31 +210,70 @@ impl Declaration {
     }
 }
 
-/// One numeric parameter of an operation: its name (in the usage text, the panel and labels),
-/// its default and the closed range it must lie in.
+/// The sections of the editor's panel an operation's button may go in (the editor owns the
+/// rest of each section).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Section {
+    /// *Whole mesh*: operations that rework the whole mesh.
+    WholeMesh,
+    /// *Shape*: fairing, hole filling, deformation.
+    Shape,
+    /// *UV*: parameterization.
+    Uv,
+}
+
+/// One parameter of an operation: its name (in the usage text, the panel and labels), what
+/// values it takes, its default, and whether it may be left to the operation (`auto`).
+///
+/// Every value is held as an `f64`: a real or whole number as itself, a choice as the index
+/// of its word — exact for whole numbers up to 2⁵³ and for a decimal read from a step as it
+/// was read.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Parameter {
     /// Its name, in capitals in the usage text (`normalize[:SIZE]`).
     pub name: &'static str,
-    /// Its value when the step or the panel gives none.
-    pub default: f32,
-    /// The least value it takes.
-    pub min: f32,
-    /// The greatest value it takes.
-    pub max: f32,
-    /// Whether it takes whole numbers only (iterations, levels).
-    pub whole: bool,
+    /// What values it takes.
+    pub kind: ParameterKind,
+    /// Its value when the step or the panel gives none (`None`: automatic).
+    pub default: Option<f64>,
+    /// The value its field starts from when one is first given: the default, or, for a
+    /// parameter automatic by default, the typical value it was declared with.
+    pub suggested: f64,
+    /// What the operation does when the value is left out (`auto`), if it may be: "the mean
+    /// edge length". `None`: a value is always needed.
+    pub automatic: Option<&'static str>,
+}
+
+/// The values a [`Parameter`] takes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ParameterKind {
+    /// A number in `min..=max`.
+    Real {
+        /// The least value.
+        min: f64,
+        /// The greatest value.
+        max: f64,
+    },
+    /// A whole number in `min..=max` (iterations, levels, face counts).
+    Whole {
+        /// The least value.
+        min: f64,
+        /// The greatest value.
+        max: f64,
+    },
+    /// One of these words (a method, a shape), held as its index.
+    Choice(&'static [&'static str]),
 }
 
 impl Parameter {
     /// A real parameter in `min..=max`.
-    pub const fn real(name: &'static str, default: f32, min: f32, max: f32) -> Self {
+    pub const fn real(name: &'static str, default: f64, min: f64, max: f64) -> Self {
         Self {
             name,
-            default,
-            min,
-            max,
-            whole: false,
+            kind: ParameterKind::Real { min, max },
+            default: Some(default),
+            suggested: default,
+            automatic: None,
         }
     }
 
@@ -230,27 +281,109 @@ impl Parameter {
     pub const fn whole(name: &'static str, default: u32, min: u32, max: u32) -> Self {
         Self {
             name,
-            default: default as f32,
-            min: min as f32,
-            max: max as f32,
-            whole: true,
+            kind: ParameterKind::Whole {
+                min: min as f64,
+                max: max as f64,
+            },
+            default: Some(default as f64),
+            suggested: default as f64,
+            automatic: None,
         }
     }
 
-    /// Whether `x` is a value it takes.
-    pub fn admits(&self, x: f32) -> bool {
-        (self.min..=self.max).contains(&x) && (!self.whole || x.fract() == 0.0)
+    /// One of `words`, `words[default]` by default.
+    pub const fn choice(
+        name: &'static str,
+        words: &'static [&'static str],
+        default: usize,
+    ) -> Self {
+        assert!(default < words.len(), "the default is one of the words");
+        Self {
+            name,
+            kind: ParameterKind::Choice(words),
+            default: Some(default as f64),
+            suggested: default as f64,
+            automatic: None,
+        }
     }
 
-    /// Its range in words, for refusals: "a number from 0.001 to 1000", "a whole number from 1
-    /// to 100".
-    pub fn range_words(&self) -> String {
-        let kind = if self.whole {
-            "a whole number"
-        } else {
-            "a number"
+    /// Left to the operation by default (`auto`), which then does `what` ("the mean edge
+    /// length"); the value it was declared with is where its field starts when one is given.
+    pub const fn automatic_by_default(self, what: &'static str) -> Self {
+        Self {
+            default: None,
+            automatic: Some(what),
+            ..self
+        }
+    }
+
+    /// Whether `x` is a value it takes (`None`: automatic).
+    pub fn admits(&self, x: Option<f64>) -> bool {
+        let Some(x) = x else {
+            return self.automatic.is_some();
         };
-        format!("{kind} from {} to {}", self.min, self.max)
+        match self.kind {
+            ParameterKind::Real { min, max } => (min..=max).contains(&x),
+            ParameterKind::Whole { min, max } => (min..=max).contains(&x) && x.fract() == 0.0,
+            ParameterKind::Choice(words) => {
+                x.fract() == 0.0 && (0.0..words.len() as f64).contains(&x)
+            }
+        }
+    }
+
+    /// Reads a value as a step writes it: a number, one of a choice's words (any case), or
+    /// `auto`.
+    ///
+    /// # Errors
+    /// Text that is none of those, or a value it does not take: the message says what it takes.
+    pub fn read(&self, text: &str) -> Result<Option<f64>, String> {
+        if text.is_empty() {
+            return Err(format!("a value of {} is missing", self.name));
+        }
+        if text == "auto" && self.automatic.is_some() {
+            return Ok(None);
+        }
+        let x = match self.kind {
+            ParameterKind::Choice(words) => words
+                .iter()
+                .position(|w| w.eq_ignore_ascii_case(text))
+                .map(|i| i as f64),
+            _ => text.parse::<f64>().ok(),
+        };
+        x.filter(|&x| self.admits(Some(x)))
+            .map(Some)
+            .ok_or_else(|| format!("{} must be {}", self.name, self.range_words()))
+    }
+
+    /// A value as a step writes it: the number, the choice's word, or `auto`.
+    pub fn write(&self, x: Option<f64>) -> String {
+        match (x, self.kind) {
+            (None, _) => "auto".into(),
+            (Some(i), ParameterKind::Choice(words)) => words[i as usize].into(),
+            (Some(x), _) => x.to_string(),
+        }
+    }
+
+    /// What it takes, in words, for refusals: "a number from 0.001 to 1000", "a whole number
+    /// from 1 to 100", "one of polygon, fair", each with "or auto (…)" where it may be left out.
+    pub fn range_words(&self) -> String {
+        let words = match self.kind {
+            ParameterKind::Real { min, max } => format!("a number from {min} to {max}"),
+            ParameterKind::Whole { min, max } => format!("a whole number from {min} to {max}"),
+            ParameterKind::Choice(words) => format!("one of {}", words.join(", ")),
+        };
+        match self.automatic {
+            Some(what) => format!("{words}, or auto ({what})"),
+            None => words,
+        }
+    }
+
+    /// How the usage text writes it: `NAME`, or a choice's words joined by `|`.
+    pub fn placeholder(&self) -> String {
+        match self.kind {
+            ParameterKind::Choice(words) => words.join("|"),
+            _ => self.name.into(),
+        }
     }
 }
 

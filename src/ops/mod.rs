@@ -9,6 +9,7 @@
 //! Operations are plain functions over `&World` / `&mut World`, callable from a unit test, the
 //! command line and the editor alike; the editor's systems are thin adapters around them.
 
+pub mod decimate;
 pub mod declaration;
 pub mod deform;
 pub mod geometry;
@@ -42,6 +43,11 @@ pub const OPERATIONS: &[&dyn MeshOperation] = &[
     &reverse::Reverse,
     &reverse::OrientOutside,
     &normalize::Normalize,
+    &decimate::Simplify,
+    &decimate::SimplifyFaces,
+    &remesh::Remesh,
+    &hole::FillHoles,
+    &param::Parameterize,
 ];
 
 /// The registered operation whose step is called `name`.

@@ -24,7 +24,7 @@ use crate::mesh::ids::{MeshId, VertexId};
 use crate::mesh::members::of_kind;
 use crate::ops::Refusal;
 use crate::ops::declaration::{Declaration, Parameter};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Redraw};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Redraw, Values};
 
 /// Normalizing: positions only, every id and attribute kept.
 pub const NORMALIZE: Declaration = Declaration::new("normalize")
@@ -46,10 +46,10 @@ impl MeshOperation for Normalize {
         &self,
         world: &mut World,
         mesh: MeshId,
-        values: &[f32],
+        values: Values<'_>,
         _: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
-        let done = normalize(world, mesh, f64::from(values[0]))?;
+        let done = normalize(world, mesh, values.number(0))?;
         Ok(Applied {
             summary: format!(
                 "centred (moved by {:.4}, {:.4}, {:.4}) and scaled by {:.4}: longest side {}",
@@ -57,7 +57,7 @@ impl MeshOperation for Normalize {
                 tidy(-done.centre.y),
                 tidy(-done.centre.z),
                 done.scale,
-                values[0]
+                values.number(0)
             ),
             redraw: Redraw::Positions,
             made: None,

@@ -23,7 +23,7 @@ use bevy::prelude::World;
 
 use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
 use crate::ops::Refusal;
-use crate::ops::declaration::Declaration;
+use crate::ops::declaration::{Declaration, ParameterKind};
 use crate::ops::progressive::ProgressiveMesh;
 
 /// What to redraw after an edit.
@@ -85,8 +85,8 @@ pub trait MeshOperation: Sync + 'static {
     /// What it declares: name, title, help, key, parameters, job, ids, attributes.
     fn declaration(&self) -> &'static Declaration;
 
-    /// Applies it to `mesh` (which exists) with one value per declared parameter, each
-    /// already checked against its range.
+    /// Applies it to `mesh` (which exists) with a value for each declared parameter, each
+    /// already checked against what the parameter takes.
     ///
     /// # Refusals
     /// Its own; the world is then exactly as it was.
@@ -94,17 +94,47 @@ pub trait MeshOperation: Sync + 'static {
         &self,
         world: &mut World,
         mesh: MeshId,
-        values: &[f32],
+        values: Values<'_>,
         context: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal>;
 }
 
-/// One use of a [`MeshOperation`]: the operation and a value for each of its parameters, in
-/// range. Compared, printed and labelled by the operation's name and the values.
+/// The values an operation is applied with, one a declared parameter, read by the kind the
+/// operation declared. Each is in its parameter's range (an [`Invocation`] admits no other),
+/// and only a parameter declared automatic may be left out.
+#[derive(Clone, Copy, Debug)]
+pub struct Values<'a>(&'a [Option<f64>]);
+
+impl Values<'_> {
+    /// Parameter `i`'s number (0 where a parameter declared automatic was left out: read
+    /// those with [`Values::given`]).
+    pub fn number(&self, i: usize) -> f64 {
+        self.0[i].unwrap_or_default()
+    }
+
+    /// Parameter `i`'s whole number.
+    pub fn whole(&self, i: usize) -> u32 {
+        self.number(i) as u32
+    }
+
+    /// The index of parameter `i`'s word among its choices.
+    pub fn choice(&self, i: usize) -> usize {
+        self.number(i) as usize
+    }
+
+    /// Parameter `i`'s value, `None` where it was left to the operation (`auto`).
+    pub fn given(&self, i: usize) -> Option<f64> {
+        self.0[i]
+    }
+}
+
+/// One use of a [`MeshOperation`]: the operation and a value for each of its parameters, each
+/// one the parameter takes. Compared, printed and labelled by the operation's name and the
+/// values.
 #[derive(Clone, Copy)]
 pub struct Invocation {
     operation: &'static dyn MeshOperation,
-    values: [f32; Invocation::MAX_PARAMETERS],
+    values: [Option<f64>; Invocation::MAX_PARAMETERS],
 }
 
 impl Invocation {
@@ -114,19 +144,22 @@ impl Invocation {
 
     /// `operation` with its defaults.
     pub fn with_defaults(operation: &'static dyn MeshOperation) -> Self {
-        let mut values = [0.0; Self::MAX_PARAMETERS];
+        let mut values = [None; Self::MAX_PARAMETERS];
         for (v, p) in values.iter_mut().zip(operation.declaration().parameters) {
             *v = p.default;
         }
         Self { operation, values }
     }
 
-    /// `operation` with these values (missing ones take their defaults).
+    /// `operation` with these values (missing ones take their defaults; `None`: automatic).
     ///
     /// # Errors
-    /// More values than parameters, or a value out of its parameter's range: the message says
+    /// More values than parameters, or a value its parameter does not take: the message says
     /// which and what it takes.
-    pub fn new(operation: &'static dyn MeshOperation, given: &[f32]) -> Result<Self, String> {
+    pub fn new(
+        operation: &'static dyn MeshOperation,
+        given: &[Option<f64>],
+    ) -> Result<Self, String> {
         let declaration = operation.declaration();
         let parameters = declaration.parameters;
         if given.len() > parameters.len() {
@@ -142,23 +175,28 @@ impl Invocation {
         Ok(invocation)
     }
 
-    /// Parses the text after the step's name (`"2"`, `"2:0.5"`, or empty for the defaults).
+    /// Parses the text after the step's name (`"2"`, `"2:0.5"`, `"lscm"`, `"5:auto:30"`, or
+    /// empty for the defaults), each value as [`crate::ops::declaration::Parameter::read`] reads it.
     ///
     /// # Errors
-    /// A value that is not a number, or as [`Invocation::new`].
+    /// A value its parameter cannot read, or as [`Invocation::new`].
     pub fn parse(operation: &'static dyn MeshOperation, args: &str) -> Result<Self, String> {
-        let values: Vec<f32> = match args {
-            "" => Vec::new(),
-            _ => args
-                .split(':')
-                .map(|x| match x.trim() {
-                    "" => Err("a value is missing".to_string()),
-                    x => x
-                        .parse::<f32>()
-                        .map_err(|_| format!("`{x}` is not a number")),
-                })
-                .collect::<Result<_, _>>()?,
-        };
+        let declaration = operation.declaration();
+        if args.is_empty() {
+            return Ok(Self::with_defaults(operation));
+        }
+        let texts: Vec<&str> = args.split(':').map(str::trim).collect();
+        let values = texts
+            .iter()
+            .zip(declaration.parameters)
+            .map(|(text, p)| p.read(text))
+            .collect::<Result<Vec<_>, _>>()?;
+        if texts.len() > values.len() {
+            // Say there are too many, as `new` does.
+            let mut too_many = values;
+            too_many.resize(texts.len(), None);
+            return Self::new(operation, &too_many);
+        }
         Self::new(operation, &values)
     }
 
@@ -172,16 +210,22 @@ impl Invocation {
         self.operation.declaration()
     }
 
-    /// One value per declared parameter.
-    pub fn values(&self) -> &[f32] {
-        &self.values[..self.declaration().parameters.len()]
+    /// Whether it invokes the operation that declares `declaration` (by name: registered
+    /// operations have names of their own).
+    pub fn is(&self, declaration: &Declaration) -> bool {
+        self.declaration().name == declaration.name
     }
 
-    /// Sets the value of parameter `i`.
+    /// One value per declared parameter.
+    pub fn values(&self) -> Values<'_> {
+        Values(&self.values[..self.declaration().parameters.len()])
+    }
+
+    /// Sets the value of parameter `i` (`None`: automatic).
     ///
     /// # Errors
-    /// No parameter `i`, or `x` out of its range: the invocation is unchanged.
-    pub fn set(&mut self, i: usize, x: f32) -> Result<(), String> {
+    /// No parameter `i`, or a value it does not take: the invocation is unchanged.
+    pub fn set(&mut self, i: usize, x: Option<f64>) -> Result<(), String> {
         let d = self.declaration();
         let p = d
             .parameters
@@ -195,15 +239,19 @@ impl Invocation {
     }
 
     /// Its label for the log and the undo history: the title in lower case, and each
-    /// parameter's value ("normalize (size 2)").
+    /// parameter's value, named, or a choice's word alone ("normalize (size 2)",
+    /// "parameterize (lscm, circle)").
     pub fn label(&self) -> String {
         let d = self.declaration();
         let mut label = lower_first(d.title);
         let values: Vec<String> = d
             .parameters
             .iter()
-            .zip(self.values())
-            .map(|(p, x)| format!("{} {x}", p.name.to_lowercase()))
+            .zip(self.values().0)
+            .map(|(p, &x)| match p.kind {
+                ParameterKind::Choice(_) => p.write(x),
+                _ => format!("{} {}", p.name.to_lowercase(), p.write(x)),
+            })
             .collect();
         if !values.is_empty() {
             label.push_str(&format!(" ({})", values.join(", ")));
@@ -225,11 +273,26 @@ impl Invocation {
     }
 }
 
-/// As a `process` step: `name`, then each value after a colon (`normalize:2`).
+/// As a `process` step: `name`, then each value after a colon as
+/// [`crate::ops::declaration::Parameter::write`] writes it, up to the last that differs from
+/// its default (`normalize`, `normalize:2`, `param:lscm`, `remesh:8:0.00001`); it parses back
+/// to the same invocation.
 impl fmt::Display for Invocation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.declaration().name)?;
-        self.values().iter().try_for_each(|x| write!(f, ":{x}"))
+        let d = self.declaration();
+        let values = self.values().0;
+        let given = d
+            .parameters
+            .iter()
+            .zip(values)
+            .rposition(|(p, &x)| x != p.default)
+            .map_or(0, |last| last + 1);
+        write!(f, "{}", d.name)?;
+        d.parameters
+            .iter()
+            .zip(values)
+            .take(given)
+            .try_for_each(|(p, &x)| write!(f, ":{}", p.write(x)))
     }
 }
 
@@ -241,7 +304,7 @@ impl fmt::Debug for Invocation {
 
 impl PartialEq for Invocation {
     fn eq(&self, other: &Self) -> bool {
-        self.declaration().name == other.declaration().name && self.values() == other.values()
+        self.declaration().name == other.declaration().name && self.values().0 == other.values().0
     }
 }
 
@@ -275,6 +338,8 @@ mod tests {
         .with_parameters(&[
             Parameter::real("FACTOR", 1.0, 0.5, 2.0),
             Parameter::whole("TIMES", 1, 1, 3),
+            Parameter::choice("AXIS", &["x", "y", "z"], 2),
+            Parameter::real("LIMIT", 0.0, 0.0, 10.0).automatic_by_default("no limit"),
         ]);
 
     impl MeshOperation for Scale {
@@ -286,7 +351,7 @@ mod tests {
             &self,
             _: &mut World,
             _: MeshId,
-            values: &[f32],
+            values: Values<'_>,
             _: &mut EditContext<'_>,
         ) -> Result<Applied, Refusal> {
             Ok(Applied::whole(format!("{values:?}")))
@@ -296,41 +361,61 @@ mod tests {
     #[test]
     fn an_invocation_takes_defaults_checks_ranges_and_prints_as_it_parses() {
         let defaults = Invocation::parse(&Scale, "").unwrap();
-        assert_eq!(defaults.values(), [1.0, 1.0]);
-        assert_eq!(defaults.to_string(), "scale-test:1:1");
-        assert_eq!(defaults.label(), "scale test (factor 1, times 1)");
-        let given = Invocation::parse(&Scale, "1.5").unwrap();
-        assert_eq!(given.values(), [1.5, 1.0]);
+        let v = defaults.values();
+        assert_eq!(
+            (v.number(0), v.whole(1), v.choice(2), v.given(3)),
+            (1.0, 1, 2, None)
+        );
+        assert_eq!(defaults.to_string(), "scale-test");
+        assert_eq!(
+            defaults.label(),
+            "scale test (factor 1, times 1, z, limit auto)"
+        );
+        let given = Invocation::parse(&Scale, "1.5:2:Y:0.25").unwrap();
+        let v = given.values();
+        assert_eq!((v.number(0), v.whole(1), v.choice(2)), (1.5, 2, 1));
+        assert_eq!(v.given(3), Some(0.25));
+        assert_eq!(given.to_string(), "scale-test:1.5:2:y:0.25");
         assert_eq!(
             Invocation::parse(&Scale, &given.to_string()[11..]).unwrap(),
             given
         );
-        assert_eq!(
-            Invocation::parse(&Scale, "3").unwrap_err(),
-            "FACTOR must be a number from 0.5 to 2"
-        );
-        assert_eq!(
-            Invocation::parse(&Scale, "1:1.5").unwrap_err(),
-            "TIMES must be a whole number from 1 to 3"
-        );
-        assert_eq!(
-            Invocation::parse(&Scale, "1:1:1").unwrap_err(),
-            "scale-test takes at most 2 parameter(s)"
-        );
-        assert_eq!(
-            Invocation::parse(&Scale, "x").unwrap_err(),
-            "`x` is not a number"
-        );
-        assert_eq!(
-            Invocation::parse(&Scale, ":2").unwrap_err(),
-            "a value is missing"
-        );
+        // A step's decimal is kept as read: 0.1 is the f64 nearest 0.1.
+        // Trailing defaults are left out; one before a value given is written.
+        let first = Invocation::parse(&Scale, "1.5:1:z:auto").unwrap();
+        assert_eq!(first.to_string(), "scale-test:1.5");
+        let last = Invocation::parse(&Scale, "1:1:z:3").unwrap();
+        assert_eq!(last.to_string(), "scale-test:1:1:z:3");
+        let tenth = Invocation::parse(&Scale, "0.5:1:x:0.1").unwrap();
+        assert_eq!(tenth.values().given(3), Some(0.1));
+        for (args, why) in [
+            ("3", "FACTOR must be a number from 0.5 to 2"),
+            ("1:1.5", "TIMES must be a whole number from 1 to 3"),
+            ("1:1:w", "AXIS must be one of x, y, z"),
+            (
+                "1:1:x:11",
+                "LIMIT must be a number from 0 to 10, or auto (no limit)",
+            ),
+            ("auto", "FACTOR must be a number from 0.5 to 2"),
+            ("1:1:x:2:5", "scale-test takes at most 4 parameter(s)"),
+            ("x", "FACTOR must be a number from 0.5 to 2"),
+            (":2", "a value of FACTOR is missing"),
+            ("NaN", "FACTOR must be a number from 0.5 to 2"),
+        ] {
+            assert_eq!(Invocation::parse(&Scale, args).unwrap_err(), why, "{args}");
+        }
         assert_ne!(defaults, given);
         let mut set = defaults;
-        set.set(0, 1.5).unwrap();
+        set.set(0, Some(1.5)).unwrap();
+        set.set(1, Some(2.0)).unwrap();
+        set.set(2, Some(1.0)).unwrap();
+        set.set(3, Some(0.25)).unwrap();
         assert_eq!(set, given);
-        assert!(set.set(1, 7.0).is_err() && set.set(2, 1.0).is_err());
+        assert!(set.set(1, Some(7.0)).is_err() && set.set(4, Some(1.0)).is_err());
+        assert!(set.set(0, None).is_err() && set.set(2, Some(3.0)).is_err());
         assert_eq!(set, given);
+        set.set(3, None).unwrap();
+        assert_eq!(set.values().given(3), None);
     }
 
     #[test]

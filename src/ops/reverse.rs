@@ -25,7 +25,7 @@ use crate::mesh::members::MeshMembers;
 use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
 use crate::ops::declaration::Declaration;
-use crate::ops::operation::{Applied, EditContext, MeshOperation, count};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Values, count};
 
 /// Reversing the orientation: a whole-mesh edit (every halfedge turns round) that keeps every
 /// id and attribute, done in one pass, never a job.
@@ -47,7 +47,7 @@ impl MeshOperation for Reverse {
         &self,
         world: &mut World,
         mesh: MeshId,
-        _: &[f32],
+        _: Values<'_>,
         _: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         let turned = reverse_orientation(world, mesh).faces;
@@ -84,7 +84,7 @@ impl MeshOperation for OrientOutside {
         &self,
         world: &mut World,
         mesh: MeshId,
-        _: &[f32],
+        _: Values<'_>,
         _: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         Ok(Applied::whole(orient_outward(world, mesh).describe()))

@@ -31,15 +31,6 @@ use super::indexed_heap::IndexedHeap;
 mod run;
 pub use run::{NextCollapse, QemRun, QueuedEdge, Refused};
 
-use crate::ops::declaration::{DROPPED_BY_SIMPLIFICATION, Declaration};
-
-/// QEM simplification: a job on a large mesh; it makes the history that level of detail and
-/// vertex splits move along, and drops attributes.
-pub const SIMPLIFY: Declaration = Declaration::new("simplify")
-    .as_job()
-    .keeping_history()
-    .dropping(DROPPED_BY_SIMPLIFICATION);
-
 /// How many faces a simplification keeps.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SimplifyTarget {

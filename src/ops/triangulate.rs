@@ -25,7 +25,7 @@ use crate::mesh::topology::{MeshRef, newell_area_vector};
 
 use crate::ops::Refusal;
 use crate::ops::declaration::Declaration;
-use crate::ops::operation::{Applied, EditContext, MeshOperation};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Values};
 
 /// Triangulating every polygon: a whole-mesh edit that may run as a job.
 pub const TRIANGULATE: Declaration = Declaration::new("triangulate")
@@ -46,7 +46,7 @@ impl MeshOperation for Triangulate {
         &self,
         world: &mut World,
         mesh: MeshId,
-        _: &[f32],
+        _: Values<'_>,
         context: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         let s = triangulate(world, mesh);

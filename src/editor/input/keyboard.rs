@@ -17,9 +17,6 @@ use crate::ops::Refusal;
 use crate::ops::deform::{FairParams, Proportional};
 use crate::ops::local::faces_of;
 use crate::ops::operation::MeshOperation;
-use crate::ops::param::ParamParams;
-use crate::ops::remesh::RemeshParams;
-use crate::ops::simplify::SimplifyParams;
 use crate::ops::smooth::SmoothParams;
 
 use crate::editor::gestures::box_select::BoxSelect;
@@ -56,8 +53,6 @@ pub enum Action {
     Fill,
     /// Fill the hole beside the selected boundary edge with a fair patch of triangles.
     FillFair,
-    /// Fill every hole of the active mesh (fair patches, or one face each: the panel's choice).
-    FillAll,
     /// Fair the selected vertices (the panel's order k; every other vertex held).
     Fair,
     /// Proportional editing on / off.
@@ -74,20 +69,14 @@ pub enum Action {
     /// Run the registered operation of this step name ([`crate::ops::OPERATIONS`]) on the
     /// active mesh, with the panel's values of its parameters.
     Operation(&'static str),
-    /// Simplify the active mesh (QEM) with the panel's parameters.
-    Simplify,
     /// Split the selected vertex back (undo its last collapse from the simplification).
     SplitVertex,
     /// Loop-subdivide the active mesh (the panel's levels).
     LoopSubdivide,
     /// Catmull–Clark-subdivide the active mesh (the panel's levels).
     CatmullClark,
-    /// Remesh the active mesh (isotropic, the panel's parameters).
-    Remesh,
     /// Smooth the active mesh (the panel's method, iterations, step; the selected vertex held).
     Smooth,
-    /// Parameterize the active mesh (the panel's method and boundary): a UV per corner.
-    Parameterize,
     /// Move the selection along a relation.
     Navigate(Relation),
     /// Change what a click selects.
@@ -375,12 +364,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "fill the hole beside the selected boundary edge with faired triangles",
     ),
     shift(
-        KeyCode::KeyF,
-        "Shift+F",
-        Action::FillAll,
-        "fill every hole (faired triangles or one face each, as set in the panel)",
-    ),
-    shift(
         KeyCode::KeyO,
         "Shift+O",
         Action::Fair,
@@ -416,12 +399,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::SplitVertex,
         "split the selected vertex back (after Shift+S: undoes its collapse)",
     ),
-    shift(
-        KeyCode::KeyS,
-        "Shift+S",
-        Action::Simplify,
-        "simplify (QEM) to the target set in the panel",
-    ),
     key(
         KeyCode::KeyL,
         "L",
@@ -435,12 +412,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "Catmull-Clark subdivision (to quads; levels in the panel)",
     ),
     key(
-        KeyCode::KeyM,
-        "M",
-        Action::Remesh,
-        "isotropic remeshing (length, iterations, feature angle in the panel)",
-    ),
-    key(
         KeyCode::KeyO,
         "O",
         Action::Smooth,
@@ -452,12 +423,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "Ctrl+E",
         Action::OnEdge(LocalKind::Seam),
         "mark the selected edge as a seam for parameterizing (or unmark it)",
-    ),
-    shift(
-        KeyCode::KeyU,
-        "Shift+U",
-        Action::Parameterize,
-        "parameterize (unwrap) with the panel's method: a UV per corner",
     ),
     key(
         KeyCode::KeyH,
@@ -654,10 +619,6 @@ pub struct UiState {
     pub show_help: bool,
     /// The path field should take the keyboard focus (for Open / Save as).
     pub focus_path: Option<PathPurpose>,
-    /// Simplification: its target (a ratio or a face count) and limits.
-    pub simplify: SimplifyParams,
-    /// Remeshing: target length, iterations, feature angle.
-    pub remesh: RemeshParams,
     /// Subdivision levels per press (1–[`Subdivision::MAX_LEVELS`]).
     pub subdivision_levels: u32,
     /// Smoothing: method, iterations, step, whether the boundary is held.
@@ -667,9 +628,6 @@ pub struct UiState {
     /// The panel asked to check the validity of a large mesh (see
     /// [`crate::editor::panels::mesh_figures`]).
     pub check_validity: bool,
-    /// Parameterization: method and boundary shape (no seams; a closed genus-0 mesh is cut
-    /// automatically).
-    pub param: ParamParams,
     /// The UV layout window is open (it opens by itself when the mesh first gets UVs).
     pub uv_view: bool,
     /// Bevel: how far along the edges the new corners go (0–0.5), or for faces how far
@@ -679,8 +637,6 @@ pub struct UiState {
     pub bevel_depth: f32,
     /// Fairing's order k (1–3).
     pub fair_k: u32,
-    /// Fill every hole with faired triangles (else one face each).
-    pub fill_fair: bool,
     /// Proportional editing: on or off, falloff, radius, distances along edges.
     pub proportional: Proportional,
     /// The panel's values of each registered operation's parameters (their defaults until
@@ -698,6 +654,19 @@ impl UiState {
             .copied()
             .unwrap_or_else(|| Invocation::with_defaults(op))
     }
+
+    /// Sets the panel's value of parameter `i` of the registered operation `name`, as its
+    /// field would.
+    ///
+    /// # Errors
+    /// No registered operation of that name, or a value its parameter does not take.
+    pub fn set_parameter(&mut self, name: &str, i: usize, x: Option<f64>) -> Result<(), String> {
+        self.operations
+            .iter_mut()
+            .find(|op| op.declaration().name == name)
+            .ok_or_else(|| format!("no registered operation is called `{name}`"))?
+            .set(i, x)
+    }
 }
 
 /// The registered operation an action runs, if it runs one.
@@ -713,18 +682,14 @@ impl Default for UiState {
         Self {
             show_help: false,
             focus_path: None,
-            simplify: SimplifyParams::default(),
-            remesh: RemeshParams::default(),
             subdivision_levels: 1,
             smooth: SmoothParams::default(),
             histograms: false,
             check_validity: false,
-            param: ParamParams::default(),
             uv_view: false,
             bevel_amount: 0.25,
             bevel_depth: 0.0,
             fair_k: 2,
-            fill_fair: true,
             proportional: Proportional::default(),
             operations: crate::ops::OPERATIONS
                 .iter()
@@ -969,31 +934,19 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
 fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Declined> {
     let selection = world.resource::<Selection>().element;
     let edit = match action {
-        Action::FillAll => {
-            world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
-            Edit::FillHoles(world.resource::<UiState>().fill_fair)
-        }
         Action::Operation(name) => {
             world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
             let op = crate::ops::operation(name)
                 .ok_or_else(|| Refusal::BadParameter(format!("no operation is called `{name}`")))?;
             Edit::Operation(world.resource::<UiState>().invocation(op))
         }
-        Action::LoopSubdivide
-        | Action::CatmullClark
-        | Action::Remesh
-        | Action::Smooth
-        | Action::Parameterize
-        | Action::Simplify => {
+        Action::LoopSubdivide | Action::CatmullClark | Action::Smooth => {
             if world.resource::<ActiveMesh>().0.is_none() {
                 return Err(Declined::NoMesh);
             }
             let ui = world.resource::<UiState>();
             let levels = ui.subdivision_levels.clamp(1, Subdivision::MAX_LEVELS);
             match action {
-                Action::Remesh => Edit::Remesh(ui.remesh),
-                Action::Simplify => Edit::Simplify(ui.simplify),
-                Action::Parameterize => Edit::Parameterize(ui.param.clone()),
                 Action::Smooth => Edit::Smooth(SmoothParams {
                     held: match selection {
                         Some(ElementId::Vertex(v)) => vec![v],

@@ -17,9 +17,8 @@ use crate::mesh::{InMesh, MeshInfo};
 use crate::ops::named::Named;
 
 use crate::edit::{Edit, LocalKind, Subdivision};
+use crate::ops::declaration::{Declaration, Parameter, ParameterKind, Section};
 use crate::ops::deform::{DeformMethod, Falloff};
-use crate::ops::param::{BoundaryShape, ParamMethod};
-use crate::ops::simplify::SimplifyTarget;
 use crate::ops::smooth::SmoothMethod;
 
 use super::mesh_figures::MeshView;
@@ -850,45 +849,98 @@ fn button(
     response
 }
 
-/// The registered operations ([`crate::ops::OPERATIONS`]), drawn from their declarations: a
-/// button each (its help line on hover), after the fields of its parameters, whose values
-/// the button and the key use.
-fn registered_operations(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
+/// The registered operations ([`crate::ops::OPERATIONS`]) that declare `section` as theirs,
+/// drawn from their declarations: a button each (its help line on hover), after the fields of
+/// its parameters, whose values the button and the key use. Those without parameters share
+/// one row.
+fn registered_operations(
+    ui: &mut egui::Ui,
+    state: &mut UiState,
+    pending: &mut PendingActions,
+    section: Section,
+) {
+    let here = |d: &Declaration| d.section == section;
     ui.horizontal_wrapped(|ui| {
         for invocation in &state.operations {
             let d = invocation.declaration();
-            if !d.parameters.is_empty() {
-                continue;
+            if here(d) && d.parameters.is_empty() {
+                button(ui, pending, Action::Operation(d.name), d.title).on_hover_text(d.help);
             }
-            button(ui, pending, Action::Operation(d.name), d.title).on_hover_text(d.help);
         }
-        button(ui, pending, Action::ToggleStepMode, "Step mode");
+        if section == Section::WholeMesh {
+            button(ui, pending, Action::ToggleStepMode, "Step mode");
+        }
     });
     for invocation in &mut state.operations {
         let d = invocation.declaration();
-        if d.parameters.is_empty() {
+        if !here(d) || d.parameters.is_empty() {
             continue;
         }
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             for (i, p) in d.parameters.iter().enumerate() {
-                let mut x = invocation.values()[i];
-                let field = egui::DragValue::new(&mut x)
-                    .range(p.min..=p.max)
-                    .speed(if p.whole { 1.0 } else { 0.01 })
-                    .prefix(format!("{} ", p.name.to_lowercase()));
-                let field = match p.whole {
-                    true => field.fixed_decimals(0),
-                    false => field,
-                };
-                if ui.add(field).changed() {
-                    let x = if p.whole { x.round() } else { x };
-                    // The field keeps `x` in range; a value it cannot take is left as it was.
+                let x = invocation.values().given(i);
+                if let Some(x) = parameter_field(ui, d.name, p, x) {
+                    // The field offers only values the parameter takes.
                     let _ = invocation.set(i, x);
                 }
             }
             button(ui, pending, Action::Operation(d.name), d.title).on_hover_text(d.help);
         });
     }
+}
+
+/// The field of one parameter of operation `operation`, showing `x`: a drop-down of a
+/// choice's words, a number field in the parameter's range, and an "auto" box before it where
+/// the parameter may be left to the operation. The new value when the user changed it.
+fn parameter_field(
+    ui: &mut egui::Ui,
+    operation: &str,
+    p: &Parameter,
+    x: Option<f64>,
+) -> Option<Option<f64>> {
+    let label = p.name.to_lowercase();
+    let (min, max, whole) = match p.kind {
+        ParameterKind::Choice(words) => {
+            let mut i = x.unwrap_or_default() as usize;
+            egui::ComboBox::from_id_salt((operation, p.name))
+                .selected_text(format!("{label} {}", words[i]))
+                .show_ui(ui, |ui| {
+                    for (j, word) in words.iter().enumerate() {
+                        ui.selectable_value(&mut i, j, *word);
+                    }
+                });
+            return (Some(i as f64) != x).then_some(Some(i as f64));
+        }
+        ParameterKind::Real { min, max } => (min, max, false),
+        ParameterKind::Whole { min, max } => (min, max, true),
+    };
+    let mut changed = None;
+    if let Some(what) = p.automatic {
+        let mut auto = x.is_none();
+        let response = ui
+            .checkbox(&mut auto, format!("auto {label}"))
+            .on_hover_text(what);
+        if response.changed() {
+            changed = Some((!auto).then_some(p.suggested));
+        }
+        if auto {
+            return changed;
+        }
+    }
+    let mut value = changed.flatten().or(x).unwrap_or(min);
+    let field = egui::DragValue::new(&mut value)
+        .range(min..=max)
+        .speed(if whole { 1.0 } else { 0.01 })
+        .prefix(format!("{label} "));
+    let field = if whole {
+        field.fixed_decimals(0)
+    } else {
+        field
+    };
+    if ui.add(field).changed() {
+        changed = Some(Some(if whole { value.round() } else { value }));
+    }
+    changed
 }
 
 /// A row of [`button`]s.
@@ -1014,7 +1066,7 @@ fn local_section(ui: &mut egui::Ui, pending: &mut PendingActions) {
 /// line's steps (`simplify:RATIO`, `simplify-faces:N`, `remesh:ITERATIONS:LENGTH`, `loop:N`,
 /// `smooth:METHOD`), and step mode, which runs them a step at a time.
 fn whole_mesh_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
-    registered_operations(ui, state, pending);
+    registered_operations(ui, state, pending, Section::WholeMesh);
     // Subdivision: levels per press.
     ui.horizontal(|ui| {
         ui.add(
@@ -1024,64 +1076,6 @@ fn whole_mesh_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pend
         );
         button(ui, pending, Action::LoopSubdivide, "Loop");
         button(ui, pending, Action::CatmullClark, "Catmull-Clark");
-    });
-    // Simplify: a ratio of the faces, or a face count.
-    ui.horizontal(|ui| {
-        let params = &mut state.simplify;
-        let mut by_ratio = matches!(params.target, SimplifyTarget::Ratio(_));
-        if ui.selectable_label(by_ratio, "%").clicked() {
-            by_ratio = true;
-        }
-        if ui.selectable_label(!by_ratio, "faces").clicked() {
-            by_ratio = false;
-        }
-        params.target = match (by_ratio, params.target) {
-            (true, SimplifyTarget::Ratio(mut r)) => {
-                let slider = egui::Slider::new(&mut r, 0.01..=1.0)
-                    .custom_formatter(|v, _| format!("{:.0} %", v * 100.0));
-                ui.add(slider);
-                SimplifyTarget::Ratio(r)
-            }
-            (false, SimplifyTarget::Faces(mut n)) => {
-                ui.add(
-                    egui::DragValue::new(&mut n)
-                        .range(1..=usize::MAX)
-                        .speed(10.0),
-                );
-                SimplifyTarget::Faces(n)
-            }
-            (true, SimplifyTarget::Faces(_)) => SimplifyTarget::Ratio(0.5),
-            (false, SimplifyTarget::Ratio(_)) => SimplifyTarget::Faces(1000),
-        };
-        button(ui, pending, Action::Simplify, "Simplify");
-    });
-    // Remesh: target length (mean edge length when unset), iterations, feature angle.
-    ui.horizontal_wrapped(|ui| {
-        let params = &mut state.remesh;
-        let mut auto = params.target_length.is_none();
-        ui.checkbox(&mut auto, "mean length");
-        if auto {
-            params.target_length = None;
-        } else {
-            let mut length = params.target_length.unwrap_or(0.01);
-            let field = egui::DragValue::new(&mut length)
-                .range(1e-6..=f32::MAX)
-                .speed(0.0005)
-                .prefix("L ");
-            ui.add(field);
-            params.target_length = Some(length);
-        }
-        ui.add(
-            egui::DragValue::new(&mut params.iterations)
-                .range(1..=100)
-                .suffix(" iterations"),
-        );
-        ui.add(
-            egui::DragValue::new(&mut params.feature_angle_deg)
-                .range(0.0..=180.0)
-                .suffix("° features"),
-        );
-        button(ui, pending, Action::Remesh, "Remesh");
     });
     // Smoothing: method, iterations, step, the boundary held or not.
     ui.horizontal_wrapped(|ui| {
@@ -1134,9 +1128,8 @@ fn shape_section(
         .on_hover_text("1 membrane, 2 thin plate, 3 minimum variation");
         button(ui, pending, Action::Fair, "Fair");
         button(ui, pending, Action::FillFair, "Fill hole fair");
-        ui.checkbox(&mut state.fill_fair, "fair");
-        button(ui, pending, Action::FillAll, "Fill all holes");
     });
+    registered_operations(ui, state, pending, Section::Shape);
     ui.horizontal_wrapped(|ui| {
         let p = &mut state.proportional;
         ui.checkbox(
@@ -1182,28 +1175,11 @@ fn shape_section(
     }
 }
 
-/// Parameterization: method, boundary (fixed-boundary methods only), seams, the UV view.
+/// Parameterization (its method and boundary, declared), seams, the UV view.
 fn uv_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
+    registered_operations(ui, state, pending, Section::Uv);
     ui.horizontal_wrapped(|ui| {
-        let params = &mut state.param;
-        egui::ComboBox::from_id_salt("param method")
-            .selected_text(params.method.name())
-            .show_ui(ui, |ui| {
-                for &(method, name) in ParamMethod::ALL {
-                    ui.selectable_value(&mut params.method, method, name);
-                }
-            });
-        ui.add_enabled_ui(params.method.fixed_boundary(), |ui| {
-            egui::ComboBox::from_id_salt("param boundary")
-                .selected_text(params.boundary.name())
-                .show_ui(ui, |ui| {
-                    for &(shape, name) in BoundaryShape::ALL {
-                        ui.selectable_value(&mut params.boundary, shape, name);
-                    }
-                });
-        });
         button(ui, pending, Action::OnEdge(LocalKind::Seam), "Seam");
-        button(ui, pending, Action::Parameterize, "Parameterize");
         ui.checkbox(&mut state.uv_view, "UV view");
     });
 }

@@ -52,10 +52,11 @@ use crate::mesh::members::of_kind;
 use crate::mesh::topology::MeshRef;
 use crate::mesh::{Edge, Face, Position};
 use crate::ops::Refusal;
+use crate::ops::decimate::simplification;
 use crate::ops::deform::{DeformMethod, DeformParams, LiveDeform};
 use crate::ops::progressive::{ProgressiveMesh, SlotIndex};
-use crate::ops::remesh::{Pass, PassReport, RemeshRun};
-use crate::ops::simplify::{NextCollapse, QemRun, QueuedEdge, Refused};
+use crate::ops::remesh::{Pass, PassReport, REMESH, Remesh, RemeshRun};
+use crate::ops::simplify::{NextCollapse, QemRun, QueuedEdge, Refused, SimplifyParams};
 use crate::ops::stencil::{NextLevelPoints, Stencil, next_level_points, stencil_of_element};
 
 use crate::editor::session::finish::{Finished, finish_edit};
@@ -310,6 +311,25 @@ pub struct QemSteps {
 }
 
 impl QemSteps {
+    /// A stepped simplification of `mesh` as `params` say, looking at its first collapse.
+    ///
+    /// # Errors
+    /// The simplification's refusal (the mesh is untouched).
+    fn start(world: &mut World, mesh: MeshId, params: &SimplifyParams) -> Result<Self, Refusal> {
+        let run = QemRun::start(world, mesh, params)?;
+        let history = ProgressiveMesh::start(world, mesh, run.faces());
+        let index = SlotIndex::of(&history);
+        let mut steps = QemSteps {
+            run,
+            history,
+            index,
+            next: None,
+            refused: Vec::new(),
+        };
+        steps.look_ahead(world);
+        Ok(steps)
+    }
+
     /// The step the mesh is at (collapses applied).
     pub fn at(&self) -> usize {
         self.history.applied
@@ -373,7 +393,8 @@ pub fn next_collapse(world: &World) -> Option<NextCollapse> {
 /// Whether `edit` can be stepped through.
 pub fn steppable(edit: &Edit) -> bool {
     match edit {
-        Edit::Simplify(_) | Edit::Remesh(_) | Edit::Subdivide(_) => true,
+        Edit::Subdivide(_) => true,
+        Edit::Operation(op) => op.is(&REMESH) || simplification(op).is_some(),
         Edit::Deform(params) => params.method == DeformMethod::Arap,
         _ => false,
     }
@@ -386,22 +407,11 @@ pub fn steppable(edit: &Edit) -> bool {
 pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
     let mesh = edit.target(world, world.resource::<ActiveMesh>().0)?;
     let steps = match edit {
-        Edit::Simplify(params) => {
-            let run = QemRun::start(world, mesh, params)?;
-            let history = ProgressiveMesh::start(world, mesh, run.faces());
-            let index = SlotIndex::of(&history);
-            let mut steps = QemSteps {
-                run,
-                history,
-                index,
-                next: None,
-                refused: Vec::new(),
-            };
-            steps.look_ahead(world);
-            Steps::Qem(steps)
+        Edit::Operation(op) if let Some(params) = simplification(op) => {
+            Steps::Qem(QemSteps::start(world, mesh, &params)?)
         }
-        Edit::Remesh(params) => Steps::Remesh(RemeshSteps {
-            run: RemeshRun::start(world, mesh, params)?,
+        Edit::Operation(op) if op.is(&REMESH) => Steps::Remesh(RemeshSteps {
+            run: RemeshRun::start(world, mesh, &Remesh::params(op.values()))?,
             last: None,
             passes: Vec::new(),
         }),

@@ -31,13 +31,57 @@ use super::local::{FillHolePlan, apply_fill_hole, fill_hole, plan_fill_hole, spl
 use patch::Patch;
 use triangulation::{HoleLoop, triangulate};
 
-use crate::ops::declaration::Declaration;
+use crate::ops::declaration::{Declaration, Parameter, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Values, count};
 
 /// Filling one hole with a faired patch (the `fill-hole:A,B:fair` step).
 pub const FILL_HOLE_FAIR: Declaration = Declaration::new("fill-hole");
 
-/// Filling every hole, faired or with one polygon each.
-pub const FILL_HOLES: Declaration = Declaration::new("fill-holes");
+/// Filling every hole, with one polygon each or a faired patch (`fill-holes[:polygon|fair]`,
+/// Shift+F).
+pub const FILL_HOLES: Declaration = Declaration::new("fill-holes")
+    .titled("Fill all holes")
+    .described("fill every hole: one face each, or triangles refined and faired into the surface")
+    .on_key("Shift+F")
+    .with_parameters(&[Parameter::choice("FILL", &["polygon", "fair"], 0)])
+    .in_section(Section::Shape);
+
+/// [`fill_holes`] as an operation: every hole, one polygon each or faired.
+pub struct FillHoles;
+
+impl MeshOperation for FillHoles {
+    fn declaration(&self) -> &'static Declaration {
+        &FILL_HOLES
+    }
+
+    /// Refused when no hole could be filled (or there is none); the holes a fair fill refuses
+    /// are left open and named in the summary.
+    fn apply(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let r = fill_holes(world, mesh, values.choice(0) == 1)?;
+        if r.filled == 0 {
+            return Err(Refusal::BadParameter(match r.refused.first() {
+                None => "the mesh has no holes".into(),
+                Some(_) => format!("no hole could be filled: {}", r.refused.join("; ")),
+            }));
+        }
+        let open = match r.refused.len() {
+            0 => String::new(),
+            n => format!("; {n} left open: {}", r.refused.join("; ")),
+        };
+        Ok(Applied::whole(format!(
+            "{} filled: {} and {} added{open}",
+            count(r.filled, "hole"),
+            count(r.faces, "face"),
+            count(r.vertices, "vertex")
+        )))
+    }
+}
 
 /// The longest loop a fair fill triangulates: 600 sides take about a second.
 pub const MAX_LOOP: usize = 600;

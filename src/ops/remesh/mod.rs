@@ -59,15 +59,27 @@ mod collapse;
 mod features;
 mod finish;
 pub(crate) mod flip;
+mod operation;
 mod pass;
 mod relax;
 mod run;
 mod split;
 
-use crate::ops::declaration::Declaration;
+use crate::ops::declaration::{Declaration, Parameter};
 
 /// Isotropic remeshing: a job on a large mesh; a mesh made anew, without attributes.
 pub const REMESH: Declaration = Declaration::new("remesh")
+    .titled("Remesh")
+    .described(
+        "isotropic remeshing (Botsch & Kobbelt): split, collapse, flip and relax towards edges \
+         of LENGTH, keeping edges sharper than FEATURE degrees; triangles",
+    )
+    .on_key("M")
+    .with_parameters(&[
+        Parameter::whole("ITERATIONS", 5, 1, 100),
+        Parameter::real("LENGTH", 0.01, 1e-6, 1e6).automatic_by_default("the mean edge length"),
+        Parameter::real("FEATURE", 45.0, 0.0, 180.0),
+    ])
     .as_job()
     .dropping("remeshing does not carry attributes");
 
@@ -84,6 +96,7 @@ use crate::mesh::tables::{MeshTables, extract};
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
+pub use operation::Remesh;
 pub use pass::{Pass, PassReport, Touched};
 pub use run::RemeshRun;
 

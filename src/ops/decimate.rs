@@ -1,0 +1,134 @@
+//! QEM simplification as the user invokes it (Garland & Heckbert; the algorithm is
+//! [`crate::ops::simplify`]): `simplify[:RATIO]` (Shift+S) keeps a fraction of the faces,
+//! `simplify-faces[:FACES]` a number of them. Each records every collapse in the mesh's
+//! simplification history ([`ProgressiveMesh`]), which the level-of-detail slider, `refine`
+//! and vertex splits then move along.
+//!
+//! A module of its own because it joins the two below it: the history records what the
+//! simplification does, so `progressive` imports `simplify`, and this imports both.
+
+use bevy::prelude::World;
+
+use crate::mesh::ids::MeshId;
+use crate::ops::Refusal;
+use crate::ops::declaration::{DROPPED_BY_SIMPLIFICATION, Declaration, Parameter};
+use crate::ops::operation::{Applied, EditContext, Invocation, MeshOperation, Values};
+use crate::ops::progressive::ProgressiveMesh;
+use crate::ops::simplify::SimplifyParams;
+
+/// Simplifying to a fraction of the faces: a job on a large mesh; it makes the history that
+/// level of detail and vertex splits move along, and drops attributes.
+pub const SIMPLIFY: Declaration = Declaration::new("simplify")
+    .titled("Simplify")
+    .described("QEM edge collapses (Garland & Heckbert) until RATIO of the faces are left")
+    .on_key("Shift+S")
+    .with_parameters(&[Parameter::real("RATIO", 0.5, 1e-6, 1.0)])
+    .as_job()
+    .keeping_history()
+    .dropping(DROPPED_BY_SIMPLIFICATION);
+
+/// Simplifying to a number of faces: as [`SIMPLIFY`].
+pub const SIMPLIFY_FACES: Declaration = Declaration::new("simplify-faces")
+    .titled("Simplify to faces")
+    .described("QEM edge collapses (Garland & Heckbert) until FACES faces are left")
+    .with_parameters(&[Parameter::whole("FACES", 1000, 1, u32::MAX)])
+    .as_job()
+    .keeping_history()
+    .dropping(DROPPED_BY_SIMPLIFICATION);
+
+/// `simplify[:RATIO]`.
+pub struct Simplify;
+
+/// `simplify-faces[:FACES]`.
+pub struct SimplifyFaces;
+
+/// The simplification an invocation of [`Simplify`] or [`SimplifyFaces`] asks for (`None` for
+/// any other operation): what step mode steps through collapse by collapse.
+pub fn simplification(invocation: &Invocation) -> Option<SimplifyParams> {
+    let values = invocation.values();
+    if invocation.is(&SIMPLIFY) {
+        Some(SimplifyParams::ratio(values.number(0)))
+    } else if invocation.is(&SIMPLIFY_FACES) {
+        Some(SimplifyParams::faces(values.whole(0) as usize))
+    } else {
+        None
+    }
+}
+
+impl MeshOperation for Simplify {
+    fn declaration(&self) -> &'static Declaration {
+        &SIMPLIFY
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+        context: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        simplify(
+            world,
+            mesh,
+            &SimplifyParams::ratio(values.number(0)),
+            context,
+        )
+    }
+}
+
+impl MeshOperation for SimplifyFaces {
+    fn declaration(&self) -> &'static Declaration {
+        &SIMPLIFY_FACES
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+        context: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let params = SimplifyParams::faces(values.whole(0) as usize);
+        simplify(world, mesh, &params, context)
+    }
+}
+
+/// Simplifies `mesh` as `params` say, recording the history in `context`.
+fn simplify(
+    world: &mut World,
+    mesh: MeshId,
+    params: &SimplifyParams,
+    context: &mut EditContext<'_>,
+) -> Result<Applied, Refusal> {
+    let (pm, s) =
+        ProgressiveMesh::simplify_with_progress(world, mesh, params, &mut *context.progress)?;
+    *context.history = Some(pm);
+    let reached = if s.reached_target {
+        ""
+    } else {
+        " (no legal collapse left before the target)"
+    };
+    Ok(Applied::whole(format!(
+        "{} -> {} faces in {} collapses{reached}",
+        s.faces_before, s.faces_after, s.collapses
+    )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_names_its_simplification_and_no_other_operation_does() {
+        let ratio = Invocation::parse(&Simplify, "0.25").unwrap();
+        assert_eq!(simplification(&ratio), Some(SimplifyParams::ratio(0.25)));
+        let faces = Invocation::parse(&SimplifyFaces, "300").unwrap();
+        assert_eq!(simplification(&faces), Some(SimplifyParams::faces(300)));
+        let other = Invocation::with_defaults(&crate::ops::triangulate::Triangulate);
+        assert_eq!(simplification(&other), None);
+        assert_eq!(
+            simplification(&Invocation::with_defaults(&Simplify)),
+            Some(SimplifyParams::default())
+        );
+    }
+}
