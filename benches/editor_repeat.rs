@@ -13,7 +13,7 @@
 //! Run: `cargo bench --bench editor_repeat`. Uses `../shared/models/stanford-bunny.obj`.
 
 use bevy::prelude::App;
-use pappus::edit::{Edit, Scheme, Subdivision};
+use pappus::edit::Edit;
 use pappus::editor::pipeline::jobs::Jobs;
 use pappus::editor::session::requests::{OutcomeLog, Request};
 use std::path::Path;
@@ -78,7 +78,7 @@ fn session() {
     let bunny = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models/stanford-bunny.obj");
     let mut app = pappus::editor::headless_app();
     run(&mut app, Request::Open(bunny));
-    let subdivide = Edit::Subdivide(Subdivision::once(Scheme::Loop));
+    let subdivide = Edit::registered("loop").unwrap();
     let line: Vec<String> = STEPS
         .iter()
         .map(|&(_, undo)| {

@@ -5,7 +5,7 @@ mod common;
 
 use bevy::math::{Vec2, Vec3};
 use bevy::prelude::World;
-use pappus::edit::{Edit, Scheme, Subdivision};
+use pappus::edit::Edit;
 use pappus::mesh::attributes::{CornerUv, MeshAttributes, Seam, VertexColor, VertexNormal};
 use pappus::mesh::change::{LocalRecorder, SavedContents};
 use pappus::mesh::{MeshId, MeshMembers, MeshRef, PolygonSoup, VertexId, shapes, to_soup};
@@ -131,11 +131,7 @@ fn a_flip_and_a_collapse_keep_each_vertex_its_uv() {
 #[test]
 fn one_loop_level_interpolates_uvs_linearly_and_drops_normals() {
     let (mut world, built) = common::build(&square());
-    let summary = run(
-        &mut world,
-        built.mesh,
-        &Edit::Subdivide(Subdivision::once(Scheme::Loop)),
-    );
+    let summary = run(&mut world, built.mesh, &Edit::registered("loop").unwrap());
     assert!(
         summary.ends_with(
             "— normals dropped: subdivision carries UVs, colours and groups, not normals or seam marks"
@@ -177,7 +173,7 @@ fn catmull_clark_puts_the_face_point_at_the_uv_centroid() {
     run(
         &mut world,
         built.mesh,
-        &Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)),
+        &Edit::registered("catmull-clark").unwrap(),
     );
     assert_every_corner_has_a_uv(&world, built.mesh);
     let out = to_soup(&world, built.mesh);

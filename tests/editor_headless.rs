@@ -1504,10 +1504,7 @@ fn a_job_keeps_the_selected_set() {
             .all(|&x| pappus::editor::session::selection::exists(&m, x))
     );
     select(&mut app);
-    run(
-        &mut app,
-        Edit::Subdivide(pappus::edit::Subdivision::once(pappus::edit::Scheme::Loop)),
-    );
+    run(&mut app, Edit::registered("loop").unwrap());
     let selection = app.world().resource::<Selection>();
     let vertices: Vec<ElementId> = chosen
         .iter()
@@ -1770,19 +1767,14 @@ fn a_recovery_newer_than_its_source_is_offered_at_start_and_restores() {
 /// A Loop the memory budget refuses leaves the mesh as it was, in a job as at once.
 #[test]
 fn a_subdivision_past_the_memory_budget_is_refused_and_changes_nothing() {
-    use pappus::edit::{Scheme, Subdivision};
     use pappus::editor::pipeline::jobs::{JobSettings, Jobs};
     for min_faces in [usize::MAX, 100] {
         let mut app = app();
         app.world_mut().resource_mut::<JobSettings>().min_faces = min_faces;
         open(&mut app, "shape:icosphere:5");
         let before = pappus::mesh::to_soup(app.world(), mesh(&app));
-        let loop8 = Subdivision {
-            scheme: Scheme::Loop,
-            levels: 8,
-        };
         app.world_mut()
-            .write_message(Request::Edit(Edit::Subdivide(loop8)));
+            .write_message(Request::Edit(Edit::invoked("loop:8").unwrap()));
         app.update();
         update_until(&mut app, |app| {
             app.world().resource::<Jobs>().running.is_none()

@@ -5,7 +5,7 @@
 mod common;
 
 use bevy::prelude::World;
-use pappus::edit::{Edit, Scheme, Subdivision};
+use pappus::edit::Edit;
 use pappus::io::{self, Format};
 use pappus::mesh::attributes::MeshAttributes;
 use pappus::mesh::change::{LocalRecorder, SavedContents};
@@ -128,17 +128,13 @@ fn faces_made_from_a_face_keep_its_group() {
     run(&mut world, mesh, &Edit::registered("triangulate").unwrap());
     assert_eq!(counts(&world, mesh), [18, 2]);
     // Subdivide: every child in its parent's group.
-    let summary = run(
-        &mut world,
-        mesh,
-        &Edit::Subdivide(Subdivision::once(Scheme::Loop)),
-    );
+    let summary = run(&mut world, mesh, &Edit::registered("loop").unwrap());
     assert!(!summary.contains("dropped"), "{summary}");
     assert_eq!(counts(&world, mesh), [72, 8]);
     let summary = run(
         &mut world,
         mesh,
-        &Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)),
+        &Edit::registered("catmull-clark").unwrap(),
     );
     assert!(!summary.contains("dropped"), "{summary}");
     assert_eq!(counts(&world, mesh), [216, 24]);

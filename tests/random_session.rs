@@ -9,7 +9,7 @@ mod common;
 
 use bevy::prelude::*;
 use common::canonical;
-use pappus::edit::{Edit, Scheme, Subdivision};
+use pappus::edit::Edit;
 use pappus::editor::pipeline::jobs::{JobSettings, Jobs};
 use pappus::editor::session::history::UndoHistory;
 use pappus::editor::session::requests::{Relation, Request};
@@ -94,10 +94,8 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
         56..=57 => Some(
             Edit::invoked(&format!("simplify:{}", 0.5 + rng.below(40) as f64 / 100.0)).unwrap(),
         ),
-        58 if faces < GROW_BELOW_FACES => Some(Edit::Subdivide(Subdivision::once(Scheme::Loop))),
-        59 if faces < GROW_BELOW_FACES => {
-            Some(Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)))
-        }
+        58 if faces < GROW_BELOW_FACES => Some(Edit::registered("loop").unwrap()),
+        59 if faces < GROW_BELOW_FACES => Some(Edit::registered("catmull-clark").unwrap()),
         60 => Some(Edit::invoked("remesh:1").unwrap()),
         61 => Some(Edit::Smooth(SmoothParams {
             iterations: 2,

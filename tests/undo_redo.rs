@@ -11,7 +11,7 @@ use bevy::input::ButtonState;
 use bevy::input::mouse::{MouseButton, MouseButtonInput};
 use bevy::prelude::*;
 use common::canonical;
-use pappus::edit::{Edit, Scheme, Subdivision};
+use pappus::edit::Edit;
 use pappus::editor::session::history::UndoHistory;
 use pappus::editor::session::requests::{EditOutcome, Request};
 use pappus::editor::session::selection::{ActiveMesh, Selection};
@@ -194,16 +194,13 @@ fn every_global_edit_undoes_and_redoes_exactly() {
     open(&mut app, "shape:cube");
     round_trip(
         &mut app,
-        Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::CatmullClark))),
+        Request::Edit(Edit::registered("catmull-clark").unwrap()),
     );
     round_trip(
         &mut app,
         Request::Edit(Edit::registered("triangulate").unwrap()),
     );
-    round_trip(
-        &mut app,
-        Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::Loop))),
-    );
+    round_trip(&mut app, Request::Edit(Edit::registered("loop").unwrap()));
     round_trip(&mut app, Request::Edit(Edit::registered("remesh").unwrap()));
     round_trip(
         &mut app,
@@ -341,12 +338,12 @@ fn mixed_history_keeps_ids_valid_across_global_restores() {
     let interior = is_interior;
     let steps: Vec<MakeRequest> = vec![
         Box::new(move |a| Request::Edit(Edit::Flip(edge_where(a, interior)))),
-        Box::new(move |_| Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::Loop)))),
+        Box::new(move |_| Request::Edit(Edit::registered("loop").unwrap())),
         Box::new(move |a| Request::Edit(Edit::Collapse(edge_where(a, interior)))),
         Box::new(move |a| Request::Edit(Edit::Split(edge_where(a, interior)))),
         Box::new(move |_| Request::Edit(Edit::invoked("simplify:0.6").unwrap())),
         Box::new(move |a| Request::Edit(Edit::Dissolve(edge_where(a, interior)))),
-        Box::new(move |_| Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)))),
+        Box::new(move |_| Request::Edit(Edit::registered("catmull-clark").unwrap())),
         Box::new(move |a| Request::Edit(Edit::Collapse(edge_where(a, interior)))),
     ];
     for step in &steps {
@@ -440,7 +437,7 @@ fn the_memory_cap_drops_the_oldest_entries() {
     open(&mut app, "shape:quad-grid");
     request(
         &mut app,
-        Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::CatmullClark))),
+        Request::Edit(Edit::registered("catmull-clark").unwrap()),
     )
     .unwrap();
     request(
@@ -655,11 +652,7 @@ fn a_finished_job_commits_as_one_undo_entry() {
     request(&mut app, Request::Undo).unwrap();
     assert_eq!(state(&app), before);
     // Loop subdivision as a job too.
-    request(
-        &mut app,
-        Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::Loop))),
-    )
-    .unwrap();
+    request(&mut app, Request::Edit(Edit::registered("loop").unwrap())).unwrap();
     frames_until(&mut app, |a| !job_running(a));
     assert_eq!(mesh_stats(app.world(), mesh).faces, 5120);
     request(&mut app, Request::Undo).unwrap();
@@ -713,14 +706,8 @@ fn a_subdivision_job_commits_exactly_what_the_edit_makes_at_once() {
     // A job computes subdivision on the mesh's tables alone; it must give the mesh, the
     // attributes, the outcome and the selection that applying the edit at once gives.
     let cases = [
-        (false, Subdivision::once(Scheme::Loop)),
-        (
-            true,
-            Subdivision {
-                scheme: Scheme::CatmullClark,
-                levels: 2,
-            },
-        ),
+        (false, Edit::invoked("loop").unwrap()),
+        (true, Edit::invoked("catmull-clark:2").unwrap()),
     ];
     for (quads, subdivision) in cases {
         let path = attributed_grid(quads);
@@ -730,7 +717,7 @@ fn a_subdivision_job_commits_exactly_what_the_edit_makes_at_once() {
             open(&mut app, path.to_str().unwrap());
             let v = members(&app).vertices[4];
             request(&mut app, Request::Select(Some(ElementId::Vertex(v)))).unwrap();
-            let started = request(&mut app, Request::Edit(Edit::Subdivide(subdivision)));
+            let started = request(&mut app, Request::Edit(subdivision.clone()));
             assert_eq!(started.is_ok_and(|s| s.contains("running")), as_job);
             frames_until(&mut app, |a| !job_running(a));
             let outcome = last(&app).result.unwrap();
@@ -763,10 +750,7 @@ fn loop_refuses_a_quad_mesh_as_a_job_naming_a_face_of_the_mesh() {
     jobs_from(&mut app, 1);
     open(&mut app, "shape:quad-grid");
     let (before, depth) = (state(&app), undo_depth(&app));
-    let started = request(
-        &mut app,
-        Request::Edit(Edit::Subdivide(Subdivision::once(Scheme::Loop))),
-    );
+    let started = request(&mut app, Request::Edit(Edit::registered("loop").unwrap()));
     assert!(started.is_ok_and(|s| s.contains("running")));
     frames_until(&mut app, |a| !job_running(a));
     let Err(Declined::Refused(Refusal::NotTriangle(ElementId::Face(f)))) = last(&app).result else {

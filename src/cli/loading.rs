@@ -7,6 +7,7 @@ use std::time::Instant;
 
 use crate::edit::{Edit, Step};
 use crate::mesh::{BuiltMesh, build_mesh};
+use crate::ops::subdivide::subdivision;
 use crate::process_memory;
 
 use super::ms_since;
@@ -86,7 +87,7 @@ fn read_and_build(input: &str) -> Result<Loaded, String> {
 fn subdivision_bytes(input: &str, steps: &[Step]) -> usize {
     let subdivides = steps
         .iter()
-        .any(|step| matches!(step, Step::Edit(Edit::Subdivide(_))));
+        .any(|step| matches!(step, Step::Edit(Edit::Operation(op)) if subdivision(op).is_some()));
     let file_bytes = match std::fs::metadata(input) {
         Ok(meta) if subdivides => meta.len(),
         _ => return 0,

@@ -20,7 +20,7 @@ use crate::ops::local::{
 };
 use crate::ops::smooth::{SmoothParams, smooth_with_progress};
 
-use super::{Applied, Edit, EditContext, Redraw, Subdivision, count, toggle_seam};
+use super::{Applied, Edit, EditContext, Redraw, count, toggle_seam};
 
 impl Edit {
     /// Applies the edit to `mesh` (which must exist), or says why not and changes nothing.
@@ -63,7 +63,6 @@ impl Edit {
             Edit::SplitVertex(v) => split_vertex(world, *v, context),
             Edit::LevelOfDetail(faces) => level_of_detail(world, *faces, context),
             Edit::Operation(op) => op.apply(world, mesh, context),
-            Edit::Subdivide(subdivision) => subdivide(world, mesh, subdivision, context),
             Edit::Smooth(params) => smooth(world, mesh, params, context),
             Edit::Deform(params) => Ok(Applied::whole(deformed(&deform(world, mesh, params)?))),
             Edit::Fair(params) => fair_region(world, mesh, params),
@@ -247,22 +246,6 @@ fn level_of_detail(
 }
 
 /// Simplifies, and keeps the history for level of detail and vertex splits.
-fn subdivide(
-    world: &mut World,
-    mesh: MeshId,
-    subdivision: &Subdivision,
-    context: &mut EditContext<'_>,
-) -> Result<Applied, Refusal> {
-    let s = subdivision.scheme.subdivide_with_progress(
-        world,
-        mesh,
-        subdivision.levels,
-        &mut *context.progress,
-    )?;
-    (context.progress)(1.0);
-    Ok(Applied::whole(s.describe()))
-}
-
 fn smooth(
     world: &mut World,
     mesh: MeshId,

@@ -41,7 +41,6 @@ use crate::ops::local::{
 };
 use crate::ops::named::Named;
 use crate::ops::smooth::SmoothParams;
-use crate::ops::subdivide::SubdivisionSummary;
 
 mod apply;
 mod save;
@@ -61,25 +60,6 @@ pub use crate::ops::operation::{Applied, EditContext, Invocation, Redraw};
 /// A subdivision scheme (defined beside the schemes, in [`crate::ops::subdivide`], so that
 /// `ops` need not import this layer).
 pub use crate::ops::subdivide::Scheme;
-
-/// How to subdivide. The same struct serves the command line, the editor and the tests.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Subdivision {
-    /// The scheme.
-    pub scheme: Scheme,
-    /// How many levels (1–[`Subdivision::MAX_LEVELS`]). Default 1.
-    pub levels: u32,
-}
-
-impl Subdivision {
-    /// The most levels one step may ask for (each quadruples the faces).
-    pub const MAX_LEVELS: u32 = 8;
-
-    /// One level of `scheme`.
-    pub fn once(scheme: Scheme) -> Self {
-        Self { scheme, levels: 1 }
-    }
-}
 
 /// Every operation on a mesh. Local edits name their elements; whole-mesh edits act on the
 /// mesh [`Edit::run`] is given.
@@ -132,8 +112,6 @@ pub enum Edit {
     /// A whole-mesh operation that declares itself whole ([`crate::ops::OPERATIONS`]:
     /// triangulate, reverse, orient outside, normalize, …), with its parameters' values.
     Operation(Invocation),
-    /// Subdivision.
-    Subdivide(Subdivision),
     /// Smoothing: vertices move, the connectivity stays.
     Smooth(SmoothParams),
     /// Handle deformation: the anchors stay, the handle moves by its motion, the rest follows
@@ -206,16 +184,6 @@ impl Edit {
             Edit::LevelOfDetail(usize::MAX) => "full level of detail".into(),
             Edit::LevelOfDetail(n) => format!("level of detail {n} faces"),
             Edit::Operation(op) => op.label(),
-            Edit::Subdivide(s) => {
-                let name = match s.scheme {
-                    Scheme::Loop => "Loop",
-                    Scheme::CatmullClark => "Catmull-Clark",
-                };
-                match s.levels {
-                    1 => format!("{name} subdivision"),
-                    n => format!("{name} subdivision x{n}"),
-                }
-            }
             Edit::Smooth(p) => format!(
                 "smooth ({}, {} iterations, step {})",
                 p.method.name(),
@@ -297,7 +265,7 @@ impl Edit {
             Edit::Deform(_) | Edit::FillHoleFair(_) => {
                 world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh))
             }
-            Edit::LevelOfDetail(_) | Edit::Operation(_) | Edit::Subdivide(_) | Edit::Smooth(_) => {
+            Edit::LevelOfDetail(_) | Edit::Operation(_) | Edit::Smooth(_) => {
                 world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh))
             }
         }
@@ -378,7 +346,6 @@ impl Edit {
     /// step's name, whether it may run as a job, which ids and whether the simplification
     /// history survive it, what becomes of the attributes).
     pub fn declaration(&self) -> &'static Declaration {
-        use crate::ops::subdivide;
         use crate::ops::{deform, hole, local, progressive, smooth};
         match self {
             Edit::Flip(_) => &local::FLIP,
@@ -400,10 +367,6 @@ impl Edit {
             Edit::SplitVertex(_) => &local::VERTEX_SPLIT,
             Edit::LevelOfDetail(_) => &progressive::LEVEL_OF_DETAIL,
             Edit::Operation(op) => op.declaration(),
-            Edit::Subdivide(s) => match s.scheme {
-                Scheme::Loop => &subdivide::LOOP,
-                Scheme::CatmullClark => &subdivide::CATMULL_CLARK,
-            },
             Edit::Smooth(_) => &smooth::SMOOTH,
             Edit::Deform(_) => &deform::DEFORM,
             Edit::Fair(_) => &deform::FAIR,
@@ -436,16 +399,18 @@ impl Edit {
         !matches!(self.declaration().carries, Carries::None(_))
     }
 
-    /// Whether [`Edit::run_on_tables`] computes the edit (subdivision).
+    /// Whether [`Edit::run_on_tables`] computes the edit: a registered operation that declares
+    /// it computes on the tables (subdivision).
     pub fn runs_on_tables(&self) -> bool {
-        matches!(self, Edit::Subdivide(_))
+        matches!(self, Edit::Operation(op) if op.declaration().on_tables)
     }
 
     /// The edit computed from a mesh's tables alone, where that gives exactly what
     /// [`Edit::run`] would write back and return (subdivision, whose tables are a function of
-    /// the tables before): the result's tables and the outcome. `None` for every other edit,
-    /// which needs the entities. The editor's jobs take this way when they can: it spares them
-    /// spawning a copy of the mesh and reading the result back from it.
+    /// the tables before): the result's tables and the outcome, with its note on the attributes
+    /// left out. `None` for every other edit, which needs the entities. The editor's jobs take
+    /// this way when they can: it spares them spawning a copy of the mesh and reading the
+    /// result back from it.
     ///
     /// # Refusals
     /// As [`Edit::run`]'s.
@@ -453,22 +418,13 @@ impl Edit {
         &self,
         before: &MeshTables,
     ) -> Option<Result<(Connectivity, Applied), Refusal>> {
-        let Edit::Subdivide(subdivision) = self else {
+        let Edit::Operation(op) = self else {
             return None;
         };
-        let after = subdivision.scheme.subdivide_tables(
-            &before.tables,
-            &before.members,
-            subdivision.levels,
-        );
-        Some(after.map(|after| {
-            let made = SubdivisionSummary::of(subdivision.levels, &after);
+        let computed = op.operation().run_on_tables(before, op.values())?;
+        Some(computed.map(|(after, mut applied)| {
             let had = before.tables.attributes.present();
-            let applied = Applied {
-                summary: made.describe() + &self.lost_note(had, after.attributes.present()),
-                redraw: Redraw::Whole,
-                made: None,
-            };
+            applied.summary += &self.lost_note(had, after.attributes.present());
             (after, applied)
         }))
     }
@@ -698,7 +654,7 @@ mod tests {
     fn only_whole_mesh_computations_run_as_jobs_and_only_subdivision_renumbers() {
         let v = VertexId(bevy::prelude::Entity::PLACEHOLDER);
         let e = EdgeId(bevy::prelude::Entity::PLACEHOLDER);
-        let loop1 = Edit::Subdivide(Subdivision::once(Scheme::Loop));
+        let loop1 = Edit::registered("loop").unwrap();
         assert!(loop1.may_run_as_job() && Edit::registered("remesh").unwrap().may_run_as_job());
         assert!(!Edit::Flip(e).may_run_as_job() && !Edit::LevelOfDetail(5).may_run_as_job());
         assert_eq!(loop1.keeps_ids(), IdsKept::VerticesOnly);
@@ -744,8 +700,6 @@ mod tests {
                 Edit::MoveVertices(vec![(v, Vec3::ZERO)]),
                 Edit::SplitVertex(v),
                 Edit::LevelOfDetail(10),
-                Edit::Subdivide(Subdivision::once(Scheme::Loop)),
-                Edit::Subdivide(Subdivision::once(Scheme::CatmullClark)),
                 Edit::Smooth(SmoothParams::default()),
                 Edit::Deform(DeformParams {
                     method: DeformMethod::Arap,
@@ -787,14 +741,57 @@ mod tests {
                 "triangulate",
                 "simplify",
                 "simplify-faces",
-                "remesh",
-                "param",
                 "loop",
                 "catmull-clark",
+                "remesh",
+                "param",
                 "smooth"
             ]
         );
         assert!(!Edit::MoveVertex(v, Vec3::ZERO).declaration().is_step);
+    }
+
+    /// An operation computes on the tables exactly when it declares so, and what it computes
+    /// there is what applying it to the entities makes (the same counts and summary).
+    #[test]
+    fn operations_declared_on_tables_compute_there_as_applied() {
+        use crate::mesh::tables::extract;
+        use crate::mesh::{build_mesh, mesh_stats, shapes};
+        for &op in crate::ops::OPERATIONS {
+            let mut world = World::new();
+            let built = build_mesh(&mut world, &shapes::icosphere(1), MeshInfo::default()).unwrap();
+            let edit = Edit::Operation(Invocation::with_defaults(op));
+            let on_tables = edit.run_on_tables(&extract(&world, built.mesh));
+            assert_eq!(
+                on_tables.is_some(),
+                edit.runs_on_tables(),
+                "{}",
+                edit.label()
+            );
+            let Some(on_tables) = on_tables else {
+                continue;
+            };
+            let (tables, computed) = on_tables.unwrap();
+            let mut history = None;
+            let applied = edit
+                .run(
+                    &mut world,
+                    built.mesh,
+                    &mut EditContext {
+                        history: &mut history,
+                        progress: &mut |_| true,
+                    },
+                )
+                .unwrap();
+            assert_eq!(computed, applied, "{}", edit.label());
+            let stats = mesh_stats(&world, built.mesh);
+            assert_eq!(
+                (tables.vertex_count(), tables.face_count()),
+                (stats.vertices, stats.faces),
+                "{}",
+                edit.label()
+            );
+        }
     }
 
     /// A move of most of a mesh redraws it whole and is recorded (and undone) by its vertices

@@ -18,7 +18,7 @@ use crate::ops::named::Named;
 use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::smooth::{SmoothMethod, SmoothParams};
 
-use super::{Edit, EditContext, Invocation, Scheme, Subdivision};
+use super::{Edit, EditContext, Invocation};
 
 /// A local edit as a `process` step writes it: by the input file's vertex numbers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -353,7 +353,6 @@ pub fn step_syntax() -> String {
 const OTHER_STEPS: &str = "\
 flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
 dissolve:A,B | split-face:A,B | fill-hole:A,B | seam:A,B (mark, for param) |
-loop[:N] | catmull-clark[:N] |
 refine[:FACES]   (split simplify's collapses back, up to FACES faces or all) |
 smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held) |
 extrude:FACES:DISTANCE | inset:FACES:AMOUNT[:DEPTH] | bevel:ELEMENT[:AMOUNT[:DEPTH]] |
@@ -415,26 +414,8 @@ impl Step {
     /// The steps named by a word and parameters (not elements): `loop:2`, `simplify:0.25`,
     /// `remesh`, `smooth:cotan`, `deform:…`, `fair:…`, `fill-holes`, `param:…`, `validate`.
     fn parse_named(text: &str, name: &str, args: &str) -> Result<Step, String> {
-        let levels = |scheme| -> Result<Step, String> {
-            let levels = match args {
-                "" => 1,
-                _ => args
-                    .parse::<u32>()
-                    .ok()
-                    .filter(|n| (1..=Subdivision::MAX_LEVELS).contains(n))
-                    .ok_or_else(|| {
-                        format!(
-                            "step `{text}`: levels must be a number from 1 to {}",
-                            Subdivision::MAX_LEVELS
-                        )
-                    })?,
-            };
-            Ok(Step::Edit(Edit::Subdivide(Subdivision { scheme, levels })))
-        };
         let edit = match name {
             "validate" => return Ok(Step::Validate),
-            "loop" => return levels(Scheme::Loop),
-            "catmull-clark" => return levels(Scheme::CatmullClark),
             "refine" if args.is_empty() => Edit::LevelOfDetail(usize::MAX),
             "refine" => Edit::LevelOfDetail(args.parse::<usize>().map_err(|_| {
                 format!("step `{text}`: expected a face count, as in `refine:5000`")
@@ -600,10 +581,6 @@ impl std::fmt::Display for Step {
                 Edit::Operation(op) => write!(f, "{op}"),
                 Edit::LevelOfDetail(usize::MAX) => write!(f, "refine"),
                 Edit::LevelOfDetail(n) => write!(f, "refine:{n}"),
-                Edit::Subdivide(s) => match s.scheme {
-                    Scheme::Loop => write!(f, "loop:{}", s.levels),
-                    Scheme::CatmullClark => write!(f, "catmull-clark:{}", s.levels),
-                },
                 Edit::Smooth(p) => {
                     write!(f, "smooth:{}:{}:{}", p.method.name(), p.iterations, p.step)
                 }
@@ -633,7 +610,8 @@ mod tests {
             "fill-hole:0,1",
             "split-face:0,2",
             "seam:0,1",
-            "loop:1",
+            "loop",
+            "loop:3",
             "catmull-clark:2",
             "simplify:0.25",
             "simplify-faces:500",
@@ -669,7 +647,7 @@ mod tests {
             assert_eq!(step.to_string(), text);
             assert_eq!(Step::parse(&step.to_string()).unwrap(), step);
         }
-        assert_eq!(Step::parse("loop").unwrap().to_string(), "loop:1");
+        assert_eq!(Step::parse("loop:1").unwrap().to_string(), "loop");
         assert_eq!(
             Step::parse("param:mean-value:circle").unwrap().to_string(),
             "param"

@@ -68,6 +68,9 @@ pub struct Declaration {
     /// Whether it may run as a job (on a copy of the mesh, on a thread of its own) when the
     /// mesh is large: a whole-mesh operation that computes a new mesh from the old.
     pub job: bool,
+    /// Whether it computes its result from the mesh's tables alone
+    /// (`MeshOperation::run_on_tables`), so a job need not copy the entities.
+    pub on_tables: bool,
     /// Which element ids keep their meaning through it.
     pub ids: IdsKept,
     /// Whether the simplification history still describes the mesh after it.
@@ -93,6 +96,7 @@ impl Declaration {
             section: Section::WholeMesh,
             is_step: true,
             job: false,
+            on_tables: false,
             ids: IdsKept::All,
             keeps_history: false,
             keeps_normals: false,
@@ -175,6 +179,15 @@ impl Declaration {
     /// It may run as a job on a large mesh.
     pub const fn as_job(self) -> Self {
         Self { job: true, ..self }
+    }
+
+    /// It computes its result from the tables alone (and implements
+    /// `MeshOperation::run_on_tables`).
+    pub const fn computed_on_tables(self) -> Self {
+        Self {
+            on_tables: true,
+            ..self
+        }
     }
 
     /// Only vertex ids survive it.

@@ -45,6 +45,8 @@ pub const OPERATIONS: &[&dyn MeshOperation] = &[
     &normalize::Normalize,
     &decimate::Simplify,
     &decimate::SimplifyFaces,
+    &subdivide::Subdivide(subdivide::Scheme::Loop),
+    &subdivide::Subdivide(subdivide::Scheme::CatmullClark),
     &remesh::Remesh,
     &hole::FillHoles,
     &param::Parameterize,

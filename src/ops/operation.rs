@@ -22,6 +22,7 @@ use std::fmt;
 use bevy::prelude::World;
 
 use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
+use crate::mesh::tables::{Connectivity, MeshTables};
 use crate::ops::Refusal;
 use crate::ops::declaration::{Declaration, ParameterKind};
 use crate::ops::progressive::ProgressiveMesh;
@@ -97,6 +98,22 @@ pub trait MeshOperation: Sync + 'static {
         values: Values<'_>,
         context: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal>;
+
+    /// Its result computed from the mesh's tables alone — the tables after and the outcome
+    /// (without the attributes' note, which the edit adds) — where that is exactly what
+    /// [`MeshOperation::apply`] would write back and say. `None`, the default, for an operation
+    /// that needs the entities; one that declares `computed_on_tables` gives `Some`.
+    ///
+    /// # Refusals
+    /// As `apply`'s.
+    fn run_on_tables(
+        &self,
+        before: &MeshTables,
+        values: Values<'_>,
+    ) -> Option<Result<(Connectivity, Applied), Refusal>> {
+        let _ = (before, values);
+        None
+    }
 }
 
 /// The values an operation is applied with, one a declared parameter, read by the kind the

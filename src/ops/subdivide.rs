@@ -49,19 +49,35 @@ use crate::mesh::tables::{
 use super::Refusal;
 use crate::memory_budget::Estimate;
 
-use crate::ops::declaration::Declaration;
+use crate::ops::declaration::{Declaration, Parameter};
+
+mod operation;
+pub use operation::{Subdivide, subdivision};
+
+/// The levels one step may ask for (each quadruples the faces).
+const LEVELS: Parameter = Parameter::whole("LEVELS", 1, 1, 8);
 
 /// What subdivision carries and what it drops (see the module doc).
 const CARRIES_SOME: &str = "subdivision carries UVs, colours and groups, not normals or seam marks";
 
 /// Loop subdivision: a job on a large mesh that rewrites the tables (only vertex ids survive).
 pub const LOOP: Declaration = Declaration::new("loop")
+    .titled("Loop subdivision")
+    .described("Loop subdivision (1987), LEVELS times: each triangle into four, smoothed")
+    .on_key("L")
+    .with_parameters(&[LEVELS])
+    .computed_on_tables()
     .as_job()
     .renumbering()
     .carrying_some(CARRIES_SOME);
 
 /// Catmull–Clark subdivision: as [`LOOP`].
 pub const CATMULL_CLARK: Declaration = Declaration::new("catmull-clark")
+    .titled("Catmull-Clark subdivision")
+    .described("Catmull-Clark subdivision (1978), LEVELS times: any polygons into quads, smoothed")
+    .on_key("Q")
+    .with_parameters(&[LEVELS])
+    .computed_on_tables()
     .as_job()
     .renumbering()
     .carrying_some(CARRIES_SOME);

@@ -10,7 +10,7 @@ use crate::editor::pipeline::stepping::Stepping;
 use crate::editor::session::requests::StepMove;
 use bevy::prelude::*;
 
-use crate::edit::{Edit, Invocation, LocalKind, Scheme, Subdivision};
+use crate::edit::{Edit, Invocation, LocalKind};
 use crate::mesh::MeshRef;
 use crate::mesh::ids::ElementId;
 use crate::ops::Refusal;
@@ -71,10 +71,6 @@ pub enum Action {
     Operation(&'static str),
     /// Split the selected vertex back (undo its last collapse from the simplification).
     SplitVertex,
-    /// Loop-subdivide the active mesh (the panel's levels).
-    LoopSubdivide,
-    /// Catmull–Clark-subdivide the active mesh (the panel's levels).
-    CatmullClark,
     /// Smooth the active mesh (the panel's method, iterations, step; the selected vertex held).
     Smooth,
     /// Move the selection along a relation.
@@ -400,18 +396,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "split the selected vertex back (after Shift+S: undoes its collapse)",
     ),
     key(
-        KeyCode::KeyL,
-        "L",
-        Action::LoopSubdivide,
-        "Loop subdivision (triangles; levels in the panel)",
-    ),
-    key(
-        KeyCode::KeyQ,
-        "Q",
-        Action::CatmullClark,
-        "Catmull-Clark subdivision (to quads; levels in the panel)",
-    ),
-    key(
         KeyCode::KeyO,
         "O",
         Action::Smooth,
@@ -619,8 +603,6 @@ pub struct UiState {
     pub show_help: bool,
     /// The path field should take the keyboard focus (for Open / Save as).
     pub focus_path: Option<PathPurpose>,
-    /// Subdivision levels per press (1–[`Subdivision::MAX_LEVELS`]).
-    pub subdivision_levels: u32,
     /// Smoothing: method, iterations, step, whether the boundary is held.
     pub smooth: SmoothParams,
     /// Show the histograms even when the mesh is not coloured by a quantity.
@@ -682,7 +664,6 @@ impl Default for UiState {
         Self {
             show_help: false,
             focus_path: None,
-            subdivision_levels: 1,
             smooth: SmoothParams::default(),
             histograms: false,
             check_validity: false,
@@ -940,29 +921,17 @@ fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, De
                 .ok_or_else(|| Refusal::BadParameter(format!("no operation is called `{name}`")))?;
             Edit::Operation(world.resource::<UiState>().invocation(op))
         }
-        Action::LoopSubdivide | Action::CatmullClark | Action::Smooth => {
+        Action::Smooth => {
             if world.resource::<ActiveMesh>().0.is_none() {
                 return Err(Declined::NoMesh);
             }
-            let ui = world.resource::<UiState>();
-            let levels = ui.subdivision_levels.clamp(1, Subdivision::MAX_LEVELS);
-            match action {
-                Action::Smooth => Edit::Smooth(SmoothParams {
-                    held: match selection {
-                        Some(ElementId::Vertex(v)) => vec![v],
-                        _ => Vec::new(),
-                    },
-                    ..ui.smooth.clone()
-                }),
-                Action::LoopSubdivide => Edit::Subdivide(Subdivision {
-                    scheme: Scheme::Loop,
-                    levels,
-                }),
-                _ => Edit::Subdivide(Subdivision {
-                    scheme: Scheme::CatmullClark,
-                    levels,
-                }),
-            }
+            Edit::Smooth(SmoothParams {
+                held: match selection {
+                    Some(ElementId::Vertex(v)) => vec![v],
+                    _ => Vec::new(),
+                },
+                ..world.resource::<UiState>().smooth.clone()
+            })
         }
         _ => return Ok(None),
     };

@@ -16,9 +16,10 @@ use crate::mesh::topology::MeshRef;
 use crate::mesh::{InMesh, MeshInfo};
 use crate::ops::named::Named;
 
-use crate::edit::{Edit, LocalKind, Subdivision};
+use crate::edit::{Edit, LocalKind};
 use crate::ops::declaration::{Declaration, Parameter, ParameterKind, Section};
 use crate::ops::deform::{DeformMethod, Falloff};
+use crate::ops::operation::Invocation;
 use crate::ops::smooth::SmoothMethod;
 
 use super::mesh_figures::MeshView;
@@ -860,17 +861,23 @@ fn registered_operations(
     section: Section,
 ) {
     let here = |d: &Declaration| d.section == section;
-    ui.horizontal_wrapped(|ui| {
-        for invocation in &state.operations {
-            let d = invocation.declaration();
-            if here(d) && d.parameters.is_empty() {
+    let plain: Vec<&Declaration> = state
+        .operations
+        .iter()
+        .map(Invocation::declaration)
+        .filter(|&d| here(d) && d.parameters.is_empty())
+        .collect();
+    let step_mode = section == Section::WholeMesh;
+    if !plain.is_empty() || step_mode {
+        ui.horizontal_wrapped(|ui| {
+            for d in plain {
                 button(ui, pending, Action::Operation(d.name), d.title).on_hover_text(d.help);
             }
-        }
-        if section == Section::WholeMesh {
-            button(ui, pending, Action::ToggleStepMode, "Step mode");
-        }
-    });
+            if step_mode {
+                button(ui, pending, Action::ToggleStepMode, "Step mode");
+            }
+        });
+    }
     for invocation in &mut state.operations {
         let d = invocation.declaration();
         if !here(d) || d.parameters.is_empty() {
@@ -1067,16 +1074,6 @@ fn local_section(ui: &mut egui::Ui, pending: &mut PendingActions) {
 /// `smooth:METHOD`), and step mode, which runs them a step at a time.
 fn whole_mesh_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
     registered_operations(ui, state, pending, Section::WholeMesh);
-    // Subdivision: levels per press.
-    ui.horizontal(|ui| {
-        ui.add(
-            egui::DragValue::new(&mut state.subdivision_levels)
-                .range(1..=Subdivision::MAX_LEVELS)
-                .suffix(" level(s)"),
-        );
-        button(ui, pending, Action::LoopSubdivide, "Loop");
-        button(ui, pending, Action::CatmullClark, "Catmull-Clark");
-    });
     // Smoothing: method, iterations, step, the boundary held or not.
     ui.horizontal_wrapped(|ui| {
         let params = &mut state.smooth;

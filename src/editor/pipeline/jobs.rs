@@ -16,7 +16,8 @@
 //! exactly as it was. While a job runs, edits of its mesh (undo and redo included) are refused
 //! with a message; selecting and looking around still work.
 
-use bevy::prelude::{Resource, World};
+use bevy::ecs::message::{MessageCursor, Messages};
+use bevy::prelude::{Local, Resource, World};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::thread::JoinHandle;
@@ -33,7 +34,7 @@ use crate::ops::progressive::ProgressiveMesh;
 
 use crate::editor::session::finish::{Finished, finish_edit, report};
 use crate::editor::session::history::Pending;
-use crate::editor::session::requests::Declined;
+use crate::editor::session::requests::{Declined, Request};
 use crate::editor::session::selection::{Selection, exists};
 use crate::editor::session::state::SimplificationHistory;
 
@@ -263,7 +264,11 @@ pub fn cancel(world: &mut World) -> Result<String, Declined> {
 
 /// Commits a finished job: the mesh takes the result in one step, as one undo entry, and the
 /// outcome is reported (the `Apply` set, before the requests of the frame).
-pub fn finish_jobs(world: &mut World) {
+pub fn finish_jobs(world: &mut World, mut requests: Local<MessageCursor<Request>>) {
+    if cancel_asked(world, &mut requests) {
+        // The cancel is applied after this, and wins over a job that ended meanwhile.
+        return;
+    }
     let done = world
         .resource::<Jobs>()
         .running
@@ -381,4 +386,13 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
             pending: job.pending.take(),
         },
     )
+}
+
+/// Whether a cancel ([`Request::CancelJob`]) was asked for since `cursor` last looked: the
+/// job or the file read it cancels must then not be finished in the same frame, before the
+/// request is applied (a cancel pressed as the thread ends cancels, as the user meant).
+pub(super) fn cancel_asked(world: &World, cursor: &mut MessageCursor<Request>) -> bool {
+    cursor
+        .read(world.resource::<Messages<Request>>())
+        .any(|r| matches!(r, Request::CancelJob))
 }

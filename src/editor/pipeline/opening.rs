@@ -9,7 +9,8 @@
 //! the active one as one undo step, as a small file's does. The 1.1 M-face scan (the bunny
 //! Loop-subdivided twice, binary PLY) reads in 1.1 s this way and spawns in 1.0 s on the frame.
 
-use bevy::prelude::{Resource, World};
+use bevy::ecs::message::MessageCursor;
+use bevy::prelude::{Local, Resource, World};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::thread::JoinHandle;
@@ -18,10 +19,10 @@ use std::time::Instant;
 use crate::mesh::soup::PolygonSoup;
 use crate::mesh::{MeshInfo, PreparedMesh, despawn_mesh, prepare_mesh, spawn_prepared};
 
-use super::jobs::{JobSettings, Progress};
+use super::jobs::{JobSettings, Progress, cancel_asked};
 use crate::editor::session::finish::report;
 use crate::editor::session::history;
-use crate::editor::session::requests::Declined;
+use crate::editor::session::requests::{Declined, Request};
 use crate::editor::session::selection::{ActiveMesh, MeshDirty, Selection};
 use crate::editor::session::state::SimplificationHistory;
 
@@ -137,7 +138,11 @@ pub(super) fn busy(world: &World) -> Option<String> {
 
 /// Once the file being read is ready, spawns it and makes it the active mesh, and reports the
 /// open's outcome as a request's (the `Apply` set, each frame).
-pub fn finish_opening(world: &mut World) {
+pub fn finish_opening(world: &mut World, mut requests: Local<MessageCursor<Request>>) {
+    if cancel_asked(world, &mut requests) {
+        // The cancel is applied after this, and wins over a read that ended meanwhile.
+        return;
+    }
     let done = world
         .resource::<Opening>()
         .0

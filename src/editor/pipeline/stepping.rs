@@ -45,7 +45,7 @@
 use bevy::math::{Quat, Vec3};
 use bevy::prelude::{Resource, World};
 
-use crate::edit::{Applied, Edit, Redraw, Scheme, Subdivision};
+use crate::edit::{Applied, Edit, Invocation, Redraw, Scheme};
 use crate::mesh::attributes::MeshAttributes;
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::members::of_kind;
@@ -58,6 +58,7 @@ use crate::ops::progressive::{ProgressiveMesh, SlotIndex};
 use crate::ops::remesh::{Pass, PassReport, REMESH, Remesh, RemeshRun};
 use crate::ops::simplify::{NextCollapse, QemRun, QueuedEdge, Refused, SimplifyParams};
 use crate::ops::stencil::{NextLevelPoints, Stencil, next_level_points, stencil_of_element};
+use crate::ops::subdivide::subdivision;
 
 use crate::editor::session::finish::{Finished, finish_edit};
 use crate::editor::session::history::{self, Pending};
@@ -393,8 +394,9 @@ pub fn next_collapse(world: &World) -> Option<NextCollapse> {
 /// Whether `edit` can be stepped through.
 pub fn steppable(edit: &Edit) -> bool {
     match edit {
-        Edit::Subdivide(_) => true,
-        Edit::Operation(op) => op.is(&REMESH) || simplification(op).is_some(),
+        Edit::Operation(op) => {
+            op.is(&REMESH) || simplification(op).is_some() || subdivision(op).is_some()
+        }
         Edit::Deform(params) => params.method == DeformMethod::Arap,
         _ => false,
     }
@@ -415,12 +417,12 @@ pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
             last: None,
             passes: Vec::new(),
         }),
-        Edit::Subdivide(subdivision) => {
-            let points = next_level_points(world, mesh, subdivision.scheme)?;
+        Edit::Operation(op) if let Some((scheme, levels)) = subdivision(op) => {
+            let points = next_level_points(world, mesh, scheme)?;
             let faces = of_kind::<Face, _>(world, mesh, |f| f).len();
             Steps::Subdivide(SubdivideSteps {
-                scheme: subdivision.scheme,
-                levels: subdivision.levels,
+                scheme,
+                levels,
                 done: 0,
                 moved_shown: false,
                 counts: (points.vertex.len(), faces),
@@ -573,10 +575,11 @@ fn go_to(world: &mut World, run: &mut SteppedRun, k: usize) -> Result<(), Refusa
             let result = subdivide_go_to(world, mesh, steps, k);
             // A later level refused still leaves the levels made: the entry names those.
             if steps.done > 0 {
-                run.edit = Edit::Subdivide(Subdivision {
-                    scheme: steps.scheme,
-                    levels: steps.done,
-                });
+                let done =
+                    Invocation::new(steps.scheme.operation(), &[Some(f64::from(steps.done))]);
+                if let Ok(done) = done {
+                    run.edit = Edit::Operation(done);
+                }
             }
             result
         }
