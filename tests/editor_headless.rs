@@ -1121,8 +1121,9 @@ fn level_of_detail_and_vertex_split_follow_the_simplification() {
             .starts_with("1280 -> 320 faces")
     );
     // The slider's request: half way up.
-    app.world_mut()
-        .write_message(Request::Edit(Edit::LevelOfDetail(640)));
+    app.world_mut().write_message(Request::Edit(Edit::Operation(
+        pappus::ops::decimate::Refine::to(Some(640)),
+    )));
     app.update();
     assert!(
         last_outcome(&app)
@@ -1161,8 +1162,9 @@ fn level_of_detail_and_vertex_split_follow_the_simplification() {
     let e = some_interior_edge(&app);
     app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
     app.update();
-    app.world_mut()
-        .write_message(Request::Edit(Edit::LevelOfDetail(1280)));
+    app.world_mut().write_message(Request::Edit(Edit::Operation(
+        pappus::ops::decimate::Refine::to(Some(1280)),
+    )));
     app.update();
     assert!(last_outcome(&app).result.is_err());
 }

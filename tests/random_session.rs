@@ -85,7 +85,9 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
             Edit::MoveVertex(v, r.position(v) + nudge)
         }),
         51..=52 => vertex(rng).map(Edit::SplitVertex),
-        53..=54 => Some(Edit::LevelOfDetail(rng.below(2 * faces + 2))),
+        53..=54 => Some(Edit::Operation(pappus::ops::decimate::Refine::to(Some(
+            rng.below(2 * faces + 2),
+        )))),
         // Any registered operation: triangulate, reverse, orient outside, normalize, …
         55 => {
             let op = pappus::ops::OPERATIONS[rng.below(pappus::ops::OPERATIONS.len())];

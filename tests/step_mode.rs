@@ -139,7 +139,10 @@ fn a_run_stepped_to_its_end_is_the_unstepped_edit_element_for_element_and_one_un
         assert_eq!(history.undo_entries().len(), 1, "{shape}");
         assert_eq!(history.undo_entries()[0].label, label, "{shape}");
         // The level-of-detail history is the run's: moving along it works as after the edit.
-        send(&mut app, pappus::edit::Edit::LevelOfDetail(usize::MAX));
+        send(
+            &mut app,
+            pappus::edit::Edit::Operation(pappus::ops::decimate::Refine::to(None)),
+        );
         assert!(last_ok(&app).contains("faces"), "{}", last_ok(&app));
         send(&mut app, Request::Undo);
         let mesh = app.world().resource::<ActiveMesh>().0.unwrap();

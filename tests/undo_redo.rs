@@ -230,7 +230,12 @@ fn every_global_edit_undoes_and_redoes_exactly() {
         .as_ref()
         .unwrap()
         .full_faces;
-    round_trip(&mut app, Request::Edit(Edit::LevelOfDetail(full)));
+    round_trip(
+        &mut app,
+        Request::Edit(Edit::Operation(pappus::ops::decimate::Refine::to(Some(
+            full,
+        )))),
+    );
     // Opening over the edits (after the question) and deleting replace the mesh; undo brings
     // the old one back.
     assert!(request(&mut app, Request::Open("shape:torus".into())).is_err());
@@ -641,7 +646,13 @@ fn a_finished_job_commits_as_one_undo_entry() {
     }
     // The simplification's history came across: the slider moves, exactly.
     assert!(app.world().resource::<History>().pm.is_some());
-    request(&mut app, Request::Edit(Edit::LevelOfDetail(1280))).unwrap();
+    request(
+        &mut app,
+        Request::Edit(Edit::Operation(pappus::ops::decimate::Refine::to(Some(
+            1280,
+        )))),
+    )
+    .unwrap();
     assert_eq!(
         state(&app),
         before,

@@ -61,7 +61,6 @@ impl Edit {
                 made: None,
             }),
             Edit::SplitVertex(v) => split_vertex(world, *v, context),
-            Edit::LevelOfDetail(faces) => level_of_detail(world, *faces, context),
             Edit::Operation(op) => op.apply(world, mesh, context),
             Edit::Smooth(params) => smooth(world, mesh, params, context),
             Edit::Deform(params) => Ok(Applied::whole(deformed(&deform(world, mesh, params)?))),
@@ -204,47 +203,6 @@ fn split_vertex(
 /// vertices each step touches are redrawn, unless the move rewrote the whole mesh (a long
 /// refine); progress is the steps taken of those the move needs (a collapse or a split changes
 /// the faces by two), every 1000 steps, and a move cannot stop half-way.
-fn level_of_detail(
-    world: &mut World,
-    faces: usize,
-    context: &mut EditContext<'_>,
-) -> Result<Applied, Refusal> {
-    let pm = context.history.as_mut().ok_or(Refusal::NoHistory)?;
-    let before = pm.faces();
-    let mut touched: Vec<FaceId> = Vec::new();
-    let needed = (before.abs_diff(faces.min(pm.full_faces)) / 2).max(1);
-    let mut steps = 0usize;
-    let progress = &mut *context.progress;
-    let moved = pm.go_to_faces_watching(world, faces, |w, v| {
-        touched.extend(faces_around(w, &[v]));
-        steps += 1;
-        if steps.is_multiple_of(1000) {
-            progress((steps as f32 / needed as f32).min(0.99));
-        }
-    });
-    (context.progress)(1.0);
-    let now = pm.faces();
-    match moved {
-        Ok(moved) => Ok(Applied {
-            summary: format!("{} step(s), {now} faces", moved.steps),
-            redraw: if moved.rewritten {
-                Redraw::Whole
-            } else {
-                Redraw::Near {
-                    faces: touched,
-                    vertices: Vec::new(),
-                }
-            },
-            made: None,
-        }),
-        // A bulk refine that stopped on a refusal has still rewritten the mesh.
-        Err(refusal) if now != before => {
-            Ok(Applied::whole(format!("stopped at {now} faces: {refusal}")))
-        }
-        Err(refusal) => Err(refusal),
-    }
-}
-
 /// Simplifies, and keeps the history for level of detail and vertex splits.
 fn smooth(
     world: &mut World,

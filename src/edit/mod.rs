@@ -106,9 +106,6 @@ pub enum Edit {
     MoveVertices(Vec<(VertexId, Vec3)>),
     /// Split back the last collapse of the simplification history, if it kept this vertex.
     SplitVertex(VertexId),
-    /// Move along the simplification history to the level nearest this many faces
-    /// (`usize::MAX`: the full level).
-    LevelOfDetail(usize),
     /// A whole-mesh operation that declares itself whole ([`crate::ops::OPERATIONS`]:
     /// triangulate, reverse, orient outside, normalize, …), with its parameters' values.
     Operation(Invocation),
@@ -181,8 +178,6 @@ impl Edit {
             Edit::MoveVertex(v, _) => format!("move {v}"),
             Edit::MoveVertices(moves) => format!("move {} vertices", moves.len()),
             Edit::SplitVertex(v) => format!("split {v} back"),
-            Edit::LevelOfDetail(usize::MAX) => "full level of detail".into(),
-            Edit::LevelOfDetail(n) => format!("level of detail {n} faces"),
             Edit::Operation(op) => op.label(),
             Edit::Smooth(p) => format!(
                 "smooth ({}, {} iterations, step {})",
@@ -265,7 +260,7 @@ impl Edit {
             Edit::Deform(_) | Edit::FillHoleFair(_) => {
                 world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh))
             }
-            Edit::LevelOfDetail(_) | Edit::Operation(_) | Edit::Smooth(_) => {
+            Edit::Operation(_) | Edit::Smooth(_) => {
                 world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh))
             }
         }
@@ -346,7 +341,7 @@ impl Edit {
     /// step's name, whether it may run as a job, which ids and whether the simplification
     /// history survive it, what becomes of the attributes).
     pub fn declaration(&self) -> &'static Declaration {
-        use crate::ops::{deform, hole, local, progressive, smooth};
+        use crate::ops::{deform, hole, local, smooth};
         match self {
             Edit::Flip(_) => &local::FLIP,
             Edit::Split(_) => &local::SPLIT,
@@ -365,7 +360,6 @@ impl Edit {
             Edit::Weld(..) => &local::WELD,
             Edit::MoveVertex(..) | Edit::MoveVertices(_) => &MOVE,
             Edit::SplitVertex(_) => &local::VERTEX_SPLIT,
-            Edit::LevelOfDetail(_) => &progressive::LEVEL_OF_DETAIL,
             Edit::Operation(op) => op.declaration(),
             Edit::Smooth(_) => &smooth::SMOOTH,
             Edit::Deform(_) => &deform::DEFORM,
@@ -472,7 +466,9 @@ impl Edit {
             Edit::MoveVertices(moves) => moves
                 .first()
                 .map(|(v, _)| MergeKey::MoveMany(*v, moves.len())),
-            Edit::LevelOfDetail(_) => Some(MergeKey::LevelOfDetail),
+            Edit::Operation(op) if op.declaration().merges_while_held => {
+                Some(MergeKey::Operation(op.declaration().name))
+            }
             _ => None,
         }
     }
@@ -516,8 +512,9 @@ pub enum MergeKey {
     Move(VertexId),
     /// Moves of this many vertices, the first of them this one (the frames of one transform).
     MoveMany(VertexId, usize),
-    /// Moves along the level-of-detail history.
-    LevelOfDetail,
+    /// Uses of the registered operation of this name that declares it merges while held
+    /// (the level-of-detail slider's `refine`).
+    Operation(&'static str),
 }
 
 /// Marking a seam (the `seam:A,B` step): a local edit of one edge's mark.
@@ -656,7 +653,9 @@ mod tests {
         let e = EdgeId(bevy::prelude::Entity::PLACEHOLDER);
         let loop1 = Edit::registered("loop").unwrap();
         assert!(loop1.may_run_as_job() && Edit::registered("remesh").unwrap().may_run_as_job());
-        assert!(!Edit::Flip(e).may_run_as_job() && !Edit::LevelOfDetail(5).may_run_as_job());
+        let refine = Edit::invoked("refine:5").unwrap();
+        assert!(!Edit::Flip(e).may_run_as_job() && !refine.may_run_as_job());
+        assert_eq!(refine.merge_key(), Some(MergeKey::Operation("refine")));
         assert_eq!(loop1.keeps_ids(), IdsKept::VerticesOnly);
         let triangulate = Edit::registered("triangulate").unwrap();
         assert_eq!(triangulate.keeps_ids(), IdsKept::All);
@@ -699,7 +698,6 @@ mod tests {
                 Edit::MoveVertex(v, Vec3::ZERO),
                 Edit::MoveVertices(vec![(v, Vec3::ZERO)]),
                 Edit::SplitVertex(v),
-                Edit::LevelOfDetail(10),
                 Edit::Smooth(SmoothParams::default()),
                 Edit::Deform(DeformParams {
                     method: DeformMethod::Arap,

@@ -353,7 +353,6 @@ pub fn step_syntax() -> String {
 const OTHER_STEPS: &str = "\
 flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
 dissolve:A,B | split-face:A,B | fill-hole:A,B | seam:A,B (mark, for param) |
-refine[:FACES]   (split simplify's collapses back, up to FACES faces or all) |
 smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held) |
 extrude:FACES:DISTANCE | inset:FACES:AMOUNT[:DEPTH] | bevel:ELEMENT[:AMOUNT[:DEPTH]] |
 erase:ELEMENTS | dissolve:A | collapse:A,B,C | weld:A,B/C,D |
@@ -416,10 +415,6 @@ impl Step {
     fn parse_named(text: &str, name: &str, args: &str) -> Result<Step, String> {
         let edit = match name {
             "validate" => return Ok(Step::Validate),
-            "refine" if args.is_empty() => Edit::LevelOfDetail(usize::MAX),
-            "refine" => Edit::LevelOfDetail(args.parse::<usize>().map_err(|_| {
-                format!("step `{text}`: expected a face count, as in `refine:5000`")
-            })?),
             "smooth" => Edit::Smooth(parse_smooth(args).ok_or_else(|| {
                 format!(
                     "step `{text}`: expected smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]"
@@ -579,8 +574,6 @@ impl std::fmt::Display for Step {
             }
             Step::Edit(edit) => match edit {
                 Edit::Operation(op) => write!(f, "{op}"),
-                Edit::LevelOfDetail(usize::MAX) => write!(f, "refine"),
-                Edit::LevelOfDetail(n) => write!(f, "refine:{n}"),
                 Edit::Smooth(p) => {
                     write!(f, "smooth:{}:{}:{}", p.method.name(), p.iterations, p.step)
                 }
@@ -706,7 +699,7 @@ mod tests {
             ),
             ("remesh:0", "ITERATIONS"),
             ("remesh:3:-1", "LENGTH"),
-            ("refine:lots", "face count"),
+            ("refine:lots", "FACES must be a whole number"),
             ("smooth:gaussian", "uniform|cotan"),
             ("smooth:uniform:0", "ITERATIONS"),
             (

@@ -1,19 +1,20 @@
 //! QEM simplification as the user invokes it (Garland & Heckbert; the algorithm is
 //! [`crate::ops::simplify`]): `simplify[:RATIO]` (Shift+S) keeps a fraction of the faces,
 //! `simplify-faces[:FACES]` a number of them. Each records every collapse in the mesh's
-//! simplification history ([`ProgressiveMesh`]), which the level-of-detail slider, `refine`
-//! and vertex splits then move along.
+//! simplification history ([`ProgressiveMesh`], Hoppe 1996), which `refine[:FACES]` — the
+//! level-of-detail slider — and vertex splits then move along.
 //!
 //! A module of its own because it joins the two below it: the history records what the
 //! simplification does, so `progressive` imports `simplify`, and this imports both.
 
 use bevy::prelude::World;
 
-use crate::mesh::ids::MeshId;
+use crate::mesh::ids::{FaceId, MeshId};
+use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
 use crate::ops::declaration::{DROPPED_BY_SIMPLIFICATION, Declaration, Parameter};
-use crate::ops::operation::{Applied, EditContext, Invocation, MeshOperation, Values};
-use crate::ops::progressive::ProgressiveMesh;
+use crate::ops::operation::{Applied, EditContext, Invocation, MeshOperation, Redraw, Values};
+use crate::ops::progressive::{LEVEL_OF_DETAIL, ProgressiveMesh};
 use crate::ops::simplify::SimplifyParams;
 
 /// Simplifying to a fraction of the faces: a job on a large mesh; it makes the history that
@@ -38,6 +39,21 @@ pub const SIMPLIFY_FACES: Declaration = Declaration::new("simplify-faces")
 
 /// `simplify[:RATIO]`.
 pub struct Simplify;
+
+/// `refine[:FACES]`: along the history to FACES faces, or to the full mesh.
+pub struct Refine;
+
+impl Refine {
+    /// Refine (or coarsen) along the history to `faces` faces (`None`: the full mesh), as the
+    /// level-of-detail slider asks while it is dragged.
+    pub fn to(faces: Option<usize>) -> Invocation {
+        let mut invocation = Invocation::with_defaults(&Refine);
+        let faces = faces.map(|n| n.clamp(1, u32::MAX as usize) as f64);
+        // Clamped into the parameter's range, so always taken.
+        let _ = invocation.set(0, faces);
+        invocation
+    }
+}
 
 /// `simplify-faces[:FACES]`.
 pub struct SimplifyFaces;
@@ -90,6 +106,62 @@ impl MeshOperation for SimplifyFaces {
     ) -> Result<Applied, Refusal> {
         let params = SimplifyParams::faces(values.whole(0) as usize);
         simplify(world, mesh, &params, context)
+    }
+}
+
+impl MeshOperation for Refine {
+    fn declaration(&self) -> &'static Declaration {
+        &LEVEL_OF_DETAIL
+    }
+
+    /// Refused without a history. A refine that meets a record the mesh no longer fits stops
+    /// there and is applied as far as it went (its summary says why); it is refused only if
+    /// it moved nowhere.
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        context: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let faces = values.given(0).map_or(usize::MAX, |n| n as usize);
+        let pm = context.history.as_mut().ok_or(Refusal::NoHistory)?;
+        let before = pm.faces();
+        let mut touched: Vec<FaceId> = Vec::new();
+        let needed = (before.abs_diff(faces.min(pm.full_faces)) / 2).max(1);
+        let mut steps = 0usize;
+        let progress = &mut *context.progress;
+        let moved = pm.go_to_faces_watching(world, faces, |w, v| {
+            let m = MeshRef::new(w);
+            if m.try_vertex(v).is_some() {
+                touched.extend(m.vertex_faces(v));
+            }
+            steps += 1;
+            if steps.is_multiple_of(1000) {
+                progress((steps as f32 / needed as f32).min(0.99));
+            }
+        });
+        (context.progress)(1.0);
+        let now = pm.faces();
+        match moved {
+            Ok(moved) => Ok(Applied {
+                summary: format!("{} step(s), {now} faces", moved.steps),
+                redraw: if moved.rewritten {
+                    Redraw::Whole
+                } else {
+                    Redraw::Near {
+                        faces: touched,
+                        vertices: Vec::new(),
+                    }
+                },
+                made: None,
+            }),
+            // A bulk refine that stopped on a refusal has still rewritten the mesh.
+            Err(refusal) if now != before => {
+                Ok(Applied::whole(format!("stopped at {now} faces: {refusal}")))
+            }
+            Err(refusal) => Err(refusal),
+        }
     }
 }
 

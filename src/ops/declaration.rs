@@ -75,6 +75,9 @@ pub struct Declaration {
     pub ids: IdsKept,
     /// Whether the simplification history still describes the mesh after it.
     pub keeps_history: bool,
+    /// Whether its uses merge into one undo step while one mouse press lasts (the frames of a
+    /// slider's drag).
+    pub merges_while_held: bool,
     /// Whether the vertex normals it leaves still describe the surface (it moves nothing, or
     /// turns and scales them with it), so a save writes them as they are rather than
     /// recomputing them.
@@ -99,6 +102,7 @@ impl Declaration {
             on_tables: false,
             ids: IdsKept::All,
             keeps_history: false,
+            merges_while_held: false,
             keeps_normals: false,
             carries: Carries::All,
         }
@@ -135,6 +139,14 @@ impl Declaration {
     /// Its button goes in `section` of the editor's panel (*Whole mesh* unless said).
     pub const fn in_section(self, section: Section) -> Self {
         Self { section, ..self }
+    }
+
+    /// Its uses merge into one undo step while one mouse press lasts.
+    pub const fn merging_while_held(self) -> Self {
+        Self {
+            merges_while_held: true,
+            ..self
+        }
     }
 
     /// The vertex normals it leaves still describe the surface.

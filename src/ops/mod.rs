@@ -45,6 +45,7 @@ pub const OPERATIONS: &[&dyn MeshOperation] = &[
     &normalize::Normalize,
     &decimate::Simplify,
     &decimate::SimplifyFaces,
+    &decimate::Refine,
     &subdivide::Subdivide(subdivide::Scheme::Loop),
     &subdivide::Subdivide(subdivide::Scheme::CatmullClark),
     &remesh::Remesh,

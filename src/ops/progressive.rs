@@ -31,11 +31,20 @@ use super::local::{
 use super::simplify::{SimplifyParams, SimplifySummary, simplify_recorded};
 use super::table_split::{SplitMismatch, TableSplit, split_in_tables};
 
-use crate::ops::declaration::{DROPPED_BY_SIMPLIFICATION, Declaration};
+use crate::ops::declaration::{DROPPED_BY_SIMPLIFICATION, Declaration, Parameter};
 
 /// Moving along the simplification history (the `refine` step, the level-of-detail slider):
 /// the history survives, and like the simplification it drops attributes.
 pub const LEVEL_OF_DETAIL: Declaration = Declaration::new("refine")
+    .titled("Refine")
+    .described(
+        "go along the simplification history to FACES faces: split its collapses back (or \
+         redo them), exactly the input at the full mesh",
+    )
+    .with_parameters(&[
+        Parameter::whole("FACES", 1000, 1, u32::MAX).automatic_by_default("the full mesh")
+    ])
+    .merging_while_held()
     .keeping_history()
     .dropping(DROPPED_BY_SIMPLIFICATION);
 

@@ -313,7 +313,8 @@ fn run_step(
             script.waiting = 1;
         }
         ScriptStep::Lod(faces) => {
-            world.write_message(Request::Edit(Edit::LevelOfDetail(faces)));
+            let refine = crate::ops::decimate::Refine::to(Some(faces));
+            world.write_message(Request::Edit(Edit::Operation(refine)));
             script.waiting = 2;
         }
         ScriptStep::Step(movement) => {

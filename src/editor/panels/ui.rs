@@ -462,7 +462,8 @@ pub fn panels(
                         let slider = egui::Slider::new(&mut faces, coarsest..=full)
                             .text("faces (level of detail)");
                         if ui.add(slider).changed() && faces != now {
-                            requests.write(Request::Edit(Edit::LevelOfDetail(faces)));
+                            let refine = crate::ops::decimate::Refine::to(Some(faces));
+                            requests.write(Request::Edit(Edit::Operation(refine)));
                         }
                     }
                 });
