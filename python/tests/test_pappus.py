@@ -285,6 +285,8 @@ def test_every_declared_operation_is_listed_and_runs_with_its_defaults():
         # simplify and remesh triangles).
         mesh = pappus.load("shape:grid-with-holes:2")
         mesh.step("triangulate")
+        if op["name"] == "refine":
+            mesh.step("simplify")  # refine moves along a simplification's history
         assert mesh.step(op["name"]), op["name"]
         mesh.validate()
 
