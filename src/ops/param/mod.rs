@@ -35,7 +35,7 @@
 //!   [`Parameterization`] (UVs and a [`ParamReport`]) or [`ParamError`]. Seams are edge rows of
 //!   those same tables (map `EdgeId`s to rows through `crate::mesh::tables::MeshTables::members`).
 //! - [`parameterize_in_place`]: the same, writing the layout onto the mesh as corner UVs (what
-//!   the edit layer's `Edit::Parameterize` runs).
+//!   the registered `param` operation runs, [`Parameterize`]).
 //! - [`tutte::solve_fixed`]: the barycentric solve with any fixed boundary positions (what the
 //!   exact reproduction tests use).
 
