@@ -1062,11 +1062,7 @@ fn hole_and_fairing_keys_fill_and_fair() {
         pappus::mesh::mesh_stats(app.world(), m).boundary_loops,
         loops - 1
     );
-    // Shift+F: every other hole, faired as the panel's drop-down now says.
-    app.world_mut()
-        .resource_mut::<pappus::editor::input::keyboard::UiState>()
-        .set_parameter("fill-holes", 0, Some(1.0))
-        .unwrap();
+    // Shift+F: every other hole, faired (the editor's default).
     press_with(&mut app, KeyCode::ShiftLeft, KeyCode::KeyF);
     let outcome = last_outcome(&app);
     assert_eq!(outcome.request, "fill all holes (fair)");

@@ -88,10 +88,13 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
         53..=54 => Some(Edit::Operation(pappus::ops::decimate::Refine::to(Some(
             rng.below(2 * faces + 2),
         )))),
-        // Any registered operation: triangulate, reverse, orient outside, normalize, …
+        // Any registered operation with its defaults (triangulate, reverse, normalize, remesh,
+        // param, …), subdivision only while the mesh is small, as below.
         55 => {
             let op = pappus::ops::OPERATIONS[rng.below(pappus::ops::OPERATIONS.len())];
-            Some(Edit::Operation(pappus::edit::Invocation::with_defaults(op)))
+            let invocation = pappus::edit::Invocation::with_defaults(op);
+            let grows = pappus::ops::subdivide::subdivision(&invocation).is_some();
+            (!grows || faces < GROW_BELOW_FACES).then_some(Edit::Operation(invocation))
         }
         56..=57 => Some(
             Edit::invoked(&format!("simplify:{}", 0.5 + rng.below(40) as f64 / 100.0)).unwrap(),

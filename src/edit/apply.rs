@@ -199,11 +199,6 @@ fn split_vertex(
     })
 }
 
-/// Moves along the simplification history to `faces` faces. Only the faces around the
-/// vertices each step touches are redrawn, unless the move rewrote the whole mesh (a long
-/// refine); progress is the steps taken of those the move needs (a collapse or a split changes
-/// the faces by two), every 1000 steps, and a move cannot stop half-way.
-/// Simplifies, and keeps the history for level of detail and vertex splits.
 fn smooth(
     world: &mut World,
     mesh: MeshId,

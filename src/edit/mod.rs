@@ -17,11 +17,12 @@
 //! [`Applied`] — a summary that prints, what to redraw and what to select — or a [`Refusal`],
 //! and then the world is exactly as it was.
 //!
-//! Adding a whole-mesh operation with numeric parameters: its file in `ops/`, declaring itself
-//! whole ([`crate::ops::operation::MeshOperation`]), and its line in [`crate::ops::OPERATIONS`];
+//! Adding a whole-mesh operation: its file in `ops/`, declaring itself whole
+//! ([`crate::ops::operation::MeshOperation`]), and its line in [`crate::ops::OPERATIONS`];
 //! [`Edit::Operation`] carries it, and the step parser, the keymap and the panel read its
-//! declaration. Any other operation: its file in `ops/`, one variant here (its parameters, its
-//! arms in the `match`es below), its step, key and button (see `docs/architecture.md`).
+//! declaration. An operation that names elements: its file in `ops/`, one variant here (its
+//! elements and parameters, its arms in the `match`es below), its step, key and button (see
+//! `docs/architecture.md`).
 
 use bevy::math::Vec3;
 use bevy::prelude::World;

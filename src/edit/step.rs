@@ -695,7 +695,7 @@ mod tests {
             ("simplify:1.5", "RATIO must be a number from 0.000001 to 1"),
             (
                 "simplify-faces:0.5",
-                "FACES must be a whole number from 1 to",
+                "FACES must be a whole number from 0 to",
             ),
             ("remesh:0", "ITERATIONS"),
             ("remesh:3:-1", "LENGTH"),

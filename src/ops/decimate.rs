@@ -32,7 +32,7 @@ pub const SIMPLIFY: Declaration = Declaration::new("simplify")
 pub const SIMPLIFY_FACES: Declaration = Declaration::new("simplify-faces")
     .titled("Simplify to faces")
     .described("QEM edge collapses (Garland & Heckbert) until FACES faces are left")
-    .with_parameters(&[Parameter::whole("FACES", 1000, 1, u32::MAX)])
+    .with_parameters(&[Parameter::whole("FACES", 1000, 0, u32::MAX)])
     .as_job()
     .keeping_history()
     .dropping(DROPPED_BY_SIMPLIFICATION);
@@ -48,7 +48,7 @@ impl Refine {
     /// level-of-detail slider asks while it is dragged.
     pub fn to(faces: Option<usize>) -> Invocation {
         let mut invocation = Invocation::with_defaults(&Refine);
-        let faces = faces.map(|n| n.clamp(1, u32::MAX as usize) as f64);
+        let faces = faces.map(|n| n.min(u32::MAX as usize) as f64);
         // Clamped into the parameter's range, so always taken.
         let _ = invocation.set(0, faces);
         invocation
@@ -114,9 +114,12 @@ impl MeshOperation for Refine {
         &LEVEL_OF_DETAIL
     }
 
-    /// Refused without a history. A refine that meets a record the mesh no longer fits stops
-    /// there and is applied as far as it went (its summary says why); it is refused only if
-    /// it moved nowhere.
+    /// Only the faces around the vertices each step touches are redrawn, unless the move
+    /// rewrote the whole mesh (a long refine); progress is the steps taken of those the move
+    /// needs (a collapse or a split changes the faces by two), every 1000 steps, and a move
+    /// cannot stop half-way. Refused without a history. A refine that meets a record the mesh
+    /// no longer fits stops there and is applied as far as it went (its summary says why); it
+    /// is refused only if it moved nowhere.
     fn apply(
         &self,
         world: &mut World,

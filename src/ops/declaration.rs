@@ -365,7 +365,7 @@ impl Parameter {
         if text.is_empty() {
             return Err(format!("a value of {} is missing", self.name));
         }
-        if text == "auto" && self.automatic.is_some() {
+        if text.eq_ignore_ascii_case("auto") && self.automatic.is_some() {
             return Ok(None);
         }
         let x = match self.kind {

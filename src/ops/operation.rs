@@ -1,11 +1,12 @@
 //! Operations that declare themselves whole, and what every edit returns.
 //!
 //! A [`MeshOperation`] is a whole-mesh operation described entirely by its [`Declaration`] —
-//! its step's name, its title and help line, its key, its numeric parameters with their
-//! defaults and ranges, whether it may run as a job, which ids and attributes survive it — and
-//! one `apply`. Registered once in [`crate::ops::OPERATIONS`], it is then a `process` step
-//! (`name[:VALUE…]`, listed in the usage text), a key in the editor's shortcut table and help
-//! overlay, a button with its parameters in the panel's *Whole mesh* section, a `Mesh.step`
+//! its step's name, its title and help line, its key, its parameters (numbers in a range,
+//! choices of words, values left `auto`) with their defaults, its panel section, whether it may
+//! run as a job, which ids and attributes survive it — and one `apply`. Registered once in
+//! [`crate::ops::OPERATIONS`], it is then a `process` step (`name[:VALUE…]`, listed in the
+//! usage text), a key in the editor's shortcut table and help overlay, a button with its
+//! parameters in the panel section it declares, a `Mesh.step`
 //! from Python, an undoable edit, and a job on a large mesh: nothing else names it. Blender's
 //! operators are the model — a class declares `bl_idname`, `bl_label`, its properties with
 //! their defaults and limits, and `execute`; the keymap and the menus refer to it by id, and

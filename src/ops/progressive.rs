@@ -42,7 +42,7 @@ pub const LEVEL_OF_DETAIL: Declaration = Declaration::new("refine")
          redo them), exactly the input at the full mesh",
     )
     .with_parameters(&[
-        Parameter::whole("FACES", 1000, 1, u32::MAX).automatic_by_default("the full mesh")
+        Parameter::whole("FACES", 1000, 0, u32::MAX).automatic_by_default("the full mesh")
     ])
     .merging_while_held()
     .keeping_history()

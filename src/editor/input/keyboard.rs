@@ -661,7 +661,7 @@ fn registered(action: Action) -> Option<&'static dyn MeshOperation> {
 
 impl Default for UiState {
     fn default() -> Self {
-        Self {
+        let mut state = Self {
             show_help: false,
             focus_path: None,
             smooth: SmoothParams::default(),
@@ -676,7 +676,12 @@ impl Default for UiState {
                 .iter()
                 .map(|&op| Invocation::with_defaults(op))
                 .collect(),
-        }
+        };
+        // Filling every hole of a scan in the editor means patches that continue the surface
+        // (Liepa); the `fill-holes` step keeps its one polygon each by default.
+        let faired = state.set_parameter("fill-holes", 0, Some(1.0));
+        debug_assert!(faired.is_ok(), "{faired:?}");
+        state
     }
 }
 

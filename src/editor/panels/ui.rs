@@ -936,9 +936,16 @@ fn parameter_field(
         }
     }
     let mut value = changed.flatten().or(x).unwrap_or(min);
+    // A real value drags by 1 % of itself a pixel: as fine for a length of 0.002 as for an
+    // angle of 45.
+    let speed = if whole {
+        1.0
+    } else {
+        (value.abs() * 0.01).max(1e-6)
+    };
     let field = egui::DragValue::new(&mut value)
         .range(min..=max)
-        .speed(if whole { 1.0 } else { 0.01 })
+        .speed(speed)
         .prefix(format!("{label} "));
     let field = if whole {
         field.fixed_decimals(0)
@@ -1070,9 +1077,9 @@ fn local_section(ui: &mut egui::Ui, pending: &mut PendingActions) {
     );
 }
 
-/// The whole-mesh edits with their parameters: the same structs and defaults as the command
-/// line's steps (`simplify:RATIO`, `simplify-faces:N`, `remesh:ITERATIONS:LENGTH`, `loop:N`,
-/// `smooth:METHOD`), and step mode, which runs them a step at a time.
+/// The registered operations that declare the *Whole mesh* section, step mode (which runs
+/// simplification, remeshing and subdivision a step at a time), and smoothing with its method,
+/// iterations and step (the `smooth:METHOD` step's parameters).
 fn whole_mesh_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
     registered_operations(ui, state, pending, Section::WholeMesh);
     // Smoothing: method, iterations, step, the boundary held or not.
