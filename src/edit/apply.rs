@@ -355,14 +355,7 @@ fn edge_ends(world: &World, e: EdgeId) -> Vec<VertexId> {
     vec![a, b]
 }
 
-/// The faces around some vertices (dead vertices skipped).
+/// The faces around some vertices (dead vertices skipped): [`MeshRef::faces_around`].
 fn faces_around(world: &World, vertices: &[VertexId]) -> Vec<FaceId> {
-    let m = MeshRef::new(world);
-    let mut faces = Vec::new();
-    for &v in vertices {
-        if m.try_vertex(v).is_some() {
-            faces.extend(m.vertex_faces(v));
-        }
-    }
-    faces
+    MeshRef::new(world).faces_around(vertices)
 }

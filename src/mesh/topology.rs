@@ -314,6 +314,18 @@ impl<'w> MeshRef<'w> {
         self.vertex_outgoing(v).filter_map(move |h| m.face(h))
     }
 
+    /// The faces around each of `vertices`, in order (a face beside two of them twice; dead
+    /// vertices skipped): what a local change around them touched.
+    pub fn faces_around(&self, vertices: &[VertexId]) -> Vec<FaceId> {
+        let mut faces = Vec::new();
+        for &v in vertices {
+            if self.try_vertex(v).is_some() {
+                faces.extend(self.vertex_faces(v));
+            }
+        }
+        faces
+    }
+
     /// The number of edges at `v`.
     pub fn valence(&self, v: VertexId) -> usize {
         self.vertex_outgoing(v).count()

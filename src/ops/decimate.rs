@@ -63,11 +63,25 @@ pub struct SimplifyFaces;
 pub fn simplification(invocation: &Invocation) -> Option<SimplifyParams> {
     let values = invocation.values();
     if invocation.is(&SIMPLIFY) {
-        Some(SimplifyParams::ratio(values.number(0)))
+        Some(Simplify::params(values))
     } else if invocation.is(&SIMPLIFY_FACES) {
-        Some(SimplifyParams::faces(values.whole(0) as usize))
+        Some(SimplifyFaces::params(values))
     } else {
         None
+    }
+}
+
+impl Simplify {
+    /// The simplification its values name: to RATIO of the faces, the default limits.
+    fn params(values: Values<'_>) -> SimplifyParams {
+        SimplifyParams::ratio(values.number(0))
+    }
+}
+
+impl SimplifyFaces {
+    /// The simplification its values name: to FACES faces, the default limits.
+    fn params(values: Values<'_>) -> SimplifyParams {
+        SimplifyParams::faces(values.whole(0) as usize)
     }
 }
 
@@ -83,12 +97,7 @@ impl MeshOperation for Simplify {
         values: Values<'_>,
         context: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
-        simplify(
-            world,
-            mesh,
-            &SimplifyParams::ratio(values.number(0)),
-            context,
-        )
+        simplify(world, mesh, &Self::params(values), context)
     }
 }
 
@@ -104,8 +113,7 @@ impl MeshOperation for SimplifyFaces {
         values: Values<'_>,
         context: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
-        let params = SimplifyParams::faces(values.whole(0) as usize);
-        simplify(world, mesh, &params, context)
+        simplify(world, mesh, &Self::params(values), context)
     }
 }
 
@@ -135,10 +143,7 @@ impl MeshOperation for Refine {
         let mut steps = 0usize;
         let progress = &mut *context.progress;
         let moved = pm.go_to_faces_watching(world, faces, |w, v| {
-            let m = MeshRef::new(w);
-            if m.try_vertex(v).is_some() {
-                touched.extend(m.vertex_faces(v));
-            }
+            touched.extend(MeshRef::new(w).faces_around(&[v]));
             steps += 1;
             if steps.is_multiple_of(1000) {
                 progress((steps as f32 / needed as f32).min(0.99));

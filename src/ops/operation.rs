@@ -178,14 +178,7 @@ impl Invocation {
         operation: &'static dyn MeshOperation,
         given: &[Option<f64>],
     ) -> Result<Self, String> {
-        let declaration = operation.declaration();
-        let parameters = declaration.parameters;
-        if given.len() > parameters.len() {
-            return Err(match parameters.len() {
-                0 => format!("{} takes no parameters", declaration.name),
-                n => format!("{} takes at most {n} parameter(s)", declaration.name),
-            });
-        }
+        takes(operation.declaration(), given.len())?;
         let mut invocation = Self::with_defaults(operation);
         for (i, &x) in given.iter().enumerate() {
             invocation.set(i, x)?;
@@ -204,17 +197,12 @@ impl Invocation {
             return Ok(Self::with_defaults(operation));
         }
         let texts: Vec<&str> = args.split(':').map(str::trim).collect();
+        takes(declaration, texts.len())?;
         let values = texts
             .iter()
             .zip(declaration.parameters)
             .map(|(text, p)| p.read(text))
             .collect::<Result<Vec<_>, _>>()?;
-        if texts.len() > values.len() {
-            // Say there are too many, as `new` does.
-            let mut too_many = values;
-            too_many.resize(texts.len(), None);
-            return Self::new(operation, &too_many);
-        }
         Self::new(operation, &values)
     }
 
@@ -323,6 +311,22 @@ impl fmt::Debug for Invocation {
 impl PartialEq for Invocation {
     fn eq(&self, other: &Self) -> bool {
         self.declaration().name == other.declaration().name && self.values().0 == other.values().0
+    }
+}
+
+/// Whether an operation that declares `declaration` takes `given` values.
+///
+/// # Errors
+/// More values than parameters: "reverse takes no parameters", "param takes at most 2
+/// parameter(s)".
+fn takes(declaration: &Declaration, given: usize) -> Result<(), String> {
+    match declaration.parameters.len() {
+        n if given <= n => Ok(()),
+        0 => Err(format!("{} takes no parameters", declaration.name)),
+        n => Err(format!(
+            "{} takes at most {n} parameter(s)",
+            declaration.name
+        )),
     }
 }
 
