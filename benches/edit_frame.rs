@@ -93,8 +93,8 @@ fn edit(case: usize, c: &Candidates, i: usize) -> Edit {
         2 => Edit::BevelVertex(vertex(), 0.25),
         3 => Edit::BevelEdge(c.edges[i % c.edges.len()], 0.25),
         4 => Edit::Erase(vec![face()]),
-        5 => Edit::DissolveVertex(vertex()),
-        _ => Edit::CollapseFace(face()),
+        5 => Edit::local("dissolve", vertex()),
+        _ => Edit::local("collapse", face()),
     }
 }
 

@@ -59,7 +59,7 @@ fn a_split_interpolates_uvs_normals_and_colours() {
     let (mut world, built) = common::build(&square());
     let v = |i: usize| built.input_vertices[i].unwrap();
     let summary = {
-        let e = Edit::Split(edge_between(&world, v(0), v(2)));
+        let e = Edit::local("split", edge_between(&world, v(0), v(2)));
         run(&mut world, built.mesh, &e)
     };
     assert!(!summary.contains("dropped"), "{summary}");
@@ -91,7 +91,7 @@ fn a_flip_and_a_collapse_keep_each_vertex_its_uv() {
     let (mut world, built) = common::build(&square());
     let v = |i: usize| built.input_vertices[i].unwrap();
     let flipped = {
-        let e = Edit::Flip(edge_between(&world, v(0), v(2)));
+        let e = Edit::local("flip", edge_between(&world, v(0), v(2)));
         run(&mut world, built.mesh, &e)
     };
     assert!(!flipped.contains("dropped"), "{flipped}");
@@ -104,7 +104,7 @@ fn a_flip_and_a_collapse_keep_each_vertex_its_uv() {
     }
     // Split the new diagonal 1–3, then collapse the half towards 1: the kept vertex moves to
     // the midpoint (0.75, 0.25) and so do its UVs.
-    let split = Edit::Split(edge_between(&world, v(1), v(3)));
+    let split = Edit::local("split", edge_between(&world, v(1), v(3)));
     run(&mut world, built.mesh, &split);
     let m = MeshRef::new(&world);
     let mid = m
@@ -112,7 +112,7 @@ fn a_flip_and_a_collapse_keep_each_vertex_its_uv() {
         .find(|&x| m.position(x) == Vec3::new(0.5, 0.5, 0.0))
         .unwrap();
     {
-        let e = Edit::Collapse(edge_between(&world, mid, v(1)));
+        let e = Edit::local("collapse", edge_between(&world, mid, v(1)));
         run(&mut world, built.mesh, &e)
     };
     assert_every_corner_has_a_uv(&world, built.mesh);
@@ -255,7 +255,7 @@ fn undo_restores_attributes_exactly() {
     // A local edit, recorded as the editor records it.
     let recorder = LocalRecorder::begin(&world, mesh, &[v(0), v(2)]);
     {
-        let e = Edit::Split(edge_between(&world, v(0), v(2)));
+        let e = Edit::local("split", edge_between(&world, v(0), v(2)));
         run(&mut world, mesh, &e)
     };
     let undo = recorder.finish(&world);
@@ -296,7 +296,7 @@ fn a_seam_mark_undoes_and_survives_a_whole_mesh_record() {
     let v = |i: usize| built.input_vertices[i].unwrap();
     let diagonal = edge_between(&world, v(0), v(2));
     let recorder = LocalRecorder::begin(&world, mesh, &[v(0), v(2)]);
-    let summary = run(&mut world, mesh, &Edit::ToggleSeam(diagonal));
+    let summary = run(&mut world, mesh, &Edit::local("seam", diagonal));
     assert!(summary.ends_with("is a seam"), "{summary}");
     assert!(world.get::<Seam>(diagonal.0).is_some());
     assert!(MeshAttributes::of(&world, mesh).seams);
@@ -329,8 +329,8 @@ fn splitting_a_seam_leaves_both_halves_seams() {
     let mesh = built.mesh;
     let v = |i: usize| built.input_vertices[i].unwrap();
     let diagonal = edge_between(&world, v(0), v(2));
-    run(&mut world, mesh, &Edit::ToggleSeam(diagonal));
-    run(&mut world, mesh, &Edit::Split(diagonal));
+    run(&mut world, mesh, &Edit::local("seam", diagonal));
+    run(&mut world, mesh, &Edit::local("split", diagonal));
     let seams: Vec<bevy::prelude::Entity> = world
         .query_filtered::<bevy::prelude::Entity, bevy::prelude::With<Seam>>()
         .iter(&world)

@@ -72,19 +72,19 @@ fn random_edit(world: &World, mesh: MeshId, kind: u8, pick: u32, t: f32) -> Opti
         .filter(|&e| m.is_boundary_edge(e))
         .collect();
     Some(match kind {
-        0 => Edit::Flip(edge()?),
-        1 => Edit::Split(edge()?),
-        2 => Edit::Collapse(edge()?),
-        3 => Edit::Dissolve(edge()?),
-        4 => Edit::Bisect(edge()?),
+        0 => Edit::local("flip", edge()?),
+        1 => Edit::local("split", edge()?),
+        2 => Edit::local("collapse", edge()?),
+        3 => Edit::local("dissolve", edge()?),
+        4 => Edit::local("bisect", edge()?),
         5 => Edit::Extrude(region()?, t - 0.5),
         6 => Edit::Inset(region()?, t, 0.0),
         7 => Edit::Inset(vec![face()?], t * 0.9, t - 0.5),
         8 => Edit::BevelVertex(vertex()?, t * 0.5),
         9 => Edit::BevelEdge(edge()?, t * 0.5),
         10 => Edit::Erase(region()?.into_iter().take(1 + pick as usize % 2).collect()),
-        11 => Edit::DissolveVertex(vertex()?),
-        12 => Edit::CollapseFace(face()?),
+        11 => Edit::local("dissolve", vertex()?),
+        12 => Edit::local("collapse", face()?),
         13 => {
             // A boundary edge and the one two steps further round its loop: zipping those
             // closes a notch when it can.
@@ -100,7 +100,7 @@ fn random_edit(world: &World, mesh: MeshId, kind: u8, pick: u32, t: f32) -> Opti
             };
             Edit::Weld(e, m.edge(far))
         }
-        14 => Edit::FillHole(*boundary.get(nth(boundary.len()))?),
+        14 => Edit::local("fill-hole", *boundary.get(nth(boundary.len()))?),
         _ => {
             let v = vertex()?;
             Edit::MoveVertices(vec![(v, m.position(v) + Vec3::new(t, -t, 0.5 * t) * 0.1)])

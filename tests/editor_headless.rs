@@ -591,15 +591,11 @@ fn local_edits_redraw_only_the_chunks_they_touch() {
         .count();
     assert_eq!(chunks, 81920usize.div_ceil(CHUNK_FACES));
     assert_every_face_drawn_once(&mut app);
-    for request in [
-        Edit::Flip as fn(pappus::mesh::EdgeId) -> Edit,
-        Edit::Split,
-        Edit::Collapse,
-        Edit::Dissolve,
-    ] {
+    for name in ["flip", "split", "collapse", "dissolve"] {
         let e = some_interior_edge(&app);
         let before = app.world().resource::<RenderStats>().rebuilds;
-        app.world_mut().write_message(Request::Edit(request(e)));
+        app.world_mut()
+            .write_message(Request::Edit(Edit::local(name, e)));
         app.update();
         assert!(
             last_outcome(&app).result.is_ok(),
@@ -676,7 +672,8 @@ fn a_move_of_most_of_the_mesh_refreshes_positions_in_the_chunks_it_has() {
         let m = MeshRef::new(app.world());
         vertices.iter().map(|&v| (v, m.position(v) * 0.5)).collect()
     };
-    app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
+    app.world_mut()
+        .write_message(Request::Edit(Edit::local("flip", e)));
     app.world_mut()
         .write_message(Request::Edit(Edit::MoveVertices(moves)));
     app.update();
@@ -1156,7 +1153,8 @@ fn level_of_detail_and_vertex_split_follow_the_simplification() {
     validate(app.world(), m).unwrap();
     // Any other edit ends the history.
     let e = some_interior_edge(&app);
-    app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
+    app.world_mut()
+        .write_message(Request::Edit(Edit::local("flip", e)));
     app.update();
     app.world_mut().write_message(Request::Edit(Edit::Operation(
         pappus::ops::decimate::Refine::to(Some(1280)),
@@ -1248,7 +1246,8 @@ fn a_large_file_opens_in_the_background_and_can_be_cancelled() {
     let started = last_outcome(&app).result.unwrap();
     assert!(started.contains("reading in the background"), "{started}");
     let e = some_interior_edge(&app);
-    app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
+    app.world_mut()
+        .write_message(Request::Edit(Edit::local("flip", e)));
     app.update();
     if reading(&app) {
         let refused = last_outcome(&app).result.unwrap_err().to_string();
@@ -1312,7 +1311,8 @@ fn unsaved_changes_are_not_lost_to_an_open() {
     // Unchanged: another file opens straight away.
     open(&mut app, "shape:icosphere");
     let e = some_interior_edge(&app);
-    app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
+    app.world_mut()
+        .write_message(Request::Edit(Edit::local("flip", e)));
     app.update();
     assert!(last_outcome(&app).result.is_ok());
     let edited = mesh(&app);
@@ -1388,7 +1388,8 @@ fn colouring_by_a_quantity_paints_the_render_copy_and_goes_away() {
     let range = values.range;
     assert!(has_colours(&mut app));
     let e = some_interior_edge(&app);
-    app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
+    app.world_mut()
+        .write_message(Request::Edit(Edit::local("flip", e)));
     app.update();
     assert_eq!(
         app.world().get::<VertexValues>(mesh(&app).0).unwrap().range,
@@ -1665,7 +1666,8 @@ fn an_idle_editor_keeps_its_unsaved_mesh_in_a_recovery_file_until_it_is_saved() 
         "nothing unsaved yet"
     );
     let e = some_interior_edge(&app);
-    app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
+    app.world_mut()
+        .write_message(Request::Edit(Edit::local("flip", e)));
     update_until(&mut app, |app| {
         app.world().resource::<Autosave>().written.is_some()
     });
@@ -1687,7 +1689,8 @@ fn an_idle_editor_keeps_its_unsaved_mesh_in_a_recovery_file_until_it_is_saved() 
     assert!(saved.is_file());
     // Edited again, then quit with "discard changes": the recovery goes too.
     let e = some_interior_edge(&app);
-    app.world_mut().write_message(Request::Edit(Edit::Flip(e)));
+    app.world_mut()
+        .write_message(Request::Edit(Edit::local("flip", e)));
     update_until(&mut app, |_| !pappus::recovery::list(&dir).is_empty());
     app.world_mut()
         .resource_mut::<pappus::editor::session::requests::ConfirmDiscard>()

@@ -155,7 +155,7 @@ fn a_filled_hole_takes_a_neighbours_group() {
             .find(|&e| m.is_boundary_edge(e))
             .unwrap()
     };
-    run(&mut world, mesh, &Edit::FillHole(rim));
+    run(&mut world, mesh, &Edit::local("fill-hole", rim));
     assert_eq!(counts(&world, mesh), [6, 0]);
     let filled = face_at_height(&world, mesh, 1.0);
     assert_eq!(face_group(&world, filled), Some(BODY));

@@ -64,12 +64,12 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
     let faces = m.faces.len();
     let roll = rng.below(100);
     let edit = match roll {
-        0..=11 => edge(rng).map(Edit::Flip),
-        12..=18 => edge(rng).map(Edit::Split),
-        19..=21 => edge(rng).map(Edit::Bisect),
-        22..=35 => edge(rng).map(Edit::Collapse),
-        36..=40 => edge(rng).map(Edit::Dissolve),
-        41 => edge(rng).map(Edit::FillHole),
+        0..=11 => edge(rng).map(|e| Edit::local("flip", e)),
+        12..=18 => edge(rng).map(|e| Edit::local("split", e)),
+        19..=21 => edge(rng).map(|e| Edit::local("bisect", e)),
+        22..=35 => edge(rng).map(|e| Edit::local("collapse", e)),
+        36..=40 => edge(rng).map(|e| Edit::local("dissolve", e)),
+        41 => edge(rng).map(|e| Edit::local("fill-hole", e)),
         42..=45 => face(rng).map(|f| {
             let corners: Vec<VertexId> = r.face_vertices(f).collect();
             let a = rng.below(corners.len());
@@ -88,10 +88,14 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
         53..=54 => Some(Edit::Operation(pappus::ops::decimate::Refine::to(Some(
             rng.below(2 * faces + 2),
         )))),
-        // Any registered operation with its defaults (triangulate, reverse, normalize, remesh,
+        // Any registered whole-mesh operation with its defaults (triangulate, reverse, normalize, remesh,
         // param, …), subdivision only while the mesh is small, as below.
         55 => {
-            let op = pappus::ops::OPERATIONS[rng.below(pappus::ops::OPERATIONS.len())];
+            let whole: Vec<_> = pappus::ops::OPERATIONS
+                .iter()
+                .filter(|op| op.declaration().names == pappus::ops::declaration::Names::Mesh)
+                .collect();
+            let op = *whole[rng.below(whole.len())];
             let invocation = pappus::edit::Invocation::with_defaults(op);
             let grows = pappus::ops::subdivide::subdivision(&invocation).is_some();
             (!grows || faces < GROW_BELOW_FACES).then_some(Edit::Operation(invocation))

@@ -125,12 +125,13 @@ fn edge_where(app: &App, pick: EdgePick) -> EdgeId {
     edges_where(app, pick)[0]
 }
 
-/// Round-trips the first of `make(edge)` over the picked edges that applies; returns whether
-/// one did.
-fn round_trip_some(app: &mut App, pick: EdgePick, make: fn(EdgeId) -> Edit) -> bool {
+/// Round-trips the registered operation `name` on the first of the picked edges where it
+/// applies; returns whether one did.
+fn round_trip_some(app: &mut App, pick: EdgePick, name: &str) -> bool {
     let candidates = edges_where(app, pick);
     candidates.into_iter().take(40).any(|e| {
-        MeshRef::new(app.world()).try_edge(e).is_some() && try_round_trip(app, make(e).into())
+        MeshRef::new(app.world()).try_edge(e).is_some()
+            && try_round_trip(app, Edit::local(name, e).into())
     })
 }
 
@@ -150,18 +151,15 @@ fn every_local_edit_undoes_and_redoes_exactly() {
                 continue;
             }
             if interior {
-                assert!(round_trip_some(&mut app, pick, Edit::Flip), "{shape}: flip");
-                assert!(round_trip_some(&mut app, pick, Edit::Dissolve), "{shape}");
+                assert!(round_trip_some(&mut app, pick, "flip"), "{shape}: flip");
+                assert!(round_trip_some(&mut app, pick, "dissolve"), "{shape}");
             }
-            assert!(
-                round_trip_some(&mut app, pick, Edit::Split),
-                "{shape}: split"
-            );
-            assert!(round_trip_some(&mut app, pick, Edit::Collapse), "{shape}");
+            assert!(round_trip_some(&mut app, pick, "split"), "{shape}: split");
+            assert!(round_trip_some(&mut app, pick, "collapse"), "{shape}");
             // Last: filling the hole may leave no boundary for later picks.
             if !interior {
                 assert!(
-                    round_trip_some(&mut app, pick, Edit::FillHole),
+                    round_trip_some(&mut app, pick, "fill-hole"),
                     "{shape}: fill hole"
                 );
             }
@@ -269,10 +267,10 @@ fn random_edit(app: &App, rng: &mut Rng) -> Request {
     let all = members(app);
     let e = all.edges[rng.below(all.edges.len())];
     match rng.below(7) {
-        0 | 1 => Request::Edit(Edit::Flip(e)),
-        2 => Request::Edit(Edit::Split(e)),
-        3 | 4 => Request::Edit(Edit::Collapse(e)),
-        5 => Request::Edit(Edit::Dissolve(e)),
+        0 | 1 => Request::Edit(Edit::local("flip", e)),
+        2 => Request::Edit(Edit::local("split", e)),
+        3 | 4 => Request::Edit(Edit::local("collapse", e)),
+        5 => Request::Edit(Edit::local("dissolve", e)),
         _ => {
             let v = all.vertices[rng.below(all.vertices.len())];
             let d = (rng.below(1000) as f32 - 500.0) * 1e-4;
@@ -342,14 +340,14 @@ fn mixed_history_keeps_ids_valid_across_global_restores() {
     let mut states = vec![state(&app)];
     let interior = is_interior;
     let steps: Vec<MakeRequest> = vec![
-        Box::new(move |a| Request::Edit(Edit::Flip(edge_where(a, interior)))),
+        Box::new(move |a| Request::Edit(Edit::local("flip", edge_where(a, interior)))),
         Box::new(move |_| Request::Edit(Edit::registered("loop").unwrap())),
-        Box::new(move |a| Request::Edit(Edit::Collapse(edge_where(a, interior)))),
-        Box::new(move |a| Request::Edit(Edit::Split(edge_where(a, interior)))),
+        Box::new(move |a| Request::Edit(Edit::local("collapse", edge_where(a, interior)))),
+        Box::new(move |a| Request::Edit(Edit::local("split", edge_where(a, interior)))),
         Box::new(move |_| Request::Edit(Edit::invoked("simplify:0.6").unwrap())),
-        Box::new(move |a| Request::Edit(Edit::Dissolve(edge_where(a, interior)))),
+        Box::new(move |a| Request::Edit(Edit::local("dissolve", edge_where(a, interior)))),
         Box::new(move |_| Request::Edit(Edit::registered("catmull-clark").unwrap())),
-        Box::new(move |a| Request::Edit(Edit::Collapse(edge_where(a, interior)))),
+        Box::new(move |a| Request::Edit(Edit::local("collapse", edge_where(a, interior)))),
     ];
     for step in &steps {
         let r = step(&app);
@@ -373,7 +371,7 @@ fn mixed_history_keeps_ids_valid_across_global_restores() {
         request(&mut app, Request::Undo).unwrap();
     }
     let e = edge_where(&app, interior);
-    request(&mut app, Request::Edit(Edit::Flip(e))).unwrap();
+    request(&mut app, Request::Edit(Edit::local("flip", e))).unwrap();
     assert!(request(&mut app, Request::Redo).is_err());
     assert_eq!(undo_depth(&app), states.len() - 1 - 4 + 1);
 }
@@ -384,7 +382,7 @@ fn the_selection_follows_undo_and_redo() {
     request(&mut app, Request::Open("shape:icosphere:1".into())).unwrap();
     let e = edge_where(&app, is_interior);
     request(&mut app, Request::Select(Some(ElementId::Edge(e)))).unwrap();
-    request(&mut app, Request::Edit(Edit::Collapse(e))).unwrap();
+    request(&mut app, Request::Edit(Edit::local("collapse", e))).unwrap();
     let kept = app.world().resource::<Selection>().element;
     assert!(matches!(kept, Some(ElementId::Vertex(_))));
     request(&mut app, Request::Undo).unwrap();
@@ -457,11 +455,11 @@ fn the_memory_cap_drops_the_oldest_entries() {
     app.world_mut().resource_mut::<UndoHistory>().limit_bytes = cap;
     for _ in 0..4 {
         let e = edge_where(&app, is_interior);
-        request(&mut app, Request::Edit(Edit::Flip(e))).unwrap();
+        request(&mut app, Request::Edit(Edit::local("flip", e))).unwrap();
         request(&mut app, Request::Edit(Edit::registered("remesh").unwrap())).unwrap();
     }
     let e = edge_where(&app, is_interior);
-    request(&mut app, Request::Edit(Edit::Flip(e))).unwrap();
+    request(&mut app, Request::Edit(Edit::local("flip", e))).unwrap();
     let history = app.world().resource::<UndoHistory>();
     assert!(history.bytes() <= cap, "{} > {cap}", history.bytes());
     let labels: Vec<String> = history
@@ -492,7 +490,7 @@ fn a_refused_edit_leaves_no_entry() {
     open(&mut app, "shape:grid");
     let depth = undo_depth(&app);
     let e = edge_where(&app, is_boundary);
-    assert!(request(&mut app, Request::Edit(Edit::Flip(e))).is_err());
+    assert!(request(&mut app, Request::Edit(Edit::local("flip", e))).is_err());
     assert_eq!(undo_depth(&app), depth);
     assert!(
         request(&mut app, Request::Undo)
@@ -583,7 +581,7 @@ fn a_cancelled_job_leaves_the_mesh_exactly_as_it_was() {
     assert!(frames >= 1);
     // Edits wait for the job.
     let e = edge_where(&app, is_interior);
-    let refused = request(&mut app, Request::Edit(Edit::Flip(e))).unwrap_err();
+    let refused = request(&mut app, Request::Edit(Edit::local("flip", e))).unwrap_err();
     assert!(refused.contains("still running"), "{refused}");
     assert!(request(&mut app, Request::Undo).is_err());
     // Esc cancels it.

@@ -100,11 +100,13 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
 
 /// Every operation that declares itself whole (`pappus::ops::OPERATIONS`), as the command
 /// line's steps, the editor's keys and its panel know them: one dict each, `{"name", "title",
-/// "help", "key", "job", "parameters": [...]}`, in the panel's order, each parameter
+/// "help", "key", "job", "names", "parameters": [...]}`, in the panel's order (`"names"`: what
+/// it names beside the mesh, see [`names`]), each parameter
 /// `{"name", "kind", "default", "automatic"}` with `"min"`, `"max"` for a `"real"` or
 /// `"whole"` kind and `"choices"` for a `"choice"`; the default is written as a step writes it
 /// (a number, a choice's word, or `"auto"` where `"automatic"` says what the operation then
-/// does). Each runs as `mesh.step("NAME[:VALUE…]")`, missing values taking their defaults.
+/// does). Each runs as `mesh.step("NAME[:VALUE…]")`, missing values taking their defaults,
+/// a local one as `mesh.step("NAME:ELEMENT[:VALUE…]")` (`"flip:3,17"`).
 #[pyfunction]
 fn operations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
     pappus::ops::OPERATIONS
@@ -122,10 +124,23 @@ fn operations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
             x.set_item("help", d.help)?;
             x.set_item("key", d.key)?;
             x.set_item("job", d.job)?;
+            x.set_item("names", names(d.names))?;
             x.set_item("parameters", parameters)?;
             Ok(x)
         })
         .collect()
+}
+
+/// What an operation names beside the mesh, as [`operations`] lists it: `"mesh"` (nothing),
+/// `"edge"` (`A,B` in its step), `"vertex"` (`A`), `"face"` (`A,B,C`).
+fn names(names: pappus::ops::declaration::Names) -> &'static str {
+    use pappus::ops::declaration::Names;
+    match names {
+        Names::Mesh => "mesh",
+        Names::Edge => "edge",
+        Names::Vertex => "vertex",
+        Names::Face => "face",
+    }
 }
 
 /// One declared parameter as [`operations`] lists it.

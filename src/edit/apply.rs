@@ -9,18 +9,14 @@
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
+use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::deform::{DeformSummary, FairParams, deform, fair};
-use crate::ops::hole::fill_hole_fair;
-use crate::ops::local::{
-    CollapseOptions, bisect_edge, collapse_edge, dissolve_edge, fill_hole, flip_edge, split_edge,
-    split_face,
-};
+use crate::ops::local::split_face;
 use crate::ops::smooth::{SmoothParams, smooth_with_progress};
 
-use super::{Applied, Edit, EditContext, Redraw, count, toggle_seam};
+use super::{Applied, Edit, EditContext, Redraw, count};
 
 impl Edit {
     /// Applies the edit to `mesh` (which must exist), or says why not and changes nothing.
@@ -34,21 +30,12 @@ impl Edit {
             return Err(Refusal::Stale(ElementId::Mesh(mesh)));
         }
         match self {
-            Edit::Flip(e) => flip(world, *e),
-            Edit::Split(e) => split(world, *e),
-            Edit::Bisect(e) => bisect(world, *e),
-            Edit::Collapse(e) => collapse(world, *e),
-            Edit::Dissolve(e) => dissolve(world, *e),
-            Edit::ToggleSeam(e) => seam(world, *e),
-            Edit::FillHole(e) => fill_one_hole(world, *e),
             Edit::SplitFace(f, a, b) => cut_face(world, *f, *a, *b),
             Edit::Extrude(..)
             | Edit::Inset(..)
             | Edit::BevelVertex(..)
             | Edit::BevelEdge(..)
             | Edit::Erase(_)
-            | Edit::DissolveVertex(_)
-            | Edit::CollapseFace(_)
             | Edit::Weld(..) => self.apply_planned(world),
             Edit::MoveVertex(v, p) => Ok(Applied {
                 summary: format!("{v} at {p}"),
@@ -65,12 +52,10 @@ impl Edit {
             Edit::Smooth(params) => smooth(world, mesh, params, context),
             Edit::Deform(params) => Ok(Applied::whole(deformed(&deform(world, mesh, params)?))),
             Edit::Fair(params) => fair_region(world, mesh, params),
-            Edit::FillHoleFair(e) => fill_one_hole_fair(world, *e),
         }
     }
 
-    /// A planned local edit (extrude, inset, bevel, erase, dissolve a vertex, collapse a face,
-    /// weld): planned, then applied; what is new lies around the seeds that survive and what
+    /// A planned local edit (extrude, inset, bevel, erase, weld): planned, then applied; what is new lies around the seeds that survive and what
     /// the edit made.
     fn apply_planned(&self, world: &mut World) -> Result<Applied, Refusal> {
         let plan = self.plan(world).ok_or(Refusal::BadParameter(format!(
@@ -82,96 +67,14 @@ impl Edit {
         let (summary, made) = plan.apply(world);
         let mut after = seeds;
         if let Some(x) = made {
-            after.extend(element_corners(world, x));
+            after.extend(MeshRef::new(world).corners(x));
         }
         Ok(Applied {
             summary,
-            redraw: near(world, before, after),
+            redraw: Redraw::near(world, before, after),
             made,
         })
     }
-}
-
-/// The faces around `vertices` as they are now, and `faces` from before the edit.
-fn near(world: &World, faces: Vec<FaceId>, vertices: Vec<VertexId>) -> Redraw {
-    Redraw::Near {
-        faces: [faces_around(world, &vertices), faces].concat(),
-        vertices,
-    }
-}
-
-fn flip(world: &mut World, e: EdgeId) -> Result<Applied, Refusal> {
-    let before = faces_around(world, &edge_ends(world, e));
-    let flipped = flip_edge(world, e)?;
-    Ok(Applied {
-        summary: format!("flipped to {flipped}"),
-        redraw: near(world, before, edge_ends(world, flipped)),
-        made: Some(ElementId::Edge(flipped)),
-    })
-}
-
-fn split(world: &mut World, e: EdgeId) -> Result<Applied, Refusal> {
-    let before = faces_around(world, &edge_ends(world, e));
-    let v = split_edge(world, e, 0.5)?;
-    Ok(Applied {
-        summary: format!("new vertex {v}"),
-        redraw: near(world, before, vec![v]),
-        made: Some(ElementId::Vertex(v)),
-    })
-}
-
-fn bisect(world: &mut World, e: EdgeId) -> Result<Applied, Refusal> {
-    let before = faces_around(world, &edge_ends(world, e));
-    let v = bisect_edge(world, e, 0.5)?;
-    Ok(Applied {
-        summary: format!("new vertex {v} on {e}"),
-        redraw: near(world, before, vec![v]),
-        made: Some(ElementId::Vertex(v)),
-    })
-}
-
-fn collapse(world: &mut World, e: EdgeId) -> Result<Applied, Refusal> {
-    let before = faces_around(world, &edge_ends(world, e));
-    let r = collapse_edge(world, e, CollapseOptions::default())?;
-    Ok(Applied {
-        summary: format!("kept {}, removed {}", r.kept, r.removed),
-        redraw: near(world, before, vec![r.kept]),
-        made: Some(ElementId::Vertex(r.kept)),
-    })
-}
-
-fn dissolve(world: &mut World, e: EdgeId) -> Result<Applied, Refusal> {
-    let ends = edge_ends(world, e);
-    let before = faces_around(world, &ends);
-    let f = dissolve_edge(world, e)?;
-    Ok(Applied {
-        summary: format!("merged into {f}"),
-        redraw: near(world, before, ends),
-        made: Some(ElementId::Face(f)),
-    })
-}
-
-fn seam(world: &mut World, e: EdgeId) -> Result<Applied, Refusal> {
-    let marked = toggle_seam(world, e)?;
-    Ok(Applied {
-        summary: if marked {
-            format!("{e} is a seam")
-        } else {
-            format!("{e} is no longer a seam")
-        },
-        redraw: near(world, Vec::new(), edge_ends(world, e)),
-        made: None,
-    })
-}
-
-fn fill_one_hole(world: &mut World, e: EdgeId) -> Result<Applied, Refusal> {
-    let f = fill_hole(world, e)?;
-    let ring: Vec<VertexId> = MeshRef::new(world).face_vertices(f).collect();
-    Ok(Applied {
-        summary: format!("new face {f} of {} sides", ring.len()),
-        redraw: near(world, Vec::new(), ring),
-        made: Some(ElementId::Face(f)),
-    })
 }
 
 fn cut_face(world: &mut World, f: FaceId, a: VertexId, b: VertexId) -> Result<Applied, Refusal> {
@@ -179,7 +82,7 @@ fn cut_face(world: &mut World, f: FaceId, a: VertexId, b: VertexId) -> Result<Ap
     let e = split_face(world, f, a, b)?;
     Ok(Applied {
         summary: format!("new edge {e}"),
-        redraw: near(world, before, vec![a, b]),
+        redraw: Redraw::near(world, before, vec![a, b]),
         made: Some(ElementId::Edge(e)),
     })
 }
@@ -230,22 +133,8 @@ fn fair_region(world: &mut World, mesh: MeshId, params: &FairParams) -> Result<A
             params.k,
             s.mean_move
         ),
-        redraw: near(world, Vec::new(), params.vertices.clone()),
+        redraw: Redraw::near(world, Vec::new(), params.vertices.clone()),
         made: None,
-    })
-}
-
-fn fill_one_hole_fair(world: &mut World, e: EdgeId) -> Result<Applied, Refusal> {
-    let r = fill_hole_fair(world, e)?;
-    Ok(Applied {
-        summary: format!(
-            "a hole of {} sides filled with {}, {} new",
-            r.sides,
-            count(r.triangles, "triangle"),
-            count(r.new_vertices, "vertex")
-        ),
-        redraw: Redraw::Whole,
-        made: Some(ElementId::Face(r.face)),
     })
 }
 
@@ -278,17 +167,6 @@ fn loose_note(parts: usize) -> String {
     match parts {
         0 => String::new(),
         n => format!(" ({} with nothing held stayed)", count(n, "part")),
-    }
-}
-
-/// The corners of a live element (none if it is gone).
-fn element_corners(world: &World, x: ElementId) -> Vec<VertexId> {
-    let m = MeshRef::new(world);
-    match x {
-        ElementId::Vertex(v) if m.try_vertex(v).is_some() => vec![v],
-        ElementId::Edge(e) => edge_ends(world, e),
-        ElementId::Face(f) if m.try_face(f).is_some() => m.face_vertices(f).collect(),
-        _ => Vec::new(),
     }
 }
 
@@ -344,16 +222,6 @@ fn move_vertices(world: &mut World, moves: &[(VertexId, Vec3)]) -> Result<Redraw
 /// Moves of fewer vertices than this are always redrawn by their neighbourhoods (counting the
 /// mesh's vertices is not free either).
 pub(super) const WHOLE_REDRAW_MOVES: usize = 1024;
-
-/// The two ends of an edge (none if it is gone).
-fn edge_ends(world: &World, e: EdgeId) -> Vec<VertexId> {
-    let m = MeshRef::new(world);
-    if m.try_edge(e).is_none() {
-        return Vec::new();
-    }
-    let (a, b) = m.edge_vertices(e);
-    vec![a, b]
-}
 
 /// The faces around some vertices (dead vertices skipped): [`MeshRef::faces_around`].
 fn faces_around(world: &World, vertices: &[VertexId]) -> Vec<FaceId> {

@@ -17,28 +17,28 @@
 //! [`Applied`] — a summary that prints, what to redraw and what to select — or a [`Refusal`],
 //! and then the world is exactly as it was.
 //!
-//! Adding a whole-mesh operation: its file in `ops/`, declaring itself whole
-//! ([`crate::ops::operation::MeshOperation`]), and its line in [`crate::ops::OPERATIONS`];
-//! [`Edit::Operation`] carries it, and the step parser, the keymap and the panel read its
-//! declaration. An operation that names elements: its file in `ops/`, one variant here (its
-//! elements and parameters, its arms in the `match`es below), its step, key and button (see
-//! `docs/architecture.md`).
+//! Adding an operation on the whole mesh or on one element (an edge, a vertex, a face): its
+//! file in `ops/`, declaring itself whole ([`crate::ops::operation::MeshOperation`]: what it
+//! names, its parameters, its key and section), and its line in [`crate::ops::OPERATIONS`];
+//! [`Edit::Operation`] carries it, and the step parser, the keymap (which resolves the element
+//! from the selection) and the panel read its declaration. The operations on several
+//! elements, on vertex lists or on moves (extrude, inset, bevel, erase, weld, split face, the
+//! moves, deformation, fairing) are still variants here, with their arms in the `match`es
+//! below, their step, key and button (see `docs/architecture.md`).
 
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::attributes::{MeshAttributes, Seam, drop_attributes, set_record};
+use crate::mesh::attributes::{MeshAttributes, drop_attributes};
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::tables::{Connectivity, MeshTables};
 use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
 use crate::ops::local::{
-    BevelEdgePlan, BevelVertexPlan, CollapseFacePlan, DissolveVertexPlan, ErasePlan, ExtrudePlan,
-    InsetPlan, WeldPlan, apply_bevel_edge, apply_bevel_vertex, apply_collapse_face,
-    apply_dissolve_vertex, apply_erase, apply_extrude, apply_inset, apply_weld, plan_bevel_edge,
-    plan_bevel_vertex, plan_collapse_face, plan_dissolve_vertex, plan_erase, plan_extrude,
-    plan_inset, plan_weld,
+    BevelEdgePlan, BevelVertexPlan, ErasePlan, ExtrudePlan, InsetPlan, WeldPlan, apply_bevel_edge,
+    apply_bevel_vertex, apply_erase, apply_extrude, apply_inset, apply_weld, plan_bevel_edge,
+    plan_bevel_vertex, plan_erase, plan_extrude, plan_inset, plan_weld,
 };
 use crate::ops::named::Named;
 use crate::ops::smooth::SmoothParams;
@@ -47,7 +47,7 @@ mod apply;
 mod save;
 mod step;
 pub use save::{RECOMPUTED_NORMALS, mark_normals_stale, soup_to_save};
-pub use step::{LocalKind, Step, step_syntax};
+pub use step::{SplitFaceStep, Step, step_syntax};
 
 /// What an operation declares about itself (defined beside the operations, in
 /// [`crate::ops::declaration`], so that `ops` need not import this layer).
@@ -56,7 +56,7 @@ pub use crate::ops::declaration::{Carries, Declaration, IdsKept};
 use crate::ops::operation::count;
 /// What an edit returns and runs with, and one use of an operation that declares itself
 /// whole (defined in [`crate::ops::operation`], so that those operations can return them).
-pub use crate::ops::operation::{Applied, EditContext, Invocation, Redraw};
+pub use crate::ops::operation::{Applied, EditContext, Invocation, Reach, Redraw};
 
 /// A subdivision scheme (defined beside the schemes, in [`crate::ops::subdivide`], so that
 /// `ops` need not import this layer).
@@ -66,20 +66,6 @@ pub use crate::ops::subdivide::Scheme;
 /// mesh [`Edit::run`] is given.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Edit {
-    /// Flip (rotate) an edge between two triangles.
-    Flip(EdgeId),
-    /// Split an edge at its midpoint (the faces beside it are cut in two).
-    Split(EdgeId),
-    /// Put a vertex at an edge's midpoint, cutting no face (each face beside it gains a side).
-    Bisect(EdgeId),
-    /// Collapse an edge to its midpoint.
-    Collapse(EdgeId),
-    /// Merge the two faces of an edge into one.
-    Dissolve(EdgeId),
-    /// Mark an edge as a seam the parameterization cuts along, or unmark it.
-    ToggleSeam(EdgeId),
-    /// Fill the hole beside a boundary edge: its boundary loop becomes one face.
-    FillHole(EdgeId),
     /// Split a face between two of its corners.
     SplitFace(FaceId, VertexId, VertexId),
     /// Extrude faces as one region (a wall of quads along its rim) and push it this distance
@@ -95,10 +81,6 @@ pub enum Edit {
     BevelEdge(EdgeId, f32),
     /// Erase faces: they become holes; edges and vertices left with no face go too.
     Erase(Vec<FaceId>),
-    /// Merge the faces around a vertex into one and remove the vertex.
-    DissolveVertex(VertexId),
-    /// Collapse a face to its centroid.
-    CollapseFace(FaceId),
     /// Glue the second boundary edge onto the first; their ends merge at the midpoints.
     Weld(EdgeId, EdgeId),
     /// Move a vertex.
@@ -107,8 +89,8 @@ pub enum Edit {
     MoveVertices(Vec<(VertexId, Vec3)>),
     /// Split back the last collapse of the simplification history, if it kept this vertex.
     SplitVertex(VertexId),
-    /// A whole-mesh operation that declares itself whole ([`crate::ops::OPERATIONS`]:
-    /// triangulate, reverse, orient outside, normalize, …), with its parameters' values.
+    /// An operation that declares itself whole ([`crate::ops::OPERATIONS`]: flip, collapse,
+    /// …, triangulate, simplify, …), with the elements it names and its parameters' values.
     Operation(Invocation),
     /// Smoothing: vertices move, the connectivity stays.
     Smooth(SmoothParams),
@@ -117,20 +99,6 @@ pub enum Edit {
     Deform(DeformParams),
     /// Fairing: the vertices solve the k-harmonic equation, every other one held.
     Fair(FairParams),
-    /// Fill the hole beside a boundary edge with a fair patch of triangles.
-    FillHoleFair(EdgeId),
-}
-
-/// What an edit may change, so that an undo record can capture it first.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Reach {
-    /// The neighbourhood of these vertices of this mesh.
-    Local(MeshId, Vec<VertexId>),
-    /// These vertices of this mesh, and nothing else: their positions (and attributes) change,
-    /// the connectivity does not (a move, a fairing).
-    Vertices(MeshId, Vec<VertexId>),
-    /// Any element of this mesh.
-    Whole(MeshId),
 }
 
 impl Edit {
@@ -138,6 +106,20 @@ impl Edit {
     /// with its parameters' defaults.
     pub fn registered(name: &str) -> Option<Self> {
         crate::ops::operation(name).map(|op| Edit::Operation(Invocation::with_defaults(op)))
+    }
+
+    /// The registered operation called `name` on `element` (of those sharing the name, the
+    /// one that names such an element: `collapse` an edge or a face), with its defaults.
+    ///
+    /// # Panics
+    /// When no registered operation called `name` names such an element: a caller's bug (the
+    /// editor and the step parser resolve elements through [`crate::ops::invocation_on`],
+    /// which says so instead).
+    pub fn local(name: &str, element: impl Into<ElementId>) -> Self {
+        match crate::ops::invocation_on(name, vec![element.into()]) {
+            Ok(invocation) => Edit::Operation(invocation),
+            Err(why) => panic!("{why}"),
+        }
     }
 
     /// The registered operation invoked as a step writes it (`"remesh:1"`, `"param:lscm"`).
@@ -155,13 +137,6 @@ impl Edit {
     /// A short label for logs and the undo history.
     pub fn label(&self) -> String {
         match self {
-            Edit::Flip(e) => format!("flip {e}"),
-            Edit::Split(e) => format!("split {e}"),
-            Edit::Bisect(e) => format!("bisect {e}"),
-            Edit::Collapse(e) => format!("collapse {e}"),
-            Edit::Dissolve(e) => format!("dissolve {e}"),
-            Edit::ToggleSeam(e) => format!("seam mark on {e}"),
-            Edit::FillHole(e) => format!("fill the hole at {e}"),
             Edit::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
             Edit::Extrude(faces, d) => format!("extrude {} by {d}", count(faces.len(), "face")),
             Edit::Inset(faces, t, d) if *d == 0.0 => {
@@ -173,8 +148,6 @@ impl Edit {
             Edit::BevelVertex(v, t) => format!("bevel {v} by {t}"),
             Edit::BevelEdge(e, t) => format!("bevel {e} by {t}"),
             Edit::Erase(faces) => format!("erase {}", count(faces.len(), "face")),
-            Edit::DissolveVertex(v) => format!("dissolve {v}"),
-            Edit::CollapseFace(f) => format!("collapse {f}"),
             Edit::Weld(a, b) => format!("weld {b} to {a}"),
             Edit::MoveVertex(v, _) => format!("move {v}"),
             Edit::MoveVertices(moves) => format!("move {} vertices", moves.len()),
@@ -191,7 +164,6 @@ impl Edit {
                 DeformMethod::Laplace => "thin-plate deformation".into(),
             },
             Edit::Fair(p) => format!("fair {} (k = {})", count(p.vertices.len(), "vertex"), p.k),
-            Edit::FillHoleFair(e) => format!("fill the hole at {e} (fair)"),
         }
     }
 
@@ -203,26 +175,9 @@ impl Edit {
         let local = |seeds: Vec<VertexId>| Some(Reach::Local(mesh_of(seeds[0].0)?, seeds));
         let only = |seeds: Vec<VertexId>| Some(Reach::Vertices(mesh_of(seeds[0].0)?, seeds));
         match self {
-            Edit::Flip(e)
-            | Edit::Split(e)
-            | Edit::Bisect(e)
-            | Edit::Collapse(e)
-            | Edit::Dissolve(e)
-            | Edit::ToggleSeam(e) => {
-                m.try_edge(*e)?;
-                let (a, b) = m.edge_vertices(*e);
-                local(vec![a, b])
-            }
             Edit::SplitFace(f, a, b) => {
                 m.try_face(*f)?;
                 local(vec![*a, *b])
-            }
-            // Every halfedge of the loop takes the face: its vertices are the seeds.
-            Edit::FillHole(e) => {
-                let h = m.try_edge(*e)?.halfedge;
-                m.try_halfedge(h)?;
-                let h = if m.is_boundary(h) { h } else { m.twin(h) };
-                local(m.loop_from(h).map(|x| m.from_vertex(x)).collect())
             }
             Edit::MoveVertex(v, _) => {
                 m.try_vertex(*v)?;
@@ -237,8 +192,6 @@ impl Edit {
             | Edit::BevelVertex(..)
             | Edit::BevelEdge(..)
             | Edit::Erase(_)
-            | Edit::DissolveVertex(_)
-            | Edit::CollapseFace(_)
             | Edit::Weld(..) => local(self.plan(world)?.ok()?.seeds()),
             Edit::MoveVertices(moves) => {
                 let seeds: Vec<VertexId> = moves.iter().map(|(v, _)| *v).collect();
@@ -257,13 +210,10 @@ impl Edit {
                     .try_for_each(|&v| m.try_vertex(v).map(|_| ()))?;
                 only(p.vertices.first().map(|_| p.vertices.clone())?)
             }
-            // A deformation moves any vertex; a fair fill makes vertices away from the loop.
-            Edit::Deform(_) | Edit::FillHoleFair(_) => {
-                world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh))
-            }
-            Edit::Operation(_) | Edit::Smooth(_) => {
-                world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh))
-            }
+            // A deformation moves any vertex.
+            Edit::Deform(_) => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
+            Edit::Operation(op) => op.reach(world, mesh),
+            Edit::Smooth(_) => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
         }
     }
 
@@ -274,14 +224,7 @@ impl Edit {
     /// [`Refusal::Stale`] when the named element (or the active mesh) is gone.
     pub fn target(&self, world: &World, active: Option<MeshId>) -> Result<MeshId, Refusal> {
         let named = match self {
-            Edit::Flip(e)
-            | Edit::Split(e)
-            | Edit::Bisect(e)
-            | Edit::Collapse(e)
-            | Edit::Dissolve(e)
-            | Edit::ToggleSeam(e)
-            | Edit::FillHole(e)
-            | Edit::FillHoleFair(e) => Some(ElementId::Edge(*e)),
+            Edit::Operation(op) => op.elements().first().copied(),
             Edit::Deform(p) => p.handle.first().map(|v| ElementId::Vertex(*v)),
             Edit::Fair(p) => p.vertices.first().map(|v| ElementId::Vertex(*v)),
             Edit::SplitFace(f, ..) => Some(ElementId::Face(*f)),
@@ -294,10 +237,9 @@ impl Edit {
                         .ok_or(Refusal::BadParameter("no faces".into()))?,
                 ))
             }
-            Edit::BevelVertex(v, _) | Edit::DissolveVertex(v) => Some(ElementId::Vertex(*v)),
+            Edit::BevelVertex(v, _) => Some(ElementId::Vertex(*v)),
             Edit::BevelEdge(e, _) | Edit::Weld(e, _) => Some(ElementId::Edge(*e)),
-            Edit::CollapseFace(f) => Some(ElementId::Face(*f)),
-            _ => None,
+            Edit::Smooth(_) => None,
         };
         match named {
             Some(x) => world
@@ -331,8 +273,6 @@ impl Edit {
             Edit::BevelVertex(v, t) => plan_bevel_vertex(world, *v, *t).map(Planned::BevelVertex),
             Edit::BevelEdge(e, t) => plan_bevel_edge(world, *e, *t).map(Planned::BevelEdge),
             Edit::Erase(faces) => plan_erase(world, faces).map(Planned::Erase),
-            Edit::DissolveVertex(v) => plan_dissolve_vertex(world, *v).map(Planned::DissolveVertex),
-            Edit::CollapseFace(f) => plan_collapse_face(world, *f).map(Planned::CollapseFace),
             Edit::Weld(a, b) => plan_weld(world, *a, *b).map(Planned::Weld),
             _ => return None,
         })
@@ -342,22 +282,13 @@ impl Edit {
     /// step's name, whether it may run as a job, which ids and whether the simplification
     /// history survive it, what becomes of the attributes).
     pub fn declaration(&self) -> &'static Declaration {
-        use crate::ops::{deform, hole, local, smooth};
+        use crate::ops::{deform, local, smooth};
         match self {
-            Edit::Flip(_) => &local::FLIP,
-            Edit::Split(_) => &local::SPLIT,
-            Edit::Bisect(_) => &local::BISECT,
-            Edit::Collapse(_) => &local::COLLAPSE,
-            Edit::Dissolve(_) => &local::DISSOLVE,
-            Edit::ToggleSeam(_) => &SEAM,
-            Edit::FillHole(_) => &local::FILL_HOLE,
             Edit::SplitFace(..) => &local::SPLIT_FACE,
             Edit::Extrude(..) => &local::EXTRUDE,
             Edit::Inset(..) => &local::INSET,
             Edit::BevelVertex(..) | Edit::BevelEdge(..) => &local::BEVEL,
             Edit::Erase(_) => &local::ERASE,
-            Edit::DissolveVertex(_) => &local::DISSOLVE_VERTEX,
-            Edit::CollapseFace(_) => &local::COLLAPSE_FACE,
             Edit::Weld(..) => &local::WELD,
             Edit::MoveVertex(..) | Edit::MoveVertices(_) => &MOVE,
             Edit::SplitVertex(_) => &local::VERTEX_SPLIT,
@@ -365,7 +296,6 @@ impl Edit {
             Edit::Smooth(_) => &smooth::SMOOTH,
             Edit::Deform(_) => &deform::DEFORM,
             Edit::Fair(_) => &deform::FAIR,
-            Edit::FillHoleFair(_) => &hole::FILL_HOLE_FAIR,
         }
     }
 
@@ -518,34 +448,8 @@ pub enum MergeKey {
     Operation(&'static str),
 }
 
-/// Marking a seam (the `seam:A,B` step): a local edit of one edge's mark.
-pub const SEAM: Declaration = Declaration::new("seam").keeping_normals();
-
 /// Moving vertices (a drag, a transform of the selection): the editor's own edit, no step.
 pub const MOVE: Declaration = Declaration::new("move").editor_only();
-
-/// Marks `e` as a seam, or unmarks it; returns whether it is one now. The mesh's attribute
-/// record says it may have seam marks from the first one on.
-fn toggle_seam(world: &mut World, e: EdgeId) -> Result<bool, Refusal> {
-    let Some(mesh) = world
-        .get::<crate::mesh::Edge>(e.0)
-        .and_then(|_| world.get::<InMesh>(e.0))
-        .map(|m| m.0)
-    else {
-        return Err(Refusal::Stale(ElementId::Edge(e)));
-    };
-    let mut edge = world.entity_mut(e.0);
-    let marked = !edge.contains::<Seam>();
-    if marked {
-        edge.insert(Seam);
-        let mut has = MeshAttributes::of(world, mesh);
-        has.seams = true;
-        set_record(world, mesh, has);
-    } else {
-        edge.remove::<Seam>();
-    }
-    Ok(marked)
-}
 
 /// A planned edit of an operation that plans first: its plan and parameters, checked.
 enum Planned {
@@ -554,8 +458,6 @@ enum Planned {
     BevelVertex(BevelVertexPlan),
     BevelEdge(BevelEdgePlan),
     Erase(ErasePlan),
-    DissolveVertex(DissolveVertexPlan),
-    CollapseFace(CollapseFacePlan),
     Weld(WeldPlan),
 }
 
@@ -568,8 +470,6 @@ impl Planned {
             Planned::BevelVertex(p) => p.seeds(),
             Planned::BevelEdge(p) => p.seeds(),
             Planned::Erase(p) => p.seeds(),
-            Planned::DissolveVertex(p) => p.seeds(),
-            Planned::CollapseFace(p) => p.seeds(),
             Planned::Weld(p) => p.seeds(),
         }
     }
@@ -613,14 +513,6 @@ impl Planned {
                 );
                 (summary, None)
             }
-            Planned::DissolveVertex(plan) => {
-                let f = apply_dissolve_vertex(world, plan);
-                (format!("merged into {f}"), Some(ElementId::Face(f)))
-            }
-            Planned::CollapseFace(plan) => {
-                let v = apply_collapse_face(world, plan);
-                (format!("collapsed to {v}"), Some(ElementId::Vertex(v)))
-            }
             Planned::Weld(plan) => {
                 let e = apply_weld(world, plan);
                 (format!("welded into {e}"), Some(ElementId::Edge(e)))
@@ -655,12 +547,12 @@ mod tests {
         let loop1 = Edit::registered("loop").unwrap();
         assert!(loop1.may_run_as_job() && Edit::registered("remesh").unwrap().may_run_as_job());
         let refine = Edit::invoked("refine:5").unwrap();
-        assert!(!Edit::Flip(e).may_run_as_job() && !refine.may_run_as_job());
+        assert!(!Edit::local("flip", e).may_run_as_job() && !refine.may_run_as_job());
         assert_eq!(refine.merge_key(), Some(MergeKey::Operation("refine")));
         assert_eq!(loop1.keeps_ids(), IdsKept::VerticesOnly);
         let triangulate = Edit::registered("triangulate").unwrap();
         assert_eq!(triangulate.keeps_ids(), IdsKept::All);
-        assert!(Edit::SplitVertex(v).keeps_history() && !Edit::Flip(e).keeps_history());
+        assert!(Edit::SplitVertex(v).keeps_history() && !Edit::local("flip", e).keeps_history());
         assert_eq!(
             Edit::MoveVertex(v, Vec3::ZERO).merge_key(),
             Some(MergeKey::Move(v))
@@ -680,21 +572,12 @@ mod tests {
             .map(|&op| Edit::Operation(Invocation::with_defaults(op)));
         let every: Vec<Edit> = registered
             .chain([
-                Edit::Flip(e),
-                Edit::Split(e),
-                Edit::Bisect(e),
-                Edit::Collapse(e),
-                Edit::Dissolve(e),
-                Edit::ToggleSeam(e),
-                Edit::FillHole(e),
                 Edit::SplitFace(f, v, v),
                 Edit::Extrude(vec![f], 0.1),
                 Edit::Inset(vec![f], 0.1, 0.0),
                 Edit::BevelVertex(v, 0.2),
                 Edit::BevelEdge(e, 0.2),
                 Edit::Erase(vec![f]),
-                Edit::DissolveVertex(v),
-                Edit::CollapseFace(f),
                 Edit::Weld(e, e),
                 Edit::MoveVertex(v, Vec3::ZERO),
                 Edit::MoveVertices(vec![(v, Vec3::ZERO)]),
@@ -711,7 +594,6 @@ mod tests {
                     vertices: vec![v],
                     k: 2,
                 }),
-                Edit::FillHoleFair(e),
             ])
             .collect();
         let syntax = step_syntax();

@@ -9,7 +9,7 @@
 use bevy::math::{Affine3A, Vec3};
 use bevy::prelude::World;
 
-use crate::mesh::ids::{EdgeId, ElementId, VertexId};
+use crate::mesh::ids::{ElementId, VertexId};
 use crate::mesh::{MeshId, MeshRef, validate};
 use crate::ops::Refusal;
 use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
@@ -19,83 +19,29 @@ use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::smooth::{SmoothMethod, SmoothParams};
 
 use super::{Edit, EditContext, Invocation};
+use crate::ops::declaration::Names;
 
-/// A local edit as a `process` step writes it: by the input file's vertex numbers.
+/// `split-face:A,B` as a step names it: the face the two vertices share, between them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LocalKind {
-    /// `flip:A,B`.
-    Flip,
-    /// `split:A,B`.
-    Split,
-    /// `bisect:A,B`.
-    Bisect,
-    /// `collapse:A,B`.
-    Collapse,
-    /// `dissolve:A,B`.
-    Dissolve,
-    /// `fill-hole:A,B`: the hole beside the boundary edge.
-    FillHole,
-    /// `split-face:A,B`: the face the two vertices share, between them.
-    SplitFace,
-    /// `seam:A,B`: mark the edge a seam (or unmark it).
-    Seam,
-}
+pub struct SplitFaceStep(pub u32, pub u32);
 
-impl Named for LocalKind {
-    /// Every kind, with its step name.
-    const ALL: &'static [(Self, &'static str)] = &[
-        (LocalKind::Flip, "flip"),
-        (LocalKind::Split, "split"),
-        (LocalKind::Bisect, "bisect"),
-        (LocalKind::Collapse, "collapse"),
-        (LocalKind::Dissolve, "dissolve"),
-        (LocalKind::FillHole, "fill-hole"),
-        (LocalKind::SplitFace, "split-face"),
-        (LocalKind::Seam, "seam"),
-    ];
-}
-
-impl LocalKind {
-    /// The edit on the elements between the live vertices `a` and `b` (the input file's
-    /// vertices `ia` and `ib`, named in refusals).
+impl SplitFaceStep {
+    /// The edit on the face the live vertices `a` and `b` share, between them (the input
+    /// file's vertices `ia` and `ib`, named in refusals).
     ///
     /// # Refusals
-    /// [`Refusal::NoEdgeBetween`] / [`Refusal::NoSharedFace`] when the two share none.
+    /// [`Refusal::NoSharedFace`] when the two share none.
     pub fn between(
-        self,
         world: &World,
         (a, b): (VertexId, VertexId),
         (ia, ib): (u32, u32),
     ) -> Result<Edit, Refusal> {
         let m = MeshRef::new(world);
-        if self == LocalKind::SplitFace {
-            let face = m
-                .vertex_faces(a)
-                .find(|&f| m.face_vertices(f).any(|v| v == b))
-                .ok_or(Refusal::NoSharedFace(ia, ib))?;
-            return Ok(Edit::SplitFace(face, a, b));
-        }
-        let e = m
-            .find_halfedge(a, b)
-            .map(|h| m.edge(h))
-            .ok_or(Refusal::NoEdgeBetween(ia, ib))?;
-        Ok(self
-            .on_edge(e)
-            .expect("every kind but split-face acts on an edge"))
-    }
-
-    /// The edit of this kind on edge `e`; `None` for the kinds that do not act on an edge.
-    pub fn on_edge(self, e: EdgeId) -> Option<Edit> {
-        Some(match self {
-            LocalKind::Flip => Edit::Flip(e),
-            LocalKind::Split => Edit::Split(e),
-            LocalKind::Bisect => Edit::Bisect(e),
-            LocalKind::Collapse => Edit::Collapse(e),
-            LocalKind::Dissolve => Edit::Dissolve(e),
-            LocalKind::FillHole => Edit::FillHole(e),
-            LocalKind::Seam => Edit::ToggleSeam(e),
-            LocalKind::SplitFace => return None,
-        })
+        let face = m
+            .vertex_faces(a)
+            .find(|&f| m.face_vertices(f).any(|v| v == b))
+            .ok_or(Refusal::NoSharedFace(ia, ib))?;
+        Ok(Edit::SplitFace(face, a, b))
     }
 }
 
@@ -106,8 +52,11 @@ pub enum Step {
     Validate,
     /// An edit that names no element (a whole-mesh edit, or a move along the history).
     Edit(Edit),
-    /// A local edit on the elements between two of the input file's vertices.
-    Local(LocalKind, u32, u32),
+    /// A registered operation on the elements the input file's vertex numbers name (`flip:3,17`:
+    /// the edge between two), with its parameters' values; the invocation names no element yet.
+    On(Invocation, Vec<Vec<u32>>),
+    /// `split-face:A,B`: the face two of the input file's vertices share, between them.
+    SplitFace(SplitFaceStep),
     /// An edit of elements named by vertex numbers (`A`, `A,B`, `A,B,C`, several joined by
     /// `/`), with its numbers (a distance, an amount).
     Elements(ElementStep, Vec<Vec<u32>>, Vec<f32>),
@@ -115,8 +64,6 @@ pub enum Step {
     Deform(DeformStep),
     /// `fair:VERTICES[:K]`: the vertices, and the order k.
     Fair(Vec<u32>, u32),
-    /// `fill-hole:A,B:fair`: the hole beside the boundary edge, filled with a fair patch.
-    FillHoleFair(u32, u32),
 }
 
 /// A handle deformation as a step names it: by the input file's vertex numbers.
@@ -215,10 +162,6 @@ pub enum ElementStep {
     Bevel,
     /// `erase:ELEMENTS`: the faces (of the vertices, edges) become holes.
     Erase,
-    /// `dissolve:A`: merge the faces around a vertex.
-    Dissolve,
-    /// `collapse:A,B,C`: a face to its centroid.
-    Collapse,
     /// `weld:A,B/C,D`: two boundary edges into one.
     Weld,
 }
@@ -229,8 +172,6 @@ impl Named for ElementStep {
         (ElementStep::Inset, "inset"),
         (ElementStep::Bevel, "bevel"),
         (ElementStep::Erase, "erase"),
-        (ElementStep::Dissolve, "dissolve"),
-        (ElementStep::Collapse, "collapse"),
         (ElementStep::Weld, "weld"),
     ];
 }
@@ -245,14 +186,6 @@ impl ElementStep {
             ElementStep::Inset => (all(3..), (1..=2).contains(&numbers.len())),
             ElementStep::Bevel => (targets.len() == 1, numbers.len() <= 2),
             ElementStep::Erase => (true, numbers.is_empty()),
-            ElementStep::Dissolve => (
-                targets.len() == 1 && targets[0].len() == 1,
-                numbers.is_empty(),
-            ),
-            ElementStep::Collapse => (
-                targets.len() == 1 && targets[0].len() >= 3,
-                numbers.is_empty(),
-            ),
             ElementStep::Weld => (
                 targets.len() == 2 && targets.iter().all(|t| t.len() == 2),
                 numbers.is_empty(),
@@ -269,12 +202,6 @@ impl ElementStep {
                 }
                 ElementStep::Bevel => "expected one element, as in `bevel:4:0.25` or `bevel:0,1`",
                 ElementStep::Erase => "expected elements, as in `erase:4` or `erase:0,1,2/5,6`",
-                ElementStep::Dissolve => {
-                    "expected a vertex (`dissolve:A`) or an edge (`dissolve:A,B`)"
-                }
-                ElementStep::Collapse => {
-                    "expected an edge (`collapse:A,B`) or a face (`collapse:A,B,C`)"
-                }
                 ElementStep::Weld => "expected two boundary edges, as in `weld:0,1/7,8`",
             }),
         }
@@ -293,12 +220,19 @@ impl ElementStep {
                 Edit::Inset(vec![*f], number(0, 0.25), number(1, 0.0))
             }
             (ElementStep::Erase, _) => Edit::Erase(faces()?),
-            (ElementStep::Dissolve, [ElementId::Vertex(v)]) => Edit::DissolveVertex(*v),
-            (ElementStep::Collapse, [ElementId::Face(f)]) => Edit::CollapseFace(*f),
             (ElementStep::Weld, [ElementId::Edge(a), ElementId::Edge(b)]) => Edit::Weld(*a, *b),
             _ => unreachable!("checked when parsed"),
         })
     }
+}
+
+/// `[[A, B, C], [D, E]]` → `A,B,C/D,E`.
+fn targets_text(targets: &[Vec<u32>]) -> String {
+    let targets: Vec<String> = targets
+        .iter()
+        .map(|t| t.iter().map(u32::to_string).collect::<Vec<_>>().join(","))
+        .collect();
+    targets.join("/")
 }
 
 /// `A,B,C/D,E` → `[[A, B, C], [D, E]]`.
@@ -351,13 +285,12 @@ pub fn step_syntax() -> String {
 
 /// The syntax of the steps that are not registered operations.
 const OTHER_STEPS: &str = "\
-flip:A,B | split:A,B | bisect:A,B | collapse:A,B |
-dissolve:A,B | split-face:A,B | fill-hole:A,B | seam:A,B (mark, for param) |
+split-face:A,B |
 smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held) |
 extrude:FACES:DISTANCE | inset:FACES:AMOUNT[:DEPTH] | bevel:ELEMENT[:AMOUNT[:DEPTH]] |
-erase:ELEMENTS | dissolve:A | collapse:A,B,C | weld:A,B/C,D |
+erase:ELEMENTS | weld:A,B/C,D |
 deform:arap|laplace:FIXED:HANDLE:DX,DY,DZ[:ITERATIONS]   (FIXED stays, HANDLE moves by DX,DY,DZ) |
-fair:VERTICES[:K]   (k-harmonic, K 1-3, default 2) | fill-hole:A,B:fair
+fair:VERTICES[:K]   (k-harmonic, K 1-3, default 2)
 A, B, C: 0-based indices of the input file's vertices: A a vertex, A,B the edge between two,
 A,B,C the face with those consecutive corners; several elements joined by /";
 
@@ -376,24 +309,16 @@ impl Step {
                 b.trim().parse().map_err(|_| bad())?,
             ))
         };
-        if let Some(edge) = args.strip_suffix(":fair").filter(|_| name == "fill-hole") {
-            let (a, b) = edge
-                .split_once(',')
-                .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)))
-                .ok_or_else(|| format!("step `{text}`: expected fill-hole:A,B:fair"))?;
-            return Ok(Step::FillHoleFair(a, b));
+        if let Some(step) = Self::parse_on_elements(text, name, args) {
+            return step;
+        }
+        if name == "split-face" {
+            return pair().map(|(a, b)| Step::SplitFace(SplitFaceStep(a, b)));
         }
         let element_step = ElementStep::ALL
             .iter()
             .find(|(_, n)| *n == name)
             .map(|x| x.0);
-        if let Some(&(kind, _)) = LocalKind::ALL.iter().find(|(_, n)| *n == name) {
-            // `dissolve` and `collapse` name an edge here, a vertex or a face below.
-            let is_pair = args.split(',').count() == 2 && !args.contains([':', '/']);
-            if element_step.is_none() || is_pair {
-                return pair().map(|(a, b)| Step::Local(kind, a, b));
-            }
-        }
         if let Some(op) = element_step {
             let mut parts = args.split(':');
             let targets = parts.next().and_then(parse_targets);
@@ -408,6 +333,43 @@ impl Step {
             return Ok(Step::Elements(op, targets, numbers));
         }
         Self::parse_named(text, name, args)
+    }
+
+    /// A step of a registered operation that names elements (`flip:3,17`, `collapse:0,1,2`,
+    /// `dissolve:4`): the elements, then its values after a colon. Of the operations that
+    /// share the name, the one that names what the numbers name (`A` a vertex, `A,B` an edge,
+    /// `A,B,C` a face). `None` when no registered operation of that name names elements.
+    fn parse_on_elements(text: &str, name: &str, args: &str) -> Option<Result<Step, String>> {
+        let ops: Vec<_> = crate::ops::operations_named(name)
+            .filter(|op| op.declaration().names != Names::Mesh)
+            .collect();
+        if ops.is_empty() {
+            return None;
+        }
+        let syntax: Vec<String> = ops.iter().map(|op| op.declaration().syntax()).collect();
+        let bad = |why: String| format!("step `{text}`: {why}; expected {}", syntax.join(" or "));
+        let (targets, values) = args.split_once(':').unwrap_or((args, ""));
+        let Some(targets) = parse_targets(targets).filter(|t| t.len() == 1 && !t[0].is_empty())
+        else {
+            return Some(Err(bad("the element is not input vertex numbers".into())));
+        };
+        let named = match targets[0].len() {
+            1 => Names::Vertex,
+            2 => Names::Edge,
+            _ => Names::Face,
+        };
+        let Some(&op) = ops.iter().find(|op| op.declaration().names == named) else {
+            let needs: Vec<&str> = ops
+                .iter()
+                .map(|op| op.declaration().names.select_first())
+                .collect();
+            return Some(Err(bad(format!("{name} names {}", needs.join(" or ")))));
+        };
+        Some(
+            Invocation::parse(op, values)
+                .map(|invocation| Step::On(invocation, targets))
+                .map_err(bad),
+        )
     }
 
     /// The steps named by a word and parameters (not elements): `loop:2`, `simplify:0.25`,
@@ -474,18 +436,21 @@ impl Step {
                     .map_err(|e| Refusal::Invalid(e.to_string()));
             }
             Step::Edit(edit) => edit.clone(),
-            Step::Local(kind, a, b) => {
-                let live = |i: u32| live_vertex(world, input_vertices, i);
-                kind.between(world, (live(*a)?, live(*b)?), (*a, *b))?
+            Step::On(invocation, targets) => {
+                let elements: Vec<ElementId> = targets
+                    .iter()
+                    .map(|t| element_at(world, input_vertices, t))
+                    .collect::<Result<_, _>>()?;
+                Edit::Operation(
+                    invocation
+                        .clone()
+                        .on(elements)
+                        .map_err(Refusal::BadParameter)?,
+                )
             }
-            Step::FillHoleFair(a, b) => {
+            Step::SplitFace(SplitFaceStep(a, b)) => {
                 let live = |i: u32| live_vertex(world, input_vertices, i);
-                let (va, vb) = (live(*a)?, live(*b)?);
-                let m = MeshRef::new(world);
-                let h = m
-                    .find_halfedge(va, vb)
-                    .ok_or(Refusal::NoEdgeBetween(*a, *b))?;
-                Edit::FillHoleFair(m.edge(h))
+                SplitFaceStep::between(world, (live(*a)?, live(*b)?), (*a, *b))?
             }
             Step::Deform(d) => {
                 let live = |list: &[u32]| -> Result<Vec<VertexId>, Refusal> {
@@ -550,8 +515,13 @@ impl std::fmt::Display for Step {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Step::Validate => write!(f, "validate"),
-            Step::Local(kind, a, b) => write!(f, "{}:{a},{b}", kind.name()),
-            Step::FillHoleFair(a, b) => write!(f, "fill-hole:{a},{b}:fair"),
+            Step::On(invocation, targets) => {
+                let mut text = invocation.to_string();
+                let at = text.find(':').unwrap_or(text.len());
+                text.insert_str(at, &format!(":{}", targets_text(targets)));
+                write!(f, "{text}")
+            }
+            Step::SplitFace(SplitFaceStep(a, b)) => write!(f, "split-face:{a},{b}"),
             Step::Fair(vertices, k) => write!(f, "fair:{}:{k}", vertices_text(vertices)),
             Step::Deform(d) => write!(
                 f,
@@ -565,11 +535,7 @@ impl std::fmt::Display for Step {
                 d.iterations
             ),
             Step::Elements(op, targets, numbers) => {
-                let targets: Vec<String> = targets
-                    .iter()
-                    .map(|t| t.iter().map(u32::to_string).collect::<Vec<_>>().join(","))
-                    .collect();
-                write!(f, "{}:{}", op.name(), targets.join("/"))?;
+                write!(f, "{}:{}", op.name(), targets_text(targets))?;
                 numbers.iter().try_for_each(|x| write!(f, ":{x}"))
             }
             Step::Edit(edit) => match edit {
@@ -660,14 +626,20 @@ mod tests {
         );
     }
 
-    /// Every registered operation has its own name (no built-in step hides it), a title and
-    /// a help line, defaults its ranges admit, and parses by its name alone to itself with them.
+    /// Every registered operation has its own name (no built-in step hides it) or shares it
+    /// with others that name other kinds of elements, has a title and a help line, defaults
+    /// its ranges admit, and parses by its name (and its element's vertex numbers) alone to
+    /// itself with them.
     #[test]
     fn every_registered_operation_parses_by_its_name_to_its_defaults() {
         let mut names = std::collections::HashSet::new();
         for &op in crate::ops::OPERATIONS {
             let d = op.declaration();
-            assert!(names.insert(d.name), "{} registered twice", d.name);
+            assert!(
+                names.insert((d.name, d.names)),
+                "{} registered twice",
+                d.name
+            );
             assert!(!d.title.is_empty() && !d.help.is_empty(), "{}", d.name);
             assert!(
                 d.parameters
@@ -676,12 +648,20 @@ mod tests {
                 "{}",
                 d.name
             );
-            assert_eq!(
-                Step::parse(d.name).unwrap(),
-                Step::Edit(Edit::Operation(Invocation::with_defaults(op))),
-                "{}",
-                d.name
-            );
+            let defaults = Invocation::with_defaults(op);
+            let (text, expected) = match d.names.placeholder() {
+                None => (d.name.to_string(), Step::Edit(Edit::Operation(defaults))),
+                Some(elements) => {
+                    let numbers: Vec<u32> = (0..elements.split(',').count() as u32).collect();
+                    let text = format!(
+                        "{}:{}",
+                        d.name,
+                        targets_text(std::slice::from_ref(&numbers))
+                    );
+                    (text, Step::On(defaults, vec![numbers]))
+                }
+            };
+            assert_eq!(Step::parse(&text).unwrap(), expected, "{text}");
         }
     }
 
@@ -689,7 +669,13 @@ mod tests {
     fn malformed_steps_say_what_is_expected() {
         for (text, expected) in [
             ("frobnicate", "unknown step"),
-            ("flip:3", "two vertex numbers"),
+            ("flip:3", "flip names an edge (or halfedge)"),
+            ("flip:x,1", "not input vertex numbers"),
+            (
+                "collapse:1",
+                "collapse names an edge (or halfedge) or a face",
+            ),
+            ("split-face:3", "two vertex numbers"),
             ("loop:9", "from 1 to 8"),
             ("simplify:0", "RATIO must be a number from 0.000001 to 1"),
             ("simplify:1.5", "RATIO must be a number from 0.000001 to 1"),
@@ -725,7 +711,8 @@ mod tests {
             ("deform:spring:0:1:1,2,3", "arap|laplace"),
             ("deform:arap:0:1:1,2,3:0", "iterations"),
             ("fair:1/2:4", "K 1, 2 or 3"),
-            ("fill-hole:0:fair", "fill-hole:A,B:fair"),
+            ("fill-hole:0:fair", "fill-hole names an edge"),
+            ("fill-hole:0,1:smooth", "FILL must be one of polygon, fair"),
             ("fill-holes:smooth", "FILL must be one of polygon, fair"),
             ("normalize:0", "SIZE must be a number from"),
             ("normalize:x", "expected normalize[:SIZE]"),

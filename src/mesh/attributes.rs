@@ -75,7 +75,7 @@ pub struct StaleNormals;
 pub struct VertexColor(pub [u8; 3]);
 
 /// A seam mark on an edge: the parameterization cuts the surface open along it, so the corners
-/// on its two sides get UVs of their own. Marked by hand (`Edit::ToggleSeam`); files have no
+/// on its two sides get UVs of their own. Marked by hand (the `seam` operation, Ctrl+E); files have no
 /// place for it (a parameterized mesh's seams are where its corner UVs differ).
 #[derive(Component, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Seam;

@@ -14,7 +14,7 @@
 //! close (`validate` reports such a mesh).
 
 use super::elements::{Edge, Face, Halfedge, Position, Vertex};
-use super::ids::{EdgeId, FaceId, HalfedgeId, VertexId};
+use super::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
 use bevy::ecs::query::QueryState;
 use bevy::math::Vec3;
 use bevy::prelude::{Component, Entity, World};
@@ -324,6 +324,20 @@ impl<'w> MeshRef<'w> {
             }
         }
         faces
+    }
+
+    /// The corners of a live element: a vertex itself, an edge's two ends, a face's corners
+    /// (none if it is gone, or for a halfedge or a mesh).
+    pub fn corners(&self, x: ElementId) -> Vec<VertexId> {
+        match x {
+            ElementId::Vertex(v) if self.try_vertex(v).is_some() => vec![v],
+            ElementId::Edge(e) if self.try_edge(e).is_some() => {
+                let (a, b) = self.edge_vertices(e);
+                vec![a, b]
+            }
+            ElementId::Face(f) if self.try_face(f).is_some() => self.face_vertices(f).collect(),
+            _ => Vec::new(),
+        }
     }
 
     /// The number of edges at `v`.

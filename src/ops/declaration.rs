@@ -11,6 +11,8 @@
 //! [`crate::edit::Edit::declaration`] maps every edit to one, and the undo history, the job
 //! runner, the attribute bookkeeping and the step syntax's checks read it.
 
+use crate::mesh::ids::ElementId;
+
 /// Why a simplification, and the moves along its history (level of detail, vertex splits),
 /// drop the attributes: the summary's note.
 pub const DROPPED_BY_SIMPLIFICATION: &str = "simplification does not carry attributes";
@@ -59,6 +61,9 @@ pub struct Declaration {
     /// Its key in the editor, if it has one, as the help overlay writes it: modifiers and a
     /// key joined by `+` (`"Alt+C"`, `"Ctrl+T"`, `"Shift+N"`); the editor's keymap reads it.
     pub key: Option<&'static str>,
+    /// The elements it names beside the mesh (none for a whole-mesh operation): what the
+    /// editor takes from the selection and a step names by input vertex numbers.
+    pub names: Names,
     /// Its parameters, in the order a step gives them.
     pub parameters: &'static [Parameter],
     /// The section of the editor's panel that shows its button and parameters.
@@ -95,6 +100,7 @@ impl Declaration {
             title: name,
             help: "",
             key: None,
+            names: Names::Mesh,
             parameters: &[],
             section: Section::WholeMesh,
             is_step: true,
@@ -124,6 +130,11 @@ impl Declaration {
             key: Some(key),
             ..self
         }
+    }
+
+    /// The elements it names (an edge, a vertex, faces): a local operation.
+    pub const fn naming(self, names: Names) -> Self {
+        Self { names, ..self }
     }
 
     /// Its parameters: at most four (`Invocation::MAX_PARAMETERS`), or the declaration does
@@ -162,6 +173,10 @@ impl Declaration {
     /// default SIZE 1)`).
     pub fn syntax(&self) -> String {
         let mut text = self.name.to_string();
+        if let Some(elements) = self.names.placeholder() {
+            text.push(':');
+            text.push_str(elements);
+        }
         for p in self.parameters {
             text.push_str(&format!("[:{}]", p.placeholder()));
         }
@@ -245,6 +260,57 @@ pub enum Section {
     Shape,
     /// *UV*: parameterization.
     Uv,
+    /// *Local operations*: the halfedge operations on the selected element.
+    Local,
+    /// *Modelling*: Blender's edit-mode operations on the selection.
+    Modelling,
+}
+
+/// What elements an operation names, beside the mesh it acts on. The editor takes them from
+/// the selection; a `process` step names them by the input file's vertex numbers (`A` a
+/// vertex, `A,B` the edge between two).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Names {
+    /// None: it acts on the whole mesh.
+    Mesh,
+    /// One edge: the selected edge, or the selected halfedge's.
+    Edge,
+    /// One vertex.
+    Vertex,
+    /// One face.
+    Face,
+}
+
+impl Names {
+    /// How a step writes the elements (`A,B`), `None` for a whole-mesh operation.
+    pub fn placeholder(self) -> Option<&'static str> {
+        match self {
+            Names::Mesh => None,
+            Names::Edge => Some("A,B"),
+            Names::Vertex => Some("A"),
+            Names::Face => Some("A,B,C"),
+        }
+    }
+
+    /// What the user must select first, in a person's words ("an edge (or halfedge)").
+    pub fn select_first(self) -> &'static str {
+        match self {
+            Names::Mesh => "a mesh",
+            Names::Edge => "an edge (or halfedge)",
+            Names::Vertex => "a vertex",
+            Names::Face => "a face",
+        }
+    }
+
+    /// Whether `elements` are what it names: their number and kinds.
+    pub fn admits(self, elements: &[ElementId]) -> bool {
+        match self {
+            Names::Mesh => elements.is_empty(),
+            Names::Edge => matches!(elements, [ElementId::Edge(_)]),
+            Names::Vertex => matches!(elements, [ElementId::Vertex(_)]),
+            Names::Face => matches!(elements, [ElementId::Face(_)]),
+        }
+    }
 }
 
 /// One parameter of an operation: its name (in the usage text, the panel and labels), what

@@ -36,7 +36,8 @@ use thiserror::Error;
 use operation::MeshOperation;
 
 /// Every operation that declares itself whole ([`MeshOperation`]), in the order the panel,
-/// the help overlay and the usage text list them. Adding one is its module above and one line
+/// the help overlay and the usage text list them: the whole-mesh operations, then the local
+/// ones on the elements they name. Adding one is its module above and one line
 /// here; the step parser, the keymap, the panel, undo and jobs then know it.
 pub const OPERATIONS: &[&dyn MeshOperation] = &[
     &triangulate::Triangulate,
@@ -51,14 +52,55 @@ pub const OPERATIONS: &[&dyn MeshOperation] = &[
     &remesh::Remesh,
     &hole::FillHoles,
     &param::Parameterize,
+    &local::Flip,
+    &local::Split,
+    &local::Bisect,
+    &local::Collapse,
+    &local::CollapseFace,
+    &local::Dissolve,
+    &local::DissolveVertex,
+    &hole::FillHole,
+    &local::ToggleSeam,
 ];
 
-/// The registered operation whose step is called `name`.
+/// The registered operation whose step is called `name` (the first, where several share the
+/// name and differ in what they name: `collapse` an edge or a face).
 pub fn operation(name: &str) -> Option<&'static dyn MeshOperation> {
+    operations_named(name).next()
+}
+
+/// The registered operations whose step is called `name`, in registry order: one, or several
+/// that name different elements (`dissolve` an edge or a vertex), between which the elements
+/// given decide.
+pub fn operations_named(name: &str) -> impl Iterator<Item = &'static dyn MeshOperation> {
     OPERATIONS
         .iter()
         .copied()
-        .find(|op| op.declaration().name == name)
+        .filter(move |op| op.declaration().name == name)
+}
+
+/// The registered operation called `name` that names `elements` (of those sharing the name,
+/// the first whose declaration admits them), with its defaults.
+///
+/// # Errors
+/// No registered operation of that name, or none that names such elements: the message says
+/// what to select or name ("collapse needs an edge (or halfedge) or a face").
+pub fn invocation_on(
+    name: &str,
+    elements: Vec<crate::mesh::ids::ElementId>,
+) -> Result<operation::Invocation, String> {
+    let mut needs = Vec::new();
+    for op in operations_named(name) {
+        let d = op.declaration();
+        if d.names.admits(&elements) {
+            return operation::Invocation::with_defaults(op).on(elements);
+        }
+        needs.push(d.names.select_first());
+    }
+    match needs.is_empty() {
+        true => Err(format!("no registered operation is called `{name}`")),
+        false => Err(format!("{name} needs {}", needs.join(" or "))),
+    }
 }
 
 /// Why an operation was not carried out. Expected, shown to the user, never a bug.

@@ -22,8 +22,9 @@ use std::fmt;
 
 use bevy::prelude::World;
 
-use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::tables::{Connectivity, MeshTables};
+use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::declaration::{Declaration, ParameterKind};
 use crate::ops::progressive::ProgressiveMesh;
@@ -44,6 +45,28 @@ pub enum Redraw {
     /// Only vertex positions changed (a move of most of the mesh): every face keeps its
     /// corners, so a render copy keeps its triangles and refreshes its positions.
     Positions,
+}
+
+/// What an edit may change, so that an undo record can capture it first.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Reach {
+    /// The neighbourhood of these vertices of this mesh.
+    Local(MeshId, Vec<VertexId>),
+    /// These vertices of this mesh, and nothing else: their positions (and attributes) change,
+    /// the connectivity does not (a move, a fairing).
+    Vertices(MeshId, Vec<VertexId>),
+    /// Any element of this mesh.
+    Whole(MeshId),
+}
+
+impl Redraw {
+    /// The faces around `vertices` as they are now, and `faces` from before the edit.
+    pub fn near(world: &World, faces: Vec<FaceId>, vertices: Vec<VertexId>) -> Redraw {
+        Redraw::Near {
+            faces: [MeshRef::new(world).faces_around(&vertices), faces].concat(),
+            vertices,
+        }
+    }
 }
 
 /// An edit carried out.
@@ -100,6 +123,23 @@ pub trait MeshOperation: Sync + 'static {
         context: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal>;
 
+    /// What it may change, for the undo record: by default any element of `mesh` (`None`
+    /// when `mesh` is gone). A local operation names the neighbourhood of its elements
+    /// (`None` when one is gone: it will be refused, and changes nothing).
+    /// The default reads the declaration: the neighbourhood of the ends of an edge it names,
+    /// of a vertex or of a face's corners, else the whole mesh.
+    fn reach(&self, world: &World, mesh: MeshId, values: Values<'_>) -> Option<Reach> {
+        match values.elements() {
+            [] => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
+            &[x] => {
+                let corners = MeshRef::new(world).corners(x);
+                let mesh = world.get::<InMesh>(corners.first()?.0)?.0;
+                Some(Reach::Local(mesh, corners))
+            }
+            _ => None,
+        }
+    }
+
     /// Its result computed from the mesh's tables alone — the tables after and the outcome
     /// (without the attributes' note, which the edit adds) — where that is exactly what
     /// [`MeshOperation::apply`] would write back and say. `None`, the default, for an operation
@@ -118,16 +158,20 @@ pub trait MeshOperation: Sync + 'static {
 }
 
 /// The values an operation is applied with, one a declared parameter, read by the kind the
-/// operation declared. Each is in its parameter's range (an [`Invocation`] admits no other),
-/// and only a parameter declared automatic may be left out.
+/// operation declared, and the elements it names. Each value is in its parameter's range (an
+/// [`Invocation`] admits no other), only a parameter declared automatic may be left out, and
+/// the elements are what the declaration names (their number and kinds).
 #[derive(Clone, Copy, Debug)]
-pub struct Values<'a>(&'a [Option<f64>]);
+pub struct Values<'a> {
+    numbers: &'a [Option<f64>],
+    elements: &'a [ElementId],
+}
 
 impl Values<'_> {
     /// Parameter `i`'s number (0 where a parameter declared automatic was left out: read
     /// those with [`Values::given`]).
     pub fn number(&self, i: usize) -> f64 {
-        self.0[i].unwrap_or_default()
+        self.numbers[i].unwrap_or_default()
     }
 
     /// Parameter `i`'s whole number.
@@ -142,17 +186,61 @@ impl Values<'_> {
 
     /// Parameter `i`'s value, `None` where it was left to the operation (`auto`).
     pub fn given(&self, i: usize) -> Option<f64> {
-        self.0[i]
+        self.numbers[i]
+    }
+
+    /// The elements it names, in the order its declaration names them.
+    pub fn elements(&self) -> &[ElementId] {
+        self.elements
+    }
+
+    /// The edge it names (an operation that declares [`Names::Edge`]).
+    ///
+    /// # Refusals
+    /// [`Refusal::BadParameter`] when it names no edge: the invocation was made for another
+    /// declaration.
+    pub fn edge(&self) -> Result<EdgeId, Refusal> {
+        match self.elements {
+            [ElementId::Edge(e)] => Ok(*e),
+            _ => Err(self.wrong("an edge")),
+        }
+    }
+
+    /// The vertex it names ([`Names::Vertex`]).
+    ///
+    /// # Refusals
+    /// As [`Values::edge`].
+    pub fn vertex(&self) -> Result<VertexId, Refusal> {
+        match self.elements {
+            [ElementId::Vertex(v)] => Ok(*v),
+            _ => Err(self.wrong("a vertex")),
+        }
+    }
+
+    /// The face it names ([`Names::Face`]).
+    ///
+    /// # Refusals
+    /// As [`Values::edge`].
+    pub fn face(&self) -> Result<FaceId, Refusal> {
+        match self.elements {
+            [ElementId::Face(f)] => Ok(*f),
+            _ => Err(self.wrong("a face")),
+        }
+    }
+
+    fn wrong(&self, needed: &str) -> Refusal {
+        Refusal::BadParameter(format!("{needed} is needed, not {:?}", self.elements))
     }
 }
 
-/// One use of a [`MeshOperation`]: the operation and a value for each of its parameters, each
-/// one the parameter takes. Compared, printed and labelled by the operation's name and the
-/// values.
-#[derive(Clone, Copy)]
+/// One use of a [`MeshOperation`]: the operation, a value for each of its parameters, each
+/// one the parameter takes, and the elements it names (none for a whole-mesh operation).
+/// Compared and labelled by the operation's name, the elements and the values.
+#[derive(Clone)]
 pub struct Invocation {
     operation: &'static dyn MeshOperation,
     values: [Option<f64>; Invocation::MAX_PARAMETERS],
+    elements: Vec<ElementId>,
 }
 
 impl Invocation {
@@ -166,7 +254,31 @@ impl Invocation {
         for (v, p) in values.iter_mut().zip(operation.declaration().parameters) {
             *v = p.default;
         }
-        Self { operation, values }
+        Self {
+            operation,
+            values,
+            elements: Vec::new(),
+        }
+    }
+
+    /// This invocation on `elements` (what a local operation names: the selected edge, the
+    /// edge a step names).
+    ///
+    /// # Errors
+    /// Elements that are not what the operation names (their number or kinds): the message
+    /// says what it names.
+    pub fn on(mut self, elements: Vec<ElementId>) -> Result<Self, String> {
+        let d = self.declaration();
+        if !d.names.admits(&elements) {
+            return Err(format!("{} needs {}", d.name, d.names.select_first()));
+        }
+        self.elements = elements;
+        Ok(self)
+    }
+
+    /// The elements it names.
+    pub fn elements(&self) -> &[ElementId] {
+        &self.elements
     }
 
     /// `operation` with these values (missing ones take their defaults; `None`: automatic).
@@ -224,7 +336,10 @@ impl Invocation {
 
     /// One value per declared parameter.
     pub fn values(&self) -> Values<'_> {
-        Values(&self.values[..self.declaration().parameters.len()])
+        Values {
+            numbers: &self.values[..self.declaration().parameters.len()],
+            elements: &self.elements,
+        }
     }
 
     /// Sets the value of parameter `i` (`None`: automatic).
@@ -244,16 +359,19 @@ impl Invocation {
         Ok(())
     }
 
-    /// Its label for the log and the undo history: the title in lower case, and each
-    /// parameter's value, named, or a choice's word alone ("normalize (size 2)",
-    /// "parameterize (lscm, circle)").
+    /// Its label for the log and the undo history: the title in lower case, the elements it
+    /// names, and each parameter's value, named, or a choice's word alone ("normalize (size
+    /// 2)", "parameterize (lscm, circle)", "flip e12").
     pub fn label(&self) -> String {
         let d = self.declaration();
         let mut label = lower_first(d.title);
+        for x in &self.elements {
+            label.push_str(&format!(" {x}"));
+        }
         let values: Vec<String> = d
             .parameters
             .iter()
-            .zip(self.values().0)
+            .zip(self.values().numbers)
             .map(|(p, &x)| match p.kind {
                 ParameterKind::Choice(_) => p.write(x),
                 _ => format!("{} {}", p.name.to_lowercase(), p.write(x)),
@@ -277,16 +395,22 @@ impl Invocation {
     ) -> Result<Applied, Refusal> {
         self.operation.apply(world, mesh, self.values(), context)
     }
+
+    /// What it may change (see [`MeshOperation::reach`]).
+    pub fn reach(&self, world: &World, mesh: MeshId) -> Option<Reach> {
+        self.operation.reach(world, mesh, self.values())
+    }
 }
 
 /// As a `process` step: `name`, then each value after a colon as
 /// [`crate::ops::declaration::Parameter::write`] writes it, up to the last that differs from
 /// its default (`normalize`, `normalize:2`, `param:lscm`, `remesh:8:0.00001`); it parses back
-/// to the same invocation.
+/// to the same invocation. The elements are not written: a step names them by the input
+/// file's vertex numbers, which the step keeps ([`crate::edit::Step`]).
 impl fmt::Display for Invocation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let d = self.declaration();
-        let values = self.values().0;
+        let values = self.values().numbers;
         let given = d
             .parameters
             .iter()
@@ -310,7 +434,10 @@ impl fmt::Debug for Invocation {
 
 impl PartialEq for Invocation {
     fn eq(&self, other: &Self) -> bool {
-        self.declaration().name == other.declaration().name && self.values().0 == other.values().0
+        self.declaration().name == other.declaration().name
+            && self.declaration().names == other.declaration().names
+            && self.values().numbers == other.values().numbers
+            && self.elements == other.elements
     }
 }
 

@@ -10,10 +10,11 @@ use crate::editor::pipeline::stepping::Stepping;
 use crate::editor::session::requests::StepMove;
 use bevy::prelude::*;
 
-use crate::edit::{Edit, Invocation, LocalKind};
+use crate::edit::{Edit, Invocation};
 use crate::mesh::MeshRef;
 use crate::mesh::ids::ElementId;
 use crate::ops::Refusal;
+use crate::ops::declaration::Names;
 use crate::ops::deform::{FairParams, Proportional};
 use crate::ops::local::faces_of;
 use crate::ops::operation::MeshOperation;
@@ -34,9 +35,6 @@ use crate::editor::view::render_sync::{ViewSettings, set_wireframes_visible};
 /// What a shortcut does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Action {
-    /// A local edit of the selected edge (or halfedge's edge): flip, split, bisect, collapse,
-    /// dissolve.
-    OnEdge(LocalKind),
     /// Cut a corner off the selected halfedge's face: join its tip to the vertex two corners
     /// ahead.
     CutCorner,
@@ -60,14 +58,11 @@ pub enum Action {
     /// The selection's vertices become the anchors of handle deformation (nothing selected:
     /// no anchors).
     MarkAnchors,
-    /// Dissolve the active vertex (merge its faces) or edge (merge its two faces).
-    Dissolve,
-    /// Collapse the active edge or face.
-    Collapse,
     /// Weld the first two selected boundary edges.
     Weld,
-    /// Run the registered operation of this step name ([`crate::ops::OPERATIONS`]) on the
-    /// active mesh, with the panel's values of its parameters.
+    /// Run the registered operation of this step name ([`crate::ops::OPERATIONS`]) with the
+    /// panel's values of its parameters: on the active mesh, or on the selected element it
+    /// names (of the operations sharing the name, the one that names what is selected).
     Operation(&'static str),
     /// Split the selected vertex back (undo its last collapse from the simplification).
     SplitVertex,
@@ -222,20 +217,31 @@ pub fn keys_of(action: Action) -> Option<&'static str> {
 /// declare ([`crate::ops::OPERATIONS`]).
 pub fn shortcuts() -> impl Iterator<Item = Shortcut> {
     // A key that does not read is left out here, and fails the keymap's test.
-    let declared = crate::ops::OPERATIONS.iter().filter_map(|op| {
-        let d = op.declaration();
-        let keys = d.key?;
-        let chord = super::key_names::chord(keys)?;
-        Some(Shortcut {
-            key: chord.key,
-            ctrl: chord.ctrl,
-            shift: chord.shift,
-            alt: chord.alt,
-            action: Action::Operation(d.name),
-            keys,
-            description: d.help,
-        })
-    });
+    // Operations that share a name and a key (collapse an edge or a face: C) are one shortcut,
+    // with the first one's help.
+    let declared = crate::ops::OPERATIONS
+        .iter()
+        .enumerate()
+        .filter_map(|(i, op)| {
+            let d = op.declaration();
+            let keys = d.key?;
+            let shared = crate::ops::OPERATIONS[..i]
+                .iter()
+                .any(|o| o.declaration().name == d.name && o.declaration().key == d.key);
+            if shared {
+                return None;
+            }
+            let chord = super::key_names::chord(keys)?;
+            Some(Shortcut {
+                key: chord.key,
+                ctrl: chord.ctrl,
+                shift: chord.shift,
+                alt: chord.alt,
+                action: Action::Operation(d.name),
+                keys,
+                description: d.help,
+            })
+        });
     SHORTCUTS.iter().copied().chain(declared)
 }
 
@@ -285,36 +291,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "Ctrl+-",
         Action::Shrink,
         "select less: one ring off the selection",
-    ),
-    alt(
-        KeyCode::KeyR,
-        "Alt+R",
-        Action::OnEdge(LocalKind::Flip),
-        "flip (rotate) the selected edge",
-    ),
-    alt(
-        KeyCode::KeyS,
-        "Alt+S",
-        Action::OnEdge(LocalKind::Split),
-        "split the selected edge at its midpoint",
-    ),
-    key(
-        KeyCode::KeyK,
-        "K",
-        Action::OnEdge(LocalKind::Bisect),
-        "bisect the selected edge: a vertex at its midpoint, no face cut",
-    ),
-    key(
-        KeyCode::KeyC,
-        "C",
-        Action::Collapse,
-        "collapse the active edge (to its midpoint) or face (to its centroid)",
-    ),
-    key(
-        KeyCode::KeyD,
-        "D",
-        Action::Dissolve,
-        "dissolve the active edge (merge its two faces) or vertex (merge its faces)",
     ),
     key(
         KeyCode::KeyE,
@@ -400,13 +376,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "O",
         Action::Smooth,
         "smooth with the panel's method (the boundary and the selected vertex held)",
-    ),
-    ctrl(
-        KeyCode::KeyE,
-        false,
-        "Ctrl+E",
-        Action::OnEdge(LocalKind::Seam),
-        "mark the selected edge as a seam for parameterizing (or unmark it)",
     ),
     key(
         KeyCode::KeyH,
@@ -629,11 +598,11 @@ pub struct UiState {
 impl UiState {
     /// `op` with the panel's values of its parameters.
     pub fn invocation(&self, op: &'static dyn MeshOperation) -> Invocation {
-        let name = op.declaration().name;
+        let d = op.declaration();
         self.operations
             .iter()
-            .find(|i| i.declaration().name == name)
-            .copied()
+            .find(|i| i.declaration().name == d.name && i.declaration().names == d.names)
+            .cloned()
             .unwrap_or_else(|| Invocation::with_defaults(op))
     }
 
@@ -755,9 +724,6 @@ pub fn perform(world: &mut World, action: Action) {
 /// An action in a person's words, for the status line ("flip", "split vertex back", "fill
 /// hole"): a local edge operation by its step name, the others by their name split into words.
 fn action_words(action: Action) -> String {
-    if let Action::OnEdge(kind) = action {
-        return crate::ops::named::Named::name(kind).to_string();
-    }
     if let Some(op) = registered(action) {
         return op.declaration().title.to_lowercase();
     }
@@ -807,7 +773,7 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
     let edit = match action {
         Action::SplitVertex => match selection {
             Some(ElementId::Vertex(v)) => Edit::SplitVertex(v),
-            _ => return Err(Declined::SelectFirst("a vertex")),
+            _ => return Err(Declined::SelectFirst("a vertex".into())),
         },
         Action::CutCorner => {
             let target = match selection {
@@ -816,21 +782,27 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
                     .map(|f| (f, m.to_vertex(h), m.to_vertex(m.next(m.next(h))))),
                 _ => None,
             };
-            let (f, a, b) = target.ok_or(Declined::SelectFirst("a halfedge of a face (mode 4)"))?;
+            let (f, a, b) = target.ok_or(Declined::SelectFirst(
+                "a halfedge of a face (mode 4)".into(),
+            ))?;
             Edit::SplitFace(f, a, b)
         }
         Action::Fill | Action::FillFair => {
-            let edge =
-                selected_edge(&m, selection).ok_or(Declined::SelectFirst("a boundary edge"))?;
-            match action {
-                Action::Fill => Edit::FillHole(edge),
-                _ => Edit::FillHoleFair(edge),
+            let edge = selected_edge(&m, selection)
+                .ok_or(Declined::SelectFirst("a boundary edge".into()))?;
+            let mut fill = Invocation::with_defaults(&crate::ops::hole::FillHole)
+                .on(vec![ElementId::Edge(edge)])
+                .map_err(Refusal::BadParameter)?;
+            if action == Action::FillFair {
+                fill.set(0, Some(crate::ops::hole::FillHole::FAIR))
+                    .map_err(Refusal::BadParameter)?;
             }
+            Edit::Operation(fill)
         }
         Action::Fair => {
             let vertices = crate::editor::gestures::transform::selected_vertices(world);
             if vertices.is_empty() {
-                return Err(Declined::SelectFirst("vertices to fair"));
+                return Err(Declined::SelectFirst("vertices to fair".into()));
             }
             Edit::Fair(FairParams {
                 vertices,
@@ -840,7 +812,7 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
         Action::Extrude | Action::Inset => {
             let faces = selected_faces(world);
             if faces.is_empty() {
-                return Err(Declined::SelectFirst("faces (mode 3)"));
+                return Err(Declined::SelectFirst("faces (mode 3)".into()));
             }
             let edit = match action {
                 Action::Extrude => Edit::Extrude(faces, 0.0),
@@ -865,7 +837,7 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
                 Some(ElementId::Face(_)) => Edit::Inset(selected_faces(world), amount, depth),
                 _ => match selected_edge(&m, selection) {
                     Some(e) => Edit::BevelEdge(e, amount.min(0.5)),
-                    None => return Err(Declined::SelectFirst("a vertex, an edge or faces")),
+                    None => return Err(Declined::SelectFirst("a vertex, an edge or faces".into())),
                 },
             }
         }
@@ -873,25 +845,10 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
             // The set holds live elements only (stale ones drop out after every edit).
             let faces = faces_of(world, world.resource::<Selection>().elements())?;
             if faces.is_empty() {
-                return Err(Declined::SelectFirst("elements to erase"));
+                return Err(Declined::SelectFirst("elements to erase".into()));
             }
             Edit::Erase(faces)
         }
-        Action::Dissolve | Action::Collapse => match (action, selection) {
-            (Action::Dissolve, Some(ElementId::Vertex(v))) => Edit::DissolveVertex(v),
-            (Action::Collapse, Some(ElementId::Face(f))) => Edit::CollapseFace(f),
-            _ => {
-                let edge =
-                    selected_edge(&m, selection).ok_or(Declined::SelectFirst(match action {
-                        Action::Dissolve => "a vertex or an edge",
-                        _ => "an edge or a face",
-                    }))?;
-                match action {
-                    Action::Dissolve => Edit::Dissolve(edge),
-                    _ => Edit::Collapse(edge),
-                }
-            }
-        },
         Action::Weld => {
             let edges: Vec<_> = world
                 .resource::<Selection>()
@@ -901,14 +858,12 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
                 .collect();
             match edges[..] {
                 [a, b, ..] => Edit::Weld(a, b),
-                _ => return Err(Declined::SelectFirst("two boundary edges (Shift-click)")),
+                _ => {
+                    return Err(Declined::SelectFirst(
+                        "two boundary edges (Shift-click)".into(),
+                    ));
+                }
             }
-        }
-        Action::OnEdge(kind) => {
-            let edge = selected_edge(&m, selection)
-                .ok_or(Declined::SelectFirst("an edge (or halfedge)"))?;
-            kind.on_edge(edge)
-                .ok_or(Declined::SelectFirst("a halfedge of a face (mode 4)"))?
         }
         _ => return Ok(None),
     };
@@ -922,9 +877,7 @@ fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, De
     let edit = match action {
         Action::Operation(name) => {
             world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
-            let op = crate::ops::operation(name)
-                .ok_or_else(|| Refusal::BadParameter(format!("no operation is called `{name}`")))?;
-            Edit::Operation(world.resource::<UiState>().invocation(op))
+            Edit::Operation(registered_invocation(world, name)?)
         }
         Action::Smooth => {
             if world.resource::<ActiveMesh>().0.is_none() {
@@ -941,6 +894,43 @@ fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, De
         _ => return Ok(None),
     };
     Ok(Some(edit))
+}
+
+/// The registered operation called `name` with the panel's values: on the active mesh, or on
+/// the selected element of the kind it names (of the operations sharing the name, the first
+/// whose kind is selected: `C` collapses an edge or a face).
+///
+/// # Declines
+/// No registered operation of that name; none that names what is selected (the message says
+/// what to select).
+fn registered_invocation(world: &World, name: &str) -> Result<Invocation, Declined> {
+    let selection = world.resource::<Selection>().element;
+    let m = MeshRef::new(world);
+    let mut needs = Vec::new();
+    for op in crate::ops::operations_named(name) {
+        let names = op.declaration().names;
+        let element = match (names, selection) {
+            (Names::Mesh, _) => None,
+            (Names::Edge, _) => selected_edge(&m, selection).map(ElementId::Edge),
+            (Names::Vertex, Some(x @ ElementId::Vertex(v))) => m.try_vertex(v).map(|_| x),
+            (Names::Face, Some(x @ ElementId::Face(f))) => m.try_face(f).map(|_| x),
+            _ => None,
+        };
+        let invocation = world.resource::<UiState>().invocation(op);
+        match (names, element) {
+            (Names::Mesh, _) => return Ok(invocation),
+            (_, Some(x)) => {
+                return invocation
+                    .on(vec![x])
+                    .map_err(|why| Refusal::BadParameter(why).into());
+            }
+            (_, None) => needs.push(names.select_first()),
+        }
+    }
+    match needs.is_empty() {
+        true => Err(Refusal::BadParameter(format!("no operation is called `{name}`")).into()),
+        false => Err(Declined::SelectFirst(needs.join(" or "))),
+    }
 }
 
 /// What an action that is not an edit does: a request (walk, select, undo, save, step) or a
@@ -1001,7 +991,7 @@ fn act(world: &mut World, action: Action) -> Result<Option<Request>, Declined> {
                 _ => GestureKind::Scale,
             };
             if world.resource::<Selection>().is_empty() {
-                return Err(Declined::SelectFirst("something to transform"));
+                return Err(Declined::SelectFirst("something to transform".into()));
             }
             let proportional = world.resource::<UiState>().proportional;
             crate::editor::gestures::transform::start(world, kind, None, Some(proportional));
@@ -1091,7 +1081,7 @@ mod tests {
 
     #[test]
     fn actions_are_named_in_words_on_the_status_line() {
-        assert_eq!(action_words(Action::OnEdge(LocalKind::Flip)), "flip");
+        assert_eq!(action_words(Action::Operation("flip")), "flip");
         assert_eq!(action_words(Action::SplitVertex), "split vertex");
         assert_eq!(action_words(Action::FillFair), "fill fair");
         assert_eq!(action_words(Action::Navigate(Relation::Twin)), "navigate");
@@ -1113,7 +1103,9 @@ mod tests {
                 .unwrap_or_else(|| panic!("{}'s key `{keys}` does not read", d.name));
             let found = shortcut_for(chord.key, chord.ctrl, chord.shift, chord.alt).unwrap();
             assert_eq!(found.action, Action::Operation(d.name));
-            assert_eq!((found.keys, found.description), (keys, d.help));
+            // Operations that share a name and a key have the first one's help.
+            let first = crate::ops::operation(d.name).unwrap().declaration();
+            assert_eq!((found.keys, found.description), (keys, first.help));
             assert_eq!(keys_of(Action::Operation(d.name)), Some(keys));
         }
         for (i, a) in all.iter().enumerate() {

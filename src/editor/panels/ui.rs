@@ -16,7 +16,7 @@ use crate::mesh::topology::MeshRef;
 use crate::mesh::{InMesh, MeshInfo};
 use crate::ops::named::Named;
 
-use crate::edit::{Edit, LocalKind};
+use crate::edit::Edit;
 use crate::ops::declaration::{Declaration, Parameter, ParameterKind, Section};
 use crate::ops::deform::{DeformMethod, Falloff};
 use crate::ops::operation::Invocation;
@@ -454,7 +454,9 @@ pub fn panels(
                 sections.show(ui, "Modelling", |ui| {
                     modelling_section(ui, &mut ui_state, &mut pending);
                 });
-                sections.show(ui, "Local operations", |ui| local_section(ui, &mut pending));
+                sections.show(ui, "Local operations", |ui| {
+                    local_section(ui, &mut ui_state, &mut pending);
+                });
                 sections.show(ui, "Whole mesh", |ui| {
                     whole_mesh_section(ui, &mut ui_state, &mut pending);
                     if let Some((coarsest, now, full)) = view.lod {
@@ -862,12 +864,15 @@ fn registered_operations(
     section: Section,
 ) {
     let here = |d: &Declaration| d.section == section;
-    let plain: Vec<&Declaration> = state
+    // One button for the operations that share a name (collapse an edge or a face): the
+    // selection decides which runs.
+    let mut plain: Vec<&Declaration> = state
         .operations
         .iter()
         .map(Invocation::declaration)
         .filter(|&d| here(d) && d.parameters.is_empty())
         .collect();
+    plain.dedup_by_key(|d| d.name);
     let step_mode = section == Section::WholeMesh;
     if !plain.is_empty() || step_mode {
         ui.horizontal_wrapped(|ui| {
@@ -1043,11 +1048,11 @@ fn modelling_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pendi
             (Action::Extrude, "Extrude"),
             (Action::Inset, "Inset"),
             (Action::Erase, "Erase"),
-            (Action::Fill, "Fill hole"),
             (Action::Weld, "Weld"),
             (Action::DeleteMesh, "Delete mesh"),
         ],
     );
+    registered_operations(ui, state, pending, Section::Modelling);
     ui.horizontal(|ui| {
         button(ui, pending, Action::Bevel, "Bevel");
         ui.add(egui::Slider::new(&mut state.bevel_amount, 0.01..=0.5).text("amount"));
@@ -1059,17 +1064,14 @@ fn modelling_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pendi
     });
 }
 
-/// The local operations of the halfedge mesh on the selected element.
-fn local_section(ui: &mut egui::Ui, pending: &mut PendingActions) {
+/// The local operations of the halfedge mesh on the selected element: the registered ones
+/// that declare this section, then the editor's own.
+fn local_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
+    registered_operations(ui, state, pending, Section::Local);
     buttons(
         ui,
         pending,
         &[
-            (Action::OnEdge(LocalKind::Flip), "Flip"),
-            (Action::OnEdge(LocalKind::Split), "Split"),
-            (Action::OnEdge(LocalKind::Bisect), "Bisect"),
-            (Action::Collapse, "Collapse"),
-            (Action::Dissolve, "Dissolve"),
             (Action::CutCorner, "Split face"),
             (Action::SplitVertex, "Split vertex back"),
             (Action::Frame, "Frame"),
@@ -1184,7 +1186,6 @@ fn shape_section(
 fn uv_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
     registered_operations(ui, state, pending, Section::Uv);
     ui.horizontal_wrapped(|ui| {
-        button(ui, pending, Action::OnEdge(LocalKind::Seam), "Seam");
         ui.checkbox(&mut state.uv_view, "UV view");
     });
 }

@@ -128,7 +128,7 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
             let from = world
                 .resource::<Selection>()
                 .element
-                .ok_or(Declined::SelectFirst("an element"))?;
+                .ok_or(Declined::SelectFirst("an element".into()))?;
             let to = navigate(&MeshRef::new(world), from, *relation)
                 .ok_or(Declined::NoRelation(from, relation.name()))?;
             world.resource_mut::<Selection>().select_only(Some(to));

@@ -234,7 +234,7 @@ pub enum Declined {
     NoMesh,
     /// The request needs a selected element of some kind.
     #[error("select {0} first")]
-    SelectFirst(&'static str),
+    SelectFirst(String),
     /// A relation that leads nowhere from the selected element.
     #[error("{0} has no {1} (a boundary halfedge has no face)")]
     NoRelation(ElementId, &'static str),

@@ -31,11 +31,79 @@ use super::local::{FillHolePlan, apply_fill_hole, fill_hole, plan_fill_hole, spl
 use patch::Patch;
 use triangulation::{HoleLoop, triangulate};
 
-use crate::ops::declaration::{Declaration, Parameter, Section};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Values, count};
+use crate::mesh::InMesh;
+use crate::ops::declaration::{Declaration, Names, Parameter, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Redraw, Values, count};
 
-/// Filling one hole with a faired patch (the `fill-hole:A,B:fair` step).
-pub const FILL_HOLE_FAIR: Declaration = Declaration::new("fill-hole");
+/// Filling the hole beside one boundary edge with one polygon, or with a faired patch of
+/// triangles (`fill-hole:A,B[:polygon|fair]`; F, Alt+F).
+pub const FILL_HOLE: Declaration = Declaration::new("fill-hole")
+    .titled("Fill hole")
+    .described("fill the hole beside the selected boundary edge: one face, or faired triangles")
+    .naming(Names::Edge)
+    .with_parameters(&[Parameter::choice("FILL", &["polygon", "fair"], 0)])
+    .in_section(Section::Modelling);
+
+/// [`fill_hole`] or [`fill_hole_fair`] as an operation on a boundary edge.
+pub struct FillHole;
+
+impl FillHole {
+    /// The value of its FILL parameter that fills with a faired patch.
+    pub const FAIR: f64 = 1.0;
+}
+
+impl MeshOperation for FillHole {
+    fn declaration(&self) -> &'static Declaration {
+        &FILL_HOLE
+    }
+
+    /// One polygon: every halfedge of the loop takes the face, so its vertices are the seeds.
+    /// A faired patch makes vertices away from the loop: the whole mesh.
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let m = MeshRef::new(world);
+        let h = m.try_edge(values.edge().ok()?)?.halfedge;
+        m.try_halfedge(h)?;
+        let mesh = world.get::<InMesh>(h.0)?.0;
+        if values.number(0) == Self::FAIR {
+            return Some(Reach::Whole(mesh));
+        }
+        let h = if m.is_boundary(h) { h } else { m.twin(h) };
+        Some(Reach::Local(
+            mesh,
+            m.loop_from(h).map(|x| m.from_vertex(x)).collect(),
+        ))
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        if values.number(0) == Self::FAIR {
+            let r = fill_hole_fair(world, e)?;
+            return Ok(Applied {
+                summary: format!(
+                    "a hole of {} sides filled with {}, {} new",
+                    r.sides,
+                    count(r.triangles, "triangle"),
+                    count(r.new_vertices, "vertex")
+                ),
+                redraw: Redraw::Whole,
+                made: Some(ElementId::Face(r.face)),
+            });
+        }
+        let f = fill_hole(world, e)?;
+        let ring: Vec<VertexId> = MeshRef::new(world).face_vertices(f).collect();
+        Ok(Applied {
+            summary: format!("new face {f} of {} sides", ring.len()),
+            redraw: Redraw::near(world, Vec::new(), ring),
+            made: Some(ElementId::Face(f)),
+        })
+    }
+}
 
 /// Filling every hole, with one polygon each or a faired patch (`fill-holes[:polygon|fair]`,
 /// Shift+F).

@@ -26,11 +26,6 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, live_edge, spawn_at};
 
-use crate::ops::declaration::Declaration;
-
-/// Filling a hole with one face: a local edit.
-pub const FILL_HOLE: Declaration = Declaration::new("fill-hole");
-
 /// What filling a hole touches, collected by [`plan_fill_hole`].
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FillHolePlan {

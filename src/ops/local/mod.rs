@@ -32,6 +32,7 @@ mod extrude;
 mod fill_hole;
 mod flip;
 mod inset;
+mod seam;
 mod split;
 mod split_face;
 #[cfg(test)]
@@ -64,6 +65,7 @@ pub use extrude::{
 pub use fill_hole::{FillHolePlan, apply_fill_hole, fill_hole, plan_fill_hole};
 pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
 pub use inset::{InsetPlan, apply_inset, inset_faces, plan_inset};
+pub use seam::{ToggleSeam, toggle_seam};
 pub use split::{SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint};
 pub use split_face::{SplitFacePlan, apply_split_face, plan_split_face, split_face};
 pub use vertex_split::vertex_split;
@@ -73,8 +75,14 @@ pub use weld::{WeldPlan, apply_weld, plan_weld, weld_edges};
 pub use {
     bevel::BEVEL, bisect::BISECT, collapse::COLLAPSE, collapse_face::COLLAPSE_FACE,
     dissolve::DISSOLVE, dissolve_vertex::DISSOLVE_VERTEX, erase::ERASE, extrude::EXTRUDE,
-    fill_hole::FILL_HOLE, flip::FLIP, inset::INSET, split::SPLIT, split_face::SPLIT_FACE,
+    flip::FLIP, inset::INSET, seam::SEAM, split::SPLIT, split_face::SPLIT_FACE,
     vertex_split::VERTEX_SPLIT, weld::WELD,
+};
+/// The local operations that declare themselves whole (registered in
+/// [`crate::ops::OPERATIONS`]).
+pub use {
+    bisect::Bisect, collapse::Collapse, collapse_face::CollapseFace, dissolve::Dissolve,
+    dissolve_vertex::DissolveVertex, flip::Flip, split::Split,
 };
 
 use bevy::prelude::{Entity, World};
