@@ -88,11 +88,11 @@ fn edit(case: usize, c: &Candidates, i: usize) -> Edit {
     let face = || c.faces[i % c.faces.len()];
     let vertex = || c.vertices[i % c.vertices.len()];
     match case {
-        0 => Edit::Extrude(vec![face()], 0.001),
-        1 => Edit::Inset(vec![face()], 0.3, 0.0),
+        0 => Edit::local_on("extrude", [face()], &[0.001]),
+        1 => Edit::local_on("inset", [face()], &[0.3]),
         2 => Edit::BevelVertex(vertex(), 0.25),
         3 => Edit::BevelEdge(c.edges[i % c.edges.len()], 0.25),
-        4 => Edit::Erase(vec![face()]),
+        4 => Edit::local("erase", face()),
         5 => Edit::local("dissolve", vertex()),
         _ => Edit::local("collapse", face()),
     }

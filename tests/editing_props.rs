@@ -77,12 +77,20 @@ fn random_edit(world: &World, mesh: MeshId, kind: u8, pick: u32, t: f32) -> Opti
         2 => Edit::local("collapse", edge()?),
         3 => Edit::local("dissolve", edge()?),
         4 => Edit::local("bisect", edge()?),
-        5 => Edit::Extrude(region()?, t - 0.5),
-        6 => Edit::Inset(region()?, t, 0.0),
-        7 => Edit::Inset(vec![face()?], t * 0.9, t - 0.5),
+        5 => Edit::local_on("extrude", region()?, &[f64::from(t - 0.5)]),
+        6 => Edit::local_on("inset", region()?, &[f64::from(t)]),
+        7 => Edit::local_on(
+            "inset",
+            [face()?],
+            &[f64::from(t * 0.9), f64::from(t - 0.5)],
+        ),
         8 => Edit::BevelVertex(vertex()?, t * 0.5),
         9 => Edit::BevelEdge(edge()?, t * 0.5),
-        10 => Edit::Erase(region()?.into_iter().take(1 + pick as usize % 2).collect()),
+        10 => Edit::local_on(
+            "erase",
+            region()?.into_iter().take(1 + pick as usize % 2),
+            &[],
+        ),
         11 => Edit::local("dissolve", vertex()?),
         12 => Edit::local("collapse", face()?),
         13 => {
@@ -98,7 +106,7 @@ fn random_edit(world: &World, mesh: MeshId, kind: u8, pick: u32, t: f32) -> Opti
                     .get((pick as usize / 3) % boundary.len())
                     .map(|&x| m.edge_halfedge(x))?,
             };
-            Edit::Weld(e, m.edge(far))
+            Edit::local_on("weld", [e, m.edge(far)], &[])
         }
         14 => Edit::local("fill-hole", *boundary.get(nth(boundary.len()))?),
         _ => {

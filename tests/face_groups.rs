@@ -122,7 +122,11 @@ fn faces_made_from_a_face_keep_its_group() {
     assert_eq!(counts(&world, mesh), [5, 2]);
     // Extrude the bottom: its four walls are body, like it.
     let bottom = face_at_height(&world, mesh, 0.0);
-    run(&mut world, mesh, &Edit::Extrude(vec![bottom], 0.5));
+    run(
+        &mut world,
+        mesh,
+        &Edit::local_on("extrude", [bottom], &[0.5]),
+    );
     assert_eq!(counts(&world, mesh), [9, 2]);
     // Triangulate: each quad's two triangles in its group.
     run(&mut world, mesh, &Edit::registered("triangulate").unwrap());
@@ -144,7 +148,7 @@ fn faces_made_from_a_face_keep_its_group() {
 fn a_filled_hole_takes_a_neighbours_group() {
     let (mut world, mesh) = cube();
     let lid = face_at_height(&world, mesh, 1.0);
-    run(&mut world, mesh, &Edit::Erase(vec![lid]));
+    run(&mut world, mesh, &Edit::local("erase", lid));
     assert_eq!(counts(&world, mesh), [5, 0]);
     let rim = {
         let m = MeshRef::new(&world);

@@ -176,7 +176,7 @@ fn a_gesture_is_one_undo_step_and_esc_takes_it_back_with_the_edit_it_followed() 
     send(&mut app, Request::Select(Some(ElementId::Face(f))));
     let keep = undo_steps(&app).0;
     let mark = app.world().resource::<UndoHistory>().mark();
-    send(&mut app, Edit::Extrude(vec![f], 0.0));
+    send(&mut app, Edit::local("extrude", f));
     app.world_mut()
         .resource_mut::<UndoHistory>()
         .begin_gesture();
@@ -211,7 +211,7 @@ fn esc_takes_a_gesture_back_after_the_memory_cap_trimmed_the_history() {
     let old_entries = undo_steps(&app).0;
     let mark = app.world().resource::<UndoHistory>().mark();
     let f = members(&app).faces[2];
-    send(&mut app, Edit::Extrude(vec![f], 0.0));
+    send(&mut app, Edit::local("extrude", f));
     // From now on the cap holds about what there is, less the oldest entry: the gesture's
     // step pushes the oldest ones out.
     {

@@ -132,7 +132,8 @@ fn operations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
 }
 
 /// What an operation names beside the mesh, as [`operations`] lists it: `"mesh"` (nothing),
-/// `"edge"` (`A,B` in its step), `"vertex"` (`A`), `"face"` (`A,B,C`).
+/// `"edge"` (`A,B` in its step), `"vertex"` (`A`), `"face"` (`A,B,C`), `"faces"`
+/// (`A,B,C/D,E,F`), `"two-edges"` (`A,B/C,D`), `"elements"` (any, joined by `/`).
 fn names(names: pappus::ops::declaration::Names) -> &'static str {
     use pappus::ops::declaration::Names;
     match names {
@@ -140,6 +141,9 @@ fn names(names: pappus::ops::declaration::Names) -> &'static str {
         Names::Edge => "edge",
         Names::Vertex => "vertex",
         Names::Face => "face",
+        Names::Faces => "faces",
+        Names::TwoEdges => "two-edges",
+        Names::Elements => "elements",
     }
 }
 

@@ -31,12 +31,7 @@ impl Edit {
         }
         match self {
             Edit::SplitFace(f, a, b) => cut_face(world, *f, *a, *b),
-            Edit::Extrude(..)
-            | Edit::Inset(..)
-            | Edit::BevelVertex(..)
-            | Edit::BevelEdge(..)
-            | Edit::Erase(_)
-            | Edit::Weld(..) => self.apply_planned(world),
+            Edit::BevelVertex(..) | Edit::BevelEdge(..) => self.apply_planned(world),
             Edit::MoveVertex(v, p) => Ok(Applied {
                 summary: format!("{v} at {p}"),
                 redraw: move_vertices(world, &[(*v, *p)])?,
@@ -55,7 +50,7 @@ impl Edit {
         }
     }
 
-    /// A planned local edit (extrude, inset, bevel, erase, weld): planned, then applied; what is new lies around the seeds that survive and what
+    /// A planned local edit (a vertex's or an edge's bevel): planned, then applied; what is new lies around the seeds that survive and what
     /// the edit made.
     fn apply_planned(&self, world: &mut World) -> Result<Applied, Refusal> {
         let plan = self.plan(world).ok_or(Refusal::BadParameter(format!(

@@ -36,9 +36,8 @@ use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
 use crate::ops::local::{
-    BevelEdgePlan, BevelVertexPlan, ErasePlan, ExtrudePlan, InsetPlan, WeldPlan, apply_bevel_edge,
-    apply_bevel_vertex, apply_erase, apply_extrude, apply_inset, apply_weld, plan_bevel_edge,
-    plan_bevel_vertex, plan_erase, plan_extrude, plan_inset, plan_weld,
+    BevelEdgePlan, BevelVertexPlan, apply_bevel_edge, apply_bevel_vertex, plan_bevel_edge,
+    plan_bevel_vertex,
 };
 use crate::ops::named::Named;
 use crate::ops::smooth::SmoothParams;
@@ -68,21 +67,11 @@ pub use crate::ops::subdivide::Scheme;
 pub enum Edit {
     /// Split a face between two of its corners.
     SplitFace(FaceId, VertexId, VertexId),
-    /// Extrude faces as one region (a wall of quads along its rim) and push it this distance
-    /// along the region's normals.
-    Extrude(Vec<FaceId>, f32),
-    /// Inset each face: a ring of quads inside it, its corners moved `amount` (0–1) of the way
-    /// to its centroid and `depth` along its normal (with a depth: Scotty3D's bevel face).
-    Inset(Vec<FaceId>, f32, f32),
     /// Replace a vertex by a face whose corners lie `amount` (0–0.5) along its edges.
     BevelVertex(VertexId, f32),
     /// Replace an interior edge by a face whose corners lie `amount` (0–0.5) along the edges
     /// of its ends.
     BevelEdge(EdgeId, f32),
-    /// Erase faces: they become holes; edges and vertices left with no face go too.
-    Erase(Vec<FaceId>),
-    /// Glue the second boundary edge onto the first; their ends merge at the midpoints.
-    Weld(EdgeId, EdgeId),
     /// Move a vertex.
     MoveVertex(VertexId, Vec3),
     /// Move several vertices at once (a transform of the selection): one undo step.
@@ -116,10 +105,28 @@ impl Edit {
     /// editor and the step parser resolve elements through [`crate::ops::invocation_on`],
     /// which says so instead).
     pub fn local(name: &str, element: impl Into<ElementId>) -> Self {
-        match crate::ops::invocation_on(name, vec![element.into()]) {
-            Ok(invocation) => Edit::Operation(invocation),
-            Err(why) => panic!("{why}"),
+        Self::local_on(name, [element], &[])
+    }
+
+    /// The registered operation called `name` on `elements` with these values of its first
+    /// parameters (the rest their defaults): `Edit::local_on("extrude", faces, &[0.5])`.
+    ///
+    /// # Panics
+    /// As [`Edit::local`], and for values the operation does not take.
+    pub fn local_on(
+        name: &str,
+        elements: impl IntoIterator<Item = impl Into<ElementId>>,
+        values: &[f64],
+    ) -> Self {
+        let elements = elements.into_iter().map(Into::into).collect();
+        let mut invocation =
+            crate::ops::invocation_on(name, elements).unwrap_or_else(|why| panic!("{why}"));
+        for (i, &x) in values.iter().enumerate() {
+            invocation
+                .set(i, Some(x))
+                .unwrap_or_else(|why| panic!("{why}"));
         }
+        Edit::Operation(invocation)
     }
 
     /// The registered operation invoked as a step writes it (`"remesh:1"`, `"param:lscm"`).
@@ -138,17 +145,8 @@ impl Edit {
     pub fn label(&self) -> String {
         match self {
             Edit::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
-            Edit::Extrude(faces, d) => format!("extrude {} by {d}", count(faces.len(), "face")),
-            Edit::Inset(faces, t, d) if *d == 0.0 => {
-                format!("inset {} by {t}", count(faces.len(), "face"))
-            }
-            Edit::Inset(faces, t, d) => {
-                format!("bevel {} by {t}, depth {d}", count(faces.len(), "face"))
-            }
             Edit::BevelVertex(v, t) => format!("bevel {v} by {t}"),
             Edit::BevelEdge(e, t) => format!("bevel {e} by {t}"),
-            Edit::Erase(faces) => format!("erase {}", count(faces.len(), "face")),
-            Edit::Weld(a, b) => format!("weld {b} to {a}"),
             Edit::MoveVertex(v, _) => format!("move {v}"),
             Edit::MoveVertices(moves) => format!("move {} vertices", moves.len()),
             Edit::SplitVertex(v) => format!("split {v} back"),
@@ -187,12 +185,7 @@ impl Edit {
                 m.try_vertex(*v)?;
                 local(vec![*v])
             }
-            Edit::Extrude(..)
-            | Edit::Inset(..)
-            | Edit::BevelVertex(..)
-            | Edit::BevelEdge(..)
-            | Edit::Erase(_)
-            | Edit::Weld(..) => local(self.plan(world)?.ok()?.seeds()),
+            Edit::BevelVertex(..) | Edit::BevelEdge(..) => local(self.plan(world)?.ok()?.seeds()),
             Edit::MoveVertices(moves) => {
                 let seeds: Vec<VertexId> = moves.iter().map(|(v, _)| *v).collect();
                 seeds
@@ -230,15 +223,8 @@ impl Edit {
             Edit::SplitFace(f, ..) => Some(ElementId::Face(*f)),
             Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => Some(ElementId::Vertex(*v)),
             Edit::MoveVertices(moves) => moves.first().map(|(v, _)| ElementId::Vertex(*v)),
-            Edit::Extrude(faces, _) | Edit::Inset(faces, ..) | Edit::Erase(faces) => {
-                Some(ElementId::Face(
-                    *faces
-                        .first()
-                        .ok_or(Refusal::BadParameter("no faces".into()))?,
-                ))
-            }
             Edit::BevelVertex(v, _) => Some(ElementId::Vertex(*v)),
-            Edit::BevelEdge(e, _) | Edit::Weld(e, _) => Some(ElementId::Edge(*e)),
+            Edit::BevelEdge(e, _) => Some(ElementId::Edge(*e)),
             Edit::Smooth(_) => None,
         };
         match named {
@@ -260,20 +246,8 @@ impl Edit {
     /// whose refusal it passes on); `None` for the other edits.
     fn plan(&self, world: &World) -> Option<Result<Planned, Refusal>> {
         Some(match self {
-            Edit::Extrude(faces, d) => plan_extrude(world, faces).and_then(|plan| {
-                plan.check_distance(*d)?;
-                check_growth("extruding", faces.len(), plan.seeds().len())?;
-                Ok(Planned::Extrude(plan, *d))
-            }),
-            Edit::Inset(faces, t, d) => plan_inset(world, faces).and_then(|plan| {
-                plan.check(*t, *d)?;
-                check_growth("insetting", faces.len(), plan.seeds().len())?;
-                Ok(Planned::Inset(plan, *t, *d))
-            }),
             Edit::BevelVertex(v, t) => plan_bevel_vertex(world, *v, *t).map(Planned::BevelVertex),
             Edit::BevelEdge(e, t) => plan_bevel_edge(world, *e, *t).map(Planned::BevelEdge),
-            Edit::Erase(faces) => plan_erase(world, faces).map(Planned::Erase),
-            Edit::Weld(a, b) => plan_weld(world, *a, *b).map(Planned::Weld),
             _ => return None,
         })
     }
@@ -285,11 +259,7 @@ impl Edit {
         use crate::ops::{deform, local, smooth};
         match self {
             Edit::SplitFace(..) => &local::SPLIT_FACE,
-            Edit::Extrude(..) => &local::EXTRUDE,
-            Edit::Inset(..) => &local::INSET,
             Edit::BevelVertex(..) | Edit::BevelEdge(..) => &local::BEVEL,
-            Edit::Erase(_) => &local::ERASE,
-            Edit::Weld(..) => &local::WELD,
             Edit::MoveVertex(..) | Edit::MoveVertices(_) => &MOVE,
             Edit::SplitVertex(_) => &local::VERTEX_SPLIT,
             Edit::Operation(op) => op.declaration(),
@@ -453,48 +423,22 @@ pub const MOVE: Declaration = Declaration::new("move").editor_only();
 
 /// A planned edit of an operation that plans first: its plan and parameters, checked.
 enum Planned {
-    Extrude(ExtrudePlan, f32),
-    Inset(InsetPlan, f32, f32),
     BevelVertex(BevelVertexPlan),
     BevelEdge(BevelEdgePlan),
-    Erase(ErasePlan),
-    Weld(WeldPlan),
 }
 
 impl Planned {
     /// The seeds of its undo record.
     fn seeds(&self) -> Vec<VertexId> {
         match self {
-            Planned::Extrude(p, _) => p.seeds(),
-            Planned::Inset(p, ..) => p.seeds(),
             Planned::BevelVertex(p) => p.seeds(),
             Planned::BevelEdge(p) => p.seeds(),
-            Planned::Erase(p) => p.seeds(),
-            Planned::Weld(p) => p.seeds(),
         }
     }
 
     /// Carries it out (it cannot fail): its summary, and what to select.
     fn apply(self, world: &mut World) -> (String, Option<ElementId>) {
         match self {
-            Planned::Extrude(plan, d) => {
-                let done = apply_extrude(world, plan, d);
-                let summary = format!(
-                    "{} lifted on {}",
-                    count(done.top.len(), "face"),
-                    count(done.sides.len(), "side face")
-                );
-                (summary, None)
-            }
-            Planned::Inset(plan, t, d) => {
-                let done = apply_inset(world, plan, t, d);
-                let summary = format!(
-                    "{} inset, {} around them",
-                    count(done.top.len(), "face"),
-                    count(done.sides.len(), "new face")
-                );
-                (summary, None)
-            }
             Planned::BevelVertex(plan) => {
                 let f = apply_bevel_vertex(world, plan);
                 (format!("new face {f}"), Some(ElementId::Face(f)))
@@ -503,37 +447,8 @@ impl Planned {
                 let f = apply_bevel_edge(world, plan);
                 (format!("new face {f}"), Some(ElementId::Face(f)))
             }
-            Planned::Erase(plan) => {
-                let gone = apply_erase(world, plan);
-                let summary = format!(
-                    "removed {}, {}, {}",
-                    count(gone.faces, "face"),
-                    count(gone.edges, "edge"),
-                    count(gone.vertices, "vertex")
-                );
-                (summary, None)
-            }
-            Planned::Weld(plan) => {
-                let e = apply_weld(world, plan);
-                (format!("welded into {e}"), Some(ElementId::Edge(e)))
-            }
         }
     }
-}
-
-/// The memory check of an edit that adds rows in proportion to its selection (extrusion,
-/// inset): at most, each corner of the selection gains a vertex, a quad beside it, two edges
-/// and eight halfedges (12 rows), which bounds both.
-///
-/// # Refusals
-/// [`Refusal::OverBudget`] past the memory budget.
-fn check_growth(what: &str, faces: usize, corners: usize) -> Result<(), Refusal> {
-    crate::memory_budget::check(&crate::memory_budget::Estimate {
-        what: format!("{what} {faces} face(s)"),
-        faces: corners as u64,
-        rows: corners as u64 * 12,
-        instead: "select fewer faces",
-    })
 }
 
 #[cfg(test)]
@@ -573,12 +488,8 @@ mod tests {
         let every: Vec<Edit> = registered
             .chain([
                 Edit::SplitFace(f, v, v),
-                Edit::Extrude(vec![f], 0.1),
-                Edit::Inset(vec![f], 0.1, 0.0),
                 Edit::BevelVertex(v, 0.2),
                 Edit::BevelEdge(e, 0.2),
-                Edit::Erase(vec![f]),
-                Edit::Weld(e, e),
                 Edit::MoveVertex(v, Vec3::ZERO),
                 Edit::MoveVertices(vec![(v, Vec3::ZERO)]),
                 Edit::SplitVertex(v),

@@ -13,7 +13,6 @@ use crate::mesh::ids::{ElementId, VertexId};
 use crate::mesh::{MeshId, MeshRef, validate};
 use crate::ops::Refusal;
 use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
-use crate::ops::local::faces_of;
 use crate::ops::named::Named;
 use crate::ops::progressive::ProgressiveMesh;
 use crate::ops::smooth::{SmoothMethod, SmoothParams};
@@ -57,9 +56,8 @@ pub enum Step {
     On(Invocation, Vec<Vec<u32>>),
     /// `split-face:A,B`: the face two of the input file's vertices share, between them.
     SplitFace(SplitFaceStep),
-    /// An edit of elements named by vertex numbers (`A`, `A,B`, `A,B,C`, several joined by
-    /// `/`), with its numbers (a distance, an amount).
-    Elements(ElementStep, Vec<Vec<u32>>, Vec<f32>),
+    /// `bevel:ELEMENT[:AMOUNT[:DEPTH]]`.
+    Bevel(BevelStep),
     /// `deform:arap|laplace:FIXED:HANDLE:DX,DY,DZ[:ITERATIONS]`.
     Deform(DeformStep),
     /// `fair:VERTICES[:K]`: the vertices, and the order k.
@@ -150,78 +148,50 @@ fn live_vertex(
         .ok_or(Refusal::Stale(ElementId::Vertex(v)))
 }
 
-/// The steps that name elements of any kind, and how many numbers follow them.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ElementStep {
-    /// `extrude:FACES:DISTANCE`: the faces as one region.
-    Extrude,
-    /// `inset:FACES:AMOUNT[:DEPTH]`: each face (AMOUNT of the way to its centre, 0–1).
-    Inset,
-    /// `bevel:ELEMENT[:AMOUNT[:DEPTH]]`: a vertex or an edge (AMOUNT along its edges, 0–0.5,
-    /// default 0.25), or a face (an inset by AMOUNT with DEPTH).
-    Bevel,
-    /// `erase:ELEMENTS`: the faces (of the vertices, edges) become holes.
-    Erase,
-    /// `weld:A,B/C,D`: two boundary edges into one.
-    Weld,
+/// `bevel:ELEMENT[:AMOUNT[:DEPTH]]`: a vertex or an edge (AMOUNT along its edges, 0–0.5,
+/// default 0.25), or a face (an inset by AMOUNT, default 0.25, with DEPTH).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BevelStep {
+    /// The element, by input vertex numbers.
+    pub element: Vec<u32>,
+    /// AMOUNT and DEPTH, as given.
+    pub numbers: Vec<f32>,
 }
 
-impl Named for ElementStep {
-    const ALL: &'static [(Self, &'static str)] = &[
-        (ElementStep::Extrude, "extrude"),
-        (ElementStep::Inset, "inset"),
-        (ElementStep::Bevel, "bevel"),
-        (ElementStep::Erase, "erase"),
-        (ElementStep::Weld, "weld"),
-    ];
-}
+impl BevelStep {
+    /// The bevel's amount when the step gives none.
+    const DEFAULT_AMOUNT: f32 = 0.25;
 
-impl ElementStep {
-    /// Checks the shape of the step's arguments: the kinds of elements it names and its
-    /// numbers. Returns what is wrong.
-    fn check(self, targets: &[Vec<u32>], numbers: &[f32]) -> Result<(), &'static str> {
-        let all = |n: std::ops::RangeFrom<usize>| targets.iter().all(|t| n.contains(&t.len()));
-        let (shape, numbers_ok) = match self {
-            ElementStep::Extrude => (all(3..), numbers.len() == 1),
-            ElementStep::Inset => (all(3..), (1..=2).contains(&numbers.len())),
-            ElementStep::Bevel => (targets.len() == 1, numbers.len() <= 2),
-            ElementStep::Erase => (true, numbers.is_empty()),
-            ElementStep::Weld => (
-                targets.len() == 2 && targets.iter().all(|t| t.len() == 2),
-                numbers.is_empty(),
-            ),
-        };
-        match (shape && !targets.is_empty(), numbers_ok) {
-            (true, true) => Ok(()),
-            _ => Err(match self {
-                ElementStep::Extrude => {
-                    "expected faces and a distance, as in `extrude:0,1,2/1,2,3:0.5`"
-                }
-                ElementStep::Inset => {
-                    "expected faces and an amount, as in `inset:0,1,2:0.3[:DEPTH]`"
-                }
-                ElementStep::Bevel => "expected one element, as in `bevel:4:0.25` or `bevel:0,1`",
-                ElementStep::Erase => "expected elements, as in `erase:4` or `erase:0,1,2/5,6`",
-                ElementStep::Weld => "expected two boundary edges, as in `weld:0,1/7,8`",
-            }),
-        }
+    /// Parses `ELEMENT[:AMOUNT[:DEPTH]]`.
+    fn parse(args: &str) -> Option<Self> {
+        let mut parts = args.split(':');
+        let element = parse_targets(parts.next()?)
+            .filter(|t| t.len() == 1)?
+            .remove(0);
+        let numbers: Vec<f32> = parts
+            .map(|x| x.parse::<f32>().ok().filter(|x| x.is_finite()))
+            .collect::<Option<_>>()?;
+        (numbers.len() <= 2).then_some(Self { element, numbers })
     }
 
-    /// The edit on the named live elements.
-    fn edit(self, world: &World, elements: &[ElementId], numbers: &[f32]) -> Result<Edit, Refusal> {
-        let faces = || faces_of(world, elements);
-        let number = |i: usize, default: f32| numbers.get(i).copied().unwrap_or(default);
-        Ok(match (self, elements) {
-            (ElementStep::Extrude, _) => Edit::Extrude(faces()?, number(0, 0.0)),
-            (ElementStep::Inset, _) => Edit::Inset(faces()?, number(0, 0.0), number(1, 0.0)),
-            (ElementStep::Bevel, [ElementId::Vertex(v)]) => Edit::BevelVertex(*v, number(0, 0.25)),
-            (ElementStep::Bevel, [ElementId::Edge(e)]) => Edit::BevelEdge(*e, number(0, 0.25)),
-            (ElementStep::Bevel, [ElementId::Face(f)]) => {
-                Edit::Inset(vec![*f], number(0, 0.25), number(1, 0.0))
+    /// The edit on the live element it names.
+    fn edit(&self, element: ElementId) -> Result<Edit, Refusal> {
+        let number = |i: usize, default: f32| self.numbers.get(i).copied().unwrap_or(default);
+        let amount = number(0, Self::DEFAULT_AMOUNT);
+        Ok(match element {
+            ElementId::Vertex(v) => Edit::BevelVertex(v, amount),
+            ElementId::Edge(e) => Edit::BevelEdge(e, amount),
+            face => {
+                let mut inset = Invocation::with_defaults(&crate::ops::local::Inset)
+                    .on(vec![face])
+                    .map_err(Refusal::BadParameter)?;
+                for (i, x) in [amount, number(1, 0.0)].into_iter().enumerate() {
+                    inset
+                        .set(i, Some(f64::from(x)))
+                        .map_err(Refusal::BadParameter)?;
+                }
+                Edit::Operation(inset)
             }
-            (ElementStep::Erase, _) => Edit::Erase(faces()?),
-            (ElementStep::Weld, [ElementId::Edge(a), ElementId::Edge(b)]) => Edit::Weld(*a, *b),
-            _ => unreachable!("checked when parsed"),
         })
     }
 }
@@ -287,8 +257,7 @@ pub fn step_syntax() -> String {
 const OTHER_STEPS: &str = "\
 split-face:A,B |
 smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held) |
-extrude:FACES:DISTANCE | inset:FACES:AMOUNT[:DEPTH] | bevel:ELEMENT[:AMOUNT[:DEPTH]] |
-erase:ELEMENTS | weld:A,B/C,D |
+bevel:ELEMENT[:AMOUNT[:DEPTH]]   (a vertex or an edge: AMOUNT 0-0.5; a face: an inset) |
 deform:arap|laplace:FIXED:HANDLE:DX,DY,DZ[:ITERATIONS]   (FIXED stays, HANDLE moves by DX,DY,DZ) |
 fair:VERTICES[:K]   (k-harmonic, K 1-3, default 2)
 A, B, C: 0-based indices of the input file's vertices: A a vertex, A,B the edge between two,
@@ -315,22 +284,10 @@ impl Step {
         if name == "split-face" {
             return pair().map(|(a, b)| Step::SplitFace(SplitFaceStep(a, b)));
         }
-        let element_step = ElementStep::ALL
-            .iter()
-            .find(|(_, n)| *n == name)
-            .map(|x| x.0);
-        if let Some(op) = element_step {
-            let mut parts = args.split(':');
-            let targets = parts.next().and_then(parse_targets);
-            let numbers: Option<Vec<f32>> = parts
-                .map(|x| x.parse::<f32>().ok().filter(|x| x.is_finite()))
-                .collect();
-            let bad = |why: &str| format!("step `{text}`: {why}");
-            let (Some(targets), Some(numbers)) = (targets, numbers) else {
-                return Err(bad(op.check(&[], &[]).expect_err("empty targets")));
-            };
-            op.check(&targets, &numbers).map_err(bad)?;
-            return Ok(Step::Elements(op, targets, numbers));
+        if name == "bevel" {
+            return BevelStep::parse(args).map(Step::Bevel).ok_or_else(|| {
+                format!("step `{text}`: expected one element, as in `bevel:4:0.25` or `bevel:0,1`")
+            });
         }
         Self::parse_named(text, name, args)
     }
@@ -349,16 +306,11 @@ impl Step {
         let syntax: Vec<String> = ops.iter().map(|op| op.declaration().syntax()).collect();
         let bad = |why: String| format!("step `{text}`: {why}; expected {}", syntax.join(" or "));
         let (targets, values) = args.split_once(':').unwrap_or((args, ""));
-        let Some(targets) = parse_targets(targets).filter(|t| t.len() == 1 && !t[0].is_empty())
-        else {
-            return Some(Err(bad("the element is not input vertex numbers".into())));
+        let Some(targets) = parse_targets(targets) else {
+            return Some(Err(bad("the elements are not input vertex numbers".into())));
         };
-        let named = match targets[0].len() {
-            1 => Names::Vertex,
-            2 => Names::Edge,
-            _ => Names::Face,
-        };
-        let Some(&op) = ops.iter().find(|op| op.declaration().names == named) else {
+        let counts: Vec<usize> = targets.iter().map(Vec::len).collect();
+        let Some(&op) = ops.iter().find(|op| op.declaration().names.fits(&counts)) else {
             let needs: Vec<&str> = ops
                 .iter()
                 .map(|op| op.declaration().names.select_first())
@@ -473,13 +425,7 @@ impl Step {
                     .collect::<Result<_, _>>()?,
                 k: *k,
             }),
-            Step::Elements(op, targets, numbers) => {
-                let elements: Vec<ElementId> = targets
-                    .iter()
-                    .map(|t| element_at(world, input_vertices, t))
-                    .collect::<Result<_, _>>()?;
-                op.edit(world, &elements, numbers)?
-            }
+            Step::Bevel(bevel) => bevel.edit(element_at(world, input_vertices, &bevel.element)?)?,
         };
         let mut context = EditContext {
             history,
@@ -534,8 +480,8 @@ impl std::fmt::Display for Step {
                 d.offset.z,
                 d.iterations
             ),
-            Step::Elements(op, targets, numbers) => {
-                write!(f, "{}:{}", op.name(), targets_text(targets))?;
+            Step::Bevel(BevelStep { element, numbers }) => {
+                write!(f, "bevel:{}", targets_text(std::slice::from_ref(element)))?;
                 numbers.iter().try_for_each(|x| write!(f, ":{x}"))
             }
             Step::Edit(edit) => match edit {
@@ -700,12 +646,12 @@ mod tests {
                 "param:harmonic:circle:x",
                 "param takes at most 2 parameter(s)",
             ),
-            ("extrude:0,1,2", "a distance"),
-            ("extrude:0,1:0.5", "faces and a distance"),
-            ("weld:0,1", "two boundary edges"),
+            ("extrude:0,1:0.5", "extrude names faces"),
+            ("inset:0,1,2:1.5", "AMOUNT must be a number from 0 to 0.999"),
+            ("weld:0,1", "weld names two edges"),
             ("bevel:0/1", "one element"),
             ("dissolve:1,2,3", "a vertex"),
-            ("erase:x", "expected elements"),
+            ("erase:x", "not input vertex numbers"),
             ("deform:arap:0:1:1,2", "DX,DY,DZ"),
             ("deform:arap:0::1,2,3", "HANDLE not empty"),
             ("deform:spring:0:1:1,2,3", "arap|laplace"),

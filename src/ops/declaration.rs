@@ -279,6 +279,12 @@ pub enum Names {
     Vertex,
     /// One face.
     Face,
+    /// One face or more (`A,B,C/D,E,F`): the selected faces.
+    Faces,
+    /// Two edges, in order (`A,B/C,D`): the first two selected.
+    TwoEdges,
+    /// One element or more, of any kind (`4/0,1/0,1,2`): the selection.
+    Elements,
 }
 
 impl Names {
@@ -289,6 +295,9 @@ impl Names {
             Names::Edge => Some("A,B"),
             Names::Vertex => Some("A"),
             Names::Face => Some("A,B,C"),
+            Names::Faces => Some("FACES"),
+            Names::TwoEdges => Some("A,B/C,D"),
+            Names::Elements => Some("ELEMENTS"),
         }
     }
 
@@ -299,6 +308,9 @@ impl Names {
             Names::Edge => "an edge (or halfedge)",
             Names::Vertex => "a vertex",
             Names::Face => "a face",
+            Names::Faces => "faces (mode 3)",
+            Names::TwoEdges => "two edges (Shift-click)",
+            Names::Elements => "elements",
         }
     }
 
@@ -309,6 +321,25 @@ impl Names {
             Names::Edge => matches!(elements, [ElementId::Edge(_)]),
             Names::Vertex => matches!(elements, [ElementId::Vertex(_)]),
             Names::Face => matches!(elements, [ElementId::Face(_)]),
+            Names::Faces => {
+                !elements.is_empty() && elements.iter().all(|x| matches!(x, ElementId::Face(_)))
+            }
+            Names::TwoEdges => matches!(elements, [ElementId::Edge(_), ElementId::Edge(_)]),
+            Names::Elements => !elements.is_empty(),
+        }
+    }
+
+    /// Whether a step's elements, given as the counts of vertex numbers naming each (`[2]`
+    /// for `A,B`, `[3, 3]` for `A,B,C/D,E,F`), are what it names: one number a vertex, two an
+    /// edge, three or more a face.
+    pub fn fits(self, counts: &[usize]) -> bool {
+        match (self, counts) {
+            (_, []) | (Names::Mesh, _) => false,
+            (Names::Vertex, [1]) | (Names::Edge, [2]) | (Names::TwoEdges, [2, 2]) => true,
+            (Names::Face, [n]) => *n >= 3,
+            (Names::Faces, _) => counts.iter().all(|&n| n >= 3),
+            (Names::Elements, _) => counts.iter().all(|&n| n >= 1),
+            _ => false,
         }
     }
 }

@@ -61,6 +61,10 @@ pub const OPERATIONS: &[&dyn MeshOperation] = &[
     &local::DissolveVertex,
     &hole::FillHole,
     &local::ToggleSeam,
+    &local::Extrude,
+    &local::Inset,
+    &local::Erase,
+    &local::Weld,
 ];
 
 /// The registered operation whose step is called `name` (the first, where several share the

@@ -26,7 +26,7 @@ use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::tables::{Connectivity, MeshTables};
 use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
-use crate::ops::declaration::{Declaration, ParameterKind};
+use crate::ops::declaration::{Declaration, Names, ParameterKind};
 use crate::ops::progressive::ProgressiveMesh;
 
 /// What to redraw after an edit.
@@ -59,6 +59,15 @@ pub enum Reach {
     Whole(MeshId),
 }
 
+impl Reach {
+    /// The neighbourhood of `seeds` in their mesh (`None` when there are none, or the first is
+    /// gone).
+    pub fn local(world: &World, seeds: Vec<VertexId>) -> Option<Reach> {
+        let mesh = world.get::<InMesh>(seeds.first()?.0)?.0;
+        Some(Reach::Local(mesh, seeds))
+    }
+}
+
 impl Redraw {
     /// The faces around `vertices` as they are now, and `faces` from before the edit.
     pub fn near(world: &World, faces: Vec<FaceId>, vertices: Vec<VertexId>) -> Redraw {
@@ -82,6 +91,26 @@ pub struct Applied {
 }
 
 impl Applied {
+    /// A local edit's outcome: redraw the faces that were around its `seeds` (`before`) and
+    /// are around them now and around what it `made` (its corners), which the selection moves
+    /// to.
+    pub fn around(
+        world: &World,
+        before: Vec<FaceId>,
+        mut seeds: Vec<VertexId>,
+        summary: String,
+        made: Option<ElementId>,
+    ) -> Self {
+        if let Some(x) = made {
+            seeds.extend(MeshRef::new(world).corners(x));
+        }
+        Self {
+            summary,
+            redraw: Redraw::near(world, before, seeds),
+            made,
+        }
+    }
+
     /// A whole-mesh edit's outcome: redraw everything, keep the selection.
     pub fn whole(summary: String) -> Self {
         Self {
@@ -228,6 +257,31 @@ impl Values<'_> {
         }
     }
 
+    /// The two edges it names, in order ([`Names::TwoEdges`]).
+    ///
+    /// # Refusals
+    /// As [`Values::edge`].
+    pub fn two_edges(&self) -> Result<[EdgeId; 2], Refusal> {
+        match self.elements {
+            [ElementId::Edge(a), ElementId::Edge(b)] => Ok([*a, *b]),
+            _ => Err(self.wrong("two edges")),
+        }
+    }
+
+    /// The faces it names ([`Names::Faces`]).
+    ///
+    /// # Refusals
+    /// As [`Values::edge`].
+    pub fn faces(&self) -> Result<Vec<FaceId>, Refusal> {
+        self.elements
+            .iter()
+            .map(|x| match x {
+                ElementId::Face(f) => Ok(*f),
+                _ => Err(self.wrong("faces")),
+            })
+            .collect()
+    }
+
     fn wrong(&self, needed: &str) -> Refusal {
         Refusal::BadParameter(format!("{needed} is needed, not {:?}", self.elements))
     }
@@ -365,8 +419,13 @@ impl Invocation {
     pub fn label(&self) -> String {
         let d = self.declaration();
         let mut label = lower_first(d.title);
-        for x in &self.elements {
-            label.push_str(&format!(" {x}"));
+        match self.elements.as_slice() {
+            few @ ([_] | [_, _]) => few.iter().for_each(|x| label.push_str(&format!(" {x}"))),
+            [ElementId::Face(_), ..] if d.names == Names::Faces => {
+                label.push_str(&format!(" {}", count(self.elements.len(), "face")));
+            }
+            [] => {}
+            many => label.push_str(&format!(" {}", count(many.len(), "element"))),
         }
         let values: Vec<String> = d
             .parameters

@@ -45,8 +45,6 @@ pub enum Action {
     Inset,
     /// Bevel the active vertex or edge, or the selected faces (the panel's amount and depth).
     Bevel,
-    /// Erase the selected elements: their faces become holes.
-    Erase,
     /// Fill the hole beside the selected boundary edge (with a halfedge active: go to its face).
     Fill,
     /// Fill the hole beside the selected boundary edge with a fair patch of triangles.
@@ -58,8 +56,6 @@ pub enum Action {
     /// The selection's vertices become the anchors of handle deformation (nothing selected:
     /// no anchors).
     MarkAnchors,
-    /// Weld the first two selected boundary edges.
-    Weld,
     /// Run the registered operation of this step name ([`crate::ops::OPERATIONS`]) with the
     /// panel's values of its parameters: on the active mesh, or on the selected element it
     /// names (of the operations sharing the name, the one that names what is selected).
@@ -312,16 +308,10 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "bevel the active vertex or edge, or the selected faces (amount in the panel)",
     ),
     key(
-        KeyCode::KeyX,
-        "X",
-        Action::Erase,
-        "erase the selection: its faces become holes",
-    ),
-    key(
         KeyCode::Delete,
         "Delete",
-        Action::Erase,
-        "erase the selection: its faces become holes",
+        Action::Operation("erase"),
+        "erase the selection: its faces become holes (as X)",
     ),
     key(
         KeyCode::KeyF,
@@ -352,12 +342,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "Alt+O",
         Action::ToggleProportional,
         "proportional editing on / off (G, R, S take the vertices within the radius along)",
-    ),
-    alt(
-        KeyCode::KeyM,
-        "Alt+M",
-        Action::Weld,
-        "weld the first two selected boundary edges",
     ),
     key(
         KeyCode::KeyJ,
@@ -814,10 +798,16 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
             if faces.is_empty() {
                 return Err(Declined::SelectFirst("faces (mode 3)".into()));
             }
-            let edit = match action {
-                Action::Extrude => Edit::Extrude(faces, 0.0),
-                _ => Edit::Inset(faces, 0.0, 0.0),
+            let op: &'static dyn MeshOperation = match action {
+                Action::Extrude => &crate::ops::local::Extrude,
+                _ => &crate::ops::local::Inset,
             };
+            let faces = faces.into_iter().map(ElementId::Face).collect();
+            let edit = Edit::Operation(
+                Invocation::with_defaults(op)
+                    .on(faces)
+                    .map_err(Refusal::BadParameter)?,
+            );
             let undo_mark = world
                 .resource::<crate::editor::session::history::UndoHistory>()
                 .mark();
@@ -834,35 +824,22 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
             let (amount, depth) = (ui.bevel_amount, ui.bevel_depth);
             match selection {
                 Some(ElementId::Vertex(v)) => Edit::BevelVertex(v, amount),
-                Some(ElementId::Face(_)) => Edit::Inset(selected_faces(world), amount, depth),
+                Some(ElementId::Face(_)) => {
+                    let faces = selected_faces(world).into_iter().map(ElementId::Face);
+                    let mut inset = Invocation::with_defaults(&crate::ops::local::Inset)
+                        .on(faces.collect())
+                        .map_err(Refusal::BadParameter)?;
+                    for (i, x) in [amount, depth].into_iter().enumerate() {
+                        inset
+                            .set(i, Some(f64::from(x)))
+                            .map_err(Refusal::BadParameter)?;
+                    }
+                    Edit::Operation(inset)
+                }
                 _ => match selected_edge(&m, selection) {
                     Some(e) => Edit::BevelEdge(e, amount.min(0.5)),
                     None => return Err(Declined::SelectFirst("a vertex, an edge or faces".into())),
                 },
-            }
-        }
-        Action::Erase => {
-            // The set holds live elements only (stale ones drop out after every edit).
-            let faces = faces_of(world, world.resource::<Selection>().elements())?;
-            if faces.is_empty() {
-                return Err(Declined::SelectFirst("elements to erase".into()));
-            }
-            Edit::Erase(faces)
-        }
-        Action::Weld => {
-            let edges: Vec<_> = world
-                .resource::<Selection>()
-                .elements()
-                .iter()
-                .filter_map(|&x| selected_edge(&m, Some(x)))
-                .collect();
-            match edges[..] {
-                [a, b, ..] => Edit::Weld(a, b),
-                _ => {
-                    return Err(Declined::SelectFirst(
-                        "two boundary edges (Shift-click)".into(),
-                    ));
-                }
             }
         }
         _ => return Ok(None),
@@ -904,32 +881,60 @@ fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, De
 /// No registered operation of that name; none that names what is selected (the message says
 /// what to select).
 fn registered_invocation(world: &World, name: &str) -> Result<Invocation, Declined> {
-    let selection = world.resource::<Selection>().element;
-    let m = MeshRef::new(world);
     let mut needs = Vec::new();
     for op in crate::ops::operations_named(name) {
         let names = op.declaration().names;
-        let element = match (names, selection) {
-            (Names::Mesh, _) => None,
-            (Names::Edge, _) => selected_edge(&m, selection).map(ElementId::Edge),
-            (Names::Vertex, Some(x @ ElementId::Vertex(v))) => m.try_vertex(v).map(|_| x),
-            (Names::Face, Some(x @ ElementId::Face(f))) => m.try_face(f).map(|_| x),
-            _ => None,
-        };
         let invocation = world.resource::<UiState>().invocation(op);
-        match (names, element) {
-            (Names::Mesh, _) => return Ok(invocation),
-            (_, Some(x)) => {
-                return invocation
-                    .on(vec![x])
-                    .map_err(|why| Refusal::BadParameter(why).into());
-            }
-            (_, None) => needs.push(names.select_first()),
+        if names == Names::Mesh {
+            return Ok(invocation);
         }
+        let elements = selected_for(world, names);
+        if names.admits(&elements) {
+            return invocation
+                .on(elements)
+                .map_err(|why| Refusal::BadParameter(why).into());
+        }
+        needs.push(names.select_first());
     }
     match needs.is_empty() {
         true => Err(Refusal::BadParameter(format!("no operation is called `{name}`")).into()),
         false => Err(Declined::SelectFirst(needs.join(" or "))),
+    }
+}
+
+/// What the selection offers an operation that names `names`: the active edge (or the active
+/// halfedge's), vertex or face, the selected faces, the first two selected edges, or every
+/// selected element (the selection's set holds live elements only).
+fn selected_for(world: &World, names: Names) -> Vec<ElementId> {
+    let selection = world.resource::<Selection>();
+    let m = MeshRef::new(world);
+    let active = selection.element.filter(|&x| match x {
+        ElementId::Vertex(v) => m.try_vertex(v).is_some(),
+        ElementId::Face(f) => m.try_face(f).is_some(),
+        _ => true,
+    });
+    match (names, active) {
+        (Names::Edge, _) => selected_edge(&m, active)
+            .map(ElementId::Edge)
+            .into_iter()
+            .collect(),
+        (Names::Vertex, Some(x @ ElementId::Vertex(_)))
+        | (Names::Face, Some(x @ ElementId::Face(_))) => {
+            vec![x]
+        }
+        (Names::Faces, _) => selected_faces(world)
+            .into_iter()
+            .map(ElementId::Face)
+            .collect(),
+        (Names::TwoEdges, _) => {
+            let edges = selection
+                .elements()
+                .iter()
+                .filter_map(|&x| selected_edge(&m, Some(x)));
+            edges.take(2).map(ElementId::Edge).collect()
+        }
+        (Names::Elements, _) => selection.elements().to_vec(),
+        _ => Vec::new(),
     }
 }
 

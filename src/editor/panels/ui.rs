@@ -1045,10 +1045,6 @@ fn modelling_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pendi
             (Action::Grab, "Move"),
             (Action::Rotate, "Rotate"),
             (Action::Scale, "Scale"),
-            (Action::Extrude, "Extrude"),
-            (Action::Inset, "Inset"),
-            (Action::Erase, "Erase"),
-            (Action::Weld, "Weld"),
             (Action::DeleteMesh, "Delete mesh"),
         ],
     );

@@ -58,7 +58,7 @@ use super::{Refusal, he, link};
 
 use crate::mesh::ids::MeshId;
 use crate::ops::declaration::{Declaration, Names, Section};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Redraw, Values};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values};
 
 /// Collapsing a face (the `collapse:A,B,C` step): a local edit.
 pub const COLLAPSE_FACE: Declaration = Declaration::new("collapse")
@@ -79,8 +79,7 @@ impl MeshOperation for CollapseFace {
     /// What the plan touches (`None` when it is refused: it changes nothing).
     fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
         let plan = plan_collapse_face(world, values.face().ok()?).ok()?;
-        let mesh = world.get::<crate::mesh::InMesh>(plan.seeds().first()?.0)?.0;
-        Some(Reach::Local(mesh, plan.seeds()))
+        Reach::local(world, plan.seeds())
     }
 
     fn apply(
@@ -94,13 +93,14 @@ impl MeshOperation for CollapseFace {
         let seeds = plan.seeds();
         let before = MeshRef::new(world).faces_around(&seeds);
         let made = apply_collapse_face(world, plan);
-        let mut around = seeds;
-        around.extend(MeshRef::new(world).corners(made.into()));
-        Ok(Applied {
-            summary: format!("collapsed to {made}"),
-            redraw: Redraw::near(world, before, around),
-            made: Some(made.into()),
-        })
+        let summary = format!("collapsed to {made}");
+        Ok(Applied::around(
+            world,
+            before,
+            seeds,
+            summary,
+            Some(made.into()),
+        ))
     }
 }
 

@@ -57,7 +57,7 @@ use super::{Refusal, he, link};
 
 use crate::mesh::ids::MeshId;
 use crate::ops::declaration::{Declaration, Names, Section};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Redraw, Values};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values};
 
 /// Dissolving a vertex (the `dissolve:A` step): a local edit.
 pub const DISSOLVE_VERTEX: Declaration = Declaration::new("dissolve")
@@ -78,8 +78,7 @@ impl MeshOperation for DissolveVertex {
     /// What the plan touches (`None` when it is refused: it changes nothing).
     fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
         let plan = plan_dissolve_vertex(world, values.vertex().ok()?).ok()?;
-        let mesh = world.get::<crate::mesh::InMesh>(plan.seeds().first()?.0)?.0;
-        Some(Reach::Local(mesh, plan.seeds()))
+        Reach::local(world, plan.seeds())
     }
 
     fn apply(
@@ -93,13 +92,14 @@ impl MeshOperation for DissolveVertex {
         let seeds = plan.seeds();
         let before = MeshRef::new(world).faces_around(&seeds);
         let made = apply_dissolve_vertex(world, plan);
-        let mut around = seeds;
-        around.extend(MeshRef::new(world).corners(made.into()));
-        Ok(Applied {
-            summary: format!("merged into {made}"),
-            redraw: Redraw::near(world, before, around),
-            made: Some(made.into()),
-        })
+        let summary = format!("merged into {made}");
+        Ok(Applied::around(
+            world,
+            before,
+            seeds,
+            summary,
+            Some(made.into()),
+        ))
     }
 }
 

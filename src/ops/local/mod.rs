@@ -82,10 +82,26 @@ pub use {
 /// [`crate::ops::OPERATIONS`]).
 pub use {
     bisect::Bisect, collapse::Collapse, collapse_face::CollapseFace, dissolve::Dissolve,
-    dissolve_vertex::DissolveVertex, flip::Flip, split::Split,
+    dissolve_vertex::DissolveVertex, erase::Erase, extrude::Extrude, flip::Flip, inset::Inset,
+    split::Split, weld::Weld,
 };
 
 use bevy::prelude::{Entity, World};
+
+/// The memory check of an edit that adds rows in proportion to its selection (extrusion,
+/// inset): at most, each corner of the selection gains a vertex, a quad beside it, two edges
+/// and eight halfedges (12 rows), which bounds both.
+///
+/// # Refusals
+/// [`Refusal::OverBudget`] past the memory budget.
+fn check_growth(what: &str, faces: usize, corners: usize) -> Result<(), Refusal> {
+    crate::memory_budget::check(&crate::memory_budget::Estimate {
+        what: format!("{what} {faces} face(s)"),
+        faces: corners as u64,
+        rows: corners as u64 * 12,
+        instead: "select fewer faces",
+    })
+}
 
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh};
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId};
