@@ -182,7 +182,7 @@ impl BevelStep {
             ElementId::Vertex(v) => Edit::BevelVertex(v, amount),
             ElementId::Edge(e) => Edit::BevelEdge(e, amount),
             face => {
-                let mut inset = Invocation::with_defaults(&crate::ops::local::Inset)
+                let mut inset = Invocation::with_defaults(&crate::ops::local_operations::Inset)
                     .on(vec![face])
                     .map_err(Refusal::BadParameter)?;
                 for (i, x) in [amount, number(1, 0.0)].into_iter().enumerate() {
@@ -595,16 +595,20 @@ mod tests {
                 d.name
             );
             let defaults = Invocation::with_defaults(op);
-            let (text, expected) = match d.names.placeholder() {
-                None => (d.name.to_string(), Step::Edit(Edit::Operation(defaults))),
-                Some(elements) => {
-                    let numbers: Vec<u32> = (0..elements.split(',').count() as u32).collect();
-                    let text = format!(
-                        "{}:{}",
-                        d.name,
-                        targets_text(std::slice::from_ref(&numbers))
-                    );
-                    (text, Step::On(defaults, vec![numbers]))
+            let targets: Vec<Vec<u32>> = match d.names {
+                Names::Mesh => Vec::new(),
+                Names::Vertex => vec![vec![0]],
+                Names::Edge => vec![vec![0, 1]],
+                Names::Face => vec![vec![0, 1, 2]],
+                Names::Faces => vec![vec![0, 1, 2], vec![1, 2, 3]],
+                Names::TwoEdges => vec![vec![0, 1], vec![2, 3]],
+                Names::Elements => vec![vec![0], vec![0, 1], vec![0, 1, 2]],
+            };
+            let (text, expected) = match targets.is_empty() {
+                true => (d.name.to_string(), Step::Edit(Edit::Operation(defaults))),
+                false => {
+                    let text = format!("{}:{}", d.name, targets_text(&targets));
+                    (text, Step::On(defaults, targets))
                 }
             };
             assert_eq!(Step::parse(&text).unwrap(), expected, "{text}");

@@ -16,6 +16,7 @@ pub mod geometry;
 pub mod hole;
 pub mod indexed_heap;
 pub mod local;
+pub mod local_operations;
 pub mod named;
 pub mod normalize;
 pub mod operation;
@@ -52,19 +53,19 @@ pub const OPERATIONS: &[&dyn MeshOperation] = &[
     &remesh::Remesh,
     &hole::FillHoles,
     &param::Parameterize,
-    &local::Flip,
-    &local::Split,
-    &local::Bisect,
-    &local::Collapse,
-    &local::CollapseFace,
-    &local::Dissolve,
-    &local::DissolveVertex,
+    &local_operations::Flip,
+    &local_operations::Split,
+    &local_operations::Bisect,
+    &local_operations::Collapse,
+    &local_operations::CollapseFace,
+    &local_operations::Dissolve,
+    &local_operations::DissolveVertex,
     &hole::FillHole,
-    &local::ToggleSeam,
-    &local::Extrude,
-    &local::Inset,
-    &local::Erase,
-    &local::Weld,
+    &local_operations::ToggleSeam,
+    &local_operations::Extrude,
+    &local_operations::Inset,
+    &local_operations::Erase,
+    &local_operations::Weld,
 ];
 
 /// The registered operation whose step is called `name` (the first, where several share the

@@ -16,7 +16,6 @@ use crate::mesh::ids::ElementId;
 use crate::ops::Refusal;
 use crate::ops::declaration::Names;
 use crate::ops::deform::{FairParams, Proportional};
-use crate::ops::local::faces_of;
 use crate::ops::operation::MeshOperation;
 use crate::ops::smooth::SmoothParams;
 
@@ -204,8 +203,15 @@ const fn ctrl(
     }
 }
 
-/// The keys of `action` as the help lists them (`"Ctrl+T"`), if it has a shortcut.
+/// The keys of `action` as the help lists them (`"Ctrl+T"`), if it has a shortcut: a
+/// registered operation's declared key before any other the editor gives it (erase: X, not
+/// Delete).
 pub fn keys_of(action: Action) -> Option<&'static str> {
+    if let Action::Operation(name) = action
+        && let Some(keys) = crate::ops::operation(name).and_then(|op| op.declaration().key)
+    {
+        return Some(keys);
+    }
     shortcuts().find(|s| s.action == action).map(|s| s.keys)
 }
 
@@ -634,6 +640,9 @@ impl Default for UiState {
         // (Liepa); the `fill-holes` step keeps its one polygon each by default.
         let faired = state.set_parameter("fill-holes", 0, Some(1.0));
         debug_assert!(faired.is_ok(), "{faired:?}");
+        // The panel's Inset button insets a quarter of the way in (the I key drags from none).
+        let quarter = state.set_parameter("inset", 0, Some(0.25));
+        debug_assert!(quarter.is_ok(), "{quarter:?}");
         state
     }
 }
@@ -799,8 +808,8 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
                 return Err(Declined::SelectFirst("faces (mode 3)".into()));
             }
             let op: &'static dyn MeshOperation = match action {
-                Action::Extrude => &crate::ops::local::Extrude,
-                _ => &crate::ops::local::Inset,
+                Action::Extrude => &crate::ops::local_operations::Extrude,
+                _ => &crate::ops::local_operations::Inset,
             };
             let faces = faces.into_iter().map(ElementId::Face).collect();
             let edit = Edit::Operation(
@@ -826,7 +835,7 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
                 Some(ElementId::Vertex(v)) => Edit::BevelVertex(v, amount),
                 Some(ElementId::Face(_)) => {
                     let faces = selected_faces(world).into_iter().map(ElementId::Face);
-                    let mut inset = Invocation::with_defaults(&crate::ops::local::Inset)
+                    let mut inset = Invocation::with_defaults(&crate::ops::local_operations::Inset)
                         .on(faces.collect())
                         .map_err(Refusal::BadParameter)?;
                     for (i, x) in [amount, depth].into_iter().enumerate() {

@@ -459,14 +459,8 @@ pub fn panels(
                 });
                 sections.show(ui, "Whole mesh", |ui| {
                     whole_mesh_section(ui, &mut ui_state, &mut pending);
-                    if let Some((coarsest, now, full)) = view.lod {
-                        let mut faces = now;
-                        let slider = egui::Slider::new(&mut faces, coarsest..=full)
-                            .text("faces (level of detail)");
-                        if ui.add(slider).changed() && faces != now {
-                            let refine = crate::ops::decimate::Refine::to(Some(faces));
-                            requests.write(Request::Edit(Edit::Operation(refine)));
-                        }
+                    if let Some(lod) = view.lod {
+                        level_of_detail(ui, lod, &mut requests);
                     }
                 });
                 sections.show(ui, "Shape", |ui| {
@@ -1073,6 +1067,21 @@ fn local_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingAc
             (Action::Frame, "Frame"),
         ],
     );
+}
+
+/// The level-of-detail slider of a simplified mesh (its coarsest, current and full face
+/// counts): a drag moves along the simplification history.
+fn level_of_detail(
+    ui: &mut egui::Ui,
+    (coarsest, now, full): (usize, usize, usize),
+    requests: &mut MessageWriter<Request>,
+) {
+    let mut faces = now;
+    let slider = egui::Slider::new(&mut faces, coarsest..=full).text("faces (level of detail)");
+    if ui.add(slider).changed() && faces != now {
+        let refine = crate::ops::decimate::Refine::to(Some(faces));
+        requests.write(Request::Edit(Edit::Operation(refine)));
+    }
 }
 
 /// The registered operations that declare the *Whole mesh* section, step mode (which runs

@@ -33,45 +33,6 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link, live_edge, spawn_at};
 
-use crate::mesh::ids::MeshId;
-use crate::ops::declaration::{Declaration, Names, Section};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Redraw, Values};
-
-/// Bisecting an edge: a local edit.
-pub const BISECT: Declaration = Declaration::new("bisect")
-    .titled("Bisect")
-    .described("bisect the selected edge: a vertex at its midpoint, no face cut")
-    .on_key("K")
-    .naming(Names::Edge)
-    .in_section(Section::Local);
-
-/// [`bisect_edge`] at the midpoint as a registered operation: `bisect:A,B`, K.
-pub struct Bisect;
-
-impl MeshOperation for Bisect {
-    fn declaration(&self) -> &'static Declaration {
-        &BISECT
-    }
-
-    fn apply(
-        &self,
-        world: &mut World,
-        _: MeshId,
-        values: Values<'_>,
-        _: &mut EditContext<'_>,
-    ) -> Result<Applied, Refusal> {
-        let e = values.edge()?;
-        let m = MeshRef::new(world);
-        let before = m.faces_around(&m.corners(e.into()));
-        let v = bisect_edge(world, e, 0.5)?;
-        Ok(Applied {
-            summary: format!("new vertex {v} on {e}"),
-            redraw: Redraw::near(world, before, vec![v]),
-            made: Some(ElementId::Vertex(v)),
-        })
-    }
-}
-
 /// Everything a bisection touches, collected by [`plan_bisect`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BisectPlan {

@@ -72,45 +72,6 @@ use crate::mesh::topology::{MAX_LOOP, MeshRef, newell_area_vector};
 
 use super::{Refusal, he, link, live_edge};
 
-use crate::mesh::ids::MeshId;
-use crate::ops::declaration::{Declaration, Names, Section};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Redraw, Values};
-
-/// Collapsing an edge: a local edit.
-pub const COLLAPSE: Declaration = Declaration::new("collapse")
-    .titled("Collapse")
-    .described("collapse the active edge (to its midpoint) or face (to its centroid)")
-    .on_key("C")
-    .naming(Names::Edge)
-    .in_section(Section::Local);
-
-/// [`collapse_edge`] to the midpoint as a registered operation: `collapse:A,B`, C on an edge.
-pub struct Collapse;
-
-impl MeshOperation for Collapse {
-    fn declaration(&self) -> &'static Declaration {
-        &COLLAPSE
-    }
-
-    fn apply(
-        &self,
-        world: &mut World,
-        _: MeshId,
-        values: Values<'_>,
-        _: &mut EditContext<'_>,
-    ) -> Result<Applied, Refusal> {
-        let e = values.edge()?;
-        let m = MeshRef::new(world);
-        let before = m.faces_around(&m.corners(e.into()));
-        let r = collapse_edge(world, e, CollapseOptions::default())?;
-        Ok(Applied {
-            summary: format!("kept {}, removed {}", r.kept, r.removed),
-            redraw: Redraw::near(world, before, vec![r.kept]),
-            made: Some(ElementId::Vertex(r.kept)),
-        })
-    }
-}
-
 /// How to collapse.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CollapseOptions {

@@ -56,54 +56,6 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link};
 
-use crate::mesh::ids::MeshId;
-use crate::ops::declaration::{Declaration, Names, Section};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values};
-
-/// Collapsing a face (the `collapse:A,B,C` step): a local edit.
-pub const COLLAPSE_FACE: Declaration = Declaration::new("collapse")
-    .titled("Collapse")
-    .described("collapse the active face to its centroid")
-    .on_key("C")
-    .naming(Names::Face)
-    .in_section(Section::Local);
-
-/// [`collapse_face`] as a registered operation: `collapse:A,B,C`, C on a face.
-pub struct CollapseFace;
-
-impl MeshOperation for CollapseFace {
-    fn declaration(&self) -> &'static Declaration {
-        &COLLAPSE_FACE
-    }
-
-    /// What the plan touches (`None` when it is refused: it changes nothing).
-    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
-        let plan = plan_collapse_face(world, values.face().ok()?).ok()?;
-        Reach::local(world, plan.seeds())
-    }
-
-    fn apply(
-        &self,
-        world: &mut World,
-        _: MeshId,
-        values: Values<'_>,
-        _: &mut EditContext<'_>,
-    ) -> Result<Applied, Refusal> {
-        let plan = plan_collapse_face(world, values.face()?)?;
-        let seeds = plan.seeds();
-        let before = MeshRef::new(world).faces_around(&seeds);
-        let made = apply_collapse_face(world, plan);
-        let summary = format!("collapsed to {made}");
-        Ok(Applied::around(
-            world,
-            before,
-            seeds,
-            summary,
-            Some(made.into()),
-        ))
-    }
-}
-
 /// The face across one side `t` (the twin of the face's side) of the collapsing face.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Side {

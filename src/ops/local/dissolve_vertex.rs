@@ -55,54 +55,6 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link};
 
-use crate::mesh::ids::MeshId;
-use crate::ops::declaration::{Declaration, Names, Section};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values};
-
-/// Dissolving a vertex (the `dissolve:A` step): a local edit.
-pub const DISSOLVE_VERTEX: Declaration = Declaration::new("dissolve")
-    .titled("Dissolve")
-    .described("dissolve the active vertex: merge the faces around it")
-    .on_key("D")
-    .naming(Names::Vertex)
-    .in_section(Section::Local);
-
-/// [`dissolve_vertex`] as a registered operation: `dissolve:A`, D on a vertex.
-pub struct DissolveVertex;
-
-impl MeshOperation for DissolveVertex {
-    fn declaration(&self) -> &'static Declaration {
-        &DISSOLVE_VERTEX
-    }
-
-    /// What the plan touches (`None` when it is refused: it changes nothing).
-    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
-        let plan = plan_dissolve_vertex(world, values.vertex().ok()?).ok()?;
-        Reach::local(world, plan.seeds())
-    }
-
-    fn apply(
-        &self,
-        world: &mut World,
-        _: MeshId,
-        values: Values<'_>,
-        _: &mut EditContext<'_>,
-    ) -> Result<Applied, Refusal> {
-        let plan = plan_dissolve_vertex(world, values.vertex()?)?;
-        let seeds = plan.seeds();
-        let before = MeshRef::new(world).faces_around(&seeds);
-        let made = apply_dissolve_vertex(world, plan);
-        let summary = format!("merged into {made}");
-        Ok(Applied::around(
-            world,
-            before,
-            seeds,
-            summary,
-            Some(made.into()),
-        ))
-    }
-}
-
 /// The new side of a boundary dissolve, made from `v`'s outgoing boundary edge.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Closing {

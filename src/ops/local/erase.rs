@@ -45,53 +45,6 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link, live_edge};
 
-use crate::ops::declaration::{Declaration, Names, Section};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values, count};
-
-/// Erasing faces: a local edit.
-pub const ERASE: Declaration = Declaration::new("erase")
-    .titled("Erase")
-    .described("erase the selection: its faces become holes")
-    .on_key("X")
-    .naming(Names::Elements)
-    .in_section(Section::Modelling);
-
-/// [`plan_erase`] and [`apply_erase`] on the faces of the named elements (a vertex's, an
-/// edge's, a face): `erase:ELEMENTS`, X.
-pub struct Erase;
-
-impl MeshOperation for Erase {
-    fn declaration(&self) -> &'static Declaration {
-        &ERASE
-    }
-
-    /// What the plan touches (`None` when it is refused: it changes nothing).
-    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
-        let plan = plan_erase(world, &faces_of(world, values.elements()).ok()?).ok()?;
-        Reach::local(world, plan.seeds())
-    }
-
-    fn apply(
-        &self,
-        world: &mut World,
-        _: MeshId,
-        values: Values<'_>,
-        _: &mut EditContext<'_>,
-    ) -> Result<Applied, Refusal> {
-        let plan = plan_erase(world, &faces_of(world, values.elements())?)?;
-        let seeds = plan.seeds();
-        let before = MeshRef::new(world).faces_around(&seeds);
-        let gone = apply_erase(world, plan);
-        let summary = format!(
-            "removed {}, {}, {}",
-            count(gone.faces, "face"),
-            count(gone.edges, "edge"),
-            count(gone.vertices, "vertex")
-        );
-        Ok(Applied::around(world, before, seeds, summary, None))
-    }
-}
-
 /// What an erase removed.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Erased {

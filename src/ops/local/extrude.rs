@@ -67,58 +67,6 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, spawn_at};
 
-use crate::ops::declaration::{Declaration, Names, Parameter, Section};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values, count};
-
-/// Extruding a region of faces: a local edit (the walls take the region's groups).
-pub const EXTRUDE: Declaration = Declaration::new("extrude")
-    .titled("Extrude")
-    .described("extrude the faces as one region and push it DISTANCE along its normals")
-    .naming(Names::Faces)
-    .with_parameters(&[Parameter::real("DISTANCE", 0.0, -1e6, 1e6)])
-    .in_section(Section::Modelling);
-
-/// [`plan_extrude`] and [`apply_extrude`] as a registered operation: `extrude:FACES[:DISTANCE]`,
-/// E (which then drags the distance).
-pub struct Extrude;
-
-impl MeshOperation for Extrude {
-    fn declaration(&self) -> &'static Declaration {
-        &EXTRUDE
-    }
-
-    /// What the plan touches (`None` when it is refused: it changes nothing).
-    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
-        let plan = plan_extrude(world, &values.faces().ok()?).ok()?;
-        Reach::local(world, plan.seeds())
-    }
-
-    fn apply(
-        &self,
-        world: &mut World,
-        _: MeshId,
-        values: Values<'_>,
-        _: &mut EditContext<'_>,
-    ) -> Result<Applied, Refusal> {
-        let plan = {
-            let faces = values.faces()?;
-            let plan = plan_extrude(world, &faces)?;
-            plan.check_distance(values.number(0) as f32)?;
-            super::check_growth("extruding", faces.len(), plan.seeds().len())?;
-            plan
-        };
-        let seeds = plan.seeds();
-        let before = MeshRef::new(world).faces_around(&seeds);
-        let done = apply_extrude(world, plan, values.number(0) as f32);
-        let summary = format!(
-            "{} lifted on {}",
-            count(done.top.len(), "face"),
-            count(done.sides.len(), "side face")
-        );
-        Ok(Applied::around(world, before, seeds, summary, None))
-    }
-}
-
 /// What an extrusion (or an inset, [`super::inset_faces`]) made.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Extruded {

@@ -43,45 +43,6 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link, live_edge};
 
-use crate::mesh::ids::MeshId;
-use crate::ops::declaration::{Declaration, Names, Section};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Redraw, Values};
-
-/// Flipping an edge: a local edit that keeps every id and attribute.
-pub const FLIP: Declaration = Declaration::new("flip")
-    .titled("Flip")
-    .described("flip (rotate) the selected edge")
-    .on_key("Alt+R")
-    .naming(Names::Edge)
-    .in_section(Section::Local);
-
-/// [`flip_edge`] as a registered operation: `flip:A,B`, Alt+R, the *Local operations* button.
-pub struct Flip;
-
-impl MeshOperation for Flip {
-    fn declaration(&self) -> &'static Declaration {
-        &FLIP
-    }
-
-    fn apply(
-        &self,
-        world: &mut World,
-        _: MeshId,
-        values: Values<'_>,
-        _: &mut EditContext<'_>,
-    ) -> Result<Applied, Refusal> {
-        let e = values.edge()?;
-        let m = MeshRef::new(world);
-        let before = m.faces_around(&m.corners(e.into()));
-        let flipped = flip_edge(world, e)?;
-        Ok(Applied {
-            summary: format!("flipped to {flipped}"),
-            redraw: Redraw::near(world, before, MeshRef::new(world).corners(flipped.into())),
-            made: Some(ElementId::Edge(flipped)),
-        })
-    }
-}
-
 /// Everything a flip touches, collected by [`plan_flip`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FlipPlan {

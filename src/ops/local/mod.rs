@@ -65,26 +65,16 @@ pub use extrude::{
 pub use fill_hole::{FillHolePlan, apply_fill_hole, fill_hole, plan_fill_hole};
 pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
 pub use inset::{InsetPlan, apply_inset, inset_faces, plan_inset};
-pub use seam::{ToggleSeam, toggle_seam};
+pub use seam::toggle_seam;
 pub use split::{SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint};
 pub use split_face::{SplitFacePlan, apply_split_face, plan_split_face, split_face};
 pub use vertex_split::vertex_split;
 
 pub use weld::{WeldPlan, apply_weld, plan_weld, weld_edges};
-/// Each local operation's declaration (see [`crate::ops::declaration`]).
-pub use {
-    bevel::BEVEL, bisect::BISECT, collapse::COLLAPSE, collapse_face::COLLAPSE_FACE,
-    dissolve::DISSOLVE, dissolve_vertex::DISSOLVE_VERTEX, erase::ERASE, extrude::EXTRUDE,
-    flip::FLIP, inset::INSET, seam::SEAM, split::SPLIT, split_face::SPLIT_FACE,
-    vertex_split::VERTEX_SPLIT, weld::WELD,
-};
-/// The local operations that declare themselves whole (registered in
-/// [`crate::ops::OPERATIONS`]).
-pub use {
-    bisect::Bisect, collapse::Collapse, collapse_face::CollapseFace, dissolve::Dissolve,
-    dissolve_vertex::DissolveVertex, erase::Erase, extrude::Extrude, flip::Flip, inset::Inset,
-    split::Split, weld::Weld,
-};
+
+/// The declarations of the local operations that are still variants of `Edit` (the others
+/// are registered, in [`crate::ops::local_operations`]).
+pub use {bevel::BEVEL, split_face::SPLIT_FACE, vertex_split::VERTEX_SPLIT};
 
 use bevy::prelude::{Entity, World};
 
@@ -94,7 +84,7 @@ use bevy::prelude::{Entity, World};
 ///
 /// # Refusals
 /// [`Refusal::OverBudget`] past the memory budget.
-fn check_growth(what: &str, faces: usize, corners: usize) -> Result<(), Refusal> {
+pub(crate) fn check_growth(what: &str, faces: usize, corners: usize) -> Result<(), Refusal> {
     crate::memory_budget::check(&crate::memory_budget::Estimate {
         what: format!("{what} {faces} face(s)"),
         faces: corners as u64,

@@ -44,50 +44,11 @@
 
 use bevy::prelude::World;
 
-use crate::mesh::ids::{EdgeId, ElementId, VertexId};
+use crate::mesh::ids::{EdgeId, VertexId};
 use crate::mesh::topology::MeshRef;
 
 use super::bisect::{BisectPlan, apply_bisect, plan_bisect};
 use super::{Refusal, cut};
-
-use crate::mesh::ids::MeshId;
-use crate::ops::declaration::{Declaration, Names, Section};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Redraw, Values};
-
-/// Splitting an edge: a local edit.
-pub const SPLIT: Declaration = Declaration::new("split")
-    .titled("Split")
-    .described("split the selected edge at its midpoint")
-    .on_key("Alt+S")
-    .naming(Names::Edge)
-    .in_section(Section::Local);
-
-/// [`split_edge`] at the midpoint as a registered operation: `split:A,B`, Alt+S.
-pub struct Split;
-
-impl MeshOperation for Split {
-    fn declaration(&self) -> &'static Declaration {
-        &SPLIT
-    }
-
-    fn apply(
-        &self,
-        world: &mut World,
-        _: MeshId,
-        values: Values<'_>,
-        _: &mut EditContext<'_>,
-    ) -> Result<Applied, Refusal> {
-        let e = values.edge()?;
-        let m = MeshRef::new(world);
-        let before = m.faces_around(&m.corners(e.into()));
-        let v = split_edge(world, e, 0.5)?;
-        Ok(Applied {
-            summary: format!("new vertex {v}"),
-            redraw: Redraw::near(world, before, vec![v]),
-            made: Some(ElementId::Vertex(v)),
-        })
-    }
-}
 
 /// Everything a split touches: the bisection's plan (a split is a bisection, then a cut of each
 /// face from the new vertex).

@@ -49,58 +49,6 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, link, live_edge};
 
-use crate::ops::declaration::{Declaration, Names, Section};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values, count};
-
-/// Welding two boundary edges: a local edit.
-pub const WELD: Declaration = Declaration::new("weld")
-    .titled("Weld")
-    .described("weld the first two selected boundary edges: the second onto the first")
-    .on_key("Alt+M")
-    .naming(Names::TwoEdges)
-    .in_section(Section::Modelling);
-
-/// [`plan_weld`] and [`apply_weld`] as a registered operation: `weld:A,B/C,D`, Alt+M.
-pub struct Weld;
-
-impl MeshOperation for Weld {
-    fn declaration(&self) -> &'static Declaration {
-        &WELD
-    }
-
-    /// What the plan touches (`None` when it is refused: it changes nothing).
-    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
-        let plan = {
-            let [a, b] = values.two_edges().ok()?;
-            plan_weld(world, a, b).ok()?
-        };
-        Reach::local(world, plan.seeds())
-    }
-
-    fn apply(
-        &self,
-        world: &mut World,
-        _: MeshId,
-        values: Values<'_>,
-        _: &mut EditContext<'_>,
-    ) -> Result<Applied, Refusal> {
-        let plan = {
-            let [a, b] = values.two_edges()?;
-            plan_weld(world, a, b)?
-        };
-        let seeds = plan.seeds();
-        let before = MeshRef::new(world).faces_around(&seeds);
-        let e = apply_weld(world, plan);
-        Ok(Applied::around(
-            world,
-            before,
-            seeds,
-            format!("welded into {e}"),
-            Some(ElementId::Edge(e)),
-        ))
-    }
-}
-
 /// One pair of vertices that become one: `keep` survives at `position`; `gone` (when it is
 /// another vertex) is removed, and the halfedges into it point at `keep`.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,0 +1,524 @@
+//! The local operations as registered operations ([`MeshOperation`]): what each names (an
+//! edge, a vertex, a face, faces, two edges, any elements), its title, key, panel section and
+//! parameters, and how its outcome reads — the summary, what to redraw, what to select. The
+//! algorithms, their plans and refusals are in [`crate::ops::local`], which knows nothing of
+//! the edit layer; these adapters sit beside it rather than in it because the edit context
+//! carries the simplification history ([`crate::ops::progressive`]), which is built from the
+//! local operations (a module cycle otherwise).
+//!
+//! Each operation here is one `process` step, one key (or none, where the editor's own key
+//! starts a drag first: E, I), one button, one `Mesh.step` from Python and one undoable edit;
+//! operations that share a name and a key name different kinds of element (`collapse` an edge
+//! or a face, C; `dissolve` an edge or a vertex, D), and what is selected, or what the step's
+//! vertex numbers name, decides which runs.
+
+use bevy::prelude::World;
+
+use crate::mesh::ids::{ElementId, MeshId};
+use crate::mesh::topology::MeshRef;
+use crate::ops::Refusal;
+use crate::ops::declaration::{Declaration, Names, Parameter, Section};
+use crate::ops::local::{
+    CollapseOptions, apply_collapse_face, apply_dissolve_vertex, apply_erase, apply_extrude,
+    apply_inset, apply_weld, bisect_edge, check_growth, collapse_edge, dissolve_edge, faces_of,
+    flip_edge, plan_collapse_face, plan_dissolve_vertex, plan_erase, plan_extrude, plan_inset,
+    plan_weld, split_edge, toggle_seam,
+};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Redraw, Values, count};
+
+/// Flipping an edge: a local edit that keeps every id and attribute.
+pub const FLIP: Declaration = Declaration::new("flip")
+    .titled("Flip")
+    .described("flip (rotate) the selected edge")
+    .on_key("Alt+R")
+    .naming(Names::Edge)
+    .in_section(Section::Local);
+
+/// [`flip_edge`] as a registered operation: `flip:A,B`, Alt+R, the *Local operations* button.
+pub struct Flip;
+
+impl MeshOperation for Flip {
+    fn declaration(&self) -> &'static Declaration {
+        &FLIP
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        let m = MeshRef::new(world);
+        let before = m.faces_around(&m.corners(e.into()));
+        let flipped = flip_edge(world, e)?;
+        Ok(Applied {
+            summary: format!("flipped to {flipped}"),
+            redraw: Redraw::near(world, before, MeshRef::new(world).corners(flipped.into())),
+            made: Some(ElementId::Edge(flipped)),
+        })
+    }
+}
+
+/// Splitting an edge: a local edit.
+pub const SPLIT: Declaration = Declaration::new("split")
+    .titled("Split")
+    .described("split the selected edge at its midpoint")
+    .on_key("Alt+S")
+    .naming(Names::Edge)
+    .in_section(Section::Local);
+
+/// [`split_edge`] at the midpoint as a registered operation: `split:A,B`, Alt+S.
+pub struct Split;
+
+impl MeshOperation for Split {
+    fn declaration(&self) -> &'static Declaration {
+        &SPLIT
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        let m = MeshRef::new(world);
+        let before = m.faces_around(&m.corners(e.into()));
+        let v = split_edge(world, e, 0.5)?;
+        Ok(Applied {
+            summary: format!("new vertex {v}"),
+            redraw: Redraw::near(world, before, vec![v]),
+            made: Some(ElementId::Vertex(v)),
+        })
+    }
+}
+
+/// Bisecting an edge: a local edit.
+pub const BISECT: Declaration = Declaration::new("bisect")
+    .titled("Bisect")
+    .described("bisect the selected edge: a vertex at its midpoint, no face cut")
+    .on_key("K")
+    .naming(Names::Edge)
+    .in_section(Section::Local);
+
+/// [`bisect_edge`] at the midpoint as a registered operation: `bisect:A,B`, K.
+pub struct Bisect;
+
+impl MeshOperation for Bisect {
+    fn declaration(&self) -> &'static Declaration {
+        &BISECT
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        let m = MeshRef::new(world);
+        let before = m.faces_around(&m.corners(e.into()));
+        let v = bisect_edge(world, e, 0.5)?;
+        Ok(Applied {
+            summary: format!("new vertex {v} on {e}"),
+            redraw: Redraw::near(world, before, vec![v]),
+            made: Some(ElementId::Vertex(v)),
+        })
+    }
+}
+
+/// Collapsing an edge: a local edit.
+pub const COLLAPSE: Declaration = Declaration::new("collapse")
+    .titled("Collapse")
+    .described("collapse the active edge (to its midpoint) or face (to its centroid)")
+    .on_key("C")
+    .naming(Names::Edge)
+    .in_section(Section::Local);
+
+/// [`collapse_edge`] to the midpoint as a registered operation: `collapse:A,B`, C on an edge.
+pub struct Collapse;
+
+impl MeshOperation for Collapse {
+    fn declaration(&self) -> &'static Declaration {
+        &COLLAPSE
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        let m = MeshRef::new(world);
+        let before = m.faces_around(&m.corners(e.into()));
+        let r = collapse_edge(world, e, CollapseOptions::default())?;
+        Ok(Applied {
+            summary: format!("kept {}, removed {}", r.kept, r.removed),
+            redraw: Redraw::near(world, before, vec![r.kept]),
+            made: Some(ElementId::Vertex(r.kept)),
+        })
+    }
+}
+
+/// Collapsing a face (the `collapse:A,B,C` step): a local edit.
+pub const COLLAPSE_FACE: Declaration = Declaration::new("collapse")
+    .titled("Collapse")
+    .described("collapse the active face to its centroid")
+    .on_key("C")
+    .naming(Names::Face)
+    .in_section(Section::Local);
+
+/// [`collapse_face`] as a registered operation: `collapse:A,B,C`, C on a face.
+pub struct CollapseFace;
+
+impl MeshOperation for CollapseFace {
+    fn declaration(&self) -> &'static Declaration {
+        &COLLAPSE_FACE
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let plan = plan_collapse_face(world, values.face().ok()?).ok()?;
+        Reach::local(world, plan.seeds())
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let plan = plan_collapse_face(world, values.face()?)?;
+        let seeds = plan.seeds();
+        let before = MeshRef::new(world).faces_around(&seeds);
+        let made = apply_collapse_face(world, plan);
+        let summary = format!("collapsed to {made}");
+        Ok(Applied::around(
+            world,
+            before,
+            seeds,
+            summary,
+            Some(made.into()),
+        ))
+    }
+}
+
+/// Dissolving an edge: a local edit.
+pub const DISSOLVE: Declaration = Declaration::new("dissolve")
+    .titled("Dissolve")
+    .described("dissolve the active edge (merge its two faces) or vertex (merge its faces)")
+    .on_key("D")
+    .naming(Names::Edge)
+    .in_section(Section::Local);
+
+/// [`dissolve_edge`] as a registered operation: `dissolve:A,B`, D on an edge.
+pub struct Dissolve;
+
+impl MeshOperation for Dissolve {
+    fn declaration(&self) -> &'static Declaration {
+        &DISSOLVE
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        let m = MeshRef::new(world);
+        let ends = m.corners(e.into());
+        let before = m.faces_around(&ends);
+        let f = dissolve_edge(world, e)?;
+        Ok(Applied {
+            summary: format!("merged into {f}"),
+            redraw: Redraw::near(world, before, ends),
+            made: Some(ElementId::Face(f)),
+        })
+    }
+}
+
+/// Dissolving a vertex (the `dissolve:A` step): a local edit.
+pub const DISSOLVE_VERTEX: Declaration = Declaration::new("dissolve")
+    .titled("Dissolve")
+    .described("dissolve the active vertex: merge the faces around it")
+    .on_key("D")
+    .naming(Names::Vertex)
+    .in_section(Section::Local);
+
+/// [`dissolve_vertex`] as a registered operation: `dissolve:A`, D on a vertex.
+pub struct DissolveVertex;
+
+impl MeshOperation for DissolveVertex {
+    fn declaration(&self) -> &'static Declaration {
+        &DISSOLVE_VERTEX
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let plan = plan_dissolve_vertex(world, values.vertex().ok()?).ok()?;
+        Reach::local(world, plan.seeds())
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let plan = plan_dissolve_vertex(world, values.vertex()?)?;
+        let seeds = plan.seeds();
+        let before = MeshRef::new(world).faces_around(&seeds);
+        let made = apply_dissolve_vertex(world, plan);
+        let summary = format!("merged into {made}");
+        Ok(Applied::around(
+            world,
+            before,
+            seeds,
+            summary,
+            Some(made.into()),
+        ))
+    }
+}
+
+/// Marking a seam (or unmarking it): a local edit of one edge's mark.
+pub const SEAM: Declaration = Declaration::new("seam")
+    .titled("Seam")
+    .described("mark the selected edge as a seam for parameterizing (or unmark it)")
+    .on_key("Ctrl+E")
+    .naming(Names::Edge)
+    .in_section(Section::Uv)
+    .keeping_normals();
+
+/// [`toggle_seam`] as a registered operation: `seam:A,B`, Ctrl+E.
+pub struct ToggleSeam;
+
+impl MeshOperation for ToggleSeam {
+    fn declaration(&self) -> &'static Declaration {
+        &SEAM
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        let marked = toggle_seam(world, e)?;
+        Ok(Applied {
+            summary: if marked {
+                format!("{e} is a seam")
+            } else {
+                format!("{e} is no longer a seam")
+            },
+            redraw: Redraw::near(world, Vec::new(), MeshRef::new(world).corners(e.into())),
+            made: None,
+        })
+    }
+}
+
+/// Extruding a region of faces: a local edit (the walls take the region's groups).
+pub const EXTRUDE: Declaration = Declaration::new("extrude")
+    .titled("Extrude")
+    .described("extrude the faces as one region and push it DISTANCE along its normals")
+    .naming(Names::Faces)
+    .with_parameters(&[Parameter::real("DISTANCE", 0.0, -1e6, 1e6)])
+    .in_section(Section::Modelling);
+
+/// [`plan_extrude`] and [`apply_extrude`] as a registered operation: `extrude:FACES[:DISTANCE]`,
+/// E (which then drags the distance).
+pub struct Extrude;
+
+impl MeshOperation for Extrude {
+    fn declaration(&self) -> &'static Declaration {
+        &EXTRUDE
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let plan = plan_extrude(world, &values.faces().ok()?).ok()?;
+        Reach::local(world, plan.seeds())
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let plan = {
+            let faces = values.faces()?;
+            let plan = plan_extrude(world, &faces)?;
+            plan.check_distance(values.number(0) as f32)?;
+            check_growth("extruding", faces.len(), plan.seeds().len())?;
+            plan
+        };
+        let seeds = plan.seeds();
+        let before = MeshRef::new(world).faces_around(&seeds);
+        let done = apply_extrude(world, plan, values.number(0) as f32);
+        let summary = format!(
+            "{} lifted on {}",
+            count(done.top.len(), "face"),
+            count(done.sides.len(), "side face")
+        );
+        Ok(Applied::around(world, before, seeds, summary, None))
+    }
+}
+
+/// Insetting faces (with a depth, Scotty3D's bevel face): a local edit.
+pub const INSET: Declaration = Declaration::new("inset")
+    .titled("Inset")
+    .described("inset each face: a ring of quads inside it, AMOUNT of the way to its centre, DEPTH along its normal")
+    .naming(Names::Faces)
+    .with_parameters(&[
+        Parameter::real("AMOUNT", 0.0, 0.0, 0.999),
+        Parameter::real("DEPTH", 0.0, -1e6, 1e6),
+    ])
+    .in_section(Section::Modelling);
+
+/// [`plan_inset`] and [`apply_inset`] as a registered operation: `inset:FACES[:AMOUNT[:DEPTH]]`,
+/// I (which then drags the amount), and a face's bevel (`bevel:A,B,C:AMOUNT:DEPTH`, Ctrl+B).
+pub struct Inset;
+
+impl MeshOperation for Inset {
+    fn declaration(&self) -> &'static Declaration {
+        &INSET
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let plan = plan_inset(world, &values.faces().ok()?).ok()?;
+        Reach::local(world, plan.seeds())
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let plan = {
+            let faces = values.faces()?;
+            let plan = plan_inset(world, &faces)?;
+            plan.check(values.number(0) as f32, values.number(1) as f32)?;
+            check_growth("insetting", faces.len(), plan.seeds().len())?;
+            plan
+        };
+        let seeds = plan.seeds();
+        let before = MeshRef::new(world).faces_around(&seeds);
+        let (amount, depth) = (values.number(0) as f32, values.number(1) as f32);
+        let done = apply_inset(world, plan, amount, depth);
+        let summary = format!(
+            "{} inset, {} around them",
+            count(done.top.len(), "face"),
+            count(done.sides.len(), "new face")
+        );
+        Ok(Applied::around(world, before, seeds, summary, None))
+    }
+}
+
+/// Erasing faces: a local edit.
+pub const ERASE: Declaration = Declaration::new("erase")
+    .titled("Erase")
+    .described("erase the selection: its faces become holes")
+    .on_key("X")
+    .naming(Names::Elements)
+    .in_section(Section::Modelling);
+
+/// [`plan_erase`] and [`apply_erase`] on the faces of the named elements (a vertex's, an
+/// edge's, a face): `erase:ELEMENTS`, X.
+pub struct Erase;
+
+impl MeshOperation for Erase {
+    fn declaration(&self) -> &'static Declaration {
+        &ERASE
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let plan = plan_erase(world, &faces_of(world, values.elements()).ok()?).ok()?;
+        Reach::local(world, plan.seeds())
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let plan = plan_erase(world, &faces_of(world, values.elements())?)?;
+        let seeds = plan.seeds();
+        let before = MeshRef::new(world).faces_around(&seeds);
+        let gone = apply_erase(world, plan);
+        let summary = format!(
+            "removed {}, {}, {}",
+            count(gone.faces, "face"),
+            count(gone.edges, "edge"),
+            count(gone.vertices, "vertex")
+        );
+        Ok(Applied::around(world, before, seeds, summary, None))
+    }
+}
+
+/// Welding two boundary edges: a local edit.
+pub const WELD: Declaration = Declaration::new("weld")
+    .titled("Weld")
+    .described("weld the first two selected boundary edges: the second onto the first")
+    .on_key("Alt+M")
+    .naming(Names::TwoEdges)
+    .in_section(Section::Modelling);
+
+/// [`plan_weld`] and [`apply_weld`] as a registered operation: `weld:A,B/C,D`, Alt+M.
+pub struct Weld;
+
+impl MeshOperation for Weld {
+    fn declaration(&self) -> &'static Declaration {
+        &WELD
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let plan = {
+            let [a, b] = values.two_edges().ok()?;
+            plan_weld(world, a, b).ok()?
+        };
+        Reach::local(world, plan.seeds())
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let plan = {
+            let [a, b] = values.two_edges()?;
+            plan_weld(world, a, b)?
+        };
+        let seeds = plan.seeds();
+        let before = MeshRef::new(world).faces_around(&seeds);
+        let e = apply_weld(world, plan);
+        Ok(Applied::around(
+            world,
+            before,
+            seeds,
+            format!("welded into {e}"),
+            Some(ElementId::Edge(e)),
+        ))
+    }
+}
