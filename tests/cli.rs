@@ -253,7 +253,11 @@ fn modelling_steps_name_vertices_edges_and_faces_by_input_vertices() {
     // Arity mistakes are usage errors, named.
     let bad = pappus(&["process", "shape:cube", "-o", "/dev/null", "weld:0,1"]);
     assert_eq!(bad.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("two boundary edges"));
+    let said = String::from_utf8_lossy(&bad.stderr);
+    assert!(
+        said.contains("weld names two edges; expected weld:A,B/C,D"),
+        "{said}"
+    );
 }
 
 #[test]

@@ -311,10 +311,7 @@ impl Step {
         };
         let counts: Vec<usize> = targets.iter().map(Vec::len).collect();
         let Some(&op) = ops.iter().find(|op| op.declaration().names.fits(&counts)) else {
-            let needs: Vec<&str> = ops
-                .iter()
-                .map(|op| op.declaration().names.select_first())
-                .collect();
+            let needs: Vec<&str> = ops.iter().map(|op| op.declaration().names.what()).collect();
             return Some(Err(bad(format!("{name} names {}", needs.join(" or ")))));
         };
         Some(
@@ -619,12 +616,9 @@ mod tests {
     fn malformed_steps_say_what_is_expected() {
         for (text, expected) in [
             ("frobnicate", "unknown step"),
-            ("flip:3", "flip names an edge (or halfedge)"),
+            ("flip:3", "flip names an edge; expected flip:A,B"),
             ("flip:x,1", "not input vertex numbers"),
-            (
-                "collapse:1",
-                "collapse names an edge (or halfedge) or a face",
-            ),
+            ("collapse:1", "collapse names an edge or a face"),
             ("split-face:3", "two vertex numbers"),
             ("loop:9", "from 1 to 8"),
             ("simplify:0", "RATIO must be a number from 0.000001 to 1"),

@@ -301,7 +301,20 @@ impl Names {
         }
     }
 
-    /// What the user must select first, in a person's words ("an edge (or halfedge)").
+    /// What it names, in a person's words ("an edge", "two edges").
+    pub fn what(self) -> &'static str {
+        match self {
+            Names::Mesh => "the mesh",
+            Names::Edge => "an edge",
+            Names::Vertex => "a vertex",
+            Names::Face => "a face",
+            Names::Faces => "faces",
+            Names::TwoEdges => "two edges",
+            Names::Elements => "elements",
+        }
+    }
+
+    /// What the user must select first, in the editor's words ("an edge (or halfedge)").
     pub fn select_first(self) -> &'static str {
         match self {
             Names::Mesh => "a mesh",

@@ -89,7 +89,7 @@ pub fn operations_named(name: &str) -> impl Iterator<Item = &'static dyn MeshOpe
 ///
 /// # Errors
 /// No registered operation of that name, or none that names such elements: the message says
-/// what to select or name ("collapse needs an edge (or halfedge) or a face").
+/// what it names ("collapse needs an edge or a face").
 pub fn invocation_on(
     name: &str,
     elements: Vec<crate::mesh::ids::ElementId>,
@@ -100,7 +100,7 @@ pub fn invocation_on(
         if d.names.admits(&elements) {
             return operation::Invocation::with_defaults(op).on(elements);
         }
-        needs.push(d.names.select_first());
+        needs.push(d.names.what());
     }
     match needs.is_empty() {
         true => Err(format!("no registered operation is called `{name}`")),

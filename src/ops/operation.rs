@@ -324,7 +324,7 @@ impl Invocation {
     pub fn on(mut self, elements: Vec<ElementId>) -> Result<Self, String> {
         let d = self.declaration();
         if !d.names.admits(&elements) {
-            return Err(format!("{} needs {}", d.name, d.names.select_first()));
+            return Err(format!("{} needs {}", d.name, d.names.what()));
         }
         self.elements = elements;
         Ok(self)
