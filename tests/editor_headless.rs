@@ -198,8 +198,16 @@ fn operation_keys_without_an_edge_are_refused_with_a_reason() {
             "select an edge (or halfedge) first",
         ),
         (None, KeyCode::KeyK, "select an edge (or halfedge) first"),
-        (None, KeyCode::KeyC, "select an edge (or halfedge) or a face first"),
-        (None, KeyCode::KeyD, "select an edge (or halfedge) or a vertex first"),
+        (
+            None,
+            KeyCode::KeyC,
+            "select an edge (or halfedge) or a face first",
+        ),
+        (
+            None,
+            KeyCode::KeyD,
+            "select an edge (or halfedge) or a vertex first",
+        ),
         (None, KeyCode::KeyE, "select faces (mode 3) first"),
         (None, KeyCode::KeyX, "select elements first"),
         (None, KeyCode::KeyG, "select something to transform first"),

@@ -268,18 +268,23 @@ impl Values<'_> {
         }
     }
 
-    /// The faces it names ([`Names::Faces`]).
+    /// The faces it names ([`Names::Faces`]), each once, in entity order: however they were
+    /// named (a step's order, the selection's), one set gives one result.
     ///
     /// # Refusals
     /// As [`Values::edge`].
     pub fn faces(&self) -> Result<Vec<FaceId>, Refusal> {
-        self.elements
+        let mut faces = self
+            .elements
             .iter()
             .map(|x| match x {
                 ElementId::Face(f) => Ok(*f),
                 _ => Err(self.wrong("faces")),
             })
-            .collect()
+            .collect::<Result<Vec<_>, _>>()?;
+        faces.sort_unstable();
+        faces.dedup();
+        Ok(faces)
     }
 
     fn wrong(&self, needed: &str) -> Refusal {
