@@ -14,7 +14,7 @@
 
 use bevy::prelude::World;
 
-use crate::mesh::ids::{ElementId, MeshId};
+use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
 use crate::ops::declaration::{Declaration, Names, Parameter, Section};
@@ -25,6 +25,42 @@ use crate::ops::local::{
     plan_weld, split_edge, toggle_seam,
 };
 use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Redraw, Values, count};
+
+/// Changes the edge `e` with `change`, which says what it did and what it made (the selection
+/// moves there); the faces that were around the edge's ends, and those around what was made,
+/// are redrawn.
+///
+/// # Refusals
+/// `change`'s.
+fn on_edge(
+    world: &mut World,
+    e: EdgeId,
+    change: impl FnOnce(&mut World) -> Result<(String, ElementId), Refusal>,
+) -> Result<Applied, Refusal> {
+    let m = MeshRef::new(world);
+    let before = m.faces_around(&m.corners(e.into()));
+    let (summary, made) = change(world)?;
+    Ok(Applied::around(
+        world,
+        before,
+        Vec::new(),
+        summary,
+        Some(made),
+    ))
+}
+
+/// Carries out a checked plan whose undo seeds are `seeds`: `apply` makes the change and says
+/// what it did and made; the faces around the seeds before and after, and around what was
+/// made, are redrawn.
+fn carry_out(
+    world: &mut World,
+    seeds: Vec<VertexId>,
+    apply: impl FnOnce(&mut World) -> (String, Option<ElementId>),
+) -> Applied {
+    let before = MeshRef::new(world).faces_around(&seeds);
+    let (summary, made) = apply(world);
+    Applied::around(world, before, seeds, summary, made)
+}
 
 /// Flipping an edge: a local edit that keeps every id and attribute.
 pub const FLIP: Declaration = Declaration::new("flip")
@@ -50,13 +86,9 @@ impl MeshOperation for Flip {
         _: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         let e = values.edge()?;
-        let m = MeshRef::new(world);
-        let before = m.faces_around(&m.corners(e.into()));
-        let flipped = flip_edge(world, e)?;
-        Ok(Applied {
-            summary: format!("flipped to {flipped}"),
-            redraw: Redraw::near(world, before, MeshRef::new(world).corners(flipped.into())),
-            made: Some(ElementId::Edge(flipped)),
+        on_edge(world, e, |world| {
+            let flipped = flip_edge(world, e)?;
+            Ok((format!("flipped to {flipped}"), flipped.into()))
         })
     }
 }
@@ -85,13 +117,9 @@ impl MeshOperation for Split {
         _: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         let e = values.edge()?;
-        let m = MeshRef::new(world);
-        let before = m.faces_around(&m.corners(e.into()));
-        let v = split_edge(world, e, 0.5)?;
-        Ok(Applied {
-            summary: format!("new vertex {v}"),
-            redraw: Redraw::near(world, before, vec![v]),
-            made: Some(ElementId::Vertex(v)),
+        on_edge(world, e, |world| {
+            let v = split_edge(world, e, 0.5)?;
+            Ok((format!("new vertex {v}"), v.into()))
         })
     }
 }
@@ -120,13 +148,9 @@ impl MeshOperation for Bisect {
         _: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         let e = values.edge()?;
-        let m = MeshRef::new(world);
-        let before = m.faces_around(&m.corners(e.into()));
-        let v = bisect_edge(world, e, 0.5)?;
-        Ok(Applied {
-            summary: format!("new vertex {v} on {e}"),
-            redraw: Redraw::near(world, before, vec![v]),
-            made: Some(ElementId::Vertex(v)),
+        on_edge(world, e, |world| {
+            let v = bisect_edge(world, e, 0.5)?;
+            Ok((format!("new vertex {v} on {e}"), v.into()))
         })
     }
 }
@@ -155,13 +179,12 @@ impl MeshOperation for Collapse {
         _: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         let e = values.edge()?;
-        let m = MeshRef::new(world);
-        let before = m.faces_around(&m.corners(e.into()));
-        let r = collapse_edge(world, e, CollapseOptions::default())?;
-        Ok(Applied {
-            summary: format!("kept {}, removed {}", r.kept, r.removed),
-            redraw: Redraw::near(world, before, vec![r.kept]),
-            made: Some(ElementId::Vertex(r.kept)),
+        on_edge(world, e, |world| {
+            let r = collapse_edge(world, e, CollapseOptions::default())?;
+            Ok((
+                format!("kept {}, removed {}", r.kept, r.removed),
+                r.kept.into(),
+            ))
         })
     }
 }
@@ -196,17 +219,11 @@ impl MeshOperation for CollapseFace {
         _: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         let plan = plan_collapse_face(world, values.face()?)?;
-        let seeds = plan.seeds();
-        let before = MeshRef::new(world).faces_around(&seeds);
-        let made = apply_collapse_face(world, plan);
-        let summary = format!("collapsed to {made}");
-        Ok(Applied::around(
-            world,
-            before,
-            seeds,
-            summary,
-            Some(made.into()),
-        ))
+        Ok(carry_out(world, plan.seeds(), |world| {
+            let made = apply_collapse_face(world, plan);
+            let summary = format!("collapsed to {made}");
+            (summary, Some(made.into()))
+        }))
     }
 }
 
@@ -276,17 +293,11 @@ impl MeshOperation for DissolveVertex {
         _: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         let plan = plan_dissolve_vertex(world, values.vertex()?)?;
-        let seeds = plan.seeds();
-        let before = MeshRef::new(world).faces_around(&seeds);
-        let made = apply_dissolve_vertex(world, plan);
-        let summary = format!("merged into {made}");
-        Ok(Applied::around(
-            world,
-            before,
-            seeds,
-            summary,
-            Some(made.into()),
-        ))
+        Ok(carry_out(world, plan.seeds(), |world| {
+            let made = apply_dissolve_vertex(world, plan);
+            let summary = format!("merged into {made}");
+            (summary, Some(made.into()))
+        }))
     }
 }
 
@@ -365,15 +376,15 @@ impl MeshOperation for Extrude {
             check_growth("extruding", faces.len(), plan.seeds().len())?;
             plan
         };
-        let seeds = plan.seeds();
-        let before = MeshRef::new(world).faces_around(&seeds);
-        let done = apply_extrude(world, plan, values.number(0) as f32);
-        let summary = format!(
-            "{} lifted on {}",
-            count(done.top.len(), "face"),
-            count(done.sides.len(), "side face")
-        );
-        Ok(Applied::around(world, before, seeds, summary, None))
+        Ok(carry_out(world, plan.seeds(), |world| {
+            let done = apply_extrude(world, plan, values.number(0) as f32);
+            let summary = format!(
+                "{} lifted on {}",
+                count(done.top.len(), "face"),
+                count(done.sides.len(), "side face")
+            );
+            (summary, None)
+        }))
     }
 }
 
@@ -417,16 +428,16 @@ impl MeshOperation for Inset {
             check_growth("insetting", faces.len(), plan.seeds().len())?;
             plan
         };
-        let seeds = plan.seeds();
-        let before = MeshRef::new(world).faces_around(&seeds);
-        let (amount, depth) = (values.number(0) as f32, values.number(1) as f32);
-        let done = apply_inset(world, plan, amount, depth);
-        let summary = format!(
-            "{} inset, {} around them",
-            count(done.top.len(), "face"),
-            count(done.sides.len(), "new face")
-        );
-        Ok(Applied::around(world, before, seeds, summary, None))
+        Ok(carry_out(world, plan.seeds(), |world| {
+            let (amount, depth) = (values.number(0) as f32, values.number(1) as f32);
+            let done = apply_inset(world, plan, amount, depth);
+            let summary = format!(
+                "{} inset, {} around them",
+                count(done.top.len(), "face"),
+                count(done.sides.len(), "new face")
+            );
+            (summary, None)
+        }))
     }
 }
 
@@ -461,16 +472,16 @@ impl MeshOperation for Erase {
         _: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         let plan = plan_erase(world, &faces_of(world, values.elements())?)?;
-        let seeds = plan.seeds();
-        let before = MeshRef::new(world).faces_around(&seeds);
-        let gone = apply_erase(world, plan);
-        let summary = format!(
-            "removed {}, {}, {}",
-            count(gone.faces, "face"),
-            count(gone.edges, "edge"),
-            count(gone.vertices, "vertex")
-        );
-        Ok(Applied::around(world, before, seeds, summary, None))
+        Ok(carry_out(world, plan.seeds(), |world| {
+            let gone = apply_erase(world, plan);
+            let summary = format!(
+                "removed {}, {}, {}",
+                count(gone.faces, "face"),
+                count(gone.edges, "edge"),
+                count(gone.vertices, "vertex")
+            );
+            (summary, None)
+        }))
     }
 }
 
@@ -510,15 +521,9 @@ impl MeshOperation for Weld {
             let [a, b] = values.two_edges()?;
             plan_weld(world, a, b)?
         };
-        let seeds = plan.seeds();
-        let before = MeshRef::new(world).faces_around(&seeds);
-        let e = apply_weld(world, plan);
-        Ok(Applied::around(
-            world,
-            before,
-            seeds,
-            format!("welded into {e}"),
-            Some(ElementId::Edge(e)),
-        ))
+        Ok(carry_out(world, plan.seeds(), |world| {
+            let e = apply_weld(world, plan);
+            (format!("welded into {e}"), Some(ElementId::Edge(e)))
+        }))
     }
 }
