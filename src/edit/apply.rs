@@ -50,8 +50,8 @@ impl Edit {
         }
     }
 
-    /// A planned local edit (a vertex's or an edge's bevel): planned, then applied; what is new lies around the seeds that survive and what
-    /// the edit made.
+    /// A planned local edit (a vertex's or an edge's bevel): planned, then applied; what is
+    /// new lies around the seeds that survive and what the edit made.
     fn apply_planned(&self, world: &mut World) -> Result<Applied, Refusal> {
         let plan = self.plan(world).ok_or(Refusal::BadParameter(format!(
             "{} has no plan",
@@ -60,15 +60,7 @@ impl Edit {
         let seeds = plan.seeds();
         let before = faces_around(world, &seeds);
         let (summary, made) = plan.apply(world);
-        let mut after = seeds;
-        if let Some(x) = made {
-            after.extend(MeshRef::new(world).corners(x));
-        }
-        Ok(Applied {
-            summary,
-            redraw: Redraw::near(world, before, after),
-            made,
-        })
+        Ok(Applied::around(world, before, seeds, summary, made))
     }
 }
 

@@ -182,15 +182,12 @@ impl BevelStep {
             ElementId::Vertex(v) => Edit::BevelVertex(v, amount),
             ElementId::Edge(e) => Edit::BevelEdge(e, amount),
             face => {
-                let mut inset = Invocation::with_defaults(&crate::ops::local_operations::Inset)
-                    .on(vec![face])
-                    .map_err(Refusal::BadParameter)?;
-                for (i, x) in [amount, number(1, 0.0)].into_iter().enumerate() {
-                    inset
-                        .set(i, Some(f64::from(x)))
-                        .map_err(Refusal::BadParameter)?;
-                }
-                Edit::Operation(inset)
+                let given = [Some(f64::from(amount)), Some(f64::from(number(1, 0.0)))];
+                Edit::Operation(
+                    Invocation::new(&crate::ops::local_operations::Inset, &given)
+                        .and_then(|i| i.on(vec![face]))
+                        .map_err(Refusal::BadParameter)?,
+                )
             }
         })
     }
@@ -303,8 +300,11 @@ impl Step {
         if ops.is_empty() {
             return None;
         }
-        let syntax: Vec<String> = ops.iter().map(|op| op.declaration().syntax()).collect();
-        let bad = |why: String| format!("step `{text}`: {why}; expected {}", syntax.join(" or "));
+        // Only a refusal needs the syntax.
+        let bad = |why: String| {
+            let syntax: Vec<String> = ops.iter().map(|op| op.declaration().syntax()).collect();
+            format!("step `{text}`: {why}; expected {}", syntax.join(" or "))
+        };
         let (targets, values) = args.split_once(':').unwrap_or((args, ""));
         let Some(targets) = parse_targets(targets) else {
             return Some(Err(bad("the elements are not input vertex numbers".into())));

@@ -783,14 +783,16 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
         Action::Fill | Action::FillFair => {
             let edge = selected_edge(&m, selection)
                 .ok_or(Declined::SelectFirst("a boundary edge".into()))?;
-            let mut fill = Invocation::with_defaults(&crate::ops::hole::FillHole)
-                .on(vec![ElementId::Edge(edge)])
-                .map_err(Refusal::BadParameter)?;
-            if action == Action::FillFair {
-                fill.set(0, Some(crate::ops::hole::FillHole::FAIR))
-                    .map_err(Refusal::BadParameter)?;
-            }
-            Edit::Operation(fill)
+            let fill = match action {
+                Action::FillFair => Some(crate::ops::hole::FillHole::FAIR),
+                _ => None,
+            };
+            let given: Vec<Option<f64>> = fill.into_iter().map(Some).collect();
+            Edit::Operation(
+                Invocation::new(&crate::ops::hole::FillHole, &given)
+                    .and_then(|i| i.on(vec![ElementId::Edge(edge)]))
+                    .map_err(Refusal::BadParameter)?,
+            )
         }
         Action::Fair => {
             let vertices = crate::editor::gestures::transform::selected_vertices(world);
@@ -835,15 +837,12 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
                 Some(ElementId::Vertex(v)) => Edit::BevelVertex(v, amount),
                 Some(ElementId::Face(_)) => {
                     let faces = selected_faces(world).into_iter().map(ElementId::Face);
-                    let mut inset = Invocation::with_defaults(&crate::ops::local_operations::Inset)
-                        .on(faces.collect())
-                        .map_err(Refusal::BadParameter)?;
-                    for (i, x) in [amount, depth].into_iter().enumerate() {
-                        inset
-                            .set(i, Some(f64::from(x)))
-                            .map_err(Refusal::BadParameter)?;
-                    }
-                    Edit::Operation(inset)
+                    let given = [Some(f64::from(amount)), Some(f64::from(depth))];
+                    Edit::Operation(
+                        Invocation::new(&crate::ops::local_operations::Inset, &given)
+                            .and_then(|i| i.on(faces.collect()))
+                            .map_err(Refusal::BadParameter)?,
+                    )
                 }
                 _ => match selected_edge(&m, selection) {
                     Some(e) => Edit::BevelEdge(e, amount.min(0.5)),
