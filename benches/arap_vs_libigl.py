@@ -21,8 +21,10 @@ weights of obtuse triangles are negative, so E can be below 0 on meshes with man
 bunny); the difference of the two energies is given over the starting energy.
 
 Time per iteration: libigl's `arap_solve` time over N (its local step, its right-hand side and
-its prefactored solve); Pappus's own measured time per iteration (local and global step) from the
-summary of `deform`, which it times inside the call, after its factorisation. Each the median of
+its prefactored solve); Pappus's own measured time per iteration (local step, global step and
+Anderson acceleration) from the summary of `deform`, which it times inside the call, after its
+factorisation. Neither counts a local step after the last iteration: libigl runs none, and
+Pappus's, which checks the last accelerated guess, is the one that measures its final energy. Each the median of
 3 runs. The factorisations are listed beside (libigl's `arap_precomputation`, Pappus's
 "factored in").
 

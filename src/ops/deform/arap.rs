@@ -12,6 +12,14 @@
 //!   does not change while the held vertices stay the same, so its free block is factored once
 //!   ([`HeldSystem`]) and each iteration is three triangular solves.
 //!
+//! Each iteration is sped up by Anderson acceleration ([`super::anderson`]; Peng et al. 2018): the
+//! next positions are the recent global steps' best combination rather than the last one alone.
+//! That guess is checked by the next local step, which measures its energy anyway: when it is
+//! higher than that of the positions the last iteration started from, the plain global step's
+//! result is taken instead and the history forgotten, so the energy never rises. Moving the
+//! held vertices changes the iteration's map and forgets the history too (a handle dragged a
+//! little each frame runs plain iterations).
+//!
 //! The held vertices (anchors and handle) sit where they are placed; an iteration moves only the
 //! others. [`Arap`] keeps the factor, the rotations and the positions between calls, so the
 //! editor can run one iteration a frame while a handle is dragged, starting from the last
@@ -22,6 +30,7 @@ use bevy::math::{DMat3, DQuat, DVec3};
 use crate::ops::Refusal;
 use crate::ops::geometry::{Surface, cotan_edges};
 
+use super::anderson::Anderson;
 use super::rotation::closest_rotation;
 use super::system::{HeldSystem, k_harmonic};
 
@@ -41,9 +50,24 @@ pub struct Arap {
     /// Each vertex's rotation and its part of the energy, from the last local step.
     local: Vec<LocalFit>,
     current: Vec<DVec3>,
+    /// Whether `local` holds the fit of `current`: `Some(true)` with its energy measured.
+    fitted: Option<bool>,
     /// Whether [`Arap::iterate`]'s local step measures the energy too (it costs a tenth of an
     /// iteration or more; [`Arap::fit_rotations`] always does).
     measuring: bool,
+    /// The recent global steps over the free vertices, for the accelerated guess.
+    anderson: Anderson,
+    /// The last global step's result, the plain next positions.
+    image: Vec<DVec3>,
+    /// The global step's right-hand side, and the rotations as matrices for it.
+    rhs: Vec<DVec3>,
+    matrices: Vec<DMat3>,
+    /// The free rows of `current` and `image`, and the guess, gathered for [`Anderson`].
+    free_rows: [Vec<DVec3>; 3],
+    /// While `current` is an accelerated guess not checked yet (`image` then holds the plain
+    /// global step's result to fall back to): the energy of the positions that iteration
+    /// started from.
+    guess: Option<f64>,
 }
 
 /// One vertex's result of the local step.
@@ -108,11 +132,19 @@ impl Arap {
                 n
             ],
             current: surface.positions.clone(),
+            fitted: None,
             measuring: false,
+            anderson: Anderson::default(),
+            image: Vec::new(),
+            rhs: Vec::new(),
+            matrices: Vec::new(),
+            free_rows: Default::default(),
+            guess: None,
         })
     }
 
-    /// The deformed positions, by vertex row.
+    /// The deformed positions, by vertex row: after [`Arap::iterate`], possibly an accelerated
+    /// guess whose energy [`Arap::settle`] has not checked yet.
     pub fn positions(&self) -> &[DVec3] {
         &self.current
     }
@@ -123,12 +155,18 @@ impl Arap {
     }
 
     /// Puts held vertices where they go (rows that are not held are ignored: only the solve
-    /// places them).
+    /// places them). A held vertex that moves starts the acceleration anew.
     pub fn place(&mut self, targets: impl IntoIterator<Item = (u32, DVec3)>) {
+        let mut moved = false;
         for (v, p) in targets {
-            if self.system.is_held(v) {
-                self.current[v as usize] = p;
+            let at = &mut self.current[v as usize];
+            if self.system.is_held(v) && *at != p {
+                *at = p;
+                moved = true;
             }
+        }
+        if moved {
+            self.restart();
         }
     }
 
@@ -140,6 +178,15 @@ impl Arap {
                 self.current[v] = *p;
             }
         }
+        self.restart();
+    }
+
+    /// Forgets the fit, the acceleration's history and any unchecked guess: the positions
+    /// changed from outside the iteration.
+    fn restart(&mut self) {
+        self.fitted = None;
+        self.anderson.reset();
+        self.guess = None;
     }
 
     /// Makes each [`Arap::iterate`] measure the energy of the positions it starts from.
@@ -152,17 +199,66 @@ impl Arap {
         self.measuring
     }
 
-    /// One local step and one global step.
+    /// One local step (unless the current positions are fitted already) and one global step,
+    /// accelerated (see the module doc).
     pub fn iterate(&mut self) {
-        self.local_step(self.measuring);
-        let rhs = self.right_hand_side();
-        self.system.solve(Some(&rhs), &mut self.current);
+        // The energy serves as the next guess's reference once the history holds a step.
+        let measure = self.measuring || self.anderson.remembers();
+        self.fit(measure);
+        let start_energy = self.energy();
+        self.right_hand_side();
+        self.image.clone_from(&self.current);
+        self.system.solve(Some(&self.rhs), &mut self.image);
+        self.fitted = None;
+        let free = self.system.free();
+        let [x, image, guess] = &mut self.free_rows;
+        x.clear();
+        x.extend(free.iter().map(|&v| self.current[v as usize]));
+        image.clear();
+        image.extend(free.iter().map(|&v| self.image[v as usize]));
+        if self.anderson.accelerate(x, image, guess) {
+            for (&v, p) in free.iter().zip(guess.iter()) {
+                self.current[v as usize] = *p;
+            }
+            self.guess = Some(start_energy);
+        } else {
+            std::mem::swap(&mut self.current, &mut self.image);
+        }
+    }
+
+    /// Checks an accelerated guess left by [`Arap::iterate`] (its local step, which the next
+    /// iteration then reuses): a guess of higher energy than the positions its iteration
+    /// started from is replaced by the plain global step's result. Afterwards
+    /// [`Arap::positions`] are final; without a guess this does nothing.
+    pub fn settle(&mut self) {
+        if self.guess.is_some() {
+            self.fit(true);
+        }
     }
 
     /// The local step: each vertex's best rotation for the current positions, and with it the
     /// energy of the current positions ([`Arap::energy`]).
     pub fn fit_rotations(&mut self) {
-        self.local_step(true);
+        self.fit(true);
+    }
+
+    /// The local step for the current positions, unless done already (measured if `measure`);
+    /// an unchecked guess is checked, and refused if it raised the energy.
+    fn fit(&mut self, measure: bool) {
+        let checking = self.guess.is_some();
+        if self.fitted == Some(true) || (self.fitted == Some(false) && !measure && !checking) {
+            return;
+        }
+        self.local_step(measure || checking);
+        self.fitted = Some(measure || checking);
+        if let Some(start_energy) = self.guess.take()
+            && self.energy() > start_energy
+        {
+            self.current.clone_from(&self.image);
+            self.anderson.reset();
+            self.local_step(true);
+            self.fitted = Some(true);
+        }
     }
 
     fn local_step(&mut self, measure: bool) {
@@ -191,28 +287,30 @@ impl Arap {
         });
     }
 
-    /// The global step's right-hand side `b_i = Σ_j (w_ij / 2)(R_i + R_j)(p_i − p_j)`.
-    fn right_hand_side(&self) -> Vec<DVec3> {
-        let mut matrices = vec![DMat3::IDENTITY; self.local.len()];
-        in_parallel(&mut matrices, |i, m| {
-            *m = DMat3::from_quat(self.local[i].rotation);
+    /// The global step's right-hand side `b_i = Σ_j (w_ij / 2)(R_i + R_j)(p_i − p_j)`, into
+    /// `rhs` (each rotation as a matrix into `matrices` first).
+    fn right_hand_side(&mut self) {
+        let (local, start, ring, spokes) = (&self.local, &self.start, &self.ring, &self.spokes);
+        self.matrices.resize(local.len(), DMat3::IDENTITY);
+        in_parallel(&mut self.matrices, |i, m| {
+            *m = DMat3::from_quat(local[i].rotation);
         });
-        let mut rhs = vec![DVec3::ZERO; self.current.len()];
-        in_parallel(&mut rhs, |i, b| {
+        let matrices = &self.matrices;
+        self.rhs.resize(local.len(), DVec3::ZERO);
+        in_parallel(&mut self.rhs, |i, b| {
             let mut sum = DVec3::ZERO;
-            for k in self.start[i] as usize..self.start[i + 1] as usize {
-                let j = self.ring[k].0 as usize;
-                sum += (matrices[i] + matrices[j]) * self.spokes[k];
+            for k in start[i] as usize..start[i + 1] as usize {
+                let j = ring[k].0 as usize;
+                sum += (matrices[i] + matrices[j]) * spokes[k];
             }
             *b = sum * 0.5;
         });
-        rhs
     }
 
     /// The energy `E` of the positions the last measuring local step fitted its rotations to,
     /// with those rotations: the energy of those positions alone (each rotation is the best for
-    /// them). After [`Arap::fit_rotations`], the current positions' energy; after a measured
-    /// [`Arap::iterate`], that of the positions the iteration started from.
+    /// them). After [`Arap::fit_rotations`] or [`Arap::settle`], the current positions' energy;
+    /// after a measured [`Arap::iterate`], that of the positions the iteration started from.
     pub fn energy(&self) -> f64 {
         self.local.iter().map(|fit| fit.energy).sum()
     }

@@ -22,6 +22,7 @@
 //! the summary says how many. Held vertices are never written: they keep their positions to the
 //! bit, and the handle lands exactly where its motion sends it.
 
+mod anderson;
 mod arap;
 mod falloff;
 mod live;
@@ -39,8 +40,6 @@ pub const FAIR: Declaration = Declaration::new("fair");
 
 #[cfg(test)]
 mod tests;
-
-use std::time::Instant;
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::{Affine3A, DVec3, Vec3};
@@ -234,9 +233,8 @@ pub fn deform(
     let (mut live, targets) = prepare(world, mesh, params)?;
     live.place(&targets);
     let energy_before = live.energy();
-    let iterating = Instant::now();
     live.iterate(params.iterations);
-    let seconds = iterating.elapsed().as_secs_f64();
+    let seconds = live.solving_seconds();
     let arap = params.method == DeformMethod::Arap;
     let summary = DeformSummary {
         free: live.free(),

@@ -32,11 +32,16 @@ const CONVERGED: f64 = 1e-9;
 /// The rotation closest to `a` (see the module doc), starting from `guess`.
 pub fn closest_rotation(a: &DMat3, guess: DQuat) -> DQuat {
     let mut q = guess.normalize();
-    if !step(a, q).1 {
-        q = better_start(a, q);
+    let mut next = step(a, q);
+    if !next.1 {
+        let start = better_start(a, q);
+        if start != q {
+            q = start;
+            next = step(a, q);
+        }
     }
     for _ in 0..MAX_STEPS {
-        let (omega, newton) = step(a, q);
+        let (omega, newton) = next;
         let angle = omega.length();
         if angle.is_nan() {
             break;
@@ -46,6 +51,7 @@ pub fn closest_rotation(a: &DMat3, guess: DQuat) -> DQuat {
         if angle <= if newton { NEWTON_CONVERGED } else { CONVERGED } {
             break;
         }
+        next = step(a, q);
     }
     q
 }

@@ -18,7 +18,7 @@ use faer::{Mat, Side};
 use crate::ops::Refusal;
 
 /// Free unknowns from which a solve splits its columns over two threads.
-const PARALLEL_SOLVE: usize = 2000;
+const PARALLEL_SOLVE: usize = 10_000;
 
 /// The cotangent stiffness matrix of `n` vertices from the merged edge weights `(i, j, w)`,
 /// each scaled by `1 / scale[i]` on row `i` when `scale` is given (`M⁻¹ L`).
