@@ -15,8 +15,11 @@
 //!
 //! The thresholds are tighter than isotropic remeshing's 4/3 and 4/5 because the patch ends on a
 //! fairing, which spreads the spacing. After the last fairing, three tangential relaxations even
-//! the spacing out again (moving along the faired surface to first order), then edges that are
-//! not locally Delaunay are flipped (no vertex moves) for the largest smallest angles.
+//! the spacing out again (moving along the faired surface to first order); then springs of rest
+//! length `L` pull every new vertex whose neighbours are all new toward edges of length `L`,
+//! within its tangent plane (a vertex beside the loop is left: pulled toward both ends of a
+//! long loop edge it would flatten the triangle on it); last, edges that are not locally
+//! Delaunay are flipped (no vertex moves) for the largest smallest angles.
 //!
 //! The loop's vertices never move and the loop's edges are never split, so the mesh outside the
 //! patch is untouched. Every pass is a local operation that refuses rather than break the mesh;
@@ -37,6 +40,10 @@ const ROUNDS: u32 = 6;
 
 /// Tangential relaxations after the last fairing.
 const RELAX_AFTER_FAIR: u32 = 3;
+
+/// Spring relaxations after those (on the bunny's holes, the share of the patches' edges within
+/// ±25 % of `L` went from 81 % to 86 % with 20, and little further with more).
+const SPRING_RELAXATIONS: u32 = 20;
 
 /// A filled hole: its loop and the length its triangles aim at.
 pub struct Patch {
@@ -115,6 +122,9 @@ impl Patch {
         self.fair(world);
         for _ in 0..RELAX_AFTER_FAIR {
             self.relax(world);
+        }
+        for _ in 0..SPRING_RELAXATIONS {
+            self.even_out_lengths(world);
         }
         // Flips move no vertex: the faired shape stays, the thin triangles go.
         for _ in 0..ROUNDS {
@@ -208,26 +218,59 @@ impl Patch {
         }
     }
 
+    /// Moves each new vertex halfway to its neighbours' centroid, within its tangent plane.
     fn relax(&self, world: &mut World) {
+        self.move_within_tangent_planes(world, |m, v| {
+            let (sum, count) = m
+                .vertex_neighbors(v)
+                .fold((Vec3::ZERO, 0.0), |(s, c), u| (s + m.position(u), c + 1.0));
+            Some(0.5 * (sum / count - m.position(v)))
+        });
+    }
+
+    /// One step of springs of rest length `L` on the new vertices whose neighbours are all
+    /// new: each moves by half the mean of `(|d| − L) d / |d|` over its edges `d`, within its
+    /// tangent plane.
+    fn even_out_lengths(&self, world: &mut World) {
+        self.move_within_tangent_planes(world, |m, v| {
+            if !m.vertex_neighbors(v).all(|u| self.is_new(u)) {
+                return None;
+            }
+            let p = m.position(v);
+            let (pull, count) = m.vertex_neighbors(v).fold((Vec3::ZERO, 0.0), |(s, c), u| {
+                let d = m.position(u) - p;
+                let l = d.length();
+                let pull = if l > 0.0 {
+                    d * ((l - self.length) / l)
+                } else {
+                    Vec3::ZERO
+                };
+                (s + pull, c + 1.0)
+            });
+            Some(0.5 * pull / count)
+        });
+    }
+
+    /// Moves every new vertex by `step(v)` less its part along the vertex's normal, all steps
+    /// computed from the positions before any move; a vertex without a step stays.
+    fn move_within_tangent_planes(
+        &self,
+        world: &mut World,
+        step: impl Fn(&MeshRef<'_>, VertexId) -> Option<Vec3>,
+    ) {
         let vertices = self.inside(world).1;
         let moves: Vec<(VertexId, Vec3)> = {
             let m = MeshRef::new(world);
             vertices
                 .iter()
-                .map(|&v| {
-                    let p = m.position(v);
-                    let (mut sum, mut count) = (Vec3::ZERO, 0.0);
-                    for u in m.vertex_neighbors(v) {
-                        sum += m.position(u);
-                        count += 1.0;
-                    }
+                .filter_map(|&v| {
+                    let step = step(&m, v)?;
                     let normal: Vec3 = m
                         .vertex_faces(v)
                         .map(|f| m.face_area_vector(f))
                         .sum::<Vec3>()
                         .normalize_or_zero();
-                    let step = 0.5 * (sum / count - p);
-                    (v, p + step - normal * normal.dot(step))
+                    Some((v, m.position(v) + step - normal * normal.dot(step)))
                 })
                 .collect()
         };
