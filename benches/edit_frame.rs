@@ -90,8 +90,8 @@ fn edit(case: usize, c: &Candidates, i: usize) -> Edit {
     match case {
         0 => Edit::local_on("extrude", [face()], &[0.001]),
         1 => Edit::local_on("inset", [face()], &[0.3]),
-        2 => Edit::BevelVertex(vertex(), 0.25),
-        3 => Edit::BevelEdge(c.edges[i % c.edges.len()], 0.25),
+        2 => Edit::local("bevel", vertex()),
+        3 => Edit::local("bevel", c.edges[i % c.edges.len()]),
         4 => Edit::local("erase", face()),
         5 => Edit::local("dissolve", vertex()),
         _ => Edit::local("collapse", face()),

@@ -84,8 +84,8 @@ fn random_edit(world: &World, mesh: MeshId, kind: u8, pick: u32, t: f32) -> Opti
             [face()?],
             &[f64::from(t * 0.9), f64::from(t - 0.5)],
         ),
-        8 => Edit::BevelVertex(vertex()?, t * 0.5),
-        9 => Edit::BevelEdge(edge()?, t * 0.5),
+        8 => Edit::local_on("bevel", [vertex()?], &[f64::from(t) * 0.5]),
+        9 => Edit::local_on("bevel", [edge()?], &[f64::from(t) * 0.5]),
         10 => Edit::local_on(
             "erase",
             region()?.into_iter().take(1 + pick as usize % 2),

@@ -31,7 +31,6 @@ impl Edit {
         }
         match self {
             Edit::SplitFace(f, a, b) => cut_face(world, *f, *a, *b),
-            Edit::BevelVertex(..) | Edit::BevelEdge(..) => self.apply_planned(world),
             Edit::MoveVertex(v, p) => Ok(Applied {
                 summary: format!("{v} at {p}"),
                 redraw: move_vertices(world, &[(*v, *p)])?,
@@ -48,19 +47,6 @@ impl Edit {
             Edit::Deform(params) => Ok(Applied::whole(deformed(&deform(world, mesh, params)?))),
             Edit::Fair(params) => fair_region(world, mesh, params),
         }
-    }
-
-    /// A planned local edit (a vertex's or an edge's bevel): planned, then applied; what is
-    /// new lies around the seeds that survive and what the edit made.
-    fn apply_planned(&self, world: &mut World) -> Result<Applied, Refusal> {
-        let plan = self.plan(world).ok_or(Refusal::BadParameter(format!(
-            "{} has no plan",
-            self.label()
-        )))??;
-        let seeds = plan.seeds();
-        let before = faces_around(world, &seeds);
-        let (summary, made) = plan.apply(world);
-        Ok(Applied::around(world, before, seeds, summary, made))
     }
 }
 

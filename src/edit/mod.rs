@@ -30,15 +30,11 @@ use bevy::math::Vec3;
 use bevy::prelude::World;
 
 use crate::mesh::attributes::{MeshAttributes, drop_attributes};
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
+use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::tables::{Connectivity, MeshTables};
 use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
-use crate::ops::local::{
-    BevelEdgePlan, BevelVertexPlan, apply_bevel_edge, apply_bevel_vertex, plan_bevel_edge,
-    plan_bevel_vertex,
-};
 use crate::ops::named::Named;
 use crate::ops::smooth::SmoothParams;
 
@@ -67,11 +63,6 @@ pub use crate::ops::subdivide::Scheme;
 pub enum Edit {
     /// Split a face between two of its corners.
     SplitFace(FaceId, VertexId, VertexId),
-    /// Replace a vertex by a face whose corners lie `amount` (0–0.5) along its edges.
-    BevelVertex(VertexId, f32),
-    /// Replace an interior edge by a face whose corners lie `amount` (0–0.5) along the edges
-    /// of its ends.
-    BevelEdge(EdgeId, f32),
     /// Move a vertex.
     MoveVertex(VertexId, Vec3),
     /// Move several vertices at once (a transform of the selection): one undo step.
@@ -145,8 +136,6 @@ impl Edit {
     pub fn label(&self) -> String {
         match self {
             Edit::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
-            Edit::BevelVertex(v, t) => format!("bevel {v} by {t}"),
-            Edit::BevelEdge(e, t) => format!("bevel {e} by {t}"),
             Edit::MoveVertex(v, _) => format!("move {v}"),
             Edit::MoveVertices(moves) => format!("move {} vertices", moves.len()),
             Edit::SplitVertex(v) => format!("split {v} back"),
@@ -185,7 +174,6 @@ impl Edit {
                 m.try_vertex(*v)?;
                 local(vec![*v])
             }
-            Edit::BevelVertex(..) | Edit::BevelEdge(..) => local(self.plan(world)?.ok()?.seeds()),
             Edit::MoveVertices(moves) => {
                 let seeds: Vec<VertexId> = moves.iter().map(|(v, _)| *v).collect();
                 seeds
@@ -223,8 +211,6 @@ impl Edit {
             Edit::SplitFace(f, ..) => Some(ElementId::Face(*f)),
             Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => Some(ElementId::Vertex(*v)),
             Edit::MoveVertices(moves) => moves.first().map(|(v, _)| ElementId::Vertex(*v)),
-            Edit::BevelVertex(v, _) => Some(ElementId::Vertex(*v)),
-            Edit::BevelEdge(e, _) => Some(ElementId::Edge(*e)),
             Edit::Smooth(_) => None,
         };
         match named {
@@ -242,16 +228,6 @@ impl Edit {
         }
     }
 
-    /// The plan of an edit whose operation plans first (its `plan_*` and parameter checks,
-    /// whose refusal it passes on); `None` for the other edits.
-    fn plan(&self, world: &World) -> Option<Result<Planned, Refusal>> {
-        Some(match self {
-            Edit::BevelVertex(v, t) => plan_bevel_vertex(world, *v, *t).map(Planned::BevelVertex),
-            Edit::BevelEdge(e, t) => plan_bevel_edge(world, *e, *t).map(Planned::BevelEdge),
-            _ => return None,
-        })
-    }
-
     /// What the operation behind the edit declares about itself, beside its algorithm (its
     /// step's name, whether it may run as a job, which ids and whether the simplification
     /// history survive it, what becomes of the attributes).
@@ -259,7 +235,6 @@ impl Edit {
         use crate::ops::{deform, local, smooth};
         match self {
             Edit::SplitFace(..) => &local::SPLIT_FACE,
-            Edit::BevelVertex(..) | Edit::BevelEdge(..) => &local::BEVEL,
             Edit::MoveVertex(..) | Edit::MoveVertices(_) => &MOVE,
             Edit::SplitVertex(_) => &local::VERTEX_SPLIT,
             Edit::Operation(op) => op.declaration(),
@@ -421,36 +396,6 @@ pub enum MergeKey {
 /// Moving vertices (a drag, a transform of the selection): the editor's own edit, no step.
 pub const MOVE: Declaration = Declaration::new("move").editor_only();
 
-/// A planned edit of an operation that plans first: its plan and parameters, checked.
-enum Planned {
-    BevelVertex(BevelVertexPlan),
-    BevelEdge(BevelEdgePlan),
-}
-
-impl Planned {
-    /// The seeds of its undo record.
-    fn seeds(&self) -> Vec<VertexId> {
-        match self {
-            Planned::BevelVertex(p) => p.seeds(),
-            Planned::BevelEdge(p) => p.seeds(),
-        }
-    }
-
-    /// Carries it out (it cannot fail): its summary, and what to select.
-    fn apply(self, world: &mut World) -> (String, Option<ElementId>) {
-        match self {
-            Planned::BevelVertex(plan) => {
-                let f = apply_bevel_vertex(world, plan);
-                (format!("new face {f}"), Some(ElementId::Face(f)))
-            }
-            Planned::BevelEdge(plan) => {
-                let f = apply_bevel_edge(world, plan);
-                (format!("new face {f}"), Some(ElementId::Face(f)))
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -458,7 +403,7 @@ mod tests {
     #[test]
     fn only_whole_mesh_computations_run_as_jobs_and_only_subdivision_renumbers() {
         let v = VertexId(bevy::prelude::Entity::PLACEHOLDER);
-        let e = EdgeId(bevy::prelude::Entity::PLACEHOLDER);
+        let e = crate::mesh::ids::EdgeId(bevy::prelude::Entity::PLACEHOLDER);
         let loop1 = Edit::registered("loop").unwrap();
         assert!(loop1.may_run_as_job() && Edit::registered("remesh").unwrap().may_run_as_job());
         let refine = Edit::invoked("refine:5").unwrap();
@@ -480,7 +425,6 @@ mod tests {
     fn every_edit_has_a_declaration_and_every_declared_step_exists() {
         use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
         let v = VertexId(bevy::prelude::Entity::PLACEHOLDER);
-        let e = EdgeId(bevy::prelude::Entity::PLACEHOLDER);
         let f = FaceId(bevy::prelude::Entity::PLACEHOLDER);
         let registered = crate::ops::OPERATIONS
             .iter()
@@ -488,8 +432,6 @@ mod tests {
         let every: Vec<Edit> = registered
             .chain([
                 Edit::SplitFace(f, v, v),
-                Edit::BevelVertex(v, 0.2),
-                Edit::BevelEdge(e, 0.2),
                 Edit::MoveVertex(v, Vec3::ZERO),
                 Edit::MoveVertices(vec![(v, Vec3::ZERO)]),
                 Edit::SplitVertex(v),

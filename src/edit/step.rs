@@ -56,8 +56,6 @@ pub enum Step {
     On(Invocation, Vec<Vec<u32>>),
     /// `split-face:A,B`: the face two of the input file's vertices share, between them.
     SplitFace(SplitFaceStep),
-    /// `bevel:ELEMENT[:AMOUNT[:DEPTH]]`.
-    Bevel(BevelStep),
     /// `deform:arap|laplace:FIXED:HANDLE:DX,DY,DZ[:ITERATIONS]`.
     Deform(DeformStep),
     /// `fair:VERTICES[:K]`: the vertices, and the order k.
@@ -148,51 +146,6 @@ fn live_vertex(
         .ok_or(Refusal::Stale(ElementId::Vertex(v)))
 }
 
-/// `bevel:ELEMENT[:AMOUNT[:DEPTH]]`: a vertex or an edge (AMOUNT along its edges, 0–0.5,
-/// default 0.25), or a face (an inset by AMOUNT, default 0.25, with DEPTH).
-#[derive(Clone, Debug, PartialEq)]
-pub struct BevelStep {
-    /// The element, by input vertex numbers.
-    pub element: Vec<u32>,
-    /// AMOUNT and DEPTH, as given.
-    pub numbers: Vec<f32>,
-}
-
-impl BevelStep {
-    /// The bevel's amount when the step gives none.
-    const DEFAULT_AMOUNT: f32 = 0.25;
-
-    /// Parses `ELEMENT[:AMOUNT[:DEPTH]]`.
-    fn parse(args: &str) -> Option<Self> {
-        let mut parts = args.split(':');
-        let element = parse_targets(parts.next()?)
-            .filter(|t| t.len() == 1)?
-            .remove(0);
-        let numbers: Vec<f32> = parts
-            .map(|x| x.parse::<f32>().ok().filter(|x| x.is_finite()))
-            .collect::<Option<_>>()?;
-        (numbers.len() <= 2).then_some(Self { element, numbers })
-    }
-
-    /// The edit on the live element it names.
-    fn edit(&self, element: ElementId) -> Result<Edit, Refusal> {
-        let number = |i: usize, default: f32| self.numbers.get(i).copied().unwrap_or(default);
-        let amount = number(0, Self::DEFAULT_AMOUNT);
-        Ok(match element {
-            ElementId::Vertex(v) => Edit::BevelVertex(v, amount),
-            ElementId::Edge(e) => Edit::BevelEdge(e, amount),
-            face => {
-                let given = [Some(f64::from(amount)), Some(f64::from(number(1, 0.0)))];
-                Edit::Operation(
-                    Invocation::new(&crate::ops::local_operations::Inset, &given)
-                        .and_then(|i| i.on(vec![face]))
-                        .map_err(Refusal::BadParameter)?,
-                )
-            }
-        })
-    }
-}
-
 /// `[[A, B, C], [D, E]]` → `A,B,C/D,E`.
 fn targets_text(targets: &[Vec<u32>]) -> String {
     let targets: Vec<String> = targets
@@ -254,7 +207,6 @@ pub fn step_syntax() -> String {
 const OTHER_STEPS: &str = "\
 split-face:A,B |
 smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held) |
-bevel:ELEMENT[:AMOUNT[:DEPTH]]   (a vertex or an edge: AMOUNT 0-0.5; a face: an inset) |
 deform:arap|laplace:FIXED:HANDLE:DX,DY,DZ[:ITERATIONS]   (FIXED stays, HANDLE moves by DX,DY,DZ) |
 fair:VERTICES[:K]   (k-harmonic, K 1-3, default 2)
 A, B, C: 0-based indices of the input file's vertices: A a vertex, A,B the edge between two,
@@ -280,11 +232,6 @@ impl Step {
         }
         if name == "split-face" {
             return pair().map(|(a, b)| Step::SplitFace(SplitFaceStep(a, b)));
-        }
-        if name == "bevel" {
-            return BevelStep::parse(args).map(Step::Bevel).ok_or_else(|| {
-                format!("step `{text}`: expected one element, as in `bevel:4:0.25` or `bevel:0,1`")
-            });
         }
         Self::parse_named(text, name, args)
     }
@@ -422,7 +369,6 @@ impl Step {
                     .collect::<Result<_, _>>()?,
                 k: *k,
             }),
-            Step::Bevel(bevel) => bevel.edit(element_at(world, input_vertices, &bevel.element)?)?,
         };
         let mut context = EditContext {
             history,
@@ -477,10 +423,6 @@ impl std::fmt::Display for Step {
                 d.offset.z,
                 d.iterations
             ),
-            Step::Bevel(BevelStep { element, numbers }) => {
-                write!(f, "bevel:{}", targets_text(std::slice::from_ref(element)))?;
-                numbers.iter().try_for_each(|x| write!(f, ":{x}"))
-            }
             Step::Edit(edit) => match edit {
                 Edit::Operation(op) => write!(f, "{op}"),
                 Edit::Smooth(p) => {
@@ -530,7 +472,7 @@ mod tests {
             "extrude:0,1,2/1,2,3:0.5",
             "inset:0,1,2:0.3",
             "inset:0,1,2:0.3:-0.1",
-            "bevel:4:0.25",
+            "bevel:4:0.3",
             "bevel:0,1:0.1",
             "bevel:0,1,2:0.2:0.1",
             "erase:4/0,1/0,1,2",
@@ -647,7 +589,7 @@ mod tests {
             ("extrude:0,1:0.5", "extrude names faces"),
             ("inset:0,1,2:1.5", "AMOUNT must be a number from 0 to 0.999"),
             ("weld:0,1", "weld names two edges"),
-            ("bevel:0/1", "one element"),
+            ("bevel:0:1.5", "AMOUNT must be a number from 0 to 0.999"),
             ("dissolve:1,2,3", "a vertex"),
             ("erase:x", "not input vertex numbers"),
             ("deform:arap:0:1:1,2", "DX,DY,DZ"),

@@ -14,15 +14,16 @@
 
 use bevy::prelude::World;
 
-use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
 use crate::ops::declaration::{Declaration, Names, Parameter, Section};
 use crate::ops::local::{
-    CollapseOptions, apply_collapse_face, apply_dissolve_vertex, apply_erase, apply_extrude,
-    apply_inset, apply_weld, bisect_edge, check_growth, collapse_edge, dissolve_edge, faces_of,
-    flip_edge, plan_collapse_face, plan_dissolve_vertex, plan_erase, plan_extrude, plan_inset,
-    plan_weld, split_edge, toggle_seam,
+    CollapseOptions, apply_bevel_edge, apply_bevel_vertex, apply_collapse_face,
+    apply_dissolve_vertex, apply_erase, apply_extrude, apply_inset, apply_weld, bisect_edge,
+    check_growth, collapse_edge, dissolve_edge, faces_of, flip_edge, plan_bevel_edge,
+    plan_bevel_vertex, plan_collapse_face, plan_dissolve_vertex, plan_erase, plan_extrude,
+    plan_inset, plan_weld, split_edge, toggle_seam,
 };
 use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Redraw, Values, count};
 
@@ -400,7 +401,7 @@ pub const INSET: Declaration = Declaration::new("inset")
     .in_section(Section::Modelling);
 
 /// [`plan_inset`] and [`apply_inset`] as a registered operation: `inset:FACES[:AMOUNT[:DEPTH]]`,
-/// I (which then drags the amount), and a face's bevel (`bevel:A,B,C:AMOUNT:DEPTH`, Ctrl+B).
+/// I (which then drags the amount); also the bevel of faces ([`Bevel`]).
 pub struct Inset;
 
 impl MeshOperation for Inset {
@@ -438,6 +439,98 @@ impl MeshOperation for Inset {
             );
             (summary, None)
         }))
+    }
+}
+
+/// Bevelling a vertex, an edge or faces: a local edit.
+pub const BEVEL: Declaration = Declaration::new("bevel")
+    .titled("Bevel")
+    .described("bevel the selected vertex or edge into a face whose corners lie AMOUNT (0–0.5) along its edges, or inset the selected faces by AMOUNT with DEPTH")
+    .on_key("Ctrl+B")
+    .naming(Names::Elements)
+    .with_parameters(&[
+        Parameter::real("AMOUNT", 0.25, 0.0, 0.999),
+        Parameter::real("DEPTH", 0.0, -1e6, 1e6),
+    ])
+    .in_section(Section::Modelling);
+
+/// Blender's bevel on what it names: one vertex or one edge ([`plan_bevel_vertex`],
+/// [`plan_bevel_edge`]: Scotty3D's `bevel_vertex` and `bevel_edge`), or faces (an inset with
+/// depth, as [`Inset`]): `bevel:ELEMENTS[:AMOUNT[:DEPTH]]`, Ctrl+B. A halfedge names its edge.
+pub struct Bevel;
+
+/// What a [`Bevel`] works on.
+enum Bevelled {
+    Vertex(VertexId),
+    Edge(EdgeId),
+    Faces,
+}
+
+impl Bevel {
+    /// What `values` name, checked for kind (not for liveness: the plans check that).
+    ///
+    /// # Refusals
+    /// [`Refusal::BadParameter`] for anything but one vertex, one edge (or halfedge) or faces.
+    fn bevelled(world: &World, values: Values<'_>) -> Result<Bevelled, Refusal> {
+        let m = MeshRef::new(world);
+        match values.elements() {
+            [ElementId::Vertex(v)] => Ok(Bevelled::Vertex(*v)),
+            [ElementId::Edge(e)] => Ok(Bevelled::Edge(*e)),
+            [ElementId::Halfedge(h)] if m.try_halfedge(*h).is_some() => {
+                Ok(Bevelled::Edge(m.edge(*h)))
+            }
+            [ElementId::Halfedge(h)] => Err(Refusal::Stale(ElementId::Halfedge(*h))),
+            faces if faces.iter().all(|x| matches!(x, ElementId::Face(_))) => Ok(Bevelled::Faces),
+            _ => Err(Refusal::BadParameter(
+                "bevel names one vertex, one edge or faces".into(),
+            )),
+        }
+    }
+}
+
+impl MeshOperation for Bevel {
+    fn declaration(&self) -> &'static Declaration {
+        &BEVEL
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, mesh: MeshId, values: Values<'_>) -> Option<Reach> {
+        let amount = values.number(0) as f32;
+        match Self::bevelled(world, values).ok()? {
+            Bevelled::Vertex(v) => {
+                Reach::local(world, plan_bevel_vertex(world, v, amount).ok()?.seeds())
+            }
+            Bevelled::Edge(e) => {
+                Reach::local(world, plan_bevel_edge(world, e, amount).ok()?.seeds())
+            }
+            Bevelled::Faces => Inset.reach(world, mesh, values),
+        }
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+        context: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let amount = values.number(0) as f32;
+        let new_face = |f: FaceId| (format!("new face {f}"), Some(ElementId::Face(f)));
+        match Self::bevelled(world, values)? {
+            Bevelled::Vertex(v) => {
+                let plan = plan_bevel_vertex(world, v, amount)?;
+                Ok(carry_out(world, plan.seeds(), |world| {
+                    new_face(apply_bevel_vertex(world, plan))
+                }))
+            }
+            Bevelled::Edge(e) => {
+                let plan = plan_bevel_edge(world, e, amount)?;
+                Ok(carry_out(world, plan.seeds(), |world| {
+                    new_face(apply_bevel_edge(world, plan))
+                }))
+            }
+            Bevelled::Faces => Inset.apply(world, mesh, values, context),
+        }
     }
 }
 

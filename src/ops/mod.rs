@@ -64,6 +64,7 @@ pub const OPERATIONS: &[&dyn MeshOperation] = &[
     &local_operations::ToggleSeam,
     &local_operations::Extrude,
     &local_operations::Inset,
+    &local_operations::Bevel,
     &local_operations::Erase,
     &local_operations::Weld,
 ];

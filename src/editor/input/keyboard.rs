@@ -42,8 +42,6 @@ pub enum Action {
     Extrude,
     /// Inset each selected face, then drag the amount.
     Inset,
-    /// Bevel the active vertex or edge, or the selected faces (the panel's amount and depth).
-    Bevel,
     /// Fill the hole beside the selected boundary edge (with a halfedge active: go to its face).
     Fill,
     /// Fill the hole beside the selected boundary edge with a fair patch of triangles.
@@ -306,13 +304,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         Action::Inset,
         "inset each selected face, then drag the amount",
     ),
-    ctrl(
-        KeyCode::KeyB,
-        false,
-        "Ctrl+B",
-        Action::Bevel,
-        "bevel the active vertex or edge, or the selected faces (amount in the panel)",
-    ),
     key(
         KeyCode::Delete,
         "Delete",
@@ -571,11 +562,6 @@ pub struct UiState {
     pub check_validity: bool,
     /// The UV layout window is open (it opens by itself when the mesh first gets UVs).
     pub uv_view: bool,
-    /// Bevel: how far along the edges the new corners go (0–0.5), or for faces how far
-    /// towards the centre (0–1).
-    pub bevel_amount: f32,
-    /// Bevel of faces: how far the inset face moves along its normal.
-    pub bevel_depth: f32,
     /// Fairing's order k (1–3).
     pub fair_k: u32,
     /// Proportional editing: on or off, falloff, radius, distances along edges.
@@ -627,8 +613,6 @@ impl Default for UiState {
             histograms: false,
             check_validity: false,
             uv_view: false,
-            bevel_amount: 0.25,
-            bevel_depth: 0.0,
             fair_k: 2,
             proportional: Proportional::default(),
             operations: crate::ops::OPERATIONS
@@ -829,26 +813,6 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
                     undo_mark,
                 });
             edit
-        }
-        Action::Bevel => {
-            let ui = world.resource::<UiState>();
-            let (amount, depth) = (ui.bevel_amount, ui.bevel_depth);
-            match selection {
-                Some(ElementId::Vertex(v)) => Edit::BevelVertex(v, amount),
-                Some(ElementId::Face(_)) => {
-                    let faces = selected_faces(world).into_iter().map(ElementId::Face);
-                    let given = [Some(f64::from(amount)), Some(f64::from(depth))];
-                    Edit::Operation(
-                        Invocation::new(&crate::ops::local_operations::Inset, &given)
-                            .and_then(|i| i.on(faces.collect()))
-                            .map_err(Refusal::BadParameter)?,
-                    )
-                }
-                _ => match selected_edge(&m, selection) {
-                    Some(e) => Edit::BevelEdge(e, amount.min(0.5)),
-                    None => return Err(Declined::SelectFirst("a vertex, an edge or faces".into())),
-                },
-            }
         }
         _ => return Ok(None),
     };

@@ -1030,7 +1030,7 @@ fn view_toggles(
     }
 }
 
-/// Blender's edit-mode operations on the selection, with the bevel's parameters.
+/// Blender's edit-mode operations on the selection.
 fn modelling_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
     buttons(
         ui,
@@ -1043,15 +1043,6 @@ fn modelling_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pendi
         ],
     );
     registered_operations(ui, state, pending, Section::Modelling);
-    ui.horizontal(|ui| {
-        button(ui, pending, Action::Bevel, "Bevel");
-        ui.add(egui::Slider::new(&mut state.bevel_amount, 0.01..=0.5).text("amount"));
-        ui.add(
-            egui::DragValue::new(&mut state.bevel_depth)
-                .speed(0.005)
-                .prefix("depth "),
-        );
-    });
 }
 
 /// The local operations of the halfedge mesh on the selected element: the registered ones
