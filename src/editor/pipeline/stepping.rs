@@ -232,8 +232,9 @@ impl DeformSteps {
         while self.iterations.len() <= k {
             self.live.iterate(1);
             let moves = self.live.moves()?;
-            // The next iteration's local step fits these rotations again from the same
-            // positions, so measuring here leaves every later iteration as it would be.
+            // This local step is the one the next iteration would run on the same positions,
+            // and the next iteration reuses it, so measuring here leaves every later
+            // iteration as an unstepped run makes it.
             let energy = self.live.energy();
             self.iterations.push(DeformIteration {
                 positions: moves.into_iter().map(|(_, p)| p).collect(),

@@ -205,7 +205,6 @@ impl Arap {
         // The energy serves as the next guess's reference once the history holds a step.
         let measure = self.measuring || self.anderson.remembers();
         self.fit(measure);
-        let start_energy = self.energy();
         self.right_hand_side();
         self.image.clone_from(&self.current);
         self.system.solve(Some(&self.rhs), &mut self.image);
@@ -220,7 +219,8 @@ impl Arap {
             for (&v, p) in free.iter().zip(guess.iter()) {
                 self.current[v as usize] = *p;
             }
-            self.guess = Some(start_energy);
+            // The local fits are still those of the positions this iteration started from.
+            self.guess = Some(self.energy());
         } else {
             std::mem::swap(&mut self.current, &mut self.image);
         }
