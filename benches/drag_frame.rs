@@ -74,7 +74,7 @@ fn drag_frame(c: &mut Criterion) {
                 let p = MeshRef::new(app.world()).position(v)
                     + Vec3::splat(if step.is_multiple_of(2) { 1e-4 } else { -1e-4 });
                 app.world_mut()
-                    .write_message(Request::Edit(Edit::MoveVertex(v, p)));
+                    .write_message(Request::Edit(Edit::Move(vec![(v, p)])));
                 app.update();
             });
         });
@@ -128,7 +128,7 @@ fn handle_frame(c: &mut Criterion) {
         b.iter(|| {
             let moves = live.solve(&targets(), 1).expect("finite");
             app.world_mut()
-                .write_message(Request::Edit(Edit::MoveVertices(moves)));
+                .write_message(Request::Edit(Edit::Move(moves)));
             app.update();
         });
     });

@@ -111,7 +111,7 @@ fn random_edit(world: &World, mesh: MeshId, kind: u8, pick: u32, t: f32) -> Opti
         14 => Edit::local("fill-hole", *boundary.get(nth(boundary.len()))?),
         _ => {
             let v = vertex()?;
-            Edit::MoveVertices(vec![(v, m.position(v) + Vec3::new(t, -t, 0.5 * t) * 0.1)])
+            Edit::Move(vec![(v, m.position(v) + Vec3::new(t, -t, 0.5 * t) * 0.1)])
         }
     })
 }

@@ -645,7 +645,7 @@ fn a_move_of_most_of_the_mesh_refreshes_positions_in_the_chunks_it_has() {
         vertices.iter().map(|&v| (v, m.position(v) * 2.0)).collect()
     };
     app.world_mut()
-        .write_message(Request::Edit(Edit::MoveVertices(moves)));
+        .write_message(Request::Edit(Edit::Move(moves)));
     app.update();
     assert!(last_outcome(&app).result.is_ok());
     assert_eq!(chunk_entities(&mut app), before, "the same chunks");
@@ -683,7 +683,7 @@ fn a_move_of_most_of_the_mesh_refreshes_positions_in_the_chunks_it_has() {
     app.world_mut()
         .write_message(Request::Edit(Edit::local("flip", e)));
     app.world_mut()
-        .write_message(Request::Edit(Edit::MoveVertices(moves)));
+        .write_message(Request::Edit(Edit::Move(moves)));
     app.update();
     assert_every_face_drawn_once(&mut app);
 }
@@ -1081,7 +1081,7 @@ fn hole_and_fairing_keys_fill_and_fair() {
     app.update();
     press_with(&mut app, KeyCode::ShiftLeft, KeyCode::KeyO);
     let outcome = last_outcome(&app);
-    assert_eq!(outcome.request, "fair 1 vertex (k = 2)");
+    assert_eq!(outcome.request, format!("fair {v} (k 2)"));
     assert!(outcome.result.is_ok(), "{outcome:?}");
     validate(app.world(), m).unwrap();
 }
@@ -1145,12 +1145,12 @@ fn level_of_detail_and_vertex_split_follow_the_simplification() {
         .find(|&v| v != next)
         .unwrap();
     app.world_mut()
-        .write_message(Request::Edit(Edit::SplitVertex(other)));
+        .write_message(Request::Edit(Edit::local("vertex-split", other)));
     app.update();
     let refusal = last_outcome(&app).result.unwrap_err().to_string();
     assert!(refusal.contains(&next.to_string()), "{refusal}");
     app.world_mut()
-        .write_message(Request::Edit(Edit::SplitVertex(next)));
+        .write_message(Request::Edit(Edit::local("vertex-split", next)));
     app.update();
     assert!(
         last_outcome(&app).result.is_ok(),
@@ -1434,7 +1434,6 @@ fn the_distance_colouring_measures_against_the_mesh_before_a_whole_mesh_edit() {
 #[test]
 fn smoothing_as_a_job_holds_the_vertex_the_editor_named() {
     use pappus::editor::pipeline::jobs::{JobSettings, Jobs};
-    use pappus::ops::smooth::{SmoothMethod, SmoothParams};
     let mut app = app();
     app.world_mut().resource_mut::<JobSettings>().min_faces = 100;
     open(&mut app, "shape:icosphere");
@@ -1442,13 +1441,8 @@ fn smoothing_as_a_job_holds_the_vertex_the_editor_named() {
     let (held, free) = (members.vertices[7], members.vertices[8]);
     let at = |app: &App, v| MeshRef::new(app.world()).position(v);
     let (held_at, free_at) = (at(&app, held), at(&app, free));
-    let params = SmoothParams {
-        held: vec![held],
-        iterations: 3,
-        ..SmoothParams::new(SmoothMethod::Uniform)
-    };
-    app.world_mut()
-        .write_message(Request::Edit(Edit::Smooth(params)));
+    let smooth = Edit::local_on("smooth", [held], &[0.0, 3.0]);
+    app.world_mut().write_message(Request::Edit(smooth));
     app.update();
     assert!(app.world().resource::<Jobs>().running.is_some() || last_outcome(&app).result.is_ok());
     update_until(&mut app, |app| {
@@ -1469,7 +1463,6 @@ fn smoothing_as_a_job_holds_the_vertex_the_editor_named() {
 #[test]
 fn a_job_keeps_the_selected_set() {
     use pappus::editor::pipeline::jobs::{JobSettings, Jobs};
-    use pappus::ops::smooth::{SmoothMethod, SmoothParams};
     let mut app = app();
     app.world_mut().resource_mut::<JobSettings>().min_faces = 100;
     open(&mut app, "shape:icosphere");
@@ -1496,10 +1489,7 @@ fn a_job_keeps_the_selected_set() {
         selection.extend(chosen.iter().copied());
     };
     select(&mut app);
-    run(
-        &mut app,
-        Edit::Smooth(SmoothParams::new(SmoothMethod::Uniform)),
-    );
+    run(&mut app, Edit::registered("smooth").unwrap());
     let selection = app.world().resource::<Selection>();
     assert_eq!(selection.len(), chosen.len(), "{:?}", selection.elements());
     assert_eq!(selection.element, chosen.last().copied());

@@ -10,6 +10,7 @@ use pappus::io::{self, Format};
 use pappus::mesh::attributes::MeshAttributes;
 use pappus::mesh::change::{LocalRecorder, SavedContents};
 use pappus::mesh::groups::{FaceGroup, face_group};
+use pappus::mesh::ids::ElementId;
 use pappus::mesh::{FaceId, MeshId, MeshMembers, MeshRef, PolygonSoup, to_soup};
 use std::path::Path;
 
@@ -118,7 +119,15 @@ fn faces_made_from_a_face_keep_its_group() {
         let v: Vec<_> = m.face_vertices(lid).collect();
         (v[0], v[2])
     };
-    run(&mut world, mesh, &Edit::SplitFace(lid, a, c));
+    run(
+        &mut world,
+        mesh,
+        &Edit::local_on(
+            "split-face",
+            [ElementId::from(lid), a.into(), c.into()],
+            &[],
+        ),
+    );
     assert_eq!(counts(&world, mesh), [5, 2]);
     // Extrude the bottom: its four walls are body, like it.
     let bottom = face_at_height(&world, mesh, 0.0);
@@ -175,7 +184,11 @@ fn undo_brings_groups_back_and_remeshing_says_it_drops_them() {
     run(
         &mut world,
         mesh,
-        &Edit::SplitFace(lid, corners[0], corners[2]),
+        &Edit::local_on(
+            "split-face",
+            [ElementId::from(lid), corners[0].into(), corners[2].into()],
+            &[],
+        ),
     );
     let undo = recorder.finish(&world);
     let (redo, _, _) = undo.apply(&mut world);

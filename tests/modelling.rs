@@ -164,7 +164,7 @@ fn a_gesture_is_one_undo_step_and_esc_takes_it_back_with_the_edit_it_followed() 
         .resource_mut::<UndoHistory>()
         .begin_gesture();
     for d in [0.1, 0.2, 0.3] {
-        send(&mut app, Edit::MoveVertices(vec![(v, p + Vec3::splat(d))]));
+        send(&mut app, Edit::Move(vec![(v, p + Vec3::splat(d))]));
     }
     app.world_mut().resource_mut::<UndoHistory>().end_gesture();
     assert_eq!(undo_steps(&app), (start + 1, 0));
@@ -182,7 +182,7 @@ fn a_gesture_is_one_undo_step_and_esc_takes_it_back_with_the_edit_it_followed() 
         .begin_gesture();
     let top: Vec<_> = MeshRef::new(app.world()).face_vertices(f).collect();
     let moves = top.iter().map(|&x| (x, Vec3::splat(5.0))).collect();
-    send(&mut app, Edit::MoveVertices(moves));
+    send(&mut app, Edit::Move(moves));
     app.world_mut().resource_mut::<UndoHistory>().end_gesture();
     assert_eq!(undo_steps(&app), (keep + 2, 0));
     send(&mut app, Request::Retract(mark));
@@ -205,7 +205,7 @@ fn esc_takes_a_gesture_back_after_the_memory_cap_trimmed_the_history() {
     let vs = members(&app).vertices;
     for (i, &v) in vs.iter().enumerate().take(6) {
         let p = MeshRef::new(app.world()).position(v);
-        send(&mut app, Edit::MoveVertex(v, p * (1.0 + 0.01 * i as f32)));
+        send(&mut app, Edit::Move(vec![(v, p * (1.0 + 0.01 * i as f32))]));
     }
     let before_extrusion = counts(&app);
     let old_entries = undo_steps(&app).0;
@@ -225,7 +225,7 @@ fn esc_takes_a_gesture_back_after_the_memory_cap_trimmed_the_history() {
     let top: Vec<_> = MeshRef::new(app.world()).face_vertices(f).collect();
     send(
         &mut app,
-        Edit::MoveVertices(top.iter().map(|&x| (x, Vec3::splat(2.0))).collect()),
+        Edit::Move(top.iter().map(|&x| (x, Vec3::splat(2.0))).collect()),
     );
     app.world_mut().resource_mut::<UndoHistory>().end_gesture();
     let (now, _) = undo_steps(&app);
@@ -253,13 +253,10 @@ fn undoing_a_gesture_restores_vertices_its_first_frame_left_in_place() {
     app.world_mut()
         .resource_mut::<UndoHistory>()
         .begin_gesture();
+    send(&mut app, Edit::Move(vec![(a, pa + Vec3::X), (b, pb)]));
     send(
         &mut app,
-        Edit::MoveVertices(vec![(a, pa + Vec3::X), (b, pb)]),
-    );
-    send(
-        &mut app,
-        Edit::MoveVertices(vec![(a, pa + Vec3::X), (b, pb + Vec3::Y)]),
+        Edit::Move(vec![(a, pa + Vec3::X), (b, pb + Vec3::Y)]),
     );
     app.world_mut().resource_mut::<UndoHistory>().end_gesture();
     send(&mut app, Request::Undo);

@@ -17,7 +17,7 @@ use pappus::editor::session::selection::ActiveMesh;
 use pappus::mesh::ids::{EdgeId, ElementId, FaceId, VertexId};
 use pappus::mesh::{MeshMembers, MeshRef, to_soup, validate};
 use pappus::ops::named::Named;
-use pappus::ops::smooth::{SmoothMethod, SmoothParams};
+use pappus::ops::smooth::SmoothMethod;
 
 /// How many requests the session makes.
 const REQUESTS: usize = 10_000;
@@ -74,7 +74,11 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
             let corners: Vec<VertexId> = r.face_vertices(f).collect();
             let a = rng.below(corners.len());
             let b = (a + 2 + rng.below(corners.len().saturating_sub(2).max(1))) % corners.len();
-            Edit::SplitFace(f, corners[a], corners[b])
+            Edit::local_on(
+                "split-face",
+                [f.into(), corners[a].into(), corners[b].into()] as [ElementId; 3],
+                &[],
+            )
         }),
         46..=50 => vertex(rng).map(|v| {
             let nudge = Vec3::new(
@@ -82,9 +86,9 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
                 rng.below(1000) as f32 / 1e5 - 0.005,
                 rng.below(1000) as f32 / 1e5 - 0.005,
             );
-            Edit::MoveVertex(v, r.position(v) + nudge)
+            Edit::Move(vec![(v, r.position(v) + nudge)])
         }),
-        51..=52 => vertex(rng).map(Edit::SplitVertex),
+        51..=52 => vertex(rng).map(|v| Edit::local("vertex-split", v)),
         53..=54 => Some(Edit::Operation(pappus::ops::decimate::Refine::to(Some(
             rng.below(2 * faces + 2),
         )))),
@@ -106,10 +110,10 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
         58 if faces < GROW_BELOW_FACES => Some(Edit::registered("loop").unwrap()),
         59 if faces < GROW_BELOW_FACES => Some(Edit::registered("catmull-clark").unwrap()),
         60 => Some(Edit::invoked("remesh:1").unwrap()),
-        61 => Some(Edit::Smooth(SmoothParams {
-            iterations: 2,
-            ..SmoothParams::new(SmoothMethod::ALL[rng.below(4)].0)
-        })),
+        61 => {
+            let method = SmoothMethod::ALL[rng.below(4)].1;
+            Some(Edit::invoked(&format!("smooth:{method}:2")).unwrap())
+        }
         _ => None,
     };
     if let Some(edit) = edit {

@@ -175,12 +175,19 @@ fn every_local_edit_undoes_and_redoes_exactly() {
             let corners: Vec<VertexId> = m.face_vertices(f).collect();
             (f, corners[0], corners[2])
         };
-        round_trip(&mut app, Request::Edit(Edit::SplitFace(f, a, b)));
+        round_trip(
+            &mut app,
+            Request::Edit(Edit::local_on(
+                "split-face",
+                [ElementId::from(f), a.into(), b.into()],
+                &[],
+            )),
+        );
         let v = members(&app).vertices[3];
         let p = MeshRef::new(app.world()).position(v);
         round_trip(
             &mut app,
-            Request::Edit(Edit::MoveVertex(v, p + Vec3::new(0.1, -0.2, 0.3))),
+            Request::Edit(Edit::Move(vec![(v, p + Vec3::new(0.1, -0.2, 0.3))])),
         );
     }
 }
@@ -215,7 +222,7 @@ fn every_global_edit_undoes_and_redoes_exactly() {
         let pm = app.world().resource::<History>().pm.as_ref().unwrap();
         pm.next_split_vertex().unwrap()
     };
-    round_trip(&mut app, Request::Edit(Edit::SplitVertex(next)));
+    round_trip(&mut app, Request::Edit(Edit::local("vertex-split", next)));
     request(
         &mut app,
         Request::Edit(Edit::invoked("simplify:0.5").unwrap()),
@@ -274,7 +281,7 @@ fn random_edit(app: &App, rng: &mut Rng) -> Request {
         _ => {
             let v = all.vertices[rng.below(all.vertices.len())];
             let d = (rng.below(1000) as f32 - 500.0) * 1e-4;
-            Request::Edit(Edit::MoveVertex(v, m.position(v) + Vec3::splat(d)))
+            Request::Edit(Edit::Move(vec![(v, m.position(v) + Vec3::splat(d))]))
         }
     }
 }
@@ -417,7 +424,7 @@ fn a_drag_is_one_entry() {
         mouse(&mut app, ButtonState::Pressed);
         for i in 1..=5 {
             let p = start + Vec3::X * (drag * 5 + i) as f32 * 0.01;
-            request(&mut app, Request::Edit(Edit::MoveVertex(v, p))).unwrap();
+            request(&mut app, Request::Edit(Edit::Move(vec![(v, p)]))).unwrap();
         }
         mouse(&mut app, ButtonState::Released);
     }

@@ -131,14 +131,18 @@ fn operations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
         .collect()
 }
 
-/// What an operation names beside the mesh, as [`operations`] lists it: `"mesh"` (nothing),
-/// `"edge"` (`A,B` in its step), `"vertex"` (`A`), `"face"` (`A,B,C`), `"faces"`
-/// (`A,B,C/D,E,F`), `"two-edges"` (`A,B/C,D`), `"elements"` (any, joined by `/`).
+/// What an operation names beside the mesh, as [`operations`] lists it: `"mesh"` (nothing in
+/// a step; smoothing's held vertices come from the editor's selection alone), `"edge"` (`A,B`
+/// in its step), `"vertex"` (`A`), `"vertices"` (`A/B/C`), `"face"` (`A,B,C`), `"faces"`
+/// (`A,B,C/D,E,F`), `"two-edges"` (`A,B/C,D`), `"face-corners"` (`A,B`: the face two vertices
+/// share), `"elements"` (any, joined by `/`).
 fn names(names: pappus::ops::declaration::Names) -> &'static str {
     use pappus::ops::declaration::Names;
     match names {
-        Names::Mesh => "mesh",
+        Names::Mesh | Names::MeshHolding => "mesh",
         Names::Edge => "edge",
+        Names::Vertices => "vertices",
+        Names::FaceCorners => "face-corners",
         Names::Vertex => "vertex",
         Names::Face => "face",
         Names::Faces => "faces",

@@ -284,7 +284,10 @@ def test_every_declared_operation_is_listed_and_runs_with_its_defaults():
         if op["names"] != "mesh":
             # A local operation names its element in its step (flip:A,B): see the tests of
             # each below.
-            assert op["names"] in ("edge", "vertex", "face", "faces", "two-edges", "elements"), op
+            assert op["names"] in (
+                "edge", "vertex", "vertices", "face", "faces", "two-edges", "face-corners",
+                "elements",
+            ), op
             continue
         # Triangles with holes: every declared operation applies (fill-holes needs a hole,
         # simplify and remesh triangles).

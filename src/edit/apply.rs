@@ -12,9 +12,7 @@ use bevy::prelude::World;
 use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
-use crate::ops::deform::{DeformSummary, FairParams, deform, fair};
-use crate::ops::local::split_face;
-use crate::ops::smooth::{SmoothParams, smooth_with_progress};
+use crate::ops::deform::{DeformSummary, deform, loose_note};
 
 use super::{Applied, Edit, EditContext, Redraw, count};
 
@@ -30,85 +28,18 @@ impl Edit {
             return Err(Refusal::Stale(ElementId::Mesh(mesh)));
         }
         match self {
-            Edit::SplitFace(f, a, b) => cut_face(world, *f, *a, *b),
-            Edit::MoveVertex(v, p) => Ok(Applied {
-                summary: format!("{v} at {p}"),
-                redraw: move_vertices(world, &[(*v, *p)])?,
-                made: None,
-            }),
-            Edit::MoveVertices(moves) => Ok(Applied {
-                summary: format!("{} vertices moved", moves.len()),
+            Edit::Operation(op) => op.apply(world, mesh, context),
+            Edit::Move(moves) => Ok(Applied {
+                summary: match moves.as_slice() {
+                    [(v, p)] => format!("{v} at {p}"),
+                    _ => format!("{} vertices moved", moves.len()),
+                },
                 redraw: move_vertices(world, moves)?,
                 made: None,
             }),
-            Edit::SplitVertex(v) => split_vertex(world, *v, context),
-            Edit::Operation(op) => op.apply(world, mesh, context),
-            Edit::Smooth(params) => smooth(world, mesh, params, context),
             Edit::Deform(params) => Ok(Applied::whole(deformed(&deform(world, mesh, params)?))),
-            Edit::Fair(params) => fair_region(world, mesh, params),
         }
     }
-}
-
-fn cut_face(world: &mut World, f: FaceId, a: VertexId, b: VertexId) -> Result<Applied, Refusal> {
-    let before = faces_around(world, &[a, b]);
-    let e = split_face(world, f, a, b)?;
-    Ok(Applied {
-        summary: format!("new edge {e}"),
-        redraw: Redraw::near(world, before, vec![a, b]),
-        made: Some(ElementId::Edge(e)),
-    })
-}
-
-/// Splits back the vertex a simplification collapsed last into `v`.
-fn split_vertex(
-    world: &mut World,
-    v: VertexId,
-    context: &mut EditContext<'_>,
-) -> Result<Applied, Refusal> {
-    let pm = context.history.as_mut().ok_or(Refusal::NoHistory)?;
-    let b = pm.refine_vertex(world, v)?;
-    Ok(Applied {
-        summary: format!("split back {b}"),
-        redraw: Redraw::Whole,
-        made: Some(ElementId::Vertex(v)),
-    })
-}
-
-fn smooth(
-    world: &mut World,
-    mesh: MeshId,
-    params: &SmoothParams,
-    context: &mut EditContext<'_>,
-) -> Result<Applied, Refusal> {
-    let s = smooth_with_progress(world, mesh, params, &mut *context.progress)?;
-    let stopped = if s.iterations < params.iterations {
-        format!(
-            " (stopped after {} of {} iterations)",
-            s.iterations, params.iterations
-        )
-    } else {
-        String::new()
-    };
-    Ok(Applied::whole(format!(
-        "{} free vertices moved {:.3e} on average{stopped}",
-        s.free, s.mean_move
-    )))
-}
-
-fn fair_region(world: &mut World, mesh: MeshId, params: &FairParams) -> Result<Applied, Refusal> {
-    let s = fair(world, mesh, params)?;
-    let loose = loose_note(s.loose_parts);
-    Ok(Applied {
-        summary: format!(
-            "{} faired (k = {}), moved {:.3e} on average{loose}",
-            count(s.free, "vertex"),
-            params.k,
-            s.mean_move
-        ),
-        redraw: Redraw::near(world, Vec::new(), params.vertices.clone()),
-        made: None,
-    })
 }
 
 /// The summary of a deformation.
@@ -133,14 +64,6 @@ fn deformed(s: &DeformSummary) -> String {
         ms(s.factor_seconds),
         ms(s.iteration_seconds)
     )
-}
-
-/// The note on parts of the mesh a solve left alone (none held there).
-fn loose_note(parts: usize) -> String {
-    match parts {
-        0 => String::new(),
-        n => format!(" ({} with nothing held stayed)", count(n, "part")),
-    }
 }
 
 /// Moves vertices; returns what to redraw: the faces around them and their neighbours (whose

@@ -17,32 +17,29 @@
 //! [`Applied`] — a summary that prints, what to redraw and what to select — or a [`Refusal`],
 //! and then the world is exactly as it was.
 //!
-//! Adding an operation on the whole mesh or on one element (an edge, a vertex, a face): its
-//! file in `ops/`, declaring itself whole ([`crate::ops::operation::MeshOperation`]: what it
-//! names, its parameters, its key and section), and its line in [`crate::ops::OPERATIONS`];
-//! [`Edit::Operation`] carries it, and the step parser, the keymap (which resolves the element
-//! from the selection) and the panel read its declaration. The operations on several
-//! elements, on vertex lists or on moves (extrude, inset, bevel, erase, weld, split face, the
-//! moves, deformation, fairing) are still variants here, with their arms in the `match`es
-//! below, their step, key and button (see `docs/architecture.md`).
+//! Adding an operation: its file in `ops/`, declaring itself whole
+//! ([`crate::ops::operation::MeshOperation`]: what it names, its parameters, its key and
+//! section), and its line in [`crate::ops::OPERATIONS`]; [`Edit::Operation`] carries it, and
+//! the step parser, the keymap (which resolves the elements from the selection), the panel,
+//! Python, undo and jobs read its declaration. Two edits are not operations: the editor's
+//! gestures carry what no declared parameter can — a position for each vertex moved
+//! ([`Edit::Move`]) and the affine map a handle's drag makes ([`Edit::Deform`]).
 
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
 use crate::mesh::attributes::{MeshAttributes, drop_attributes};
-use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
+use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::mesh::tables::{Connectivity, MeshTables};
 use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
-use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
-use crate::ops::named::Named;
-use crate::ops::smooth::SmoothParams;
+use crate::ops::deform::{DeformMethod, DeformParams};
 
 mod apply;
 mod save;
 mod step;
 pub use save::{RECOMPUTED_NORMALS, mark_normals_stale, soup_to_save};
-pub use step::{SplitFaceStep, Step, step_syntax};
+pub use step::{Step, step_syntax};
 
 /// What an operation declares about itself (defined beside the operations, in
 /// [`crate::ops::declaration`], so that `ops` need not import this layer).
@@ -61,24 +58,17 @@ pub use crate::ops::subdivide::Scheme;
 /// mesh [`Edit::run`] is given.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Edit {
-    /// Split a face between two of its corners.
-    SplitFace(FaceId, VertexId, VertexId),
-    /// Move a vertex.
-    MoveVertex(VertexId, Vec3),
-    /// Move several vertices at once (a transform of the selection): one undo step.
-    MoveVertices(Vec<(VertexId, Vec3)>),
-    /// Split back the last collapse of the simplification history, if it kept this vertex.
-    SplitVertex(VertexId),
     /// An operation that declares itself whole ([`crate::ops::OPERATIONS`]: flip, collapse,
-    /// …, triangulate, simplify, …), with the elements it names and its parameters' values.
+    /// …, triangulate, simplify, smooth, fair, …), with the elements it names and its
+    /// parameters' values.
     Operation(Invocation),
-    /// Smoothing: vertices move, the connectivity stays.
-    Smooth(SmoothParams),
-    /// Handle deformation: the anchors stay, the handle moves by its motion, the rest follows
-    /// (thin-plate or as-rigid-as-possible). Only positions change.
+    /// Vertices moved to where a gesture put them (a drag, a transform of the selection): one
+    /// undo step. The editor's own edit; no step.
+    Move(Vec<(VertexId, Vec3)>),
+    /// Handle deformation: the anchors stay, the handle moves by its motion (any affine map a
+    /// gesture makes), the rest follows (thin-plate or as-rigid-as-possible). Only positions
+    /// change.
     Deform(DeformParams),
-    /// Fairing: the vertices solve the k-harmonic equation, every other one held.
-    Fair(FairParams),
 }
 
 impl Edit {
@@ -135,66 +125,35 @@ impl Edit {
     /// A short label for logs and the undo history.
     pub fn label(&self) -> String {
         match self {
-            Edit::SplitFace(f, a, b) => format!("split {f} between {a} and {b}"),
-            Edit::MoveVertex(v, _) => format!("move {v}"),
-            Edit::MoveVertices(moves) => format!("move {} vertices", moves.len()),
-            Edit::SplitVertex(v) => format!("split {v} back"),
             Edit::Operation(op) => op.label(),
-            Edit::Smooth(p) => format!(
-                "smooth ({}, {} iterations, step {})",
-                p.method.name(),
-                p.iterations,
-                p.step
-            ),
+            Edit::Move(moves) => match moves.as_slice() {
+                [(v, _)] => format!("move {v}"),
+                _ => format!("move {}", count(moves.len(), "vertex")),
+            },
             Edit::Deform(p) => match p.method {
                 DeformMethod::Arap => format!("ARAP deformation ({} iterations)", p.iterations),
                 DeformMethod::Laplace => "thin-plate deformation".into(),
             },
-            Edit::Fair(p) => format!("fair {} (k = {})", count(p.vertices.len(), "vertex"), p.k),
         }
     }
 
     /// What the edit may change: `None` when an element it names is gone (it will be
     /// refused, and changes nothing) or, for whole-mesh edits, when `mesh` is gone.
     pub fn reach(&self, world: &World, mesh: MeshId) -> Option<Reach> {
-        let m = MeshRef::new(world);
-        let mesh_of = |e: bevy::prelude::Entity| world.get::<InMesh>(e).map(|x| x.0);
-        let local = |seeds: Vec<VertexId>| Some(Reach::Local(mesh_of(seeds[0].0)?, seeds));
-        let only = |seeds: Vec<VertexId>| Some(Reach::Vertices(mesh_of(seeds[0].0)?, seeds));
         match self {
-            Edit::SplitFace(f, a, b) => {
-                m.try_face(*f)?;
-                local(vec![*a, *b])
-            }
-            Edit::MoveVertex(v, _) => {
-                m.try_vertex(*v)?;
-                only(vec![*v])
-            }
-            Edit::SplitVertex(v) => {
-                m.try_vertex(*v)?;
-                local(vec![*v])
-            }
-            Edit::MoveVertices(moves) => {
+            Edit::Operation(op) => op.reach(world, mesh),
+            // A move changes the vertices it moves, and nothing else.
+            Edit::Move(moves) => {
+                let m = MeshRef::new(world);
                 let seeds: Vec<VertexId> = moves.iter().map(|(v, _)| *v).collect();
                 seeds
                     .iter()
                     .try_for_each(|&v| m.try_vertex(v).map(|_| ()))?;
-                if seeds.is_empty() {
-                    return None;
-                }
-                only(seeds)
-            }
-            // Fairing moves only the vertices it names.
-            Edit::Fair(p) => {
-                p.vertices
-                    .iter()
-                    .try_for_each(|&v| m.try_vertex(v).map(|_| ()))?;
-                only(p.vertices.first().map(|_| p.vertices.clone())?)
+                let mesh = world.get::<InMesh>(seeds.first()?.0)?.0;
+                Some(Reach::Vertices(mesh, seeds))
             }
             // A deformation moves any vertex.
             Edit::Deform(_) => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
-            Edit::Operation(op) => op.reach(world, mesh),
-            Edit::Smooth(_) => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
         }
     }
 
@@ -206,12 +165,8 @@ impl Edit {
     pub fn target(&self, world: &World, active: Option<MeshId>) -> Result<MeshId, Refusal> {
         let named = match self {
             Edit::Operation(op) => op.elements().first().copied(),
+            Edit::Move(moves) => moves.first().map(|(v, _)| ElementId::Vertex(*v)),
             Edit::Deform(p) => p.handle.first().map(|v| ElementId::Vertex(*v)),
-            Edit::Fair(p) => p.vertices.first().map(|v| ElementId::Vertex(*v)),
-            Edit::SplitFace(f, ..) => Some(ElementId::Face(*f)),
-            Edit::MoveVertex(v, _) | Edit::SplitVertex(v) => Some(ElementId::Vertex(*v)),
-            Edit::MoveVertices(moves) => moves.first().map(|(v, _)| ElementId::Vertex(*v)),
-            Edit::Smooth(_) => None,
         };
         match named {
             Some(x) => world
@@ -232,15 +187,10 @@ impl Edit {
     /// step's name, whether it may run as a job, which ids and whether the simplification
     /// history survive it, what becomes of the attributes).
     pub fn declaration(&self) -> &'static Declaration {
-        use crate::ops::{deform, local, smooth};
         match self {
-            Edit::SplitFace(..) => &local::SPLIT_FACE,
-            Edit::MoveVertex(..) | Edit::MoveVertices(_) => &MOVE,
-            Edit::SplitVertex(_) => &local::VERTEX_SPLIT,
             Edit::Operation(op) => op.declaration(),
-            Edit::Smooth(_) => &smooth::SMOOTH,
-            Edit::Deform(_) => &deform::DEFORM,
-            Edit::Fair(_) => &deform::FAIR,
+            Edit::Move(_) => &MOVE,
+            Edit::Deform(_) => &crate::ops::deform::DEFORM,
         }
     }
 
@@ -338,10 +288,7 @@ impl Edit {
     /// frames of a vertex drag, a drag of the level-of-detail slider).
     pub fn merge_key(&self) -> Option<MergeKey> {
         match self {
-            Edit::MoveVertex(v, _) => Some(MergeKey::Move(*v)),
-            Edit::MoveVertices(moves) => moves
-                .first()
-                .map(|(v, _)| MergeKey::MoveMany(*v, moves.len())),
+            Edit::Move(moves) => moves.first().map(|(v, _)| MergeKey::Move(*v, moves.len())),
             Edit::Operation(op) if op.declaration().merges_while_held => {
                 Some(MergeKey::Operation(op.declaration().name))
             }
@@ -384,10 +331,9 @@ impl Edit {
 /// Edits that merge into the undo step before them while the mouse button stays down.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MergeKey {
-    /// Moves of this vertex.
-    Move(VertexId),
-    /// Moves of this many vertices, the first of them this one (the frames of one transform).
-    MoveMany(VertexId, usize),
+    /// Moves of this many vertices, the first of them this one (the frames of one drag or
+    /// transform).
+    Move(VertexId, usize),
     /// Uses of the registered operation of this name that declares it merges while held
     /// (the level-of-detail slider's `refine`).
     Operation(&'static str),
@@ -412,10 +358,11 @@ mod tests {
         assert_eq!(loop1.keeps_ids(), IdsKept::VerticesOnly);
         let triangulate = Edit::registered("triangulate").unwrap();
         assert_eq!(triangulate.keeps_ids(), IdsKept::All);
-        assert!(Edit::SplitVertex(v).keeps_history() && !Edit::local("flip", e).keeps_history());
+        let split_back = Edit::local("vertex-split", v);
+        assert!(split_back.keeps_history() && !Edit::local("flip", e).keeps_history());
         assert_eq!(
-            Edit::MoveVertex(v, Vec3::ZERO).merge_key(),
-            Some(MergeKey::Move(v))
+            Edit::Move(vec![(v, Vec3::ZERO)]).merge_key(),
+            Some(MergeKey::Move(v, 1))
         );
     }
 
@@ -423,19 +370,14 @@ mod tests {
     /// documents; the properties the pipeline asks for are the declaration's.
     #[test]
     fn every_edit_has_a_declaration_and_every_declared_step_exists() {
-        use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
+        use crate::ops::deform::{DeformMethod, DeformParams};
         let v = VertexId(bevy::prelude::Entity::PLACEHOLDER);
-        let f = FaceId(bevy::prelude::Entity::PLACEHOLDER);
         let registered = crate::ops::OPERATIONS
             .iter()
             .map(|&op| Edit::Operation(Invocation::with_defaults(op)));
         let every: Vec<Edit> = registered
             .chain([
-                Edit::SplitFace(f, v, v),
-                Edit::MoveVertex(v, Vec3::ZERO),
-                Edit::MoveVertices(vec![(v, Vec3::ZERO)]),
-                Edit::SplitVertex(v),
-                Edit::Smooth(SmoothParams::default()),
+                Edit::Move(vec![(v, Vec3::ZERO)]),
                 Edit::Deform(DeformParams {
                     method: DeformMethod::Arap,
                     fixed: Vec::new(),
@@ -443,15 +385,13 @@ mod tests {
                     motion: bevy::math::Affine3A::IDENTITY,
                     iterations: 1,
                 }),
-                Edit::Fair(FairParams {
-                    vertices: vec![v],
-                    k: 2,
-                }),
             ])
             .collect();
         let syntax = step_syntax();
+        // Each step's line of the usage text starts with its name.
         let documented: Vec<&str> = syntax
-            .split(|c: char| !(c.is_alphanumeric() || c == '-'))
+            .lines()
+            .filter_map(|line| line.split([':', ' ', '[']).next())
             .collect();
         let mut jobs = Vec::new();
         for edit in &every {
@@ -466,6 +406,8 @@ mod tests {
             assert_eq!(edit.may_run_as_job(), d.job);
             assert_eq!(edit.keeps_ids(), d.ids);
             if d.job {
+                // A job renames only the vertices its operation names (editor/pipeline/jobs).
+                assert!(d.names.is_whole_mesh(), "{} runs as a job", d.name);
                 jobs.push(d.name);
             }
         }
@@ -478,11 +420,11 @@ mod tests {
                 "loop",
                 "catmull-clark",
                 "remesh",
-                "param",
-                "smooth"
+                "smooth",
+                "param"
             ]
         );
-        assert!(!Edit::MoveVertex(v, Vec3::ZERO).declaration().is_step);
+        assert!(!Edit::Move(vec![(v, Vec3::ZERO)]).declaration().is_step);
     }
 
     /// An operation computes on the tables exactly when it declares so, and what it computes
@@ -544,7 +486,7 @@ mod tests {
             history: &mut None,
             progress: &mut |_| true,
         };
-        let few = Edit::MoveVertex(vertices[0], Vec3::ONE);
+        let few = Edit::Move(vec![(vertices[0], Vec3::ONE)]);
         let applied = few.run(&mut world, built.mesh, &mut context).unwrap();
         assert!(matches!(applied.redraw, Redraw::Near { .. }));
         let moves: Vec<(VertexId, Vec3)> = vertices
@@ -552,7 +494,7 @@ mod tests {
             .zip(&before)
             .map(|(&v, p)| (v, *p * 1.5))
             .collect();
-        let many = Edit::MoveVertices(moves);
+        let many = Edit::Move(moves);
         let Some(Reach::Vertices(mesh, seeds)) = many.reach(&world, built.mesh) else {
             panic!("a move reaches its vertices alone");
         };

@@ -93,7 +93,7 @@ mod tests {
             )
         );
         let v = MeshMembers::collect(&world, mesh).vertices[0];
-        Edit::MoveVertex(v, Vec3::new(0.0, 0.0, 2.0))
+        Edit::Move(vec![(v, Vec3::new(0.0, 0.0, 2.0))])
             .run(&mut world, mesh, &mut context)
             .unwrap();
         let (saved, note) = soup_to_save(&world, mesh);

@@ -12,37 +12,12 @@ use bevy::prelude::World;
 use crate::mesh::ids::{ElementId, VertexId};
 use crate::mesh::{MeshId, MeshRef, validate};
 use crate::ops::Refusal;
-use crate::ops::deform::{DeformMethod, DeformParams, FairParams};
+use crate::ops::deform::{DeformMethod, DeformParams};
 use crate::ops::named::Named;
 use crate::ops::progressive::ProgressiveMesh;
-use crate::ops::smooth::{SmoothMethod, SmoothParams};
 
 use super::{Edit, EditContext, Invocation};
 use crate::ops::declaration::Names;
-
-/// `split-face:A,B` as a step names it: the face the two vertices share, between them.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SplitFaceStep(pub u32, pub u32);
-
-impl SplitFaceStep {
-    /// The edit on the face the live vertices `a` and `b` share, between them (the input
-    /// file's vertices `ia` and `ib`, named in refusals).
-    ///
-    /// # Refusals
-    /// [`Refusal::NoSharedFace`] when the two share none.
-    pub fn between(
-        world: &World,
-        (a, b): (VertexId, VertexId),
-        (ia, ib): (u32, u32),
-    ) -> Result<Edit, Refusal> {
-        let m = MeshRef::new(world);
-        let face = m
-            .vertex_faces(a)
-            .find(|&f| m.face_vertices(f).any(|v| v == b))
-            .ok_or(Refusal::NoSharedFace(ia, ib))?;
-        Ok(Edit::SplitFace(face, a, b))
-    }
-}
 
 /// One step of `pappus process`, as parsed from its text (`simplify:0.25`, `flip:3,17`, …).
 #[derive(Clone, Debug, PartialEq)]
@@ -54,12 +29,8 @@ pub enum Step {
     /// A registered operation on the elements the input file's vertex numbers name (`flip:3,17`:
     /// the edge between two), with its parameters' values; the invocation names no element yet.
     On(Invocation, Vec<Vec<u32>>),
-    /// `split-face:A,B`: the face two of the input file's vertices share, between them.
-    SplitFace(SplitFaceStep),
     /// `deform:arap|laplace:FIXED:HANDLE:DX,DY,DZ[:ITERATIONS]`.
     Deform(DeformStep),
-    /// `fair:VERTICES[:K]`: the vertices, and the order k.
-    Fair(Vec<u32>, u32),
 }
 
 /// A handle deformation as a step names it: by the input file's vertex numbers.
@@ -162,6 +133,41 @@ fn parse_targets(text: &str) -> Option<Vec<Vec<u32>>> {
         .collect()
 }
 
+/// The elements an operation that names `names` is given by the input vertex numbers
+/// `targets`: for each, a vertex, the edge between two, the face with three consecutive
+/// corners (either way round); for a face split, the face two vertices share and the two.
+///
+/// # Refusals
+/// As [`element_at`]; [`Refusal::NoSharedFace`] for a face split's two vertices that share
+/// none.
+fn elements_at(
+    world: &World,
+    input_vertices: &[Option<VertexId>],
+    names: Names,
+    targets: &[Vec<u32>],
+) -> Result<Vec<ElementId>, Refusal> {
+    if let (Names::FaceCorners, [target]) = (names, targets)
+        && let &[ia, ib] = target.as_slice()
+    {
+        let a = live_vertex(world, input_vertices, ia)?;
+        let b = live_vertex(world, input_vertices, ib)?;
+        let m = MeshRef::new(world);
+        let face = m
+            .vertex_faces(a)
+            .find(|&f| m.face_vertices(f).any(|v| v == b))
+            .ok_or(Refusal::NoSharedFace(ia, ib))?;
+        return Ok(vec![
+            ElementId::Face(face),
+            ElementId::Vertex(a),
+            ElementId::Vertex(b),
+        ]);
+    }
+    targets
+        .iter()
+        .map(|t| element_at(world, input_vertices, t))
+        .collect()
+}
+
 /// The element named by input vertex numbers: a vertex, the edge between two, the face with
 /// three consecutive corners (either way round).
 fn element_at(
@@ -205,12 +211,10 @@ pub fn step_syntax() -> String {
 
 /// The syntax of the steps that are not registered operations.
 const OTHER_STEPS: &str = "\
-split-face:A,B |
-smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]   (the boundary held) |
-deform:arap|laplace:FIXED:HANDLE:DX,DY,DZ[:ITERATIONS]   (FIXED stays, HANDLE moves by DX,DY,DZ) |
-fair:VERTICES[:K]   (k-harmonic, K 1-3, default 2)
-A, B, C: 0-based indices of the input file's vertices: A a vertex, A,B the edge between two,
-A,B,C the face with those consecutive corners; several elements joined by /";
+deform:arap|laplace:FIXED:HANDLE:DX,DY,DZ[:ITERATIONS]   (FIXED stays, HANDLE moves by DX,DY,DZ)
+A, B, C: 0-based indices of the input file's vertices: A a vertex, A,B the edge between two
+(split-face: the face they share), A,B,C the face with those consecutive corners; several
+elements (and VERTICES) joined by /";
 
 impl Step {
     /// Parses a step as written on the command line.
@@ -219,19 +223,8 @@ impl Step {
     /// A message naming the step when it is unknown or its arguments are malformed.
     pub fn parse(text: &str) -> Result<Step, String> {
         let (name, args) = text.split_once(':').unwrap_or((text, ""));
-        let pair = || -> Result<(u32, u32), String> {
-            let bad = || format!("step `{text}`: expected two vertex numbers, as in `{name}:3,17`");
-            let (a, b) = args.split_once(',').ok_or_else(bad)?;
-            Ok((
-                a.trim().parse().map_err(|_| bad())?,
-                b.trim().parse().map_err(|_| bad())?,
-            ))
-        };
         if let Some(step) = Self::parse_on_elements(text, name, args) {
             return step;
-        }
-        if name == "split-face" {
-            return pair().map(|(a, b)| Step::SplitFace(SplitFaceStep(a, b)));
         }
         Self::parse_named(text, name, args)
     }
@@ -242,7 +235,7 @@ impl Step {
     /// `A,B,C` a face). `None` when no registered operation of that name names elements.
     fn parse_on_elements(text: &str, name: &str, args: &str) -> Option<Result<Step, String>> {
         let ops: Vec<_> = crate::ops::operations_named(name)
-            .filter(|op| op.declaration().names != Names::Mesh)
+            .filter(|op| !op.declaration().names.is_whole_mesh())
             .collect();
         if ops.is_empty() {
             return None;
@@ -269,15 +262,10 @@ impl Step {
     }
 
     /// The steps named by a word and parameters (not elements): `loop:2`, `simplify:0.25`,
-    /// `remesh`, `smooth:cotan`, `deform:…`, `fair:…`, `fill-holes`, `param:…`, `validate`.
+    /// `remesh`, `smooth:cotan`, `deform:…`, `fill-holes`, `param:…`, `validate`.
     fn parse_named(text: &str, name: &str, args: &str) -> Result<Step, String> {
         let edit = match name {
             "validate" => return Ok(Step::Validate),
-            "smooth" => Edit::Smooth(parse_smooth(args).ok_or_else(|| {
-                format!(
-                    "step `{text}`: expected smooth:uniform|cotan|implicit|taubin[:ITERATIONS[:STEP]]"
-                )
-            })?),
             "deform" => {
                 return DeformStep::parse(args).map(Step::Deform).ok_or_else(|| {
                     format!(
@@ -287,15 +275,6 @@ impl Step {
                         DeformParams::MAX_ITERATIONS
                     )
                 });
-            }
-            "fair" => {
-                let bad = || format!("step `{text}`: expected fair:VERTICES[:K], K 1, 2 or 3");
-                let (vertices, k) = args.split_once(':').unwrap_or((args, "2"));
-                let k = k.parse().ok().filter(|k| (1..=3).contains(k)).ok_or_else(bad)?;
-                let vertices = parse_vertices(vertices)
-                    .filter(|v| !v.is_empty())
-                    .ok_or_else(bad)?;
-                return Ok(Step::Fair(vertices, k));
             }
             _ => {
                 let op = crate::ops::operation(name).ok_or_else(|| {
@@ -333,20 +312,14 @@ impl Step {
             }
             Step::Edit(edit) => edit.clone(),
             Step::On(invocation, targets) => {
-                let elements: Vec<ElementId> = targets
-                    .iter()
-                    .map(|t| element_at(world, input_vertices, t))
-                    .collect::<Result<_, _>>()?;
+                let names = invocation.declaration().names;
+                let elements = elements_at(world, input_vertices, names, targets)?;
                 Edit::Operation(
                     invocation
                         .clone()
                         .on(elements)
                         .map_err(Refusal::BadParameter)?,
                 )
-            }
-            Step::SplitFace(SplitFaceStep(a, b)) => {
-                let live = |i: u32| live_vertex(world, input_vertices, i);
-                SplitFaceStep::between(world, (live(*a)?, live(*b)?), (*a, *b))?
             }
             Step::Deform(d) => {
                 let live = |list: &[u32]| -> Result<Vec<VertexId>, Refusal> {
@@ -362,13 +335,6 @@ impl Step {
                     iterations: d.iterations,
                 })
             }
-            Step::Fair(vertices, k) => Edit::Fair(FairParams {
-                vertices: vertices
-                    .iter()
-                    .map(|&i| live_vertex(world, input_vertices, i))
-                    .collect::<Result<_, _>>()?,
-                k: *k,
-            }),
         };
         let mut context = EditContext {
             history,
@@ -382,24 +348,6 @@ impl Step {
     }
 }
 
-/// `METHOD[:ITERATIONS[:STEP]]` of a `smooth` step.
-fn parse_smooth(args: &str) -> Option<SmoothParams> {
-    let mut parts = args.split(':');
-    let method = parts.next()?;
-    let (method, _) = SmoothMethod::ALL.iter().find(|(_, n)| *n == method)?;
-    let mut params = SmoothParams::new(*method);
-    if let Some(n) = parts.next() {
-        params.iterations = n.parse().ok().filter(|n| (1..=10_000).contains(n))?;
-    }
-    if let Some(step) = parts.next() {
-        params.step = step
-            .parse()
-            .ok()
-            .filter(|s: &f64| *s > 0.0 && s.is_finite())?;
-    }
-    parts.next().is_none().then_some(params)
-}
-
 impl std::fmt::Display for Step {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
@@ -410,8 +358,6 @@ impl std::fmt::Display for Step {
                 text.insert_str(at, &format!(":{}", targets_text(targets)));
                 write!(f, "{text}")
             }
-            Step::SplitFace(SplitFaceStep(a, b)) => write!(f, "split-face:{a},{b}"),
-            Step::Fair(vertices, k) => write!(f, "fair:{}:{k}", vertices_text(vertices)),
             Step::Deform(d) => write!(
                 f,
                 "deform:{}:{}:{}:{},{},{}:{}",
@@ -425,9 +371,6 @@ impl std::fmt::Display for Step {
             ),
             Step::Edit(edit) => match edit {
                 Edit::Operation(op) => write!(f, "{op}"),
-                Edit::Smooth(p) => {
-                    write!(f, "smooth:{}:{}:{}", p.method.name(), p.iterations, p.step)
-                }
                 other => write!(f, "{}", other.label()),
             },
         }
@@ -481,7 +424,11 @@ mod tests {
             "weld:0,1/7,8",
             "deform:arap:0/1/2:5/6:0,0.5,-1:10",
             "deform:laplace::5:1,0,0:10",
-            "fair:3/4/5:2",
+            "fair:3/4/5",
+            "fair:3/4/5:3",
+            "smooth",
+            "smooth:cotan:5:auto:free-boundary",
+            "vertex-split:3",
             "fill-hole:0,1:fair",
             "fill-holes",
             "fill-holes:fair",
@@ -506,8 +453,12 @@ mod tests {
             "fill-holes"
         );
         assert_eq!(
-            Step::parse("smooth:cotan").unwrap().to_string(),
-            "smooth:cotan:1:0.5"
+            Step::parse("smooth:cotan:1").unwrap().to_string(),
+            "smooth:cotan"
+        );
+        assert_eq!(
+            Step::parse("fair:3/4/5:2").unwrap().to_string(),
+            "fair:3/4/5"
         );
     }
 
@@ -542,6 +493,9 @@ mod tests {
                 Names::Faces => vec![vec![0, 1, 2], vec![1, 2, 3]],
                 Names::TwoEdges => vec![vec![0, 1], vec![2, 3]],
                 Names::Elements => vec![vec![0], vec![0, 1], vec![0, 1, 2]],
+                Names::Vertices => vec![vec![0], vec![4]],
+                Names::FaceCorners => vec![vec![0, 2]],
+                Names::MeshHolding => Vec::new(),
             };
             let (text, expected) = match targets.is_empty() {
                 true => (d.name.to_string(), Step::Edit(Edit::Operation(defaults))),
@@ -561,7 +515,7 @@ mod tests {
             ("flip:3", "flip names an edge; expected flip:A,B"),
             ("flip:x,1", "not input vertex numbers"),
             ("collapse:1", "collapse names an edge or a face"),
-            ("split-face:3", "two vertex numbers"),
+            ("split-face:3", "split-face names two corners of a face"),
             ("loop:9", "from 1 to 8"),
             ("simplify:0", "RATIO must be a number from 0.000001 to 1"),
             ("simplify:1.5", "RATIO must be a number from 0.000001 to 1"),
@@ -572,7 +526,10 @@ mod tests {
             ("remesh:0", "ITERATIONS"),
             ("remesh:3:-1", "LENGTH"),
             ("refine:lots", "FACES must be a whole number"),
-            ("smooth:gaussian", "uniform|cotan"),
+            (
+                "smooth:gaussian",
+                "METHOD must be one of uniform, cotan, implicit, taubin",
+            ),
             ("smooth:uniform:0", "ITERATIONS"),
             (
                 "param:spectral",
@@ -596,7 +553,8 @@ mod tests {
             ("deform:arap:0::1,2,3", "HANDLE not empty"),
             ("deform:spring:0:1:1,2,3", "arap|laplace"),
             ("deform:arap:0:1:1,2,3:0", "iterations"),
-            ("fair:1/2:4", "K 1, 2 or 3"),
+            ("fair:1/2:4", "K must be a whole number from 1 to 3"),
+            ("fair:1,2", "fair names vertices"),
             ("fill-hole:0:fair", "fill-hole names an edge"),
             ("fill-hole:0,1:smooth", "FILL must be one of polygon, fair"),
             ("fill-holes:smooth", "FILL must be one of polygon, fair"),

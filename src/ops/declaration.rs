@@ -273,6 +273,9 @@ pub enum Section {
 pub enum Names {
     /// None: it acts on the whole mesh.
     Mesh,
+    /// The whole mesh, with the vertices named held where they are (none in a step; the
+    /// selected vertices in the editor): smoothing.
+    MeshHolding,
     /// One edge: the selected edge, or the selected halfedge's.
     Edge,
     /// One vertex.
@@ -283,6 +286,11 @@ pub enum Names {
     Faces,
     /// Two edges, in order (`A,B/C,D`): the first two selected.
     TwoEdges,
+    /// One vertex or more (`A/B/C`): the selected vertices.
+    Vertices,
+    /// A face and two of its corners, in that order (`A,B`: the face the two vertices share;
+    /// the selected halfedge's face, its tip and the corner two ahead): a face split.
+    FaceCorners,
     /// One element or more, of any kind (`4/0,1/0,1,2`): the selection.
     Elements,
 }
@@ -291,40 +299,51 @@ impl Names {
     /// How a step writes the elements (`A,B`), `None` for a whole-mesh operation.
     pub fn placeholder(self) -> Option<&'static str> {
         match self {
-            Names::Mesh => None,
-            Names::Edge => Some("A,B"),
+            Names::Mesh | Names::MeshHolding => None,
+            Names::Edge | Names::FaceCorners => Some("A,B"),
             Names::Vertex => Some("A"),
             Names::Face => Some("A,B,C"),
             Names::Faces => Some("FACES"),
             Names::TwoEdges => Some("A,B/C,D"),
             Names::Elements => Some("ELEMENTS"),
+            Names::Vertices => Some("VERTICES"),
         }
     }
 
     /// What it names, in a person's words ("an edge", "two edges").
     pub fn what(self) -> &'static str {
         match self {
-            Names::Mesh => "the mesh",
+            Names::Mesh | Names::MeshHolding => "the mesh",
             Names::Edge => "an edge",
             Names::Vertex => "a vertex",
             Names::Face => "a face",
             Names::Faces => "faces",
             Names::TwoEdges => "two edges",
             Names::Elements => "elements",
+            Names::Vertices => "vertices",
+            Names::FaceCorners => "two corners of a face",
         }
     }
 
     /// What the user must select first, in the editor's words ("an edge (or halfedge)").
     pub fn select_first(self) -> &'static str {
         match self {
-            Names::Mesh => "a mesh",
+            Names::Mesh | Names::MeshHolding => "a mesh",
             Names::Edge => "an edge (or halfedge)",
             Names::Vertex => "a vertex",
             Names::Face => "a face",
             Names::Faces => "faces (mode 3)",
             Names::TwoEdges => "two edges (Shift-click)",
             Names::Elements => "elements",
+            Names::Vertices => "vertices",
+            Names::FaceCorners => "a halfedge of a face (mode 4)",
         }
+    }
+
+    /// Whether it names no element in a step: the whole mesh (held vertices come from the
+    /// editor's selection alone).
+    pub fn is_whole_mesh(self) -> bool {
+        matches!(self, Names::Mesh | Names::MeshHolding)
     }
 
     /// Whether `elements` are what it names: their number and kinds.
@@ -339,6 +358,18 @@ impl Names {
             }
             Names::TwoEdges => matches!(elements, [ElementId::Edge(_), ElementId::Edge(_)]),
             Names::Elements => !elements.is_empty(),
+            Names::MeshHolding => elements.iter().all(|x| matches!(x, ElementId::Vertex(_))),
+            Names::Vertices => {
+                !elements.is_empty() && elements.iter().all(|x| matches!(x, ElementId::Vertex(_)))
+            }
+            Names::FaceCorners => matches!(
+                elements,
+                [
+                    ElementId::Face(_),
+                    ElementId::Vertex(_),
+                    ElementId::Vertex(_)
+                ]
+            ),
         }
     }
 
@@ -347,8 +378,11 @@ impl Names {
     /// edge, three or more a face.
     pub fn fits(self, counts: &[usize]) -> bool {
         match (self, counts) {
-            (_, []) | (Names::Mesh, _) => false,
-            (Names::Vertex, [1]) | (Names::Edge, [2]) | (Names::TwoEdges, [2, 2]) => true,
+            (_, []) | (Names::Mesh | Names::MeshHolding, _) => false,
+            (Names::Vertex, [1])
+            | (Names::Edge | Names::FaceCorners, [2])
+            | (Names::TwoEdges, [2, 2]) => true,
+            (Names::Vertices, _) => counts.iter().all(|&n| n == 1),
             (Names::Face, [n]) => *n >= 3,
             (Names::Faces, _) => counts.iter().all(|&n| n >= 3),
             (Names::Elements, _) => counts.iter().all(|&n| n >= 1),

@@ -17,13 +17,13 @@ use bevy::prelude::World;
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
-use crate::ops::declaration::{Declaration, Names, Parameter, Section};
+use crate::ops::declaration::{DROPPED_BY_SIMPLIFICATION, Declaration, Names, Parameter, Section};
 use crate::ops::local::{
     CollapseOptions, apply_bevel_edge, apply_bevel_vertex, apply_collapse_face,
     apply_dissolve_vertex, apply_erase, apply_extrude, apply_inset, apply_weld, bisect_edge,
     check_growth, collapse_edge, dissolve_edge, faces_of, flip_edge, plan_bevel_edge,
     plan_bevel_vertex, plan_collapse_face, plan_dissolve_vertex, plan_erase, plan_extrude,
-    plan_inset, plan_weld, split_edge, toggle_seam,
+    plan_inset, plan_weld, split_edge, split_face, toggle_seam,
 };
 use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Redraw, Values, count};
 
@@ -618,5 +618,85 @@ impl MeshOperation for Weld {
             let e = apply_weld(world, plan);
             (format!("welded into {e}"), Some(ElementId::Edge(e)))
         }))
+    }
+}
+
+/// Splitting a face between two of its corners: a local edit.
+pub const SPLIT_FACE: Declaration = Declaration::new("split-face")
+    .titled("Split face")
+    .described("join two corners of a face by a new edge (the selected halfedge's tip and the corner two ahead)")
+    .on_key("J")
+    .naming(Names::FaceCorners)
+    .in_section(Section::Local);
+
+/// [`split_face`] as a registered operation: `split-face:A,B` (the face the two vertices
+/// share), J on a halfedge of a face.
+pub struct SplitFace;
+
+impl MeshOperation for SplitFace {
+    fn declaration(&self) -> &'static Declaration {
+        &SPLIT_FACE
+    }
+
+    /// The neighbourhood of the two corners (`None` when the face or a corner is gone).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let (f, a, b) = values.face_corners().ok()?;
+        MeshRef::new(world).try_face(f)?;
+        Reach::local(world, vec![a, b])
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let (f, a, b) = values.face_corners()?;
+        let before = MeshRef::new(world).faces_around(&[a, b]);
+        let e = split_face(world, f, a, b)?;
+        Ok(Applied {
+            summary: format!("new edge {e}"),
+            redraw: Redraw::near(world, before, vec![a, b]),
+            made: Some(ElementId::Edge(e)),
+        })
+    }
+}
+
+/// Splitting back the last collapse of a simplification: it moves along the history, so the
+/// history survives it, and like the simplification it drops attributes.
+pub const VERTEX_SPLIT: Declaration = Declaration::new("vertex-split")
+    .titled("Split vertex back")
+    .described("split the vertex back as it was before the simplification's last collapse into it")
+    .on_key("U")
+    .naming(Names::Vertex)
+    .in_section(Section::Local)
+    .keeping_history()
+    .dropping(DROPPED_BY_SIMPLIFICATION);
+
+/// [`crate::ops::progressive::ProgressiveMesh::refine_vertex`] as a registered operation:
+/// `vertex-split:A` after a `simplify` step, U in the editor.
+pub struct VertexSplit;
+
+impl MeshOperation for VertexSplit {
+    fn declaration(&self) -> &'static Declaration {
+        &VERTEX_SPLIT
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        context: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let v = values.vertex()?;
+        let history = context.history.as_mut().ok_or(Refusal::NoHistory)?;
+        let b = history.refine_vertex(world, v)?;
+        Ok(Applied {
+            summary: format!("split back {b}"),
+            redraw: Redraw::Whole,
+            made: Some(ElementId::Vertex(v)),
+        })
     }
 }

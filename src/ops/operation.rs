@@ -268,6 +268,21 @@ impl Values<'_> {
         }
     }
 
+    /// The face and the two corners it names ([`Names::FaceCorners`]).
+    ///
+    /// # Refusals
+    /// As [`Values::edge`].
+    pub fn face_corners(&self) -> Result<(FaceId, VertexId, VertexId), Refusal> {
+        match self.elements {
+            [
+                ElementId::Face(f),
+                ElementId::Vertex(a),
+                ElementId::Vertex(b),
+            ] => Ok((*f, *a, *b)),
+            _ => Err(self.wrong("a face and two of its corners")),
+        }
+    }
+
     /// The faces it names ([`Names::Faces`]), each once, in entity order: however they were
     /// named (a step's order, the selection's), one set gives one result.
     ///

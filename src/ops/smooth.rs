@@ -35,10 +35,63 @@ use super::Refusal;
 use super::geometry::{Surface, cotan_edges, mixed_areas};
 use super::named::Named;
 
-use crate::ops::declaration::Declaration;
+use crate::ops::declaration::{Declaration, Names, Parameter};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values};
 
-/// Smoothing: a job on a large mesh; only positions change.
-pub const SMOOTH: Declaration = Declaration::new("smooth").as_job();
+/// Smoothing as a registered operation: the `smooth` step, the O key and its row in the
+/// panel. Only positions change; the vertices it names (the editor's selected vertices) stay,
+/// and so does the boundary unless it is set free. A job on a large mesh.
+pub const SMOOTH: Declaration = Declaration::new("smooth")
+    .titled("Smooth")
+    .described("move each vertex toward its neighbours by the method's Laplacian")
+    .on_key("O")
+    .naming(Names::MeshHolding)
+    .with_parameters(&[
+        Parameter::choice("METHOD", METHODS, 0),
+        Parameter::whole("ITERATIONS", 1, 1, 10_000),
+        Parameter::real("STEP", 0.5, 1e-6, 1e6).automatic_by_default("0.5, or 1 for implicit"),
+        Parameter::choice("BOUNDARY", &["hold-boundary", "free-boundary"], 0),
+    ])
+    .as_job();
+
+/// The methods' words, in [`SmoothMethod::ALL`]'s order (a test checks).
+const METHODS: &[&str] = &["uniform", "cotan", "implicit", "taubin"];
+
+/// Smoothing, declared by [`SMOOTH`].
+pub struct Smooth;
+
+impl MeshOperation for Smooth {
+    fn declaration(&self) -> &'static Declaration {
+        &SMOOTH
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+        context: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let params = SmoothParams::from_values(values);
+        let s = smooth_with_progress(world, mesh, &params, &mut *context.progress)?;
+        let stopped = match s.iterations < params.iterations {
+            true => format!(
+                " (stopped after {} of {} iterations)",
+                s.iterations, params.iterations
+            ),
+            false => String::new(),
+        };
+        Ok(Applied::whole(format!(
+            "{} free vertices moved {:.3e} on average{stopped}",
+            s.free, s.mean_move
+        )))
+    }
+
+    /// Any vertex of the mesh may move.
+    fn reach(&self, world: &World, mesh: MeshId, _: Values<'_>) -> Option<Reach> {
+        world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh))
+    }
+}
 
 /// Which Laplacian moves the vertices.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -100,6 +153,28 @@ impl SmoothParams {
             step: method.default_step(),
             hold_boundary: true,
             held: Vec::new(),
+        }
+    }
+}
+
+impl SmoothParams {
+    /// The parameters [`SMOOTH`]'s values give: the method, its iterations, the step (the
+    /// method's own when left automatic), the boundary held or free, the named vertices held.
+    pub fn from_values(values: Values<'_>) -> Self {
+        let method = SmoothMethod::ALL[values.choice(0)].0;
+        Self {
+            method,
+            iterations: values.whole(1),
+            step: values.given(2).unwrap_or(method.default_step()),
+            hold_boundary: values.choice(3) == 0,
+            held: values
+                .elements()
+                .iter()
+                .filter_map(|x| match x {
+                    ElementId::Vertex(v) => Some(*v),
+                    _ => None,
+                })
+                .collect(),
         }
     }
 }
@@ -339,6 +414,13 @@ mod tests {
     use super::*;
     use crate::mesh::{MeshMembers, MeshRef, build_mesh, shapes, validate};
     use crate::ops::local::testkit::positions;
+
+    /// The step's method words are the methods' names, in order.
+    #[test]
+    fn the_declared_methods_are_the_methods() {
+        let names: Vec<&str> = SmoothMethod::ALL.iter().map(|(_, n)| *n).collect();
+        assert_eq!(names, METHODS);
+    }
 
     #[test]
     fn a_planar_grid_is_a_fixed_point_of_every_method() {

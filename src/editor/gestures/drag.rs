@@ -2,9 +2,9 @@
 //!
 //! A left press within [`super::picking::VERTEX_RADIUS_PX`] of the selected vertex starts a
 //! drag; while the button is held the vertex follows the pointer in the plane through its
-//! starting position that faces the camera; releasing ends it. Each frame of the drag writes a
-//! [`Edit::MoveVertex`](crate::edit::Edit::MoveVertex), so the mesh (and its render copy) updates live through the same
-//! path as every other edit.
+//! starting position that faces the camera; releasing ends it. Each frame of the drag writes an
+//! [`Edit::Move`](crate::edit::Edit::Move) of the one vertex, so the mesh (and its render
+//! copy) updates live through the same path as every other edit.
 
 use bevy::input::mouse::MouseButton;
 use bevy::math::primitives::InfinitePlane3d;
@@ -91,6 +91,6 @@ pub fn drive_vertex_drag(world: &mut World) {
     if let Some(target) = ray.plane_intersection_point(origin, plane)
         && MeshRef::new(world).try_position(v) != Some(target)
     {
-        world.write_message(Request::Edit(crate::edit::Edit::MoveVertex(v, target)));
+        world.write_message(Request::Edit(crate::edit::Edit::Move(vec![(v, target)])));
     }
 }

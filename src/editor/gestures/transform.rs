@@ -5,7 +5,7 @@
 //! about their centroid, the pivot. While it lasts, the pointer drives it without a button
 //! held; X, Y or Z constrain it to that world axis (again: free); digits, `.` and `-` type an
 //! exact value (a distance, degrees, a factor); Enter or a left click confirms; Esc cancels. Each
-//! frame in which the positions change writes one [`Edit::MoveVertices`]; the frames of one
+//! frame in which the positions change writes one [`Edit::Move`]; the frames of one
 //! gesture merge into one undo step ([`UndoHistory::begin_gesture`]). Cancelling takes back
 //! every undo step the gesture made ([`Request::Retract`]): its moves, and the extrusion or
 //! inset it followed.
@@ -487,7 +487,7 @@ pub fn drive_gesture(world: &mut World) {
                 if g.deform.is_some()
                     && let Some(moves) = positions(world, &mut g, FINAL_ITERATIONS)
                 {
-                    world.write_message(Request::Edit(Edit::MoveVertices(moves)));
+                    world.write_message(Request::Edit(Edit::Move(moves)));
                     g.closing = true;
                     world.resource_mut::<Gestures>().active = Some(g);
                     return;
@@ -527,7 +527,7 @@ pub fn drive_gesture(world: &mut World) {
     if clicked {
         // Apply this frame's position, then stop.
         if let Some(moves) = positions(world, &mut g, FINAL_ITERATIONS) {
-            world.write_message(Request::Edit(Edit::MoveVertices(moves)));
+            world.write_message(Request::Edit(Edit::Move(moves)));
         }
         return end(world, true);
     }
@@ -538,7 +538,7 @@ pub fn drive_gesture(world: &mut World) {
             .iter()
             .any(|&(v, p)| m.try_position(v).is_some_and(|q| q != p));
         if changed {
-            world.write_message(Request::Edit(Edit::MoveVertices(moves)));
+            world.write_message(Request::Edit(Edit::Move(moves)));
         }
     }
     world.resource_mut::<Gestures>().active = Some(g);

@@ -15,9 +15,8 @@ use crate::mesh::MeshRef;
 use crate::mesh::ids::ElementId;
 use crate::ops::Refusal;
 use crate::ops::declaration::Names;
-use crate::ops::deform::{FairParams, Proportional};
+use crate::ops::deform::Proportional;
 use crate::ops::operation::MeshOperation;
-use crate::ops::smooth::SmoothParams;
 
 use crate::editor::gestures::box_select::BoxSelect;
 use crate::editor::gestures::transform::{Anchors, GestureKind, Gestures};
@@ -34,9 +33,6 @@ use crate::editor::view::render_sync::{ViewSettings, set_wireframes_visible};
 /// What a shortcut does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Action {
-    /// Cut a corner off the selected halfedge's face: join its tip to the vertex two corners
-    /// ahead.
-    CutCorner,
     /// Extrude the selected faces as one region, then drag the distance (with a halfedge
     /// active: go to its edge, as in Scotty3D).
     Extrude,
@@ -46,8 +42,6 @@ pub enum Action {
     Fill,
     /// Fill the hole beside the selected boundary edge with a fair patch of triangles.
     FillFair,
-    /// Fair the selected vertices (the panel's order k; every other vertex held).
-    Fair,
     /// Proportional editing on / off.
     ToggleProportional,
     /// The selection's vertices become the anchors of handle deformation (nothing selected:
@@ -57,10 +51,6 @@ pub enum Action {
     /// panel's values of its parameters: on the active mesh, or on the selected element it
     /// names (of the operations sharing the name, the one that names what is selected).
     Operation(&'static str),
-    /// Split the selected vertex back (undo its last collapse from the simplification).
-    SplitVertex,
-    /// Smooth the active mesh (the panel's method, iterations, step; the selected vertex held).
-    Smooth,
     /// Move the selection along a relation.
     Navigate(Relation),
     /// Change what a click selects.
@@ -323,12 +313,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "fill the hole beside the selected boundary edge with faired triangles",
     ),
     shift(
-        KeyCode::KeyO,
-        "Shift+O",
-        Action::Fair,
-        "fair the selected vertices (k-harmonic, k in the panel; the rest held)",
-    ),
-    shift(
         KeyCode::KeyA,
         "Shift+A",
         Action::MarkAnchors,
@@ -339,24 +323,6 @@ pub const SHORTCUTS: &[Shortcut] = &[
         "Alt+O",
         Action::ToggleProportional,
         "proportional editing on / off (G, R, S take the vertices within the radius along)",
-    ),
-    key(
-        KeyCode::KeyJ,
-        "J",
-        Action::CutCorner,
-        "split the selected halfedge's face: join its tip to the corner two ahead",
-    ),
-    key(
-        KeyCode::KeyU,
-        "U",
-        Action::SplitVertex,
-        "split the selected vertex back (after Shift+S: undoes its collapse)",
-    ),
-    key(
-        KeyCode::KeyO,
-        "O",
-        Action::Smooth,
-        "smooth with the panel's method (the boundary and the selected vertex held)",
     ),
     key(
         KeyCode::KeyH,
@@ -553,8 +519,6 @@ pub struct UiState {
     pub show_help: bool,
     /// The path field should take the keyboard focus (for Open / Save as).
     pub focus_path: Option<PathPurpose>,
-    /// Smoothing: method, iterations, step, whether the boundary is held.
-    pub smooth: SmoothParams,
     /// Show the histograms even when the mesh is not coloured by a quantity.
     pub histograms: bool,
     /// The panel asked to check the validity of a large mesh (see
@@ -562,8 +526,6 @@ pub struct UiState {
     pub check_validity: bool,
     /// The UV layout window is open (it opens by itself when the mesh first gets UVs).
     pub uv_view: bool,
-    /// Fairing's order k (1–3).
-    pub fair_k: u32,
     /// Proportional editing: on or off, falloff, radius, distances along edges.
     pub proportional: Proportional,
     /// The panel's values of each registered operation's parameters (their defaults until
@@ -609,11 +571,9 @@ impl Default for UiState {
         let mut state = Self {
             show_help: false,
             focus_path: None,
-            smooth: SmoothParams::default(),
             histograms: false,
             check_validity: false,
             uv_view: false,
-            fair_k: 2,
             proportional: Proportional::default(),
             operations: crate::ops::OPERATIONS
                 .iter()
@@ -748,22 +708,6 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
     let selection = world.resource::<Selection>().element;
     let m = MeshRef::new(world);
     let edit = match action {
-        Action::SplitVertex => match selection {
-            Some(ElementId::Vertex(v)) => Edit::SplitVertex(v),
-            _ => return Err(Declined::SelectFirst("a vertex".into())),
-        },
-        Action::CutCorner => {
-            let target = match selection {
-                Some(ElementId::Halfedge(h)) if m.try_halfedge(h).is_some() => m
-                    .face(h)
-                    .map(|f| (f, m.to_vertex(h), m.to_vertex(m.next(m.next(h))))),
-                _ => None,
-            };
-            let (f, a, b) = target.ok_or(Declined::SelectFirst(
-                "a halfedge of a face (mode 4)".into(),
-            ))?;
-            Edit::SplitFace(f, a, b)
-        }
         Action::Fill | Action::FillFair => {
             let edge = selected_edge(&m, selection)
                 .ok_or(Declined::SelectFirst("a boundary edge".into()))?;
@@ -777,16 +721,6 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
                     .and_then(|i| i.on(vec![ElementId::Edge(edge)]))
                     .map_err(Refusal::BadParameter)?,
             )
-        }
-        Action::Fair => {
-            let vertices = crate::editor::gestures::transform::selected_vertices(world);
-            if vertices.is_empty() {
-                return Err(Declined::SelectFirst("vertices to fair".into()));
-            }
-            Edit::Fair(FairParams {
-                vertices,
-                k: world.resource::<UiState>().fair_k.clamp(1, 3),
-            })
         }
         Action::Extrude | Action::Inset => {
             let faces = selected_faces(world);
@@ -822,23 +756,10 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
 /// The whole-mesh edit an action asks for, with the panel's parameters (`None` for an action
 /// that is not one), or that there is no mesh.
 fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Declined> {
-    let selection = world.resource::<Selection>().element;
     let edit = match action {
         Action::Operation(name) => {
             world.resource::<ActiveMesh>().0.ok_or(Declined::NoMesh)?;
             Edit::Operation(registered_invocation(world, name)?)
-        }
-        Action::Smooth => {
-            if world.resource::<ActiveMesh>().0.is_none() {
-                return Err(Declined::NoMesh);
-            }
-            Edit::Smooth(SmoothParams {
-                held: match selection {
-                    Some(ElementId::Vertex(v)) => vec![v],
-                    _ => Vec::new(),
-                },
-                ..world.resource::<UiState>().smooth.clone()
-            })
         }
         _ => return Ok(None),
     };
@@ -906,6 +827,30 @@ fn selected_for(world: &World, names: Names) -> Vec<ElementId> {
             edges.take(2).map(ElementId::Edge).collect()
         }
         (Names::Elements, _) => selection.elements().to_vec(),
+        // Smoothing holds the selected vertices.
+        (Names::MeshHolding, _) => selection
+            .elements()
+            .iter()
+            .filter(|x| matches!(x, ElementId::Vertex(_)))
+            .copied()
+            .collect(),
+        // Fairing moves the selection's vertices (the corners of selected faces and edges too).
+        (Names::Vertices, _) => crate::editor::gestures::transform::selected_vertices(world)
+            .into_iter()
+            .map(ElementId::Vertex)
+            .collect(),
+        // The selected halfedge's face, split from its tip to the corner two ahead.
+        (Names::FaceCorners, Some(ElementId::Halfedge(h))) if m.try_halfedge(h).is_some() => m
+            .face(h)
+            .map(|f| {
+                let (a, b) = (m.to_vertex(h), m.to_vertex(m.next(m.next(h))));
+                vec![
+                    ElementId::Face(f),
+                    ElementId::Vertex(a),
+                    ElementId::Vertex(b),
+                ]
+            })
+            .unwrap_or_default(),
         _ => Vec::new(),
     }
 }
@@ -1059,7 +1004,7 @@ mod tests {
     #[test]
     fn actions_are_named_in_words_on_the_status_line() {
         assert_eq!(action_words(Action::Operation("flip")), "flip");
-        assert_eq!(action_words(Action::SplitVertex), "split vertex");
+        assert_eq!(action_words(Action::ToggleStepMode), "toggle step mode");
         assert_eq!(action_words(Action::FillFair), "fill fair");
         assert_eq!(action_words(Action::Navigate(Relation::Twin)), "navigate");
         assert_eq!(

@@ -20,7 +20,6 @@ use crate::edit::Edit;
 use crate::ops::declaration::{Declaration, Parameter, ParameterKind, Section};
 use crate::ops::deform::{DeformMethod, Falloff};
 use crate::ops::operation::Invocation;
-use crate::ops::smooth::SmoothMethod;
 
 use super::mesh_figures::MeshView;
 use super::plots::Histogram;
@@ -458,7 +457,8 @@ pub fn panels(
                     local_section(ui, &mut ui_state, &mut pending);
                 });
                 sections.show(ui, "Whole mesh", |ui| {
-                    whole_mesh_section(ui, &mut ui_state, &mut pending);
+                    // The registered operations and step mode (see registered_operations).
+                    registered_operations(ui, &mut ui_state, &mut pending, Section::WholeMesh);
                     if let Some(lod) = view.lod {
                         level_of_detail(ui, lod, &mut requests);
                     }
@@ -796,7 +796,7 @@ fn selection_section(
                 | ui.add(egui::DragValue::new(&mut q.z).speed(speed).prefix("z "))
                     .changed();
             if changed && q != p {
-                requests.write(Request::Edit(Edit::MoveVertex(v, q)));
+                requests.write(Request::Edit(Edit::Move(vec![(v, q)])));
             }
         });
     }
@@ -1049,15 +1049,7 @@ fn modelling_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut Pendi
 /// that declare this section, then the editor's own.
 fn local_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
     registered_operations(ui, state, pending, Section::Local);
-    buttons(
-        ui,
-        pending,
-        &[
-            (Action::CutCorner, "Split face"),
-            (Action::SplitVertex, "Split vertex back"),
-            (Action::Frame, "Frame"),
-        ],
-    );
+    buttons(ui, pending, &[(Action::Frame, "Frame")]);
 }
 
 /// The level-of-detail slider of a simplified mesh (its coarsest, current and full face
@@ -1075,46 +1067,6 @@ fn level_of_detail(
     }
 }
 
-/// The registered operations that declare the *Whole mesh* section, step mode (which runs
-/// simplification, remeshing and subdivision a step at a time), and smoothing with its method,
-/// iterations and step (the `smooth:METHOD` step's parameters).
-fn whole_mesh_section(ui: &mut egui::Ui, state: &mut UiState, pending: &mut PendingActions) {
-    registered_operations(ui, state, pending, Section::WholeMesh);
-    // Smoothing: method, iterations, step, the boundary held or not.
-    ui.horizontal_wrapped(|ui| {
-        let params = &mut state.smooth;
-        let before = params.method;
-        egui::ComboBox::from_id_salt("smooth method")
-            .selected_text(params.method.name())
-            .show_ui(ui, |ui| {
-                for &(method, name) in SmoothMethod::ALL {
-                    ui.selectable_value(&mut params.method, method, name);
-                }
-            });
-        if params.method != before {
-            params.step = params.method.default_step();
-        }
-        ui.add(
-            egui::DragValue::new(&mut params.iterations)
-                .range(1..=1000)
-                .suffix(" iterations"),
-        );
-        let most = if params.method == SmoothMethod::Implicit {
-            1e6
-        } else {
-            1.0
-        };
-        ui.add(
-            egui::DragValue::new(&mut params.step)
-                .range(1e-4..=most)
-                .speed(0.01)
-                .prefix("λ "),
-        );
-        ui.checkbox(&mut params.hold_boundary, "hold boundary");
-        button(ui, pending, Action::Smooth, "Smooth");
-    });
-}
-
 /// Shaping the surface: fairing, holes filled fair, proportional editing, handle deformation.
 fn shape_section(
     ui: &mut egui::Ui,
@@ -1122,17 +1074,8 @@ fn shape_section(
     anchors: &mut crate::editor::gestures::transform::Anchors,
     pending: &mut PendingActions,
 ) {
-    ui.horizontal_wrapped(|ui| {
-        ui.add(
-            egui::DragValue::new(&mut state.fair_k)
-                .range(1..=3)
-                .prefix("k "),
-        )
-        .on_hover_text("1 membrane, 2 thin plate, 3 minimum variation");
-        button(ui, pending, Action::Fair, "Fair");
-        button(ui, pending, Action::FillFair, "Fill hole fair");
-    });
     registered_operations(ui, state, pending, Section::Shape);
+    button(ui, pending, Action::FillFair, "Fill hole fair");
     ui.horizontal_wrapped(|ui| {
         let p = &mut state.proportional;
         ui.checkbox(

@@ -179,16 +179,16 @@ pub fn start(
     let progress = Arc::new(Progress::default());
     let shared = Arc::clone(&progress);
     let mut job = edit.clone();
-    // Vertices an edit names (the smoothing's held ones) by row, to be named again by the
-    // scratch copy's entities.
+    // The vertices a job's operation names (smoothing's held ones; an operation that runs as
+    // a job names no other element) by row, to be named again by the scratch copy's entities.
     let named_rows: Vec<usize> = match &edit {
-        Edit::Smooth(params) => {
+        Edit::Operation(op) => {
             let rows = members.vertex_rows();
-            params
-                .held
-                .iter()
-                .filter_map(|v| rows.get(&v.0).map(|&r| r as usize))
-                .collect()
+            let row = |x: &ElementId| match x {
+                ElementId::Vertex(v) => rows.get(&v.0).map(|&r| r as usize),
+                _ => None,
+            };
+            op.elements().iter().filter_map(row).collect()
         }
         _ => Vec::new(),
     };
@@ -210,8 +210,14 @@ pub fn start(
         let thread = std::thread::Builder::new().name(name).spawn(move || {
             let mut scratch = World::new();
             let (copy, input) = spawn_connectivity(&mut scratch, &tables, MeshInfo::default());
-            if let Edit::Smooth(params) = &mut job {
-                params.held = named_rows.iter().map(|&r| input.vertices[r]).collect();
+            if let Edit::Operation(op) = &mut job
+                && !named_rows.is_empty()
+            {
+                let renamed = named_rows.iter().map(|&r| input.vertices[r].into());
+                *op = op
+                    .clone()
+                    .on(renamed.collect())
+                    .map_err(Refusal::BadParameter)?;
             }
             let mut history = None;
             let applied = job.run(

@@ -24,6 +24,7 @@
 
 mod anderson;
 mod arap;
+mod fairing;
 mod falloff;
 mod live;
 mod region;
@@ -34,9 +35,6 @@ use crate::ops::declaration::Declaration;
 
 /// Handle deformation (ARAP or thin plate): only positions change.
 pub const DEFORM: Declaration = Declaration::new("deform");
-
-/// Fairing a region: only its positions change.
-pub const FAIR: Declaration = Declaration::new("fair");
 
 #[cfg(test)]
 mod tests;
@@ -53,6 +51,7 @@ use super::geometry::{Surface, cotan_edges, mixed_areas};
 use super::named::Named;
 
 pub use arap::Arap;
+pub use fairing::{FAIR, Fair};
 pub use falloff::{Falloff, Proportional, distances};
 pub use live::LiveDeform;
 pub use region::Region;
@@ -296,6 +295,18 @@ impl ThinPlate {
         // Exactly where they were sent, not rest + (target − rest).
         targets.iter().for_each(|&(v, p)| x[v as usize] = p);
         x
+    }
+}
+
+/// The summary's note on parts of the mesh a solve left alone, none of their vertices held
+/// (empty when there were none).
+pub fn loose_note(parts: usize) -> String {
+    match parts {
+        0 => String::new(),
+        n => format!(
+            " ({} with nothing held stayed)",
+            crate::ops::operation::count(n, "part")
+        ),
     }
 }
 

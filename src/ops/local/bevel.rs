@@ -101,11 +101,6 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, he, live_edge, spawn_at};
 
-use crate::ops::declaration::Declaration;
-
-/// Bevelling a vertex or an edge: a local edit.
-pub const BEVEL: Declaration = Declaration::new("bevel");
-
 /// What bevelling a vertex touches, collected by [`plan_bevel_vertex`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct BevelVertexPlan {

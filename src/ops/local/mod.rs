@@ -72,10 +72,6 @@ pub use vertex_split::vertex_split;
 
 pub use weld::{WeldPlan, apply_weld, plan_weld, weld_edges};
 
-/// The declarations of the local operations that are still variants of `Edit` (the others
-/// are registered, in [`crate::ops::local_operations`]).
-pub use {bevel::BEVEL, split_face::SPLIT_FACE, vertex_split::VERTEX_SPLIT};
-
 use bevy::prelude::{Entity, World};
 
 /// The memory check of an edit that adds rows in proportion to its selection (extrusion,

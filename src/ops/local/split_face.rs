@@ -21,11 +21,6 @@ use crate::mesh::topology::MeshRef;
 
 use super::{Refusal, cut};
 
-use crate::ops::declaration::Declaration;
-
-/// Splitting a face between two corners: a local edit.
-pub const SPLIT_FACE: Declaration = Declaration::new("split-face");
-
 /// What a face split touches, collected by [`plan_split_face`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SplitFacePlan {

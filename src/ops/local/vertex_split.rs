@@ -29,15 +29,6 @@ use crate::mesh::topology::MeshRef;
 
 use super::{CollapseRecord, Refusal, he, link, spawn_at};
 
-use crate::ops::declaration::{DROPPED_BY_SIMPLIFICATION, Declaration};
-
-/// Splitting back the last collapse of a simplification (the editor's `U`): it moves along the
-/// history, so the history survives it, and like the simplification it drops attributes.
-pub const VERTEX_SPLIT: Declaration = Declaration::new("split back")
-    .editor_only()
-    .keeping_history()
-    .dropping(DROPPED_BY_SIMPLIFICATION);
-
 /// Undoes the collapse described by `record` and returns the vertex it makes again (a new
 /// entity: the removed one's id stays stale).
 ///
