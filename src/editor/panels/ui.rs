@@ -909,8 +909,14 @@ fn parameter_field(
     let (min, max, whole) = match p.kind {
         ParameterKind::Choice(words) => {
             let mut i = x.unwrap_or_default() as usize;
+            // A word that names its parameter reads alone ("hold-boundary", not "boundary
+            // hold-boundary").
+            let shown = match words[i].contains(label.as_str()) {
+                true => words[i].to_string(),
+                false => format!("{label} {}", words[i]),
+            };
             egui::ComboBox::from_id_salt((operation, p.name))
-                .selected_text(format!("{label} {}", words[i]))
+                .selected_text(shown)
                 .show_ui(ui, |ui| {
                     for (j, word) in words.iter().enumerate() {
                         ui.selectable_value(&mut i, j, *word);
