@@ -268,6 +268,18 @@ impl Values<'_> {
         }
     }
 
+    /// The vertices among the elements it names, in order ([`Names::Vertices`], and the held
+    /// vertices of [`Names::MeshHolding`]).
+    pub fn vertices(&self) -> Vec<VertexId> {
+        self.elements
+            .iter()
+            .filter_map(|x| match x {
+                ElementId::Vertex(v) => Some(*v),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// The face and the two corners it names ([`Names::FaceCorners`]).
     ///
     /// # Refusals

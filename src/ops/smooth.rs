@@ -167,14 +167,7 @@ impl SmoothParams {
             iterations: values.whole(1),
             step: values.given(2).unwrap_or(method.default_step()),
             hold_boundary: values.choice(3) == 0,
-            held: values
-                .elements()
-                .iter()
-                .filter_map(|x| match x {
-                    ElementId::Vertex(v) => Some(*v),
-                    _ => None,
-                })
-                .collect(),
+            held: values.vertices(),
         }
     }
 }

@@ -4,7 +4,7 @@
 
 use bevy::prelude::World;
 
-use crate::mesh::ids::{ElementId, MeshId, VertexId};
+use crate::mesh::ids::MeshId;
 use crate::mesh::{InMesh, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::declaration::{Declaration, Names, Parameter, Section};
@@ -40,7 +40,7 @@ impl MeshOperation for Fair {
         _: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         let params = FairParams {
-            vertices: named_vertices(values),
+            vertices: values.vertices(),
             k: values.whole(0),
         };
         let s = fair(world, mesh, &params)?;
@@ -59,7 +59,7 @@ impl MeshOperation for Fair {
 
     /// The named vertices, and nothing else (`None` when one is gone).
     fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
-        let vertices = named_vertices(values);
+        let vertices = values.vertices();
         let m = MeshRef::new(world);
         vertices
             .iter()
@@ -67,16 +67,4 @@ impl MeshOperation for Fair {
         let mesh = world.get::<InMesh>(vertices.first()?.0)?.0;
         Some(Reach::Vertices(mesh, vertices))
     }
-}
-
-/// The vertices among the elements named.
-fn named_vertices(values: Values<'_>) -> Vec<VertexId> {
-    values
-        .elements()
-        .iter()
-        .filter_map(|x| match x {
-            ElementId::Vertex(v) => Some(*v),
-            _ => None,
-        })
-        .collect()
 }
