@@ -355,6 +355,12 @@ impl<'w> MeshRef<'w> {
         sum / n
     }
 
+    /// The sum of the vector areas of the faces around `v` ([`MeshRef::face_area_vector`]):
+    /// its area-weighted normal, unnormalised (zero where the faces cancel or there are none).
+    pub fn vertex_area_vector(&self, v: VertexId) -> Vec3 {
+        self.vertex_faces(v).map(|f| self.face_area_vector(f)).sum()
+    }
+
     /// The (unnormalised) vector area of a face, by Newell's method: its length is the area
     /// times two for a planar polygon, its direction the normal. Works for any polygon.
     pub fn face_area_vector(&self, f: FaceId) -> Vec3 {

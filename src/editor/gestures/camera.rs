@@ -83,11 +83,7 @@ pub fn frame_selection(world: &mut World) {
         }
         // In a stepped simplification, the next collapse and the two rings around it.
         _ if let Some(next) = crate::editor::pipeline::stepping::next_collapse(world) => {
-            let normal: Vec3 = [next.kept, next.removed]
-                .into_iter()
-                .flat_map(|v| m.vertex_faces(v))
-                .map(|f| m.face_area_vector(f))
-                .sum();
+            let normal = m.vertex_area_vector(next.kept) + m.vertex_area_vector(next.removed);
             facing = normal.try_normalize();
             let mut pts = Vec::new();
             for v in [next.kept, next.removed] {

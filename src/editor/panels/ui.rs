@@ -942,11 +942,12 @@ fn parameter_field(
     }
     let mut value = changed.flatten().or(x).unwrap_or(min);
     // A real value drags by 1 % of itself a pixel: as fine for a length of 0.002 as for an
-    // angle of 45.
-    let speed = if whole {
-        1.0
-    } else {
-        (value.abs() * 0.01).max(1e-6)
+    // angle of 45. From zero (an extrusion's distance, an inset's depth) it drags by 0.001, and
+    // shows three decimals rather than the six a smaller step would.
+    let speed = match (whole, value == 0.0) {
+        (true, _) => 1.0,
+        (false, true) => 1e-3,
+        (false, false) => (value.abs() * 0.01).max(1e-6),
     };
     let field = egui::DragValue::new(&mut value)
         .range(min..=max)

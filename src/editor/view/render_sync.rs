@@ -213,7 +213,7 @@ fn push_vertex(m: &MeshRef<'_>, out: &mut RenderData, v: VertexId, smooth: bool)
 
 /// The smooth-shading normal of `v`: the area-weighted normal of all its faces.
 fn smooth_normal(m: &MeshRef<'_>, v: VertexId) -> [f32; 3] {
-    let n: Vec3 = m.vertex_faces(v).map(|g| m.face_area_vector(g)).sum();
+    let n = m.vertex_area_vector(v);
     n.try_normalize().unwrap_or(Vec3::Z).to_array()
 }
 

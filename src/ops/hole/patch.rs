@@ -265,11 +265,7 @@ impl Patch {
                 .iter()
                 .filter_map(|&v| {
                     let step = step(&m, v)?;
-                    let normal: Vec3 = m
-                        .vertex_faces(v)
-                        .map(|f| m.face_area_vector(f))
-                        .sum::<Vec3>()
-                        .normalize_or_zero();
+                    let normal = m.vertex_area_vector(v).normalize_or_zero();
                     Some((v, m.position(v) + step - normal * normal.dot(step)))
                 })
                 .collect()
