@@ -329,8 +329,17 @@ fn pair_corners_keeping_manifold_edges(
     }
 
     let mut twin = vec![NONE; corners];
+    // Most meshes detach nothing: then an edge's two corners pair without a face lookup each.
+    let any_detached = faces.detached.contains(&true);
     for g in 0..group_start.len() - 1 {
         let group = &entries[group_start[g] as usize..group_start[g + 1] as usize];
+        if !any_detached {
+            if let &[(_, a), (_, b)] = group {
+                twin[a as usize] = b;
+                twin[b as usize] = a;
+            }
+            continue;
+        }
         let mut kept = group
             .iter()
             .map(|&(_, c)| c)
@@ -350,6 +359,15 @@ fn orient_consistently(
     twin: &mut [u32],
     report: &mut RepairReport,
 ) {
+    // Most meshes come oriented: every paired corner runs against its twin, and the search
+    // below would flip nothing.
+    let consistent = twin
+        .iter()
+        .enumerate()
+        .all(|(c, &d)| d == NONE || faces.indices[d as usize] != faces.indices[c]);
+    if consistent {
+        return;
+    }
     const UNSEEN: u8 = 2;
     let count = faces.count();
     let mut flip = vec![UNSEEN; count];
