@@ -470,6 +470,36 @@ mod tests {
         }
     }
 
+    /// Labels name what an operation names in words: a face split its face and corners,
+    /// fairing and smoothing how many vertices they move or hold.
+    #[test]
+    fn labels_say_what_is_named() {
+        use crate::mesh::{MeshMembers, build_mesh, shapes};
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &shapes::icosphere(1), MeshInfo::default()).unwrap();
+        let all = MeshMembers::collect(&world, built.mesh);
+        let f = all.faces[0];
+        let corners: Vec<VertexId> = MeshRef::new(&world).face_vertices(f).collect();
+        let (a, b) = (corners[0], corners[2]);
+        let split = Edit::local_on(
+            "split-face",
+            [f.into(), a.into(), b.into()] as [ElementId; 3],
+            &[],
+        );
+        assert_eq!(split.label(), format!("split face {f} between {a} and {b}"));
+        let fair = Edit::local_on("fair", all.vertices[..3].iter().copied(), &[]);
+        assert_eq!(fair.label(), "fair 3 vertices (k 2)");
+        let smooth = Edit::local_on("smooth", all.vertices[..2].iter().copied(), &[]);
+        assert_eq!(
+            smooth.label(),
+            "smooth holding 2 vertices (uniform, iterations 1, step auto, hold-boundary)"
+        );
+        assert_eq!(
+            Edit::registered("smooth").unwrap().label(),
+            "smooth (uniform, iterations 1, step auto, hold-boundary)"
+        );
+    }
+
     /// A move of most of a mesh redraws it whole and is recorded (and undone) by its vertices
     /// alone; a move of a few redraws their neighbourhood.
     #[test]

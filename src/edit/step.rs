@@ -3,8 +3,9 @@
 //! Whole-mesh steps name their parameters (`simplify:0.25`, `remesh:3:0.5`); local steps name
 //! their elements by the input file's vertex numbers (0-based), so a script written against a
 //! file keeps working whatever ids the elements get: `A` is a vertex, `A,B` the edge between
-//! two vertices, `A,B,C` the face with those three consecutive corners (either way round), and
-//! several elements are separated by `/` (`extrude:0,1,2/1,2,3:0.5`).
+//! two vertices (for `split-face`, the face the two share, between them), `A,B,C` the face with
+//! those three consecutive corners (either way round), and several elements are separated by
+//! `/` (`extrude:0,1,2/1,2,3:0.5`, `fair:3/4/5`).
 
 use bevy::math::{Affine3A, Vec3};
 use bevy::prelude::World;

@@ -61,8 +61,9 @@ pub struct Declaration {
     /// Its key in the editor, if it has one, as the help overlay writes it: modifiers and a
     /// key joined by `+` (`"Alt+C"`, `"Ctrl+T"`, `"Shift+N"`); the editor's keymap reads it.
     pub key: Option<&'static str>,
-    /// The elements it names beside the mesh (none for a whole-mesh operation): what the
-    /// editor takes from the selection and a step names by input vertex numbers.
+    /// The elements it names beside the mesh (none for a whole-mesh operation, or only the
+    /// vertices it holds: smoothing): what the editor takes from the selection and a step
+    /// names by input vertex numbers.
     pub names: Names,
     /// Its parameters, in the order a step gives them.
     pub parameters: &'static [Parameter],
@@ -268,7 +269,7 @@ pub enum Section {
 
 /// What elements an operation names, beside the mesh it acts on. The editor takes them from
 /// the selection; a `process` step names them by the input file's vertex numbers (`A` a
-/// vertex, `A,B` the edge between two).
+/// vertex, `A,B` the edge between two, or for [`Names::FaceCorners`] the face the two share).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Names {
     /// None: it acts on the whole mesh.
@@ -375,7 +376,7 @@ impl Names {
 
     /// Whether a step's elements, given as the counts of vertex numbers naming each (`[2]`
     /// for `A,B`, `[3, 3]` for `A,B,C/D,E,F`), are what it names: one number a vertex, two an
-    /// edge, three or more a face.
+    /// edge (or two corners of the face they share), three or more a face.
     pub fn fits(self, counts: &[usize]) -> bool {
         match (self, counts) {
             (_, []) | (Names::Mesh | Names::MeshHolding, _) => false,

@@ -152,11 +152,12 @@ pub trait MeshOperation: Sync + 'static {
         context: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal>;
 
-    /// What it may change, for the undo record: by default any element of `mesh` (`None`
-    /// when `mesh` is gone). A local operation names the neighbourhood of its elements
-    /// (`None` when one is gone: it will be refused, and changes nothing).
-    /// The default reads the declaration: the neighbourhood of the ends of an edge it names,
-    /// of a vertex or of a face's corners, else the whole mesh.
+    /// What it may change, for the undo record (`None` when `mesh` or an element it names is
+    /// gone: it will be refused, and changes nothing). The default: any element of `mesh` for
+    /// an operation that names nothing; the neighbourhood of the corners of the one element it
+    /// names (an edge's ends, a vertex, a face's corners); `None` for two elements or more, so
+    /// an operation that names several (faces, vertices, a face and its corners, held
+    /// vertices) says its own reach.
     fn reach(&self, world: &World, mesh: MeshId, values: Values<'_>) -> Option<Reach> {
         match values.elements() {
             [] => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
@@ -451,13 +452,17 @@ impl Invocation {
     pub fn label(&self) -> String {
         let d = self.declaration();
         let mut label = lower_first(d.title);
-        match self.elements.as_slice() {
-            few @ ([_] | [_, _]) => few.iter().for_each(|x| label.push_str(&format!(" {x}"))),
-            [ElementId::Face(_), ..] if d.names == Names::Faces => {
-                label.push_str(&format!(" {}", count(self.elements.len(), "face")));
+        let n = self.elements.len();
+        match (d.names, self.elements.as_slice()) {
+            (_, []) => {}
+            (Names::FaceCorners, [f, a, b]) => label.push_str(&format!(" {f} between {a} and {b}")),
+            (Names::MeshHolding, _) => {
+                label.push_str(&format!(" holding {}", count(n, "vertex")));
             }
-            [] => {}
-            many => label.push_str(&format!(" {}", count(many.len(), "element"))),
+            (_, few @ ([_] | [_, _])) => few.iter().for_each(|x| label.push_str(&format!(" {x}"))),
+            (Names::Faces, _) => label.push_str(&format!(" {}", count(n, "face"))),
+            (Names::Vertices, _) => label.push_str(&format!(" {}", count(n, "vertex"))),
+            _ => label.push_str(&format!(" {}", count(n, "element"))),
         }
         let values: Vec<String> = d
             .parameters

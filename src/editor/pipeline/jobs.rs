@@ -180,15 +180,20 @@ pub fn start(
     let shared = Arc::clone(&progress);
     let mut job = edit.clone();
     // The vertices a job's operation names (smoothing's held ones; an operation that runs as
-    // a job names no other element) by row, to be named again by the scratch copy's entities.
+    // a job names no other element) by row, to be named again by the scratch copy's entities:
+    // every one of them, or the job is refused.
     let named_rows: Vec<usize> = match &edit {
         Edit::Operation(op) => {
             let rows = members.vertex_rows();
-            let row = |x: &ElementId| match x {
-                ElementId::Vertex(v) => rows.get(&v.0).map(|&r| r as usize),
-                _ => None,
+            let row = |&x: &ElementId| match x {
+                ElementId::Vertex(v) => {
+                    rows.get(&v.0).map(|&r| r as usize).ok_or(Refusal::Stale(x))
+                }
+                _ => Err(Refusal::BadParameter(format!(
+                    "a job names vertices only, not {x}"
+                ))),
             };
-            op.elements().iter().filter_map(row).collect()
+            op.elements().iter().map(row).collect::<Result<_, _>>()?
         }
         _ => Vec::new(),
     };
@@ -210,9 +215,7 @@ pub fn start(
         let thread = std::thread::Builder::new().name(name).spawn(move || {
             let mut scratch = World::new();
             let (copy, input) = spawn_connectivity(&mut scratch, &tables, MeshInfo::default());
-            if let Edit::Operation(op) = &mut job
-                && !named_rows.is_empty()
-            {
+            if let Edit::Operation(op) = &mut job {
                 let renamed = named_rows.iter().map(|&r| input.vertices[r].into());
                 *op = op
                     .clone()
