@@ -1262,7 +1262,17 @@ fn a_large_file_opens_in_the_background_and_can_be_cancelled() {
         assert!(refused.contains("open spot.obj"), "{refused}");
     }
     update_until(&mut app, |app| !reading(app));
-    let opened = last_outcome(&app).result.unwrap();
+    // The open's outcome: when the reading ended in the flip's frame, the flip (of an edge of
+    // the torus, gone by then) was refused after it.
+    let log = &app.world().resource::<OutcomeLog>().entries;
+    let opened = log
+        .iter()
+        .rev()
+        .find(|o| o.request.starts_with("open"))
+        .expect("the open's outcome")
+        .result
+        .clone()
+        .unwrap();
     assert!(opened.contains("2930 vertices, 5856 faces"), "{opened}");
     assert_eq!(counts(&app), (2930, 8784, 5856));
     app.world_mut().write_message(Request::Undo);
