@@ -31,7 +31,7 @@ use bevy::prelude::World;
 use crate::mesh::attributes::{MeshAttributes, drop_attributes};
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::mesh::tables::{Connectivity, MeshTables};
-use crate::mesh::{InMesh, MeshInfo, MeshRef};
+use crate::mesh::{InMesh, MeshInfo};
 use crate::ops::Refusal;
 use crate::ops::deform::{DeformMethod, DeformParams};
 
@@ -143,15 +143,7 @@ impl Edit {
         match self {
             Edit::Operation(op) => op.reach(world, mesh),
             // A move changes the vertices it moves, and nothing else.
-            Edit::Move(moves) => {
-                let m = MeshRef::new(world);
-                let seeds: Vec<VertexId> = moves.iter().map(|(v, _)| *v).collect();
-                seeds
-                    .iter()
-                    .try_for_each(|&v| m.try_vertex(v).map(|_| ()))?;
-                let mesh = world.get::<InMesh>(seeds.first()?.0)?.0;
-                Some(Reach::Vertices(mesh, seeds))
-            }
+            Edit::Move(moves) => Reach::vertices(world, moves.iter().map(|(v, _)| *v).collect()),
             // A deformation moves any vertex.
             Edit::Deform(_) => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
         }
@@ -345,6 +337,7 @@ pub const MOVE: Declaration = Declaration::new("move").editor_only();
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::MeshRef;
 
     #[test]
     fn only_whole_mesh_computations_run_as_jobs_and_only_subdivision_renumbers() {

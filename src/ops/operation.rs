@@ -66,6 +66,17 @@ impl Reach {
         let mesh = world.get::<InMesh>(seeds.first()?.0)?.0;
         Some(Reach::Local(mesh, seeds))
     }
+
+    /// `vertices` alone, in their mesh (`None` when there are none or one is gone): a move, a
+    /// fairing.
+    pub fn vertices(world: &World, vertices: Vec<VertexId>) -> Option<Reach> {
+        let m = MeshRef::new(world);
+        vertices
+            .iter()
+            .try_for_each(|&v| m.try_vertex(v).map(|_| ()))?;
+        let mesh = world.get::<InMesh>(vertices.first()?.0)?.0;
+        Some(Reach::Vertices(mesh, vertices))
+    }
 }
 
 impl Redraw {
@@ -154,13 +165,16 @@ pub trait MeshOperation: Sync + 'static {
 
     /// What it may change, for the undo record (`None` when `mesh` or an element it names is
     /// gone: it will be refused, and changes nothing). The default: any element of `mesh` for
-    /// an operation that names nothing; the neighbourhood of the corners of the one element it
+    /// a whole-mesh operation (one that names nothing, or only vertices it holds); the
+    /// neighbourhood of the corners of the one element it
     /// names (an edge's ends, a vertex, a face's corners); `None` for two elements or more, so
     /// an operation that names several (faces, vertices, a face and its corners, held
     /// vertices) says its own reach.
     fn reach(&self, world: &World, mesh: MeshId, values: Values<'_>) -> Option<Reach> {
+        if self.declaration().names.is_whole_mesh() {
+            return world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh));
+        }
         match values.elements() {
-            [] => world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh)),
             &[x] => {
                 let corners = MeshRef::new(world).corners(x);
                 let mesh = world.get::<InMesh>(corners.first()?.0)?.0;

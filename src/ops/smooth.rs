@@ -36,7 +36,7 @@ use super::geometry::{Surface, cotan_edges, mixed_areas};
 use super::named::Named;
 
 use crate::ops::declaration::{Declaration, Names, Parameter};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Values};
 
 /// Smoothing as a registered operation: the `smooth` step, the O key and its row in the
 /// panel. Only positions change; the vertices it names (the editor's selected vertices) stay,
@@ -85,11 +85,6 @@ impl MeshOperation for Smooth {
             "{} free vertices moved {:.3e} on average{stopped}",
             s.free, s.mean_move
         )))
-    }
-
-    /// Any vertex of the mesh may move.
-    fn reach(&self, world: &World, mesh: MeshId, _: Values<'_>) -> Option<Reach> {
-        world.get::<MeshInfo>(mesh.0).map(|_| Reach::Whole(mesh))
     }
 }
 

@@ -5,7 +5,6 @@
 use bevy::prelude::World;
 
 use crate::mesh::ids::MeshId;
-use crate::mesh::{InMesh, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::declaration::{Declaration, Names, Parameter, Section};
 use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Redraw, Values, count};
@@ -59,12 +58,6 @@ impl MeshOperation for Fair {
 
     /// The named vertices, and nothing else (`None` when one is gone).
     fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
-        let vertices = values.vertices();
-        let m = MeshRef::new(world);
-        vertices
-            .iter()
-            .try_for_each(|&v| m.try_vertex(v).map(|_| ()))?;
-        let mesh = world.get::<InMesh>(vertices.first()?.0)?.0;
-        Some(Reach::Vertices(mesh, vertices))
+        Reach::vertices(world, values.vertices())
     }
 }
