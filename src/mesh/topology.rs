@@ -15,7 +15,6 @@
 
 use super::elements::{Edge, Face, Halfedge, Position, Vertex};
 use super::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
-use bevy::ecs::query::QueryState;
 use bevy::math::Vec3;
 use bevy::prelude::{Component, Entity, World};
 
@@ -26,49 +25,12 @@ pub const MAX_LOOP: usize = 1 << 22;
 #[derive(Clone, Copy)]
 pub struct MeshRef<'w> {
     world: &'w World,
-    lookups: Option<&'w Lookups>,
-}
-
-/// Query states for the element components, made once for a long run of lookups: reading a
-/// component through one skips resolving the component's type on every call, which a
-/// [`World::get`] pays (about a quarter of a scattered lookup's time). Valid while no new
-/// archetype appears (an algorithm that only edits links and despawns, like the simplifier).
-pub struct Lookups {
-    halfedge: QueryState<&'static Halfedge>,
-    vertex: QueryState<&'static Vertex>,
-    position: QueryState<&'static Position>,
-    edge: QueryState<&'static Edge>,
-    face: QueryState<&'static Face>,
-}
-
-impl Lookups {
-    /// Query states for `world`'s current archetypes.
-    pub fn new(world: &mut World) -> Self {
-        Self {
-            halfedge: world.query(),
-            vertex: world.query(),
-            position: world.query(),
-            edge: world.query(),
-            face: world.query(),
-        }
-    }
 }
 
 impl<'w> MeshRef<'w> {
     /// A view of `world`.
     pub fn new(world: &'w World) -> Self {
-        Self {
-            world,
-            lookups: None,
-        }
-    }
-
-    /// A view of `world` that reads through `lookups` (made for this world).
-    pub fn with_lookups(world: &'w World, lookups: &'w Lookups) -> Self {
-        Self {
-            world,
-            lookups: Some(lookups),
-        }
+        Self { world }
     }
 
     /// The world behind the view.
@@ -78,48 +40,40 @@ impl<'w> MeshRef<'w> {
 
     // ---- checked lookups -------------------------------------------------------------------
 
-    /// `e`'s component `C`, through the query state `state` picks from the lookups when the
-    /// view has them, else through [`World::get`].
+    /// `e`'s component `C`, if it has one.
     #[inline]
-    fn read<C: Component>(
-        &self,
-        e: Entity,
-        state: impl Fn(&'w Lookups) -> &'w QueryState<&'static C>,
-    ) -> Option<&'w C> {
-        match self.lookups {
-            Some(l) => state(l).get_manual(self.world, e).ok(),
-            None => self.world.get::<C>(e),
-        }
+    fn read<C: Component>(&self, e: Entity) -> Option<&'w C> {
+        self.world.get::<C>(e)
     }
 
     /// The halfedge's links, or `None` if `h` is not a live halfedge.
     #[inline]
     pub fn try_halfedge(&self, h: HalfedgeId) -> Option<&'w Halfedge> {
-        self.read(h.0, |l| &l.halfedge)
+        self.read::<Halfedge>(h.0)
     }
 
     /// The vertex's record, or `None` if `v` is not a live vertex.
     #[inline]
     pub fn try_vertex(&self, v: VertexId) -> Option<&'w Vertex> {
-        self.read(v.0, |l| &l.vertex)
+        self.read::<Vertex>(v.0)
     }
 
     /// The edge's record, or `None` if `e` is not a live edge.
     #[inline]
     pub fn try_edge(&self, e: EdgeId) -> Option<&'w Edge> {
-        self.read(e.0, |l| &l.edge)
+        self.read::<Edge>(e.0)
     }
 
     /// The face's record, or `None` if `f` is not a live face.
     #[inline]
     pub fn try_face(&self, f: FaceId) -> Option<&'w Face> {
-        self.read(f.0, |l| &l.face)
+        self.read::<Face>(f.0)
     }
 
     /// The vertex position, or `None` if `v` has none.
     #[inline]
     pub fn try_position(&self, v: VertexId) -> Option<Vec3> {
-        self.read(v.0, |l| &l.position).map(|p| p.0)
+        self.read::<Position>(v.0).map(|p| p.0)
     }
 
     // ---- navigation (valid mesh) ----------------------------------------------------------
@@ -426,43 +380,5 @@ impl Iterator for LoopIter<'_> {
         };
         self.current = (following != self.start && self.taken < MAX_LOOP).then_some(following);
         Some(h)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::mesh::members::MeshMembers;
-    use crate::mesh::{MeshInfo, build_mesh, shapes};
-
-    #[test]
-    fn lookups_read_what_the_world_holds_and_nothing_stale() {
-        let mut world = World::new();
-        let built =
-            build_mesh(&mut world, &shapes::grid_with_holes(2), MeshInfo::default()).unwrap();
-        let members = MeshMembers::collect(&world, built.mesh);
-        let gone = members.faces[0];
-        world.despawn(gone.0);
-        let lookups = Lookups::new(&mut world);
-        let (plain, cached) = (
-            MeshRef::new(&world),
-            MeshRef::with_lookups(&world, &lookups),
-        );
-        for &h in &members.halfedges {
-            assert_eq!(plain.try_halfedge(h), cached.try_halfedge(h));
-        }
-        for &v in &members.vertices {
-            assert_eq!(plain.try_vertex(v), cached.try_vertex(v));
-            assert_eq!(plain.try_position(v), cached.try_position(v));
-        }
-        for &e in &members.edges {
-            assert_eq!(plain.try_edge(e), cached.try_edge(e));
-        }
-        for &f in &members.faces[1..] {
-            assert_eq!(plain.try_face(f), cached.try_face(f));
-        }
-        assert_eq!(cached.try_face(gone), None);
-        // A halfedge is not a vertex: each lookup answers for its own kind only.
-        assert_eq!(cached.try_vertex(VertexId(members.halfedges[0].0)), None);
     }
 }

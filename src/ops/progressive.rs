@@ -155,13 +155,17 @@ impl ProgressiveMesh {
         params: &SimplifyParams,
         progress: impl FnMut(f32) -> bool,
     ) -> Result<(ProgressiveMesh, SimplifySummary), Refusal> {
-        // The face count comes with the summary: counting it here would be a pass of its own.
-        let mut pm = ProgressiveMesh::start(world, mesh, 0);
-        let index = SlotIndex::of(&pm);
-        let summary = simplify_recorded(world, mesh, params, progress, |world, r| {
-            pm.push(world, &index, r);
+        let mut records = Vec::new();
+        let (summary, slots) = simplify_recorded(world, mesh, params, progress, |r| {
+            records.push(r);
         })?;
-        pm.full_faces = summary.faces_before;
+        let pm = ProgressiveMesh {
+            mesh,
+            applied: records.len(),
+            records,
+            full_faces: summary.faces_before,
+            slots,
+        };
         Ok((pm, summary))
     }
 

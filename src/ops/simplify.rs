@@ -13,21 +13,34 @@
 //! Edges wait in an indexed heap ([`super::indexed_heap`]), one entry per edge: when a collapse
 //! changes the cost of the edges around the merged vertex, their entries are re-keyed in place,
 //! so no pop is spent on a stale entry. Equal costs are ordered by the edge's entity index, so a
-//! run is deterministic. Every collapse goes through
-//! [`crate::ops::local::plan_collapse`] — link condition, degenerate faces and a bound on how
-//! far a face normal may turn — and a refused edge is simply dropped until a neighbouring
-//! collapse gives it a new chance.
+//! run is deterministic. Every collapse is checked as [`crate::ops::local::plan_collapse`]
+//! checks it — link condition, degenerate faces and a bound on how far a face normal may turn
+//! — and a refused edge is simply dropped until a neighbouring collapse gives it a new chance.
+//!
+//! Two runs make the same collapses in the same order:
+//! - [`simplify`] (and [`simplify_recorded`], which the `simplify` operation uses) reads the
+//!   mesh into tables once, makes every collapse on rows (module `flat`) and writes the survivors
+//!   back at the end: nothing is looked up by entity in the loop.
+//! - [`QemRun`] keeps the loop's state between collapses for the editor's step mode and makes
+//!   each collapse on the entities ([`crate::ops::local::collapse_edge`]), so the mesh can be shown
+//!   and moved along its history between any two.
+//!
+//! Both compute the quadrics and the first keys the same way (`vertex_quadrics`,
+//! `placement`) and break ties by entity; `tests/qem_run.rs` holds them to the same mesh,
+//! element for element, and the same history records, bit for bit.
 
 use bevy::math::{DVec3, Vec3};
 use bevy::prelude::{Entity, World};
 
-use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId, slot, slots_for};
+use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId, slots_for};
 use crate::mesh::tables::{Connectivity, FaceRow, MeshTables, VertexRow, extract};
-use crate::mesh::topology::{Lookups, MeshRef, newell_area_vector};
+use crate::mesh::topology::{MeshRef, newell_area_vector};
 
 use super::Refusal;
-use super::indexed_heap::IndexedHeap;
+use super::indexed_heap::{IndexedHeap, slot_of};
+use super::progressive::SlotRecord;
 
+mod flat;
 mod run;
 pub use run::{NextCollapse, QemRun, QueuedEdge, Refused};
 
@@ -239,11 +252,13 @@ pub fn simplify_with_progress(
     params: &SimplifyParams,
     progress: impl FnMut(f32) -> bool,
 ) -> Result<SimplifySummary, Refusal> {
-    simplify_inner(world, mesh, params, progress, |_, _| {})
+    simplify_inner(world, mesh, params, progress, |_| {}).map(|(summary, _)| summary)
 }
 
-/// [`simplify_with_progress`], handing every collapse it makes to `record` in order, with the
-/// world right after it (what [`crate::ops::progressive`] keeps to split them back).
+/// [`simplify_with_progress`], handing every collapse it makes to `record` in order, as
+/// [`crate::ops::progressive`] keeps it to split them back: a [`SlotRecord`] whose slots are
+/// vertex rows, numbered as [`crate::mesh::MeshMembers::collect`] lists the mesh's vertices at the start.
+/// Returns, with the summary, the vertex in each slot afterwards (`None`: collapsed away).
 ///
 /// # Refusals
 /// As [`simplify`].
@@ -252,34 +267,119 @@ pub fn simplify_recorded(
     mesh: MeshId,
     params: &SimplifyParams,
     progress: impl FnMut(f32) -> bool,
-    record: impl FnMut(&World, &super::local::CollapseResult),
-) -> Result<SimplifySummary, Refusal> {
+    record: impl FnMut(SlotRecord),
+) -> Result<(SimplifySummary, Vec<Option<VertexId>>), Refusal> {
     simplify_inner(world, mesh, params, progress, record)
 }
 
+/// The run to the end, on flat tables ([`flat`]): the mesh is read once, every collapse is
+/// made on rows in the order [`QemRun`] would make it, and the survivors are written back and
+/// the removed elements despawned in one pass at the end.
 fn simplify_inner(
     world: &mut World,
     mesh: MeshId,
     params: &SimplifyParams,
     mut progress: impl FnMut(f32) -> bool,
-    mut record: impl FnMut(&World, &super::local::CollapseResult),
-) -> Result<SimplifySummary, Refusal> {
-    let mut run = QemRun::start(world, mesh, params)?;
-    // What the collapses removed, despawned together at the end (see `despawn_removed`).
-    let mut graveyard: Vec<Entity> = Vec::new();
-    let lookups = Lookups::new(world);
-    let to_remove = run.faces_before.saturating_sub(run.target_faces).max(1);
-    while let Some(result) = run.collapse_next_deferred(world, &lookups, &mut graveyard) {
-        record(world, &result);
-        if run.collapses % 512 == 0 {
-            let done = (run.faces_before - run.faces) as f32 / to_remove as f32;
-            if !progress(done.min(1.0)) {
+    mut record: impl FnMut(SlotRecord),
+) -> Result<(SimplifySummary, Vec<Option<VertexId>>), Refusal> {
+    if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
+        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
+    }
+    let MeshTables { tables: t, members } = extract(world, mesh);
+    if let Some(f) = t.first_non_triangle() {
+        return Err(Refusal::NotTriangle(ElementId::Face(
+            members.faces[f.index()],
+        )));
+    }
+    // Edges are numbered by heap slot in the flat tables, which are laid out meanwhile.
+    let (slot_of_row, slots) = edge_slots(&members.edges);
+    let vertex_order = |v: u32| members.vertices[v as usize].0.to_bits();
+    let keyed = |quadric: &[Quadric], slot: u32, [(a, pa), (b, pb)]: [(u32, Vec3); 2]| {
+        let c = placement(quadric[a as usize] + quadric[b as usize], pa, pb, || {
+            vertex_order(a) < vertex_order(b)
+        });
+        let key = (u64::from((c.cost.max(0.0) as f32).to_bits()) << 32) | u64::from(slot);
+        (key, c.position)
+    };
+    let (mut flat, (mut quadric, mut heap, mut target)) = std::thread::scope(|scope| {
+        let flat = scope.spawn(|| flat::FlatTriangles::new(&t, &slot_of_row, slots));
+        let quadric = vertex_quadrics(&t, params);
+        let mut target = vec![Vec3::ZERO; slots];
+        let entries = t
+            .edges()
+            .map(|e| {
+                let h = t.edge_halfedge(e);
+                let ends = [t.from_vertex(h), t.to_vertex(h)];
+                let slot = slot_of_row[e.index()];
+                let (key, at) = keyed(
+                    &quadric,
+                    slot,
+                    ends.map(|v| (v.index() as u32, t.position(v))),
+                );
+                target[slot as usize] = at;
+                key
+            })
+            .collect();
+        let heap = IndexedHeap::from_entries(slots, entries);
+        let flat = flat
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (flat, (quadric, heap, target))
+    });
+    let limit = params.max_normal_change_deg.to_radians().cos();
+    let faces_before = t.face_count();
+    let target_faces = params.target.faces(faces_before);
+    let to_remove = faces_before.saturating_sub(target_faces).max(1);
+    let (mut faces, mut collapses) = (faces_before, 0usize);
+    let mut ring = Vec::new();
+    while faces > target_faces {
+        let Some(entry) = heap.pop() else { break };
+        let e = slot_of(entry);
+        let Some(plan) = flat.plan(flat.edge_halfedge(e), target[e as usize], limit) else {
+            continue;
+        };
+        ring.clear();
+        let done = flat.apply(plan, |e, tip, at| ring.push((e, tip, at)));
+        for e in done.removed_edges.into_iter().flatten() {
+            heap.remove(e);
+        }
+        faces -= done.triangles_removed();
+        collapses += 1;
+        let (a, b) = (done.kept as usize, done.removed as usize);
+        quadric[a] = quadric[a] + quadric[b];
+        for &(e, tip, at) in &ring {
+            let (key, position) = keyed(&quadric, e, [(done.kept, done.position), (tip, at)]);
+            target[e as usize] = position;
+            heap.set(key);
+        }
+        record(done.record());
+        if collapses % 512 == 0 {
+            let fraction = (faces_before - faces) as f32 / to_remove as f32;
+            if !progress(fraction.min(1.0)) {
                 break;
             }
         }
     }
-    despawn_removed(world, graveyard);
-    Ok(run.summary())
+    let slots = flat.write_back(world, &members, &slot_of_row);
+    let summary = SimplifySummary {
+        faces_before,
+        faces_after: faces,
+        collapses,
+        reached_target: faces <= target_faces,
+    };
+    Ok((summary, slots))
+}
+
+/// Each edge's heap slot (by edge row) and how many slots there are: its entity index less
+/// the lowest edge's, so that equal costs pop in entity order, as in the run on entities
+/// (see [`VertexTable`]).
+fn edge_slots(edges: &[EdgeId]) -> (Vec<u32>, usize) {
+    let base = edges.iter().map(|e| e.0.index_u32()).min().unwrap_or(0);
+    let slots = slots_for(edges.iter().map(|e| e.0)).saturating_sub(base as usize);
+    (
+        edges.iter().map(|e| e.0.index_u32() - base).collect(),
+        slots,
+    )
 }
 
 /// Whether `ring` lists exactly the edges around `v`, with their other ends where they are.
@@ -307,25 +407,31 @@ fn ring_matches(m: &MeshRef<'_>, v: VertexId, ring: &[(EdgeId, VertexId, Vec3)])
     live == planned
 }
 
-/// Despawns what the collapses removed, highest entity index first. The elements were
-/// spawned in index order when the mesh was built, so this takes table rows from the end:
-/// few live rows have to move into the holes, and memory is walked in order, where despawning
-/// collapse by collapse moved a row and missed the cache for every element. The order comes
-/// from placing each entity at its index in a table and reading the table backwards: one
-/// linear pass, where sorting took a fifth of the despawning.
+/// Despawns the entities of `rows` that are not `alive`, where `rows` lists the mesh's
+/// elements of one kind in storage order ([`extract`]'s rows).
 ///
-/// A stepped run despawns each collapse's elements as it goes, so its mesh is stored in
-/// another order (Bevy fills a despawned row with the table's last), and a saved file lists
-/// the same vertices and faces in another order. Despawning in collapse order here would make
-/// the orders match; measured on the bunny's simplification to 25 %, median of 12, it took 198
-/// ms against 134.
-fn despawn_removed(world: &mut World, gone: Vec<Entity>) {
-    let mut by_index = vec![None; slots_for(gone.iter().copied())];
-    for e in gone {
-        by_index[slot(e)] = Some(e);
-    }
-    for e in by_index.into_iter().rev().flatten() {
-        world.despawn(e);
+/// Bevy keeps a table dense by moving its last row into the hole a despawn leaves, and a
+/// moved row costs as much again as the despawn (the row's columns copied, two location
+/// records rewritten). So the removed rows go from both ends: a removed row that is last in
+/// the table goes alone, and only where the last row survives is the first removed row from
+/// the front despawned, that survivor moving into its place. Rows then move only as often as
+/// survivors lie beyond the part of the table the survivors will fill: at a quarter kept,
+/// about one removal in four, where going by entity index moved one on nearly every removal.
+/// Rows out of storage order (another mesh's rows in the same table) only cost more moves.
+fn despawn_dead(world: &mut World, rows: &[Entity], alive: &[bool]) {
+    let (mut front, mut back) = (0, rows.len());
+    while front < back {
+        if !alive[back - 1] {
+            world.despawn(rows[back - 1]);
+            back -= 1;
+        } else if !alive[front] {
+            // The survivor last in the table takes this row's place.
+            world.despawn(rows[front]);
+            front += 1;
+            back -= 1;
+        } else {
+            front += 1;
+        }
     }
 }
 
@@ -366,9 +472,34 @@ fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, 
         let row = table.row(e) as usize;
         table.edge[row] = e;
     }
-    // Each table vertex's slot in `table.quadric`.
-    let slot_of_row: Vec<usize> = members.vertices.iter().map(|v| v.slot()).collect();
-    let quadric = &mut table.quadric;
+    for (q, v) in vertex_quadrics(&t, params)
+        .into_iter()
+        .zip(&members.vertices)
+    {
+        table.quadric[v.slot()] = q;
+    }
+    let end = |v: VertexRow| (members.vertices[v.index()], t.position(v));
+    let entries = members
+        .edges
+        .iter()
+        .zip(t.edges())
+        .map(|(&e, row)| {
+            let h = t.edge_halfedge(row);
+            let ends = [end(t.from_vertex(h)), end(t.to_vertex(h))];
+            keyed_ends(&mut table, e, ends)
+        })
+        .collect();
+    Ok(Setup {
+        heap: IndexedHeap::from_entries(table.target.len(), entries),
+        table,
+        faces_before: t.face_count(),
+    })
+}
+
+/// Every vertex's quadric, by vertex row: the planes of its faces (area-weighted), and of
+/// its boundary and sharp edges (see the module doc). Plain array passes over the tables.
+fn vertex_quadrics(t: &Connectivity, params: &SimplifyParams) -> Vec<Quadric> {
+    let mut quadric = vec![Quadric::default(); t.vertex_count()];
     let position = |v: VertexRow| t.position(v).as_dvec3();
     for f in t.faces() {
         let corners = t.triangle_halfedges(f).map(|h| t.to_vertex(h));
@@ -379,8 +510,7 @@ fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, 
         };
         let q = Quadric::plane(n, -n.dot(p[0]), cross.length() / 2.0);
         for v in corners {
-            let at = slot_of_row[v.index()];
-            quadric[at] = quadric[at] + q;
+            quadric[v.index()] = quadric[v.index()] + q;
         }
     }
     // Boundary and sharp edges: a plane through the edge, perpendicular to the face on the
@@ -388,7 +518,7 @@ fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, 
     let sharp = params.feature_angle_deg.to_radians().cos();
     let area_vector: Vec<DVec3> = t
         .faces()
-        .map(|f| face_area_vector(&t, f).as_dvec3())
+        .map(|f| face_area_vector(t, f).as_dvec3())
         .collect();
     let unit_normal: Vec<Option<DVec3>> = area_vector.iter().map(|a| a.try_normalize()).collect();
     for h in t.halfedges() {
@@ -411,26 +541,10 @@ fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, 
         };
         let q = Quadric::plane(n, -n.dot(a), weight * (b - a).length_squared());
         for v in [from, to] {
-            let at = slot_of_row[v.index()];
-            quadric[at] = quadric[at] + q;
+            quadric[v.index()] = quadric[v.index()] + q;
         }
     }
-    let end = |v: VertexRow| (members.vertices[v.index()], t.position(v));
-    let entries = members
-        .edges
-        .iter()
-        .zip(t.edges())
-        .map(|(&e, row)| {
-            let h = t.edge_halfedge(row);
-            let ends = [end(t.from_vertex(h)), end(t.to_vertex(h))];
-            keyed_ends(&mut table, e, ends)
-        })
-        .collect();
-    Ok(Setup {
-        heap: IndexedHeap::from_entries(table.target.len(), entries),
-        table,
-        faces_before: t.face_count(),
-    })
+    quadric
 }
 
 /// A triangle's area vector from the tables, as [`MeshRef::face_area_vector`] computes it.
@@ -444,20 +558,36 @@ fn keyed_ends(table: &mut VertexTable, e: EdgeId, mut ends: [(VertexId, Vec3); 2
     // Either order gives the same sum of quadrics; a fixed one makes the fallback's tie
     // between the two ends independent of how the caller reached the edge.
     ends.sort_unstable_by_key(|(v, _)| v.0.to_bits());
-    let c = placement(table, ends);
+    let [(a, pa), (b, pb)] = ends;
+    let c = placement(
+        table.quadric[a.slot()] + table.quadric[b.slot()],
+        pa,
+        pb,
+        || true,
+    );
     let row = table.row(e);
     table.target[row as usize] = c.position;
     (u64::from((c.cost.max(0.0) as f32).to_bits()) << 32) | u64::from(row)
 }
 
-fn placement(table: &VertexTable, [(a, pa), (b, pb)]: [(VertexId, Vec3); 2]) -> Placement {
-    let q = table.quadric[a.slot()] + table.quadric[b.slot()];
+/// Where two vertices at `pa` and `pb` whose quadrics sum to `q` should merge, and at what
+/// cost: the quadric's optimum, or where it is ill-conditioned the best of the two ends and
+/// the midpoint. Between two ends of equal error the one first in the vertices' fixed order
+/// wins (`a_first`: whether the vertex at `pa` comes first), so that the result does not
+/// depend on which end the caller names first; it is asked only then.
+fn placement(q: Quadric, pa: Vec3, pb: Vec3, a_first: impl FnOnce() -> bool) -> Placement {
     let (pa, pb) = (pa.as_dvec3(), pb.as_dvec3());
     let position = q.optimum().unwrap_or_else(|| {
-        [pa, pb, (pa + pb) / 2.0]
+        let (ea, eb) = (q.error(pa), q.error(pb));
+        let (first, second) = match ea.total_cmp(&eb) {
+            std::cmp::Ordering::Equal if !a_first() => (pb, pa),
+            _ => (pa, pb),
+        };
+        // The first of equals, in the order: first end, second end, midpoint.
+        [first, second, (pa + pb) / 2.0]
             .into_iter()
             .min_by(|x, y| q.error(*x).total_cmp(&q.error(*y)))
-            .unwrap_or(pa)
+            .unwrap_or(first)
     });
     Placement {
         cost: q.error(position).max(0.0),

@@ -219,7 +219,7 @@ pub fn plan_collapse(
     plan_collapse_in(MeshRef::new(world), e, options)
 }
 
-/// [`plan_collapse`], reading through `m` (which may carry cached [`crate::mesh::topology::Lookups`]).
+/// [`plan_collapse`], reading through `m`.
 ///
 /// # Refusals
 /// See the module doc.

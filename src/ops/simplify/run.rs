@@ -2,9 +2,11 @@
 //! [`super::simplify`] (quadrics, the queue of edges) kept in a value, so that the editor's
 //! step mode can show the next edge, make one collapse, and go on later.
 //!
-//! Running it to the end in one go and in steps makes the same collapses in the same order,
-//! because every step is the loop's own body: [`QemRun::peek`] pops and plans exactly what the
-//! next [`QemRun::collapse_next`] would, and keeps the popped entry for it.
+//! Each step collapses on the entities, where [`super::simplify`] collapses on flat tables;
+//! both start from the same quadrics and keys, order ties by entity and check and rewrite a
+//! collapse alike, so stepping to the end makes the same collapses in the same order (see
+//! `tests/qem_run.rs`). [`QemRun::peek`] pops and plans exactly what the next
+//! [`QemRun::collapse_next`] would, and keeps the popped entry for it.
 //!
 //! **Moving along the history in between.** A stepped run records its collapses in a
 //! [`ProgressiveMesh`](crate::ops::progressive::ProgressiveMesh), so the mesh can be moved back (vertex splits) and forward again (the
@@ -18,7 +20,7 @@ use bevy::math::Vec3;
 use bevy::prelude::{Entity, World};
 
 use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId};
-use crate::mesh::topology::{Lookups, MeshRef};
+use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
 use crate::ops::indexed_heap::{IndexedHeap, slot_of};
 use crate::ops::local::{
@@ -196,20 +198,6 @@ impl QemRun {
             world.despawn(e);
         }
         Some(result)
-    }
-
-    /// [`QemRun::collapse_next`] for the unstepped loop: reads through `lookups` and leaves
-    /// what it removed in `graveyard`, for one despawn at the end.
-    pub(super) fn collapse_next_deferred(
-        &mut self,
-        world: &mut World,
-        lookups: &Lookups,
-        graveyard: &mut Vec<Entity>,
-    ) -> Option<CollapseResult> {
-        let plan = self
-            .plan_next(MeshRef::with_lookups(world, lookups), &mut |_| {})?
-            .1;
-        Some(self.apply(world, plan, graveyard))
     }
 
     /// Takes edges off the queue until one may collapse, and plans it.
