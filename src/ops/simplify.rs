@@ -326,8 +326,10 @@ fn simplify_inner(
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
         (flat, (quadric, heap, target))
     });
-    let limit = params.max_normal_change_deg.to_radians().cos();
     let faces_before = t.face_count();
+    // The run needs only its own tables from here on.
+    drop(t);
+    let limit = params.max_normal_change_deg.to_radians().cos();
     let target_faces = params.target.faces(faces_before);
     let to_remove = faces_before.saturating_sub(target_faces).max(1);
     let (mut faces, mut collapses) = (faces_before, 0usize);
