@@ -23,6 +23,7 @@
 pub mod attributes;
 pub mod build;
 pub mod change;
+pub mod despawn;
 pub mod elements;
 pub mod groups;
 pub mod ids;

@@ -32,6 +32,7 @@
 use bevy::math::{DVec3, Vec3};
 use bevy::prelude::{Entity, World};
 
+use crate::mesh::despawn::Despawner;
 use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId, slots_for};
 use crate::mesh::tables::{Connectivity, FaceRow, MeshTables, VertexRow, extract};
 use crate::mesh::topology::{MeshRef, newell_area_vector};
@@ -420,15 +421,15 @@ fn ring_matches(m: &MeshRef<'_>, v: VertexId, ring: &[(EdgeId, VertexId, Vec3)])
 /// survivors lie beyond the part of the table the survivors will fill: at a quarter kept,
 /// about one removal in four, where going by entity index moved one on nearly every removal.
 /// Rows out of storage order (another mesh's rows in the same table) only cost more moves.
-fn despawn_dead(world: &mut World, rows: &[Entity], alive: &[bool]) {
+fn despawn_dead(despawner: &mut Despawner<'_>, rows: &[Entity], alive: &[bool]) {
     let (mut front, mut back) = (0, rows.len());
     while front < back {
         if !alive[back - 1] {
-            world.despawn(rows[back - 1]);
+            despawner.despawn(rows[back - 1]);
             back -= 1;
         } else if !alive[front] {
             // The survivor last in the table takes this row's place.
-            world.despawn(rows[front]);
+            despawner.despawn(rows[front]);
             front += 1;
             back -= 1;
         } else {

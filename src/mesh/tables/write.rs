@@ -25,6 +25,7 @@ use super::rows::{HalfedgeRow, NONE, RowCounts};
 use crate::mesh::attributes::{
     CornerUv, MeshAttributes, Seam, VertexColor, VertexNormal, remove_attributes, set_record,
 };
+use crate::mesh::despawn::Despawner;
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
 use crate::mesh::groups::{FaceGroup, GroupTable};
 use crate::mesh::ids::{EdgeId, FaceId, HalfedgeId, MeshId, VertexId};
@@ -216,8 +217,9 @@ pub(crate) fn release_rows(world: &mut World, rows: &mut MeshMembers, keep: RowC
             .drain(keep.faces.min(rows.faces.len())..)
             .map(|f| f.0),
     );
+    let mut despawner = Despawner::new(world);
     for e in gone {
-        world.despawn(e);
+        despawner.despawn(e);
     }
 }
 
@@ -391,8 +393,9 @@ where
     // Last row first: rows a bulk edit spawned sit at the end of their table in row order, so
     // each despawn then takes the table's last row, moving no other row into its place (and
     // the rows kept stay in order).
+    let mut despawner = Despawner::new(world);
     for &e in old[keep..].iter().rev() {
-        world.despawn(e);
+        despawner.despawn(e);
     }
     let mut ids = old;
     ids.truncate(keep);

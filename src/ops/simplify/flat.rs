@@ -2,25 +2,30 @@
 //!
 //! [`super::simplify`] reads the mesh into tables once ([`crate::mesh::tables::extract`]),
 //! makes every collapse here on `u32` rows, and writes the surviving rows back in one pass
-//! ([`FlatTriangles::write_back`]). A collapse here is [`crate::ops::local::collapse_edge`]'s,
-//! specialised to meshes of triangles (which a collapse keeps triangles): the same checks
-//! accept the same edges (boundary pinch, the link condition of Dey, Edelsbrunner et al. 1999,
-//! a wing's valence, a boundary loop's length, the merged vertex's valence, a face normal's
-//! turn), and the same links are rewritten, down to the halfedge each vertex and edge names
-//! afterwards, since an edge's halfedge decides which end the next collapse of it keeps. So a
-//! simplification here makes the collapses the stepped run on entities
-//! ([`super::QemRun`]) makes, in the same order, and leaves the same mesh; a test holds the
-//! two side by side.
+//! ([`FlatTriangles::write_back`]). A collapse here is the one the stepped run
+//! ([`super::QemRun`]) makes on entities (`plan_collapse` and its deferred apply in
+//! [`crate::ops::local::collapse`]), specialised to meshes of triangles (which a collapse keeps
+//! triangles), and like it carries no attributes: the same checks accept the same edges
+//! (boundary pinch, the link condition of Dey, Edelsbrunner et al. 1999, a wing's valence, a
+//! boundary loop's length, the merged vertex's valence, a face normal's turn), and the same
+//! links are rewritten, down to the halfedge each vertex and edge names afterwards, since an
+//! edge's halfedge decides which end the next collapse of it keeps. So a simplification here
+//! makes the stepped run's collapses in the same order and leaves the same mesh, element for
+//! element; a test holds the two side by side. Only the storage order differs: the stepped run
+//! despawns as it goes, this one at the end ([`super::despawn_dead`]), so a saved file lists
+//! the same vertices and faces in another order, and freed ids come back in another order.
 //!
-//! Why tables: a collapse reads two vertex rings, three or four halfedges a spoke, and on
-//! entities each read is a lookup from entity to table row and a component column each. Here
-//! a halfedge's six links are one 24-byte record, so a spoke is one cache line where it was
-//! several, and nothing is despawned until the end.
+//! Why tables: a collapse reads two vertex rings, three halfedge and position reads a spoke,
+//! and on entities each read is a lookup from entity to table row and a column each. Here a
+//! halfedge's six links are one 24-byte record, a face's three halfedges neighbours, so a
+//! spoke costs fewer and closer reads, and nothing is despawned until the end. A face's
+//! halfedge never changes (only a polygon side would move it), so faces are not written back.
 
 use bevy::math::Vec3;
 use bevy::prelude::{Entity, World};
 
-use crate::mesh::elements::{Edge, Face, Halfedge, Position, Vertex};
+use crate::mesh::despawn::Despawner;
+use crate::mesh::elements::{Edge, Halfedge, Position, Vertex};
 use crate::mesh::ids::{EdgeId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::tables::{Connectivity, NONE};
@@ -45,7 +50,6 @@ pub(super) struct FlatTriangles {
     position: Vec<Vec3>,
     vertex_halfedge: Vec<u32>,
     edge_halfedge: Vec<u32>,
-    face_halfedge: Vec<u32>,
     /// Rows removed so far, by kind.
     gone: Gone,
     /// The two rings of the last plan, kept for its apply (and reused, not reallocated).
@@ -183,7 +187,6 @@ impl FlatTriangles {
             position: t.positions.clone(),
             vertex_halfedge: t.vertex_halfedge.clone(),
             edge_halfedge,
-            face_halfedge: t.face_halfedge.clone(),
             gone: Gone::default(),
             rings: [Vec::with_capacity(16), Vec::with_capacity(16)],
         }
@@ -282,7 +285,7 @@ impl FlatTriangles {
 
     /// The link condition for the edge from `a` (rings in `self.rings`): no vertex but the
     /// wings `opposite` is a neighbour of both ends, and the triangles a c d and b c d are not
-    /// both there (a tetrahedron, or a fold the collapse would flatten into one face twice).
+    /// both there (on a manifold mesh, a tetrahedron).
     fn link_condition(&self, a: u32, opposite: [Option<u32>; 2]) -> bool {
         let [ra, rb] = &self.rings;
         for n in rb.iter().map(|s| s.links.to) {
@@ -365,6 +368,10 @@ impl FlatTriangles {
     /// merged vertex has afterwards to `ring`, with its other end and that end's position.
     pub fn apply(&mut self, p: Plan, mut ring: impl FnMut(u32, u32, Vec3)) -> Collapsed {
         let [ra, rb] = &self.rings;
+        debug_assert!(
+            ra[0].links.edge == p.edge && ra[0].links.to == p.b && rb[0].links.to == p.a,
+            "a plan is applied right after it is made"
+        );
         let removes = |h: u32| p.sides.iter().any(|s| s.removes(h));
         let mut removed_edges = [Some(p.edge), None, None];
         self.gone.edges.push(p.edge);
@@ -519,35 +526,15 @@ impl FlatTriangles {
                 x.halfedge = h(self.edge_halfedge[n as usize]);
             }
         }
-        let mut q = world.query::<&mut Face>();
-        for (row, &f) in members.faces.iter().enumerate() {
-            if face_alive[row]
-                && let Ok(mut x) = q.get_mut(world, f.0)
-            {
-                x.halfedge = h(self.face_halfedge[row]);
-            }
-        }
-        let entities = |ids: &mut dyn Iterator<Item = Entity>| ids.collect::<Vec<_>>();
-        super::despawn_dead(
-            world,
-            &entities(&mut members.vertices.iter().map(|v| v.0)),
-            &vertex_alive,
-        );
-        super::despawn_dead(
-            world,
-            &entities(&mut members.halfedges.iter().map(|h| h.0)),
-            &halfedge_alive,
-        );
-        super::despawn_dead(
-            world,
-            &entities(&mut members.edges.iter().map(|e| e.0)),
-            &edge_alive,
-        );
-        super::despawn_dead(
-            world,
-            &entities(&mut members.faces.iter().map(|f| f.0)),
-            &face_alive,
-        );
+        let mut despawner = Despawner::new(world);
+        let vertices: Vec<Entity> = members.vertices.iter().map(|v| v.0).collect();
+        super::despawn_dead(&mut despawner, &vertices, &vertex_alive);
+        let halfedges: Vec<Entity> = members.halfedges.iter().map(|h| h.0).collect();
+        super::despawn_dead(&mut despawner, &halfedges, &halfedge_alive);
+        let edges: Vec<Entity> = members.edges.iter().map(|e| e.0).collect();
+        super::despawn_dead(&mut despawner, &edges, &edge_alive);
+        let faces: Vec<Entity> = members.faces.iter().map(|f| f.0).collect();
+        super::despawn_dead(&mut despawner, &faces, &face_alive);
         members
             .vertices
             .iter()

@@ -191,8 +191,7 @@ impl QemRun {
         let mut gone = Vec::new();
         let plan = self.plan_next(MeshRef::new(world), &mut refused)?.1;
         let result = self.apply(world, plan, &mut gone);
-        // A handful of elements: highest index first, as `despawn_removed` orders a whole
-        // run's, without its table as long as the world's entities.
+        // A handful of elements, highest index first.
         gone.sort_unstable_by_key(|e| std::cmp::Reverse(e.index()));
         for e in gone {
             world.despawn(e);
