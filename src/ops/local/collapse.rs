@@ -321,27 +321,68 @@ fn side(ring: &[Spoke]) -> Side {
     }
 }
 
-/// What a vertex's spokes show of one neighbour `o`.
-struct Sighting {
-    /// Whether the edge to `o` lacks a face on one side (is on the boundary).
-    open: bool,
-    /// The third corners of the triangles on either side of that edge: other neighbours of `o`.
-    beyond: [Option<VertexId>; 2],
+/// What the checks read of one spoke of a ring: its tip, whether a face lies left of it, and
+/// whether that face is a triangle. Both collapses (on entities here, on flat tables in the
+/// simplifier) read their spokes into this for [`wing_check`].
+#[derive(Clone, Copy)]
+pub(crate) struct SpokeView<V> {
+    pub tip: V,
+    pub has_face: bool,
+    pub triangle: bool,
 }
 
-/// What `ring` (a vertex's spokes) shows of its neighbour `o`, or `None` if `o` is not one.
-/// The faces on the two sides of spoke `i` are the ones left of spokes `i` and `i − 1`.
-fn seen_from(ring: &[Spoke], o: VertexId) -> Option<Sighting> {
-    let i = ring.iter().position(|s| s.links.vertex == o)?;
-    let n = ring.len();
-    let (before, at, after) = (&ring[(i + n - 1) % n], &ring[i], &ring[(i + 1) % n]);
-    Some(Sighting {
-        open: at.links.face.is_none() || before.links.face.is_none(),
-        beyond: [
-            at.triangle.then_some(after.links.vertex),
-            before.triangle.then_some(before.links.vertex),
-        ],
-    })
+/// What a triangle beside a collapsing edge a b says of its wing (its third corner).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Wing {
+    /// Both the wing's edges to a and to b lie on the boundary: the merged edge would have
+    /// no face (a lone triangle).
+    Dangling,
+    /// A corner across each of the wing's two edges, other than a and b and distinct: with
+    /// a and b, four neighbours, which clear any valence minimum.
+    Enough,
+    /// Neither: the wing's valence must be counted.
+    Count,
+}
+
+/// What the rings of a (`around_a`) and b (`around_b`), counter-clockwise, show of the wing
+/// `w` of a triangle on the edge a b, each spoke read through `view`. The faces on the two
+/// sides of spoke `i` are the ones left of spokes `i` and `i − 1`; a triangle's third corner
+/// beyond the edge to `w` is the tip of the spoke after or before it.
+pub(crate) fn wing_check<S, V: Copy + PartialEq + std::fmt::Display>(
+    (a, around_a): (V, &[S]),
+    (b, around_b): (V, &[S]),
+    w: V,
+    view: impl Fn(&S) -> SpokeView<V>,
+) -> Wing {
+    let sighting = |ring: &[S]| {
+        let i = ring.iter().position(|s| view(s).tip == w)?;
+        let n = ring.len();
+        let (before, at, after) = (
+            view(&ring[(i + n - 1) % n]),
+            view(&ring[i]),
+            view(&ring[(i + 1) % n]),
+        );
+        let open = !at.has_face || !before.has_face;
+        let beyond = [
+            at.triangle.then_some(after.tip),
+            before.triangle.then_some(before.tip),
+        ];
+        Some((open, beyond))
+    };
+    let (Some((open_a, beyond_a)), Some((open_b, beyond_b))) =
+        (sighting(around_a), sighting(around_b))
+    else {
+        unreachable!("{w} is a corner of a triangle on the edge {a} {b}");
+    };
+    if open_a && open_b {
+        return Wing::Dangling;
+    }
+    let across =
+        |beyond: [Option<V>; 2], other: V| beyond.into_iter().flatten().find(|&n| n != other);
+    match (across(beyond_a, b), across(beyond_b, a)) {
+        (Some(p), Some(q)) if p != q => Wing::Enough,
+        _ => Wing::Count,
+    }
 }
 
 /// [`plan_collapse`] for the edge of `h`, keeping `h`'s start and removing its tip.
@@ -478,27 +519,21 @@ fn check_sides(
         match *s {
             Side::Triangle { face, opposite, .. } => {
                 // The two rings already show both sides of the edges to the wing.
-                let (Some(from_a), Some(from_b)) =
-                    (seen_from(around_a, opposite), seen_from(around_b, opposite))
-                else {
-                    unreachable!("{opposite} is a corner of a triangle on the edge {a} {b}");
+                let view = |s: &Spoke| SpokeView {
+                    tip: s.links.vertex,
+                    has_face: s.links.face.is_some(),
+                    triangle: s.triangle,
                 };
-                if from_a.open && from_b.open {
-                    return Err(Refusal::DanglingEdge(ElementId::Face(face)));
-                }
-                // a, b and a distinct corner across each of the wing's two edges are four
-                // neighbours, which clear any minimum; else count them.
-                let across = |seen: &Sighting, other: VertexId| {
-                    seen.beyond.into_iter().flatten().find(|&n| n != other)
-                };
-                if !matches!(
-                    (across(&from_a, b), across(&from_b, a)),
-                    (Some(p), Some(q)) if p != q
-                ) {
-                    let minimum = if m.is_boundary_vertex(opposite) { 2 } else { 3 };
-                    // Only whether the valence exceeds the minimum matters: stop counting past it.
-                    if m.vertex_outgoing(opposite).take(minimum + 1).count() <= minimum {
-                        return Err(Refusal::ValenceTooLow(vx(opposite), minimum));
+                match wing_check((a, around_a), (b, around_b), opposite, view) {
+                    Wing::Dangling => return Err(Refusal::DanglingEdge(ElementId::Face(face))),
+                    Wing::Enough => {}
+                    Wing::Count => {
+                        let minimum = if m.is_boundary_vertex(opposite) { 2 } else { 3 };
+                        // Only whether the valence exceeds the minimum matters: stop counting
+                        // past it.
+                        if m.vertex_outgoing(opposite).take(minimum + 1).count() <= minimum {
+                            return Err(Refusal::ValenceTooLow(vx(opposite), minimum));
+                        }
                     }
                 }
             }

@@ -49,6 +49,7 @@ pub use collapse::{
     CollapseOptions, CollapsePlan, CollapseRecord, CollapseResult, apply_collapse, collapse_edge,
     plan_collapse, plan_collapse_halfedge,
 };
+pub(crate) use collapse::{SpokeView, Wing, wing_check};
 pub(crate) use collapse::{apply_collapse_deferred, plan_collapse_in};
 pub use collapse_face::{CollapseFacePlan, apply_collapse_face, collapse_face, plan_collapse_face};
 pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};

@@ -30,6 +30,7 @@ use crate::mesh::ids::{EdgeId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::tables::{Connectivity, NONE};
 use crate::mesh::topology::{MAX_LOOP, newell_area_vector};
+use crate::ops::local::{SpokeView, Wing, wing_check};
 use crate::ops::progressive::SlotRecord;
 
 /// One halfedge's links, as rows ([`NONE`]: no face).
@@ -313,20 +314,15 @@ impl FlatTriangles {
         let [ra, rb] = &self.rings;
         sides.iter().all(|side| match *side {
             Side::Triangle { opposite, .. } => {
-                let (Some(from_a), Some(from_b)) =
-                    (seen_from(ra, opposite), seen_from(rb, opposite))
-                else {
-                    unreachable!("the wing {opposite} is a neighbour of both ends");
+                let view = |s: &Spoke| SpokeView {
+                    tip: s.links.to,
+                    has_face: s.has_face(),
+                    triangle: s.has_face(),
                 };
-                if from_a.open && from_b.open {
-                    return false;
-                }
-                let across = |seen: &Sighting, other: u32| {
-                    seen.beyond.into_iter().flatten().find(|&n| n != other)
-                };
-                if matches!((across(&from_a, b), across(&from_b, a)), (Some(p), Some(q)) if p != q)
-                {
-                    return true;
+                match wing_check((a, ra), (b, rb), opposite, view) {
+                    Wing::Dangling => return false,
+                    Wing::Enough => return true,
+                    Wing::Count => {}
                 }
                 let start = self.vertex_halfedge[opposite as usize];
                 let minimum = if self.he[start as usize].face == NONE {
@@ -578,29 +574,6 @@ fn fold_triangle(
         vertex_halfedge[opposite as usize] = on;
     }
     drop
-}
-
-/// What a ring shows of one neighbour `o`.
-struct Sighting {
-    /// Whether the edge to `o` lacks a face on one side.
-    open: bool,
-    /// The third corners of the triangles on either side of that edge.
-    beyond: [Option<u32>; 2],
-}
-
-/// What `ring` shows of its neighbour `o`, or `None` if `o` is not one. The faces on the two
-/// sides of spoke `i` are the ones left of spokes `i` and `i − 1`.
-fn seen_from(ring: &[Spoke], o: u32) -> Option<Sighting> {
-    let i = ring.iter().position(|s| s.links.to == o)?;
-    let n = ring.len();
-    let (before, at, after) = (&ring[(i + n - 1) % n], &ring[i], &ring[(i + 1) % n]);
-    Some(Sighting {
-        open: !at.has_face() || !before.has_face(),
-        beyond: [
-            at.has_face().then_some(after.links.to),
-            before.has_face().then_some(before.links.to),
-        ],
-    })
 }
 
 impl Plan {
