@@ -12,7 +12,6 @@
 //! position, so coarsen and refine can be interleaved freely.
 
 use bevy::ecs::entity::EntityHashMap;
-use bevy::math::Vec3;
 use bevy::prelude::World;
 
 use crate::mesh::change::remapped;
@@ -28,6 +27,7 @@ use super::local::{
     CollapseOptions, CollapseRecord, CollapseResult, apply_collapse, plan_collapse_halfedge,
     vertex_split,
 };
+pub use super::simplify::SlotRecord;
 use super::simplify::{SimplifyParams, SimplifySummary, simplify_recorded};
 use super::table_split::{SplitMismatch, TableSplit, split_in_tables};
 
@@ -65,27 +65,6 @@ pub struct LevelMove {
     /// have changed, so a renderer must redraw all of it. Otherwise only what the watched
     /// vertices touch changed.
     pub rewritten: bool,
-}
-
-/// One recorded collapse, by slot.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SlotRecord {
-    /// The surviving vertex.
-    pub kept: u32,
-    /// The removed vertex.
-    pub removed: u32,
-    /// Where the surviving vertex went.
-    pub merged_position: Vec3,
-    /// Positions before the collapse.
-    pub kept_position: Vec3,
-    /// The removed vertex's position before the collapse.
-    pub removed_position: Vec3,
-    /// Wing on the kept → removed side.
-    pub left: Option<u32>,
-    /// Wing on the other side.
-    pub right: Option<u32>,
-    /// Faces removed by the collapse (2 inside, 1 on the boundary).
-    pub faces: usize,
 }
 
 /// A mesh's simplification history and where along it the mesh is now.

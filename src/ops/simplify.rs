@@ -39,7 +39,6 @@ use crate::mesh::topology::{MeshRef, newell_area_vector};
 
 use super::Refusal;
 use super::indexed_heap::{IndexedHeap, slot_of};
-use super::progressive::SlotRecord;
 
 mod flat;
 mod run;
@@ -123,6 +122,28 @@ pub struct SimplifySummary {
     pub collapses: usize,
     /// Whether the target was reached (otherwise no legal collapse was left).
     pub reached_target: bool,
+}
+
+/// One recorded collapse, by slot: a vertex's place in a history
+/// ([`crate::ops::progressive::ProgressiveMesh`]), which keeps these to split the collapses back.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SlotRecord {
+    /// The surviving vertex.
+    pub kept: u32,
+    /// The removed vertex.
+    pub removed: u32,
+    /// Where the surviving vertex went.
+    pub merged_position: Vec3,
+    /// Positions before the collapse.
+    pub kept_position: Vec3,
+    /// The removed vertex's position before the collapse.
+    pub removed_position: Vec3,
+    /// Wing on the kept → removed side.
+    pub left: Option<u32>,
+    /// Wing on the other side.
+    pub right: Option<u32>,
+    /// Faces removed by the collapse (2 inside, 1 on the boundary).
+    pub faces: usize,
 }
 
 /// A symmetric 4×4 quadric, stored as its upper triangle.

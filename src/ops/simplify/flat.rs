@@ -24,6 +24,7 @@
 use bevy::math::Vec3;
 use bevy::prelude::{Entity, World};
 
+use super::SlotRecord;
 use crate::mesh::despawn::Despawner;
 use crate::mesh::elements::{Edge, Halfedge, Position, Vertex};
 use crate::mesh::ids::{EdgeId, VertexId};
@@ -31,7 +32,6 @@ use crate::mesh::members::MeshMembers;
 use crate::mesh::tables::{Connectivity, NONE};
 use crate::mesh::topology::{MAX_LOOP, newell_area_vector};
 use crate::ops::local::{SpokeView, Wing, wing_check};
-use crate::ops::progressive::SlotRecord;
 
 /// One halfedge's links, as rows ([`NONE`]: no face).
 #[derive(Clone, Copy, Debug, PartialEq)]
