@@ -222,6 +222,11 @@ impl std::ops::Add for Quadric {
 /// equal costs go by entity index. Lowest first.
 type Key = u64;
 
+/// The heap key of an edge in `slot` whose collapse costs `cost`.
+fn heap_key(cost: f64, slot: u32) -> Key {
+    (u64::from((cost.max(0.0) as f32).to_bits()) << 32) | u64::from(slot)
+}
+
 /// Where an edge should collapse to and what it costs.
 struct Placement {
     cost: f64,
@@ -314,14 +319,18 @@ fn simplify_inner(
         )));
     }
     // Edges are numbered by heap slot in the flat tables, which are laid out meanwhile.
-    let (slot_of_row, slots) = edge_slots(&members.edges);
+    let (base, slots) = edge_slot_range(&members.edges);
+    let slot_of_row: Vec<u32> = members
+        .edges
+        .iter()
+        .map(|e| e.0.index_u32() - base)
+        .collect();
     let vertex_order = |v: u32| members.vertices[v as usize].0.to_bits();
     let keyed = |quadric: &[Quadric], slot: u32, [(a, pa), (b, pb)]: [(u32, Vec3); 2]| {
         let c = placement(quadric[a as usize] + quadric[b as usize], pa, pb, || {
             vertex_order(a) < vertex_order(b)
         });
-        let key = (u64::from((c.cost.max(0.0) as f32).to_bits()) << 32) | u64::from(slot);
-        (key, c.position)
+        (heap_key(c.cost, slot), c.position)
     };
     let (mut flat, (mut quadric, mut heap, mut target)) = std::thread::scope(|scope| {
         let flat = scope.spawn(|| flat::FlatTriangles::new(&t, &slot_of_row, slots));
@@ -394,16 +403,13 @@ fn simplify_inner(
     Ok((summary, slots))
 }
 
-/// Each edge's heap slot (by edge row) and how many slots there are: its entity index less
-/// the lowest edge's, so that equal costs pop in entity order, as in the run on entities
-/// (see [`VertexTable`]).
-fn edge_slots(edges: &[EdgeId]) -> (Vec<u32>, usize) {
+/// The heap slots of `edges`: the lowest edge's entity index, which is slot 0, and how many
+/// slots reach the highest. An edge's slot is its entity index less the lowest, so that equal
+/// costs pop in entity order in both runs.
+fn edge_slot_range(edges: &[EdgeId]) -> (u32, usize) {
     let base = edges.iter().map(|e| e.0.index_u32()).min().unwrap_or(0);
     let slots = slots_for(edges.iter().map(|e| e.0)).saturating_sub(base as usize);
-    (
-        edges.iter().map(|e| e.0.index_u32() - base).collect(),
-        slots,
-    )
+    (base, slots)
 }
 
 /// Whether `ring` lists exactly the edges around `v`, with their other ends where they are.
@@ -442,15 +448,20 @@ fn ring_matches(m: &MeshRef<'_>, v: VertexId, ring: &[(EdgeId, VertexId, Vec3)])
 /// survivors lie beyond the part of the table the survivors will fill: at a quarter kept,
 /// about one removal in four, where going by entity index moved one on nearly every removal.
 /// Rows out of storage order (another mesh's rows in the same table) only cost more moves.
-fn despawn_dead(despawner: &mut Despawner<'_>, rows: &[Entity], alive: &[bool]) {
+fn despawn_dead<T: Copy>(
+    despawner: &mut Despawner<'_>,
+    rows: &[T],
+    entity: impl Fn(T) -> Entity,
+    alive: &[bool],
+) {
     let (mut front, mut back) = (0, rows.len());
     while front < back {
         if !alive[back - 1] {
-            despawner.despawn(rows[back - 1]);
+            despawner.despawn(entity(rows[back - 1]));
             back -= 1;
         } else if !alive[front] {
             // The survivor last in the table takes this row's place.
-            despawner.despawn(rows[front]);
+            despawner.despawn(entity(rows[front]));
             front += 1;
             back -= 1;
         } else {
@@ -479,13 +490,7 @@ fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, 
             members.faces[f.index()],
         )));
     }
-    let edge_base = members
-        .edges
-        .iter()
-        .map(|e| e.0.index_u32())
-        .min()
-        .unwrap_or(0);
-    let edge_rows = slots_for(members.edges.iter().map(|e| e.0)).saturating_sub(edge_base as usize);
+    let (edge_base, edge_rows) = edge_slot_range(&members.edges);
     let mut table = VertexTable {
         quadric: vec![Quadric::default(); slots_for(members.vertices.iter().map(|v| v.0))],
         edge_base,
@@ -578,20 +583,20 @@ fn face_area_vector(t: &Connectivity, f: FaceRow) -> Vec3 {
 
 /// `e`'s heap key at its current cost, for its ends and their positions
 /// the caller has read, remembering where it would collapse to.
-fn keyed_ends(table: &mut VertexTable, e: EdgeId, mut ends: [(VertexId, Vec3); 2]) -> Key {
-    // Either order gives the same sum of quadrics; a fixed one makes the fallback's tie
-    // between the two ends independent of how the caller reached the edge.
-    ends.sort_unstable_by_key(|(v, _)| v.0.to_bits());
-    let [(a, pa), (b, pb)] = ends;
+fn keyed_ends(
+    table: &mut VertexTable,
+    e: EdgeId,
+    [(a, pa), (b, pb)]: [(VertexId, Vec3); 2],
+) -> Key {
     let c = placement(
         table.quadric[a.slot()] + table.quadric[b.slot()],
         pa,
         pb,
-        || true,
+        || a.0.to_bits() < b.0.to_bits(),
     );
     let row = table.row(e);
     table.target[row as usize] = c.position;
-    (u64::from((c.cost.max(0.0) as f32).to_bits()) << 32) | u64::from(row)
+    heap_key(c.cost, row)
 }
 
 /// Where two vertices at `pa` and `pb` whose quadrics sum to `q` should merge, and at what

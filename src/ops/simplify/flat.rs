@@ -523,14 +523,10 @@ impl FlatTriangles {
             }
         }
         let mut despawner = Despawner::new(world);
-        let vertices: Vec<Entity> = members.vertices.iter().map(|v| v.0).collect();
-        super::despawn_dead(&mut despawner, &vertices, &vertex_alive);
-        let halfedges: Vec<Entity> = members.halfedges.iter().map(|h| h.0).collect();
-        super::despawn_dead(&mut despawner, &halfedges, &halfedge_alive);
-        let edges: Vec<Entity> = members.edges.iter().map(|e| e.0).collect();
-        super::despawn_dead(&mut despawner, &edges, &edge_alive);
-        let faces: Vec<Entity> = members.faces.iter().map(|f| f.0).collect();
-        super::despawn_dead(&mut despawner, &faces, &face_alive);
+        super::despawn_dead(&mut despawner, &members.vertices, |v| v.0, &vertex_alive);
+        super::despawn_dead(&mut despawner, &members.halfedges, |h| h.0, &halfedge_alive);
+        super::despawn_dead(&mut despawner, &members.edges, |e| e.0, &edge_alive);
+        super::despawn_dead(&mut despawner, &members.faces, |f| f.0, &face_alive);
         members
             .vertices
             .iter()

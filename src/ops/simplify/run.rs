@@ -69,10 +69,10 @@ pub struct QemRun {
     table: VertexTable,
     heap: IndexedHeap,
     max_normal_change_deg: f32,
-    pub(super) faces_before: usize,
-    pub(super) faces: usize,
-    pub(super) target_faces: usize,
-    pub(super) collapses: usize,
+    faces_before: usize,
+    faces: usize,
+    target_faces: usize,
+    collapses: usize,
     /// The entry [`QemRun::peek`] took off the queue for the next collapse.
     next: Option<Key>,
     /// Set between [`QemRun::detach`] and [`QemRun::reattach`].
