@@ -30,6 +30,8 @@
 //! texcoord` when the corner UVs differ at some vertex (a seam). A soup without attributes gets
 //! exactly the plain `x y z` header.
 
+mod fixed_rows;
+
 use bevy::math::{Vec2, Vec3};
 use std::fmt::Write as _;
 
@@ -88,6 +90,28 @@ impl Scalar {
 
     fn is_integer(self) -> bool {
         !matches!(self, Scalar::F32 | Scalar::F64)
+    }
+
+    /// The value whose bytes start `b` (which holds at least [`Scalar::size`] of them).
+    #[inline]
+    fn decode(self, b: &[u8], big_endian: bool) -> f64 {
+        fn take<const N: usize>(b: &[u8], big_endian: bool) -> [u8; N] {
+            let mut a: [u8; N] = b[..N].try_into().expect("N bytes");
+            if big_endian {
+                a.reverse();
+            }
+            a
+        }
+        match self {
+            Scalar::I8 => f64::from(i8::from_le_bytes([b[0]])),
+            Scalar::U8 => f64::from(b[0]),
+            Scalar::I16 => f64::from(i16::from_le_bytes(take(b, big_endian))),
+            Scalar::U16 => f64::from(u16::from_le_bytes(take(b, big_endian))),
+            Scalar::I32 => f64::from(i32::from_le_bytes(take(b, big_endian))),
+            Scalar::U32 => f64::from(u32::from_le_bytes(take(b, big_endian))),
+            Scalar::F32 => f64::from(f32::from_le_bytes(take(b, big_endian))),
+            Scalar::F64 => f64::from_le_bytes(take(b, big_endian)),
+        }
     }
 }
 
@@ -200,22 +224,7 @@ impl Values for Binary<'_> {
             ParseError::byte(self.at, format!("file ends while reading `{what}`"))
         })?;
         self.at += n;
-        let mut b = [0u8; 8];
-        b[..n].copy_from_slice(bytes);
-        if self.big_endian {
-            b[..n].reverse();
-        }
-        let [b0, b1, b2, b3, ..] = b;
-        Ok(match ty {
-            Scalar::I8 => f64::from(i8::from_le_bytes([b0])),
-            Scalar::U8 => f64::from(b0),
-            Scalar::I16 => f64::from(i16::from_le_bytes([b0, b1])),
-            Scalar::U16 => f64::from(u16::from_le_bytes([b0, b1])),
-            Scalar::I32 => f64::from(i32::from_le_bytes([b0, b1, b2, b3])),
-            Scalar::U32 => f64::from(u32::from_le_bytes([b0, b1, b2, b3])),
-            Scalar::F32 => f64::from(f32::from_le_bytes([b0, b1, b2, b3])),
-            Scalar::F64 => f64::from_le_bytes(b),
-        })
+        Ok(ty.decode(bytes, self.big_endian))
     }
 }
 
@@ -238,12 +247,18 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
             body_values(&elements, &mut values, bytes.len())
         }
         PlyEncoding::BinaryLittleEndian | PlyEncoding::BinaryBigEndian => {
-            let mut values = Binary {
-                data: bytes,
-                at: body,
-                big_endian: encoding == PlyEncoding::BinaryBigEndian,
-            };
-            body_values(&elements, &mut values, bytes.len())
+            let big_endian = encoding == PlyEncoding::BinaryBigEndian;
+            match fixed_rows::read(bytes, body, big_endian, &elements) {
+                Some(soup) => Ok(soup),
+                None => {
+                    let mut values = Binary {
+                        data: bytes,
+                        at: body,
+                        big_endian,
+                    };
+                    body_values(&elements, &mut values, bytes.len())
+                }
+            }
         }
     }?;
     soup.notes.extend(skipped_note(&elements));
@@ -415,9 +430,9 @@ fn channel(v: f64, ty: Scalar) -> u8 {
 ///
 /// Every value read consumes at least one byte or token, so a huge count in the header makes
 /// the reader run out of input, not memory (an element without properties is not looped over).
-fn body_values(
+fn body_values<V: Values>(
     elements: &[Element],
-    values: &mut dyn Values,
+    values: &mut V,
     len: usize,
 ) -> Result<PolygonSoup, ParseError> {
     let mut soup = PolygonSoup::default();
@@ -487,13 +502,17 @@ fn body_values(
         ));
     }
     // Per-face UVs win; per-vertex ones give every corner of a vertex the same UV.
-    soup.corner_uvs = face_uv.or_else(|| {
-        vertex_uv.map(|uv| {
-            let at = |&i: &u32| uv.get(i as usize).copied().unwrap_or(Vec2::ZERO);
-            soup.indices.iter().map(at).collect()
-        })
-    });
+    soup.corner_uvs = face_uv.or_else(|| corner_uvs_of_vertices(&soup, vertex_uv));
     Ok(soup)
+}
+
+/// Per-vertex UVs as corner UVs: each corner takes its vertex's ((0, 0) for an index out of
+/// range, a face the builder drops).
+fn corner_uvs_of_vertices(soup: &PolygonSoup, vertex_uv: Option<Vec<Vec2>>) -> Option<Vec<Vec2>> {
+    vertex_uv.map(|uv| {
+        let at = |&i: &u32| uv.get(i as usize).copied().unwrap_or(Vec2::ZERO);
+        soup.indices.iter().map(at).collect()
+    })
 }
 
 /// Makes room for a `vertex` element's rows in the soup's columns, and starts the columns its
@@ -586,9 +605,9 @@ struct Lists {
 impl Lists {
     /// Reads one list property (its count and item types in `types`): corners become a face
     /// (strips their triangles), `texcoord` values are kept for the row, others are read past.
-    fn read(
+    fn read<V: Values>(
         &mut self,
-        values: &mut dyn Values,
+        values: &mut V,
         name: &str,
         (count, item): (Scalar, Scalar),
         role: Role,

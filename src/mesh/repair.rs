@@ -260,12 +260,6 @@ fn corner_faces(starts: &[u32]) -> Vec<u32> {
     out
 }
 
-#[inline]
-fn undirected_key(a: u32, b: u32) -> u64 {
-    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
-    (u64::from(lo) << 32) | u64::from(hi)
-}
-
 /// Groups corners by undirected edge, detaches every face that would be the third on an edge
 /// (file order decides), and returns each corner's partner on a two-face edge.
 fn pair_corners_keeping_manifold_edges(
@@ -276,41 +270,46 @@ fn pair_corners_keeping_manifold_edges(
 ) -> Vec<u32> {
     let corners = faces.indices.len();
     // Every corner's undirected edge, ordered by (edge, corner): a counting sort by the edge's
-    // lower vertex, then each vertex's few edges sorted (a global sort took most of the repair
-    // of a clean mesh).
-    let mut bucket_start = vec![0u32; vertex_count + 1];
-    let mut keys = Vec::with_capacity(corners);
+    // lower vertex, then each vertex's few edges sorted by their other end (a global sort
+    // took most of the repair of a clean mesh). An entry is the other end and the corner; the
+    // lower end is its bucket's vertex.
+    let ends = |f: usize, c: usize| {
+        let (a, b) = (faces.indices[c], faces.indices[faces.next_corner(c, f)]);
+        if a < b { (a, b) } else { (b, a) }
+    };
+    let mut bucket_end = vec![0u32; vertex_count + 1];
     for f in 0..faces.count() {
         for c in faces.corners(f) {
-            let key = undirected_key(faces.indices[c], faces.indices[faces.next_corner(c, f)]);
-            bucket_start[(key >> 32) as usize + 1] += 1;
-            keys.push(key);
+            bucket_end[ends(f, c).0 as usize + 1] += 1;
         }
     }
     for v in 0..vertex_count {
-        bucket_start[v + 1] += bucket_start[v];
+        bucket_end[v + 1] += bucket_end[v];
     }
-    let mut entries: Vec<(u64, u32)> = vec![(0, 0); corners];
-    for (c, &key) in keys.iter().enumerate() {
-        let at = &mut bucket_start[(key >> 32) as usize];
-        entries[*at as usize] = (key, c as u32);
-        *at += 1;
+    let mut entries: Vec<(u32, u32)> = vec![(0, 0); corners];
+    for f in 0..faces.count() {
+        for c in faces.corners(f) {
+            let (lo, hi) = ends(f, c);
+            let at = &mut bucket_end[lo as usize];
+            entries[*at as usize] = (hi, c as u32);
+            *at += 1;
+        }
     }
-    // Each bucket now ends where the next began.
-    let mut begin = 0;
-    for &end in &bucket_start[..vertex_count] {
-        entries[begin..end as usize].sort_unstable();
-        begin = end as usize;
-    }
-
-    // Group id of every corner, and each group's corners in file order.
+    // Each bucket now ends where the next began. Group id of every corner, and each group's
+    // corners in file order.
     let mut corner_group = vec![0u32; corners];
     let mut group_start = Vec::with_capacity(corners / 2 + 1);
-    for (i, &(key, c)) in entries.iter().enumerate() {
-        if i == 0 || entries[i - 1].0 != key {
-            group_start.push(i as u32);
+    let mut begin = 0;
+    for &end in &bucket_end[..vertex_count] {
+        let bucket = &mut entries[begin..end as usize];
+        bucket.sort_unstable();
+        for (i, &(hi, c)) in bucket.iter().enumerate() {
+            if i == 0 || bucket[i - 1].0 != hi {
+                group_start.push((begin + i) as u32);
+            }
+            corner_group[c as usize] = (group_start.len() - 1) as u32;
         }
-        corner_group[c as usize] = (group_start.len() - 1) as u32;
+        begin = end as usize;
     }
     group_start.push(entries.len() as u32);
 
