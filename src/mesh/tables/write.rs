@@ -459,7 +459,9 @@ mod tests {
     /// Writes each row's place in `rows` into its position's x, and reads every entity's back.
     fn written(world: &mut World, rows: &[VertexId]) -> Vec<f32> {
         for_each_row::<&mut Position, _>(world, rows, |i, mut p| p.0.x = i as f32);
-        rows.iter().map(|v| world.get::<Position>(v.0).unwrap().0.x).collect()
+        rows.iter()
+            .map(|v| world.get::<Position>(v.0).unwrap().0.x)
+            .collect()
     }
 
     #[test]
