@@ -5,8 +5,8 @@
 //! whose one list is `vertex_indices`: every vertex row has the same byte layout, and a face
 //! row is a count and that many integer indices. [`read`] decodes such a body with the layout
 //! worked out once per element (each property's offset and type), and copies the indices of a
-//! little-endian `int`/`uint` list straight into the soup. On the 1.1 M-face scan this is 4–5×
-//! faster than the general reader.
+//! little-endian `int`/`uint` list straight into the soup. On the 1.1 M-face scan the parse
+//! took about 40 ms, against 130–150 ms through the general reader.
 //!
 //! It takes nothing on trust: any body it was not made for, and any body the general reader
 //! would reject (truncated, a negative count or index, a list elsewhere than a face's
