@@ -111,8 +111,7 @@ pub(super) fn read(
             }
             // Rows of other elements hold nothing the soup keeps.
             None => at += fixed_rows(bytes, at, element.count, layout.before_size)?.len(),
-            Some((count, item)) => {
-                let types = (count, item);
+            Some(types) => {
                 at = read_faces(
                     bytes,
                     at,
