@@ -9,6 +9,8 @@ fresh process (peak memory is its maximum resident set, by `/usr/bin/time`), eac
   `save_current_mesh` (and pymeshlab's process with only the import, its floor, apart);
 - load: `pappus info --json`'s `load_ms` (read + build the halfedge entities; `read_ms` the
   parse) against `load_new_mesh`;
+- the bunny's OBJ load, the same way (`pappus info --json`'s `load_ms` against `load_new_mesh`),
+  the two alternating run by run;
 - QEM to 10 %: `pappus process SCAN --json simplify:0.1`'s step time against
   `meshing_decimation_quadric_edge_collapse` (boundary preserved), and per collapse, against
   the same on the bunny.
@@ -78,6 +80,13 @@ def median_of(fn):
     return {k: statistics.median(r[k] for r in results) for k in results[0]}
 
 
+def medians_alternating(a, b):
+    """`median_of` of `a` and of `b`, run in turn, so that the machine's drift touches both."""
+    pairs = [(a(), b()) for _ in range(RUNS)]
+    return tuple({k: statistics.median(p[i][k] for p in pairs) for k in pairs[0][i]}
+                 for i in (0, 1))
+
+
 def pappus_open_save(path, out):
     seconds, mb, _ = measured([PAPPUS, "convert", path, out])
     return {"s": seconds, "mb": mb}
@@ -122,6 +131,10 @@ def main():
     pappus.load(BUNNY).save(bunny_ply)
     out = os.path.join(folder, "out.ply")
 
+    obj_p, obj_m = medians_alternating(lambda: pappus_load(BUNNY),
+                                       lambda: json.loads(meshlab("load", BUNNY)[2]))
+    print(f"bunny OBJ load: Pappus {obj_p['load_ms']:.0f} ms (read {obj_p['read_ms']:.0f}), "
+          f"MeshLab {obj_m['load_ms']:.0f} ms ({obj_p['load_ms'] / obj_m['load_ms']:.2f}×)")
     base_p, base_m = median_of(lambda: pappus_qem(bunny_ply, out)), median_of(lambda: meshlab_qem(bunny_ply))
     per_p, per_m = base_p["ms"] / base_p["collapses"], base_m["ms"] / base_m["collapses"]
     print(f"bunny ({base_p['faces'] * 10:.0f} faces) QEM to 10 %: Pappus {base_p['ms']:.0f} ms, "
