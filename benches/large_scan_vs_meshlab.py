@@ -75,16 +75,19 @@ def meshlab(what, path, out=os.devnull):
     return measured([sys.executable, "-c", MESHLAB, what, path, out])
 
 
-def median_of(fn):
-    results = [fn() for _ in range(RUNS)]
+def medians(results):
+    """The median of each figure over `results` (dicts with the same keys)."""
     return {k: statistics.median(r[k] for r in results) for k in results[0]}
+
+
+def median_of(fn):
+    return medians([fn() for _ in range(RUNS)])
 
 
 def medians_alternating(a, b):
     """`median_of` of `a` and of `b`, run in turn, so that the machine's drift touches both."""
     pairs = [(a(), b()) for _ in range(RUNS)]
-    return tuple({k: statistics.median(p[i][k] for p in pairs) for k in pairs[0][i]}
-                 for i in (0, 1))
+    return medians([p[0] for p in pairs]), medians([p[1] for p in pairs])
 
 
 def pappus_open_save(path, out):
