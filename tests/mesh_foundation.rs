@@ -218,6 +218,52 @@ fn bow_tie_becomes_two_valid_components() {
 }
 
 #[test]
+fn a_keyhole_polygon_becomes_a_ring_of_triangles_around_its_hole() {
+    // A 4 × 4 square with a 2 × 2 hole, written as one polygon: the outline, a bridge to the
+    // hole, the hole backwards, the bridge back; beside it a triangle with a corner written
+    // twice, and a polygon on a line, which cannot be cut.
+    let mut positions: Vec<Vec3> = [
+        (0, 0),
+        (4, 0),
+        (4, 4),
+        (0, 4),
+        (1, 1),
+        (3, 1),
+        (3, 3),
+        (1, 3),
+    ]
+    .map(|(x, y)| Vec3::new(x as f32, y as f32, 0.0))
+    .to_vec();
+    positions.extend([
+        Vec3::new(9.0, 0.0, 0.0),
+        Vec3::new(10.0, 0.0, 0.0),
+        Vec3::new(9.0, 1.0, 0.0),
+    ]);
+    positions.extend([
+        Vec3::new(20.0, 0.0, 0.0),
+        Vec3::new(21.0, 0.0, 0.0),
+        Vec3::new(22.0, 0.0, 0.0),
+    ]);
+    let faces: &[&[u32]] = &[
+        &[0, 1, 2, 3, 0, 4, 7, 6, 5, 4],
+        &[8, 9, 9, 10],
+        &[11, 12, 13, 12],
+    ];
+    let (world, built) = build(&PolygonSoup::from_faces(positions, faces));
+    let r = &built.report;
+    assert_eq!((r.untangled_faces, r.repeated_vertex_faces), (2, 1), "{r}");
+    validate(&world, built.mesh).unwrap();
+    let s = mesh_stats(&world, built.mesh);
+    // The ring: 8 vertices, 8 triangles, 16 edges, χ = 0, its two boundaries the outline and
+    // the hole; and the triangle.
+    assert_eq!(
+        (s.vertices, s.faces, s.edges, s.boundary_loops, s.components),
+        (8 + 3, 8 + 1, 16 + 3, 2 + 1, 2)
+    );
+    assert_eq!(s.euler_characteristic, 1);
+}
+
+#[test]
 fn two_cones_touching_at_the_tip_are_split() {
     // Two closed-fan tips at vertex 0 would be a double cone; open fans here keep it small.
     let faces: &[&[u32]] = &[

@@ -806,6 +806,7 @@ fn report_from(counts: &[usize]) -> RepairReport {
             "too_few_corners" => &mut report.too_few_corners,
             "out_of_range_faces" => &mut report.out_of_range_faces,
             "repeated_vertex_faces" => &mut report.repeated_vertex_faces,
+            "untangled_faces" => &mut report.untangled_faces,
             "non_finite_faces" => &mut report.non_finite_faces,
             "non_manifold_edge_faces" => &mut report.non_manifold_edge_faces,
             "non_orientable_faces" => &mut report.non_orientable_faces,

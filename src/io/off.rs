@@ -9,7 +9,7 @@
 use std::fmt::Write as _;
 
 use super::ParseError;
-use super::text::{cap, check_text, index, lines, position};
+use super::text::{Numbers, cap, check_text, index, lines};
 use crate::mesh::soup::PolygonSoup;
 
 /// Parses OFF text.
@@ -65,12 +65,13 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     // At least 6 bytes per vertex line ("0 0 0\n") and 8 per face line.
     let mut soup =
         PolygonSoup::with_capacity(cap(nv, bytes.len() / 6), cap(nf, bytes.len() / 8), 0);
+    let mut numbers = Numbers::default();
     for i in 0..nv {
         let (line, text) = lines.next().ok_or_else(|| {
             ParseError::line(count_line, format!("file ends after {i} of {nv} vertices"))
         })?;
         soup.positions
-            .push(position(&mut text.split_whitespace(), line)?);
+            .push(numbers.position(&mut text.split_whitespace(), line)?);
     }
     let mut face = Vec::new();
     for i in 0..nf {
@@ -91,6 +92,7 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
         }
         soup.push_face(&face);
     }
+    soup.notes.extend(numbers.note());
     Ok(soup)
 }
 

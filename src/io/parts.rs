@@ -19,6 +19,7 @@ use std::hash::Hash;
 use super::ParseError;
 use super::corners::{attach_corner_normals, per_vertex};
 use super::skipped::Skipped;
+use super::text::Numbers;
 use crate::memory_budget;
 use crate::mesh::groups::{FaceGroups, Group, GroupRows, GroupTable};
 use crate::mesh::soup::PolygonSoup;
@@ -43,6 +44,8 @@ pub(super) struct Part {
     pub colors: Option<Vec<Option<Vec3>>>,
     /// What the geometry held that is not read.
     pub skipped: Skipped,
+    /// A text format's numbers, and those mended on the way (COLLADA's arrays).
+    pub numbers: Numbers,
     /// The groups its faces are in (empty: every face in the empty group).
     pub groups: Vec<Group>,
     /// Each face's row in `groups`.

@@ -37,7 +37,7 @@ use std::fmt::Write as _;
 
 use super::ParseError;
 use super::strips::strip_triangles;
-use super::text::cap;
+use super::text::{Numbers, cap};
 use crate::mesh::soup::PolygonSoup;
 
 /// How a PLY body is encoded.
@@ -176,6 +176,7 @@ struct Text<'a> {
     lines: std::str::Lines<'a>,
     tokens: std::str::SplitWhitespace<'a>,
     line: usize,
+    numbers: Numbers,
 }
 
 impl Values for Text<'_> {
@@ -189,11 +190,11 @@ impl Values for Text<'_> {
                 // A `float` parsed through `f64` and rounded again could, rarely, land one ulp
                 // off the value the writer printed.
                 let value = if ty == Scalar::F32 {
-                    t.parse::<f32>().map(f64::from)
+                    self.numbers.parse::<f32>(t, self.line).map(f64::from)
                 } else {
-                    t.parse::<f64>()
+                    self.numbers.parse::<f64>(t, self.line)
                 };
-                return value.map_err(|_| {
+                return value.ok_or_else(|| {
                     ParseError::line(self.line, format!("`{t}` is not a number ({what})"))
                 });
             }
@@ -230,7 +231,12 @@ impl Values for Binary<'_> {
 
 /// Parses a PLY file.
 pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
-    let (encoding, elements, body) = header(bytes)?;
+    let Header {
+        encoding,
+        elements,
+        body,
+        foreign,
+    } = header(bytes)?;
     let header_lines = bytes[..body].iter().filter(|&&b| b == b'\n').count();
     let mut soup = match encoding {
         PlyEncoding::Ascii => {
@@ -243,8 +249,12 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
                 lines: text.lines(),
                 tokens: "".split_whitespace(),
                 line: header_lines,
+                numbers: Numbers::default(),
             };
-            body_values(&elements, &mut values, bytes.len())
+            body_values(&elements, &mut values, bytes.len()).map(|mut soup| {
+                soup.notes.extend(values.numbers.note());
+                soup
+            })
         }
         PlyEncoding::BinaryLittleEndian | PlyEncoding::BinaryBigEndian => {
             let big_endian = encoding == PlyEncoding::BinaryBigEndian;
@@ -261,18 +271,37 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
             }
         }
     }?;
+    if let (count, Some((line, text))) = foreign {
+        soup.notes.push(format!(
+            "read past {count} header line(s) that are not PLY keywords, as comments (the \
+             first, line {line}: `{text}`)"
+        ));
+    }
     soup.notes.extend(skipped_note(&elements));
     Ok(soup)
 }
 
-/// Reads the header: the encoding, the elements, and the byte offset where the body starts.
-fn header(bytes: &[u8]) -> Result<(PlyEncoding, Vec<Element>, usize), ParseError> {
+/// A PLY header, read.
+struct Header {
+    encoding: PlyEncoding,
+    elements: Vec<Element>,
+    /// The byte offset where the body starts.
+    body: usize,
+    /// How many lines start with no PLY keyword (an exporter's `Created by …` between `format`
+    /// and the elements), and the first with its line number: read past as comments, as other
+    /// readers do.
+    foreign: (usize, Option<(usize, String)>),
+}
+
+/// Reads the header: the encoding, the elements, and where the body starts.
+fn header(bytes: &[u8]) -> Result<Header, ParseError> {
     let first = bytes.split(|&b| b == b'\n').next().unwrap_or_default();
     if first.trim_ascii() != b"ply" {
         return Err(ParseError::line(1, "expected `ply`"));
     }
     let mut encoding = None;
     let mut elements: Vec<Element> = Vec::new();
+    let mut foreign = (0, None);
     let mut at = 0;
     for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
         let line = i + 1;
@@ -315,56 +344,7 @@ fn header(bytes: &[u8]) -> Result<(PlyEncoding, Vec<Element>, usize), ParseError
                 let element = elements
                     .last_mut()
                     .ok_or_else(|| ParseError::line(line, "property before any element"))?;
-                let ty = |name: Option<&str>| {
-                    let name = name.unwrap_or("");
-                    Scalar::parse(name).ok_or_else(|| {
-                        ParseError::line(line, format!("property type `{name}`")).unsupported()
-                    })
-                };
-                let first = t.next();
-                let property = if first == Some("list") {
-                    let count = ty(t.next())?;
-                    let item = ty(t.next())?;
-                    if !count.is_integer() {
-                        return Err(ParseError::line(line, "a list's count must be an integer"));
-                    }
-                    let name = t.next().unwrap_or("").to_string();
-                    let indices = name == "vertex_indices" || name == "vertex_index";
-                    let role = if indices && element.name == "face" {
-                        Role::Corners
-                    } else if indices && element.name == "tristrips" {
-                        Role::Strip
-                    } else if element.name == "face" && name == "texcoord" && !item.is_integer() {
-                        Role::TexCoord
-                    } else {
-                        Role::Skip
-                    };
-                    Property::List {
-                        name,
-                        count,
-                        item,
-                        role,
-                    }
-                } else {
-                    let ty = ty(first)?;
-                    let name = t.next().unwrap_or("").to_string();
-                    let role = match (element.name.as_str(), name.as_str()) {
-                        ("vertex", "x") => Role::Coordinate(0),
-                        ("vertex", "y") => Role::Coordinate(1),
-                        ("vertex", "z") => Role::Coordinate(2),
-                        ("vertex", "quality") => Role::Quality,
-                        ("vertex", "nx") => Role::Normal(0),
-                        ("vertex", "ny") => Role::Normal(1),
-                        ("vertex", "nz") => Role::Normal(2),
-                        ("vertex", "red") => Role::Color(0),
-                        ("vertex", "green") => Role::Color(1),
-                        ("vertex", "blue") => Role::Color(2),
-                        ("vertex", "u" | "s" | "texture_u" | "texture_s") => Role::Uv(0),
-                        ("vertex", "v" | "t" | "texture_v" | "texture_t") => Role::Uv(1),
-                        _ => Role::Skip,
-                    };
-                    Property::Scalar { name, ty, role }
-                };
+                let property = property(&element.name, &mut t, line)?;
                 element.properties.push(property);
             }
             Some("end_header") => {
@@ -374,17 +354,80 @@ fn header(bytes: &[u8]) -> Result<(PlyEncoding, Vec<Element>, usize), ParseError
                 for element in &elements {
                     check_element(element)?;
                 }
-                return Ok((encoding, elements, at.min(bytes.len())));
+                return Ok(Header {
+                    encoding,
+                    elements,
+                    body: at.min(bytes.len()),
+                    foreign,
+                });
             }
-            Some(other) => {
-                return Err(ParseError::line(
-                    line,
-                    format!("unknown header keyword `{other}`"),
-                ));
+            Some(_) => {
+                foreign.0 += 1;
+                foreign
+                    .1
+                    .get_or_insert_with(|| (line, text.trim().to_owned()));
             }
         }
     }
     Err(ParseError::byte(bytes.len(), "file ends inside the header"))
+}
+
+/// A `property` line's declaration after its keyword (`float x`, `list uchar int
+/// vertex_indices`), with the role its name has in `element`.
+fn property<'a>(
+    element: &str,
+    t: &mut impl Iterator<Item = &'a str>,
+    line: usize,
+) -> Result<Property, ParseError> {
+    let ty = |name: Option<&str>| {
+        let name = name.unwrap_or("");
+        Scalar::parse(name)
+            .ok_or_else(|| ParseError::line(line, format!("property type `{name}`")).unsupported())
+    };
+    let first = t.next();
+    if first == Some("list") {
+        let count = ty(t.next())?;
+        let item = ty(t.next())?;
+        if !count.is_integer() {
+            return Err(ParseError::line(line, "a list's count must be an integer"));
+        }
+        let name = t.next().unwrap_or("").to_string();
+        let indices = name == "vertex_indices" || name == "vertex_index";
+        let role = if indices && element == "face" {
+            Role::Corners
+        } else if indices && element == "tristrips" {
+            Role::Strip
+        } else if element == "face" && name == "texcoord" && !item.is_integer() {
+            Role::TexCoord
+        } else {
+            Role::Skip
+        };
+        Ok(Property::List {
+            name,
+            count,
+            item,
+            role,
+        })
+    } else {
+        let ty = ty(first)?;
+        let name = t.next().unwrap_or("").to_string();
+        let role = match (element, name.as_str()) {
+            ("vertex", "x") => Role::Coordinate(0),
+            ("vertex", "y") => Role::Coordinate(1),
+            ("vertex", "z") => Role::Coordinate(2),
+            ("vertex", "quality") => Role::Quality,
+            ("vertex", "nx") => Role::Normal(0),
+            ("vertex", "ny") => Role::Normal(1),
+            ("vertex", "nz") => Role::Normal(2),
+            ("vertex", "red") => Role::Color(0),
+            ("vertex", "green") => Role::Color(1),
+            ("vertex", "blue") => Role::Color(2),
+            ("vertex", "u" | "s" | "texture_u" | "texture_s") => Role::Uv(0),
+            ("vertex", "v" | "t" | "texture_v" | "texture_t") => Role::Uv(1),
+            _ => Role::Skip,
+        };
+        Ok(Property::Scalar { name, ty, role })
+    }
 }
 
 /// A non-empty `vertex` element needs `x y z`; a non-empty `face` element needs its index list.
@@ -1326,5 +1369,33 @@ mod tests {
         assert!(read(text.as_bytes()).is_err());
         let text = "ply\nformat ascii 1.0\nelement nothing 18446744073709551615\nelement face 1\nproperty list uint int vertex_indices\nend_header\n4000000000 1 2 3\n";
         assert_eq!(read(text.as_bytes()).unwrap_err().location, "line 7");
+    }
+
+    #[test]
+    fn header_lines_that_are_not_keywords_are_read_as_comments_and_said() {
+        let text = "ply\nformat ascii 1.0\nCreated by SomeScanner 2.1\nelement vertex 3\n\
+                    property float x\nproperty float y\nproperty float z\nelement face 1\n\
+                    property list uchar int vertex_indices\nend_header\n\
+                    0 0 0\n1,5 0 0\n0 3.1+e2 0\n3 0 1 2\n";
+        let soup = read(text.as_bytes()).unwrap();
+        assert_eq!(
+            soup.positions,
+            vec![
+                Vec3::ZERO,
+                Vec3::new(1.5, 0.0, 0.0),
+                Vec3::new(0.0, 310.0, 0.0)
+            ]
+        );
+        assert_eq!(soup.face_count(), 1);
+        assert_eq!(
+            soup.notes,
+            [
+                "read 1 number(s) with a decimal comma, read as a decimal point (the first \
+                 `1,5`, line 12); 1 number(s) with the exponent's sign before its `e`, read as \
+                 `e` then the sign (the first `3.1+e2`, line 13)",
+                "read past 1 header line(s) that are not PLY keywords, as comments (the first, \
+                 line 3: `Created by SomeScanner 2.1`)"
+            ]
+        );
     }
 }

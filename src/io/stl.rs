@@ -15,7 +15,7 @@ use bevy::platform::collections::HashMap;
 use std::fmt::Write as _;
 
 use super::ParseError;
-use super::text::{check_text, lines, position};
+use super::text::{Numbers, check_text, lines};
 use crate::mesh::soup::PolygonSoup;
 use crate::mesh::topology::newell_area_vector;
 
@@ -109,6 +109,7 @@ fn read_ascii(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     check_text(bytes)?;
     let mut w = Welder::new(bytes.len() / 256);
     let mut corners = Vec::with_capacity(3);
+    let mut numbers = Numbers::default();
     let mut last = 1;
     for (line, text) in lines(bytes) {
         last = line;
@@ -118,7 +119,7 @@ fn read_ascii(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
                 if corners.len() == 3 {
                     return Err(ParseError::line(line, "a facet with more than 3 vertices"));
                 }
-                let p = position(&mut t, line)?;
+                let p = numbers.position(&mut t, line)?;
                 corners.push(w.vertex(p));
             }
             Some("endloop") => {
@@ -143,6 +144,7 @@ fn read_ascii(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
     if !corners.is_empty() {
         return Err(ParseError::line(last, "file ends inside a facet"));
     }
+    w.soup.notes.extend(numbers.note());
     Ok(w.soup)
 }
 

@@ -35,6 +35,7 @@ pub mod soup;
 pub mod stats;
 pub mod tables;
 pub mod topology;
+pub mod untangle;
 pub mod validate;
 
 pub use build::{

@@ -4,8 +4,10 @@
 //! file for a local defect; each defect is repaired, counted in [`RepairReport`], and the rest
 //! of the mesh is kept. In order:
 //!
-//! 1. **Bad faces are dropped**: fewer than 3 corners, an index out of range, a vertex repeated
-//!    in the face, or a corner at a non-finite position.
+//! 1. **Bad faces are dropped**: fewer than 3 corners, an index out of range, or a corner at a
+//!    non-finite position. A face that names a vertex twice (a keyhole, a corner written twice)
+//!    is cut into triangles in its own plane ([`super::untangle`]), and dropped only when it
+//!    cannot be.
 //! 2. **Non-manifold edges**: faces are taken in file order and a face that would be the third
 //!    on any edge is *detached*: it keeps its place and shape but gets its own copies of its
 //!    vertices (it becomes a separate component). Detaching rather than dropping loses none of
@@ -27,6 +29,7 @@ use bevy::platform::collections::HashMap;
 
 use super::soup::PolygonSoup;
 use super::tables::{FaceCorners, NONE};
+use super::untangle::untangle;
 
 /// What the builder had to repair, by kind. Every count is zero for a clean mesh.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -37,8 +40,12 @@ pub struct RepairReport {
     pub too_few_corners: usize,
     /// Faces naming a vertex index that does not exist (dropped).
     pub out_of_range_faces: usize,
-    /// Faces naming one vertex twice (dropped).
+    /// Faces naming one vertex twice that no cut into triangles could mend (dropped).
     pub repeated_vertex_faces: usize,
+    /// Faces naming one vertex twice (a keyhole: a polygon with a hole joined to its outline by
+    /// a bridge; a corner written twice) cut into triangles in their own plane
+    /// ([`super::untangle`]).
+    pub untangled_faces: usize,
     /// Faces with a corner at a NaN or infinite position (dropped).
     pub non_finite_faces: usize,
     /// Faces that would have been the third (or more) on an edge (detached: own vertex copies).
@@ -56,12 +63,13 @@ pub struct RepairReport {
 impl RepairReport {
     /// Every count with its name, in a fixed order (the keys of `pappus info --json`'s
     /// `repairs` object).
-    pub fn entries(&self) -> [(&'static str, usize); 10] {
+    pub fn entries(&self) -> [(&'static str, usize); 11] {
         [
             ("unreferenced_vertices", self.unreferenced_vertices),
             ("too_few_corners", self.too_few_corners),
             ("out_of_range_faces", self.out_of_range_faces),
             ("repeated_vertex_faces", self.repeated_vertex_faces),
+            ("untangled_faces", self.untangled_faces),
             ("non_finite_faces", self.non_finite_faces),
             ("non_manifold_edge_faces", self.non_manifold_edge_faces),
             ("non_orientable_faces", self.non_orientable_faces),
@@ -218,10 +226,20 @@ fn keep_well_formed_faces(soup: &PolygonSoup, report: &mut RepairReport) -> Work
             report.too_few_corners += 1;
         } else if face.iter().any(|&i| i as usize >= n) {
             report.out_of_range_faces += 1;
-        } else if has_repeat(face, &mut scratch) {
-            report.repeated_vertex_faces += 1;
         } else if face.iter().any(|&i| !finite[i as usize]) {
             report.non_finite_faces += 1;
+        } else if has_repeat(face, &mut scratch) {
+            let first = soup.face_starts[f];
+            let triangles = untangle(face, &soup.positions);
+            if triangles.is_empty() {
+                report.repeated_vertex_faces += 1;
+            }
+            report.untangled_faces += usize::from(!triangles.is_empty());
+            for triangle in triangles {
+                indices.extend(triangle.map(|k| face[k]));
+                source.extend(triangle.map(|k| first + k as u32));
+                starts.push(indices.len() as u32);
+            }
         } else {
             indices.extend_from_slice(face);
             let first = soup.face_starts[f];

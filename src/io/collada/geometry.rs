@@ -24,6 +24,7 @@ use crate::io::ParseError;
 use crate::io::obj::channel;
 use crate::io::parts::{NO_POSITION, Part};
 use crate::io::strips::strip_triangles;
+use crate::io::text::Numbers;
 use crate::mesh::groups::Group;
 
 /// A `<source>`'s numbers and how to read items from them.
@@ -74,9 +75,10 @@ pub(super) fn read_mesh(
     materials: &HashMap<&str, &str>,
 ) -> Result<Part, ParseError> {
     let mut sources = HashMap::new();
+    let mut numbers = Numbers::default();
     for node in children(mesh, "source") {
         if let Some(id) = node.attribute("id") {
-            sources.insert(id, read_source(node)?);
+            sources.insert(id, read_source(node, &mut numbers)?);
         }
     }
     let source = |node: Node, url: &str| -> Result<&Source, ParseError> {
@@ -113,6 +115,7 @@ pub(super) fn read_mesh(
         ParseError::line(line_of(vertices), "<vertices> without a POSITION input")
     })?;
     let mut part = Part::new();
+    part.numbers = numbers;
     part.positions = (0..=u32::MAX)
         .map_while(|i| positions.item::<3>(i).map(Vec3::from_array))
         .collect();
@@ -317,9 +320,9 @@ fn push_face(part: &mut Part, layout: &Layout, corners: &[&[u32]]) {
 }
 
 /// Reads a `<source>`: its `<float_array>` and its accessor's count, stride and offset.
-fn read_source(source: Node) -> Result<Source, ParseError> {
+fn read_source(source: Node, numbers: &mut Numbers) -> Result<Source, ParseError> {
     let values = match child(source, "float_array") {
-        Some(array) => floats(array)?,
+        Some(array) => floats(array, numbers)?,
         None => Vec::new(),
     };
     let accessor = child(source, "technique_common").and_then(|t| child(t, "accessor"));
@@ -354,24 +357,33 @@ fn number<T: std::str::FromStr>(node: Node, name: &str) -> Result<Option<T>, Par
         .transpose()
 }
 
-/// An element's text as whitespace-separated floats.
-pub(super) fn floats(node: Node) -> Result<Vec<f32>, ParseError> {
-    numbers(node, "a number")
-}
-
-/// An element's text as whitespace-separated non-negative integers.
-fn integers(node: Node) -> Result<Vec<u32>, ParseError> {
-    numbers(node, "an index (a non-negative integer)")
-}
-
-/// An element's text as whitespace-separated numbers of type `T`; a token that does not parse
-/// is an error naming the element's line and saying it is not `what`.
-fn numbers<T: std::str::FromStr>(node: Node, what: &str) -> Result<Vec<T>, ParseError> {
+/// An element's text as whitespace-separated floats, read by the text formats' one grammar
+/// ([`Numbers`]: a decimal comma, as exporters under a European locale write, is read and
+/// counted; COLLADA's arrays separate their numbers by whitespace alone).
+pub(super) fn floats(node: Node, numbers: &mut Numbers) -> Result<Vec<f32>, ParseError> {
+    let line = line_of(node);
     let text = node.text().unwrap_or_default();
     text.split_ascii_whitespace()
         .map(|t| {
-            t.parse::<T>()
-                .map_err(|_| ParseError::line(line_of(node), format!("`{t}` is not {what}")))
+            numbers
+                .parse::<f32>(t, line)
+                .ok_or_else(|| ParseError::line(line, format!("`{t}` is not a number")))
+        })
+        .collect()
+}
+
+/// An element's text as whitespace-separated non-negative integers; a token that does not
+/// parse is an error naming the element's line.
+fn integers(node: Node) -> Result<Vec<u32>, ParseError> {
+    let text = node.text().unwrap_or_default();
+    text.split_ascii_whitespace()
+        .map(|t| {
+            t.parse::<u32>().map_err(|_| {
+                ParseError::line(
+                    line_of(node),
+                    format!("`{t}` is not an index (a non-negative integer)"),
+                )
+            })
         })
         .collect()
 }

@@ -32,6 +32,7 @@ use std::collections::HashMap;
 use super::ParseError;
 use super::parts::{Part, assemble};
 use super::skipped::Skipped;
+use super::text::Numbers;
 use crate::mesh::soup::PolygonSoup;
 
 /// Every element with an `id`, by id.
@@ -84,6 +85,19 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
             None => Ok(None),
         }
     })?;
+    // The geometries in document order, then the scene (its library comes after theirs in
+    // the files exporters write), so the note names the first mended number of the file.
+    let mut numbers = Numbers::default();
+    let mut read: Vec<_> = parts
+        .iter()
+        .filter_map(|(id, p)| Some((id, p.as_ref()?)))
+        .collect();
+    read.sort_unstable_by_key(|&(id, _)| id.get());
+    for (_, part) in read {
+        numbers.add(&part.numbers);
+    }
+    numbers.add(&scene.numbers);
+    soup.notes.extend(numbers.note());
     soup.notes.extend(notes(root, &scene, &parts));
     Ok(soup)
 }

@@ -19,6 +19,7 @@ use roxmltree::Node;
 use super::geometry::floats;
 use super::{Ids, child, children, line_of, reference};
 use crate::io::ParseError;
+use crate::io::text::Numbers;
 
 /// Node trees nested deeper than this (or `<instance_node>`s naming each other in a cycle)
 /// are refused.
@@ -48,6 +49,8 @@ pub(super) struct Scene<'a, 'input> {
     pub skews: usize,
     /// `<instance_camera>` and `<instance_light>` nodes.
     pub cameras_and_lights: usize,
+    /// The transforms' numbers, and those mended on the way.
+    pub numbers: Numbers,
 }
 
 /// Walks the document's scene.
@@ -196,7 +199,7 @@ impl<'a, 'input> Walker<'_, 'a, 'input> {
             ));
         };
         let bind = match child(deformer, "bind_shape_matrix") {
-            Some(m) => matrix(m)?,
+            Some(m) => matrix(m, &mut self.scene.numbers)?,
             None => Mat4::IDENTITY,
         };
         self.scene.controlled += 1;
@@ -206,8 +209,8 @@ impl<'a, 'input> Walker<'_, 'a, 'input> {
 
     /// A transform element's matrix; `None` for any other element.
     fn transform(&mut self, element: Node) -> Result<Option<Mat4>, ParseError> {
-        let numbers = |count: usize| -> Result<Vec<f32>, ParseError> {
-            let values = floats(element)?;
+        let mut numbers = |count: usize| -> Result<Vec<f32>, ParseError> {
+            let values = floats(element, &mut self.scene.numbers)?;
             if values.len() == count {
                 Ok(values)
             } else {
@@ -223,7 +226,7 @@ impl<'a, 'input> Walker<'_, 'a, 'input> {
         };
         let v3 = |v: &[f32]| Vec3::new(v[0], v[1], v[2]);
         Ok(Some(match element.tag_name().name() {
-            "matrix" => matrix(element)?,
+            "matrix" => matrix(element, &mut self.scene.numbers)?,
             "translate" => Mat4::from_translation(v3(&numbers(3)?)),
             "scale" => Mat4::from_scale(v3(&numbers(3)?)),
             "rotate" => {
@@ -252,8 +255,8 @@ impl<'a, 'input> Walker<'_, 'a, 'input> {
 }
 
 /// A `<matrix>`-like element: 16 numbers, row by row.
-fn matrix(element: Node) -> Result<Mat4, ParseError> {
-    let values = floats(element)?;
+fn matrix(element: Node, numbers: &mut Numbers) -> Result<Mat4, ParseError> {
+    let values = floats(element, numbers)?;
     let array: [f32; 16] = values.as_slice().try_into().map_err(|_| {
         ParseError::line(
             line_of(element),

@@ -329,3 +329,38 @@ fn each_face_keeps_its_node_and_its_bound_material_as_its_group() {
         ]
     );
 }
+
+#[test]
+fn decimal_commas_of_a_european_locale_are_read_as_decimal_points_and_said() {
+    let geometry = r##"<geometry id="sq" name="sq"><mesh>
+        <source id="sq-p"><float_array id="sq-p-array" count="9">0 0 0  1,5 0 0  1,450607 -0,25 0</float_array>
+        <technique_common><accessor source="#sq-p-array" count="3" stride="3"/></technique_common></source>
+        <vertices id="sq-v"><input semantic="POSITION" source="#sq-p"/></vertices>
+        <triangles count="1"><input semantic="VERTEX" source="#sq-v" offset="0"/><p>0 1 2</p></triangles>
+        </mesh></geometry>"##;
+    let soup = read_text(&document(
+        "Y_UP",
+        geometry,
+        &place("sq", "<translate>0,5 0 0</translate>"),
+    ));
+    assert_eq!(
+        soup.positions,
+        vec![
+            Vec3::new(0.5, 0.0, 0.0),
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(1.450607 + 0.5, -0.25, 0.0)
+        ]
+    );
+    assert_eq!(
+        soup.notes[0],
+        "read 4 number(s) with a decimal comma, read as a decimal point (the first `1,5`, line 5)"
+    );
+    // A comma that could be a separator is not guessed at.
+    let two = document(
+        "Y_UP",
+        &square("sq", "", ""),
+        &place("sq", "<translate>1,5,0 0 0</translate>"),
+    );
+    let err = read(two.as_bytes()).unwrap_err();
+    assert_eq!(err.message, "`1,5,0` is not a number");
+}

@@ -22,6 +22,8 @@
 //! colours per vertex. `.glb` by default, `.gltf` with the buffer embedded as a data URI.
 
 mod buffers;
+mod document;
+mod values;
 mod write;
 
 use bevy::math::{Mat4, Vec2, Vec3};
@@ -58,36 +60,11 @@ const MAX_NODES: usize = 1 << 20;
 /// an accessor that cannot be read safely, or a scene too large for the memory budget.
 pub fn read(bytes: &[u8], folder: Option<&Path>) -> Result<PolygonSoup, ParseError> {
     let error = |message: String| ParseError::byte(0, message);
-    // The crate subtracts the header's size from the length it declares before comparing them.
-    if let Some(header) = bytes.get(..12).filter(|h| h.starts_with(b"glTF")) {
-        let length = u32::from_le_bytes([header[8], header[9], header[10], header[11]]);
-        if length < 12 {
-            return Err(ParseError::byte(
-                8,
-                format!("the GLB header declares {length} bytes, fewer than itself"),
-            ));
-        }
-    }
-    let gltf::Gltf { document, blob } =
-        gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| error(e.to_string()))?;
-    let json = document.into_json();
-    // The crate's validation indexes the accessors by POSITION's number before it checks the
-    // number: check it first.
-    for mesh in &json.meshes {
-        for primitive in &mesh.primitives {
-            if let Some(bad) = primitive
-                .attributes
-                .values()
-                .find(|a| a.value() >= json.accessors.len())
-            {
-                return Err(error(format!(
-                    "an attribute names accessor {}, which does not exist",
-                    bad.value()
-                )));
-            }
-        }
-    }
-    let document = gltf::Document::from_json(json).map_err(|e| error(e.to_string()))?;
+    let document::Parsed {
+        document,
+        blob,
+        notes,
+    } = document::parse(bytes)?;
     let buffers = Buffers::resolve(&document, blob, folder).map_err(error)?;
     let placements = placements(&document).map_err(error)?;
     let keyed: Vec<_> = placements
@@ -119,6 +96,7 @@ pub fn read(bytes: &[u8], folder: Option<&Path>) -> Result<PolygonSoup, ParseErr
         );
     }
     skipped.count("texture(s)", document.textures().count());
+    soup.notes.extend(notes);
     soup.notes.extend(skipped.note());
     Ok(soup)
 }
@@ -168,12 +146,25 @@ fn placements(document: &gltf::Document) -> Result<Vec<(gltf::Mesh<'_>, Mat4, St
     Ok(out)
 }
 
-/// The accessor types glTF allows for each attribute Pappus reads.
-const POSITIONS: &[(DataType, Dimensions)] = &[(DataType::F32, Dimensions::Vec3)];
-const NORMALS: &[(DataType, Dimensions)] = &[(DataType::F32, Dimensions::Vec3)];
+/// The accessor types glTF allows for each attribute Pappus reads, with those
+/// `KHR_mesh_quantization` adds ([`values`]).
+const POSITIONS: &[(DataType, Dimensions)] = &[
+    (DataType::F32, Dimensions::Vec3),
+    (DataType::I8, Dimensions::Vec3),
+    (DataType::U8, Dimensions::Vec3),
+    (DataType::I16, Dimensions::Vec3),
+    (DataType::U16, Dimensions::Vec3),
+];
+const NORMALS: &[(DataType, Dimensions)] = &[
+    (DataType::F32, Dimensions::Vec3),
+    (DataType::I8, Dimensions::Vec3),
+    (DataType::I16, Dimensions::Vec3),
+];
 const TEXCOORDS: &[(DataType, Dimensions)] = &[
     (DataType::F32, Dimensions::Vec2),
+    (DataType::I8, Dimensions::Vec2),
     (DataType::U8, Dimensions::Vec2),
+    (DataType::I16, Dimensions::Vec2),
     (DataType::U16, Dimensions::Vec2),
 ];
 const COLORS: &[(DataType, Dimensions)] = &[
@@ -340,9 +331,9 @@ fn read_vertices(
         return Ok(None);
     };
     buffers.check_accessor(&accessor, POSITIONS, "positions")?;
-    let positions: Vec<Vec3> = reader
-        .read_positions()
+    let positions: Vec<Vec3> = values::floats::<3>(&accessor, buffers)
         .ok_or("positions cannot be read")?
+        .into_iter()
         .map(Vec3::from_array)
         .collect();
     let n = positions.len();
@@ -358,26 +349,24 @@ fn read_vertices(
             None => Ok(false),
         }
     };
+    let accessor_of = |semantic: gltf::Semantic| primitive.get(&semantic);
     let normals = attribute(gltf::Semantic::Normals, NORMALS, "normals")?
-        .then(|| {
-            reader
-                .read_normals()
-                .map(|r| r.map(Vec3::from_array).collect())
-        })
-        .flatten();
+        .then(|| values::floats::<3>(&accessor_of(gltf::Semantic::Normals)?, buffers))
+        .flatten()
+        .map(|n| n.into_iter().map(Vec3::from_array).collect());
     // glTF's v runs down the image; Pappus's (OBJ's, Blender's) runs up.
     let uvs = attribute(
         gltf::Semantic::TexCoords(0),
         TEXCOORDS,
         "texture coordinates",
     )?
-    .then(|| {
-        let flip = |[u, v]: [f32; 2]| Vec2::new(u, 1.0 - v);
-        reader
-            .read_tex_coords(0)
-            .map(|r| r.into_f32().map(flip).collect())
-    })
-    .flatten();
+    .then(|| values::floats::<2>(&accessor_of(gltf::Semantic::TexCoords(0))?, buffers))
+    .flatten()
+    .map(|uvs| {
+        uvs.into_iter()
+            .map(|[u, v]| Vec2::new(u, 1.0 - v))
+            .collect()
+    });
     let colors = attribute(gltf::Semantic::Colors(0), COLORS, "colours")?
         .then(|| {
             let bytes =

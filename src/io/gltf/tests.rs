@@ -319,3 +319,184 @@ fn other_files_give_each_face_its_material_and_node_as_groups() {
         ["skipped: 1 material(s) (their names kept as face groups, not their properties)"]
     );
 }
+
+/// A document of one triangle, edited at JSON pointers (a `null` removes the key).
+fn edited(edits: &[(&str, serde_json::Value)]) -> Vec<u8> {
+    let good = document(&SQUARE, &[0, 1, 2], 4, json!([{"mesh": 0}]));
+    let mut value: serde_json::Value = serde_json::from_slice(&good).unwrap();
+    for (pointer, replacement) in edits {
+        let (parent, key) = pointer.rsplit_once('/').unwrap();
+        let parent = value.pointer_mut(parent).unwrap().as_object_mut().unwrap();
+        if replacement.is_null() {
+            parent.remove(key);
+        } else {
+            parent.insert(key.to_owned(), replacement.clone());
+        }
+    }
+    serde_json::to_vec(&value).unwrap()
+}
+
+#[test]
+fn bounds_left_out_and_extensions_of_appearance_alone_are_tolerated_and_said() {
+    let bytes = edited(&[
+        ("/accessors/0/min", json!(null)),
+        ("/accessors/0/max", json!(null)),
+    ]);
+    let soup = read(&bytes, None).unwrap();
+    assert_eq!(soup.face_count(), 1);
+    assert_eq!(
+        soup.notes,
+        [
+            "read 1 primitive(s) whose POSITION accessor lacks its min/max bounds (the positions \
+          themselves are read)"
+        ]
+    );
+    for extension in [
+        "KHR_materials_pbrSpecularGlossiness",
+        "KHR_technique_webgl",
+        "KHR_texture_transform",
+    ] {
+        let bytes = edited(&[
+            ("/extensionsUsed", json!([extension])),
+            ("/extensionsRequired", json!([extension])),
+        ]);
+        let soup = read(&bytes, None).unwrap();
+        assert_eq!(soup.face_count(), 1, "{extension}");
+        assert!(
+            soup.notes[0].starts_with(&format!(
+                "read without the required extension(s) {extension}: they concern only"
+            )),
+            "{:?}",
+            soup.notes
+        );
+    }
+}
+
+#[test]
+fn old_versions_compression_and_unknown_requirements_are_refused_by_name() {
+    let refused = |bytes: &[u8]| {
+        let err = read(bytes, None).unwrap_err();
+        assert!(err.unsupported, "{err:?}");
+        err.message
+    };
+    // glTF 1.0: its meshes, accessors, … are objects keyed by id.
+    let one = serde_json::to_vec(&json!({
+        "asset": {"version": "1.0"},
+        "meshes": {"box": {"primitives": [{"attributes": {"POSITION": "acc"}, "mode": 4}]}},
+        "accessors": {"acc": {"bufferView": "view", "count": 3, "componentType": 5126, "type": "VEC3"}}
+    }))
+    .unwrap();
+    assert_eq!(
+        refused(&one),
+        "glTF 1.0 is not supported: re-export as glTF 2.0"
+    );
+    // Without its asset block, shaped as 1.0 is.
+    let bare = serde_json::to_vec(&json!({"meshes": {"box": {"primitives": []}}})).unwrap();
+    assert_eq!(
+        refused(&bare),
+        "glTF 1.0 is not supported: re-export as glTF 2.0"
+    );
+    assert_eq!(
+        refused(&edited(&[("/asset/version", json!("3.0"))])),
+        "glTF 3.0 is not supported: re-export as glTF 2.0"
+    );
+    // Binary glTF 1.0: GLB version 1.
+    let mut glb_one = b"glTF\x01\0\0\0".to_vec();
+    glb_one.extend(40u32.to_le_bytes());
+    glb_one.extend([0u8; 28]);
+    assert!(refused(&glb_one).starts_with("binary glTF 1.0 (GLB version 1) is not supported"));
+    // Draco, required; and used without an uncompressed fallback (no bufferView).
+    let draco = "KHR_draco_mesh_compression";
+    let message = "Draco-compressed meshes are not supported: re-export without Draco compression";
+    assert_eq!(
+        refused(&edited(&[
+            ("/extensionsUsed", json!([draco])),
+            ("/extensionsRequired", json!([draco]))
+        ])),
+        message
+    );
+    let bytes = edited(&[
+        ("/extensionsUsed", json!([draco])),
+        ("/accessors/0/bufferView", json!(null)),
+    ]);
+    assert_eq!(refused(&bytes), message);
+    let err = read(&edited(&[("/accessors/0/bufferView", json!(null))]), None).unwrap_err();
+    assert_eq!(
+        err.message,
+        "invalid glTF: accessors[0].bufferView: Missing data"
+    );
+    assert_eq!(
+        refused(&edited(&[(
+            "/extensionsRequired",
+            json!(["EXT_mesh_gpu_instancing"])
+        )])),
+        "the file requires the extension `EXT_mesh_gpu_instancing`, which Pappus does not read"
+    );
+}
+
+#[test]
+fn quantized_positions_normals_and_uvs_are_read_as_their_accessors_say() {
+    // Positions as i16 (not normalised: the node's scale brings them back), normals as
+    // normalised i8, UVs as normalised u16, as gltfpack writes them (each item padded to 4).
+    let mut bytes = Vec::new();
+    for p in [[0i16, 0, 0], [2000, 0, 0], [0, 2000, 0]] {
+        bytes.extend(p.iter().chain(&[0]).flat_map(|c| c.to_le_bytes()));
+    }
+    let normals = bytes.len();
+    for _ in 0..3 {
+        bytes.extend([0u8, 0, 127, 0]);
+    }
+    let uvs = bytes.len();
+    for uv in [[0u16, 0], [65535, 0], [0, 65535]] {
+        bytes.extend(uv.iter().flat_map(|c| c.to_le_bytes()));
+    }
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &bytes)
+    );
+    let document = serde_json::to_vec(&json!({
+        "asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_mesh_quantization"],
+        "extensionsRequired": ["KHR_mesh_quantization"],
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0, "scale": [0.001, 0.001, 0.001]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}}]}],
+        "buffers": [{"byteLength": bytes.len(), "uri": uri}],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": normals, "byteStride": 8},
+            {"buffer": 0, "byteOffset": normals, "byteLength": uvs - normals, "byteStride": 4},
+            {"buffer": 0, "byteOffset": uvs, "byteLength": bytes.len() - uvs}
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5122, "count": 3, "type": "VEC3",
+             "min": [0, 0, 0], "max": [2000, 2000, 0]},
+            {"bufferView": 1, "componentType": 5120, "normalized": true, "count": 3, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5123, "normalized": true, "count": 3, "type": "VEC2"}
+        ]
+    }))
+    .unwrap();
+    let soup = read(&document, None).unwrap();
+    assert_eq!(
+        soup.positions,
+        vec![
+            Vec3::ZERO,
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 2.0, 0.0)
+        ]
+    );
+    assert_eq!(soup.vertex_normals, Some(vec![Vec3::Z; 3]));
+    assert_eq!(
+        soup.corner_uvs,
+        Some(vec![
+            Vec2::new(0.0, 1.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(0.0, 0.0)
+        ])
+    );
+    assert!(
+        soup.notes.iter().all(|n| !n.contains("required")),
+        "{:?}",
+        soup.notes
+    );
+}

@@ -47,7 +47,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use super::ParseError;
 use super::corners::attach_corner_normals;
 use super::skipped::Skipped;
-use super::text::{cap, check_text, float, lines, position};
+use super::text::{Numbers, cap, check_text, lines};
 use crate::mesh::soup::PolygonSoup;
 use crate::process_memory;
 use groups::{GroupReader, GroupWriter, writable_in_order};
@@ -143,6 +143,8 @@ struct Extras {
     skipped: Skipped,
     /// Objects, groups, materials and smoothing groups.
     groups: GroupReader,
+    /// The numbers read, and those mended on the way.
+    numbers: Numbers,
 }
 
 /// What a statement the reader reads past is, for the note.
@@ -164,13 +166,14 @@ pub(super) fn channel(v: f32) -> u8 {
 fn vertex_color<'a>(
     mut tokens: impl Iterator<Item = &'a str>,
     line: usize,
+    numbers: &mut Numbers,
 ) -> Result<Option<[u8; 3]>, ParseError> {
     let (Some(r), Some(g), Some(b)) = (tokens.next(), tokens.next(), tokens.next()) else {
         return Ok(None);
     };
     let mut c = [0u8; 3];
     for ((slot, token), what) in c.iter_mut().zip([r, g, b]).zip(["red", "green", "blue"]) {
-        *slot = channel(float(Some(token), line, what)?);
+        *slot = channel(numbers.float(Some(token), line, what)?);
     }
     Ok(Some(c))
 }
@@ -307,7 +310,9 @@ pub fn read(bytes: &[u8]) -> Result<PolygonSoup, ParseError> {
         soup
     };
     let skipped = extras.skipped.note();
+    let mended = extras.numbers.note();
     attach_extras(&mut soup, extras)?;
+    soup.notes.extend(mended);
     soup.notes.extend(skipped);
     Ok(soup)
 }
@@ -350,21 +355,23 @@ fn first_pass(bytes: &[u8]) -> Result<(Vec<Vec3>, RawFaces, Extras), ParseError>
         let mut tokens = text.split_whitespace();
         match tokens.next() {
             Some("v") => {
-                positions.push(position(&mut tokens, line)?);
-                let color = vertex_color(tokens, line)?;
+                positions.push(extras.numbers.position(&mut tokens, line)?);
+                let color = vertex_color(tokens, line, &mut extras.numbers)?;
                 extras.any_color |= color.is_some();
                 extras.colors.push(color);
             }
             Some("vt") => {
-                let u = float(tokens.next(), line, "u")?;
+                let u = extras.numbers.float(tokens.next(), line, "u")?;
                 // `v` is optional in the format (a 1-D texture): 0.
                 let v = match tokens.next() {
-                    Some(t) => float(Some(t), line, "v")?,
+                    Some(t) => extras.numbers.float(Some(t), line, "v")?,
                     None => 0.0,
                 };
                 extras.uvs.push(Vec2::new(u, v));
             }
-            Some("vn") => extras.normals.push(position(&mut tokens, line)?),
+            Some("vn") => extras
+                .normals
+                .push(extras.numbers.position(&mut tokens, line)?),
             Some("f") => {
                 let defined = positions.len() as i64;
                 for token in tokens {
@@ -938,5 +945,34 @@ o lid\ng\ns off\nf 4 3 6\n";
                 (location, message)
             );
         }
+    }
+
+    #[test]
+    fn a_swapped_exponent_sign_reads_as_its_authors_meant_in_every_statement() {
+        let text = b"v 3.1+e2 0 0\nv 0 1-e1 0\nv 0 0 1\nvt 2.5-E1 0\nvt 0 0\nvt 1 1\n\
+                     f 1/1 2/2 3/3\n";
+        let soup = read(text).unwrap();
+        assert_eq!(
+            soup.positions,
+            vec![
+                Vec3::new(310.0, 0.0, 0.0),
+                Vec3::new(0.0, 0.1, 0.0),
+                Vec3::Z
+            ]
+        );
+        assert_eq!(soup.corner_uvs.as_ref().unwrap()[0], Vec2::new(0.25, 0.0));
+        assert_eq!(
+            soup.notes,
+            [
+                "read 3 number(s) with the exponent's sign before its `e`, read as `e` then the \
+              sign (the first `3.1+e2`, line 1)"
+            ]
+        );
+        // What cannot be read one way only is still refused, naming its line.
+        let err = read(b"v 0 0 0\nv 3.1+e2.5 0 0\n").unwrap_err();
+        assert_eq!(
+            (err.location.as_str(), err.message.as_str()),
+            ("line 2", "`3.1+e2.5` is not a number (x)")
+        );
     }
 }

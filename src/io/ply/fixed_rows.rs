@@ -190,7 +190,7 @@ fn read_faces(
 
 #[cfg(test)]
 mod tests {
-    use super::super::{Binary, PlyEncoding, body_values, header, write};
+    use super::super::{Binary, Header, PlyEncoding, body_values, header, write};
     use super::*;
     use crate::io::ParseError;
     use crate::io::tests::mixed;
@@ -198,7 +198,12 @@ mod tests {
 
     /// This reader's soup (if it takes the body) and the general reader's, for a whole file.
     fn both(bytes: &[u8]) -> (Option<PolygonSoup>, Result<PolygonSoup, ParseError>) {
-        let (encoding, elements, body) = header(bytes).unwrap();
+        let Header {
+            encoding,
+            elements,
+            body,
+            ..
+        } = header(bytes).unwrap();
         let big_endian = encoding == PlyEncoding::BinaryBigEndian;
         let fixed = read(bytes, body, big_endian, &elements);
         let mut values = Binary {
@@ -212,7 +217,7 @@ mod tests {
     /// Holds this reader to the general one on `bytes` and on every cut of its body: where the
     /// general reader fails this one declines, and where this one reads, the soups are equal.
     fn agrees_on_every_cut(bytes: &[u8]) {
-        let (_, _, body) = header(bytes).unwrap();
+        let body = header(bytes).unwrap().body;
         for cut in body..=bytes.len() {
             let (fixed, general) = both(&bytes[..cut]);
             match (fixed, general) {
