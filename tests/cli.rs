@@ -2,7 +2,7 @@
 
 mod common;
 
-use serde_json::Value;
+use serde_json::{Value, json};
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
@@ -132,6 +132,43 @@ fn broken_files_are_reported_not_panicked_on() {
         );
         assert!(!stderr.contains("panicked"), "{name}: {stderr}");
     }
+}
+
+#[test]
+fn a_keyhole_opens_as_its_ring_and_a_gltf_1_file_is_refused_by_name() {
+    // A 4 × 4 square with a 2 × 2 hole, one polygon through a bridge, as CAD exporters write.
+    let keyhole = tmp("keyhole.obj");
+    std::fs::write(
+        &keyhole,
+        "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nv 1 1 0\nv 3 1 0\nv 3 3 0\nv 1 3 0\n\
+         f 1 2 3 4 1 5 8 7 6 5\n",
+    )
+    .unwrap();
+    let v = json(&pappus(&["info", "--json", keyhole.to_str().unwrap()]));
+    assert_eq!(v["repairs"]["untangled_faces"], 1);
+    assert_eq!(
+        (
+            &v["faces"],
+            &v["vertices"],
+            &v["boundary_loops"],
+            &v["valid"]
+        ),
+        (&json!(8), &json!(8), &json!(2), &json!(true))
+    );
+    let old = tmp("old.gltf");
+    std::fs::write(
+        &old,
+        r#"{"asset": {"version": "1.0"}, "meshes": {"m": {"primitives": []}}}"#,
+    )
+    .unwrap();
+    let out = pappus(&["info", old.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("old.gltf")
+            && stderr.contains("glTF 1.0 is not supported: re-export as glTF 2.0"),
+        "{stderr}"
+    );
 }
 
 #[test]
