@@ -9,12 +9,12 @@
 //!
 //! Writing: the `mtllib` lines first, then before each face the statements whose part of the
 //! state differs from the face before it (so a file Pappus read writes back the same
-//! statements in the same places). A statement cannot unset a part (there is no "no object"),
+//! statements in the same places). A name from another format that a line cannot hold (a line
+//! break, a `#`, a final `\`) is written with `_` in their place. A statement cannot unset a part (there is no "no object"),
 //! so when a face's group lacks a part the face before it had (only faces an edit made can do
 //! that), the faces are written grouped by row instead, rows in table order: rows in order of
 //! first use only ever gain parts.
 
-use std::fmt::Write as _;
 
 use crate::mesh::groups::{FaceGroups, Group, GroupRows, GroupTable};
 
@@ -108,12 +108,24 @@ fn changes(from: &Group, to: &Group, out: &mut String) -> Option<()> {
             out.push_str(keyword);
             if !name.is_empty() {
                 out.push(' ');
-                out.push_str(name);
+                push_name(name, out);
             }
             out.push('\n');
         }
     }
     Some(())
+}
+
+/// Writes a name (from a scene's node or material, which may hold anything) as one OBJ line can
+/// hold it: a line break or other control character, and a `#` (a comment), become `_`, and so
+/// does a final `\` (a continuation, which would join the next line, a face, to the name).
+fn push_name(name: &str, out: &mut String) {
+    let name = name.trim();
+    let last = name.char_indices().last().map_or(0, |(i, _)| i);
+    for (i, c) in name.char_indices() {
+        let unwritable = c == '#' || c.is_control() || (i == last && c == '\\');
+        out.push(if unwritable { '_' } else { c });
+    }
 }
 
 /// Whether faces in order `of_face` can be written as they are (no face lacks a part of its
@@ -139,7 +151,9 @@ impl<'a> GroupWriter<'a> {
     /// Starts: writes the `mtllib` lines.
     pub fn new(groups: &'a FaceGroups, out: &mut String) -> Self {
         for library in &groups.table.material_libraries {
-            let _ = writeln!(out, "mtllib {library}");
+            out.push_str("mtllib ");
+            push_name(library, out);
+            out.push('\n');
         }
         Self {
             groups,
@@ -237,5 +251,15 @@ mod tests {
             of_face: vec![1, 0],
         };
         assert!(!writable_in_order(&groups));
+    }
+
+    #[test]
+    fn a_name_no_obj_line_can_hold_is_written_so_the_next_line_stays_a_face() {
+        let mut out = String::new();
+        for name in ["\\", "Material #25", "two\nlines", " a\\b\\ "] {
+            push_name(name, &mut out);
+            out.push('|');
+        }
+        assert_eq!(out, "_|Material _25|two_lines|a\\b_|");
     }
 }
