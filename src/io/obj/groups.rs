@@ -15,7 +15,6 @@
 //! that), the faces are written grouped by row instead, rows in table order: rows in order of
 //! first use only ever gain parts.
 
-
 use crate::mesh::groups::{FaceGroups, Group, GroupRows, GroupTable};
 
 /// The grouping state while a file is read, and the group of each face so far.
