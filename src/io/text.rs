@@ -150,8 +150,9 @@ impl Numbers {
         }
     }
 
-    /// The note for the soup on what was mended: `"read 2 number(s) written with a decimal
-    /// comma (the first `1,5`, line 3) as decimal points"`; `None` when nothing was.
+    /// The note for the soup on what was mended: `"read 2 number(s) with a decimal comma, read
+    /// as a decimal point (the first `1,5`, line 3)"`, and the same for exponents after a `;`;
+    /// `None` when nothing was.
     pub fn note(&self) -> Option<String> {
         let phrase = |m: &Mended, how: &str| {
             let (token, line) = m.first.as_ref()?;

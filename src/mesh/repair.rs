@@ -233,8 +233,9 @@ fn keep_well_formed_faces(soup: &PolygonSoup, report: &mut RepairReport) -> Work
             let triangles = untangle(face, &soup.positions);
             if triangles.is_empty() {
                 report.repeated_vertex_faces += 1;
+            } else {
+                report.untangled_faces += 1;
             }
-            report.untangled_faces += usize::from(!triangles.is_empty());
             for triangle in triangles {
                 indices.extend(triangle.map(|k| face[k]));
                 source.extend(triangle.map(|k| first + k as u32));

@@ -29,7 +29,7 @@ pub fn untangle(face: &[u32], positions: &[Vec3]) -> Vec<[usize; 3]> {
             corners.push(k);
         }
     }
-    while corners.len() > 1 && face[corners[0]] == face[*corners.last().unwrap_or(&0)] {
+    while corners.len() > 1 && face[corners[0]] == face[corners[corners.len() - 1]] {
         corners.pop();
     }
     if corners.len() < 3 {

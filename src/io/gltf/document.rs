@@ -144,9 +144,8 @@ fn required_extensions(json: &mut Root) -> Result<Option<String>, String> {
             ));
         }
     }
-    let (_, tolerated): (Vec<String>, Vec<String>) = std::mem::take(&mut json.extensions_required)
-        .into_iter()
-        .partition(|e| READ.contains(&e.as_str()));
+    let mut tolerated = std::mem::take(&mut json.extensions_required);
+    tolerated.retain(|e| !READ.contains(&e.as_str()));
     Ok((!tolerated.is_empty()).then(|| {
         format!(
             "read without the required extension(s) {}: they concern only materials, textures \

@@ -3,21 +3,20 @@
 //!
 //! **Reading** walks the default scene (else the first; a file without scenes places each mesh
 //! once) with every node's transform applied, and reads every primitive drawn as `TRIANGLES`,
-//! `TRIANGLE_STRIP` or `TRIANGLE_FAN` ([`super::strips`] for strips); points and lines are
-//! counted in the notes, as are skins, animations, morph targets, cameras, materials' properties
-//! and textures. Each face keeps its primitive's material name and its node's name as its face
-//! group ([`super::parts`]). What the document must be to be read (its version, its required
-//! extensions, the `gltf` crate's validation, with what is tolerated) is [`document`]'s.
-//! Attributes: `POSITION`, `NORMAL`, `TEXCOORD_0` (any component type `KHR_mesh_quantization`
-//! allows, normalised integers scaled as glTF says, [`values`]; glTF's `v` runs down the image,
-//! so it is flipped, `v = 1 − v′`, as OBJ and Blender count it), `COLOR_0` (RGB or RGBA, alpha dropped); indices of any width;
-//! sparse accessors. glTF splits a vertex wherever an attribute differs (a UV seam, a hard
-//! edge): reading welds the vertices of one mesh that sit at the same position (bit for bit,
-//! `−0` as `+0`), so a closed surface comes back closed — or, in a file Pappus wrote, the
-//! vertices that copy one mesh vertex ([`VERTEX_ATTRIBUTE`]), so that two distinct vertices
-//! that coincide stay two — and keeps the split values per corner: UVs as they are; normals
-//! and colours, which Pappus keeps per vertex, as their mean where the corners differ (said in
-//! the notes).
+//! `TRIANGLE_STRIP` or `TRIANGLE_FAN` ([`super::strips`] for strips); points and lines are counted
+//! in the notes, as are skins, animations, morph targets, cameras, materials' properties and
+//! textures. Each face keeps its primitive's material name and its node's name as its face group
+//! ([`super::parts`]). What the document must be to be read (its version, its required extensions,
+//! the `gltf` crate's validation, with what is tolerated) is [`document`]'s. Attributes:
+//! `POSITION`, `NORMAL`, `TEXCOORD_0` (any component type `KHR_mesh_quantization` allows,
+//! normalised integers scaled as glTF says, [`values`]; glTF's `v` runs down the image, so it is
+//! flipped, `v = 1 − v′`, as OBJ and Blender count it), `COLOR_0` (RGB or RGBA, alpha dropped);
+//! indices of any width; sparse accessors. glTF splits a vertex wherever an attribute differs (a UV
+//! seam, a hard edge): reading welds the vertices of one mesh that sit at the same position (bit
+//! for bit, `−0` as `+0`), so a closed surface comes back closed — or, in a file Pappus wrote, the
+//! vertices that copy one mesh vertex ([`VERTEX_ATTRIBUTE`]), so that two distinct vertices that
+//! coincide stay two — and keeps the split values per corner: UVs as they are; normals and colours,
+//! which Pappus keeps per vertex, as their mean where the corners differ (said in the notes).
 //!
 //! **Writing** ([`write`]) is a scene of one node and one mesh of one triangle primitive:
 //! polygons fan-triangulated (said by the caller: a polygon's face is not kept as one), a vertex written once per distinct (position, UV) pair, normals and
