@@ -67,6 +67,13 @@ impl Buffers {
         self.0.get(buffer.index()).map(Vec::as_slice)
     }
 
+    /// The bytes of a buffer view; `None` when the view reaches past its buffer.
+    pub fn view(&self, view: &View) -> Option<&[u8]> {
+        let start = view.offset();
+        self.get(view.buffer())?
+            .get(start..start.checked_add(view.length())?)
+    }
+
     /// Checks that an accessor can be read as one of `allowed` (component type, dimensions):
     /// it has items, and every item it names, sparse ones included, lies inside its view and
     /// buffer.

@@ -1,9 +1,11 @@
 //! A glTF file's document: parsed, its version and required extensions checked, and validated
 //! by the `gltf` crate with what Pappus tolerates taken out.
 //!
-//! What is refused is refused by name with what to do (glTF 1.0, Draco- or meshopt-compressed
-//! meshes, an unknown required extension), never with a decoder's error about a JSON type.
-//! `KHR_mesh_quantization` is read ([`super::values`]). What is tolerated is said in the notes:
+//! What is refused is refused by name with what to do (glTF 1.0, meshopt-compressed buffers, an
+//! unknown required extension), never with a decoder's error about a JSON type.
+//! `KHR_mesh_quantization` is read ([`super::values`]), and so is `KHR_draco_mesh_compression`
+//! ([`super::draco`]: its accessors need no data, which validation would otherwise refuse). What
+//! is tolerated is said in the notes:
 //! - a required extension that concerns only how the surface looks (materials, textures,
 //!   lights, the 1.0-era `KHR_technique_webgl`): Pappus reads no material's properties, so the
 //!   geometry is what it would be with the extension understood (the spec lets a reader refuse
@@ -26,19 +28,13 @@ pub(super) struct Parsed {
 
 /// Required extensions that change the geometry's encoding, which Pappus does not decode, and
 /// what to do about each.
-const UNDECODED: [(&str, &str); 2] = [
-    (
-        "KHR_draco_mesh_compression",
-        "Draco-compressed meshes are not supported: re-export without Draco compression",
-    ),
-    (
-        "EXT_meshopt_compression",
-        "meshopt-compressed buffers are not supported: re-export without meshopt compression",
-    ),
-];
+const UNDECODED: [(&str, &str); 1] = [(
+    "EXT_meshopt_compression",
+    "meshopt-compressed buffers are not supported: re-export without meshopt compression",
+)];
 
 /// Required extensions that Pappus reads.
-const READ: [&str; 1] = ["KHR_mesh_quantization"];
+const READ: [&str; 2] = ["KHR_mesh_quantization", super::draco::EXTENSION];
 
 /// Whether a required extension concerns only materials, textures or lights (by its name's
 /// prefix, as the Khronos and vendor registries name them), so that the geometry reads the same
@@ -100,6 +96,28 @@ pub(super) fn parse(bytes: &[u8]) -> Result<Parsed, ParseError> {
     })
 }
 
+/// The accessors of the primitives compressed with Draco (their attributes' and indices'), which
+/// need no data of their own.
+fn draco_accessors(json: &Root) -> Vec<usize> {
+    let compressed = |p: &&gltf::json::mesh::Primitive| {
+        p.extensions
+            .as_ref()
+            .is_some_and(|e| e.others.contains_key(super::draco::EXTENSION))
+    };
+    let mut accessors: Vec<usize> = json
+        .meshes
+        .iter()
+        .flat_map(|mesh| mesh.primitives.iter().filter(compressed))
+        .flat_map(|p| {
+            let attributes = p.attributes.values().map(|a| a.value());
+            attributes.chain(p.indices.map(|i| i.value()))
+        })
+        .collect();
+    accessors.sort_unstable();
+    accessors.dedup();
+    accessors
+}
+
 /// The refusal of a version other than 2.
 fn not_two(version: &str) -> String {
     format!("glTF {version} is not supported: re-export as glTF 2.0")
@@ -156,8 +174,8 @@ fn required_extensions(json: &mut Root) -> Result<Option<String>, String> {
 }
 
 /// Runs the crate's validation; a `POSITION` accessor's missing or malformed bounds are
-/// tolerated (counted in the note), anything else is an error listing every finding. An
-/// accessor without data in a file that uses Draco is the Draco refusal.
+/// tolerated (counted in the note), and so is a Draco-compressed primitive's accessor without
+/// data; anything else is an error listing every finding.
 fn validate(json: &Root) -> Result<Option<String>, ParseError> {
     let error = |message: String| ParseError::byte(0, message);
     // The crate's validation indexes the accessors by POSITION's number before it checks the
@@ -185,18 +203,18 @@ fn validate(json: &Root) -> Result<Option<String>, ParseError> {
         path.contains(r#"attributes["POSITION"]"#)
             && (path.ends_with(".min") || path.ends_with(".max"))
     };
+    let compressed = draco_accessors(json);
+    let no_data = |path: &JsonPath, error: &Invalid| {
+        let index = path
+            .as_str()
+            .strip_prefix("accessors[")
+            .and_then(|rest| rest.strip_suffix("].bufferView"))
+            .and_then(|index| index.parse::<usize>().ok());
+        *error == Invalid::Missing && index.is_some_and(|i| compressed.contains(&i))
+    };
+    findings.retain(|(path, error)| !no_data(path, error));
     let (tolerated, rest): (Vec<_>, Vec<_>) = findings.into_iter().partition(|(p, _)| bounds(p));
     if !rest.is_empty() {
-        let draco = json
-            .extensions_used
-            .iter()
-            .any(|e| e == "KHR_draco_mesh_compression");
-        let no_data = |(path, error): &(JsonPath, Invalid)| {
-            *error == Invalid::Missing && path.as_str().ends_with(".bufferView")
-        };
-        if draco && rest.iter().any(no_data) {
-            return Err(error(UNDECODED[0].1.to_owned()).unsupported());
-        }
         let listed: Vec<String> = rest.iter().map(|(p, e)| format!("{p}: {e}")).collect();
         return Err(error(format!("invalid glTF: {}", listed.join("; "))));
     }

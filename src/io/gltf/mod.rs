@@ -24,6 +24,7 @@
 
 mod buffers;
 mod document;
+mod draco;
 mod values;
 mod write;
 
@@ -74,7 +75,7 @@ pub fn read(bytes: &[u8], folder: Option<&Path>) -> Result<PolygonSoup, ParseErr
         .collect();
     let (mut soup, parts) = assemble(&keyed, |index| {
         let mesh = document.meshes().nth(index);
-        mesh.map(|mesh| read_mesh(&mesh, &buffers))
+        mesh.map(|mesh| read_mesh(&mesh, &document, &buffers))
             .transpose()
             .map_err(|e| ParseError::byte(0, e).unsupported())
     })?;
@@ -203,7 +204,11 @@ struct Vertices {
 }
 
 /// Reads a mesh's triangle primitives into one part, welding vertices at the same position.
-fn read_mesh(mesh: &gltf::Mesh, buffers: &Buffers) -> Result<Part, String> {
+fn read_mesh(
+    mesh: &gltf::Mesh,
+    document: &gltf::Document,
+    buffers: &Buffers,
+) -> Result<Part, String> {
     let mut part = Part::new();
     part.material_libraries = extras_field(mesh.extras(), LIBRARIES_EXTRA)
         .and_then(|v| serde_json::from_value(v).ok())
@@ -225,7 +230,8 @@ fn read_mesh(mesh: &gltf::Mesh, buffers: &Buffers) -> Result<Part, String> {
         }
         part.skipped
             .count("morph target(s)", primitive.morph_targets().count());
-        let Some(vertices) = read_vertices(&primitive, buffers)? else {
+        let draco = draco::decode(&primitive, document, buffers)?;
+        let Some(vertices) = read_vertices(&primitive, buffers, draco.as_ref())? else {
             part.skipped.count("primitive(s) without positions", 1);
             continue;
         };
@@ -247,7 +253,10 @@ fn read_mesh(mesh: &gltf::Mesh, buffers: &Buffers) -> Result<Part, String> {
             .collect();
         part.use_group(primitive_group(&primitive));
         part.exact_groups |= vertices.ids.is_some();
-        let order = read_indices(&primitive, buffers, vertices.positions.len())?;
+        let order = match &draco {
+            Some(stream) => stream.triangles(),
+            None => read_indices(&primitive, buffers, vertices.positions.len())?,
+        };
         let mut triangle = |corners: [u32; 3]| {
             for i in corners {
                 let i = i as usize;
@@ -322,72 +331,86 @@ fn value_at<T: Copy>(list: &Option<Vec<T>>, i: usize) -> Option<T> {
     list.as_ref().and_then(|l| l.get(i).copied())
 }
 
-/// A primitive's positions and the attributes Pappus reads; `None` without positions.
+/// A primitive's positions and the attributes Pappus reads; `None` without positions. An
+/// attribute the primitive's Draco stream compresses is read from the stream, any other from
+/// its accessor.
 fn read_vertices(
     primitive: &gltf::Primitive,
     buffers: &Buffers,
+    draco: Option<&draco::Decoded>,
 ) -> Result<Option<Vertices>, String> {
-    let reader = primitive.reader(|b| buffers.get(b));
-    let Some(accessor) = primitive.get(&gltf::Semantic::Positions) else {
-        return Ok(None);
-    };
-    buffers.check_accessor(&accessor, POSITIONS, "positions")?;
-    let positions: Vec<Vec3> = values::floats::<3>(&accessor, buffers)
-        .ok_or("positions cannot be read")?
-        .into_iter()
-        .map(Vec3::from_array)
-        .collect();
-    let n = positions.len();
-    let attribute = |semantic: gltf::Semantic, allowed, what: &str| -> Result<bool, String> {
-        match primitive.get(&semantic) {
-            Some(accessor) => {
-                buffers.check_accessor(&accessor, allowed, what)?;
-                if accessor.count() < n {
-                    return Err(format!("{what}: {} for {n} positions", accessor.count()));
-                }
-                Ok(true)
-            }
-            None => Ok(false),
+    use gltf::Semantic;
+    let compressed = |semantic: &Semantic| draco.filter(|stream| stream.has(semantic));
+    let positions: Vec<Vec3> = match compressed(&Semantic::Positions) {
+        Some(stream) => stream
+            .floats::<3>(&Semantic::Positions)?
+            .unwrap_or_default(),
+        None => {
+            let Some(accessor) = primitive.get(&Semantic::Positions) else {
+                return Ok(None);
+            };
+            buffers.check_accessor(&accessor, POSITIONS, "positions")?;
+            values::floats::<3>(&accessor, buffers).ok_or("positions cannot be read")?
         }
+    }
+    .into_iter()
+    .map(Vec3::from_array)
+    .collect();
+    let n = positions.len();
+    // An uncompressed attribute's accessor, checked; `None` when the primitive lacks it.
+    let accessor = |semantic: Semantic, allowed, what: &str| -> Result<_, String> {
+        let Some(accessor) = primitive.get(&semantic) else {
+            return Ok(None);
+        };
+        buffers.check_accessor(&accessor, allowed, what)?;
+        if accessor.count() < n {
+            return Err(format!("{what}: {} for {n} positions", accessor.count()));
+        }
+        Ok(Some(accessor))
     };
-    let accessor_of = |semantic: gltf::Semantic| primitive.get(&semantic);
-    let normals = attribute(gltf::Semantic::Normals, NORMALS, "normals")?
-        .then(|| values::floats::<3>(&accessor_of(gltf::Semantic::Normals)?, buffers))
-        .flatten()
+    // The attribute's values as `N` floats, from the stream or from its accessor.
+    macro_rules! floats {
+        ($n:literal, $semantic:expr, $allowed:expr, $what:expr) => {
+            match compressed(&$semantic) {
+                Some(stream) => stream.floats::<$n>(&$semantic)?,
+                None => accessor($semantic, $allowed, $what)?
+                    .and_then(|a| values::floats::<$n>(&a, buffers)),
+            }
+        };
+    }
+    let normals = floats!(3, Semantic::Normals, NORMALS, "normals")
         .map(|n| n.into_iter().map(Vec3::from_array).collect());
     // glTF's v runs down the image; Pappus's (OBJ's, Blender's) runs up.
-    let uvs = attribute(
-        gltf::Semantic::TexCoords(0),
-        TEXCOORDS,
-        "texture coordinates",
-    )?
-    .then(|| values::floats::<2>(&accessor_of(gltf::Semantic::TexCoords(0))?, buffers))
-    .flatten()
-    .map(|uvs| {
+    let uvs = floats!(2, Semantic::TexCoords(0), TEXCOORDS, "texture coordinates").map(|uvs| {
         uvs.into_iter()
             .map(|[u, v]| Vec2::new(u, 1.0 - v))
             .collect()
     });
-    let colors = attribute(gltf::Semantic::Colors(0), COLORS, "colours")?
-        .then(|| {
-            let bytes =
-                |c: [f32; 3]| Vec3::from_array(c.map(|v| (v * 255.0).round().clamp(0.0, 255.0)));
-            reader
-                .read_colors(0)
-                .map(|r| r.into_rgb_f32().map(bytes).collect())
-        })
-        .flatten();
-    let id_semantic = || gltf::Semantic::Extras(VERTEX_ATTRIBUTE[1..].into());
-    let ids = attribute(id_semantic(), VERTEX_IDS, "vertex ids")?
-        .then(|| {
-            let accessor = primitive.get(&id_semantic())?;
-            let ids = gltf::accessor::Iter::<[u16; 2]>::new(accessor, |b| buffers.get(b))?;
-            Some(
-                ids.map(|[low, high]| u32::from(low) | (u32::from(high) << 16))
-                    .collect(),
-            )
-        })
-        .flatten();
+    let bytes = |c: [f32; 3]| Vec3::from_array(c.map(|v| (v * 255.0).round().clamp(0.0, 255.0)));
+    let colors = match compressed(&Semantic::Colors(0)) {
+        Some(stream) => stream.floats::<3>(&Semantic::Colors(0))?,
+        None => accessor(Semantic::Colors(0), COLORS, "colours")?.and_then(|_| {
+            let reader = primitive.reader(|b| buffers.get(b));
+            Some(reader.read_colors(0)?.into_rgb_f32().collect())
+        }),
+    }
+    .map(|colors: Vec<[f32; 3]>| colors.into_iter().map(bytes).collect());
+    let id_semantic = || Semantic::Extras(VERTEX_ATTRIBUTE[1..].into());
+    let ids = match compressed(&id_semantic()) {
+        Some(stream) => stream.floats::<2>(&id_semantic())?.map(|ids| {
+            ids.into_iter()
+                .map(|[low, high]| [low as u16, high as u16])
+                .collect()
+        }),
+        None => accessor(id_semantic(), VERTEX_IDS, "vertex ids")?.and_then(|accessor| {
+            Some(gltf::accessor::Iter::<[u16; 2]>::new(accessor, |b| buffers.get(b))?.collect())
+        }),
+    }
+    .map(|ids: Vec<[u16; 2]>| {
+        ids.into_iter()
+            .map(|[low, high]| u32::from(low) | (u32::from(high) << 16))
+            .collect()
+    });
     Ok(Some(Vertices {
         positions,
         ids,
