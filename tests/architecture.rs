@@ -1,7 +1,8 @@
 //! The layering rules of DESIGN §1, checked on the source: no two modules of `src/editor`, of
 //! each of its rooms, of `src/mesh` or of `src/ops` import each other, directly or round a
 //! longer cycle; no room imports the editor's root back; no folder of the editor holds more
-//! than 12 files; no function outside the tests runs over 120 lines.
+//! than 12 files; no function outside the tests runs over 120 lines; the README is at most 400
+//! lines.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -197,6 +198,17 @@ fn no_editor_folder_holds_more_than_twelve_files() {
         }
         assert!(files <= 12, "{} holds {files} files", dir.display());
     }
+}
+
+/// The README stays a user's page, not a manual: at most 400 lines (its key table is checked
+/// against the keymap by the editor's own tests).
+#[test]
+fn the_readme_is_at_most_400_lines() {
+    let readme =
+        std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("README.md"))
+            .unwrap();
+    let lines = readme.lines().count();
+    assert!(lines <= 400, "the README has {lines} lines");
 }
 
 /// The functions of a Rust source over `limit` lines (signature to closing brace), before its

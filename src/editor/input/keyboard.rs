@@ -1013,6 +1013,55 @@ mod tests {
         );
     }
 
+    /// The README's key table (its first `| key | does |` table) and the keymap agree: every
+    /// shortcut is written in it (in the key column, or in backticks in a row, as the pick
+    /// modes are), and every key its key column names is a shortcut.
+    #[test]
+    fn the_readme_key_table_is_the_keymap() {
+        let readme = include_str!("../../../README.md");
+        let rows: Vec<&str> = readme
+            .lines()
+            .skip_while(|line| !line.starts_with("| key | does |"))
+            .skip(2)
+            .take_while(|line| line.starts_with('|'))
+            .collect();
+        assert!(
+            rows.len() > 30,
+            "the README's key table: {} rows",
+            rows.len()
+        );
+        let text = rows.join("\n");
+        let words: Vec<&str> = rows
+            .iter()
+            .flat_map(|row| row.split('|').nth(1).unwrap_or("").split([' ', ',']))
+            .map(|word| word.trim_matches('`'))
+            .filter(|word| !word.is_empty())
+            .collect();
+        let all: Vec<Shortcut> = shortcuts().collect();
+        for shortcut in &all {
+            let k = shortcut.keys;
+            let written = words.contains(&k)
+                || text.contains(&format!("`{k}`"))
+                || text.contains(&format!("`` {k} ``"));
+            assert!(
+                written,
+                "{k} ({:?}) is not in the README's key table",
+                shortcut.action
+            );
+        }
+        // A word of the key column that reads as a key (a lone lower-case letter is a word).
+        let is_key = |word: &str| {
+            let lower = word.chars().all(|c| c.is_ascii_lowercase());
+            !lower && crate::editor::input::key_names::chord(word).is_some()
+        };
+        for word in words.iter().filter(|w| is_key(w)) {
+            assert!(
+                all.iter().any(|s| s.keys == *word),
+                "the README's key table names {word}, which is no shortcut"
+            );
+        }
+    }
+
     /// The keymap holds every key a registered operation declares, with its help line, and
     /// no two shortcuts (declared or the editor's own) share a key with the same modifiers.
     #[test]
