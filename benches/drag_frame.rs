@@ -19,7 +19,7 @@ use bevy::prelude::*;
 use criterion::{Criterion, criterion_group, criterion_main};
 use pappus::edit::Edit;
 use pappus::editor::EditorSystems;
-use pappus::editor::panels::ui::{InspectorView, snapshot};
+use pappus::editor::panels::{state::InspectorView, ui::snapshot};
 use pappus::editor::session::history::UndoHistory;
 use pappus::editor::session::requests::Request;
 use pappus::editor::session::selection::ActiveMesh;

@@ -780,7 +780,7 @@ fn app_with_camera() -> App {
 
 #[test]
 fn a_proportional_move_takes_each_vertex_by_its_falloff() {
-    use pappus::editor::input::keyboard::UiState;
+    use pappus::editor::session::panel_state::UiState;
     use pappus::ops::deform::{Falloff, Proportional};
     use pappus::ops::named::Named;
     let radius = 0.35;
@@ -1284,7 +1284,7 @@ fn a_large_file_opens_in_the_background_and_can_be_cancelled() {
 /// validity is checked when the panel asks.
 #[test]
 fn a_large_meshs_figures_are_counted_apart_and_its_validity_when_asked() {
-    use pappus::editor::panels::ui::{InspectorView, snapshot};
+    use pappus::editor::panels::{state::InspectorView, ui::snapshot};
     use pappus::editor::pipeline::jobs::JobSettings;
     let mut app = app();
     app.init_resource::<InspectorView>()
@@ -1316,7 +1316,7 @@ fn a_large_meshs_figures_are_counted_apart_and_its_validity_when_asked() {
             .is_empty()
     );
     app.world_mut()
-        .resource_mut::<pappus::editor::input::keyboard::UiState>()
+        .resource_mut::<pappus::editor::session::panel_state::UiState>()
         .check_validity = true;
     app.update();
     assert_eq!(view(&app).validation, Some(Ok(())));
@@ -1604,7 +1604,7 @@ fn shift_u_parameterizes_as_a_job_draws_a_checker_and_undo_removes_the_uvs() {
     // The UV view opened by itself and holds the layout; clicking a face's UV centroid picks it.
     assert!(
         app.world()
-            .resource::<pappus::editor::input::keyboard::UiState>()
+            .resource::<pappus::editor::session::panel_state::UiState>()
             .uv_view
     );
     {

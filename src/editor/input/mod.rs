@@ -20,7 +20,7 @@ impl Plugin for ShortcutsPlugin {
     fn build(&self, app: &mut App) {
         // The window plugin adds the drop message too; headless, a test writes it.
         app.add_message::<bevy::window::FileDragAndDrop>()
-            .init_resource::<keyboard::UiState>()
+            .init_resource::<crate::editor::session::panel_state::UiState>()
             .add_systems(
                 Update,
                 (

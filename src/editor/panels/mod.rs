@@ -1,15 +1,18 @@
-//! The panels room: the egui side panel in sections ([`ui`], [`panel_sections`]), its
+//! The panels room: the egui side panel ([`ui`]) in sections, one file each ([`sections`],
+//! sharing the rows of [`widgets`], drawing what [`state`] holds), its
 //! figures of the mesh counted off the frame ([`mesh_figures`]) and drawn as histograms
 //! ([`plots`]), the UV layout window ([`uv_view`]), and the step mode's window and overlays
 //! ([`step_view`], [`stencil_view`]). It reads every room but automation.
 
 pub mod mesh_figures;
-pub mod panel_sections;
 pub mod plots;
+pub mod sections;
+pub mod state;
 pub mod stencil_view;
 pub mod step_view;
 pub mod ui;
 pub mod uv_view;
+pub mod widgets;
 
 use bevy::prelude::*;
 

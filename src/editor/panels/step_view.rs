@@ -13,13 +13,14 @@ use bevy_egui::{EguiContexts, egui};
 use crate::mesh::ids::ElementId;
 use crate::mesh::topology::MeshRef;
 
+use super::state::PendingActions;
 use super::stencil_view::{
     PointsShown, point_shapes, point_shapes_near, stencil_panel, stencil_shapes,
 };
-use super::ui::PendingActions;
 use crate::editor::gestures::overlay::{AXIS_COLORS, Overlay, Shape};
-use crate::editor::input::keyboard::{Action, UiState};
+use crate::editor::input::keyboard::Action;
 use crate::editor::pipeline::stepping::{Stepping, Steps, describe};
+use crate::editor::session::panel_state::UiState;
 use crate::editor::session::requests::Request;
 use crate::editor::session::requests::StepMove;
 use crate::editor::session::selection::Selection;

@@ -26,7 +26,7 @@ use crate::mesh::attributes::{CornerUv, MeshAttributes};
 use crate::mesh::ids::{ElementId, FaceId, HalfedgeId, MeshId};
 use crate::mesh::topology::MeshRef;
 
-use crate::editor::input::keyboard::UiState;
+use crate::editor::session::panel_state::UiState;
 use crate::editor::session::requests::Request;
 use crate::editor::session::selection::{ActiveMesh, Selection, exists};
 use crate::editor::view::render_sync::RenderStats;

@@ -7,6 +7,7 @@
 pub mod dialog;
 pub mod finish;
 pub mod history;
+pub mod panel_state;
 pub mod requests;
 pub mod schedule;
 pub mod select_many;

@@ -1,8 +1,7 @@
-//! The panel's sections (as Blender's N-panel and MeshLab's filter menu group them): File ·
-//! Mesh · Selection · Element · Modelling · Local operations · Whole mesh · Shape · UV ·
-//! Analysis · History · Log. Each folds open or shut with a click on its title; which are open
-//! is remembered between runs in `$XDG_STATE_HOME/pappus/panel-sections` (one title a line,
-//! beside the recoveries), and a file that cannot be read or written only costs that memory.
+//! Which of the panel's sections are open: each folds open or shut with a click on its title,
+//! and the open ones are remembered between runs in `$XDG_STATE_HOME/pappus/panel-sections`
+//! (one title a line, beside the recoveries); a file that cannot be read or written only costs
+//! that memory.
 
 use std::collections::BTreeSet;
 use std::path::PathBuf;
@@ -10,21 +9,7 @@ use std::path::PathBuf;
 use bevy::prelude::Resource;
 use bevy_egui::egui;
 
-/// The sections, in the panel's order, and whether each is open the first time.
-pub const SECTIONS: [(&str, bool); 12] = [
-    ("File", true),
-    ("Mesh", true),
-    ("Selection", false),
-    ("Element", true),
-    ("Modelling", true),
-    ("Local operations", false),
-    ("Whole mesh", false),
-    ("Shape", false),
-    ("UV", false),
-    ("Analysis", false),
-    ("History", false),
-    ("Log", false),
-];
+use super::SECTIONS;
 
 /// Which sections are open, and where that is remembered.
 #[derive(Resource, Debug)]
@@ -49,13 +34,13 @@ impl PanelSections {
             Some(text) => text
                 .lines()
                 .map(str::trim)
-                .filter(|title| SECTIONS.iter().any(|(t, _)| t == title))
+                .filter(|title| SECTIONS.iter().any(|s| s.title == *title))
                 .map(str::to_owned)
                 .collect(),
             None => SECTIONS
                 .iter()
-                .filter(|(_, open)| *open)
-                .map(|(title, _)| (*title).to_owned())
+                .filter(|s| s.open_at_first)
+                .map(|s| s.title.to_owned())
                 .collect(),
         };
         Self { open, file }
@@ -81,7 +66,7 @@ impl PanelSections {
     /// folds it.
     pub fn show(&mut self, ui: &mut egui::Ui, title: &str, contents: impl FnOnce(&mut egui::Ui)) {
         debug_assert!(
-            SECTIONS.iter().any(|(t, _)| *t == title),
+            SECTIONS.iter().any(|s| s.title == title),
             "{title} is not in SECTIONS"
         );
         let open = self.is_open(title);

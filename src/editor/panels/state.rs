@@ -1,0 +1,89 @@
+//! What the panels draw and keep: the copy of the world they show ([`InspectorView`], made by
+//! [`super::ui::snapshot`]), their text fields, and the actions their clicks leave for the
+//! world. The panel's parameters of the operations are the session's
+//! ([`crate::editor::session::panel_state::UiState`]), which the keys read too.
+
+use bevy::math::Vec3;
+use bevy::prelude::*;
+
+use super::mesh_figures::MeshView;
+use super::plots::Histogram;
+use crate::colormap::{ColorMap, Range};
+use crate::editor::input::keyboard::Action;
+use crate::editor::session::dialog::PathPurpose;
+use crate::editor::session::requests::Relation;
+use crate::mesh::ids::ElementId;
+
+/// Everything the panels show, copied out of the world once a frame.
+#[derive(Resource, Default, Debug, Clone)]
+pub struct InspectorView {
+    /// The active mesh, if any.
+    pub mesh: Option<MeshView>,
+    /// The selected element, if any.
+    pub selected: Option<SelectedView>,
+    /// The selected set, counted ("3 faces selected"); empty when at most one is selected.
+    pub selected_set: String,
+    /// The transform under way, as the status line says it.
+    pub gesture: Option<String>,
+    /// Rebuild count at the last statistics refresh.
+    pub stats_generation: usize,
+    /// The rebuild count last seen.
+    pub seen_generation: usize,
+    /// When the rebuild count last changed.
+    pub changed_at: Option<std::time::Instant>,
+    /// Whether the last change came after the mesh had stood still (it is counted at once).
+    pub after_quiet: bool,
+    /// The simplification history: (coarsest, current, full) face counts.
+    pub lod: Option<(usize, usize, usize)>,
+    /// The undo history, oldest first: each entry's label and whether it is undone (redoable).
+    pub history: Vec<(String, bool)>,
+    /// Bytes the undo history holds.
+    pub history_bytes: usize,
+    /// The running job: its label, the fraction done and the seconds since it started.
+    pub job: Option<(String, f32, f32)>,
+    /// The histograms of the active mesh (counted with the statistics).
+    pub histograms: Vec<Histogram>,
+    /// The quantity the mesh is coloured by: its label, colour map and range (the legend).
+    pub colour: Option<(String, ColorMap, Range)>,
+}
+
+/// The selected element as shown.
+#[derive(Debug, Clone)]
+pub struct SelectedView {
+    /// Its id.
+    pub id: ElementId,
+    /// Each relation and where it leads.
+    pub relations: Vec<(Relation, Option<ElementId>)>,
+    /// Its position (vertices).
+    pub position: Option<Vec3>,
+    /// Facts: valence, degree, boundary.
+    pub facts: Vec<(String, String)>,
+}
+
+/// Text fields that keep their contents between frames.
+#[derive(Resource, Debug)]
+pub struct UiFields {
+    /// The path field (open / save as).
+    pub path: String,
+    /// The "go to id" field.
+    pub jump: String,
+    /// What Enter in the path field does.
+    pub enter_means: PathPurpose,
+    /// The path field takes the keyboard next frame.
+    pub focus: bool,
+}
+
+impl Default for UiFields {
+    fn default() -> Self {
+        Self {
+            path: String::new(),
+            jump: String::new(),
+            enter_means: PathPurpose::Open,
+            focus: false,
+        }
+    }
+}
+
+/// Actions chosen in the panel that need the world (run in the next `Input` set).
+#[derive(Resource, Default, Debug)]
+pub struct PendingActions(pub Vec<Action>);
