@@ -1,6 +1,6 @@
 //! `KHR_draco_mesh_compression`: a primitive whose indices and attributes are one Draco stream
 //! in a buffer view, decoded by [`draco_core`] (a pure-Rust port of Google's Draco decoder,
-//! byte-exact with Draco 1.5.7; every bitstream version, sequential and EdgeBreaker, standard
+//! byte-exact with Draco 1.5.7; every bitstream version, sequential and Edgebreaker, standard
 //! and valence, so what Blender, gltf-transform and gltfpack write).
 //!
 //! The extension names the buffer view and, for each attribute it compresses, the unique id
@@ -186,7 +186,7 @@ mod tests {
     const COLOUR_ID: u32 = 5;
 
     /// `soup` (triangles) as a Draco stream with positions, normals and u8 colours, encoded
-    /// at `speed` (10: sequential, 5–9: EdgeBreaker, below 5: EdgeBreaker valence), positions
+    /// at `speed` (10: sequential, 5–9: Edgebreaker, below 5: Edgebreaker valence), positions
     /// quantised to `bits` (0: lossless).
     fn stream(soup: &PolygonSoup, speed: i32, bits: i32) -> Vec<u8> {
         let n = soup.positions.len();
@@ -367,7 +367,7 @@ mod tests {
         let soup = crate::mesh::shapes::icosphere(2);
         let (v, f) = (soup.positions.len(), soup.face_count());
         assert_eq!((v, f), (162, 320));
-        // Sequential, EdgeBreaker standard, EdgeBreaker valence; lossless and quantised.
+        // Sequential, Edgebreaker standard, Edgebreaker valence; lossless and quantised.
         for (speed, bits, tolerance) in [(10, 0, 0.0), (10, 14, 1e-4), (5, 14, 1e-4), (0, 11, 1e-3)]
         {
             let bytes = document(&stream(&soup, speed, bits), &soup, None, json!({}));

@@ -94,6 +94,7 @@ pub(crate) mod testing {
     use super::*;
 
     /// The panel's resources as the editor starts with them.
+    #[derive(Default)]
     pub struct Resources {
         pub view: InspectorView,
         pub log: OutcomeLog,
@@ -105,23 +106,6 @@ pub(crate) mod testing {
         pub colour_by: ColorBy,
         pub anchors: Anchors,
         pub pending: PendingActions,
-    }
-
-    impl Default for Resources {
-        fn default() -> Self {
-            Self {
-                view: InspectorView::default(),
-                log: OutcomeLog::default(),
-                fields: UiFields::default(),
-                state: UiState::default(),
-                mode: SelectMode::default(),
-                settings: ViewSettings::default(),
-                density: WireframeDensity::default(),
-                colour_by: ColorBy::default(),
-                anchors: Anchors::default(),
-                pending: PendingActions::default(),
-            }
-        }
     }
 
     /// Draws `section` over `resources` in a frame of a headless egui: every text it drew, a
