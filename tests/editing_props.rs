@@ -165,7 +165,7 @@ fn fingerprint(world: &World, mesh: MeshId) -> u64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 256, failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(common::proptest_config())]
 
     #[test]
     fn random_editing_keeps_the_mesh_valid_and_undoes_exactly(

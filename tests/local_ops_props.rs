@@ -51,7 +51,7 @@ fn counts(world: &World, mesh: MeshId) -> (usize, usize, usize) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 256, failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(common::proptest_config())]
 
     #[test]
     fn random_local_edits_keep_the_mesh_valid(

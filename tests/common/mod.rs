@@ -211,3 +211,24 @@ pub fn edge_fraction() -> impl proptest::strategy::Strategy<Value = f32> {
     use proptest::strategy::Strategy;
     (50u16..950).prop_map(|thousandths| f32::from(thousandths) / 1000.0)
 }
+
+/// The cases a property test runs when `PAPPUS_PROPTEST_CASES` does not say: enough for every
+/// edit kind to come up on every shape in each run; `benches/proptest_long.sh` runs 1 024.
+pub const PROPTEST_CASES: u32 = 64;
+
+/// The property tests' configuration: `PAPPUS_PROPTEST_CASES` cases (default
+/// [`PROPTEST_CASES`]), and a failing case saved beside its test's source
+/// (`tests/NAME.proptest-regressions`, to be committed) and replayed first by every later run.
+pub fn proptest_config() -> proptest::test_runner::Config {
+    let cases = std::env::var("PAPPUS_PROPTEST_CASES")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(PROPTEST_CASES);
+    proptest::test_runner::Config {
+        cases,
+        failure_persistence: Some(Box::new(
+            proptest::test_runner::FileFailurePersistence::WithSource("proptest-regressions"),
+        )),
+        ..proptest::test_runner::Config::default()
+    }
+}
