@@ -7,5 +7,6 @@
 #   benches/proptest_long.sh [CASES]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$HOME/.cache/pappus/target}"
 export PAPPUS_PROPTEST_CASES="${1:-1024}"
 time cargo test --test local_ops_props --test editing_props -- --nocapture
