@@ -134,13 +134,7 @@ impl Decoded {
         };
         // glTF's colours are normalised whenever they are integers.
         let normalized = attribute.normalized() || matches!(semantic, gltf::Semantic::Colors(_));
-        let scale = |c: f32| {
-            if normalized {
-                (c / largest).max(-1.0)
-            } else {
-                c
-            }
-        };
+        let scale = |c: f32| super::values::scaled(c, normalized, largest);
         let values = attribute.read_f32s(self.points(), N);
         let (items, _) = values.as_chunks::<N>();
         Ok(Some(items.iter().map(|item| item.map(scale)).collect()))

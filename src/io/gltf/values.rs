@@ -47,7 +47,7 @@ where
 
 /// A component's value: divided by its type's largest value when normalised (and kept at
 /// −1 or above, as the two lowest signed values both mean −1).
-fn scaled(c: f32, normalized: bool, largest: f32) -> f32 {
+pub(super) fn scaled(c: f32, normalized: bool, largest: f32) -> f32 {
     if normalized {
         (c / largest).max(-1.0)
     } else {
