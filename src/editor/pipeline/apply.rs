@@ -18,13 +18,11 @@ use crate::mesh::{MeshInfo, despawn_mesh};
 use super::jobs::{self, Jobs};
 use super::opening::{self, open};
 use super::stepping;
-use crate::editor::session::finish::{Finished, finish_edit, report};
-use crate::editor::session::history::{self, Redraw, UndoHistory};
+use crate::editor::session::finish::{Finished, finish_edit, mark_redraw, report};
+use crate::editor::session::history::{self, UndoHistory};
 use crate::editor::session::requests::{ConfirmDiscard, Declined, PendingDiscard, Request};
 use crate::editor::session::select_many::apply_selection_edit;
-use crate::editor::session::selection::{
-    ActiveMesh, MeshDirty, Selection, exists, mark_faces_dirty, navigate,
-};
+use crate::editor::session::selection::{ActiveMesh, Selection, exists, navigate};
 use crate::editor::session::state::{Modified, SimplificationHistory, is_modified};
 
 /// Applies every request written since the last run, in order (the `Apply` set).
@@ -218,23 +216,8 @@ fn undo_or_redo(world: &mut World, redo: bool) -> Result<String, Declined> {
     }))?;
     // The simplification history describes the mesh as it was before the entry was applied.
     world.resource_mut::<SimplificationHistory>().pm = None;
-    match stepped.redraw {
-        Redraw::Near {
-            mesh,
-            mut vertices,
-            removed,
-        } => {
-            let m = MeshRef::new(world);
-            vertices.retain(|&v| m.try_vertex(v).is_some());
-            let mut faces: Vec<_> = vertices.iter().flat_map(|&v| m.vertex_faces(v)).collect();
-            faces.extend(removed);
-            mark_faces_dirty(world, mesh, faces);
-            world.entity_mut(mesh.0).insert(Modified);
-        }
-        Redraw::Whole(Some(mesh)) => {
-            world.entity_mut(mesh.0).insert((MeshDirty, Modified));
-        }
-        Redraw::Whole(None) => {}
+    if let Some(mesh) = stepped.mesh {
+        mark_redraw(world, mesh, stepped.redraw);
     }
     #[cfg(debug_assertions)]
     if let Some(mesh) = world.resource::<ActiveMesh>().0

@@ -58,16 +58,7 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
     if world.get_entity(mesh.0).is_err() {
         return Ok(applied.summary);
     }
-    world.entity_mut(mesh.0).insert(Modified);
-    match applied.redraw {
-        Redraw::Whole => {
-            world.entity_mut(mesh.0).insert(MeshDirty);
-        }
-        Redraw::Near { faces, .. } => mark_faces_dirty(world, mesh, faces),
-        Redraw::Positions => {
-            world.entity_mut(mesh.0).insert(PositionsDirty);
-        }
-    }
+    mark_redraw(world, mesh, applied.redraw);
     match applied.made {
         Some(made) => world.resource_mut::<Selection>().select_only(Some(made)),
         None => {
@@ -76,6 +67,22 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
         }
     }
     Ok(applied.summary)
+}
+
+/// Marks `mesh` modified and what of it the render copy redraws: the faces `redraw` names
+/// (the faces around its vertices are already among them), every face, or the positions alone.
+/// What an edit, an undo and a stepped run's end all do.
+pub fn mark_redraw(world: &mut World, mesh: MeshId, redraw: Redraw) {
+    world.entity_mut(mesh.0).insert(Modified);
+    match redraw {
+        Redraw::Whole => {
+            world.entity_mut(mesh.0).insert(MeshDirty);
+        }
+        Redraw::Near { faces, .. } => mark_faces_dirty(world, mesh, faces),
+        Redraw::Positions => {
+            world.entity_mut(mesh.0).insert(PositionsDirty);
+        }
+    }
 }
 
 /// Logs an outcome and hands it to the status line, the log panel and any reader of

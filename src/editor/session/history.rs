@@ -25,11 +25,11 @@ use bevy::prelude::{Res, ResMut, Resource, World};
 use crate::mesh::MeshInfo;
 use crate::mesh::change::{Change, LocalRecorder, Remap, SavedContents, SavedMesh, remapped};
 use crate::mesh::despawn_mesh;
-use crate::mesh::ids::{ElementId, FaceId, MeshId, VertexId};
+use crate::mesh::ids::{ElementId, MeshId};
 use crate::mesh::tables::MeshTables;
 use crate::mesh::topology::MeshRef;
 
-use crate::edit::{Edit, MergeKey, Reach};
+use crate::edit::{Edit, MergeKey, Reach, Redraw};
 
 use super::selection::{ActiveMesh, Selection, exists, keep_live_selection};
 
@@ -70,23 +70,20 @@ impl Record {
         }
     }
 
-    /// Applies the record: returns its inverse, the remap, and what to redraw.
-    fn apply(self, world: &mut World) -> (Record, Remap, Redraw) {
+    /// Applies the record: returns its inverse, the remap, and the mesh it changed (none when
+    /// it removed the only one) with what of it to redraw.
+    fn apply(self, world: &mut World) -> (Record, Remap, Option<MeshId>, Redraw) {
         match self {
             Record::Local(change) => {
                 let mesh = change.mesh;
                 let (inverse, map, touched) = change.apply(world);
-                let redraw = Redraw::Near {
-                    mesh,
-                    vertices: touched.vertices,
-                    removed: touched.removed_faces,
-                };
-                (Record::Local(inverse), map, redraw)
+                let redraw = Redraw::near(world, touched.removed_faces, touched.vertices);
+                (Record::Local(inverse), map, Some(mesh), redraw)
             }
             Record::Whole(saved) => {
                 let mesh = saved.mesh;
                 let (inverse, map) = saved.apply(world);
-                (Record::Whole(inverse), map, Redraw::Whole(Some(mesh)))
+                (Record::Whole(inverse), map, Some(mesh), Redraw::Whole)
             }
             Record::Replace { remove, restore } => {
                 let saved = remove
@@ -108,25 +105,10 @@ impl Record {
                     remove: mesh,
                     restore: saved,
                 };
-                (inverse, map, Redraw::Whole(mesh))
+                (inverse, map, mesh, Redraw::Whole)
             }
         }
     }
-}
-
-/// What must be redrawn after an entry was applied.
-pub enum Redraw {
-    /// The faces around these vertices, and these (now removed) faces.
-    Near {
-        /// The mesh.
-        mesh: MeshId,
-        /// Vertices brought back or changed.
-        vertices: Vec<VertexId>,
-        /// Faces removed (they leave the render copy).
-        removed: Vec<FaceId>,
-    },
-    /// The whole mesh (now the active one, if any).
-    Whole(Option<MeshId>),
 }
 
 /// One undoable step.
@@ -419,7 +401,10 @@ pub fn restore(world: &mut World, pending: Pending) -> Option<Remap> {
 pub struct Stepped {
     /// The entry's label.
     pub label: String,
-    /// What to redraw.
+    /// The mesh the entry changed (now the active one), `None` when it removed the only one.
+    pub mesh: Option<MeshId>,
+    /// What of it to redraw: the faces around the vertices the entry brought back or changed
+    /// and the faces it removed, or the whole mesh.
     pub redraw: Redraw,
 }
 
@@ -429,7 +414,7 @@ pub struct Stepped {
 pub fn step(world: &mut World, redo: bool) -> Option<Stepped> {
     let entry = world.resource_mut::<UndoHistory>().stack(redo).pop()?;
     let now_selected = world.resource::<Selection>().element;
-    let (inverse, mut map, redraw) = entry.record.apply(world);
+    let (inverse, mut map, mesh, redraw) = entry.record.apply(world);
     for other in world.resource_mut::<UndoHistory>().stack(redo).iter_mut() {
         other.remap(&mut map);
     }
@@ -452,6 +437,7 @@ pub fn step(world: &mut World, redo: bool) -> Option<Stepped> {
     }
     Some(Stepped {
         label: entry.label,
+        mesh,
         redraw,
     })
 }
