@@ -26,6 +26,7 @@ from pathlib import Path
 
 from ._pappus import (
     SHAPES,
+    Connectivity,
     InvalidMesh,
     Mesh,
     PappusError,
@@ -40,6 +41,7 @@ from ._pappus import (
 
 __all__ = [
     "SHAPES",
+    "Connectivity",
     "InvalidMesh",
     "Mesh",
     "PappusError",

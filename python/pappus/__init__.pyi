@@ -95,6 +95,33 @@ def process_file(
     A refused step is reported and the others run; an unreadable input or unwritable output raises.
     """
 
+class Connectivity:
+    """The halfedge structure of a mesh when ``Mesh.connectivity()`` was called: int64 arrays,
+    −1 where there is no element. Vertex and face rows are those of ``Mesh.vertices`` and
+    ``Mesh.faces``: walking ``next`` from ``face_halfedge[f]`` visits ``faces[f]``'s corners in
+    order, each halfedge's ``from_vertex`` being the corner. A snapshot: later edits leave it."""
+
+    #: Per halfedge: the next halfedge round its face (or boundary loop).
+    next: npt.NDArray[np.int64]
+    #: Per halfedge: the previous halfedge round its face (or boundary loop).
+    prev: npt.NDArray[np.int64]
+    #: Per halfedge: the opposite halfedge of its edge.
+    twin: npt.NDArray[np.int64]
+    #: Per halfedge: the vertex it points to (its tip).
+    to_vertex: npt.NDArray[np.int64]
+    #: Per halfedge: the vertex it leaves (``to_vertex[twin]``).
+    from_vertex: npt.NDArray[np.int64]
+    #: Per halfedge: its edge.
+    edge: npt.NDArray[np.int64]
+    #: Per halfedge: its face, −1 on the boundary.
+    face: npt.NDArray[np.int64]
+    #: Per vertex: an outgoing halfedge, the boundary one on a boundary; −1 when isolated.
+    vertex_halfedge: npt.NDArray[np.int64]
+    #: Per edge: one of its halfedges, an interior one where it has one.
+    edge_halfedge: npt.NDArray[np.int64]
+    #: Per face: the halfedge leaving the first corner of its row of ``faces``.
+    face_halfedge: npt.NDArray[np.int64]
+
 class Mesh:
     """One halfedge mesh (polygons allowed).
 
@@ -131,6 +158,8 @@ class Mesh:
         self,
     ) -> Tuple[npt.NDArray[np.float32], Union[npt.NDArray[np.int64], List[npt.NDArray[np.int64]]]]:
         """``(vertices, faces)`` in one pass."""
+    def connectivity(self) -> Connectivity:
+        """The halfedge structure as arrays (see :class:`Connectivity`)."""
     def info(self) -> dict:
         """The keys of ``pappus info --json`` (counts, genus, validity, repairs, curvature, …)."""
     def validate(self) -> None:

@@ -24,11 +24,13 @@ use pappus::memory_budget::Budget;
 use pappus::source::{SourceError, read_source};
 
 mod arrays;
+mod connectivity;
 mod elements;
 mod errors;
 mod groups;
 mod mesh;
 
+use connectivity::ConnectivityArrays;
 use errors::{InvalidMesh, PappusError, ParseError, Refused, io_error, user_warning};
 use mesh::Mesh;
 
@@ -186,8 +188,8 @@ fn parameter<'py>(
 mod _pappus {
     #[pymodule_export]
     use super::{
-        InvalidMesh, Mesh, PappusError, ParseError, Refused, load, memory_budget, operations,
-        set_memory_budget,
+        ConnectivityArrays, InvalidMesh, Mesh, PappusError, ParseError, Refused, load,
+        memory_budget, operations, set_memory_budget,
     };
 
     use pyo3::prelude::*;

@@ -25,6 +25,7 @@ use pappus::ops::progressive::ProgressiveMesh;
 use crate::arrays::{
     faces_array, float_rows, positions_and_faces, read_faces, vec2_array, vec3_array,
 };
+use crate::connectivity::ConnectivityArrays;
 use crate::elements::{element_text, elements_text, number};
 use crate::errors::{InvalidMesh, Refused, io_error, user_warning, with_outcome_note};
 use crate::groups::{face_groups_dict, face_groups_from};
@@ -269,6 +270,16 @@ impl Mesh {
             vec3_array(py, &positions)?,
             faces_array(py, &indices, &starts)?,
         ))
+    }
+
+    /// The halfedge structure as int64 arrays (`pappus.Connectivity`): per halfedge `next`,
+    /// `prev`, `twin`, `to_vertex`, `from_vertex`, `edge` and `face` (−1 on the boundary); per
+    /// vertex `vertex_halfedge` (outgoing, the boundary one on a boundary, −1 when isolated);
+    /// `edge_halfedge`; `face_halfedge`. Vertex and face rows are those of `vertices` and
+    /// `faces`: walking `next` from `face_halfedge[f]` visits `faces[f]`'s corners in order.
+    /// A snapshot, taken with the GIL released.
+    fn connectivity(&self, py: Python<'_>) -> ConnectivityArrays {
+        ConnectivityArrays::of(py, &self.world, self.mesh)
     }
 
     /// The texture coordinates per face corner, K×2 float32 in the order of the faces' corners

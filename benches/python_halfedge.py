@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""The halfedge structure from Python, timed in one run: `Mesh.connectivity()` against
+`Mesh.arrays()` (the issue's bar: at most 2x), and a walk over every vertex's outgoing halfedges
+of the shared models through the arrays (plain NumPy indexing, one Python step a halfedge).
+Prints a Markdown table, ready for docs/performance.md.
+
+Each time is the median of 7 calls (the walk: of 3). The walk visits each vertex's fan by
+`h = twin[prev[h]]` from `vertex_halfedge[v]` until it comes back, on Python ints (the arrays
+turned to lists first, as a student's loop would), and checks that it visited every halfedge
+once.
+
+Usage: python3 benches/python_halfedge.py [MODEL ...]
+       (default: the Stanford bunny, homer and the 655 362-vertex icosphere:8)
+Needs: numpy and the Pappus package (pip install ./).
+"""
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import pappus
+
+MODELS = Path(__file__).resolve().parents[1] / ".." / "shared" / "models"
+
+
+def median_ms(call, repeats):
+    """The median wall time of `call()` in ms over `repeats` calls."""
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        call()
+        times.append((time.perf_counter() - start) * 1000.0)
+    return statistics.median(times)
+
+
+def walk_every_fan(c):
+    """Visits every vertex's outgoing halfedges; returns how many it visited."""
+    vertex_halfedge = c.vertex_halfedge.tolist()
+    twin, prev = c.twin.tolist(), c.prev.tolist()
+    visited = 0
+    for start in vertex_halfedge:
+        if start < 0:
+            continue
+        h = start
+        while True:
+            visited += 1
+            h = twin[prev[h]]
+            if h == start:
+                break
+    return visited
+
+
+def main():
+    sources = sys.argv[1:] or [
+        str(MODELS / "stanford-bunny.obj"),
+        str(MODELS / "homer.obj"),
+        "shape:icosphere:8",
+    ]
+    print("| mesh | faces | `arrays()` ms | `connectivity()` ms | ratio | every fan walked ms |")
+    print("|---|---:|---:|---:|---:|---:|")
+    for source in sources:
+        mesh = pappus.load(source)
+        faces = len(mesh.faces)
+        arrays = median_ms(mesh.arrays, 7)
+        connectivity = median_ms(mesh.connectivity, 7)
+        c = mesh.connectivity()
+        assert walk_every_fan(c) == len(c.next)
+        walk = median_ms(lambda: walk_every_fan(c), 3)
+        name = Path(source).stem if not source.startswith("shape:") else source
+        print(
+            f"| {name} | {faces} | {arrays:.1f} | {connectivity:.1f} | "
+            f"{connectivity / arrays:.2f} | {walk:.0f} |"
+        )
+
+
+if __name__ == "__main__":
+    main()
