@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The halfedge structure from Python, timed in one run: `Mesh.connectivity()` against
 `Mesh.arrays()` (the issue's bar: at most 2x), and a walk over every vertex's outgoing halfedges
-of the shared models through the arrays (plain NumPy indexing, one Python step a halfedge).
+through the arrays (one Python step a halfedge) and through handles (`mesh.vertex(v).outgoing()`,
+one handle a halfedge).
 Prints a Markdown table, ready for docs/performance.md.
 
 Each time is the median of 7 calls (the walk: of 3). The walk visits each vertex's fan by
@@ -50,14 +51,22 @@ def walk_every_fan(c):
     return visited
 
 
+def walk_every_fan_by_handles(mesh):
+    """Visits every vertex's outgoing halfedges through handles (`v.outgoing()`)."""
+    return sum(len(mesh.vertex(v).outgoing()) for v in range(len(mesh.vertices)))
+
+
 def main():
     sources = sys.argv[1:] or [
         str(MODELS / "stanford-bunny.obj"),
         str(MODELS / "homer.obj"),
         "shape:icosphere:8",
     ]
-    print("| mesh | faces | `arrays()` ms | `connectivity()` ms | ratio | every fan walked ms |")
-    print("|---|---:|---:|---:|---:|---:|")
+    print(
+        "| mesh | faces | `arrays()` ms | `connectivity()` ms | ratio "
+        "| every fan walked, arrays ms | by handles ms |"
+    )
+    print("|---|---:|---:|---:|---:|---:|---:|")
     for source in sources:
         mesh = pappus.load(source)
         faces = len(mesh.faces)
@@ -66,10 +75,12 @@ def main():
         c = mesh.connectivity()
         assert walk_every_fan(c) == len(c.next)
         walk = median_ms(lambda: walk_every_fan(c), 3)
+        assert walk_every_fan_by_handles(mesh) == len(c.next)
+        by_handles = median_ms(lambda: walk_every_fan_by_handles(mesh), 3)
         name = Path(source).stem if not source.startswith("shape:") else source
         print(
             f"| {name} | {faces} | {arrays:.1f} | {connectivity:.1f} | "
-            f"{connectivity / arrays:.2f} | {walk:.0f} |"
+            f"{connectivity / arrays:.2f} | {walk:.0f} | {by_handles:.0f} |"
         )
 
 

@@ -42,6 +42,10 @@ class ParseError(PappusError):
     #: The 1-based line for text formats, else None.
     line: Optional[int]
 
+class StaleElement(PappusError):
+    """A handle names an element an edit removed (``"v12v0 is gone"``); nothing was read or
+    changed. A collapse removes elements; subdivision ends every handle but vertices'."""
+
 class InvalidMesh(PappusError):
     """``Mesh.validate`` found a broken invariant; the message names the rule and the element."""
 
@@ -122,6 +126,75 @@ class Connectivity:
     #: Per face: the halfedge leaving the first corner of its row of ``faces``.
     face_halfedge: npt.NDArray[np.int64]
 
+class Vertex:
+    """One vertex of a mesh. Every read checks that it still exists (:class:`StaleElement`)."""
+
+    #: The editor inspector's id (``"v12v0"``): the same vertex for as long as it exists.
+    id: str
+    #: Its row of ``Mesh.vertices`` now.
+    row: int
+    #: Its position; setting it moves the vertex as one edit (ValueError when not finite).
+    position: Tuple[float, float, float]
+    #: An outgoing halfedge, the boundary one on a boundary.
+    halfedge: "Halfedge"
+    is_boundary: bool
+    #: Its number of edges.
+    valence: int
+    def outgoing(self) -> List["Halfedge"]:
+        """Its outgoing halfedges, counter-clockwise (``h.prev.twin`` after ``h``)."""
+    def neighbours(self) -> List["Vertex"]:
+        """The vertices its edges lead to, in the order of ``outgoing()``."""
+    def faces(self) -> List["Face"]:
+        """The faces around it, in the order of ``outgoing()`` (a boundary gap skipped)."""
+
+class Halfedge:
+    """One side of an edge, pointing at ``to_vertex``."""
+
+    id: str
+    #: Its row of ``Mesh.connectivity()``'s halfedge arrays now.
+    row: int
+    next: "Halfedge"
+    prev: "Halfedge"
+    twin: "Halfedge"
+    #: Its tip.
+    to_vertex: Vertex
+    #: Its tail.
+    from_vertex: Vertex
+    edge: "Edge"
+    #: None on the boundary.
+    face: Optional["Face"]
+    is_boundary: bool
+
+class Edge:
+    """A pair of twin halfedges."""
+
+    id: str
+    row: int
+    #: One of its halfedges, an interior one where it has one.
+    halfedge: Halfedge
+    is_boundary: bool
+    def vertices(self) -> Tuple[Vertex, Vertex]:
+        """``halfedge``'s tail, then its tip."""
+    def faces(self) -> List["Face"]:
+        """The faces on its sides: two inside the mesh, one on a boundary."""
+
+class Face:
+    """A cycle of halfedges."""
+
+    id: str
+    #: Its row of ``Mesh.faces`` now.
+    row: int
+    #: The halfedge leaving its first corner.
+    halfedge: Halfedge
+    #: Whether one of its edges lies on a boundary.
+    is_boundary: bool
+    def halfedges(self) -> List[Halfedge]:
+        """Its halfedges in order, from ``halfedge``."""
+    def vertices(self) -> List[Vertex]:
+        """Its corners in order: its row of ``Mesh.faces``."""
+
+AnyElement = Union[Vertex, Halfedge, Edge, Face]
+
 class Mesh:
     """One halfedge mesh (polygons allowed).
 
@@ -160,6 +233,17 @@ class Mesh:
         """``(vertices, faces)`` in one pass."""
     def connectivity(self) -> Connectivity:
         """The halfedge structure as arrays (see :class:`Connectivity`)."""
+    def vertex(self, row: int) -> Vertex:
+        """The vertex in ``row`` of ``vertices`` (negative rows from the end); IndexError outside."""
+    def halfedge(self, row: int) -> Halfedge:
+        """The halfedge in ``row`` of ``connectivity()``'s halfedge arrays; IndexError outside."""
+    def edge(self, row: int) -> Edge:
+        """The edge in ``row`` of ``connectivity()``'s edge arrays; IndexError outside."""
+    def face(self, row: int) -> Face:
+        """The face in ``row`` of ``faces``; IndexError outside."""
+    def element(self, id: str) -> AnyElement:
+        """The element the editor's inspector calls ``id`` (``"v12v0"``, ``"h7v0"``, …).
+        ValueError for text that is no element id, StaleElement for one no longer here."""
     def info(self) -> dict:
         """The keys of ``pappus info --json`` (counts, genus, validity, repairs, curvature, …)."""
     def validate(self) -> None:

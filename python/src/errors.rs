@@ -34,6 +34,13 @@ create_exception!(
     "`Mesh.validate` found a broken invariant; the message names the rule and the element."
 );
 
+create_exception!(
+    pappus,
+    StaleElement,
+    PappusError,
+    "A handle names an element an edit removed (`v12v0 is gone`); nothing was read or changed."
+);
+
 /// The Python exception for a file error: `ParseError` (with its location) for malformed or
 /// unsupported contents, `FileNotFoundError` / `OSError` for the file system, `ValueError` for
 /// an unknown extension or one Pappus only reads.

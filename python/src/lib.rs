@@ -28,10 +28,12 @@ mod connectivity;
 mod elements;
 mod errors;
 mod groups;
+mod handles;
 mod mesh;
 
 use connectivity::ConnectivityArrays;
-use errors::{InvalidMesh, PappusError, ParseError, Refused, io_error, user_warning};
+use errors::{InvalidMesh, PappusError, ParseError, Refused, StaleElement, io_error, user_warning};
+use handles::{EdgeHandle, FaceHandle, HalfedgeHandle, VertexHandle};
 use mesh::Mesh;
 
 /// Milliseconds since `start`.
@@ -188,8 +190,9 @@ fn parameter<'py>(
 mod _pappus {
     #[pymodule_export]
     use super::{
-        ConnectivityArrays, InvalidMesh, Mesh, PappusError, ParseError, Refused, load,
-        memory_budget, operations, set_memory_budget,
+        ConnectivityArrays, EdgeHandle, FaceHandle, HalfedgeHandle, InvalidMesh, Mesh, PappusError,
+        ParseError, Refused, StaleElement, VertexHandle, load, memory_budget, operations,
+        set_memory_budget,
     };
 
     use pyo3::prelude::*;

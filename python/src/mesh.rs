@@ -2,23 +2,26 @@
 //! simplification history, with one method per `process` step.
 
 use std::path::PathBuf;
+use std::sync::OnceLock;
 use std::time::Instant;
 
-use bevy::prelude::World;
+use bevy::prelude::{Entity, World};
 use numpy::{
     AllowTypeChange, PyArray1, PyArrayLike2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
 };
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyIndexError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use bevy::math::{Vec2, Vec3};
 use pappus::cli::info_with_load_times;
+use pappus::edit::{Edit, IdsKept};
 use pappus::edit::{EditContext, Step};
 use pappus::io;
+use pappus::mesh::ids::{parse_element, slot, slots_for};
 use pappus::mesh::{
-    MeshId, MeshInfo, MeshMembers, PolygonSoup, RepairReport, VertexId, build_mesh, to_soup,
-    validate,
+    Edge, ElementId, Face, Halfedge, MeshId, MeshInfo, MeshMembers, PolygonSoup, RepairReport,
+    Vertex, VertexId, build_mesh, to_soup, validate,
 };
 use pappus::ops::progressive::ProgressiveMesh;
 
@@ -29,6 +32,7 @@ use crate::connectivity::ConnectivityArrays;
 use crate::elements::{element_text, elements_text, number};
 use crate::errors::{InvalidMesh, Refused, io_error, user_warning, with_outcome_note};
 use crate::groups::{face_groups_dict, face_groups_from};
+use crate::handles::{At, handle, stale};
 use crate::ms_since;
 
 /// One halfedge mesh (polygons allowed), owned by Python.
@@ -53,6 +57,37 @@ pub struct Mesh {
     read_ms: f64,
     /// What building the entities took, in ms.
     build_ms: f64,
+    /// Moves on with every edit that rewrote the non-vertex elements in place (subdivision:
+    /// [`IdsKept::VerticesOnly`]), so that a handle taken before it knows it names nothing.
+    element_revision: u64,
+    /// Each element's row, found when a handle first asks after an edit.
+    rows: OnceLock<Rows>,
+}
+
+/// Each element's row in its kind's arrays, by entity index.
+struct Rows {
+    /// `by_slot[slot(e)]`: element `e`'s row (`u32::MAX` for no element of this mesh).
+    by_slot: Vec<u32>,
+    /// The elements by kind and row.
+    members: MeshMembers,
+}
+
+impl Rows {
+    /// The rows of `mesh`'s elements now.
+    fn of(world: &World, mesh: MeshId) -> Self {
+        let members = MeshMembers::collect(world, mesh);
+        let mut by_slot = vec![u32::MAX; slots_for(members.entities())];
+        let mut number = |entities: &mut dyn Iterator<Item = Entity>| {
+            for (row, e) in entities.enumerate() {
+                by_slot[slot(e)] = row as u32;
+            }
+        };
+        number(&mut members.vertices.iter().map(|v| v.0));
+        number(&mut members.halfedges.iter().map(|h| h.0));
+        number(&mut members.edges.iter().map(|e| e.0));
+        number(&mut members.faces.iter().map(|f| f.0));
+        Self { by_slot, members }
+    }
 }
 
 impl Mesh {
@@ -69,6 +104,8 @@ impl Mesh {
             history: None,
             read_ms,
             build_ms: ms_since(start),
+            element_revision: 0,
+            rows: OnceLock::new(),
         })
     }
 
@@ -134,10 +171,85 @@ impl Mesh {
             };
             (outcome, failure)
         });
+        self.rows = OnceLock::new();
+        if outcome.is_ok() && ids_kept(&step) == IdsKept::VerticesOnly {
+            self.element_revision += 1;
+        }
         if let Some(e) = failure {
             return Err(with_outcome_note(py, e, &outcome));
         }
         outcome.map_err(|refusal| Refused::new_err(refusal.to_string()))
+    }
+
+    /// The world holding the mesh.
+    pub(crate) fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// Whether `id` is still an element of this mesh, the same one it was at `revision`.
+    pub(crate) fn holds(&self, id: ElementId, revision: u64) -> bool {
+        let same = matches!(id, ElementId::Vertex(_)) || revision == self.element_revision;
+        same && match id {
+            ElementId::Vertex(v) => self.world.get::<Vertex>(v.0).is_some(),
+            ElementId::Halfedge(h) => self.world.get::<Halfedge>(h.0).is_some(),
+            ElementId::Edge(e) => self.world.get::<Edge>(e.0).is_some(),
+            ElementId::Face(f) => self.world.get::<Face>(f.0).is_some(),
+            ElementId::Mesh(m) => m == self.mesh,
+        }
+    }
+
+    /// The rows of the elements now.
+    fn rows(&self) -> &Rows {
+        self.rows.get_or_init(|| Rows::of(&self.world, self.mesh))
+    }
+
+    /// The row of a live element's entity.
+    pub(crate) fn row_of(&self, e: Entity) -> usize {
+        self.rows().by_slot[slot(e)] as usize
+    }
+
+    /// Moves vertices as one edit (`Edit::Move`): a refusal (a position not finite) changes
+    /// nothing and raises `Refused`.
+    pub(crate) fn set_positions(
+        &mut self,
+        py: Python<'_>,
+        moves: Vec<(VertexId, Vec3)>,
+    ) -> PyResult<()> {
+        self.run_step(py, Step::Edit(Edit::Move(moves)), None)
+            .map(drop)
+    }
+
+    /// A handle on the element in `row` of a kind with `count` rows (a negative row counts
+    /// from the end, as Python's indexing does); `IndexError` outside.
+    fn handle_at(
+        slf: &Bound<'_, Self>,
+        row: i64,
+        kind: &str,
+        id: impl Fn(&MeshMembers, usize) -> ElementId,
+    ) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        let mesh = slf.borrow();
+        let members = &mesh.rows().members;
+        let count = match kind {
+            "vertex" => members.vertices.len(),
+            "halfedge" => members.halfedges.len(),
+            "edge" => members.edges.len(),
+            _ => members.faces.len(),
+        };
+        let index = if row < 0 { row + count as i64 } else { row };
+        if !(0..count as i64).contains(&index) {
+            return Err(PyIndexError::new_err(format!(
+                "{kind} row {row} is out of range: the mesh has {count}"
+            )));
+        }
+        let at = At::new(
+            py,
+            &slf.clone().unbind(),
+            id(members, index as usize),
+            mesh.element_revision,
+        );
+        drop(mesh);
+        handle(py, at)
     }
 
     /// Parses `text` as a `process` step (a malformed one is a `ValueError` with the command
@@ -280,6 +392,51 @@ impl Mesh {
     /// A snapshot, taken with the GIL released.
     fn connectivity(&self, py: Python<'_>) -> ConnectivityArrays {
         ConnectivityArrays::of(py, &self.world, self.mesh)
+    }
+
+    /// The vertex in `row` of `vertices` (negative rows count from the end): a handle with its
+    /// `id`, `position`, `halfedge` and circulators. `IndexError` outside the rows.
+    fn vertex(slf: &Bound<'_, Self>, row: i64) -> PyResult<Py<PyAny>> {
+        Mesh::handle_at(slf, row, "vertex", |m, i| m.vertices[i].into())
+    }
+
+    /// The halfedge in `row` of `connectivity()`'s halfedge arrays. `IndexError` outside.
+    fn halfedge(slf: &Bound<'_, Self>, row: i64) -> PyResult<Py<PyAny>> {
+        Mesh::handle_at(slf, row, "halfedge", |m, i| m.halfedges[i].into())
+    }
+
+    /// The edge in `row` of `connectivity()`'s edge arrays. `IndexError` outside.
+    fn edge(slf: &Bound<'_, Self>, row: i64) -> PyResult<Py<PyAny>> {
+        Mesh::handle_at(slf, row, "edge", |m, i| m.edges[i].into())
+    }
+
+    /// The face in `row` of `faces`. `IndexError` outside.
+    fn face(slf: &Bound<'_, Self>, row: i64) -> PyResult<Py<PyAny>> {
+        Mesh::handle_at(slf, row, "face", |m, i| m.faces[i].into())
+    }
+
+    /// The element the editor's inspector calls `id` (`"v12v0"`, `"h7v0"`, `"e3v0"`,
+    /// `"f5v0"`; a missing generation means 0). `ValueError` for text that is no element id,
+    /// `StaleElement` for an id that names no element of this mesh now.
+    fn element(slf: &Bound<'_, Self>, id: &str) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        let parsed = parse_element(id).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "`{id}` is no element id: a kind (v, h, e, f) and an entity, as `v12v0`"
+            ))
+        })?;
+        let mesh = slf.borrow();
+        let revision = mesh.element_revision;
+        if matches!(parsed, ElementId::Mesh(_)) || !mesh.holds(parsed, revision) {
+            return Err(match parsed {
+                ElementId::Mesh(_) => {
+                    PyValueError::new_err(format!("`{id}` names a mesh, not an element"))
+                }
+                _ => stale(parsed),
+            });
+        }
+        drop(mesh);
+        handle(py, At::new(py, &slf.clone().unbind(), parsed, revision))
     }
 
     /// The texture coordinates per face corner, K×2 float32 in the order of the faces' corners
@@ -829,4 +986,13 @@ fn report_from(counts: &[usize]) -> RepairReport {
         *field = n;
     }
     report
+}
+
+/// Which element ids a step keeps (see [`IdsKept`]).
+fn ids_kept(step: &Step) -> IdsKept {
+    match step {
+        Step::Edit(edit) => edit.keeps_ids(),
+        Step::On(invocation, _) => invocation.declaration().ids,
+        Step::Validate | Step::Deform(_) => IdsKept::All,
+    }
 }

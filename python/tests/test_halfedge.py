@@ -129,3 +129,147 @@ def test_the_arrays_are_a_snapshot():
     check_invariants(after, mesh.faces, 4)
     assert sorted(map(tuple, np.sort(mesh.faces, axis=1))) == [(0, 1, 3), (1, 2, 3)]
     assert "4 vertices, 10 halfedges, 5 edges, 2 faces" in repr(after)
+
+
+# --- Handles and circulators ------------------------------------------------------------------
+
+
+def test_handles_read_what_the_arrays_hold():
+    mesh = pappus.load("shape:torus")
+    c = mesh.connectivity()
+    for row in range(0, len(c.next), 7):
+        h = mesh.halfedge(row)
+        assert h.row == row
+        assert (h.next.row, h.prev.row, h.twin.row) == (c.next[row], c.prev[row], c.twin[row])
+        assert (h.to_vertex.row, h.from_vertex.row) == (c.to_vertex[row], c.from_vertex[row])
+        assert h.edge.row == c.edge[row] and h.face.row == c.face[row]
+        assert not h.is_boundary
+    for row in range(len(c.vertex_halfedge)):
+        assert mesh.vertex(row).halfedge.row == c.vertex_halfedge[row]
+    for row in range(len(c.edge_halfedge)):
+        assert mesh.edge(row).halfedge.row == c.edge_halfedge[row]
+    for row in range(len(c.face_halfedge)):
+        assert mesh.face(row).halfedge.row == c.face_halfedge[row]
+
+
+def test_circulators_walk_the_one_ring_and_the_faces():
+    mesh = pappus.load(str(MODELS / "bunny-disk.obj")) if models() else None
+    c = mesh.connectivity()
+    faces = mesh.faces
+    for row in range(0, len(mesh.vertices), 53):
+        v = mesh.vertex(row)
+        outgoing = [h.row for h in v.outgoing()]
+        expected, h = [], c.vertex_halfedge[row]
+        while True:
+            expected.append(h)
+            h = c.twin[c.prev[h]]
+            if h == c.vertex_halfedge[row]:
+                break
+        assert outgoing == expected
+        assert [n.row for n in v.neighbours()] == list(c.to_vertex[expected])
+        assert [f.row for f in v.faces()] == [f for f in c.face[expected] if f >= 0]
+        assert v.valence == len(expected)
+        assert v.is_boundary == bool(np.any(c.face[expected] < 0))
+    for row in range(0, len(faces), 41):
+        f = mesh.face(row)
+        assert [v.row for v in f.vertices()] == list(faces[row])
+        assert [h.from_vertex.row for h in f.halfedges()] == list(faces[row])
+    boundary_edges = 0
+    for row in range(len(c.edge_halfedge)):
+        e = mesh.edge(row)
+        a, b = e.vertices()
+        h = c.edge_halfedge[row]
+        assert (a.row, b.row) == (c.from_vertex[h], c.to_vertex[h])
+        sides = sorted(x for x in (c.face[h], c.face[c.twin[h]]) if x >= 0)
+        assert sorted(f.row for f in e.faces()) == sides
+        assert e.is_boundary == (len(sides) == 1)
+        boundary_edges += e.is_boundary
+    assert boundary_edges == np.count_nonzero(c.face < 0)
+
+
+def test_ids_name_elements_and_handles_compare_by_element():
+    mesh = pappus.load("shape:icosphere:1")
+    v = mesh.vertex(3)
+    assert v.id.startswith("v") and mesh.element(v.id) == v and v == mesh.vertex(3)
+    assert v != mesh.vertex(4) and len({v, mesh.vertex(3), mesh.vertex(4)}) == 2
+    assert v != mesh.halfedge(3) and repr(v) == f"pappus.Vertex({v.id})"
+    for handle in (mesh.halfedge(5), mesh.edge(5), mesh.face(5)):
+        again = mesh.element(handle.id)
+        assert type(again) is type(handle) and again == handle and again.row == 5
+    assert mesh.vertex(-1).row == len(mesh.vertices) - 1
+    other = pappus.load("shape:icosphere:1")
+    assert other.vertex(3) != v
+
+
+def test_positions_read_and_write_as_one_edit():
+    mesh = two_triangles()
+    v = mesh.vertex(2)
+    assert v.position == (1.0, 1.0, 0.0)
+    v.position = (0.5, 2.0, -1.0)
+    np.testing.assert_array_equal(mesh.vertices[2], [0.5, 2.0, -1.0])
+    assert v.position == (0.5, 2.0, -1.0)
+    with pytest.raises(ValueError, match="finite"):
+        v.position = (float("nan"), 0.0, 0.0)
+    np.testing.assert_array_equal(mesh.vertices[2], [0.5, 2.0, -1.0])
+
+
+def test_bad_rows_and_ids_are_clear_errors():
+    mesh = two_triangles()
+    with pytest.raises(IndexError, match="vertex row 4 is out of range: the mesh has 4"):
+        mesh.vertex(4)
+    with pytest.raises(IndexError):
+        mesh.face(-3)
+    with pytest.raises(ValueError, match="no element id"):
+        mesh.element("x12")
+    with pytest.raises(ValueError, match="names a mesh"):
+        mesh.element("m0v0")
+    with pytest.raises(pappus.StaleElement, match="v999v0 is gone"):
+        mesh.element("v999v0")
+    assert issubclass(pappus.StaleElement, pappus.PappusError)
+
+
+def test_ids_stay_through_a_flip_and_go_with_a_collapse():
+    mesh = two_triangles()
+    c = mesh.connectivity()
+    diagonal = next(
+        mesh.edge(e) for e in range(5) if c.face[c.twin[c.edge_halfedge[e]]] >= 0
+    )
+    corners = {v.row for v in diagonal.vertices()}
+    assert corners == {0, 2}
+    mesh.flip(0, 2)
+    assert {v.row for v in diagonal.vertices()} == {1, 3}
+    assert len(diagonal.faces()) == 2
+
+    sphere = pappus.load("shape:icosphere:1")
+    a, b = sphere.edge(0).vertices()
+    keep = next(sphere.vertex(v) for v in range(12) if v not in (a.row, b.row))
+    faces = [sphere.face(f) for f in range(len(sphere.faces))]
+    # A shape's input vertex numbers are its rows.
+    sphere.collapse(a.row, b.row)
+    gone = [x for x in (a, b) if not _alive(x)]
+    assert len(gone) == 1
+    with pytest.raises(pappus.StaleElement, match=f"{gone[0].id} is gone"):
+        gone[0].position
+    assert keep.position == tuple(float(x) for x in sphere.vertices[keep.row])
+    assert sum(not _alive(f) for f in faces) == 2
+
+
+def test_subdivision_keeps_vertex_ids_and_ends_the_others():
+    mesh = pappus.load("shape:icosphere:1")
+    v, f, h = mesh.vertex(7), mesh.face(7), mesh.halfedge(7)
+    position = v.position
+    mesh.loop()
+    assert v.position != position or v.valence == 5
+    assert len(v.neighbours()) == v.valence
+    for handle in (f, h):
+        with pytest.raises(pappus.StaleElement, match=f"{handle.id} is gone"):
+            handle.row
+
+
+def _alive(handle):
+    """Whether `handle` still names an element."""
+    try:
+        handle.row
+        return True
+    except pappus.StaleElement:
+        return False
