@@ -10,6 +10,10 @@ Each time is the median of 7 calls (the walk: of 3). The walk visits each vertex
 turned to lists first, as a student's loop would), and checks that it visited every halfedge
 once.
 
+Then the cost of a local operation's record of what it made: an edge split by a step (input
+vertex numbers, a summary) against `mesh.run("split", edge)` (a handle, and `.created` /
+`.removed` read from the world's change tracking, which scans every element once).
+
 Usage: python3 benches/python_halfedge.py [MODEL ...]
        (default: the Stanford bunny, homer and the 655 362-vertex icosphere:8)
 Needs: numpy and the Pappus package (pip install ./).
@@ -56,6 +60,25 @@ def walk_every_fan_by_handles(mesh):
     return sum(len(mesh.vertex(v).outgoing()) for v in range(len(mesh.vertices)))
 
 
+def split_cost(source, count=200):
+    """ms per edge split on `source`: by a step naming input vertex numbers (no record of what
+    it made), and by `mesh.run` on a handle (with `.created` and `.removed`), 200 edges each."""
+    results = []
+    for by_run in (False, True):
+        mesh = pappus.load(source)
+        stride = max(1, len(mesh.connectivity().edge_halfedge) // count)
+        edges = [mesh.edge(e) for e in range(0, stride * count, stride)]
+        ends = [tuple(v.row for v in e.vertices()) for e in edges]
+        start = time.perf_counter()
+        for edge, (a, b) in zip(edges, ends):
+            try:
+                mesh.run("split", edge) if by_run else mesh.step(f"split:{a},{b}")
+            except pappus.Refused:
+                pass
+        results.append((time.perf_counter() - start) * 1000.0 / count)
+    return results
+
+
 def main():
     sources = sys.argv[1:] or [
         str(MODELS / "stanford-bunny.obj"),
@@ -82,6 +105,15 @@ def main():
             f"| {name} | {faces} | {arrays:.1f} | {connectivity:.1f} | "
             f"{connectivity / arrays:.2f} | {walk:.0f} | {by_handles:.0f} |"
         )
+
+
+    print()
+    print("| mesh | split by step ms | split by `run`, tracked ms | ratio |")
+    print("|---|---:|---:|---:|")
+    for source in sources[:2]:
+        step, run = split_cost(source)
+        name = Path(source).stem
+        print(f"| {name} | {step:.3f} | {run:.3f} | {run / step:.2f} |")
 
 
 if __name__ == "__main__":

@@ -52,6 +52,7 @@ __all__ = [
     "Halfedge",
     "InvalidMesh",
     "Mesh",
+    "Outcome",
     "PappusError",
     "ParseError",
     "Refused",
@@ -65,6 +66,29 @@ __all__ = [
     "process_file",
     "set_memory_budget",
 ]
+
+
+class Outcome(str):
+    """What an operation did: its summary (this string, as ``pappus process`` prints it), with
+    ``created`` and ``removed``, handles on the elements it made and removed (a removed one
+    raises :class:`StaleElement` when read; its ``id`` still names it). A split's ``created``
+    holds the new vertex, so an operation can follow on it. A whole-mesh operation keeps no
+    record (both are None): take new handles from the mesh."""
+
+    def __new__(cls, summary, made):
+        outcome = super().__new__(cls, summary)
+        outcome._made = made
+        return outcome
+
+    @property
+    def created(self):
+        """Handles on the elements the operation made (None after a whole-mesh operation)."""
+        return self._made.created()
+
+    @property
+    def removed(self):
+        """Handles on the elements the operation removed (None after a whole-mesh operation)."""
+        return self._made.removed()
 
 
 def _restore(state):

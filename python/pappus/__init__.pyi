@@ -21,7 +21,7 @@ SHAPES: List[str]
 #: saying that the edit completed, or that it was refused and the mesh is unchanged.
 Progress = Optional[Callable[[float], Optional[bool]]]
 #: A vertex by its input number; an edge ``(a, b)``; a face ``(a, b, c, ...)`` (consecutive corners).
-Element = Union[int, Sequence[int]]
+Element = Union[int, Sequence[int], "Vertex", "Halfedge", "Edge", "Face"]
 #: One element, or several.
 Elements = Union[Element, Sequence[Element]]
 #: Faces as an M×k integer array, or one index sequence per face (polygons of any sizes).
@@ -195,6 +195,18 @@ class Face:
 
 AnyElement = Union[Vertex, Halfedge, Edge, Face]
 
+class Outcome(str):
+    """An operation's summary (this string), with handles on what it made and removed."""
+
+    @property
+    def created(self) -> Optional[List[AnyElement]]:
+        """The elements it made (a split's new vertex, edges and faces); None after a
+        whole-mesh operation, which keeps no record."""
+    @property
+    def removed(self) -> Optional[List[AnyElement]]:
+        """The elements it removed (each raises StaleElement when read; ``id`` names it);
+        None after a whole-mesh operation."""
+
 class Mesh:
     """One halfedge mesh (polygons allowed).
 
@@ -213,6 +225,26 @@ class Mesh:
     @property
     def vertices(self) -> npt.NDArray[np.float32]:
         """N×3 float32 positions (a copy), in table order."""
+    @vertices.setter
+    def vertices(self, value: npt.ArrayLike) -> None:
+        """Every position at once, as one edit: an N×3 array of any float dtype. ValueError
+        for another shape or a coordinate that is not finite (naming its row); the mesh is
+        then untouched."""
+    @property
+    def vertex_normals(self) -> npt.NDArray[np.float32]:
+        """N×3 float32 normals by row: the file's while no edit changed the surface, else
+        angle-weighted ones (what a save writes)."""
+    @property
+    def vertex_data(self) -> Dict[str, npt.NDArray[np.float32]]:
+        """The per-vertex scalars the source carried that the mesh has no column for (a PLY's
+        ``quality``), float32 by row; each value follows its vertex through edits, a vertex an
+        edit made reads NaN. Empty when there are none. A copy."""
+    def quantity(self, name: str, *, to: Optional["Mesh"] = None) -> npt.NDArray[np.float64]:
+        """A per-vertex quantity by row, as the editor colours by and ``pappus process
+        --quantity NAME`` writes: ``mean``, ``gaussian``, ``angle-defect``, ``max-curvature``,
+        ``min-curvature``, ``valence``, ``min-angle`` (degrees), ``edge-length`` (the mean of
+        the vertex's edges), ``distance`` (to the mesh ``to``, which only it takes).
+        ValueError for an unknown name or a misplaced ``to``."""
     @property
     def faces(self) -> Union[npt.NDArray[np.int64], List[npt.NDArray[np.int64]]]:
         """M×k int64 rows of ``vertices`` when every face has k sides, else a list of arrays."""
@@ -302,25 +334,34 @@ class Mesh:
         """``arap`` or ``laplace`` (thin plate): ``fixed`` stays, ``handle`` moves by ``offset``."""
     def fair(self, vertices: Sequence[int], k: int = 2) -> str:
         """The vertices solve the k-harmonic equation (k 1–3), every other vertex held."""
-    # Local operations, by input vertex numbers.
-    def flip(self, a: int, b: int) -> str: ...
-    def split(self, a: int, b: int) -> str: ...
-    def bisect(self, a: int, b: int) -> str: ...
-    def collapse(self, a: int, b: int) -> str: ...
-    def dissolve(self, a: int, b: int) -> str: ...
-    def fill_hole(self, a: int, b: int, *, fair: bool = False) -> str:
+    # Local operations: an element by handle, or by input vertex numbers (``a, b`` an edge).
+    # Each returns an Outcome: the summary, with ``created`` and ``removed`` handles.
+    def flip(self, a: Element, b: Optional[int] = None) -> "Outcome": ...
+    def split(self, a: Element, b: Optional[int] = None) -> "Outcome": ...
+    def bisect(self, a: Element, b: Optional[int] = None) -> "Outcome": ...
+    def collapse(self, a: Element, b: Optional[int] = None) -> "Outcome": ...
+    def dissolve(self, a: Element, b: Optional[int] = None) -> "Outcome": ...
+    def fill_hole(self, a: Element, b: Optional[int] = None, *, fair: bool = False) -> "Outcome":
         """The hole beside edge a–b as one face, or with ``fair`` a faired patch of triangles."""
     def fill_holes(self, fair: bool = True) -> str:
         """Every hole: faired patches of triangles (``fair``), or one face each."""
-    def split_face(self, a: int, b: int) -> str: ...
-    def seam(self, a: int, b: int) -> str: ...
-    def extrude(self, faces: Elements, distance: float) -> str: ...
-    def inset(self, faces: Elements, amount: float, depth: float = 0.0) -> str: ...
-    def bevel(self, element: Element, amount: float = 0.25, depth: float = 0.0) -> str: ...
-    def erase(self, elements: Elements) -> str: ...
-    def dissolve_vertex(self, a: int) -> str: ...
-    def collapse_face(self, face: Sequence[int]) -> str: ...
-    def weld(self, first: Sequence[int], second: Sequence[int]) -> str: ...
+    def split_face(self, a: Element, b: Optional[int] = None) -> "Outcome": ...
+    def seam(self, a: Element, b: Optional[int] = None) -> "Outcome": ...
+    def extrude(self, faces: Elements, distance: float) -> "Outcome": ...
+    def inset(self, faces: Elements, amount: float, depth: float = 0.0) -> "Outcome": ...
+    def bevel(self, element: Element, amount: float = 0.25, depth: float = 0.0) -> "Outcome": ...
+    def erase(self, elements: Elements) -> "Outcome": ...
+    def dissolve_vertex(self, a: Element) -> "Outcome": ...
+    def collapse_face(self, face: Element) -> "Outcome": ...
+    def weld(self, first: Element, second: Element) -> "Outcome": ...
+    def run(
+        self, name: str, *elements: Elements, progress: Progress = None, **parameters: Any
+    ) -> "Outcome":
+        """Runs the operation ``name`` (as :func:`operations` lists it; ``_`` reads as ``-``) on
+        ``elements`` (handles or input vertex numbers) with its declared parameters as keywords
+        (lower case; a choice by its word; None for automatic; the rest their defaults).
+        ValueError for an unknown name, elements it does not name, an unknown keyword or a
+        value out of range; StaleElement for a removed handle; Refused when it refuses."""
     def copy(self) -> "Mesh":
         """An independent copy (no simplification history, no seam marks)."""
     def __copy__(self) -> "Mesh": ...

@@ -68,6 +68,22 @@ impl At {
         self.id == other.id && self.mesh.is(&other.mesh)
     }
 
+    /// The mesh's element revision when the handle was made.
+    pub(crate) fn revision(&self) -> u64 {
+        self.revision
+    }
+
+    /// Its element, checked to be of `mesh` (`ValueError` naming the element if not).
+    pub(crate) fn check_mesh(&self, mesh: &Bound<'_, Mesh>) -> PyResult<ElementId> {
+        if !self.mesh.is(mesh) {
+            return Err(PyValueError::new_err(format!(
+                "{} is an element of another mesh",
+                self.id
+            )));
+        }
+        Ok(self.id)
+    }
+
     /// The element's entity.
     fn entity(&self) -> Entity {
         self.id.entity()
@@ -113,6 +129,13 @@ macro_rules! handle_class {
         impl From<At> for $name {
             fn from(at: At) -> Self {
                 Self { at }
+            }
+        }
+
+        impl $name {
+            /// Where it points.
+            pub(crate) fn at(&self) -> &At {
+                &self.at
             }
         }
 

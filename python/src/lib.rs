@@ -30,6 +30,10 @@ mod errors;
 mod groups;
 mod handles;
 mod mesh;
+mod outcome;
+mod quantities;
+mod run;
+mod vertex_data;
 
 use connectivity::ConnectivityArrays;
 use errors::{InvalidMesh, PappusError, ParseError, Refused, StaleElement, io_error, user_warning};
@@ -73,8 +77,8 @@ fn memory_budget() -> (u64, String) {
 
 /// Loads a mesh from a file (.obj .off .ply .stl .glb .gltf .dae, by extension) or a procedural shape
 /// (`"shape:torus"`, `"shape:icosphere:6"`), repaired as the command line repairs it. The GIL
-/// is released while it reads and builds. What the file held that a mesh does not keep
-/// (PLY quality) and what a reader had to approximate is reported with `warnings.warn`.
+/// is released while it reads and builds. A PLY's per-vertex quality is kept in
+/// `Mesh.vertex_data`; what a reader had to approximate is reported with `warnings.warn`.
 ///
 /// Raises `ParseError` (with the line) for a malformed file, `FileNotFoundError` / `OSError` for the
 /// file system, `ValueError` for an unknown extension or shape, or a file with no usable face.
@@ -88,13 +92,7 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
     let read_ms = ms_since(start);
     let name = path.display().to_string();
     let warn = |message: String| user_warning(py, message);
-    let dropped = soup.vertex_attributes();
-    if !dropped.is_empty() {
-        warn(format!(
-            "{name}: the file's vertex {} is not kept",
-            dropped.join(", ")
-        ))?;
-    }
+    // The vertex quality the mesh has no column for is kept in `Mesh.vertex_data`.
     for note in &soup.notes {
         warn(format!("{name}: {note}"))?;
     }

@@ -11,11 +11,11 @@ use numpy::{
 };
 use pyo3::exceptions::{PyIndexError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList, PyTuple};
 
 use bevy::math::{Vec2, Vec3};
 use pappus::cli::info_with_load_times;
-use pappus::edit::{Edit, IdsKept};
+use pappus::edit::{Edit, IdsKept, Invocation};
 use pappus::edit::{EditContext, Step};
 use pappus::io;
 use pappus::mesh::ids::{parse_element, slot, slots_for};
@@ -29,11 +29,15 @@ use crate::arrays::{
     faces_array, float_rows, positions_and_faces, read_faces, vec2_array, vec3_array,
 };
 use crate::connectivity::ConnectivityArrays;
-use crate::elements::{element_text, elements_text, number};
+use crate::elements::number;
 use crate::errors::{InvalidMesh, Refused, io_error, user_warning, with_outcome_note};
 use crate::groups::{face_groups_dict, face_groups_from};
 use crate::handles::{At, handle, stale};
 use crate::ms_since;
+use crate::outcome::Made;
+use crate::quantities;
+use crate::run::{self, Before, Changes};
+use crate::vertex_data::VertexData;
 
 /// One halfedge mesh (polygons allowed), owned by Python.
 ///
@@ -62,6 +66,8 @@ pub struct Mesh {
     element_revision: u64,
     /// Each element's row, found when a handle first asks after an edit.
     rows: OnceLock<Rows>,
+    /// The per-vertex scalars the source carried (a PLY's quality), by vertex.
+    vertex_data: VertexData,
 }
 
 /// Each element's row in its kind's arrays, by entity index.
@@ -96,6 +102,7 @@ impl Mesh {
         let start = Instant::now();
         let mut world = World::new();
         let built = build_mesh(&mut world, soup, info).map_err(|e| e.to_string())?;
+        let vertex_data = VertexData::of_soup(soup, &built.input_vertices);
         Ok(Mesh {
             world,
             mesh: built.mesh,
@@ -106,6 +113,7 @@ impl Mesh {
             build_ms: ms_since(start),
             element_revision: 0,
             rows: OnceLock::new(),
+            vertex_data,
         })
     }
 
@@ -126,6 +134,21 @@ impl Mesh {
         step: Step,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<String> {
+        self.run_tracked(py, step, progress, false)
+            .map(|(summary, _)| summary)
+    }
+
+    /// As [`Mesh::run_step`], and with `track`, what the edit made and removed (see
+    /// [`crate::run`]; tracking reads every element once more).
+    pub(crate) fn run_tracked(
+        &mut self,
+        py: Python<'_>,
+        step: Step,
+        progress: Option<Py<PyAny>>,
+        track: bool,
+    ) -> PyResult<(String, Changes)> {
+        let ids = ids_kept(&step);
+        let before = track.then(|| Before::start(&mut self.world, self.mesh, ids));
         let Mesh {
             world,
             mesh,
@@ -165,20 +188,94 @@ impl Mesh {
                     if applied.is_ok() && !edit.keeps_history() {
                         *history = None;
                     }
-                    applied.map(|a| a.summary)
+                    applied.map(|a| (a.summary, Some(a.redraw)))
                 }
-                other => other.run(world, *mesh, input_vertices, history),
+                other => other
+                    .run(world, *mesh, input_vertices, history)
+                    .map(|summary| (summary, None)),
             };
             (outcome, failure)
         });
         self.rows = OnceLock::new();
-        if outcome.is_ok() && ids_kept(&step) == IdsKept::VerticesOnly {
+        if outcome.is_ok() && ids == IdsKept::VerticesOnly {
             self.element_revision += 1;
         }
         if let Some(e) = failure {
-            return Err(with_outcome_note(py, e, &outcome));
+            let summary = outcome.as_ref().map(|(summary, _)| summary.clone());
+            return Err(with_outcome_note(py, e, &summary.map_err(Clone::clone)));
         }
-        outcome.map_err(|refusal| Refused::new_err(refusal.to_string()))
+        let (summary, redraw) = outcome.map_err(|refusal| Refused::new_err(refusal.to_string()))?;
+        let changes = before.map_or_else(Changes::default, |b| {
+            b.changes(&mut self.world, self.mesh, redraw.as_ref())
+        });
+        Ok((summary, changes))
+    }
+
+    /// Runs `invocation` as [`Mesh::run_tracked`] does, and returns a `pappus.Outcome`: the
+    /// summary, with handles on what it made and removed (for an operation on elements; a
+    /// whole-mesh one records nothing).
+    pub(crate) fn run_invocation(
+        slf: &Bound<'_, Self>,
+        invocation: Invocation,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        let mut mesh = slf.try_borrow_mut()?;
+        let before = mesh.element_revision;
+        // A whole-mesh edit may make millions of elements: it keeps no record of them.
+        let track = !invocation.declaration().names.is_whole_mesh();
+        let step = Step::Edit(Edit::Operation(invocation));
+        let (summary, changes) = mesh.run_tracked(py, step, progress, track)?;
+        let after = mesh.element_revision;
+        drop(mesh);
+        let changes = track.then_some(changes);
+        let made = Made::new(slf.clone().unbind(), changes, before, after);
+        let outcome = py.import("pappus")?.getattr("Outcome")?;
+        Ok(outcome.call1((summary, made))?.unbind())
+    }
+
+    /// Runs `name` on `elements` (one element or a list, as `run` reads its arguments) with
+    /// these keyword values.
+    fn run_with(
+        slf: &Bound<'_, Self>,
+        name: &str,
+        elements: &Bound<'_, PyAny>,
+        values: &[(&str, f64)],
+    ) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        let parameters = PyDict::new(py);
+        for &(key, value) in values {
+            parameters.set_item(key, value)?;
+        }
+        let elements = PyTuple::new(py, [elements])?;
+        Mesh::run(slf, name, &elements, None, Some(&parameters))
+    }
+
+    /// Runs `name` on the edge between input vertices `a` and `b`, or, without `b`, on the
+    /// element `a` names (a handle, a vertex number, a face's corners), with one choice.
+    fn run_on_pair(
+        slf: &Bound<'_, Self>,
+        name: &str,
+        a: &Bound<'_, PyAny>,
+        b: Option<&Bound<'_, PyAny>>,
+        choice: Option<(&str, &str)>,
+    ) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        let element = match b {
+            Some(b) => PyTuple::new(py, [a, b])?.into_any(),
+            None => a.clone(),
+        };
+        let parameters = PyDict::new(py);
+        if let Some((key, word)) = choice {
+            parameters.set_item(key, word)?;
+        }
+        Mesh::run(
+            slf,
+            name,
+            &PyTuple::new(py, [element])?,
+            None,
+            Some(&parameters),
+        )
     }
 
     /// The world holding the mesh.
@@ -308,6 +405,8 @@ impl Mesh {
             "face_groups",
             face_groups_dict(py, soup.face_groups.as_ref())?,
         )?;
+        let quality = self.vertex_data.column(&self.world, self.mesh, "quality");
+        state.set_item("vertex_quality", quality.map(|q| PyArray1::from_vec(py, q)))?;
         state.set_item("name", self.name())?;
         let repairs: Vec<usize> = self.report.entries().iter().map(|&(_, n)| n).collect();
         state.set_item("repairs", repairs)?;
@@ -367,6 +466,56 @@ impl Mesh {
         vec3_array(py, &positions)
     }
 
+    /// Sets every vertex's position as one edit: an N×3 array-like of floats (any float
+    /// dtype, stored as float32), one row a vertex in the order of `vertices`. `ValueError` for
+    /// another shape or a coordinate that is not finite (naming its row); the mesh is then
+    /// untouched.
+    #[setter]
+    fn set_vertices(
+        &mut self,
+        py: Python<'_>,
+        vertices: PyArrayLike2<'_, f64, AllowTypeChange>,
+    ) -> PyResult<()> {
+        let members = MeshMembers::collect(&self.world, self.mesh);
+        let positions = quantities::positions(&vertices, members.vertices.len())?;
+        let moves = members.vertices.into_iter().zip(positions).collect();
+        self.set_positions(py, moves)
+    }
+
+    /// The per-vertex scalars the source carried that the mesh has no column for (a PLY's
+    /// `quality`): a dict of float32 arrays by row of `vertices`. Each value follows its vertex
+    /// through edits; a vertex an edit made reads NaN. Empty when the source had none. A copy.
+    #[getter]
+    fn vertex_data<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.vertex_data.dict(py, &self.world, self.mesh)
+    }
+
+    /// The vertex normals, N×3 float32 by row of `vertices`: what a save writes (the file's
+    /// normals while no edit changed the surface, else angle-weighted normals of it). A copy.
+    #[getter]
+    fn vertex_normals<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let normals = py.detach(|| quantities::normals(&self.world, self.mesh));
+        vec3_array(py, &normals)
+    }
+
+    /// A per-vertex quantity as float64 by row of `vertices`, the values the editor colours by
+    /// and `pappus process --quantity NAME` writes: `mean`, `gaussian`, `angle-defect`,
+    /// `max-curvature`, `min-curvature`, `valence`, `min-angle` (degrees), `edge-length` (the
+    /// mean of the vertex's edges), `distance` (to the mesh given as `to`, which only it takes).
+    /// `ValueError` for an unknown name or a misplaced `to`. The GIL is released meanwhile.
+    #[pyo3(signature = (name, *, to=None))]
+    fn quantity<'py>(
+        &self,
+        py: Python<'py>,
+        name: &str,
+        to: Option<PyRef<'py, Mesh>>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let quantity = quantities::quantity_named(name)?;
+        let to = to.as_deref().map(|m| (&m.world, m.mesh));
+        let values = py.detach(|| quantities::per_vertex(&self.world, self.mesh, quantity, to))?;
+        Ok(PyArray1::from_vec(py, values))
+    }
+
     /// The faces as rows of `vertices`: an M×k int64 array when every face has k sides, else a
     /// list of int64 arrays (one per face). A copy.
     #[getter]
@@ -392,6 +541,36 @@ impl Mesh {
     /// A snapshot, taken with the GIL released.
     fn connectivity(&self, py: Python<'_>) -> ConnectivityArrays {
         ConnectivityArrays::of(py, &self.world, self.mesh)
+    }
+
+    /// Runs the operation called `name` (as `pappus.operations()` lists it; `_` reads as `-`)
+    /// on `elements` (handles, input vertex numbers, or sequences of numbers naming an edge or
+    /// a face), with its declared parameters as keywords (lower case; a choice by its word;
+    /// None for automatic; the rest their defaults), reporting to `progress` as the whole-mesh
+    /// methods do. Returns a `pappus.Outcome`: the summary string, with `.created` and
+    /// `.removed` handles. `ValueError` for an unknown name, elements the operation does not
+    /// name, an unknown keyword or a value out of range; `StaleElement` for a removed handle;
+    /// `Refused` (the mesh untouched) when the operation refuses.
+    #[pyo3(signature = (name, *elements, progress=None, **parameters))]
+    fn run(
+        slf: &Bound<'_, Self>,
+        name: &str,
+        elements: &Bound<'_, PyTuple>,
+        progress: Option<Py<PyAny>>,
+        parameters: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Py<PyAny>> {
+        let targets = run::targets(slf, elements)?;
+        let invocation = {
+            let mesh = slf.try_borrow()?;
+            run::invocation(
+                &mesh.world,
+                &mesh.input_vertices,
+                name,
+                &targets,
+                parameters,
+            )?
+        };
+        Mesh::run_invocation(slf, invocation, progress)
     }
 
     /// The vertex in `row` of `vertices` (negative rows count from the end): a handle with its
@@ -663,39 +842,69 @@ impl Mesh {
 
     /// Flips the edge between input vertices `a` and `b` (two triangles). `Refused` on a boundary
     /// edge, when the new edge exists, or when no edge joins them.
-    fn flip(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
-        self.run_text(py, &format!("flip:{a},{b}"), None)
+    #[pyo3(signature = (a, b=None))]
+    fn flip(
+        slf: &Bound<'_, Self>,
+        a: &Bound<'_, PyAny>,
+        b: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        Mesh::run_on_pair(slf, "flip", a, b, None)
     }
 
     /// Splits the edge between input vertices `a` and `b` at its midpoint (the faces beside it
     /// are cut in two).
-    fn split(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
-        self.run_text(py, &format!("split:{a},{b}"), None)
+    #[pyo3(signature = (a, b=None))]
+    fn split(
+        slf: &Bound<'_, Self>,
+        a: &Bound<'_, PyAny>,
+        b: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        Mesh::run_on_pair(slf, "split", a, b, None)
     }
 
     /// Puts a vertex at the midpoint of edge `a`–`b` without cutting a face (each gains a side).
-    fn bisect(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
-        self.run_text(py, &format!("bisect:{a},{b}"), None)
+    #[pyo3(signature = (a, b=None))]
+    fn bisect(
+        slf: &Bound<'_, Self>,
+        a: &Bound<'_, PyAny>,
+        b: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        Mesh::run_on_pair(slf, "bisect", a, b, None)
     }
 
     /// Collapses the edge `a`–`b` to its midpoint. `Refused` when the link condition fails (the
     /// mesh would stop being a manifold), as on any edge of a tetrahedron.
-    fn collapse(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
-        self.run_text(py, &format!("collapse:{a},{b}"), None)
+    #[pyo3(signature = (a, b=None))]
+    fn collapse(
+        slf: &Bound<'_, Self>,
+        a: &Bound<'_, PyAny>,
+        b: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        Mesh::run_on_pair(slf, "collapse", a, b, None)
     }
 
     /// Merges the two faces of edge `a`–`b` into one polygon. `Refused` on a boundary edge.
-    fn dissolve(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
-        self.run_text(py, &format!("dissolve:{a},{b}"), None)
+    #[pyo3(signature = (a, b=None))]
+    fn dissolve(
+        slf: &Bound<'_, Self>,
+        a: &Bound<'_, PyAny>,
+        b: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        Mesh::run_on_pair(slf, "dissolve", a, b, None)
     }
 
     /// Fills the hole beside the boundary edge `a`–`b`: its loop becomes one face, or with
     /// `fair=True` a patch of triangles at the surrounding density that continues the surface's
     /// curvature (Liepa 2003). `Refused` on an interior edge.
-    #[pyo3(signature = (a, b, *, fair=false))]
-    fn fill_hole(&mut self, py: Python<'_>, a: u32, b: u32, fair: bool) -> PyResult<String> {
-        let suffix = if fair { ":fair" } else { "" };
-        self.run_text(py, &format!("fill-hole:{a},{b}{suffix}"), None)
+    #[pyo3(signature = (a, b=None, *, fair=false))]
+    fn fill_hole(
+        slf: &Bound<'_, Self>,
+        a: &Bound<'_, PyAny>,
+        b: Option<&Bound<'_, PyAny>>,
+        fair: bool,
+    ) -> PyResult<Py<PyAny>> {
+        let fill = if fair { "fair" } else { "polygon" };
+        Mesh::run_on_pair(slf, "fill-hole", a, b, Some(("fill", fill)))
     }
 
     /// Fills every hole: with fair patches of triangles (`fair=True`, the default), else one
@@ -747,42 +956,45 @@ impl Mesh {
     }
 
     /// Splits the face that input vertices `a` and `b` share with a new edge between them.
-    fn split_face(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
-        self.run_text(py, &format!("split-face:{a},{b}"), None)
+    #[pyo3(signature = (a, b=None))]
+    fn split_face(
+        slf: &Bound<'_, Self>,
+        a: &Bound<'_, PyAny>,
+        b: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        Mesh::run_on_pair(slf, "split-face", a, b, None)
     }
 
     /// Marks the edge `a`–`b` as a seam for `parameterize` to cut along (again: unmarks it).
-    fn seam(&mut self, py: Python<'_>, a: u32, b: u32) -> PyResult<String> {
-        self.run_text(py, &format!("seam:{a},{b}"), None)
+    #[pyo3(signature = (a, b=None))]
+    fn seam(
+        slf: &Bound<'_, Self>,
+        a: &Bound<'_, PyAny>,
+        b: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        Mesh::run_on_pair(slf, "seam", a, b, None)
     }
 
     /// Extrudes `faces` (one face as its corners `(a, b, c, …)`, or a sequence of them) as one
     /// region, pushed `distance` along its normals on a wall of quads.
     fn extrude(
-        &mut self,
-        py: Python<'_>,
+        slf: &Bound<'_, Self>,
         faces: &Bound<'_, PyAny>,
         distance: f64,
-    ) -> PyResult<String> {
-        let text = format!("extrude:{}:{}", elements_text(faces)?, number(distance));
-        self.run_text(py, &text, None)
+    ) -> PyResult<Py<PyAny>> {
+        Mesh::run_with(slf, "extrude", faces, &[("distance", distance)])
     }
 
     /// Insets each of `faces`: a ring of quads inside it, its corners moved `amount` (0–1) of
     /// the way to its centre and `depth` along its normal.
     #[pyo3(signature = (faces, amount, depth=0.0))]
     fn inset(
-        &mut self,
-        py: Python<'_>,
+        slf: &Bound<'_, Self>,
         faces: &Bound<'_, PyAny>,
         amount: f64,
         depth: f64,
-    ) -> PyResult<String> {
-        let mut text = format!("inset:{}:{}", elements_text(faces)?, number(amount));
-        if depth != 0.0 {
-            text += &format!(":{}", number(depth));
-        }
-        self.run_text(py, &text, None)
+    ) -> PyResult<Py<PyAny>> {
+        Mesh::run_with(slf, "inset", faces, &[("amount", amount), ("depth", depth)])
     }
 
     /// Bevels one element: a vertex (`a`) or an edge (`(a, b)`) becomes a face whose corners
@@ -790,47 +1002,45 @@ impl Mesh {
     /// `depth`.
     #[pyo3(signature = (element, amount=0.25, depth=0.0))]
     fn bevel(
-        &mut self,
-        py: Python<'_>,
+        slf: &Bound<'_, Self>,
         element: &Bound<'_, PyAny>,
         amount: f64,
         depth: f64,
-    ) -> PyResult<String> {
-        let mut text = format!("bevel:{}:{}", element_text(element)?, number(amount));
-        if depth != 0.0 {
-            text += &format!(":{}", number(depth));
-        }
-        self.run_text(py, &text, None)
+    ) -> PyResult<Py<PyAny>> {
+        Mesh::run_with(
+            slf,
+            "bevel",
+            element,
+            &[("amount", amount), ("depth", depth)],
+        )
     }
 
     /// Erases elements (vertices, edges, faces; one or a sequence): their faces become holes,
     /// and edges and vertices left with no face go too.
-    fn erase(&mut self, py: Python<'_>, elements: &Bound<'_, PyAny>) -> PyResult<String> {
-        let text = format!("erase:{}", elements_text(elements)?);
-        self.run_text(py, &text, None)
+    fn erase(slf: &Bound<'_, Self>, elements: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
+        Mesh::run_with(slf, "erase", elements, &[])
     }
 
     /// Merges the faces around input vertex `a` into one polygon and removes the vertex.
-    fn dissolve_vertex(&mut self, py: Python<'_>, a: u32) -> PyResult<String> {
-        self.run_text(py, &format!("dissolve:{a}"), None)
+    fn dissolve_vertex(slf: &Bound<'_, Self>, a: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
+        Mesh::run_on_pair(slf, "dissolve", a, None, None)
     }
 
     /// Collapses the face with corners `(a, b, c, …)` to its centroid.
-    fn collapse_face(&mut self, py: Python<'_>, face: &Bound<'_, PyAny>) -> PyResult<String> {
-        let text = format!("collapse:{}", element_text(face)?);
-        self.run_text(py, &text, None)
+    fn collapse_face(slf: &Bound<'_, Self>, face: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
+        Mesh::run_on_pair(slf, "collapse", face, None, None)
     }
 
     /// Glues boundary edge `second` (a pair of input vertices) onto boundary edge `first`;
     /// their ends merge at the midpoints.
     fn weld(
-        &mut self,
-        py: Python<'_>,
+        slf: &Bound<'_, Self>,
         first: &Bound<'_, PyAny>,
         second: &Bound<'_, PyAny>,
-    ) -> PyResult<String> {
-        let text = format!("weld:{}/{}", element_text(first)?, element_text(second)?);
-        self.run_text(py, &text, None)
+    ) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        let both = PyList::new(py, [first, second])?;
+        Mesh::run_with(slf, "weld", both.as_any(), &[])
     }
 
     /// An independent copy (same vertex numbering for the operations; the simplification
@@ -935,7 +1145,11 @@ impl Mesh {
             let flat: Vec<u8> = c.as_array().iter().copied().collect();
             soup.vertex_colors = Some(flat.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect());
         }
-        // Absent from the state of an older version.
+        // Absent from the state of an older version (as are the groups).
+        if let Some(q) = state.get_item("vertex_quality")?.filter(|q| !q.is_none()) {
+            let q: PyReadonlyArray1<'_, f32> = q.extract()?;
+            soup.vertex_quality = Some(q.as_array().to_vec());
+        }
         if let Some(groups) = state.get_item("face_groups")?.filter(|g| !g.is_none()) {
             soup.face_groups = Some(face_groups_from(&groups)?);
         }

@@ -1,5 +1,13 @@
 """Tests of the halfedge structure from Python: `Mesh.connectivity()`'s arrays, checked against
-the halfedge invariants and against `Mesh.faces`, on closed, bounded and polygonal meshes."""
+the halfedge invariants and against `Mesh.faces`, on closed, bounded and polygonal meshes; the
+element handles, their circulators and ids, stale after the edits that remove them; quantities
+against their formulas and the command line's; positions in; a PLY's vertex quality kept."""
+
+import os
+import pickle
+import subprocess
+import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -273,3 +281,326 @@ def _alive(handle):
         return True
     except pappus.StaleElement:
         return False
+
+
+# --- Quantities out, positions in -------------------------------------------------------------
+
+
+def corner_angles(vertices, faces):
+    """Each triangle's corner angles (radians), M×3, in float64."""
+    p = vertices.astype(np.float64)[faces]
+    angles = []
+    for k in range(3):
+        a = p[:, (k + 1) % 3] - p[:, k]
+        b = p[:, (k + 2) % 3] - p[:, k]
+        cos = np.einsum("ij,ij->i", a, b) / (np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1))
+        angles.append(np.arccos(np.clip(cos, -1, 1)))
+    return np.stack(angles, axis=1)
+
+
+def test_quantities_are_their_formulas():
+    mesh = pappus.load("shape:torus")
+    mesh.triangulate()
+    vertices, faces = mesh.arrays()
+    c = mesh.connectivity()
+    n = len(vertices)
+    valence = np.bincount(c.from_vertex, minlength=n)
+    np.testing.assert_array_equal(mesh.quantity("valence"), valence)
+    lengths = np.linalg.norm(vertices[c.to_vertex] - vertices[c.from_vertex], axis=1)
+    mean_length = np.bincount(c.from_vertex, weights=lengths.astype(np.float64), minlength=n)
+    np.testing.assert_allclose(mesh.quantity("edge-length"), mean_length / valence, rtol=1e-6)
+    angles = corner_angles(vertices, faces)
+    angle_sum = np.bincount(faces.ravel(), weights=angles.ravel(), minlength=n)
+    defect = mesh.quantity("angle-defect")
+    np.testing.assert_allclose(defect, 2 * np.pi - angle_sum, atol=1e-5)
+    # Gauss-Bonnet: a torus's angle defects sum to 2πχ = 0.
+    assert abs(defect.sum()) < 1e-4
+    smallest = np.full(n, np.inf)
+    np.minimum.at(smallest, faces.ravel(), np.repeat(angles.min(axis=1), 3))
+    np.testing.assert_allclose(mesh.quantity("MIN-ANGLE"), np.degrees(smallest), atol=1e-3)
+    for name in ("mean", "gaussian", "max-curvature", "min-curvature"):
+        values = mesh.quantity(name)
+        assert values.dtype == np.float64 and values.shape == (n,) and np.all(np.isfinite(values))
+    assert np.all(mesh.quantity("max-curvature") >= mesh.quantity("min-curvature") - 1e-9)
+
+
+def test_a_sphere_has_curvature_one_over_its_radius():
+    mesh = pappus.load("shape:icosphere:4")
+    radius = np.linalg.norm(mesh.vertices, axis=1).mean()
+    np.testing.assert_allclose(np.abs(mesh.quantity("mean")), 1 / radius, rtol=0.02)
+    np.testing.assert_allclose(mesh.quantity("gaussian"), 1 / radius**2, rtol=0.03)
+    # Gauss-Bonnet on a sphere: the defects sum to 4π.
+    assert abs(mesh.quantity("angle-defect").sum() - 4 * np.pi) < 1e-4
+
+
+def test_distance_measures_to_another_mesh():
+    near, far = two_triangles(), two_triangles()
+    far.vertices = far.vertices + np.array([0, 0, 0.5])
+    np.testing.assert_allclose(near.quantity("distance", to=far), 0.5, rtol=1e-6)
+    np.testing.assert_array_equal(near.quantity("distance", to=near), 0.0)
+    with pytest.raises(ValueError, match="give it as `to=`"):
+        near.quantity("distance")
+    with pytest.raises(ValueError, match="`to=` is for the distance quantity"):
+        near.quantity("valence", to=far)
+    with pytest.raises(ValueError, match="unknown quantity `curl`; known: mean, gaussian"):
+        near.quantity("curl")
+
+
+def test_vertex_normals_are_the_surfaces():
+    mesh = pappus.load("shape:icosphere:3")
+    normals = mesh.vertex_normals
+    assert normals.dtype == np.float32 and normals.shape == mesh.vertices.shape
+    outward = mesh.vertices / np.linalg.norm(mesh.vertices, axis=1, keepdims=True)
+    assert np.all(np.einsum("ij,ij->i", normals, outward) > 0.999)
+    flat = two_triangles()
+    np.testing.assert_allclose(flat.vertex_normals, [[0, 0, 1]] * 4, atol=1e-6)
+
+
+def test_setting_vertices_moves_every_vertex_as_one_edit():
+    mesh = two_triangles()
+    before = mesh.vertices
+    mesh.vertices = before * 2 + 1
+    np.testing.assert_array_equal(mesh.vertices, before * 2 + 1)
+    mesh.vertices = (before * 3).astype(np.float16)
+    np.testing.assert_array_equal(mesh.vertices, before * 3)
+    moved = mesh.vertices
+    with pytest.raises(ValueError, match="must be a 4×3 array"):
+        mesh.vertices = np.zeros((3, 3))
+    with pytest.raises(ValueError, match="vertex row 1 is not finite"):
+        mesh.vertices = np.where(np.arange(12).reshape(4, 3) == 4, np.nan, moved)
+    np.testing.assert_array_equal(mesh.vertices, moved)
+    assert mesh.validate() is None
+
+
+def pappus_binary():
+    """The command line `cargo test` built (in $CARGO_TARGET_DIR, else ./target), or a skip (a
+    failure under CI=true, where `.ci/run` builds it before the Python tests)."""
+    root = Path(__file__).resolve().parents[2]
+    target = Path(os.environ.get("CARGO_TARGET_DIR", root / "target"))
+    for profile in ("debug", "release"):
+        if (target / profile / "pappus").is_file():
+            return target / profile / "pappus"
+    if os.environ.get("CI") in ("true", "1"):
+        pytest.fail(f"no pappus binary under {target}, and under CI=true a test may not skip")
+    pytest.skip(f"no pappus binary under {target}")
+
+
+@pytest.mark.parametrize("name", ["mean", "gaussian", "angle-defect", "valence", "min-angle"])
+def test_a_quantity_is_the_command_lines(tmp_path, name):
+    binary = pappus_binary()
+    output = tmp_path / "out.ply"
+    subprocess.run(
+        [binary, "process", "shape:torus", "-o", output, "--quantity", name],
+        check=True,
+        capture_output=True,
+    )
+    written = pappus.load(output).vertex_data["quality"]
+    mesh = pappus.load("shape:torus")
+    np.testing.assert_array_equal(written, mesh.quantity(name).astype(np.float32))
+
+
+def test_a_plys_quality_is_kept_by_vertex_through_edits_and_pickles(tmp_path):
+    path = tmp_path / "quality.ply"
+    path.write_text(
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+        "property float z\nproperty float quality\nelement face 2\n"
+        "property list uchar int vertex_indices\nend_header\n"
+        "0 0 0 0.5\n1 0 0 1.5\n1 1 0 2.5\n0 1 0 3.5\n3 0 1 2\n3 0 2 3\n"
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        mesh = pappus.load(path)
+    quality = mesh.vertex_data["quality"]
+    assert quality.dtype == np.float32
+    np.testing.assert_array_equal(quality, [0.5, 1.5, 2.5, 3.5])
+    mesh.split(0, 2)
+    after = mesh.vertex_data["quality"]
+    np.testing.assert_array_equal(after[:4], [0.5, 1.5, 2.5, 3.5])
+    assert len(after) == 5 and np.isnan(after[4])
+    back = pickle.loads(pickle.dumps(mesh))
+    np.testing.assert_array_equal(back.vertex_data["quality"], after)
+    assert two_triangles().vertex_data == {}
+
+
+# --- Every operation one way: mesh.run ---------------------------------------------------------
+
+
+def test_run_takes_handles_and_says_what_it_made():
+    mesh = pappus.load("shape:icosphere:1")
+    edge = mesh.edge(0)
+    a, b = edge.vertices()
+    out = mesh.run("split", edge)
+    assert isinstance(out, pappus.Outcome) and isinstance(out, str)
+    assert out.startswith("new vertex v")
+    made = {type(x).__name__: [] for x in out.created}
+    for x in out.created:
+        made[type(x).__name__].append(x)
+    assert len(made["Vertex"]) == 1 and len(made["Face"]) == 2 and len(made["Edge"]) == 3
+    new = made["Vertex"][0]
+    assert new.valence == 4 and {n.row for n in new.neighbours()} >= {a.row, b.row}
+    # A flip follows on the new vertex, which has no input number.
+    spoke = next(h.edge for h in new.outgoing() if h.to_vertex not in (a, b))
+    flipped = mesh.run("flip", spoke)
+    assert flipped.created == [] and flipped.removed == []
+    assert new.valence == 3
+    assert mesh.validate() is None
+
+
+def test_a_collapse_says_what_it_removed():
+    mesh = pappus.load("shape:icosphere:1")
+    a, b = mesh.edge(3).vertices()
+    out = mesh.collapse(a.row, b.row)
+    kinds = sorted(type(x).__name__ for x in out.removed)
+    assert kinds.count("Vertex") == 1 and kinds.count("Face") == 2 and kinds.count("Edge") == 3
+    assert out.created == []
+    gone = next(x for x in out.removed if isinstance(x, pappus.Vertex))
+    assert gone in (a, b)
+    with pytest.raises(pappus.StaleElement, match=f"{gone.id} is gone"):
+        gone.position
+
+
+def test_a_whole_mesh_operation_keeps_no_record_and_ends_the_handles_it_rewrote():
+    mesh = pappus.load("shape:icosphere:1")
+    vertex, face = mesh.vertex(3), mesh.face(3)
+    out = mesh.run("loop", levels=1)
+    assert out.created is None and out.removed is None and out.endswith("320 faces")
+    assert vertex.valence == 5
+    with pytest.raises(pappus.StaleElement, match=f"{face.id} is gone"):
+        face.row
+
+
+def test_run_reads_parameters_by_their_declared_names():
+    for step, name, elements, parameters in [
+        ("simplify:0.25", "simplify", (), {"ratio": 0.25}),
+        ("smooth:cotan:3", "smooth", (), {"method": "cotan", "iterations": 3}),
+        ("remesh:2:auto", "remesh", (), {"iterations": 2, "length": None}),
+        ("catmull-clark:1", "catmull_clark", (), {}),
+        ("flip:0,42", "flip", ((0, 42),), {}),
+        ("extrude:0,42,44:0.5", "extrude", ((0, 42, 44),), {"distance": 0.5}),
+    ]:
+        by_step, by_run = pappus.load("shape:icosphere:2"), pappus.load("shape:icosphere:2")
+        summary = by_step.step(step)
+        assert by_run.run(name, *elements, **parameters).split(" in ")[0] == summary.split(" in ")[0]
+        np.testing.assert_array_equal(by_run.vertices, by_step.vertices)
+        assert [list(f) for f in by_run.faces] == [list(f) for f in by_step.faces], step
+
+
+def test_run_refuses_clearly_and_changes_nothing():
+    mesh = pappus.load("shape:icosphere:1")
+    other = pappus.load("shape:icosphere:1")
+    before = mesh.vertices
+    with pytest.raises(ValueError, match="no operation is called `twirl`; known: triangulate"):
+        mesh.run("twirl")
+    with pytest.raises(ValueError, match="flip needs"):
+        mesh.run("flip")
+    with pytest.raises(ValueError, match="must be a number from"):
+        mesh.run("simplify", ratio=2)
+    with pytest.raises(ValueError, match="simplify has no parameter `faces`; it takes ratio"):
+        mesh.run("simplify", faces=10)
+    with pytest.raises(ValueError, match="must be one of uniform"):
+        mesh.run("smooth", method="swirl")
+    with pytest.raises(ValueError, match="is an element of another mesh"):
+        mesh.run("flip", other.edge(0))
+    with pytest.raises(ValueError, match="an element is a handle"):
+        mesh.run("flip", 1.5)
+    with pytest.raises(pappus.Refused, match="share no edge"):
+        mesh.run("flip", (0, 11))
+    edge = mesh.edge(0)
+    a, b = edge.vertices()
+    mesh.run("collapse", edge)
+    gone = a if not _alive(a) else b
+    with pytest.raises(pappus.StaleElement, match="is gone"):
+        mesh.run("dissolve", gone)
+    assert len(mesh.vertices) == len(before) - 1 and mesh.validate() is None
+
+
+def declared_default(parameter):
+    """A declared parameter's default as a Python keyword would give it (None for auto)."""
+    return None if parameter["default"] == "auto" else parameter["default"]
+
+
+def test_every_declared_operation_runs_by_name_with_its_declared_keywords():
+    for op in pappus.operations():
+        if op["names"] != "mesh":
+            continue
+        keywords = {p["name"].lower(): declared_default(p) for p in op["parameters"]}
+        mesh = pappus.load("shape:icosphere:2")
+        if op["name"] == "refine":
+            mesh.run("simplify")  # refining moves back along a simplification
+        if op["name"] == "fill-holes":
+            with pytest.raises(pappus.Refused, match="no hole"):
+                mesh.run(op["name"], **keywords)
+            continue
+        out = mesh.run(op["name"], **keywords)
+        assert isinstance(out, pappus.Outcome) and mesh.validate() is None, op["name"]
+
+
+def test_the_stubs_name_the_declared_parameters_with_their_defaults():
+    """Each hand-written method of the stubs that is a declared operation (`_` for `-`; the
+    simplification by faces is `simplify`'s `faces`, the parameterization `param`) takes
+    keywords that are that operation's declared parameters, with the declared defaults."""
+    import ast
+
+    stub = ast.parse((Path(pappus.__file__).parent / "__init__.pyi").read_text())
+    mesh_class = next(n for n in stub.body if isinstance(n, ast.ClassDef) and n.name == "Mesh")
+    declared = {}
+    for op in pappus.operations():
+        for p in op["parameters"]:
+            declared.setdefault(op["name"], {})[p["name"].lower()] = declared_default(p)
+    aliases = {"parameterize": ["param"], "simplify": ["simplify", "simplify-faces"]}
+    checked = 0
+    for method in mesh_class.body:
+        if not isinstance(method, ast.FunctionDef):
+            continue
+        names = aliases.get(method.name, [method.name.replace("_", "-")])
+        if not any(n in declared for n in names):
+            continue
+        args = method.args
+        with_defaults = list(zip(args.args[len(args.args) - len(args.defaults) :], args.defaults))
+        for arg, default in with_defaults:
+            if arg.arg in ("b", "fair"):
+                continue  # an edge's second end; fill's choice as a flag
+            owners = [n for n in names if arg.arg in declared.get(n, {})]
+            assert owners, f"{method.name}({arg.arg}) is no declared parameter of {names}"
+            value = ast.literal_eval(default)
+            if method.name != "simplify":  # its ratio and faces default to None: one of two
+                assert value == declared[owners[0]][arg.arg], (method.name, arg.arg)
+            checked += 1
+    assert checked >= 10
+
+
+def every_id(mesh):
+    """The ids of every element of `mesh`, by handles over every row."""
+    c = mesh.connectivity()
+    kinds = [
+        (mesh.vertex, len(c.vertex_halfedge)),
+        (mesh.halfedge, len(c.next)),
+        (mesh.edge, len(c.edge_halfedge)),
+        (mesh.face, len(c.face_halfedge)),
+    ]
+    return {handle(row).id for handle, count in kinds for row in range(count)}
+
+
+@pytest.mark.parametrize(
+    "name, element, parameters",
+    [
+        ("split", lambda m: m.edge(5), {}),
+        ("bisect", lambda m: m.edge(5), {}),
+        ("collapse", lambda m: m.edge(5), {}),
+        ("dissolve", lambda m: m.edge(5), {}),
+        ("dissolve", lambda m: m.vertex(5), {}),
+        ("extrude", lambda m: m.face(5), {"distance": 0.2}),
+        ("inset", lambda m: [m.face(4), m.face(5)], {"amount": 0.3}),
+        ("bevel", lambda m: m.vertex(5), {}),
+        ("erase", lambda m: m.face(5), {}),
+        ("split-face", lambda m: (m.face(5).vertices()[0].row, m.face(5).vertices()[2].row), {}),
+    ],
+)
+def test_created_and_removed_are_what_the_edit_changed(name, element, parameters):
+    mesh = pappus.load("shape:cube")
+    before = every_id(mesh)
+    out = mesh.run(name, element(mesh), **parameters)
+    after = every_id(mesh)
+    assert {x.id for x in out.created} == after - before, name
+    assert {x.id for x in out.removed} == before - after, name
+    assert mesh.validate() is None

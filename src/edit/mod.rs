@@ -39,7 +39,7 @@ mod apply;
 mod save;
 mod step;
 pub use save::{RECOMPUTED_NORMALS, mark_normals_stale, soup_to_save};
-pub use step::{Step, step_syntax};
+pub use step::{Step, elements_at, step_syntax};
 
 /// What an operation declares about itself (defined beside the operations, in
 /// [`crate::ops::declaration`], so that `ops` need not import this layer).

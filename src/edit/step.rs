@@ -140,8 +140,8 @@ fn parse_targets(text: &str) -> Option<Vec<Vec<u32>>> {
 ///
 /// # Refusals
 /// As [`element_at`]; [`Refusal::NoSharedFace`] for a face split's two vertices that share
-/// none.
-fn elements_at(
+/// none; [`Refusal::BadParameter`] for a target of no vertex.
+pub fn elements_at(
     world: &World,
     input_vertices: &[Option<VertexId>],
     names: Names,
@@ -195,7 +195,9 @@ fn element_at(
             })
             .map(ElementId::Face)
             .ok_or(Refusal::NoSharedFace(target[0], target[2])),
-        [] => unreachable!("targets are never empty"),
+        [] => Err(Refusal::BadParameter(
+            "an element names at least one vertex".into(),
+        )),
     }
 }
 

@@ -1,0 +1,68 @@
+//! `Mesh.vertex_data`: the per-vertex scalars a file carried that the halfedge mesh has no
+//! column for (a PLY's `quality`), kept beside the mesh by vertex.
+//!
+//! Each value belongs to its vertex's entity, so it follows the vertex through every edit that
+//! keeps it (flips, collapses of its neighbours, subdivision, which keeps vertex ids) and goes
+//! with it; a vertex an edit made has none (NaN when read). Keyed by the whole entity,
+//! generation included, so a vertex that reuses a removed one's slot never inherits its value.
+
+use bevy::ecs::entity::EntityHashMap;
+use bevy::prelude::World;
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use pappus::mesh::{MeshId, MeshMembers, PolygonSoup, VertexId};
+
+/// Named per-vertex scalars, each a value by vertex entity.
+#[derive(Default)]
+pub(crate) struct VertexData {
+    /// `(name, value by vertex)`, in the order the file listed them.
+    columns: Vec<(String, EntityHashMap<f32>)>,
+}
+
+impl VertexData {
+    /// The scalars `soup` carries, given to the vertices its rows became (`built[i]`: input
+    /// vertex `i`'s vertex, `None` where the repairs dropped it). NaN values are not kept.
+    pub(crate) fn of_soup(soup: &PolygonSoup, built: &[Option<VertexId>]) -> Self {
+        let mut columns = Vec::new();
+        if let Some(quality) = &soup.vertex_quality {
+            let by_vertex = built
+                .iter()
+                .zip(quality)
+                .filter_map(|(v, &q)| Some((v.as_ref()?.0, q)).filter(|_| !q.is_nan()))
+                .collect();
+            columns.push(("quality".to_string(), by_vertex));
+        }
+        Self { columns }
+    }
+
+    /// The value of `name` at every vertex of `mesh` by row (NaN where a vertex has none), or
+    /// `None` when the mesh carries no such column.
+    pub(crate) fn column(&self, world: &World, mesh: MeshId, name: &str) -> Option<Vec<f32>> {
+        let (_, values) = self.columns.iter().find(|(n, _)| n == name)?;
+        let members = MeshMembers::collect(world, mesh);
+        Some(
+            members
+                .vertices
+                .iter()
+                .map(|v| values.get(&v.0).copied().unwrap_or(f32::NAN))
+                .collect(),
+        )
+    }
+
+    /// Every column as a dict of float32 arrays by row of `Mesh.vertices`.
+    pub(crate) fn dict<'py>(
+        &self,
+        py: Python<'py>,
+        world: &World,
+        mesh: MeshId,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        for (name, _) in &self.columns {
+            let values = self.column(world, mesh, name).unwrap_or_default();
+            dict.set_item(name, PyArray1::from_vec(py, values))?;
+        }
+        Ok(dict)
+    }
+}
