@@ -292,21 +292,21 @@ class Mesh:
     # Whole-mesh operations: the GIL is released, ``progress`` is called now and then.
     def simplify(
         self, ratio: Optional[float] = None, faces: Optional[int] = None, *, progress: Progress = None
-    ) -> str:
+    ) -> "Outcome":
         """QEM to ``ratio`` (0, 1] of the faces or to ``faces`` faces (neither: 0.5)."""
     def remesh(
         self, iterations: int = 5, length: Optional[float] = None, *, progress: Progress = None
-    ) -> str:
+    ) -> "Outcome":
         """Isotropic remeshing; ``length`` defaults to the mean edge length."""
-    def loop(self, levels: int = 1, *, progress: Progress = None) -> str:
+    def loop(self, levels: int = 1, *, progress: Progress = None) -> "Outcome":
         """Loop subdivision (triangles only), 1 to 8 levels."""
-    def catmull_clark(self, levels: int = 1, *, progress: Progress = None) -> str:
+    def catmull_clark(self, levels: int = 1, *, progress: Progress = None) -> "Outcome":
         """Catmull–Clark subdivision (any polygons, gives quads), 1 to 8 levels."""
-    def triangulate(self, *, progress: Progress = None) -> str:
+    def triangulate(self, *, progress: Progress = None) -> "Outcome":
         """Cuts every polygon into triangles."""
-    def reverse(self) -> str:
+    def reverse(self) -> "Outcome":
         """Turns every face round: corners in the opposite order, normals the other way."""
-    def orient_outside(self) -> str:
+    def orient_outside(self) -> "Outcome":
         """Turns round each part (faces joined across edges) whose faces point inward."""
     def smooth(
         self,
@@ -315,13 +315,13 @@ class Mesh:
         step: Optional[float] = None,
         *,
         progress: Progress = None,
-    ) -> str:
+    ) -> "Outcome":
         """``uniform``, ``cotan``, ``implicit`` or ``taubin`` smoothing; the boundary stays."""
     def parameterize(
         self, method: str = "mean-value", boundary: str = "circle", *, progress: Progress = None
-    ) -> str:
+    ) -> "Outcome":
         """UVs per corner: ``uniform``, ``mean-value``, ``harmonic`` (``circle``/``square``), ``lscm``."""
-    def refine(self, faces: Optional[int] = None, *, progress: Progress = None) -> str:
+    def refine(self, faces: Optional[int] = None, *, progress: Progress = None) -> "Outcome":
         """Splits the last simplification back (to ``faces`` faces, or all)."""
     def deform(
         self,
@@ -332,7 +332,7 @@ class Mesh:
         iterations: int = 10,
     ) -> str:
         """``arap`` or ``laplace`` (thin plate): ``fixed`` stays, ``handle`` moves by ``offset``."""
-    def fair(self, vertices: Sequence[int], k: int = 2) -> str:
+    def fair(self, vertices: Sequence[Element], k: int = 2) -> "Outcome":
         """The vertices solve the k-harmonic equation (k 1–3), every other vertex held."""
     # Local operations: an element by handle, or by input vertex numbers (``a, b`` an edge).
     # Each returns an Outcome: the summary, with ``created`` and ``removed`` handles.
@@ -343,7 +343,7 @@ class Mesh:
     def dissolve(self, a: Element, b: Optional[int] = None) -> "Outcome": ...
     def fill_hole(self, a: Element, b: Optional[int] = None, *, fair: bool = False) -> "Outcome":
         """The hole beside edge a–b as one face, or with ``fair`` a faired patch of triangles."""
-    def fill_holes(self, fair: bool = True) -> str:
+    def fill_holes(self, fair: bool = True) -> "Outcome":
         """Every hole: faired patches of triangles (``fair``), or one face each."""
     def split_face(self, a: Element, b: Optional[int] = None) -> "Outcome": ...
     def seam(self, a: Element, b: Optional[int] = None) -> "Outcome": ...

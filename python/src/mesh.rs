@@ -234,6 +234,21 @@ impl Mesh {
         Ok(outcome.call1((summary, made))?.unbind())
     }
 
+    /// Runs the whole-mesh operation `name` with these keyword values (None: automatic).
+    fn run_whole(
+        slf: &Bound<'_, Self>,
+        name: &str,
+        values: &[(&str, Bound<'_, PyAny>)],
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        let parameters = PyDict::new(py);
+        for (key, value) in values {
+            parameters.set_item(key, value)?;
+        }
+        Mesh::run(slf, name, &PyTuple::empty(py), progress, Some(&parameters))
+    }
+
     /// Runs `name` on `elements` (one element or a list, as `run` reads its arguments) with
     /// these keyword values.
     fn run_with(
@@ -709,22 +724,27 @@ impl Mesh {
     /// (return False to stop early: the mesh stays valid, partly simplified).
     #[pyo3(signature = (ratio=None, faces=None, *, progress=None))]
     fn simplify(
-        &mut self,
-        py: Python<'_>,
+        slf: &Bound<'_, Self>,
         ratio: Option<f64>,
         faces: Option<usize>,
         progress: Option<Py<PyAny>>,
-    ) -> PyResult<String> {
-        let text = match (ratio, faces) {
-            (Some(_), Some(_)) => {
-                return Err(PyValueError::new_err(
-                    "give a ratio or a face count, not both",
-                ));
+    ) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        match (ratio, faces) {
+            (Some(_), Some(_)) => Err(PyValueError::new_err(
+                "give a ratio or a face count, not both",
+            )),
+            (None, Some(n)) => Mesh::run_whole(
+                slf,
+                "simplify-faces",
+                &[("faces", n.into_pyobject(py)?.into_any())],
+                progress,
+            ),
+            (r, None) => {
+                let ratio = r.unwrap_or(0.5).into_pyobject(py)?.into_any();
+                Mesh::run_whole(slf, "simplify", &[("ratio", ratio)], progress)
             }
-            (None, Some(n)) => format!("simplify-faces:{n}"),
-            (r, None) => format!("simplify:{}", number(r.unwrap_or(0.5))),
-        };
-        self.run_text(py, &text, progress)
+        }
     }
 
     /// Isotropic remeshing (Botsch–Kobbelt): `iterations` (1–100) rounds of split, collapse,
@@ -733,59 +753,59 @@ impl Mesh {
     /// `simplify`.
     #[pyo3(signature = (iterations=5, length=None, *, progress=None))]
     fn remesh(
-        &mut self,
-        py: Python<'_>,
+        slf: &Bound<'_, Self>,
         iterations: u32,
         length: Option<f64>,
         progress: Option<Py<PyAny>>,
-    ) -> PyResult<String> {
-        let text = match length {
-            None => format!("remesh:{iterations}"),
-            Some(l) => format!("remesh:{iterations}:{}", number(l)),
-        };
-        self.run_text(py, &text, progress)
+    ) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        let values = [
+            ("iterations", iterations.into_pyobject(py)?.into_any()),
+            ("length", length.into_pyobject(py)?.into_any()),
+        ];
+        Mesh::run_whole(slf, "remesh", &values, progress)
     }
 
     /// Loop subdivision, `levels` (1–8) times; triangles only (`Refused` otherwise). Returns the
     /// summary; GIL released, `progress` as for `simplify`.
     #[pyo3(name = "loop", signature = (levels=1, *, progress=None))]
     fn loop_subdivide(
-        &mut self,
-        py: Python<'_>,
+        slf: &Bound<'_, Self>,
         levels: u32,
         progress: Option<Py<PyAny>>,
-    ) -> PyResult<String> {
-        self.run_text(py, &format!("loop:{levels}"), progress)
+    ) -> PyResult<Py<PyAny>> {
+        let levels = levels.into_pyobject(slf.py())?.into_any();
+        Mesh::run_whole(slf, "loop", &[("levels", levels)], progress)
     }
 
     /// Catmull–Clark subdivision, `levels` (1–8) times: any polygons become quads. Returns the
     /// summary; GIL released, `progress` as for `simplify`.
     #[pyo3(signature = (levels=1, *, progress=None))]
     fn catmull_clark(
-        &mut self,
-        py: Python<'_>,
+        slf: &Bound<'_, Self>,
         levels: u32,
         progress: Option<Py<PyAny>>,
-    ) -> PyResult<String> {
-        self.run_text(py, &format!("catmull-clark:{levels}"), progress)
+    ) -> PyResult<Py<PyAny>> {
+        let levels = levels.into_pyobject(slf.py())?.into_any();
+        Mesh::run_whole(slf, "catmull-clark", &[("levels", levels)], progress)
     }
 
     /// Cuts every polygon into triangles. Returns the summary; GIL released.
     #[pyo3(signature = (*, progress=None))]
-    fn triangulate(&mut self, py: Python<'_>, progress: Option<Py<PyAny>>) -> PyResult<String> {
-        self.run_text(py, "triangulate", progress)
+    fn triangulate(slf: &Bound<'_, Self>, progress: Option<Py<PyAny>>) -> PyResult<Py<PyAny>> {
+        Mesh::run_whole(slf, "triangulate", &[], progress)
     }
 
     /// Turns every face round (its corners in the opposite order, its normal the other way);
     /// ids, UVs and groups stay, vertex normals change sign. Returns the summary.
-    fn reverse(&mut self, py: Python<'_>) -> PyResult<String> {
-        self.run_text(py, "reverse", None)
+    fn reverse(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        Mesh::run_whole(slf, "reverse", &[], None)
     }
 
     /// Turns round each part (faces joined across edges) whose faces point inward, as
     /// Blender's Recalculate Outside does. Returns the summary.
-    fn orient_outside(&mut self, py: Python<'_>) -> PyResult<String> {
-        self.run_text(py, "orient-outside", None)
+    fn orient_outside(slf: &Bound<'_, Self>) -> PyResult<Py<PyAny>> {
+        Mesh::run_whole(slf, "orient-outside", &[], None)
     }
 
     /// Smooths with `method` (`uniform`, `cotan`, `implicit`, `taubin`), `iterations` times
@@ -793,18 +813,19 @@ impl Mesh {
     /// length). The boundary stays. Returns the summary; GIL released.
     #[pyo3(signature = (method="uniform", iterations=1, step=None, *, progress=None))]
     fn smooth(
-        &mut self,
-        py: Python<'_>,
+        slf: &Bound<'_, Self>,
         method: &str,
         iterations: u32,
         step: Option<f64>,
         progress: Option<Py<PyAny>>,
-    ) -> PyResult<String> {
-        let text = match step {
-            None => format!("smooth:{method}:{iterations}"),
-            Some(s) => format!("smooth:{method}:{iterations}:{}", number(s)),
-        };
-        self.run_text(py, &text, progress)
+    ) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        let values = [
+            ("method", method.into_pyobject(py)?.into_any()),
+            ("iterations", iterations.into_pyobject(py)?.into_any()),
+            ("step", step.into_pyobject(py)?.into_any()),
+        ];
+        Mesh::run_whole(slf, "smooth", &values, progress)
     }
 
     /// A UV per face corner: `method` `uniform`, `mean-value`, `harmonic` (the boundary on a
@@ -814,13 +835,17 @@ impl Mesh {
     /// distortion); GIL released.
     #[pyo3(signature = (method="mean-value", boundary="circle", *, progress=None))]
     fn parameterize(
-        &mut self,
-        py: Python<'_>,
+        slf: &Bound<'_, Self>,
         method: &str,
         boundary: &str,
         progress: Option<Py<PyAny>>,
-    ) -> PyResult<String> {
-        self.run_text(py, &format!("param:{method}:{boundary}"), progress)
+    ) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        let values = [
+            ("method", method.into_pyobject(py)?.into_any()),
+            ("boundary", boundary.into_pyobject(py)?.into_any()),
+        ];
+        Mesh::run_whole(slf, "param", &values, progress)
     }
 
     /// Splits the last `simplify`'s collapses back, up to `faces` faces (default: all of them,
@@ -828,16 +853,12 @@ impl Mesh {
     /// an edit since that does not keep it). Returns the summary; GIL released.
     #[pyo3(signature = (faces=None, *, progress=None))]
     fn refine(
-        &mut self,
-        py: Python<'_>,
+        slf: &Bound<'_, Self>,
         faces: Option<usize>,
         progress: Option<Py<PyAny>>,
-    ) -> PyResult<String> {
-        let text = match faces {
-            None => "refine".to_string(),
-            Some(n) => format!("refine:{n}"),
-        };
-        self.run_text(py, &text, progress)
+    ) -> PyResult<Py<PyAny>> {
+        let faces = faces.into_pyobject(slf.py())?.into_any();
+        Mesh::run_whole(slf, "refine", &[("faces", faces)], progress)
     }
 
     /// Flips the edge between input vertices `a` and `b` (two triangles). `Refused` on a boundary
@@ -911,13 +932,10 @@ impl Mesh {
     /// polygon each. Holes a fair fill refuses are left open and named in the summary; `Refused`
     /// when the mesh has none.
     #[pyo3(signature = (fair=true))]
-    fn fill_holes(&mut self, py: Python<'_>, fair: bool) -> PyResult<String> {
-        let text = if fair {
-            "fill-holes:fair"
-        } else {
-            "fill-holes"
-        };
-        self.run_text(py, text, None)
+    fn fill_holes(slf: &Bound<'_, Self>, fair: bool) -> PyResult<Py<PyAny>> {
+        let fill = if fair { "fair" } else { "polygon" };
+        let fill = fill.into_pyobject(slf.py())?.into_any();
+        Mesh::run_whole(slf, "fill-holes", &[("fill", fill)], None)
     }
 
     /// Handle deformation: the input vertices `fixed` stay, `handle` moves by `offset`
@@ -950,9 +968,16 @@ impl Mesh {
     /// Fairs the input vertices `vertices`: they solve the k-harmonic equation (`k` 1, 2 or 3,
     /// default 2), every other vertex held. Returns the summary.
     #[pyo3(signature = (vertices, k=2))]
-    fn fair(&mut self, py: Python<'_>, vertices: Vec<u32>, k: u32) -> PyResult<String> {
-        let list: Vec<String> = vertices.iter().map(u32::to_string).collect();
-        self.run_text(py, &format!("fair:{}:{k}", list.join("/")), None)
+    fn fair(slf: &Bound<'_, Self>, vertices: &Bound<'_, PyAny>, k: u32) -> PyResult<Py<PyAny>> {
+        let py = slf.py();
+        let parameters = PyDict::new(py);
+        parameters.set_item("k", k)?;
+        // Input vertex numbers are each a vertex here (elsewhere a list of them is one face).
+        let elements = match vertices.extract::<Vec<u32>>() {
+            Ok(numbers) => PyTuple::new(py, numbers)?,
+            Err(_) => PyTuple::new(py, [vertices])?,
+        };
+        Mesh::run(slf, "fair", &elements, None, Some(&parameters))
     }
 
     /// Splits the face that input vertices `a` and `b` share with a new edge between them.

@@ -211,9 +211,18 @@ fn set_parameters(
                 }
             )));
         };
-        let text = value_text(&value)?;
-        let x = d.parameters[i].read(&text).map_err(PyValueError::new_err)?;
-        invocation.set(i, x).map_err(PyValueError::new_err)?;
+        // A refused value is named with what the operation takes, as a step's refusal is.
+        let refused = |why: String| {
+            PyValueError::new_err(format!(
+                "{}({key}={}): {why}; expected {}",
+                d.name,
+                value.repr().map_or_else(|_| "?".into(), |r| r.to_string()),
+                d.syntax()
+            ))
+        };
+        let text = value_text(&value).map_err(|e| refused(e.value(value.py()).to_string()))?;
+        let x = d.parameters[i].read(&text).map_err(refused)?;
+        invocation.set(i, x).map_err(refused)?;
     }
     Ok(())
 }
@@ -223,7 +232,8 @@ pub(crate) fn keyword(p: &Parameter) -> String {
     p.name.to_ascii_lowercase()
 }
 
-/// A keyword's value as a step writes it: a number, a word, or `auto` for None.
+/// A keyword's value as a step writes it: a number, a word, or `auto` for None (`ValueError`
+/// for anything else).
 fn value_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
     if value.is_none() {
         return Ok("auto".into());
