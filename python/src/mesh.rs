@@ -420,8 +420,10 @@ impl Mesh {
             "face_groups",
             face_groups_dict(py, soup.face_groups.as_ref())?,
         )?;
-        let quality = self.vertex_data.column(&self.world, self.mesh, "quality");
-        state.set_item("vertex_quality", quality.map(|q| PyArray1::from_vec(py, q)))?;
+        state.set_item(
+            "vertex_data",
+            self.vertex_data.dict(py, &self.world, self.mesh)?,
+        )?;
         state.set_item("name", self.name())?;
         let repairs: Vec<usize> = self.report.entries().iter().map(|&(_, n)| n).collect();
         state.set_item("repairs", repairs)?;
@@ -685,13 +687,15 @@ impl Mesh {
     }
 
     /// Writes the mesh to `path`, the format chosen by its extension (.obj .off .ply .stl .glb .gltf), with
-    /// the attributes it has (UVs, normals, colours). Writes a temporary file and renames it
-    /// over the target, so a failed save leaves the old file. Raises `ValueError` for an unknown
-    /// extension or `.dae` (read only), `OSError` when the file system refuses. What the format
-    /// cannot hold (OFF and STL: UVs, normals, colours; STL and glTF: polygons, written as
-    /// triangles) is dropped with a `UserWarning` naming it.
+    /// the attributes it has (UVs, normals, colours, and `vertex_data`, which PLY holds). Writes
+    /// a temporary file and renames it over the target, so a failed save leaves the old file.
+    /// Raises `ValueError` for an unknown extension or `.dae` (read only), `OSError` when the
+    /// file system refuses. What the format cannot hold (OFF and STL: UVs, normals, colours;
+    /// all but PLY: `vertex_data`; STL and glTF: polygons, written as triangles) is dropped
+    /// with a `UserWarning` naming it.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        let (soup, recomputed) = pappus::edit::soup_to_save(&self.world, self.mesh);
+        let (mut soup, recomputed) = pappus::edit::soup_to_save(&self.world, self.mesh);
+        self.vertex_data.put_into(&self.world, self.mesh, &mut soup);
         let dropped = io::dropped(&path, &soup);
         py.detach(|| io::write(&path, &soup))
             .map_err(|e| io_error(py, e))?;
@@ -1171,9 +1175,17 @@ impl Mesh {
             soup.vertex_colors = Some(flat.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect());
         }
         // Absent from the state of an older version (as are the groups).
-        if let Some(q) = state.get_item("vertex_quality")?.filter(|q| !q.is_none()) {
-            let q: PyReadonlyArray1<'_, f32> = q.extract()?;
-            soup.vertex_quality = Some(q.as_array().to_vec());
+        if let Some(data) = state.get_item("vertex_data")?.filter(|d| !d.is_none()) {
+            for (name, values) in data.cast::<PyDict>()?.iter() {
+                let name: String = name.extract()?;
+                let values: PyReadonlyArray1<'_, f32> = values.extract()?;
+                let values = values.as_array().to_vec();
+                if name == "quality" {
+                    soup.vertex_quality = Some(values);
+                } else {
+                    soup.vertex_scalars.push((name, values));
+                }
+            }
         }
         if let Some(groups) = state.get_item("face_groups")?.filter(|g| !g.is_none()) {
             soup.face_groups = Some(face_groups_from(&groups)?);

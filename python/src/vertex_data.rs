@@ -1,5 +1,6 @@
 //! `Mesh.vertex_data`: the per-vertex scalars a file carried that the halfedge mesh has no
-//! column for (a PLY's `quality`), kept beside the mesh by vertex.
+//! column for (a PLY's `quality` and its other vertex properties: `confidence`, `intensity`,
+//! …), kept beside the mesh by vertex.
 //!
 //! Each value belongs to its vertex's entity, so it follows the vertex through every edit that
 //! keeps it (flips, collapses of its neighbours, subdivision, which keeps vertex ids) and goes
@@ -25,16 +26,34 @@ impl VertexData {
     /// The scalars `soup` carries, given to the vertices its rows became (`built[i]`: input
     /// vertex `i`'s vertex, `None` where the repairs dropped it). NaN values are not kept.
     pub(crate) fn of_soup(soup: &PolygonSoup, built: &[Option<VertexId>]) -> Self {
-        let mut columns = Vec::new();
-        if let Some(quality) = &soup.vertex_quality {
-            let by_vertex = built
-                .iter()
-                .zip(quality)
-                .filter_map(|(v, &q)| Some((v.as_ref()?.0, q)).filter(|_| !q.is_nan()))
-                .collect();
-            columns.push(("quality".to_string(), by_vertex));
-        }
+        let quality = soup.vertex_quality.as_ref().map(|q| ("quality", q));
+        let others = soup.vertex_scalars.iter().map(|(n, c)| (n.as_str(), c));
+        let columns = quality
+            .into_iter()
+            .chain(others)
+            .map(|(name, values)| {
+                let by_vertex = built
+                    .iter()
+                    .zip(values)
+                    .filter_map(|(v, &x)| Some((v.as_ref()?.0, x)).filter(|_| !x.is_nan()))
+                    .collect();
+                (name.to_string(), by_vertex)
+            })
+            .collect();
         Self { columns }
+    }
+
+    /// Puts every column into `soup` by row of `mesh` (NaN where a vertex has none): `quality`
+    /// as its quality, the others as its named scalars, for a pickle to carry.
+    pub(crate) fn put_into(&self, world: &World, mesh: MeshId, soup: &mut PolygonSoup) {
+        for (name, _) in &self.columns {
+            let column = self.column(world, mesh, name).unwrap_or_default();
+            if name == "quality" {
+                soup.vertex_quality = Some(column);
+            } else {
+                soup.vertex_scalars.push((name.clone(), column));
+            }
+        }
     }
 
     /// The value of `name` at every vertex of `mesh` by row (NaN where a vertex has none), or

@@ -604,3 +604,22 @@ def test_created_and_removed_are_what_the_edit_changed(name, element, parameters
     assert {x.id for x in out.created} == after - before, name
     assert {x.id for x in out.removed} == before - after, name
     assert mesh.validate() is None
+
+
+def test_a_plys_other_vertex_properties_are_kept_and_saved(tmp_path):
+    path = tmp_path / "scan.ply"
+    path.write_text(
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+        "property float z\nproperty float confidence\nproperty uchar intensity\n"
+        "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+        "0 0 0 0.5 10\n1 0 0 0.25 20\n1 1 0 1 30\n0 1 0 0 40\n3 0 1 2\n3 0 2 3\n"
+    )
+    mesh = pappus.load(path)
+    assert list(mesh.vertex_data) == ["confidence", "intensity"]
+    np.testing.assert_array_equal(mesh.vertex_data["confidence"], [0.5, 0.25, 1, 0])
+    np.testing.assert_array_equal(mesh.vertex_data["intensity"], [10, 20, 30, 40])
+    mesh.save(tmp_path / "again.ply")
+    again = pappus.load(tmp_path / "again.ply")
+    np.testing.assert_array_equal(again.vertex_data["intensity"], [10, 20, 30, 40])
+    with pytest.warns(UserWarning, match="other vertex properties"):
+        mesh.save(tmp_path / "scan.obj")

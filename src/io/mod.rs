@@ -102,11 +102,11 @@ impl Format {
 }
 
 /// What the soup carries that a file at `path` (its format by extension) cannot hold, in a
-/// person's words (`"UVs"`, `"normals"`, `"colours"`, `"quality"`, `"groups"`, then `"polygon
-/// faces (written as triangles)"`), in that order: empty when a save keeps everything, or when
-/// the extension names no format Pappus writes (the save itself then fails). OBJ and glTF hold
-/// all but the quality, PLY all but the groups, OFF and STL none of them; STL and glTF hold
-/// triangles only.
+/// person's words (`"UVs"`, `"normals"`, `"colours"`, `"quality"`, `"other vertex
+/// properties"`, `"groups"`, then `"polygon faces (written as triangles)"`), in that order:
+/// empty when a save keeps everything, or when the extension names no format Pappus writes (the
+/// save itself then fails). OBJ and glTF hold all but the quality and other vertex properties,
+/// PLY all but the groups, OFF and STL none of them; STL and glTF hold triangles only.
 pub fn dropped(path: &Path, soup: &PolygonSoup) -> Vec<&'static str> {
     let Ok(format) = Format::from_path(path) else {
         return Vec::new();
@@ -117,11 +117,14 @@ pub fn dropped(path: &Path, soup: &PolygonSoup) -> Vec<&'static str> {
         ("normals", has.normals),
         ("colours", has.colors),
         ("quality", soup.vertex_quality.is_some()),
+        ("other vertex properties", !soup.vertex_scalars.is_empty()),
         ("groups", has.groups),
     ];
     let holds = |what: &str| match format {
         Format::Ply => what != "groups",
-        Format::Obj | Format::Gltf | Format::Glb => what != "quality",
+        Format::Obj | Format::Gltf | Format::Glb => {
+            !matches!(what, "quality" | "other vertex properties")
+        }
         Format::Off | Format::Stl | Format::Collada => false,
     };
     let triangles_only = matches!(format, Format::Stl | Format::Gltf | Format::Glb);

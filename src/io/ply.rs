@@ -13,16 +13,19 @@
 //! convention; it wins over per-vertex ones), both becoming the soup's
 //! [`corner_uvs`](PolygonSoup::corner_uvs). A `tristrips` element's `vertex_indices` list
 //! holds triangle strips separated by `-1` ([`super::strips`]; the degenerate triangles that
-//! turn a strip's corners are left out), as some Stanford scans were saved. Every other
-//! property (scalar or list, `alpha` included) and every other element is read past, in the
-//! order the header declares them, and named in the soup's notes. The vertex element must have
+//! turn a strip's corners are left out), as some Stanford scans were saved. Up to
+//! [`MAX_SCALARS`] other scalar properties of the vertex (`confidence`, `intensity`, `alpha`,
+//! …) become the soup's named [`vertex_scalars`](PolygonSoup::vertex_scalars); every other
+//! property (a list, a face's scalar, a normal missing a component) and every other element is
+//! read past, in the order the header declares them, and named in the soup's notes. The vertex element must have
 //! `x`, `y` and `z`, and a face or strips element its index list. Indices
 //! must be non-negative integers; out-of-range ones are kept for the builder to drop. In an
 //! ASCII body a `float` property is parsed as an `f32` directly (not through `f64`), so what
 //! the writer prints reads back bit for bit.
 //!
 //! Writes `float x y z`, then `float nx ny nz` with normals, `uchar red green blue` with
-//! colours, `float quality` with a quality (MeshLab's order, without its `alpha`), and `float u
+//! colours, `float quality` with a quality (MeshLab's order, without its `alpha`), a `float`
+//! property for each other vertex scalar, and `float u
 //! v` when the soup's corner UVs agree at every vertex, each only when it holds one value per
 //! position; then `list uchar int vertex_indices` (`list int int` when a
 //! face has more than 255 corners, `uint` indices when one exceeds `i32::MAX`), binary
@@ -131,6 +134,10 @@ enum Role {
     Uv(usize),
     /// A face's `texcoord` list: `u v` per corner (MeshLab's per-corner UVs).
     TexCoord,
+    /// Another scalar of a vertex, kept as column `k` of the soup's
+    /// [`vertex_scalars`](PolygonSoup::vertex_scalars) (columns numbered across the header in
+    /// order of first appearance; at most [`MAX_SCALARS`]).
+    Scalar(usize),
     /// The corners of a face.
     Corners,
     /// A `tristrips` element's `vertex_indices`: strips, `-1` between them.
@@ -302,6 +309,8 @@ fn header(bytes: &[u8]) -> Result<Header, ParseError> {
     let mut encoding = None;
     let mut elements: Vec<Element> = Vec::new();
     let mut foreign = (0, None);
+    // The names of the vertex scalars kept as columns, by column.
+    let mut scalars: Vec<String> = Vec::new();
     let mut at = 0;
     for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
         let line = i + 1;
@@ -344,7 +353,8 @@ fn header(bytes: &[u8]) -> Result<Header, ParseError> {
                 let element = elements
                     .last_mut()
                     .ok_or_else(|| ParseError::line(line, "property before any element"))?;
-                let property = property(&element.name, &mut t, line)?;
+                let mut property = property(&element.name, &mut t, line)?;
+                keep_as_column(&element.name, &mut property, &mut scalars);
                 element.properties.push(property);
             }
             Some("end_header") => {
@@ -370,6 +380,30 @@ fn header(bytes: &[u8]) -> Result<Header, ParseError> {
         }
     }
     Err(ParseError::byte(bytes.len(), "file ends inside the header"))
+}
+
+/// The most vertex scalars kept beside the ones Pappus has a column for; more are read past
+/// (and named in the load's note).
+pub const MAX_SCALARS: usize = 8;
+
+/// Makes a `vertex` element's scalar property that has no role of its own a kept column
+/// ([`Role::Scalar`]), the same column for the same name in another `vertex` element.
+fn keep_as_column(element: &str, property: &mut Property, scalars: &mut Vec<String>) {
+    let Property::Scalar { name, role, .. } = property else {
+        return;
+    };
+    if element != "vertex" || *role != Role::Skip {
+        return;
+    }
+    let column = match scalars.iter().position(|s| s == name) {
+        Some(k) => k,
+        None if scalars.len() < MAX_SCALARS && !name.is_empty() => {
+            scalars.push(name.clone());
+            scalars.len() - 1
+        }
+        None => return,
+    };
+    *role = Role::Scalar(column);
 }
 
 /// A `property` line's declaration after its keyword (`float x`, `list uchar int
@@ -595,6 +629,20 @@ fn reserve_vertex_columns(
             .get_or_insert_with(|| vec![[0; 3]; before]);
         c.reserve(n);
     }
+    for property in &element.properties {
+        if let Property::Scalar {
+            name,
+            role: Role::Scalar(k),
+            ..
+        } = property
+            && *k == soup.vertex_scalars.len()
+        {
+            soup.vertex_scalars.push((name.clone(), vec![0.0; before]));
+        }
+    }
+    for (_, column) in &mut soup.vertex_scalars {
+        column.reserve(n);
+    }
 }
 
 /// One row's scalar properties, by role.
@@ -605,6 +653,7 @@ struct Row {
     color: [u8; 3],
     normal: [f32; 3],
     uv: [f32; 2],
+    scalars: [f32; MAX_SCALARS],
 }
 
 impl Row {
@@ -615,6 +664,7 @@ impl Row {
             Role::Color(k) => self.color[k] = channel(v, ty),
             Role::Normal(k) => self.normal[k] = v as f32,
             Role::Uv(k) => self.uv[k] = v as f32,
+            Role::Scalar(k) => self.scalars[k] = v as f32,
             Role::Corners | Role::Strip | Role::TexCoord | Role::Skip => {}
         }
     }
@@ -633,6 +683,9 @@ impl Row {
         }
         if let Some(v) = vertex_uv {
             v.push(Vec2::from_array(self.uv));
+        }
+        for (k, (_, column)) in soup.vertex_scalars.iter_mut().enumerate() {
+            column.push(self.scalars[k]);
         }
     }
 }
@@ -750,7 +803,7 @@ fn per_vertex_uv(soup: &PolygonSoup, uvs: &[Vec2]) -> Option<Vec<Vec2>> {
     Some(out.into_iter().map(|uv| uv.unwrap_or(Vec2::ZERO)).collect())
 }
 
-/// Encodes a soup as PLY: positions, then normals, colours, quality and UVs when the soup
+/// Encodes a soup as PLY: positions, then normals, colours, quality, other scalars and UVs when the soup
 /// carries them (one per position; an attribute of another length is left out), then faces
 /// (with a `texcoord` list per face when the UVs differ between corners of one vertex).
 pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
@@ -778,6 +831,8 @@ pub fn write(soup: &PolygonSoup, encoding: PlyEncoding) -> Vec<u8> {
 /// list types its faces need.
 struct Layout<'a> {
     quality: Option<&'a [f32]>,
+    /// The other vertex scalars with one value per position and a name PLY can hold.
+    scalars: Vec<(&'a str, &'a [f32])>,
     colors: Option<&'a [[u8; 3]]>,
     normals: Option<&'a [Vec3]>,
     /// One UV a vertex, when every corner of each vertex has the same UV (bit for bit).
@@ -824,6 +879,14 @@ impl<'a> Layout<'a> {
         };
         Self {
             quality: soup.vertex_quality.as_deref().filter(|q| q.len() == n),
+            scalars: soup
+                .vertex_scalars
+                .iter()
+                .filter(|(name, column)| {
+                    column.len() == n && !name.is_empty() && !name.contains(char::is_whitespace)
+                })
+                .map(|(name, column)| (name.as_str(), column.as_slice()))
+                .collect(),
             colors: soup.vertex_colors.as_deref().filter(|c| c.len() == n),
             normals: soup.vertex_normals.as_deref().filter(|v| v.len() == n),
             face_uv: corner_uvs.filter(|_| vertex_uv.is_none()),
@@ -864,6 +927,9 @@ impl<'a> Layout<'a> {
         if self.quality.is_some() {
             header.push_str("property float quality\n");
         }
+        for (name, _) in &self.scalars {
+            let _ = writeln!(header, "property float {name}");
+        }
         if self.vertex_uv.is_some() {
             header.push_str("property float u\nproperty float v\n");
         }
@@ -898,6 +964,9 @@ impl<'a> Layout<'a> {
             }
             if let Some(quality) = self.quality {
                 let _ = write!(body, " {}", quality[i]);
+            }
+            for (_, column) in &self.scalars {
+                let _ = write!(body, " {}", column[i]);
             }
             if let Some(uv) = &self.vertex_uv {
                 let _ = write!(body, " {} {}", uv[i].x, uv[i].y);
@@ -938,6 +1007,9 @@ impl<'a> Layout<'a> {
             }
             if let Some(quality) = self.quality {
                 put(quality[i].to_le_bytes(), big, out);
+            }
+            for (_, column) in &self.scalars {
+                put(column[i].to_le_bytes(), big, out);
             }
             if let Some(uv) = &self.vertex_uv {
                 put(uv[i].x.to_le_bytes(), big, out);
@@ -983,6 +1055,72 @@ mod tests {
                 same_bits(&read(&write(&mixed(), e)).unwrap(), &mixed()),
                 "{e:?}"
             );
+        }
+    }
+
+    /// A scanner's vertex scalars (and MeshLab's `alpha` after the colours) are kept by name,
+    /// value for value, in every encoding and through the writer; a ninth is read past and
+    /// named, as are a face's scalars.
+    #[test]
+    fn other_vertex_scalars_are_kept_by_name() {
+        let mut header = format!(
+            "element vertex 3\n{XYZ}property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\nproperty double confidence\nproperty short intensity\n"
+        );
+        for k in 0..6 {
+            let _ = writeln!(header, "property float extra{k}");
+        }
+        header.push_str("element face 1\nproperty list uchar int vertex_indices\nproperty float area\nend_header\n");
+        let extras = " 0 0 0 0 0 0";
+        let ascii = format!(
+            "ply\nformat ascii 1.0\n{header}0 0 0 1 2 3 255 0.25 -7{extras}\n1 0 0 1 2 3 128 0.5 8{extras}\n0 1 0 1 2 3 0 1e-3 9{extras}\n3 0 1 2 0.5\n"
+        );
+        let soup = read(ascii.as_bytes()).unwrap();
+        let names: Vec<&str> = soup
+            .vertex_scalars
+            .iter()
+            .map(|(n, _)| n.as_str())
+            .collect();
+        assert_eq!(
+            names,
+            [
+                "alpha",
+                "confidence",
+                "intensity",
+                "extra0",
+                "extra1",
+                "extra2",
+                "extra3",
+                "extra4"
+            ]
+        );
+        assert_eq!(soup.vertex_scalars[0].1, [255.0, 128.0, 0.0]);
+        assert_eq!(soup.vertex_scalars[1].1, [0.25, 0.5, 1e-3_f64 as f32]);
+        assert_eq!(soup.vertex_scalars[2].1, [-7.0, 8.0, 9.0]);
+        assert_eq!(soup.vertex_colors, Some(vec![[1, 2, 3]; 3]));
+        assert_eq!(
+            soup.notes,
+            ["skipped: `vertex` property `extra5`, `face` property `area`"]
+        );
+        assert_eq!(
+            soup.vertex_attributes(),
+            [
+                "alpha",
+                "confidence",
+                "intensity",
+                "extra0",
+                "extra1",
+                "extra2",
+                "extra3",
+                "extra4"
+            ]
+        );
+        for e in [
+            PlyEncoding::Ascii,
+            PlyEncoding::BinaryLittleEndian,
+            PlyEncoding::BinaryBigEndian,
+        ] {
+            let back = read(&write(&soup, e)).unwrap();
+            assert_eq!(back.vertex_scalars, soup.vertex_scalars, "{e:?}");
         }
     }
 

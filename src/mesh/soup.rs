@@ -28,6 +28,10 @@ pub struct PolygonSoup {
     /// A scalar per vertex (PLY's `quality`), when the soup carries one: a quantity computed on
     /// the mesh for export (curvature, valence, …). One per position.
     pub vertex_quality: Option<Vec<f32>>,
+    /// Other named scalars per vertex, in the order the file declared them (a PLY's vertex
+    /// properties Pappus has no column for: `confidence`, `intensity`, `alpha`, …), one value
+    /// per position each.
+    pub vertex_scalars: Vec<(String, Vec<f32>)>,
     /// A colour per vertex (8-bit sRGB), when the soup carries one. One per position.
     pub vertex_colors: Option<Vec<[u8; 3]>>,
     /// A normal per vertex, when the soup carries one. One per position.
@@ -54,6 +58,7 @@ impl PolygonSoup {
             indices: Vec::with_capacity(corners),
             face_starts,
             vertex_quality: None,
+            vertex_scalars: Vec::new(),
             vertex_colors: None,
             vertex_normals: None,
             corner_uvs: None,
@@ -83,11 +88,13 @@ impl PolygonSoup {
     }
 
     /// The per-vertex attributes the soup carries that a mesh built from it does not keep, by
-    /// name (only `quality`: UVs, normals and colours are kept), for a message.
-    pub fn vertex_attributes(&self) -> Vec<&'static str> {
-        [("quality", self.vertex_quality.is_some())]
+    /// name (`quality` and the other scalars: UVs, normals and colours are kept), for a
+    /// message.
+    pub fn vertex_attributes(&self) -> Vec<&str> {
+        let quality = self.vertex_quality.is_some().then_some("quality");
+        quality
             .into_iter()
-            .filter_map(|(name, has)| has.then_some(name))
+            .chain(self.vertex_scalars.iter().map(|(name, _)| name.as_str()))
             .collect()
     }
 

@@ -617,6 +617,7 @@ fn faces_by_group(soup: &PolygonSoup, groups: &crate::mesh::groups::FaceGroups) 
     out.vertex_normals.clone_from(&soup.vertex_normals);
     out.vertex_colors.clone_from(&soup.vertex_colors);
     out.vertex_quality.clone_from(&soup.vertex_quality);
+    out.vertex_scalars.clone_from(&soup.vertex_scalars);
     let uvs = soup
         .corner_uvs
         .as_deref()

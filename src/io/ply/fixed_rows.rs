@@ -249,6 +249,13 @@ mod tests {
         attributed.vertex_quality = Some((0..n).map(|i| i as f32 / 3.0).collect());
         attributed.vertex_colors = Some((0..n).map(|i| [i as u8, 255, 7]).collect());
         attributed.vertex_normals = Some(vec![Vec3::Z; n]);
+        attributed.vertex_scalars = vec![
+            (
+                "confidence".into(),
+                (0..n).map(|i| 1.0 / (i as f32 + 1.0)).collect(),
+            ),
+            ("intensity".into(), vec![-0.0; n]),
+        ];
         for soup in [mixed(), attributed] {
             for encoding in [
                 PlyEncoding::BinaryLittleEndian,
