@@ -18,7 +18,8 @@ use pappus::cli::info_with_load_times;
 use pappus::edit::{Edit, IdsKept, Invocation};
 use pappus::edit::{EditContext, Step};
 use pappus::io;
-use pappus::mesh::ids::{parse_element, slot, slots_for};
+use pappus::mesh::ids::parse_element;
+use pappus::mesh::tables::EntityRows;
 use pappus::mesh::{
     Edge, ElementId, Face, Halfedge, MeshId, MeshInfo, MeshMembers, PolygonSoup, RepairReport,
     Vertex, VertexId, build_mesh, to_soup, validate,
@@ -70,10 +71,10 @@ pub struct Mesh {
     vertex_data: VertexData,
 }
 
-/// Each element's row in its kind's arrays, by entity index.
+/// Each element's row in its kind's arrays.
 struct Rows {
-    /// `by_slot[slot(e)]`: element `e`'s row (`u32::MAX` for no element of this mesh).
-    by_slot: Vec<u32>,
+    /// The rows, by entity.
+    index: EntityRows,
     /// The elements by kind and row.
     members: MeshMembers,
 }
@@ -82,17 +83,10 @@ impl Rows {
     /// The rows of `mesh`'s elements now.
     fn of(world: &World, mesh: MeshId) -> Self {
         let members = MeshMembers::collect(world, mesh);
-        let mut by_slot = vec![u32::MAX; slots_for(members.entities())];
-        let mut number = |entities: &mut dyn Iterator<Item = Entity>| {
-            for (row, e) in entities.enumerate() {
-                by_slot[slot(e)] = row as u32;
-            }
-        };
-        number(&mut members.vertices.iter().map(|v| v.0));
-        number(&mut members.halfedges.iter().map(|h| h.0));
-        number(&mut members.edges.iter().map(|e| e.0));
-        number(&mut members.faces.iter().map(|f| f.0));
-        Self { by_slot, members }
+        Self {
+            index: EntityRows::new(&members),
+            members,
+        }
     }
 }
 
@@ -317,7 +311,7 @@ impl Mesh {
 
     /// The row of a live element's entity.
     pub(crate) fn row_of(&self, e: Entity) -> usize {
-        self.rows().by_slot[slot(e)] as usize
+        self.rows().index.get(e) as usize
     }
 
     /// Moves vertices as one edit (`Edit::Move`): a refusal (a position not finite) changes

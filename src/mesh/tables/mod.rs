@@ -40,6 +40,6 @@ pub mod rows;
 pub mod write;
 
 pub use connectivity::{Connectivity, FaceCorners, HalfedgeLinks};
-pub use read::{MeshTables, extract};
+pub use read::{EntityRows, MeshTables, extract};
 pub use rows::{EdgeRow, FaceRow, HalfedgeRow, NONE, RowCounts, VertexRow};
 pub use write::{replace_contents, spawn_connectivity};

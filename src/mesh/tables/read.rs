@@ -57,15 +57,16 @@ impl MeshTables {
     }
 }
 
-/// Maps each element entity to its index *within its kind* through a table indexed by entity
-/// index (faster than hashing: every lookup is one array read). Entity indices are unique
-/// across kinds, so one table serves all four.
-struct DenseIndex {
+/// Maps each element entity to its row, its index *within its kind* in a [`MeshMembers`],
+/// through a table indexed by entity index (faster than hashing: every lookup is one array
+/// read). Entity indices are unique across kinds, so one table serves all four.
+pub struct EntityRows {
     slots: Vec<u32>,
 }
 
-impl DenseIndex {
-    fn new(members: &MeshMembers) -> Self {
+impl EntityRows {
+    /// The rows of `members`' elements.
+    pub fn new(members: &MeshMembers) -> Self {
         let mut slots = vec![NONE; slots_for(members.entities())];
         let mut fill = |list: &mut dyn Iterator<Item = Entity>| {
             for (i, e) in list.enumerate() {
@@ -79,8 +80,13 @@ impl DenseIndex {
         Self { slots }
     }
 
+    /// The row of `e`, an element of the members this was made from ([`NONE`] for an entity
+    /// of no such element whose index is in range).
+    ///
+    /// # Panics
+    /// For an entity whose index lies past every member's.
     #[inline]
-    fn get(&self, e: Entity) -> u32 {
+    pub fn get(&self, e: Entity) -> u32 {
         self.slots[slot(e)]
     }
 }
@@ -92,7 +98,7 @@ impl DenseIndex {
 /// entity order) missed the cache on nearly every one.
 pub fn extract(world: &World, mesh: MeshId) -> MeshTables {
     let members = MeshMembers::collect(world, mesh);
-    let index = DenseIndex::new(&members);
+    let index = EntityRows::new(&members);
     let h = |x: HalfedgeId| index.get(x.0);
     let row = |e: Entity| index.get(e) as usize;
     let (nv, nh) = (members.vertices.len(), members.halfedges.len());
