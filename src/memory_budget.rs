@@ -16,8 +16,15 @@
 
 use std::sync::RwLock;
 
-use crate::ops::Refusal;
+use thiserror::Error;
+
 use crate::process_memory::BYTES_PER_ROW;
+
+/// An estimate past the budget: the text gives the faces, the bytes, the limit and what to do
+/// instead. Operations return it as `ops::Refusal::OverBudget`, readers as their parse error.
+#[derive(Clone, Debug, PartialEq, Error)]
+#[error("{0}")]
+pub struct OverBudget(pub String);
 
 /// How much memory operations may ask for.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -144,17 +151,17 @@ impl Estimate {
 
 /// Whether `estimate` fits the process's budget.
 ///
-/// # Refusals
-/// [`Refusal::OverBudget`], whose text gives the faces, the bytes, the limit and what to do
-/// instead: "Loop ×5 would make 71 M faces, about 52 GB; the budget is 17 GB (75 % of
-/// available memory): use fewer levels".
-pub fn check(estimate: &Estimate) -> Result<(), Refusal> {
+/// # Errors
+/// [`OverBudget`], whose text gives the faces, the bytes, the limit and what to do instead:
+/// "Loop ×5 would make 71 M faces, about 52 GB; the budget is 17 GB (75 % of available
+/// memory): use fewer levels".
+pub fn check(estimate: &Estimate) -> Result<(), OverBudget> {
     let (limit, why) = get().limit();
     let bytes = estimate.bytes();
     if bytes <= limit {
         return Ok(());
     }
-    Err(Refusal::OverBudget(format!(
+    Err(OverBudget(format!(
         "{} would make {} faces, about {}; the budget is {} ({why}): {}",
         estimate.what,
         count(estimate.faces),
@@ -285,7 +292,7 @@ mod tests {
             set(Budget::default());
             r
         };
-        let Err(Refusal::OverBudget(text)) = refused(Budget::Bytes(17_000_000_000)) else {
+        let Err(OverBudget(text)) = refused(Budget::Bytes(17_000_000_000)) else {
             panic!("not refused");
         };
         assert_eq!(

@@ -88,6 +88,7 @@ pub(crate) fn check_growth(what: &str, faces: usize, corners: usize) -> Result<(
         rows: corners as u64 * 12,
         instead: "select fewer faces",
     })
+    .map_err(Refusal::from)
 }
 
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh};

@@ -92,6 +92,7 @@ fn check_budget(
         rows: crate::memory_budget::Estimate::triangle_rows(faces),
         instead: "use a longer target length",
     })
+    .map_err(Refusal::from)
 }
 
 impl RemeshRun {
