@@ -29,6 +29,7 @@ pub mod groups;
 pub mod ids;
 pub mod loops;
 pub mod members;
+pub mod raw_edit;
 pub mod repair;
 pub mod shapes;
 pub mod soup;
@@ -45,6 +46,7 @@ pub use build::{
 pub use elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
 pub use ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 pub use members::MeshMembers;
+pub use raw_edit::{Journal, RawEdit, RawEditError};
 pub use repair::RepairReport;
 pub use soup::PolygonSoup;
 pub use stats::{MeshStats, mesh_stats, stats_of_tables};

@@ -89,6 +89,13 @@ impl EntityRows {
     pub fn get(&self, e: Entity) -> u32 {
         self.slots[slot(e)]
     }
+
+    /// The row of `e`, or `None` when `e` is no element of the members this was made from
+    /// (and past every member's index: no panic).
+    #[inline]
+    pub fn row(&self, e: Entity) -> Option<u32> {
+        self.slots.get(slot(e)).copied().filter(|&r| r != NONE)
+    }
 }
 
 /// Reads `mesh` into tables. The mesh must be valid.

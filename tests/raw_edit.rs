@@ -1,0 +1,224 @@
+//! The checked low-level edit (`pappus::mesh::RawEdit`): a flip written by hand with it equals
+//! the library's on a whole mesh and on the shared spot, and a broken edit is refused and
+//! leaves the world exactly as it was, component for component.
+
+mod common;
+
+use bevy::math::Vec3;
+use bevy::prelude::{Entity, World};
+use pappus::mesh::{
+    Edge, EdgeId, ElementId, Face, Halfedge, InMesh, MeshId, MeshMembers, MeshRef, Position,
+    RawEdit, RawEditError, Rule, Vertex, shapes,
+};
+use pappus::ops::local::flip_edge;
+
+/// An edge flip written as a student writes it: the two triangles' six halfedges rewired so
+/// that the edge joins the two opposite corners.
+fn flip_by_hand(edit: &mut RawEdit<'_>, e: EdgeId) -> Result<(), RawEditError> {
+    let m = MeshRef::new(edit.world());
+    let h = m.edge_halfedge(e);
+    let t = m.twin(h);
+    let (h1, t1) = (m.next(h), m.next(t));
+    let (h2, t2) = (m.next(h1), m.next(t1));
+    let (a, b) = (m.from_vertex(h), m.to_vertex(h));
+    let (c, d) = (m.to_vertex(h1), m.to_vertex(t1));
+    let (f, g) = (m.face(h).expect("interior"), m.face(t).expect("interior"));
+    let (a_out, b_out) = (m.vertex_halfedge(a), m.vertex_halfedge(b));
+    edit.set_to_vertex(h, c)?;
+    edit.set_to_vertex(t, d)?;
+    for (x, y) in [(h, h2), (h2, t1), (t1, h), (t, t2), (t2, h1), (h1, t)] {
+        edit.set_next(x, y)?;
+    }
+    edit.set_face(t1, Some(f))?;
+    edit.set_face(h1, Some(g))?;
+    edit.set_face_halfedge(f, h)?;
+    edit.set_face_halfedge(g, t)?;
+    if a_out == h {
+        edit.set_vertex_halfedge(a, t1)?;
+    }
+    if b_out == t {
+        edit.set_vertex_halfedge(b, h1)?;
+    }
+    Ok(())
+}
+
+/// The corner cycles of the faces beside `e`, each rotated to its smallest entity, sorted.
+fn faces_beside(world: &World, e: EdgeId) -> Vec<Vec<Entity>> {
+    let m = MeshRef::new(world);
+    let h = m.edge_halfedge(e);
+    let mut faces: Vec<Vec<Entity>> = [m.face(h), m.face(m.twin(h))]
+        .into_iter()
+        .flatten()
+        .map(|f| {
+            let mut cycle: Vec<Entity> = m.face_vertices(f).map(|v| v.0).collect();
+            let start = (0..cycle.len()).min_by_key(|&i| cycle[i]).unwrap_or(0);
+            cycle.rotate_left(start);
+            cycle
+        })
+        .collect();
+    faces.sort();
+    faces
+}
+
+/// Flips every `stride`-th edge of `soup` by hand and with `flip_edge`, in two worlds built
+/// alike: where the library flips, the hand-written flip commits and the faces beside the edge
+/// are the same; both are flipped back before the next edge. Returns the flips compared.
+fn compare_flips(soup: &pappus::mesh::PolygonSoup, stride: usize) -> usize {
+    let (mut by_hand, built) = common::build(soup);
+    let (mut library, _) = common::build(soup);
+    let mesh = built.mesh;
+    let edges = MeshMembers::collect(&by_hand, mesh).edges;
+    let mut compared = 0;
+    for &e in edges.iter().step_by(stride) {
+        if MeshRef::new(&library).is_boundary_edge(e) || flip_edge(&mut library, e).is_err() {
+            continue;
+        }
+        let mut edit = RawEdit::new(&mut by_hand, mesh);
+        flip_by_hand(&mut edit, e).expect("the edge's elements are the mesh's");
+        edit.commit().unwrap_or_else(|why| panic!("{e}: {why}"));
+        assert_eq!(faces_beside(&by_hand, e), faces_beside(&library, e), "{e}");
+        compared += 1;
+        flip_edge(&mut library, e).expect("flips back");
+        let mut edit = RawEdit::new(&mut by_hand, mesh);
+        flip_by_hand(&mut edit, e).expect("the edge's elements are the mesh's");
+        edit.commit().expect("flips back");
+    }
+    assert_eq!(
+        common::elements(&by_hand, mesh),
+        common::elements(&library, mesh)
+    );
+    compared
+}
+
+#[test]
+fn a_flip_by_hand_is_the_librarys_on_every_edge_of_an_icosphere() {
+    let soup = shapes::icosphere(2);
+    assert_eq!(compare_flips(&soup, 1), 480);
+}
+
+#[test]
+fn a_flip_by_hand_is_the_librarys_on_spot() {
+    let Some(path) = common::model("spot.obj") else {
+        return common::skip_because(
+            "../shared/models/spot.obj",
+            "a_flip_by_hand_is_the_librarys_on_spot",
+        );
+    };
+    let (soup, _) = pappus::source::read_source(&path).expect("spot reads");
+    // Every 13th edge: each commit checks the whole mesh, slow in this test build.
+    assert!(compare_flips(&soup, 13) > 500);
+}
+
+/// One entity's element components.
+type Components = (
+    Entity,
+    Option<Halfedge>,
+    Option<Vertex>,
+    Option<Position>,
+    Option<Edge>,
+    Option<Face>,
+    Option<InMesh>,
+);
+
+/// Every element component of `mesh`'s entities, and how many entities the world holds.
+#[derive(Debug, PartialEq)]
+struct Snapshot {
+    entities: usize,
+    rows: Vec<Components>,
+}
+
+fn snapshot(world: &mut World, mesh: MeshId) -> Snapshot {
+    let members = MeshMembers::collect(world, mesh);
+    let mut rows: Vec<_> = members
+        .entities()
+        .map(|e| {
+            (
+                e,
+                world.get::<Halfedge>(e).copied(),
+                world.get::<Vertex>(e).copied(),
+                world.get::<Position>(e).copied(),
+                world.get::<Edge>(e).copied(),
+                world.get::<Face>(e).copied(),
+                world.get::<InMesh>(e).copied(),
+            )
+        })
+        .collect();
+    rows.sort_by_key(|r| r.0);
+    let entities = world.query::<Entity>().iter(world).count();
+    Snapshot { entities, rows }
+}
+
+#[test]
+fn a_broken_edit_is_refused_naming_the_rule_and_leaves_the_world_as_it_was() {
+    let (mut world, built) = common::build(&shapes::icosphere(1));
+    let mesh = built.mesh;
+    let before = snapshot(&mut world, mesh);
+    let members = MeshMembers::collect(&world, mesh);
+    let (h, other) = (members.halfedges[0], members.halfedges[7]);
+    let mut edit = RawEdit::new(&mut world, mesh);
+    let (e, a, _) = edit.new_edge();
+    let v = edit.new_vertex(Vec3::ONE).unwrap();
+    edit.set_to_vertex(a, v).unwrap();
+    edit.set_position(members.vertices[3], Vec3::splat(9.0))
+        .unwrap();
+    edit.remove(members.faces[2]).unwrap();
+    edit.set_next(h, other).unwrap();
+    let Err(RawEditError::Invalid(invalid)) = edit.commit() else {
+        panic!("a broken link commits");
+    };
+    assert!(
+        matches!(invalid.rule, Rule::DanglingLink(_) | Rule::NextPrevDisagree),
+        "{invalid}"
+    );
+    assert_eq!(snapshot(&mut world, mesh), before);
+    assert!(world.get_entity(e.0).is_err() && world.get_entity(v.0).is_err());
+    pappus::mesh::validate(&world, mesh).expect("the mesh is as it was");
+}
+
+#[test]
+fn an_edit_dropped_without_a_commit_rolls_back() {
+    let (mut world, built) = common::build(&shapes::icosphere(1));
+    let mesh = built.mesh;
+    let before = snapshot(&mut world, mesh);
+    let members = MeshMembers::collect(&world, mesh);
+    {
+        let mut edit = RawEdit::new(&mut world, mesh);
+        edit.set_twin(members.halfedges[0], members.halfedges[5])
+            .unwrap();
+        edit.new_face();
+    }
+    assert_eq!(snapshot(&mut world, mesh), before);
+    let edit = RawEdit::new(&mut world, mesh);
+    edit.rollback();
+    assert_eq!(snapshot(&mut world, mesh), before);
+}
+
+#[test]
+fn setters_refuse_what_is_not_an_element_of_this_mesh() {
+    let (mut world, built) = common::build(&shapes::icosphere(1));
+    let mesh = built.mesh;
+    let other = pappus::mesh::build_mesh(&mut world, &shapes::tetrahedron(), Default::default())
+        .unwrap()
+        .mesh;
+    let members = MeshMembers::collect(&world, mesh);
+    let foreign = MeshMembers::collect(&world, other);
+    let (h, v, f) = (members.halfedges[0], members.vertices[0], members.faces[0]);
+    let mut edit = RawEdit::new(&mut world, mesh);
+    let not_in = |x: ElementId| Err(RawEditError::NotInMesh(x));
+    assert_eq!(
+        edit.set_next(h, foreign.halfedges[0]),
+        not_in(foreign.halfedges[0].into())
+    );
+    // A vertex where a halfedge belongs is not this mesh's halfedge.
+    let v_as_h = pappus::mesh::HalfedgeId(v.0);
+    assert_eq!(edit.set_twin(h, v_as_h), not_in(v_as_h.into()));
+    assert!(matches!(
+        edit.set_position(v, Vec3::NAN),
+        Err(RawEditError::NotFinite(x, _)) if x == v.into()
+    ));
+    edit.remove(f).unwrap();
+    assert_eq!(edit.set_face(h, Some(f)), not_in(f.into()));
+    assert_eq!(edit.remove(f), not_in(f.into()));
+    edit.rollback();
+    pappus::mesh::validate(&world, mesh).expect("untouched");
+}
