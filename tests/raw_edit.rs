@@ -154,6 +154,7 @@ fn a_broken_edit_is_refused_naming_the_rule_and_leaves_the_world_as_it_was() {
     let mesh = built.mesh;
     let before = snapshot(&mut world, mesh);
     let members = MeshMembers::collect(&world, mesh);
+    let order = format!("{members:?}");
     let (h, other) = (members.halfedges[0], members.halfedges[7]);
     let mut edit = RawEdit::new(&mut world, mesh);
     let (e, a, _) = edit.new_edge();
@@ -171,6 +172,8 @@ fn a_broken_edit_is_refused_naming_the_rule_and_leaves_the_world_as_it_was() {
         "{invalid}"
     );
     assert_eq!(snapshot(&mut world, mesh), before);
+    // Even the storage order, which gives the rows of the flat tables and of Python's arrays.
+    assert_eq!(format!("{:?}", MeshMembers::collect(&world, mesh)), order);
     assert!(world.get_entity(e.0).is_err() && world.get_entity(v.0).is_err());
     pappus::mesh::validate(&world, mesh).expect("the mesh is as it was");
 }

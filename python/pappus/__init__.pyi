@@ -195,6 +195,38 @@ class Face:
 
 AnyElement = Union[Vertex, Halfedge, Edge, Face]
 
+class MeshEdit:
+    """A low-level edit, used as ``with mesh.edit() as e:``. Inside, the setters rewire the
+    structure freely (each journalled); leaving the block checks every invariant: a broken one
+    raises InvalidMesh naming the rule and the element, the mesh rolled back to exactly what it
+    was; an exception inside the block rolls back too. While it is open the mesh runs nothing
+    that reads it whole (RuntimeError), and handles read their links but walk no circulator.
+    Each setter raises TypeError for a handle of another kind, ValueError for an element not of
+    this mesh (another mesh's, or one removed in this edit), StaleElement for a stale handle.
+    See python/examples/halfedge_edits.py for a flip and a split written with it."""
+
+    def __enter__(self) -> "MeshEdit": ...
+    def __exit__(self, kind: Any, value: Any, traceback: Any) -> bool: ...
+    def set_next(self, h: Halfedge, next: Halfedge) -> None:
+        """``h.next = next`` and ``next.prev = h``."""
+    def set_twin(self, a: Halfedge, b: Halfedge) -> None:
+        """Makes ``a`` and ``b`` each other's twin."""
+    def set_to_vertex(self, h: Halfedge, v: Vertex) -> None: ...
+    def set_edge(self, h: Halfedge, edge: Edge) -> None: ...
+    def set_face(self, h: Halfedge, face: Optional[Face]) -> None:
+        """None makes ``h`` a boundary halfedge."""
+    def set_halfedge(self, x: Union[Vertex, Edge, Face], h: Halfedge) -> None:
+        """A vertex's outgoing halfedge, an edge's or a face's halfedge."""
+    def set_position(self, v: Vertex, position: Sequence[float]) -> None: ...
+    def new_vertex(self, position: Sequence[float]) -> Vertex:
+        """A new vertex; set its halfedge before leaving the block."""
+    def new_edge(self) -> Tuple[Edge, Halfedge, Halfedge]:
+        """A new edge and its two halfedges, twins, each its own next and prev, on no face."""
+    def new_face(self) -> Face:
+        """A new face; set its halfedge before leaving the block."""
+    def remove(self, x: AnyElement) -> None:
+        """Removes an element when the block is left (links still naming it break the check)."""
+
 class Outcome(str):
     """An operation's summary (this string), with handles on what it made and removed."""
 
@@ -265,6 +297,8 @@ class Mesh:
         """``(vertices, faces)`` in one pass."""
     def connectivity(self) -> Connectivity:
         """The halfedge structure as arrays (see :class:`Connectivity`)."""
+    def edit(self) -> MeshEdit:
+        """A checked low-level edit: ``with mesh.edit() as e: e.set_next(h, n) …``."""
     def vertex(self, row: int) -> Vertex:
         """The vertex in ``row`` of ``vertices`` (negative rows from the end); IndexError outside."""
     def halfedge(self, row: int) -> Halfedge:

@@ -92,7 +92,20 @@ impl At {
     /// The element's row in its kind's arrays.
     fn row(&self, py: Python<'_>) -> PyResult<usize> {
         let mesh = self.live(py)?;
-        Ok(mesh.row_of(self.entity()))
+        mesh.row_of(self.entity()).ok_or_else(|| stale(self.id))
+    }
+
+    /// The mesh, borrowed, while the element is in it and no low-level edit is open: what a
+    /// walk around a vertex or a face needs (mid-edit the structure need not close).
+    fn walkable<'py>(&self, py: Python<'py>) -> PyResult<PyRef<'py, Mesh>> {
+        let mesh = self.live(py)?;
+        if mesh.edit_is_open() {
+            return Err(PyRuntimeError::new_err(format!(
+                "{}: a walk needs a valid mesh, and an edit is open: leave its `with` block first",
+                self.id
+            )));
+        }
+        Ok(mesh)
     }
 }
 
@@ -212,35 +225,35 @@ handle_class!(
         /// Whether it lies on a boundary.
         #[getter]
         fn is_boundary(&self, py: Python<'_>) -> PyResult<bool> {
-            let mesh = self.at.live(py)?;
+            let mesh = self.at.walkable(py)?;
             Ok(MeshRef::new(mesh.world()).is_boundary_vertex(typed!(self.at, Vertex)))
         }
 
         /// Its number of edges.
         #[getter]
         fn valence(&self, py: Python<'_>) -> PyResult<usize> {
-            let mesh = self.at.live(py)?;
+            let mesh = self.at.walkable(py)?;
             Ok(MeshRef::new(mesh.world()).valence(typed!(self.at, Vertex)))
         }
 
         /// Its outgoing halfedges, counter-clockwise (`twin(prev(h))` after `h`), starting at
         /// `halfedge`.
         fn outgoing(&self, py: Python<'_>) -> PyResult<Vec<HalfedgeHandle>> {
-            let mesh = self.at.live(py)?;
+            let mesh = self.at.walkable(py)?;
             let ring = MeshRef::new(mesh.world()).vertex_outgoing(typed!(self.at, Vertex));
             Ok(self.at.all(py, ring))
         }
 
         /// The vertices its edges lead to, in the order of `outgoing()`.
         fn neighbours(&self, py: Python<'_>) -> PyResult<Vec<VertexHandle>> {
-            let mesh = self.at.live(py)?;
+            let mesh = self.at.walkable(py)?;
             let ring = MeshRef::new(mesh.world()).vertex_neighbors(typed!(self.at, Vertex));
             Ok(self.at.all(py, ring))
         }
 
         /// The faces around it, in the order of `outgoing()` (a boundary gap skipped).
         fn faces(&self, py: Python<'_>) -> PyResult<Vec<FaceHandle>> {
-            let mesh = self.at.live(py)?;
+            let mesh = self.at.walkable(py)?;
             let ring = MeshRef::new(mesh.world()).vertex_faces(typed!(self.at, Vertex));
             Ok(self.at.all(py, ring))
         }
@@ -371,7 +384,7 @@ handle_class!(
         /// Whether one of its edges lies on a boundary.
         #[getter]
         fn is_boundary(&self, py: Python<'_>) -> PyResult<bool> {
-            let mesh = self.at.live(py)?;
+            let mesh = self.at.walkable(py)?;
             let m = MeshRef::new(mesh.world());
             Ok(m.face_halfedges(typed!(self.at, Face))
                 .any(|h| m.is_boundary(m.twin(h))))
@@ -379,14 +392,14 @@ handle_class!(
 
         /// Its halfedges in order, from `halfedge`.
         fn halfedges(&self, py: Python<'_>) -> PyResult<Vec<HalfedgeHandle>> {
-            let mesh = self.at.live(py)?;
+            let mesh = self.at.walkable(py)?;
             let cycle = MeshRef::new(mesh.world()).face_halfedges(typed!(self.at, Face));
             Ok(self.at.all(py, cycle))
         }
 
         /// Its corners in order: its row of `Mesh.faces`.
         fn vertices(&self, py: Python<'_>) -> PyResult<Vec<VertexHandle>> {
-            let mesh = self.at.live(py)?;
+            let mesh = self.at.walkable(py)?;
             let m = MeshRef::new(mesh.world());
             let corners = m
                 .face_halfedges(typed!(self.at, Face))

@@ -30,6 +30,7 @@ mod errors;
 mod groups;
 mod handles;
 mod mesh;
+mod mesh_edit;
 mod outcome;
 mod quantities;
 mod run;
@@ -39,6 +40,7 @@ use connectivity::ConnectivityArrays;
 use errors::{InvalidMesh, PappusError, ParseError, Refused, StaleElement, io_error, user_warning};
 use handles::{EdgeHandle, FaceHandle, HalfedgeHandle, VertexHandle};
 use mesh::Mesh;
+use mesh_edit::MeshEdit;
 
 /// Milliseconds since `start`.
 pub(crate) fn ms_since(start: Instant) -> f64 {
@@ -188,9 +190,9 @@ fn parameter<'py>(
 mod _pappus {
     #[pymodule_export]
     use super::{
-        ConnectivityArrays, EdgeHandle, FaceHandle, HalfedgeHandle, InvalidMesh, Mesh, PappusError,
-        ParseError, Refused, StaleElement, VertexHandle, load, memory_budget, operations,
-        set_memory_budget,
+        ConnectivityArrays, EdgeHandle, FaceHandle, HalfedgeHandle, InvalidMesh, Mesh, MeshEdit,
+        PappusError, ParseError, Refused, StaleElement, VertexHandle, load, memory_budget,
+        operations, set_memory_budget,
     };
 
     use pyo3::prelude::*;

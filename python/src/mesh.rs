@@ -9,7 +9,7 @@ use bevy::prelude::{Entity, World};
 use numpy::{
     AllowTypeChange, PyArray1, PyArrayLike2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
 };
-use pyo3::exceptions::{PyIndexError, PyValueError};
+use pyo3::exceptions::{PyIndexError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
@@ -18,11 +18,12 @@ use pappus::cli::info_with_load_times;
 use pappus::edit::{Edit, IdsKept, Invocation};
 use pappus::edit::{EditContext, Step};
 use pappus::io;
+use pappus::mesh::attributes::{MeshAttributes, StaleNormals};
 use pappus::mesh::ids::parse_element;
 use pappus::mesh::tables::EntityRows;
 use pappus::mesh::{
-    Edge, ElementId, Face, Halfedge, MeshId, MeshInfo, MeshMembers, PolygonSoup, RepairReport,
-    Vertex, VertexId, build_mesh, to_soup, validate,
+    Edge, ElementId, Face, Halfedge, Journal, MeshId, MeshInfo, MeshMembers, PolygonSoup, RawEdit,
+    RepairReport, Vertex, VertexId, build_mesh, to_soup, validate,
 };
 use pappus::ops::progressive::ProgressiveMesh;
 
@@ -34,6 +35,7 @@ use crate::elements::number;
 use crate::errors::{InvalidMesh, Refused, io_error, user_warning, with_outcome_note};
 use crate::groups::{face_groups_dict, face_groups_from};
 use crate::handles::{At, handle, stale};
+use crate::mesh_edit::{MeshEdit, edit_open};
 use crate::ms_since;
 use crate::outcome::Made;
 use crate::quantities;
@@ -69,6 +71,8 @@ pub struct Mesh {
     rows: OnceLock<Rows>,
     /// The per-vertex scalars the source carried (a PLY's quality), by vertex.
     vertex_data: VertexData,
+    /// The journal of the low-level edit open on the mesh (`with mesh.edit()`), if one is.
+    open_edit: Option<Journal>,
 }
 
 /// Each element's row in its kind's arrays.
@@ -108,6 +112,7 @@ impl Mesh {
             element_revision: 0,
             rows: OnceLock::new(),
             vertex_data,
+            open_edit: None,
         })
     }
 
@@ -141,6 +146,7 @@ impl Mesh {
         progress: Option<Py<PyAny>>,
         track: bool,
     ) -> PyResult<(String, Changes)> {
+        self.no_open_edit()?;
         let ids = ids_kept(&step);
         let before = track.then(|| Before::start(&mut self.world, self.mesh, ids));
         let Mesh {
@@ -292,6 +298,60 @@ impl Mesh {
         &self.world
     }
 
+    /// The element revision now (see [`Mesh::element_revision`]).
+    pub(crate) fn element_revision(&self) -> u64 {
+        self.element_revision
+    }
+
+    /// `RuntimeError` while a low-level edit is open: mid-edit the structure need not close,
+    /// and what reads the mesh whole walks it.
+    pub(crate) fn no_open_edit(&self) -> PyResult<()> {
+        match self.open_edit {
+            Some(_) => Err(edit_open()),
+            None => Ok(()),
+        }
+    }
+
+    /// Whether a low-level edit is open.
+    pub(crate) fn edit_is_open(&self) -> bool {
+        self.open_edit.is_some()
+    }
+
+    /// Opens a low-level edit (`RuntimeError` when one is open).
+    pub(crate) fn open_edit(&mut self) -> PyResult<()> {
+        self.no_open_edit()?;
+        self.open_edit = Some(RawEdit::new(&mut self.world, self.mesh).suspend());
+        Ok(())
+    }
+
+    /// The world and the open edit's journal, taken out until [`Mesh::set_aside`] or
+    /// [`Mesh::closed_edit`]; `RuntimeError` when no edit is open.
+    pub(crate) fn edit_parts(&mut self) -> PyResult<(&mut World, Journal)> {
+        let journal = self.open_edit.take().ok_or_else(|| {
+            PyRuntimeError::new_err("the edit is not open: use it as `with mesh.edit() as e:`")
+        })?;
+        self.rows = OnceLock::new();
+        Ok((&mut self.world, journal))
+    }
+
+    /// Sets the open edit's journal aside again after a change.
+    pub(crate) fn set_aside(&mut self, journal: Journal) {
+        self.open_edit = Some(journal);
+        self.rows = OnceLock::new();
+    }
+
+    /// The edit is closed: committed (the simplification history no longer describes the
+    /// mesh; the file's normals no longer describe its surface) or rolled back.
+    pub(crate) fn closed_edit(&mut self, committed: bool) {
+        self.rows = OnceLock::new();
+        if committed {
+            self.history = None;
+            if MeshAttributes::of(&self.world, self.mesh).normals {
+                self.world.entity_mut(self.mesh.0).insert(StaleNormals);
+            }
+        }
+    }
+
     /// Whether `id` is still an element of this mesh, the same one it was at `revision`.
     pub(crate) fn holds(&self, id: ElementId, revision: u64) -> bool {
         let same = matches!(id, ElementId::Vertex(_)) || revision == self.element_revision;
@@ -309,9 +369,9 @@ impl Mesh {
         self.rows.get_or_init(|| Rows::of(&self.world, self.mesh))
     }
 
-    /// The row of a live element's entity.
-    pub(crate) fn row_of(&self, e: Entity) -> usize {
-        self.rows().index.get(e) as usize
+    /// The row of a live element's entity (`None` for one an open edit took out).
+    pub(crate) fn row_of(&self, e: Entity) -> Option<usize> {
+        self.rows().index.row(e).map(|r| r as usize)
     }
 
     /// Moves vertices as one edit (`Edit::Move`): a refusal (a position not finite) changes
@@ -373,6 +433,7 @@ impl Mesh {
     /// The state a pickle carries: arrays of the soup, the input-vertex map as rows of those
     /// arrays, the name and the repair counts.
     fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.no_open_edit()?;
         let members = MeshMembers::collect(&self.world, self.mesh);
         let rows = members.vertex_rows();
         let input_rows: Vec<i64> = self
@@ -505,6 +566,7 @@ impl Mesh {
     /// normals while no edit changed the surface, else angle-weighted normals of it). A copy.
     #[getter]
     fn vertex_normals<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.no_open_edit()?;
         let normals = py.detach(|| quantities::normals(&self.world, self.mesh));
         vec3_array(py, &normals)
     }
@@ -521,6 +583,10 @@ impl Mesh {
         name: &str,
         to: Option<PyRef<'py, Mesh>>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        self.no_open_edit()?;
+        if let Some(other) = &to {
+            other.no_open_edit()?;
+        }
         let quantity = quantities::quantity_named(name)?;
         let to = to.as_deref().map(|m| (&m.world, m.mesh));
         let values = py.detach(|| quantities::per_vertex(&self.world, self.mesh, quantity, to))?;
@@ -531,12 +597,14 @@ impl Mesh {
     /// list of int64 arrays (one per face). A copy.
     #[getter]
     fn faces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.no_open_edit()?;
         let (_, indices, starts) = positions_and_faces(&self.world, self.mesh);
         faces_array(py, &indices, &starts)
     }
 
     /// `(vertices, faces)` in one pass over the mesh: what the two properties give.
     fn arrays<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        self.no_open_edit()?;
         let (positions, indices, starts) = positions_and_faces(&self.world, self.mesh);
         Ok((
             vec3_array(py, &positions)?,
@@ -550,8 +618,20 @@ impl Mesh {
     /// `edge_halfedge`; `face_halfedge`. Vertex and face rows are those of `vertices` and
     /// `faces`: walking `next` from `face_halfedge[f]` visits `faces[f]`'s corners in order.
     /// A snapshot, taken with the GIL released.
-    fn connectivity(&self, py: Python<'_>) -> ConnectivityArrays {
-        ConnectivityArrays::of(py, &self.world, self.mesh)
+    fn connectivity(&self, py: Python<'_>) -> PyResult<ConnectivityArrays> {
+        self.no_open_edit()?;
+        Ok(ConnectivityArrays::of(py, &self.world, self.mesh))
+    }
+
+    /// A low-level edit of the mesh, used as `with mesh.edit() as e:` (`pappus.MeshEdit`):
+    /// inside, `e.set_next(h, n)`, `e.set_twin`, `e.set_to_vertex`, `e.set_edge`,
+    /// `e.set_face`, `e.set_halfedge`, `e.set_position`, `e.new_vertex`, `e.new_edge`,
+    /// `e.new_face`, `e.remove` rewire the structure freely; leaving the block commits, or
+    /// raises `InvalidMesh` naming the broken rule with the mesh exactly as before. An
+    /// exception inside the block rolls back. While it is open, the mesh runs nothing that
+    /// reads it whole.
+    fn edit(slf: &Bound<'_, Self>) -> MeshEdit {
+        MeshEdit::of(slf.clone().unbind())
     }
 
     /// Runs the operation called `name` (as `pappus.operations()` lists it; `_` reads as `-`)
@@ -633,6 +713,7 @@ impl Mesh {
     /// (face by face, as `faces` lists them), or None when the mesh has none.
     #[getter]
     fn corner_uvs<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.no_open_edit()?;
         self.soup()
             .corner_uvs
             .as_ref()
@@ -647,6 +728,7 @@ impl Mesh {
     /// `material_libraries` (the `mtllib` names); None when the mesh has none.
     #[getter]
     fn face_groups<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        self.no_open_edit()?;
         face_groups_dict(py, self.soup().face_groups.as_ref())
     }
 
@@ -660,6 +742,7 @@ impl Mesh {
     /// (`vertices`, `faces`, `genus`, `valid`, `repairs`, `curvature`, …, `read_ms`, `build_ms`,
     /// `load_ms`), computed by the command line's own code.
     fn info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.no_open_edit()?;
         let object = py.detach(|| {
             info_with_load_times(
                 &self.world,
@@ -688,6 +771,7 @@ impl Mesh {
     /// all but PLY: `vertex_data`; STL and glTF: polygons, written as triangles) is dropped
     /// with a `UserWarning` naming it.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        self.no_open_edit()?;
         let (mut soup, recomputed) = pappus::edit::soup_to_save(&self.world, self.mesh);
         self.vertex_data.put_into(&self.world, self.mesh, &mut soup);
         let dropped = io::dropped(&path, &soup);

@@ -51,4 +51,4 @@ pub use repair::RepairReport;
 pub use soup::PolygonSoup;
 pub use stats::{MeshStats, mesh_stats, stats_of_tables};
 pub use topology::MeshRef;
-pub use validate::{Invalid, Rule, validate};
+pub use validate::{Invalid, Rule, validate, validate_without};

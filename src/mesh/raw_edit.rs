@@ -6,15 +6,16 @@
 //! Halfway through such an edit the mesh is invalid by necessity, so no check can run per
 //! setter: [`RawEdit`] lets every link be set freely, journals the value each setter overwrote,
 //! and checks the whole structure once, at [`RawEdit::commit`], with the rules and messages of
-//! [`validate`]. A failed check undoes the journal in reverse, so the world holds exactly the
+//! [`validate`](super::validate::validate). A failed check undoes the journal in reverse, so the world holds exactly the
 //! components it held before (compared element by element in the tests). A snapshot could not
 //! do this: the table extraction assumes a valid mesh, and mid-edit the mesh is not one.
 //!
 //! Elements made here start unlinked (their links name no entity, which the check reports as a
-//! dangling link until they are set). A removed element leaves the mesh at once (it loses its
-//! [`InMesh`], so a link still naming it is dangling) and is despawned only by the commit; a
-//! rollback puts it back. An edit dropped without a commit rolls back, so an early return or a
-//! panic never leaves a half-rewired mesh.
+//! dangling link until they are set). A removed element is no setter's argument from then on,
+//! and the commit checks the mesh as though it were gone ([`validate_without`]: a link still
+//! naming it is dangling) before it despawns it; until then no component moves, so a rollback
+//! leaves even the world's storage order as it was. An edit dropped without a commit rolls
+//! back, so an early return or a panic never leaves a half-rewired mesh.
 //!
 //! Setters follow PMP's convention: [`RawEdit::set_next`] sets the next's `prev` too, and
 //! [`RawEdit::set_twin`] both twins; every other setter sets one link. New elements carry no
@@ -27,7 +28,8 @@ use thiserror::Error;
 
 use super::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
 use super::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
-use super::validate::{Invalid, validate};
+use super::validate::{Invalid, validate_without};
+use bevy::ecs::entity::EntityHashSet;
 
 /// Why a raw edit refused a setter or its commit.
 #[derive(Clone, Debug, PartialEq, Error)]
@@ -56,8 +58,6 @@ enum Undo {
     Face(FaceId, Face),
     /// An entity spawned here: despawned by a rollback.
     Spawned(Entity),
-    /// An element taken out of the mesh: back in by a rollback, despawned by a commit.
-    Removed(Entity),
 }
 
 /// An open edit's journal, apart from the world: what [`RawEdit::suspend`] gives and
@@ -67,6 +67,8 @@ enum Undo {
 pub struct Journal {
     mesh: MeshId,
     undo: Vec<Undo>,
+    /// The elements removed: the commit despawns them.
+    removed: EntityHashSet,
 }
 
 impl Journal {
@@ -91,6 +93,7 @@ impl<'w> RawEdit<'w> {
         let journal = Journal {
             mesh,
             undo: Vec::new(),
+            removed: EntityHashSet::default(),
         };
         Self::resume(world, journal)
     }
@@ -114,6 +117,7 @@ impl<'w> RawEdit<'w> {
             Journal {
                 mesh,
                 undo: Vec::new(),
+                removed: EntityHashSet::default(),
             },
         )
     }
@@ -129,7 +133,9 @@ impl<'w> RawEdit<'w> {
         let e = self.world.get_entity(x.entity()).ok();
         match e {
             Some(e)
-                if e.contains::<C>() && e.get::<InMesh>() == Some(&InMesh(self.journal.mesh)) =>
+                if e.contains::<C>()
+                    && e.get::<InMesh>() == Some(&InMesh(self.journal.mesh))
+                    && !self.journal.removed.contains(&e.id()) =>
             {
                 Ok(e.id())
             }
@@ -351,12 +357,11 @@ impl<'w> RawEdit<'w> {
             ElementId::Face(_) => self.member::<Face>(x)?,
             ElementId::Mesh(_) => return Err(RawEditError::NotInMesh(x)),
         };
-        self.world.entity_mut(e).remove::<InMesh>();
-        self.journal.undo.push(Undo::Removed(e));
+        self.journal.removed.insert(e);
         Ok(())
     }
 
-    /// Checks the mesh ([`validate`]'s rules): valid, the removed elements are despawned and
+    /// Checks the mesh ([`validate_without`], `validate`'s rules without the removed elements): valid, the removed elements are despawned and
     /// the edit stands; else it is rolled back and the first broken rule returned, naming its
     /// element.
     ///
@@ -364,16 +369,14 @@ impl<'w> RawEdit<'w> {
     /// [`RawEditError::Invalid`]: the mesh is exactly as before the edit.
     pub fn commit(mut self) -> Result<(), RawEditError> {
         self.closed = true;
-        if let Err(invalid) = validate(self.world, self.journal.mesh) {
+        if let Err(invalid) = validate_without(self.world, self.journal.mesh, &self.journal.removed)
+        {
             self.undo();
             return Err(invalid.into());
         }
-        for undo in std::mem::take(&mut self.journal.undo) {
-            if let Undo::Removed(e) = undo
-                && self.world.get_entity(e).is_ok()
-            {
-                self.world.despawn(e);
-            }
+        self.journal.undo.clear();
+        for e in std::mem::take(&mut self.journal.removed) {
+            self.world.despawn(e);
         }
         Ok(())
     }
@@ -396,11 +399,9 @@ impl<'w> RawEdit<'w> {
                 Undo::Spawned(e) => {
                     self.world.despawn(e);
                 }
-                Undo::Removed(e) => {
-                    self.world.entity_mut(e).insert(InMesh(self.journal.mesh));
-                }
             }
         }
+        self.journal.removed.clear();
     }
 
     /// Puts back a component's earlier value.

@@ -18,7 +18,7 @@
 //!
 //! [`validate`] never panics and never loops forever, whatever the links say.
 
-use bevy::ecs::entity::EntityHashMap;
+use bevy::ecs::entity::{EntityHashMap, EntityHashSet};
 use bevy::prelude::{Entity, World};
 use std::fmt;
 
@@ -130,11 +130,32 @@ impl fmt::Display for Rule {
 /// # Errors
 /// The first broken rule, with the element that breaks it.
 pub fn validate(world: &World, mesh: MeshId) -> Result<(), Invalid> {
-    let members = MeshMembers::collect(world, mesh);
+    validate_without(world, mesh, &EntityHashSet::default())
+}
+
+/// Checks every invariant of `mesh` as though the elements `removed` were gone: they are not
+/// checked, and a link naming one is dangling (what a [`super::RawEdit`] commit checks before
+/// it despawns them).
+///
+/// # Errors
+/// The first broken rule, with the element that breaks it.
+pub fn validate_without(
+    world: &World,
+    mesh: MeshId,
+    removed: &EntityHashSet,
+) -> Result<(), Invalid> {
+    let mut members = MeshMembers::collect(world, mesh);
+    if !removed.is_empty() {
+        members.vertices.retain(|v| !removed.contains(&v.0));
+        members.halfedges.retain(|h| !removed.contains(&h.0));
+        members.edges.retain(|e| !removed.contains(&e.0));
+        members.faces.retain(|f| !removed.contains(&f.0));
+    }
     Checker {
         m: MeshRef::new(world),
         world,
         mesh,
+        removed,
         limit: members.halfedges.len() + 1,
     }
     .run(&members)
@@ -144,6 +165,8 @@ struct Checker<'w> {
     m: MeshRef<'w>,
     world: &'w World,
     mesh: MeshId,
+    /// Elements to take as gone.
+    removed: &'w EntityHashSet,
     /// No loop in this mesh can be longer than its halfedge count.
     limit: usize,
 }
@@ -176,6 +199,7 @@ impl Checker<'_> {
         self.world
             .get::<InMesh>(e)
             .is_some_and(|m| m.0 == self.mesh)
+            && !self.removed.contains(&e)
     }
 
     fn check_links(&self, h: HalfedgeId) -> Result<(), Invalid> {
