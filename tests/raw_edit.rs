@@ -225,3 +225,44 @@ fn setters_refuse_what_is_not_an_element_of_this_mesh() {
     edit.rollback();
     pappus::mesh::validate(&world, mesh).expect("untouched");
 }
+
+/// The rules that count (two halfedges an edge, a face's loop all its halfedges), broken by
+/// hand: each named, each rolled back.
+#[test]
+fn the_counting_rules_are_caught() {
+    let (mut world, built) = common::build(&shapes::icosphere(1));
+    let mesh = built.mesh;
+    let m = MeshRef::new(&world);
+    let members = MeshMembers::collect(&world, mesh);
+    // Two edges' halfedge pairs on one edge, the other edge removed.
+    let (e1, e2) = (members.edges[0], members.edges[40]);
+    let (h, t) = (m.edge_halfedge(e2), m.twin(m.edge_halfedge(e2)));
+    // The three halfedges of one face made another's, that face removed.
+    let (f, g) = (members.faces[0], members.faces[30]);
+    let loop_of_g: Vec<_> = m.face_halfedges(g).collect();
+    let before = snapshot(&mut world, mesh);
+    let mut edit = RawEdit::new(&mut world, mesh);
+    edit.set_edge(h, e1).unwrap();
+    edit.set_edge(t, e1).unwrap();
+    edit.remove(e2).unwrap();
+    let Err(RawEditError::Invalid(invalid)) = edit.commit() else {
+        panic!("an edge of four halfedges commits");
+    };
+    assert_eq!(
+        (invalid.element, invalid.rule),
+        (e1.into(), Rule::EdgeNotTwoHalfedges)
+    );
+    let mut edit = RawEdit::new(&mut world, mesh);
+    for &x in &loop_of_g {
+        edit.set_face(x, Some(f)).unwrap();
+    }
+    edit.remove(g).unwrap();
+    let Err(RawEditError::Invalid(invalid)) = edit.commit() else {
+        panic!("a face claimed by six halfedges commits");
+    };
+    assert_eq!(
+        (invalid.element, invalid.rule),
+        (f.into(), Rule::FaceLoopIncomplete)
+    );
+    assert_eq!(snapshot(&mut world, mesh), before);
+}
