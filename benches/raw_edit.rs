@@ -6,42 +6,14 @@
 
 use bevy::prelude::World;
 use criterion::{Criterion, criterion_group, criterion_main};
-use pappus::mesh::{
-    EdgeId, MeshId, MeshInfo, MeshMembers, MeshRef, RawEdit, RawEditError, build_mesh, shapes,
-    validate,
-};
+use pappus::mesh::{EdgeId, MeshId, MeshInfo, MeshMembers, RawEdit, build_mesh, shapes, validate};
 use pappus::ops::local::flip_edge;
 use std::path::Path;
 use std::time::Instant;
 
-/// The flip a student writes: the two triangles' halfedges rewired onto the opposite corners.
-fn flip_by_hand(edit: &mut RawEdit<'_>, e: EdgeId) -> Result<(), RawEditError> {
-    let m = MeshRef::new(edit.world());
-    let h = m.edge_halfedge(e);
-    let t = m.twin(h);
-    let (h1, t1) = (m.next(h), m.next(t));
-    let (h2, t2) = (m.next(h1), m.next(t1));
-    let (a, b) = (m.from_vertex(h), m.to_vertex(h));
-    let (c, d) = (m.to_vertex(h1), m.to_vertex(t1));
-    let (f, g) = (m.face(h).expect("interior"), m.face(t).expect("interior"));
-    let (a_out, b_out) = (m.vertex_halfedge(a), m.vertex_halfedge(b));
-    edit.set_to_vertex(h, c)?;
-    edit.set_to_vertex(t, d)?;
-    for (x, y) in [(h, h2), (h2, t1), (t1, h), (t, t2), (t2, h1), (h1, t)] {
-        edit.set_next(x, y)?;
-    }
-    edit.set_face(t1, Some(f))?;
-    edit.set_face(h1, Some(g))?;
-    edit.set_face_halfedge(f, h)?;
-    edit.set_face_halfedge(g, t)?;
-    if a_out == h {
-        edit.set_vertex_halfedge(a, t1)?;
-    }
-    if b_out == t {
-        edit.set_vertex_halfedge(b, h1)?;
-    }
-    Ok(())
-}
+#[path = "../tests/common/hand_edits.rs"]
+mod hand_edits;
+use hand_edits::flip_by_hand;
 
 /// The bunny (or the icosphere) and its interior edges that the library flips both ways.
 fn mesh() -> (World, MeshId, Vec<EdgeId>) {

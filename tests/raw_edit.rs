@@ -3,6 +3,8 @@
 //! leaves the world exactly as it was, component for component.
 
 mod common;
+#[path = "common/hand_edits.rs"]
+mod hand_edits;
 
 use bevy::math::Vec3;
 use bevy::prelude::{Entity, World};
@@ -11,36 +13,6 @@ use pappus::mesh::{
     RawEdit, RawEditError, Rule, Vertex, shapes,
 };
 use pappus::ops::local::flip_edge;
-
-/// An edge flip written as a student writes it: the two triangles' six halfedges rewired so
-/// that the edge joins the two opposite corners.
-fn flip_by_hand(edit: &mut RawEdit<'_>, e: EdgeId) -> Result<(), RawEditError> {
-    let m = MeshRef::new(edit.world());
-    let h = m.edge_halfedge(e);
-    let t = m.twin(h);
-    let (h1, t1) = (m.next(h), m.next(t));
-    let (h2, t2) = (m.next(h1), m.next(t1));
-    let (a, b) = (m.from_vertex(h), m.to_vertex(h));
-    let (c, d) = (m.to_vertex(h1), m.to_vertex(t1));
-    let (f, g) = (m.face(h).expect("interior"), m.face(t).expect("interior"));
-    let (a_out, b_out) = (m.vertex_halfedge(a), m.vertex_halfedge(b));
-    edit.set_to_vertex(h, c)?;
-    edit.set_to_vertex(t, d)?;
-    for (x, y) in [(h, h2), (h2, t1), (t1, h), (t, t2), (t2, h1), (h1, t)] {
-        edit.set_next(x, y)?;
-    }
-    edit.set_face(t1, Some(f))?;
-    edit.set_face(h1, Some(g))?;
-    edit.set_face_halfedge(f, h)?;
-    edit.set_face_halfedge(g, t)?;
-    if a_out == h {
-        edit.set_vertex_halfedge(a, t1)?;
-    }
-    if b_out == t {
-        edit.set_vertex_halfedge(b, h1)?;
-    }
-    Ok(())
-}
 
 /// The corner cycles of the faces beside `e`, each rotated to its smallest entity, sorted.
 fn faces_beside(world: &World, e: EdgeId) -> Vec<Vec<Entity>> {
@@ -74,13 +46,13 @@ fn compare_flips(soup: &pappus::mesh::PolygonSoup, stride: usize) -> usize {
             continue;
         }
         let mut edit = RawEdit::new(&mut by_hand, mesh);
-        flip_by_hand(&mut edit, e).expect("the edge's elements are the mesh's");
+        hand_edits::flip_by_hand(&mut edit, e).expect("the edge's elements are the mesh's");
         edit.commit().unwrap_or_else(|why| panic!("{e}: {why}"));
         assert_eq!(faces_beside(&by_hand, e), faces_beside(&library, e), "{e}");
         compared += 1;
         flip_edge(&mut library, e).expect("flips back");
         let mut edit = RawEdit::new(&mut by_hand, mesh);
-        flip_by_hand(&mut edit, e).expect("the edge's elements are the mesh's");
+        hand_edits::flip_by_hand(&mut edit, e).expect("the edge's elements are the mesh's");
         edit.commit().expect("flips back");
     }
     assert_eq!(
