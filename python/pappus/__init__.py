@@ -92,6 +92,10 @@ class Outcome(str):
         """Handles on the elements the operation removed (None after a whole-mesh operation)."""
         return self._made.removed()
 
+    def __reduce__(self):
+        """Pickles (and copies) as the plain summary string: handles belong to their mesh."""
+        return (str, (str(self),))
+
 
 def _restore(state):
     """Rebuilds a pickled :class:`Mesh` from the state its ``__reduce__`` gave."""

@@ -623,3 +623,11 @@ def test_a_plys_other_vertex_properties_are_kept_and_saved(tmp_path):
     np.testing.assert_array_equal(again.vertex_data["intensity"], [10, 20, 30, 40])
     with pytest.warns(UserWarning, match="other vertex properties"):
         mesh.save(tmp_path / "scan.obj")
+
+
+def test_an_outcome_pickles_as_its_summary():
+    mesh = pappus.load("shape:icosphere:2")
+    out = mesh.simplify(ratio=0.5)
+    back = pickle.loads(pickle.dumps(out))
+    assert back == out and type(back) is str
+    assert isinstance(mesh.split(mesh.edge(0)), pappus.Outcome)
