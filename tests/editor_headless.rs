@@ -877,10 +877,10 @@ fn a_move_of_a_handle_with_anchors_marked_deforms_the_mesh_in_one_undo_step() {
     // The panel's row: the iterations run (one a frame, ten more on Enter) and the energy.
     let progress = app
         .world()
-        .resource::<pappus::editor::gestures::transform::Anchors>()
+        .resource::<pappus::editor::gestures::handle_deform::Anchors>()
         .progress
         .expect("an ARAP gesture reports its progress");
-    assert!(progress.iterations > pappus::editor::gestures::transform::FINAL_ITERATIONS);
+    assert!(progress.iterations > pappus::editor::gestures::handle_deform::FINAL_ITERATIONS);
     assert!(progress.energy.is_finite() && progress.energy > 0.0);
     press_with(&mut app, KeyCode::ControlLeft, KeyCode::KeyZ);
     let r = MeshRef::new(app.world());
@@ -933,8 +933,9 @@ fn grid_with_anchors_and_handle(app: &mut App) -> (Vec<pappus::mesh::VertexId>, 
 
 #[test]
 fn in_step_mode_an_arap_handle_drag_steps_an_iteration_at_a_time_and_ends_as_the_deformation() {
-    use pappus::editor::gestures::transform::STEPPED_ITERATIONS;
-    use pappus::editor::pipeline::stepping::{Stepping, Steps};
+    use pappus::editor::gestures::handle_deform::STEPPED_ITERATIONS;
+    use pappus::editor::pipeline::stepping::Stepping;
+    use pappus::ops::deform::DeformSteps;
     use pappus::ops::deform::{DeformMethod, DeformParams};
     let mut app = app_with_camera();
     let (vertices, before) = grid_with_anchors_and_handle(&mut app);
@@ -978,9 +979,10 @@ fn in_step_mode_an_arap_handle_drag_steps_an_iteration_at_a_time_and_ends_as_the
     assert_eq!(run_at(&app).0, 3);
     let (energies, at_three, frames) = {
         let run = app.world().resource::<Stepping>().run.as_ref().unwrap();
-        let Steps::Deform(d) = &run.steps else {
-            panic!("a deformation run")
-        };
+        let d = run
+            .steps
+            .downcast_ref::<DeformSteps>()
+            .expect("a deformation run");
         let energies: Vec<f64> = d.iterations.iter().map(|i| i.energy).collect();
         (
             energies,

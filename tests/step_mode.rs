@@ -11,7 +11,7 @@ use common::{last_ok, press, send};
 
 use bevy::prelude::*;
 use pappus::editor::gestures::overlay::{Overlay, Shape};
-use pappus::editor::panels::step_view::NEXT;
+use pappus::editor::panels::step_view::{NEXT, StepView};
 use pappus::editor::pipeline::stepping::{SteppedRun, Stepping};
 use pappus::editor::session::history::UndoHistory;
 use pappus::editor::session::requests::StepMove;
@@ -19,6 +19,7 @@ use pappus::editor::session::requests::{OutcomeLog, Request};
 use pappus::editor::session::selection::{ActiveMesh, Selection};
 use pappus::mesh::ids::ElementId;
 use pappus::mesh::{MeshRef, to_soup, validate};
+use pappus::ops::subdivide::SubdivideSteps;
 
 /// A closed mesh with many equal costs (ties decide the order) and one with boundaries.
 const SHAPES: [&str; 2] = ["shape:icosphere:3", "shape:grid:16"];
@@ -72,10 +73,10 @@ fn run(app: &App) -> &SteppedRun {
 
 /// The collapse the QEM run in progress makes next.
 fn qem_next(app: &App) -> pappus::ops::simplify::NextCollapse {
-    match &run(app).steps {
-        pappus::editor::pipeline::stepping::Steps::Qem(q) => q.next.expect("a next collapse"),
-        _ => panic!("a QEM run"),
-    }
+    let qem = run(app)
+        .steps
+        .downcast_ref::<pappus::ops::decimate::QemSteps>();
+    qem.expect("a QEM run").next.expect("a next collapse")
 }
 
 fn step_at(app: &App) -> (usize, usize) {
@@ -340,9 +341,10 @@ fn a_remeshing_run_steps_pass_by_pass_highlights_each_and_ends_as_the_unstepped_
             "{}",
             last_ok(&app)
         );
-        let pappus::editor::pipeline::stepping::Steps::Remesh(steps) = &run(&app).steps else {
-            panic!("a remeshing run")
-        };
+        let steps = run(&app)
+            .steps
+            .downcast_ref::<pappus::ops::remesh::RemeshSteps>();
+        let steps = steps.expect("a remeshing run");
         let report = steps.last.as_ref().unwrap();
         // What the pass touched is drawn (green), as far as it touched anything.
         let drawn = app
@@ -358,7 +360,7 @@ fn a_remeshing_run_steps_pass_by_pass_highlights_each_and_ends_as_the_unstepped_
         let touched = report.touched.vertices.len() + report.touched.edges.len();
         assert_eq!(
             drawn,
-            touched.min(2 * pappus::editor::panels::step_view::MAX_DRAWN),
+            touched.min(2 * pappus::ops::operation::stepping::MAX_DRAWN),
             "{pass}"
         );
     }
@@ -397,12 +399,17 @@ fn a_subdivision_run_shows_new_points_then_moved_vertices_then_commits_the_level
             .next()
             .unwrap();
         send(&mut app, Request::Select(Some(ElementId::Vertex(v))));
-        let view = |app: &App| {
-            app.world()
-                .resource::<pappus::editor::panels::step_view::StepView>()
-                .clone()
+        let stencil = |app: &App| {
+            let steps = run(app).steps.downcast_ref::<SubdivideSteps>();
+            let selected = app.world().resource::<Selection>().element;
+            steps
+                .expect("a subdivision run")
+                .stencil(app.world(), selected)
         };
-        let stencil = view(&app).stencil.expect("the selected vertex's stencil");
+        let stencil = stencil(&app).expect("the selected vertex's stencil");
+        let window = app.world().resource::<StepView>();
+        let table = window.show.table.as_ref().expect("the stencil's table");
+        assert_eq!(table.rows.len(), stencil.terms.len(), "{shape}");
         let total: f32 = stencil.terms.iter().map(|t| t.1).sum();
         assert!(
             (total - 1.0).abs() < 1e-6,
@@ -435,5 +442,75 @@ fn a_subdivision_run_shows_new_points_then_moved_vertices_then_commits_the_level
             oldest_undo_label(&whole),
             "{shape}"
         );
+    }
+}
+
+/// The editor with `shape` open and the panel's smoothing set to `method` for `iterations`.
+fn smoothing(shape: &str, method: usize, iterations: u32) -> App {
+    let mut app = opened(shape);
+    let mut ui = app
+        .world_mut()
+        .resource_mut::<pappus::editor::session::panel_state::UiState>();
+    ui.set_parameter("smooth", 0, Some(method as f64)).unwrap();
+    ui.set_parameter("smooth", 1, Some(iterations as f64))
+        .unwrap();
+    app
+}
+
+#[test]
+fn a_smoothing_run_steps_an_iteration_at_a_time_goes_back_and_ends_as_the_unstepped_edit() {
+    // A closed sphere: every vertex is free, and each iteration shrinks it.
+    let shape = "shape:icosphere:2";
+    for method in [0, 2] {
+        let mut whole = smoothing(shape, method, 20);
+        press(&mut whole, None, KeyCode::KeyO);
+        last_ok(&whole);
+        let mut app = smoothing(shape, method, 20);
+        let before = elements(&app);
+        press(&mut app, None, KeyCode::F9);
+        press(&mut app, None, KeyCode::KeyO);
+        assert_eq!(step_at(&app), (0, 20), "method {method}");
+        assert!(elements(&app) == before, "step 0 is the mesh as it was");
+        for _ in 0..5 {
+            press(&mut app, None, KeyCode::ArrowRight);
+        }
+        assert_eq!(step_at(&app).0, 5);
+        assert!(
+            last_ok(&app).contains("iteration 5 of 20"),
+            "{}",
+            last_ok(&app)
+        );
+        // Each free vertex's path is drawn, and each iteration's mean move listed.
+        let paths = app
+            .world()
+            .resource::<Overlay>()
+            .shapes
+            .iter()
+            .filter(|s| matches!(s, Shape::Line(_, _, c) if *c == pappus::editor::panels::step_view::TOUCHED))
+            .count();
+        assert_eq!(paths, 162, "every vertex's path");
+        let view = app.world().resource::<StepView>().clone();
+        assert_eq!(view.show.lists[0].lines.len(), 5);
+        // Back two and forward two again: the same bits at 3 and at 5.
+        let at_five = elements(&app);
+        press(&mut app, None, KeyCode::ArrowLeft);
+        press(&mut app, None, KeyCode::ArrowLeft);
+        assert_eq!(step_at(&app).0, 3);
+        let at_three = elements(&app);
+        assert!(at_three != at_five);
+        press(&mut app, None, KeyCode::ArrowRight);
+        press(&mut app, None, KeyCode::ArrowRight);
+        assert!(elements(&app) == at_five, "method {method}: forward again");
+        send(&mut app, Request::Step(StepMove::To(3)));
+        assert!(elements(&app) == at_three, "method {method}: scrubbed to 3");
+        send(&mut app, Request::Step(StepMove::Forward(usize::MAX)));
+        assert_eq!(step_at(&app).0, 20);
+        assert!(
+            elements(&app) == elements(&whole),
+            "method {method}: the end differs from the unstepped smoothing"
+        );
+        press(&mut app, None, KeyCode::Enter);
+        assert_eq!(oldest_undo_label(&app), oldest_undo_label(&whole));
+        assert!(app.world().resource::<Stepping>().run.is_none());
     }
 }

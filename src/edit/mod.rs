@@ -38,6 +38,7 @@ use crate::ops::deform::{DeformMethod, DeformParams};
 mod apply;
 mod save;
 mod step;
+mod stepped;
 pub use save::{RECOMPUTED_NORMALS, mark_normals_stale, soup_to_save};
 pub use step::{Step, elements_at, step_syntax};
 

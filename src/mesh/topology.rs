@@ -70,6 +70,17 @@ impl<'w> MeshRef<'w> {
         self.read::<Face>(f.0)
     }
 
+    /// Whether `x` is a live element of its kind (a mesh: a live entity).
+    pub fn exists(&self, x: ElementId) -> bool {
+        match x {
+            ElementId::Vertex(v) => self.try_vertex(v).is_some(),
+            ElementId::Halfedge(h) => self.try_halfedge(h).is_some(),
+            ElementId::Edge(e) => self.try_edge(e).is_some(),
+            ElementId::Face(f) => self.try_face(f).is_some(),
+            ElementId::Mesh(m) => self.world.get_entity(m.0).is_ok(),
+        }
+    }
+
     /// The vertex position, or `None` if `v` has none.
     #[inline]
     pub fn try_position(&self, v: VertexId) -> Option<Vec3> {

@@ -13,9 +13,13 @@ use crate::mesh::ids::{FaceId, MeshId};
 use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
 use crate::ops::declaration::{DROPPED_BY_SIMPLIFICATION, Declaration, Parameter};
+use crate::ops::operation::stepping::Steps;
 use crate::ops::operation::{Applied, EditContext, Invocation, MeshOperation, Redraw, Values};
 use crate::ops::progressive::{LEVEL_OF_DETAIL, ProgressiveMesh};
 use crate::ops::simplify::SimplifyParams;
+
+mod stepping;
+pub use stepping::{CANDIDATES, QemSteps};
 
 /// Simplifying to a fraction of the faces: a job on a large mesh; it makes the history that
 /// level of detail and vertex splits move along, and drops attributes.
@@ -25,6 +29,7 @@ pub const SIMPLIFY: Declaration = Declaration::new("simplify")
     .on_key("Shift+S")
     .with_parameters(&[Parameter::real("RATIO", 0.5, 1e-6, 1.0)])
     .as_job()
+    .stepping()
     .keeping_history()
     .dropping(DROPPED_BY_SIMPLIFICATION);
 
@@ -34,6 +39,7 @@ pub const SIMPLIFY_FACES: Declaration = Declaration::new("simplify-faces")
     .described("QEM edge collapses (Garland & Heckbert) until FACES faces are left")
     .with_parameters(&[Parameter::whole("FACES", 1000, 0, u32::MAX)])
     .as_job()
+    .stepping()
     .keeping_history()
     .dropping(DROPPED_BY_SIMPLIFICATION);
 
@@ -99,6 +105,17 @@ impl MeshOperation for Simplify {
     ) -> Result<Applied, Refusal> {
         simplify(world, mesh, &Self::params(values), context)
     }
+
+    /// A collapse a step ([`QemSteps`]).
+    fn step_through(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+    ) -> Option<Result<Box<dyn Steps>, Refusal>> {
+        let steps = QemSteps::start(world, mesh, &Self::params(values));
+        Some(steps.map(|s| Box::new(s) as Box<dyn Steps>))
+    }
 }
 
 impl MeshOperation for SimplifyFaces {
@@ -114,6 +131,17 @@ impl MeshOperation for SimplifyFaces {
         context: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         simplify(world, mesh, &Self::params(values), context)
+    }
+
+    /// A collapse a step ([`QemSteps`]).
+    fn step_through(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+    ) -> Option<Result<Box<dyn Steps>, Refusal>> {
+        let steps = QemSteps::start(world, mesh, &Self::params(values));
+        Some(steps.map(|s| Box::new(s) as Box<dyn Steps>))
     }
 }
 

@@ -90,6 +90,9 @@ pub struct Declaration {
     pub keeps_normals: bool,
     /// What becomes of the attributes.
     pub carries: Carries,
+    /// Whether step mode runs it a step at a time
+    /// (`crate::ops::operation::MeshOperation::step_through`).
+    pub steps: bool,
 }
 
 impl Declaration {
@@ -112,6 +115,7 @@ impl Declaration {
             merges_while_held: false,
             keeps_normals: false,
             carries: Carries::All,
+            steps: false,
         }
     }
 
@@ -200,6 +204,14 @@ impl Declaration {
     pub const fn editor_only(self) -> Self {
         Self {
             is_step: false,
+            ..self
+        }
+    }
+
+    /// Step mode runs it a step at a time: it gives a run from `step_through`.
+    pub const fn stepping(self) -> Self {
+        Self {
+            steps: true,
             ..self
         }
     }

@@ -27,7 +27,6 @@ pub mod remesh;
 pub mod reverse;
 pub mod simplify;
 pub mod smooth;
-pub mod stencil;
 pub mod subdivide;
 pub mod table_split;
 pub mod triangulate;

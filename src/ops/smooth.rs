@@ -16,6 +16,8 @@
 //!   (`μ = −λ/(1 − λ k_PB)`, pass-band `k_PB = 0.1`): low frequencies pass, so the mesh does not
 //!   shrink as it does under the umbrella alone.
 //!
+//! Step mode runs it an iteration a step ([`SmoothSteps`]).
+//!
 //! Held vertices do not move: the boundary when [`SmoothParams::hold_boundary`] is set (the
 //! default), and every vertex named in [`SmoothParams::held`]. In the implicit step they are
 //! Dirichlet conditions (their columns move to the right-hand side, keeping the matrix
@@ -28,7 +30,7 @@ use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
 
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
-use crate::mesh::tables::{Connectivity, extract};
+use crate::mesh::tables::{Connectivity, MeshTables, extract};
 use crate::mesh::{MeshInfo, Position};
 
 use super::Refusal;
@@ -36,7 +38,10 @@ use super::geometry::{Surface, cotan_edges, mixed_areas};
 use super::named::Named;
 
 use crate::ops::declaration::{Declaration, Names, Parameter};
-use crate::ops::operation::{Applied, EditContext, MeshOperation, Values};
+use crate::ops::operation::stepping::{
+    Ended, GoesBack, Moved, StepLine, StepList, StepShape, StepShow, Steps, TOUCHED, even_sample,
+};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Redraw, Values};
 
 /// Smoothing as a registered operation: the `smooth` step, the O key and its row in the
 /// panel. Only positions change; the vertices it names (the editor's selected vertices) stay,
@@ -52,7 +57,8 @@ pub const SMOOTH: Declaration = Declaration::new("smooth")
         Parameter::real("STEP", 0.5, 1e-6, 1e6).automatic_by_default("0.5, or 1 for implicit"),
         Parameter::choice("BOUNDARY", &["hold-boundary", "free-boundary"], 0),
     ])
-    .as_job();
+    .as_job()
+    .stepping();
 
 /// The methods' words, in [`SmoothMethod::ALL`]'s order (a test checks).
 const METHODS: &[&str] = &["uniform", "cotan", "implicit", "taubin"];
@@ -85,6 +91,17 @@ impl MeshOperation for Smooth {
             "{} free vertices moved {:.3e} on average{stopped}",
             s.free, s.mean_move
         )))
+    }
+
+    /// An iteration a step ([`SmoothSteps`]).
+    fn step_through(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+    ) -> Option<Result<Box<dyn Steps>, Refusal>> {
+        let steps = SmoothSteps::start(world, mesh, &SmoothParams::from_values(values));
+        Some(steps.map(|s| Box::new(s) as Box<dyn Steps>))
     }
 }
 
@@ -212,59 +229,266 @@ pub fn smooth_with_progress(
     params: &SmoothParams,
     progress: &mut dyn FnMut(f32) -> bool,
 ) -> Result<SmoothSummary, Refusal> {
-    if world.get::<MeshInfo>(mesh.0).is_none() {
-        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
-    }
-    let explicit_ok = params.method == SmoothMethod::Implicit || params.step <= 1.0;
-    if !(params.step.is_finite() && params.step > 0.0 && explicit_ok) {
-        return Err(Refusal::BadParameter(format!(
-            "smoothing step {} (explicit methods take 0 < λ ≤ 1, the implicit flow any λ > 0)",
-            params.step
-        )));
-    }
-    let read = extract(world, mesh);
-    let t = &read.tables;
-    let mut held: Vec<bool> = t
-        .vertices()
-        .map(|v| params.hold_boundary && t.is_boundary_vertex(v))
-        .collect();
-    let rows = read.members.vertex_rows();
-    for v in &params.held {
-        if let Some(&row) = rows.get(&v.0) {
-            held[row as usize] = true;
-        }
-    }
-    let start: Vec<DVec3> = t.positions.iter().map(|p| p.as_dvec3()).collect();
-    let mut x = start.clone();
+    let mut run = Smoothing::start(world, mesh, params)?;
     let mut iterations = 0;
     while iterations < params.iterations {
-        match params.method {
-            SmoothMethod::Uniform => umbrella_step(t, &held, &mut x, params.step),
-            SmoothMethod::Taubin => {
-                let mu = params.step / (TAUBIN_PASS_BAND * params.step - 1.0);
-                umbrella_step(t, &held, &mut x, params.step);
-                umbrella_step(t, &held, &mut x, mu);
-            }
-            SmoothMethod::Cotan => cotan_step(t, &held, &mut x, params.step),
-            SmoothMethod::Implicit => implicit_step(t, &held, &mut x, params.step)?,
-        }
+        run.iterate()?;
         iterations += 1;
         if !progress(iterations as f32 / params.iterations as f32) {
             break;
         }
     }
-    let free = held.iter().filter(|h| !**h).count();
-    let moved: f64 = x.iter().zip(&start).map(|(a, b)| a.distance(*b)).sum();
-    for (row, v) in read.members.vertices.iter().enumerate() {
-        if let Some(mut p) = world.get_mut::<Position>(v.0) {
-            p.0 = x[row].as_vec3();
+    run.write(world);
+    Ok(run.summary(iterations))
+}
+
+/// A smoothing in progress: the mesh's tables, which vertices are held, and every vertex's
+/// position before the first iteration and now, in `f64` (written back as `f32` only at the
+/// end, or at each step of a stepped run, so the two give the same bits).
+struct Smoothing {
+    read: MeshTables,
+    held: Vec<bool>,
+    start: Vec<DVec3>,
+    x: Vec<DVec3>,
+    method: SmoothMethod,
+    step: f64,
+}
+
+impl Smoothing {
+    /// Checks `params` and reads `mesh`.
+    ///
+    /// # Refusals
+    /// As [`smooth_with_progress`].
+    fn start(world: &World, mesh: MeshId, params: &SmoothParams) -> Result<Self, Refusal> {
+        if world.get::<MeshInfo>(mesh.0).is_none() {
+            return Err(Refusal::Stale(ElementId::Mesh(mesh)));
+        }
+        let explicit_ok = params.method == SmoothMethod::Implicit || params.step <= 1.0;
+        if !(params.step.is_finite() && params.step > 0.0 && explicit_ok) {
+            return Err(Refusal::BadParameter(format!(
+                "smoothing step {} (explicit methods take 0 < λ ≤ 1, the implicit flow any λ > 0)",
+                params.step
+            )));
+        }
+        let read = extract(world, mesh);
+        let t = &read.tables;
+        let mut held: Vec<bool> = t
+            .vertices()
+            .map(|v| params.hold_boundary && t.is_boundary_vertex(v))
+            .collect();
+        let rows = read.members.vertex_rows();
+        for v in &params.held {
+            if let Some(&row) = rows.get(&v.0) {
+                held[row as usize] = true;
+            }
+        }
+        let start: Vec<DVec3> = t.positions.iter().map(|p| p.as_dvec3()).collect();
+        Ok(Self {
+            x: start.clone(),
+            start,
+            read,
+            held,
+            method: params.method,
+            step: params.step,
+        })
+    }
+
+    /// One iteration of the method.
+    ///
+    /// # Refusals
+    /// The implicit flow's system that cannot be solved; the positions are then as before.
+    fn iterate(&mut self) -> Result<(), Refusal> {
+        let (t, held, x, step) = (&self.read.tables, &self.held, &mut self.x, self.step);
+        match self.method {
+            SmoothMethod::Uniform => umbrella_step(t, held, x, step),
+            SmoothMethod::Taubin => {
+                let mu = step / (TAUBIN_PASS_BAND * step - 1.0);
+                umbrella_step(t, held, x, step);
+                umbrella_step(t, held, x, mu);
+            }
+            SmoothMethod::Cotan => cotan_step(t, held, x, step),
+            SmoothMethod::Implicit => implicit_step(t, held, x, step)?,
+        }
+        Ok(())
+    }
+
+    /// Writes the positions now to the mesh's vertices.
+    fn write(&self, world: &mut World) {
+        for (row, v) in self.read.members.vertices.iter().enumerate() {
+            if let Some(mut p) = world.get_mut::<Position>(v.0) {
+                p.0 = self.x[row].as_vec3();
+            }
         }
     }
-    Ok(SmoothSummary {
-        free,
-        mean_move: if free > 0 { moved / free as f64 } else { 0.0 },
-        iterations,
-    })
+
+    /// Free vertices.
+    fn free(&self) -> usize {
+        self.held.iter().filter(|h| !**h).count()
+    }
+
+    /// What it did, `iterations` iterations in.
+    fn summary(&self, iterations: u32) -> SmoothSummary {
+        let free = self.free();
+        let moved: f64 = self
+            .x
+            .iter()
+            .zip(&self.start)
+            .map(|(a, b)| a.distance(*b))
+            .sum();
+        SmoothSummary {
+            free,
+            mean_move: if free > 0 { moved / free as f64 } else { 0.0 },
+            iterations,
+        }
+    }
+}
+
+/// Smoothing stepped iteration by iteration, for the editor's step mode: a step is one
+/// iteration of [`Smoothing::iterate`], the very one [`smooth_with_progress`] makes, and the
+/// positions are written after each, so a run taken to its end leaves the bits the unstepped
+/// smoothing leaves. Each free vertex's path since the start is drawn (an even sample) and
+/// each iteration's mean move listed. Back restores the nearest kept iteration at or before
+/// the one asked for and iterates from there: [`SmoothSteps::KEPT`] of them at most, evenly
+/// spaced, and no more than [`SmoothSteps::KEPT_BYTES`] of positions in all.
+pub struct SmoothSteps {
+    run: Smoothing,
+    /// The iteration the mesh shows.
+    at: usize,
+    /// The iterations the run makes in all.
+    total: usize,
+    /// Kept positions: iteration `i · every` at index `i`.
+    kept: Vec<Vec<DVec3>>,
+    every: usize,
+    /// The mean distance a free vertex moved in each iteration made (index 0: the first).
+    moves: Vec<f64>,
+}
+
+impl SmoothSteps {
+    /// The most iterations a run keeps the positions of.
+    pub const KEPT: usize = 64;
+    /// The most bytes of kept positions.
+    pub const KEPT_BYTES: usize = 256 << 20;
+
+    /// A stepped smoothing of `mesh` as `params` say, before its first iteration.
+    ///
+    /// # Errors
+    /// As [`smooth_with_progress`] (the mesh is untouched).
+    pub fn start(world: &World, mesh: MeshId, params: &SmoothParams) -> Result<Self, Refusal> {
+        let run = Smoothing::start(world, mesh, params)?;
+        let total = params.iterations as usize;
+        let bytes = run.x.len().max(1) * size_of::<DVec3>();
+        let kept = (Self::KEPT_BYTES / bytes).clamp(1, Self::KEPT);
+        Ok(Self {
+            kept: vec![run.start.clone()],
+            every: total.div_ceil(kept).max(1),
+            run,
+            at: 0,
+            total,
+            moves: Vec::new(),
+        })
+    }
+
+    /// The mean move of a free vertex in the iteration that took the positions from `before`
+    /// to the run's.
+    fn mean_move(&self, before: &[DVec3]) -> f64 {
+        let free = self.run.free().max(1);
+        let sum: f64 = (self.run.x.iter().zip(before))
+            .zip(&self.run.held)
+            .filter(|(_, held)| !**held)
+            .map(|((a, b), _)| a.distance(*b))
+            .sum();
+        sum / free as f64
+    }
+}
+
+impl Steps for SmoothSteps {
+    fn at(&self) -> usize {
+        self.at
+    }
+
+    fn made(&self) -> usize {
+        self.total
+    }
+
+    fn finished(&self) -> bool {
+        self.at == self.total
+    }
+
+    fn goes_back(&self) -> GoesBack {
+        GoesBack::Scrubs
+    }
+
+    fn go_to(
+        &mut self,
+        world: &mut World,
+        _: MeshId,
+        k: usize,
+        _: Option<ElementId>,
+    ) -> Result<Moved, Refusal> {
+        let k = k.min(self.total);
+        if k < self.at {
+            let i = (k / self.every).min(self.kept.len() - 1);
+            self.run.x.clone_from(&self.kept[i]);
+            self.at = i * self.every;
+        }
+        while self.at < k {
+            let before = self.run.x.clone();
+            self.run.iterate()?;
+            self.at += 1;
+            if self.moves.len() < self.at {
+                self.moves.push(self.mean_move(&before));
+            }
+            if self.at.is_multiple_of(self.every) && self.kept.len() == self.at / self.every {
+                self.kept.push(self.run.x.clone());
+            }
+        }
+        self.run.write(world);
+        Ok(Moved::redrawing(Redraw::Positions))
+    }
+
+    fn describe(&self) -> String {
+        let s = self.run.summary(self.at as u32);
+        format!(
+            "iteration {} of {}: {} free vertices moved {:.3e} on average since the start",
+            self.at, self.total, s.free, s.mean_move
+        )
+    }
+
+    fn show(&self, _: &World, _: Option<ElementId>) -> StepShow {
+        let free: Vec<usize> = (0..self.run.x.len())
+            .filter(|&i| !self.run.held[i])
+            .collect();
+        let path = |i: usize| {
+            let v = free[i];
+            StepShape::Line(
+                self.run.start[v].as_vec3(),
+                self.run.x[v].as_vec3(),
+                TOUCHED,
+            )
+        };
+        StepShow {
+            shapes: even_sample(free.len()).map(path).collect(),
+            lists: vec![StepList {
+                title: "mean move by iteration (green: each vertex's path since the start)".into(),
+                lines: (0..self.moves.len())
+                    .rev()
+                    .map(|i| {
+                        let shown = if i + 1 == self.at { "  ◀" } else { "" };
+                        StepLine::text(format!("{:>3}: {:.3e}{shown}", i + 1, self.moves[i]))
+                    })
+                    .collect(),
+            }],
+            ..StepShow::default()
+        }
+    }
+
+    fn finish(self: Box<Self>, _: &mut World, _: MeshId) -> Ended {
+        let s = self.run.summary(self.at as u32);
+        Ended::with(format!(
+            "{} free vertices moved {:.3e} on average (stepped; kept at iteration {} of {})",
+            s.free, s.mean_move, self.at, self.total
+        ))
+    }
 }
 
 /// One umbrella step of size `lambda` (negative for Taubin's μ) over the mesh's edges.

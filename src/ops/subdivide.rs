@@ -52,7 +52,11 @@ use crate::memory_budget::Estimate;
 use crate::ops::declaration::{Declaration, Parameter};
 
 mod operation;
+pub mod stencil;
+pub mod stencil_shapes;
+mod stepping;
 pub use operation::{Subdivide, subdivision};
+pub use stepping::SubdivideSteps;
 
 /// The levels one step may ask for (each quadruples the faces).
 const LEVELS: Parameter = Parameter::whole("LEVELS", 1, 1, 8);
@@ -68,6 +72,7 @@ pub const LOOP: Declaration = Declaration::new("loop")
     .with_parameters(&[LEVELS])
     .computed_on_tables()
     .as_job()
+    .stepping()
     .renumbering()
     .carrying_some(CARRIES_SOME);
 
@@ -79,6 +84,7 @@ pub const CATMULL_CLARK: Declaration = Declaration::new("catmull-clark")
     .with_parameters(&[LEVELS])
     .computed_on_tables()
     .as_job()
+    .stepping()
     .renumbering()
     .carrying_some(CARRIES_SOME);
 

@@ -61,7 +61,7 @@ pub fn frame_selection(world: &mut World) {
         return;
     }
     let m = MeshRef::new(world);
-    // Framing the next collapse also turns the camera to face the surface there (it may be on
+    // Framing a stepped run's focus (the next collapse) also turns the camera to face the surface there (it may be on
     // the far side of the mesh).
     let mut facing = None;
     let points: Vec<Vec3> = match world.resource::<Selection>().element {
@@ -81,12 +81,14 @@ pub fn frame_selection(world: &mut World) {
         Some(ElementId::Face(f)) if m.try_face(f).is_some() => {
             m.face_vertices(f).map(|v| m.position(v)).collect()
         }
-        // In a stepped simplification, the next collapse and the two rings around it.
-        _ if let Some(next) = crate::editor::pipeline::stepping::next_collapse(world) => {
-            let normal = m.vertex_area_vector(next.kept) + m.vertex_area_vector(next.removed);
+        // In a stepped run, what it asks to frame (the next collapse) and two rings around.
+        _ if let focus = crate::editor::pipeline::stepping::focus(world)
+            && !focus.is_empty() =>
+        {
+            let normal: Vec3 = focus.iter().map(|&v| m.vertex_area_vector(v)).sum();
             facing = normal.try_normalize();
             let mut pts = Vec::new();
-            for v in [next.kept, next.removed] {
+            for &v in &focus {
                 for w in m.vertex_neighbors(v) {
                     pts.extend(m.vertex_neighbors(w).map(|x| m.position(x)));
                 }

@@ -1,5 +1,6 @@
 //! The gestures room: what the pointer and the modal keys do in the viewport. Picking an
-//! element ([`picking`]), Blender's modal transforms ([`transform`]), box selection
+//! element ([`picking`]), Blender's modal transforms ([`transform`]) with
+//! proportional editing ([`proportional`]) and handle deformation ([`handle_deform`]), box selection
 //! ([`box_select`]), dragging a vertex ([`drag`]), the camera's orbit, pan, zoom and framing
 //! ([`camera`]), and what is drawn over the surface to show them and the selection
 //! ([`overlay`]). It reads the session, pipeline and view rooms.
@@ -7,8 +8,10 @@
 pub mod box_select;
 pub mod camera;
 pub mod drag;
+pub mod handle_deform;
 pub mod overlay;
 pub mod picking;
+pub mod proportional;
 pub mod transform;
 
 use bevy::prelude::*;
@@ -28,7 +31,7 @@ impl Plugin for GesturesPlugin {
         app.add_message::<picking::PickRequest>()
             .init_resource::<overlay::Overlay>()
             .init_resource::<transform::Gestures>()
-            .init_resource::<transform::Anchors>()
+            .init_resource::<handle_deform::Anchors>()
             .init_resource::<box_select::BoxSelect>()
             .add_systems(
                 Update,

@@ -19,7 +19,8 @@ use crate::mesh::{Face, InMesh, MeshInfo};
 
 use crate::editor::session::selection::{ActiveMesh, Hover, Selection};
 use crate::editor::view::readability::WireframeDensity;
-use crate::editor::view::render_sync::{EDGE_COLOR, ViewSettings};
+use crate::editor::view::render_data::EDGE_COLOR;
+use crate::editor::view::render_sync::ViewSettings;
 
 /// Meshes with at most this many faces get arrows and dots everywhere.
 pub const SMALL_MESH_FACES: usize = 3000;
@@ -293,7 +294,7 @@ fn gesture_shapes(world: &World, m: &MeshRef<'_>, shapes: &mut Vec<Shape>) {
         shapes.push(Shape::Line(p - reach, p + reach, AXIS_COLORS[axis]));
     }
     // The anchors of handle deformation.
-    if let Some(anchors) = world.get_resource::<super::transform::Anchors>() {
+    if let Some(anchors) = world.get_resource::<super::handle_deform::Anchors>() {
         for &v in anchors.vertices.iter().take(MAX_SET_DRAWN) {
             if m.try_vertex(v).is_some() {
                 let r = mean_edge_near(m, v) * 0.1;

@@ -25,15 +25,15 @@
 //! ([`crate::ops::deform::Falloff`]): moved by `w` times the motion, turned by `w` times the
 //! angle, scaled by `1 + w (factor − 1)`. `PageUp` / `PageDown` or the wheel change the radius while
 //! the gesture runs (drawn as a circle about the pivot); the vertices a larger radius reaches
-//! join the gesture where they are.
+//! join the gesture where they are ([`super::proportional`]).
 //!
-//! **Handle deformation** (with [`Anchors`] marked, Shift+A): a move, rotation or scale of the
+//! **Handle deformation** (with [`Anchors`](super::handle_deform::Anchors) marked, Shift+A): a move, rotation or scale of the
 //! selection (the handle) deforms the rest of the mesh, the anchors held
 //! ([`crate::ops::deform::LiveDeform`]): the system is factored when the gesture starts, each
 //! frame runs one as-rigid-as-possible iteration from the last frame's result (or the one
-//! thin-plate solve), and confirming runs [`FINAL_ITERATIONS`] more. In step mode (F9) an
+//! thin-plate solve), and confirming runs [`FINAL_ITERATIONS`](super::handle_deform::FINAL_ITERATIONS) more ([`super::handle_deform`]). In step mode (F9) an
 //! as-rigid-as-possible gesture moves the handle alone, and confirming it takes the move back
-//! and starts a stepped run of the same deformation ([`Edit::Deform`], [`STEPPED_ITERATIONS`]
+//! and starts a stepped run of the same deformation ([`Edit::Deform`], [`STEPPED_ITERATIONS`](super::handle_deform::STEPPED_ITERATIONS)
 //! iterations), to be watched an iteration at a time ([`crate::editor::pipeline::stepping`]).
 
 use bevy::input::mouse::MouseButton;
@@ -47,9 +47,13 @@ use bevy::ecs::entity::EntityHashMap;
 use crate::edit::Edit;
 use crate::mesh::ids::VertexId;
 use crate::mesh::topology::MeshRef;
-use crate::ops::deform::{DeformMethod, DeformParams, LiveDeform, Proportional, distances};
+use crate::ops::deform::{DeformMethod, LiveDeform, Proportional};
 use crate::ops::local::extrude_directions;
 
+use super::handle_deform::{
+    Anchors, DeformProgress, FINAL_ITERATIONS, handle_deformation, stepped_deformation,
+};
+use super::proportional::{Follow, gather};
 use crate::editor::pipeline::stepping::Stepping;
 use crate::editor::session::history::UndoHistory;
 use crate::editor::session::requests::Request;
@@ -116,79 +120,6 @@ pub struct Gesture {
     pub stepped: bool,
     /// The handle's motion now (a move, rotation or scale; for a stepped deformation).
     pub motion: Option<Affine3A>,
-}
-
-/// ARAP iterations run when a handle deformation is confirmed (one runs each frame before).
-pub const FINAL_ITERATIONS: u32 = 10;
-
-/// ARAP iterations a handle deformation confirmed in step mode may be stepped through.
-pub const STEPPED_ITERATIONS: u32 = 100;
-
-/// The fixed region of handle deformation (Shift+A marks the selection's vertices), and how the
-/// rest follows the handle.
-#[derive(Resource, Default, Debug, Clone)]
-pub struct Anchors {
-    /// The anchors; none: gestures move the selection alone.
-    pub vertices: Vec<VertexId>,
-    /// As-rigid-as-possible or thin plate.
-    pub method: DeformMethod,
-    /// The last handle deformation's ARAP iterations and energy, for the panel.
-    pub progress: Option<DeformProgress>,
-}
-
-/// How far an as-rigid-as-possible handle deformation has come.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DeformProgress {
-    /// Iterations run since the gesture started (one a frame, more on confirm).
-    pub iterations: u32,
-    /// The energy the last iteration's local step measured ([`LiveDeform::last_energy`]).
-    pub energy: f64,
-}
-
-impl std::fmt::Display for DeformProgress {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "{} ARAP iterations, energy {:.4e}",
-            self.iterations, self.energy
-        )
-    }
-}
-
-impl DeformProgress {
-    /// The progress of `live`, once it has run an ARAP iteration.
-    pub fn of(live: &LiveDeform) -> Option<Self> {
-        Some(Self {
-            iterations: live.iterations(),
-            energy: live.last_energy()?,
-        })
-    }
-}
-
-/// The unselected vertices a proportional gesture takes along.
-#[derive(Clone, Debug)]
-pub struct Follow {
-    /// The settings, the radius as the gesture changed it.
-    pub settings: Proportional,
-    /// How many of [`Gesture::start`] are the selection (the rest follow).
-    pub selected: usize,
-    /// The distance of each following vertex to the selection (`start[selected + i]`).
-    pub distances: Vec<f32>,
-    /// The radius the following vertices were gathered for.
-    pub gathered: f32,
-}
-
-impl Follow {
-    /// The weight of start vertex `i`.
-    fn weight(&self, i: usize) -> f32 {
-        match i.checked_sub(self.selected) {
-            None => 1.0,
-            Some(k) => self
-                .settings
-                .falloff
-                .weight(self.distances[k], self.settings.radius),
-        }
-    }
 }
 
 /// The gesture under way, and the one to start once the edit it follows has applied.
@@ -284,7 +215,7 @@ pub fn start(
             distances: Vec::new(),
             gathered: 0.0,
         });
-    let deform = match handle_deformation(world, &kind, &start) {
+    let deform = match handle_deformation(world, &start).map(|d| d.filter(|_| takes_along)) {
         Ok(deform) => deform,
         Err(refusal) => {
             let label = format!("{} (handle deformation)", kind.name());
@@ -316,106 +247,11 @@ pub fn start(
         stepped,
         motion: None,
     };
-    gather(world, &mut gesture);
+    if let Some(follow) = gesture.follow.as_mut() {
+        gather(world, follow, &mut gesture.start);
+    }
     world.resource_mut::<Gestures>().active = Some(gesture);
     true
-}
-
-/// The handle deformation a move, rotation or scale of these vertices starts when anchors are
-/// marked (none otherwise), its system factored.
-///
-/// # Errors
-/// When the system cannot be factored (a part with nothing held is held whole, so this is a
-/// degenerate mesh).
-fn handle_deformation(
-    world: &World,
-    kind: &GestureKind,
-    start: &[(VertexId, Vec3)],
-) -> Result<Option<Box<LiveDeform>>, crate::ops::Refusal> {
-    let Some(anchors) = world.get_resource::<Anchors>() else {
-        return Ok(None);
-    };
-    let moves = matches!(
-        kind,
-        GestureKind::Grab | GestureKind::Rotate | GestureKind::Scale
-    );
-    let mesh = start
-        .first()
-        .and_then(|(v, _)| world.get::<crate::mesh::InMesh>(v.0))
-        .map(|m| m.0);
-    let (Some(mesh), true, false) = (mesh, moves, anchors.vertices.is_empty()) else {
-        return Ok(None);
-    };
-    let handle: Vec<VertexId> = start.iter().map(|(v, _)| *v).collect();
-    let fixed = anchors_apart_from(world, &handle);
-    let mut live = LiveDeform::new(world, mesh, anchors.method, &fixed, &handle)?;
-    live.measure_each_iteration();
-    Ok(Some(Box::new(live)))
-}
-
-/// The live anchors that are not part of `handle`.
-fn anchors_apart_from(world: &World, handle: &[VertexId]) -> Vec<VertexId> {
-    let handle_set: bevy::ecs::entity::EntityHashSet = handle.iter().map(|v| v.0).collect();
-    let m = MeshRef::new(world);
-    world
-        .get_resource::<Anchors>()
-        .map(|anchors| {
-            anchors
-                .vertices
-                .iter()
-                .copied()
-                .filter(|v| m.try_vertex(*v).is_some() && !handle_set.contains(&v.0))
-                .collect()
-        })
-        .unwrap_or_default()
-}
-
-/// Ends a stepped handle deformation's gesture: takes its move back and asks for a stepped run
-/// of the deformation it showed (from the mesh as it was before the gesture).
-fn hand_to_step_mode(world: &mut World, mut g: Gesture, by_click: bool) {
-    let _ = positions(world, &mut g, 0);
-    end(world, by_click);
-    world.write_message(Request::Retract(g.undo_mark));
-    if let Some(motion) = g.motion {
-        let handle: Vec<VertexId> = g.start.iter().map(|(v, _)| *v).collect();
-        let params = DeformParams {
-            method: DeformMethod::Arap,
-            fixed: anchors_apart_from(world, &handle),
-            handle,
-            motion,
-            iterations: STEPPED_ITERATIONS,
-        };
-        world.write_message(Request::StartStepped(Edit::Deform(params)));
-    }
-}
-
-/// Takes along the vertices within the proportional radius that the gesture does not hold yet
-/// (where they are: out of reach until now, they have not moved).
-fn gather(world: &World, g: &mut Gesture) {
-    let Some(follow) = g.follow.as_mut() else {
-        return;
-    };
-    let radius = follow.settings.radius;
-    if radius <= follow.gathered {
-        return;
-    }
-    let selected: Vec<VertexId> = g.start[..follow.selected].iter().map(|(v, _)| *v).collect();
-    let held: bevy::ecs::entity::EntityHashMap<usize> = g.start[follow.selected..]
-        .iter()
-        .enumerate()
-        .map(|(k, (v, _))| (v.0, k))
-        .collect();
-    let m = MeshRef::new(world);
-    for (v, d) in distances(world, &selected, radius, follow.settings.connected) {
-        match held.get(&v.0) {
-            Some(&k) => follow.distances[k] = d,
-            None => {
-                g.start.push((v, m.position(v)));
-                follow.distances.push(d);
-            }
-        }
-    }
-    follow.gathered = radius;
 }
 
 /// The corners of every selected element, each once, in selection order.
@@ -520,7 +356,9 @@ pub fn drive_gesture(world: &mut World) {
     if wheel != 0.0 {
         resize(&mut g, 1.1f32.powf(wheel.clamp(-3.0, 3.0)));
     }
-    gather(world, &mut g);
+    if let Some(follow) = g.follow.as_mut() {
+        gather(world, follow, &mut g.start);
+    }
     if clicked && g.stepped {
         return hand_to_step_mode(world, g, true);
     }
@@ -544,10 +382,23 @@ pub fn drive_gesture(world: &mut World) {
     world.resource_mut::<Gestures>().active = Some(g);
 }
 
+/// Ends a stepped handle deformation's gesture: takes its move back and asks for a stepped run
+/// of the deformation it showed (from the mesh as it was before the gesture).
+fn hand_to_step_mode(world: &mut World, mut g: Gesture, by_click: bool) {
+    let _ = positions(world, &mut g, 0);
+    end(world, by_click);
+    world.write_message(Request::Retract(g.undo_mark));
+    if let Some(motion) = g.motion {
+        let handle: Vec<VertexId> = g.start.iter().map(|(v, _)| *v).collect();
+        let run = stepped_deformation(world, handle, motion);
+        world.write_message(Request::StartStepped(run));
+    }
+}
+
 /// Scales the proportional radius (when the gesture has one).
 fn resize(g: &mut Gesture, factor: f32) {
     if let Some(f) = g.follow.as_mut() {
-        f.settings.radius = (f.settings.radius * factor).max(1e-6);
+        f.resize(factor);
     }
 }
 

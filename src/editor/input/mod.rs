@@ -1,10 +1,11 @@
-//! The input room: the keyboard's shortcuts as one table ([`keyboard`]) and files dropped on
-//! the window ([`dropped_files`]), each turned into requests. It reads the rooms below it
+//! The input room: the keymap ([`shortcuts`]), the keyboard's system ([`keyboard`]) and files
+//! dropped on the window ([`dropped_files`]), each turned into requests. It reads the rooms below it
 //! (session, pipeline, view, gestures); the panels and the automation read it.
 
 pub mod dropped_files;
 pub mod key_names;
 pub mod keyboard;
+pub mod shortcuts;
 
 use bevy::prelude::*;
 

@@ -2,13 +2,12 @@
 //! sharing the rows of [`widgets`], drawing what [`state`] holds), its
 //! figures of the mesh counted off the frame ([`mesh_figures`]) and drawn as histograms
 //! ([`plots`]), the UV layout window ([`uv_view`]), and the step mode's window and overlays
-//! ([`step_view`], [`stencil_view`]). It reads every room but automation.
+//! ([`step_view`]). It reads every room but automation.
 
 pub mod mesh_figures;
 pub mod plots;
 pub mod sections;
 pub mod state;
-pub mod stencil_view;
 pub mod step_view;
 pub mod ui;
 pub mod uv_view;
@@ -20,8 +19,8 @@ use crate::editor::gestures::overlay::gather_overlay;
 use crate::editor::pipeline::recovery;
 use crate::editor::session::schedule::EditorSystems;
 
-/// What the panels gather each frame without a window: the step overlay, the UV layout and
-/// the step snapshots (the headless tests read them).
+/// What the panels gather each frame without a window: the step view (its shapes and the
+/// window's contents) and the UV layout (the headless tests read them).
 pub struct PanelsPlugin;
 
 impl Plugin for PanelsPlugin {
@@ -31,13 +30,10 @@ impl Plugin for PanelsPlugin {
             .init_resource::<step_view::StepView>()
             .add_systems(
                 Update,
-                (
-                    (step_view::gather_step_overlay, uv_view::refresh_uv_layout)
-                        .chain()
-                        .after(gather_overlay)
-                        .in_set(EditorSystems::Sync),
-                    step_view::snapshot_steps.in_set(EditorSystems::Ui),
-                ),
+                ((step_view::gather_step_view, uv_view::refresh_uv_layout)
+                    .chain()
+                    .after(gather_overlay)
+                    .in_set(EditorSystems::Sync),),
             );
     }
 }

@@ -9,7 +9,7 @@ use bevy::prelude::*;
 use super::mesh_figures::MeshView;
 use super::plots::Histogram;
 use crate::colormap::{ColorMap, Range};
-use crate::editor::input::keyboard::Action;
+use crate::editor::input::shortcuts::Action;
 use crate::editor::session::dialog::PathPurpose;
 use crate::editor::session::requests::Relation;
 use crate::mesh::ids::ElementId;

@@ -16,7 +16,8 @@ use crate::mesh::{InMesh, MeshInfo};
 use super::sections::folding::PanelSections;
 use super::sections::{PanelContext, SECTIONS};
 use super::state::{InspectorView, PendingActions, SelectedView, UiFields};
-use crate::editor::input::keyboard::{perform, shortcuts};
+use crate::editor::input::keyboard::perform;
+use crate::editor::input::shortcuts::shortcuts;
 use crate::editor::session::panel_state::UiState;
 use crate::editor::session::requests::{OutcomeLog, Relation, Request};
 use crate::editor::session::schedule::EditorSystems;
@@ -321,7 +322,7 @@ pub fn panels(
     confirm: Res<crate::editor::session::requests::ConfirmDiscard>,
     mut colour_by: ResMut<ColorBy>,
     mut pending: ResMut<PendingActions>,
-    mut anchors: ResMut<crate::editor::gestures::transform::Anchors>,
+    mut anchors: ResMut<crate::editor::gestures::handle_deform::Anchors>,
     mut requests: MessageWriter<Request>,
 ) -> Result {
     let ctx = contexts.ctx_mut()?.clone();

@@ -6,13 +6,13 @@ use bevy_egui::egui;
 
 use super::state::PendingActions;
 use crate::edit::Invocation;
-use crate::editor::input::keyboard::Action;
+use crate::editor::input::shortcuts::Action;
 use crate::editor::session::panel_state::UiState;
 use crate::ops::declaration::{Declaration, Parameter, ParameterKind, Section};
 
 /// The keys of `action` as a label shows them, or nothing.
 pub fn shortcut_label(action: Action) -> &'static str {
-    crate::editor::input::keyboard::keys_of(action).unwrap_or("")
+    crate::editor::input::shortcuts::keys_of(action).unwrap_or("")
 }
 
 /// A button that runs `action`, its keys beside its name.

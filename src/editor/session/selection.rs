@@ -215,13 +215,7 @@ pub fn keep_live_selection(world: &mut World, keep: impl Fn(ElementId) -> bool) 
 
 /// Whether `element` is alive in the world behind `m`.
 pub fn exists(m: &MeshRef<'_>, element: ElementId) -> bool {
-    match element {
-        ElementId::Vertex(v) => m.try_vertex(v).is_some(),
-        ElementId::Halfedge(h) => m.try_halfedge(h).is_some(),
-        ElementId::Edge(e) => m.try_edge(e).is_some(),
-        ElementId::Face(f) => m.try_face(f).is_some(),
-        ElementId::Mesh(x) => m.world().get_entity(x.0).is_ok(),
-    }
+    m.exists(element)
 }
 
 /// The element reached from `from` along `relation`, or `None` where the relation leads nowhere

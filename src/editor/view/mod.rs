@@ -1,10 +1,11 @@
 //! The view room: how the meshes look. The render copies that follow the entities
-//! ([`render_sync`]), colouring by a quantity ([`colouring`]), the wireframe kept readable
+//! ([`render_sync`], from what [`render_data`] builds), colouring by a quantity ([`colouring`]), the wireframe kept readable
 //! ([`readability`]), the scene and its camera state ([`scene`]) and the surface shader
 //! ([`surface`]). It reads only the session and pipeline rooms.
 
 pub mod colouring;
 pub mod readability;
+pub mod render_data;
 pub mod render_sync;
 pub mod scene;
 pub mod surface;

@@ -1,7 +1,7 @@
 //! Keeps each mesh's render copy in step with its entities, redrawing only what changed.
 //!
 //! A mesh is drawn by chunks of [`CHUNK_FACES`] faces, each a render entity with a Bevy
-//! [`Mesh`] (every polygon fan-triangulated, every vertex once; flat shading: no normals, the
+//! [`Mesh`] (built by [`super::render_data`]: every polygon fan-triangulated, every vertex once; flat shading: no normals, the
 //! shader derives each face's; smooth: area-weighted vertex normals over *all* the vertex's faces,
 //! so chunk borders show no seam), a
 //! [`TriangleFaces`] table mapping each GPU triangle back to its face for picking, and a retained
@@ -20,7 +20,6 @@
 use bevy::asset::RenderAssetUsages;
 use bevy::color::Color;
 use bevy::ecs::entity::EntityHashMap;
-use bevy::math::{Vec2, Vec3};
 use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology};
 use bevy::prelude::{
     Assets, Component, Entity, Handle, Or, Resource, Transform, Visibility, With, World,
@@ -29,11 +28,12 @@ use bevy::tasks::{ComputeTaskPool, ParallelSlice, TaskPool};
 use std::time::Instant;
 
 use crate::mesh::MeshInfo;
-use crate::mesh::attributes::{CornerUv, MeshAttributes};
-use crate::mesh::ids::{FaceId, HalfedgeId, MeshId, VertexId};
+use crate::mesh::attributes::MeshAttributes;
+use crate::mesh::ids::{FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 
 use super::colouring::VertexValues;
+use super::render_data::{RenderData, edge_line_ends, render_data, smooth_normal};
 use crate::editor::session::selection::{DirtyFaces, MeshDirty, PositionsDirty};
 
 /// The render entity of a mesh: carries its [`Mesh3d`] and [`TriangleFaces`].
@@ -92,36 +92,9 @@ pub struct RenderStats {
 /// blob and costs seconds per frame under software rendering); the selection is still drawn.
 pub const WIREFRAME_MAX_EDGES: usize = 400_000;
 
-/// Colour of interior edges in the wireframe.
-pub const EDGE_COLOR: Color = Color::srgb(0.08, 0.08, 0.1);
-/// Colour of boundary edges in the wireframe.
-pub const BOUNDARY_COLOR: Color = Color::srgb(0.9, 0.15, 0.1);
-
 /// Faces per render chunk. Each chunk is one render entity with its own GPU mesh, so an edit
 /// re-uploads only the chunks it touched.
 pub const CHUNK_FACES: usize = 16_384;
-
-/// Triangles, normals and the triangle → face table for a list of faces.
-#[derive(Debug, Clone, Default)]
-pub struct RenderData {
-    /// Vertex positions of the render mesh.
-    pub positions: Vec<[f32; 3]>,
-    /// Vertex normals of the render mesh (smooth shading only; empty when flat).
-    pub normals: Vec<[f32; 3]>,
-    /// Triangle corners.
-    pub indices: Vec<u32>,
-    /// The face of each triangle.
-    pub triangle_faces: Vec<FaceId>,
-    /// The mesh vertex behind each render vertex (for colouring by a quantity).
-    pub vertices: Vec<VertexId>,
-    /// The texture coordinate of each render vertex (only when drawn with UVs; empty
-    /// otherwise).
-    pub uvs: Vec<[f32; 2]>,
-    /// The summed length of the faces' sides (each interior edge counted from both faces).
-    pub side_length: f64,
-    /// The number of the faces' sides.
-    pub sides: usize,
-}
 
 /// The render chunks of a mesh (a component of the mesh entity).
 #[derive(Component, Debug, Default)]
@@ -141,138 +114,6 @@ pub struct RenderChunks {
 /// The faces a chunk draws.
 #[derive(Component, Debug, Clone, Default)]
 pub struct ChunkFaces(pub Vec<FaceId>);
-
-/// Builds the render data of `faces`: each face fanned from its first corner, every mesh
-/// vertex once per chunk (indexed). Smooth shading gives each vertex the area-weighted normal of
-/// *all* its faces (so chunk borders show no seam); flat shading gives no normals at all: the
-/// surface shader takes each pixel's face normal from the derivatives of its position, so a
-/// vertex need not be repeated for every face around it (six times fewer vertices to transform
-/// on a triangle mesh, which is what a software rasteriser spends its time on).
-///
-/// With `uvs` (the mesh has [`CornerUv`]s and the checkerboard is on) a render vertex is one
-/// distinct (vertex, UV) pair instead: the corners of a vertex on a seam, whose UVs differ,
-/// become separate render vertices, and [`RenderData::uvs`] is filled. Without it nothing is
-/// hashed by UV, so a mesh without UVs costs what it did.
-pub fn render_data(world: &World, faces: &[FaceId], smooth: bool, uvs: bool) -> RenderData {
-    if uvs {
-        return render_data_with_uvs(world, faces, smooth);
-    }
-    let m = MeshRef::new(world);
-    let mut out = RenderData::default();
-    let mut corners = Vec::new();
-    let mut index: EntityHashMap<u32> = EntityHashMap::default();
-    for &f in faces {
-        corners.clear();
-        for v in m.face_vertices(f) {
-            let next = index.len() as u32;
-            let i = *index.entry(v.0).or_insert_with(|| {
-                push_vertex(&m, &mut out, v, smooth);
-                next
-            });
-            corners.push(i);
-        }
-        fan(&mut out, &corners, f);
-    }
-    out
-}
-
-/// [`render_data`] with one render vertex per distinct (vertex, corner UV) pair.
-fn render_data_with_uvs(world: &World, faces: &[FaceId], smooth: bool) -> RenderData {
-    let m = MeshRef::new(world);
-    let mut out = RenderData::default();
-    let mut corners = Vec::new();
-    let mut index: bevy::platform::collections::HashMap<(Entity, [u32; 2]), u32> =
-        bevy::platform::collections::HashMap::default();
-    for &f in faces {
-        corners.clear();
-        for h in m.face_halfedges(f) {
-            let v = m.to_vertex(h);
-            let uv = world.get::<CornerUv>(h.0).map_or(Vec2::ZERO, |c| c.0);
-            let key = (v.0, [uv.x.to_bits(), uv.y.to_bits()]);
-            let next = index.len() as u32;
-            let i = *index.entry(key).or_insert_with(|| {
-                push_vertex(&m, &mut out, v, smooth);
-                out.uvs.push(uv.to_array());
-                next
-            });
-            corners.push(i);
-        }
-        fan(&mut out, &corners, f);
-    }
-    out
-}
-
-/// Appends render vertex `v`: its position, its vertex id, and (smooth) its normal.
-fn push_vertex(m: &MeshRef<'_>, out: &mut RenderData, v: VertexId, smooth: bool) {
-    out.positions.push(m.position(v).to_array());
-    out.vertices.push(v);
-    if smooth {
-        out.normals.push(smooth_normal(m, v));
-    }
-}
-
-/// The smooth-shading normal of `v`: the area-weighted normal of all its faces.
-fn smooth_normal(m: &MeshRef<'_>, v: VertexId) -> [f32; 3] {
-    let n = m.vertex_area_vector(v);
-    n.try_normalize().unwrap_or(Vec3::Z).to_array()
-}
-
-/// Fans face `f` (its render vertices `corners`) into triangles, and counts its sides.
-fn fan(out: &mut RenderData, corners: &[u32], f: FaceId) {
-    let at = |i: u32| Vec3::from(out.positions[i as usize]);
-    if let Some(&last) = corners.last() {
-        let mut from = at(last);
-        for &i in corners {
-            let to = at(i);
-            out.side_length += f64::from(from.distance(to));
-            from = to;
-        }
-        out.sides += corners.len();
-    }
-    for i in 1..corners.len().saturating_sub(1) {
-        out.indices
-            .extend_from_slice(&[corners[0], corners[i], corners[i + 1]]);
-        out.triangle_faces.push(f);
-    }
-}
-
-/// The edges drawn by a chunk: an interior edge by the face of its lower-numbered halfedge, a
-/// boundary edge by its one face, so every edge is drawn once whichever chunks hold its faces.
-/// Boundary edges are red. Each side costs three lookups (its halfedge, its twin's face, its
-/// tip's position): a 16k-face chunk of the bunny in 3 ms, where walking edge → halfedge → face
-/// took 27.
-pub fn edge_lines(world: &World, faces: &[FaceId]) -> Vec<(Vec3, Vec3, Color)> {
-    let m = MeshRef::new(world);
-    edge_line_ends(world, faces)
-        .into_iter()
-        .map(|(a, b, color)| (m.position(a), m.position(b), color))
-        .collect()
-}
-
-/// [`edge_lines`] by their end vertices, which a refresh of positions reads again.
-fn edge_line_ends(world: &World, faces: &[FaceId]) -> Vec<(VertexId, VertexId, Color)> {
-    let m = MeshRef::new(world);
-    let mut out = Vec::with_capacity(faces.len() * 2);
-    let mut ring: Vec<(HalfedgeId, HalfedgeId, VertexId)> = Vec::new();
-    for &f in faces {
-        ring.clear();
-        ring.extend(m.face_halfedges(f).map(|h| {
-            let x = m.halfedge(h);
-            (h, x.twin, x.vertex)
-        }));
-        let Some(&(_, _, mut from)) = ring.last() else {
-            continue;
-        };
-        for &(h, twin, to) in &ring {
-            let boundary = m.face(twin).is_none();
-            if boundary || h.0 < twin.0 {
-                out.push((from, to, if boundary { BOUNDARY_COLOR } else { EDGE_COLOR }));
-            }
-            from = to;
-        }
-    }
-    out
-}
 
 /// Rebuilds render copies (the `Sync` set): every chunk of a mesh marked [`MeshDirty`], and
 /// only the chunks holding [`DirtyFaces`](crate::editor::session::selection::DirtyFaces) otherwise. Render copies of meshes that are gone are
@@ -718,51 +559,5 @@ fn remove_orphans(world: &mut World) {
         .collect();
     for e in orphans {
         world.despawn(e);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::mesh::{Edge, Face, MeshInfo, build_mesh, members::of_kind, shapes};
-
-    #[test]
-    fn every_edge_is_drawn_once_whichever_chunks_hold_its_faces() {
-        let mut world = World::new();
-        let built = build_mesh(&mut world, &shapes::grid_with_holes(2), MeshInfo::default())
-            .expect("builds");
-        let faces = of_kind::<Face, _>(&world, built.mesh, FaceId);
-        let edges = of_kind::<Edge, _>(&world, built.mesh, crate::mesh::EdgeId);
-        let m = MeshRef::new(&world);
-        let boundary = edges.iter().filter(|&&e| m.is_boundary_edge(e)).count();
-        assert!(boundary > 0);
-        // Two chunks, interleaved, so most edges have their faces in different chunks.
-        let (even, odd): (Vec<_>, Vec<_>) = faces.iter().enumerate().partition(|(i, _)| i % 2 == 0);
-        let chunk =
-            |part: Vec<(usize, &FaceId)>| part.into_iter().map(|(_, &f)| f).collect::<Vec<_>>();
-        let mut lines = edge_lines(&world, &chunk(even));
-        lines.extend(edge_lines(&world, &chunk(odd)));
-        assert_eq!(lines.len(), edges.len());
-        let red = lines.iter().filter(|l| l.2 == BOUNDARY_COLOR).count();
-        assert_eq!(red, boundary);
-        // Each line is a real edge, once.
-        let key = |a: Vec3, b: Vec3| {
-            let (a, b) = (
-                a.to_array().map(f32::to_bits),
-                b.to_array().map(f32::to_bits),
-            );
-            if a < b { (a, b) } else { (b, a) }
-        };
-        let mut seen: Vec<_> = lines.iter().map(|&(a, b, _)| key(a, b)).collect();
-        seen.sort_unstable();
-        seen.dedup();
-        assert_eq!(seen.len(), edges.len());
-        for e in edges {
-            let (a, b) = m.edge_vertices(e);
-            assert!(
-                seen.binary_search(&key(m.position(a), m.position(b)))
-                    .is_ok()
-            );
-        }
     }
 }

@@ -14,7 +14,7 @@
 //! While a quantity is shown the mesh's vertex colours replace the base colour, unshaded by any
 //! tonemapping, so the colour map on screen is the one in the legend. A mesh drawn without
 //! normals is shaded flat: the shader takes each face's normal from the screen-space derivatives
-//! of the position (see `render_sync::render_data`).
+//! of the position (see `render_data::render_data`).
 
 use bevy::asset::embedded_asset;
 use bevy::color::LinearRgba;

@@ -29,6 +29,7 @@ mod falloff;
 mod live;
 mod region;
 mod rotation;
+mod stepping;
 mod system;
 
 use crate::ops::declaration::Declaration;
@@ -56,6 +57,7 @@ pub use falloff::{Falloff, Proportional, distances};
 pub use live::LiveDeform;
 pub use region::Region;
 pub use rotation::closest_rotation;
+pub use stepping::{DeformIteration, DeformSteps, FRAME_SIZE};
 pub use system::{HeldSystem, k_harmonic};
 
 /// How a handle's motion spreads over the free vertices.

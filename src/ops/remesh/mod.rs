@@ -64,6 +64,7 @@ mod pass;
 mod relax;
 mod run;
 mod split;
+mod stepping;
 
 use crate::ops::declaration::{Declaration, Parameter};
 
@@ -81,6 +82,7 @@ pub const REMESH: Declaration = Declaration::new("remesh")
         Parameter::real("FEATURE", 45.0, 0.0, 180.0),
     ])
     .as_job()
+    .stepping()
     .dropping("remeshing does not carry attributes");
 
 #[cfg(test)]
@@ -99,6 +101,7 @@ use super::Refusal;
 pub use operation::Remesh;
 pub use pass::{Pass, PassReport, Touched};
 pub use run::RemeshRun;
+pub use stepping::RemeshSteps;
 
 /// How to remesh. The same struct serves the command line, the editor and the tests.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -9,7 +9,10 @@ use super::{REMESH, RemeshParams, remesh_with_progress};
 use crate::mesh::ids::MeshId;
 use crate::ops::Refusal;
 use crate::ops::declaration::Declaration;
+use crate::ops::operation::stepping::Steps;
 use crate::ops::operation::{Applied, EditContext, MeshOperation, Values};
+
+use super::RemeshSteps;
 
 /// [`remesh_with_progress`] as an operation.
 pub struct Remesh;
@@ -45,6 +48,17 @@ impl MeshOperation for Remesh {
             "L {:.5}: {} splits, {} collapses, {} flips",
             s.target_length, s.splits, s.collapses, s.flips
         )))
+    }
+
+    /// A pass a step ([`RemeshSteps`]).
+    fn step_through(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+    ) -> Option<Result<Box<dyn Steps>, Refusal>> {
+        let steps = RemeshSteps::start(world, mesh, &Self::params(values));
+        Some(steps.map(|s| Box::new(s) as Box<dyn Steps>))
     }
 }
 

@@ -5,11 +5,12 @@
 
 use bevy::prelude::World;
 
-use super::{CATMULL_CLARK, LOOP, Scheme, SubdivisionSummary};
+use super::{CATMULL_CLARK, LOOP, Scheme, SubdivideSteps, SubdivisionSummary};
 use crate::mesh::ids::MeshId;
 use crate::mesh::tables::{Connectivity, MeshTables};
 use crate::ops::Refusal;
 use crate::ops::declaration::Declaration;
+use crate::ops::operation::stepping::Steps;
 use crate::ops::operation::{Applied, EditContext, Invocation, MeshOperation, Values};
 
 /// Subdivision by `Scheme`, `LEVELS` levels at a time.
@@ -55,6 +56,17 @@ impl MeshOperation for Subdivide {
                 .subdivide_with_progress(world, mesh, values.whole(0), &mut *context.progress)?;
         (context.progress)(1.0);
         Ok(Applied::whole(s.describe()))
+    }
+
+    /// Two steps a level: its points previewed, then committed ([`SubdivideSteps`]).
+    fn step_through(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+    ) -> Option<Result<Box<dyn Steps>, Refusal>> {
+        let steps = SubdivideSteps::start(world, mesh, self.0, values.whole(0));
+        Some(steps.map(|s| Box::new(s) as Box<dyn Steps>))
     }
 
     fn run_on_tables(

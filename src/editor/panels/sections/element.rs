@@ -6,7 +6,7 @@ use bevy_egui::egui;
 
 use super::PanelSection;
 use crate::edit::Edit;
-use crate::editor::input::keyboard::Action;
+use crate::editor::input::shortcuts::Action;
 use crate::editor::panels::state::{InspectorView, UiFields};
 use crate::editor::session::requests::{Relation, Request};
 use crate::mesh::ids::{ElementId, parse_element};
@@ -66,7 +66,7 @@ fn selection_section(
     egui::Grid::new("relations").num_columns(2).show(ui, |ui| {
         for (relation, target) in &sel.relations {
             // E and F go to a halfedge's edge and face (the keys extrude and fill otherwise).
-            let key = crate::editor::input::keyboard::keys_of(Action::Navigate(*relation)).or(
+            let key = crate::editor::input::shortcuts::keys_of(Action::Navigate(*relation)).or(
                 match (sel.id, relation) {
                     (ElementId::Halfedge(_), Relation::Edge) => Some("E"),
                     (ElementId::Halfedge(_), Relation::Face) => Some("F"),

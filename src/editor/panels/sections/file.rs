@@ -6,7 +6,7 @@ use bevy_egui::egui;
 use super::PanelSection;
 use std::path::PathBuf;
 
-use crate::editor::input::keyboard::Action;
+use crate::editor::input::shortcuts::Action;
 use crate::editor::panels::state::UiFields;
 use crate::editor::panels::widgets::shortcut_label;
 use crate::editor::session::dialog::PathPurpose;

@@ -5,7 +5,7 @@
 use bevy_egui::egui;
 
 use super::{PanelContext, PanelSection};
-use crate::editor::input::keyboard::Action;
+use crate::editor::input::shortcuts::Action;
 use crate::editor::panels::state::{InspectorView, PendingActions};
 use crate::editor::panels::widgets::shortcut_label;
 use crate::editor::view::readability::WireframeDensity;

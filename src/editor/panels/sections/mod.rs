@@ -24,7 +24,7 @@ pub mod uv;
 use bevy_egui::egui;
 
 use super::state::{InspectorView, PendingActions, UiFields};
-use crate::editor::gestures::transform::Anchors;
+use crate::editor::gestures::handle_deform::Anchors;
 use crate::editor::session::panel_state::UiState;
 use crate::editor::session::requests::{OutcomeLog, Request};
 use crate::editor::session::selection::SelectMode;

@@ -4,8 +4,8 @@
 use bevy_egui::egui;
 
 use super::PanelSection;
-use crate::editor::gestures::transform::Anchors;
-use crate::editor::input::keyboard::Action;
+use crate::editor::gestures::handle_deform::Anchors;
+use crate::editor::input::shortcuts::Action;
 use crate::editor::panels::state::PendingActions;
 use crate::editor::panels::widgets::{button, registered_operations, shortcut_label};
 use crate::editor::session::panel_state::UiState;

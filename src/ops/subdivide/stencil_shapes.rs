@@ -1,14 +1,11 @@
-//! How subdivision stencils and the next level's points are drawn: overlay shapes and an egui
-//! section, for the step mode of issue 28 ("the new edge and face points and the moved old
-//! vertices shown with their stencils … before the level is committed").
+//! How subdivision stencils and the next level's points are shown in step mode: shapes over
+//! the mesh and a table for the step window (issue 28: "the new edge and face points and the
+//! moved old vertices shown with their stencils … before the level is committed").
 //!
-//! The stencils themselves ([`Stencil`], [`NextLevelPoints`]) come from
-//! [`crate::ops::stencil`], which states the rules (Loop 1987, Catmull & Clark 1978). This
-//! module only turns them into [`Shape`]s for [`crate::editor::gestures::overlay::Overlay`] and into a panel
-//! section. It adds no system and no resource: the step-mode framework calls
-//! [`stencil_shapes`] / [`point_shapes`] while it gathers the overlay and [`stencil_panel`]
-//! inside its panel. Everything but [`stencil_panel`] is plain data in, shapes out, so the
-//! headless tests check it without a window.
+//! The stencils themselves ([`Stencil`], [`NextLevelPoints`]) come from [`super::stencil`],
+//! which states the rules (Loop 1987, Catmull & Clark 1978). This module only turns them into
+//! [`StepShape`]s and a [`StepTable`]: plain data in, shapes out, so the tests check it without
+//! a window.
 //!
 //! ```text
 //!        · 1/8                      ● the new point (large, over everything)
@@ -21,22 +18,19 @@
 //! Colours: edge and face points [`NEW_POINT`], moved old vertices [`MOVED_VERTEX`], both in
 //! the preview of the whole level and for the new point of a stencil.
 
-use bevy::color::Color;
 use bevy::math::Vec3;
-use bevy_egui::egui;
 
+use super::stencil::{NewPoint, NextLevelPoints, Stencil};
 use crate::mesh::ids::VertexId;
 use crate::mesh::topology::MeshRef;
-use crate::ops::stencil::{NewPoint, NextLevelPoints, Stencil};
-
-use crate::editor::gestures::overlay::Shape;
+use crate::ops::operation::stepping::{Rgb, StepShape, StepTable};
 
 /// Colour of the points a level inserts (edge points and face points).
-pub const NEW_POINT: Color = Color::srgb(0.1, 0.8, 0.45);
+pub const NEW_POINT: Rgb = [0.1, 0.8, 0.45];
 /// Colour of the old vertices at their moved positions.
-pub const MOVED_VERTEX: Color = Color::srgb(0.85, 0.3, 0.9);
-/// A term of at least this weight is drawn as a thick line ([`Shape::Highlight`]); lighter
-/// ones as thin lines ([`Shape::Line`]).
+pub const MOVED_VERTEX: Rgb = [0.85, 0.3, 0.9];
+/// A term of at least this weight is drawn as a thick line ([`StepShape::Highlight`]); lighter
+/// ones as thin lines ([`StepShape::Line`]).
 pub const HEAVY_WEIGHT: f32 = 0.25;
 /// Up to this many preview points are drawn as large dots over everything (a coarse mesh,
 /// where the new points often lie inside the old surface); more as plain dots, which the
@@ -64,15 +58,15 @@ impl Default for PointsShown {
 /// The colour of a term of weight `w`: pale blue-grey for a small weight through to a deep
 /// orange for a weight near 1 (square-root scale, so 1/64 and 1/16 still differ). Weights
 /// outside `[0, 1]` take the end colours.
-pub fn weight_color(w: f32) -> Color {
+pub fn weight_color(w: f32) -> Rgb {
     let t = w.clamp(0.0, 1.0).sqrt();
     let (light, heavy) = ([0.55, 0.65, 0.8], [1.0, 0.42, 0.05]);
     let c = |i: usize| light[i] + (heavy[i] - light[i]) * t;
-    Color::srgb(c(0), c(1), c(2))
+    [c(0), c(1), c(2)]
 }
 
 /// The colour of the new point `p` in the preview and in a stencil.
-pub fn point_color(p: NewPoint) -> Color {
+pub fn point_color(p: NewPoint) -> Rgb {
     match p {
         NewPoint::Vertex(_) => MOVED_VERTEX,
         NewPoint::Edge(_) | NewPoint::Face(_) => NEW_POINT,
@@ -89,13 +83,13 @@ fn edge_length_near(m: &MeshRef<'_>, v: VertexId) -> Option<f32> {
     (n > 0).then(|| sum / n as f32)
 }
 
-/// Appends the shapes of stencil `s`: the new point as a large dot ([`Shape::HighlightDot`]
-/// in [`point_color`]); a line from it to each old vertex, thick ([`Shape::Highlight`]) for a
-/// weight of at least [`HEAVY_WEIGHT`] and thin ([`Shape::Line`]) below, coloured by
+/// Appends the shapes of stencil `s`: the new point as a large dot ([`StepShape::HighlightDot`]
+/// in [`point_color`]); a line from it to each old vertex, thick ([`StepShape::Highlight`]) for a
+/// weight of at least [`HEAVY_WEIGHT`] and thin ([`StepShape::Line`]) below, coloured by
 /// [`weight_color`] (none where the old vertex sits on the new point); each old vertex as a
-/// [`Shape::Dot`] of that colour whose radius grows with the weight. Sizes follow the mean
+/// [`StepShape::Dot`] of that colour whose radius grows with the weight. Sizes follow the mean
 /// edge length around the old vertices. Terms whose vertex no longer exists are skipped.
-pub fn stencil_shapes(m: &MeshRef<'_>, s: &Stencil, out: &mut Vec<Shape>) {
+pub fn stencil_shapes(m: &MeshRef<'_>, s: &Stencil, out: &mut Vec<StepShape>) {
     let lengths: Vec<f32> = s
         .terms
         .iter()
@@ -106,7 +100,7 @@ pub fn stencil_shapes(m: &MeshRef<'_>, s: &Stencil, out: &mut Vec<Shape>) {
     } else {
         lengths.iter().sum::<f32>() / lengths.len() as f32
     };
-    out.push(Shape::HighlightDot(
+    out.push(StepShape::HighlightDot(
         s.position,
         0.16 * scale,
         point_color(s.point),
@@ -118,12 +112,12 @@ pub fn stencil_shapes(m: &MeshRef<'_>, s: &Stencil, out: &mut Vec<Shape>) {
         let color = weight_color(w);
         if p.distance(s.position) > 1e-4 * scale {
             out.push(if w >= HEAVY_WEIGHT {
-                Shape::Highlight(s.position, p, color)
+                StepShape::Highlight(s.position, p, color)
             } else {
-                Shape::Line(s.position, p, color)
+                StepShape::Line(s.position, p, color)
             });
         }
-        out.push(Shape::Dot(
+        out.push(StepShape::Dot(
             p,
             scale * (0.04 + 0.1 * w.clamp(0.0, 1.0).sqrt()),
             color,
@@ -172,7 +166,7 @@ impl<'a> Shown<'a> {
     }
 
     /// Point `i` (below [`Shown::len`]) and its colour.
-    fn at(&self, i: usize) -> (Vec3, Color) {
+    fn at(&self, i: usize) -> (Vec3, Rgb) {
         if i < self.vertices {
             (self.points.vertex[i].1, MOVED_VERTEX)
         } else if i < self.vertices + self.edges {
@@ -209,20 +203,20 @@ fn dot_radius(points: &NextLevelPoints) -> f32 {
 }
 
 /// Pushes `chosen` as dots: large ones over everything when there are few, plain ones else.
-fn push_dots(chosen: impl ExactSizeIterator<Item = (Vec3, Color)>, r: f32, out: &mut Vec<Shape>) {
+fn push_dots(chosen: impl ExactSizeIterator<Item = (Vec3, Rgb)>, r: f32, out: &mut Vec<StepShape>) {
     let few = chosen.len() <= FEW_POINTS;
     out.extend(chosen.map(|(p, c)| {
         if few {
-            Shape::HighlightDot(p, r, c)
+            StepShape::HighlightDot(p, r, c)
         } else {
-            Shape::Dot(p, r, c)
+            StepShape::Dot(p, r, c)
         }
     }));
 }
 
 /// Appends a dot for each point of the next level that `which` selects: edge and face points
-/// in [`NEW_POINT`], moved old vertices in [`MOVED_VERTEX`]; [`Shape::HighlightDot`]s when at
-/// most [`FEW_POINTS`] are drawn, [`Shape::Dot`]s above.
+/// in [`NEW_POINT`], moved old vertices in [`MOVED_VERTEX`]; [`StepShape::HighlightDot`]s when at
+/// most [`FEW_POINTS`] are drawn, [`StepShape::Dot`]s above.
 ///
 /// At most `limit` dots: above that, an even sample (every k-th point in storage order, so the
 /// whole mesh stays covered, thinner), exactly `limit` of them. [`point_shapes_near`] keeps
@@ -230,7 +224,7 @@ fn push_dots(chosen: impl ExactSizeIterator<Item = (Vec3, Color)>, r: f32, out: 
 pub fn point_shapes(
     points: &NextLevelPoints,
     which: PointsShown,
-    out: &mut Vec<Shape>,
+    out: &mut Vec<StepShape>,
     limit: usize,
 ) {
     let shown = Shown::new(points, which);
@@ -249,7 +243,7 @@ pub fn point_shapes_near(
     points: &NextLevelPoints,
     which: PointsShown,
     near: Vec3,
-    out: &mut Vec<Shape>,
+    out: &mut Vec<StepShape>,
     limit: usize,
 ) {
     let shown = Shown::new(points, which);
@@ -300,27 +294,22 @@ pub fn point_title(p: NewPoint) -> String {
     }
 }
 
-/// An egui section for stencil `s`: the point ([`point_title`]), its rule line, a grid of the
-/// old vertices (by their ids, `v123v0`) with their weights ([`weight_text`]), heaviest first,
-/// and the new position.
-pub fn stencil_panel(ui: &mut egui::Ui, s: &Stencil) {
-    ui.label(egui::RichText::new(point_title(s.point)).strong());
-    ui.label(&s.rule);
-    egui::Grid::new("stencil_terms")
-        .num_columns(2)
-        .striped(true)
-        .show(ui, |ui| {
-            ui.label(egui::RichText::new("old vertex").weak());
-            ui.label(egui::RichText::new("weight").weak());
-            ui.end_row();
-            for &(v, w) in &s.terms {
-                ui.monospace(v.to_string());
-                ui.monospace(weight_text(w));
-                ui.end_row();
-            }
-        });
+/// The window's table for stencil `s`: the point ([`point_title`]) over its rule line, the old
+/// vertices (by their ids, `v123v0`) with their weights ([`weight_text`]), heaviest first, and
+/// the new position under it.
+pub fn stencil_table(s: &Stencil) -> StepTable {
     let p = s.position;
-    ui.label(format!("new position ({:.4}, {:.4}, {:.4})", p.x, p.y, p.z));
+    StepTable {
+        title: point_title(s.point),
+        note: s.rule.clone(),
+        header: ["old vertex".into(), "weight".into()],
+        rows: s
+            .terms
+            .iter()
+            .map(|&(v, w)| [v.to_string(), weight_text(w)])
+            .collect(),
+        footer: format!("new position ({:.4}, {:.4}, {:.4})", p.x, p.y, p.z),
+    }
 }
 
 #[cfg(test)]
@@ -329,8 +318,8 @@ mod tests {
     use crate::edit::Scheme;
     use crate::mesh::ids::EdgeId;
     use crate::mesh::{MeshId, MeshInfo, PolygonSoup, build_mesh, shapes};
-    use crate::ops::stencil::tests::vertex_at;
-    use crate::ops::stencil::{next_level_points, stencil};
+    use crate::ops::subdivide::stencil::tests::vertex_at;
+    use crate::ops::subdivide::stencil::{next_level_points, stencil};
     use bevy::prelude::World;
 
     fn world_with(soup: &PolygonSoup) -> (World, MeshId) {
@@ -342,23 +331,23 @@ mod tests {
     }
 
     /// (large dots, thick lines, thin lines, plain dots).
-    fn census(shapes: &[Shape]) -> (usize, usize, usize, usize) {
+    fn census(shapes: &[StepShape]) -> (usize, usize, usize, usize) {
         let mut c = (0, 0, 0, 0);
         for s in shapes {
             match s {
-                Shape::HighlightDot(..) => c.0 += 1,
-                Shape::Highlight(..) => c.1 += 1,
-                Shape::Line(..) => c.2 += 1,
-                Shape::Dot(..) => c.3 += 1,
+                StepShape::HighlightDot(..) => c.0 += 1,
+                StepShape::Highlight(..) => c.1 += 1,
+                StepShape::Line(..) => c.2 += 1,
+                StepShape::Dot(..) => c.3 += 1,
                 _ => panic!("unexpected {s:?}"),
             }
         }
         c
     }
 
-    fn radius(s: &Shape) -> f32 {
+    fn radius(s: &StepShape) -> f32 {
         match *s {
-            Shape::Dot(_, r, _) | Shape::HighlightDot(_, r, _) => r,
+            StepShape::Dot(_, r, _) | StepShape::HighlightDot(_, r, _) => r,
             _ => panic!("not a dot: {s:?}"),
         }
     }
@@ -398,21 +387,21 @@ mod tests {
         let mut out = Vec::new();
         stencil_shapes(&m, &s, &mut out);
         assert_eq!(census(&out), (1, 2, 2, 4));
-        assert!(matches!(out[0], Shape::HighlightDot(p, _, NEW_POINT) if p == s.position));
+        assert!(matches!(out[0], StepShape::HighlightDot(p, _, NEW_POINT) if p == s.position));
         let mut dots = Vec::new();
         for shape in &out {
             match *shape {
                 // The thick lines run from the new point to the ends, in the 3/8 colour.
-                Shape::Highlight(from, to, c) => {
+                StepShape::Highlight(from, to, c) => {
                     assert_eq!(from, s.position);
                     assert!(to == m.position(a) || to == m.position(b));
                     assert_eq!(c, weight_color(0.375));
                 }
-                Shape::Line(from, _, c) => {
+                StepShape::Line(from, _, c) => {
                     assert_eq!(from, s.position);
                     assert_eq!(c, weight_color(0.125));
                 }
-                Shape::Dot(p, r, _) => dots.push((p, r)),
+                StepShape::Dot(p, r, _) => dots.push((p, r)),
                 _ => {}
             }
         }
@@ -434,7 +423,10 @@ mod tests {
         stencil_shapes(&m, &s, &mut out);
         // 8 neighbours, all lighter than 1/4: thin lines; 9 old vertices.
         assert_eq!(census(&out), (1, 0, 8, 9));
-        assert!(matches!(out[0], Shape::HighlightDot(_, _, MOVED_VERTEX)));
+        assert!(matches!(
+            out[0],
+            StepShape::HighlightDot(_, _, MOVED_VERTEX)
+        ));
         // The grid's edges are 1/4 long: the new point's radius is 0.16 of that.
         assert!((radius(&out[0]) - 0.04).abs() < 1e-6);
     }
@@ -442,13 +434,7 @@ mod tests {
     #[test]
     fn weight_colours_run_from_pale_to_warm() {
         let ws = [0.0, 1.0 / 64.0, 1.0 / 16.0, 0.125, 0.375, 0.5625, 1.0];
-        let rgb: Vec<[f32; 3]> = ws
-            .iter()
-            .map(|&w| {
-                let c = weight_color(w).to_srgba();
-                [c.red, c.green, c.blue]
-            })
-            .collect();
+        let rgb: Vec<[f32; 3]> = ws.iter().map(|&w| weight_color(w)).collect();
         for pair in rgb.windows(2) {
             assert!(
                 pair[0][0] < pair[1][0] && pair[0][2] > pair[1][2],
@@ -472,8 +458,8 @@ mod tests {
         let all = PointsShown::default();
         let out = run(all, 5_000);
         assert_eq!(census(&out), (nv + ne + nf, 0, 0, 0));
-        let colour = |s: &Shape| match *s {
-            Shape::HighlightDot(_, _, c) => c,
+        let colour = |s: &StepShape| match *s {
+            StepShape::HighlightDot(_, _, c) => c,
             _ => unreachable!(),
         };
         assert_eq!(out.iter().filter(|s| colour(s) == MOVED_VERTEX).count(), nv);
@@ -488,7 +474,7 @@ mod tests {
         let out = run(moved, 5_000);
         assert_eq!(out.len(), nv);
         for (shape, &(_, p)) in out.iter().zip(&points.vertex) {
-            assert!(matches!(*shape, Shape::HighlightDot(q, _, MOVED_VERTEX) if q == p));
+            assert!(matches!(*shape, StepShape::HighlightDot(q, _, MOVED_VERTEX) if q == p));
         }
         let new = PointsShown {
             new_points: true,
@@ -530,7 +516,7 @@ mod tests {
         let kept: Vec<Vec3> = out
             .iter()
             .map(|s| match *s {
-                Shape::HighlightDot(p, ..) => p,
+                StepShape::HighlightDot(p, ..) => p,
                 _ => unreachable!(),
             })
             .collect();
@@ -564,43 +550,25 @@ mod tests {
         assert_eq!(weight_text(2f32.sqrt() - 1.0), "0.414214");
     }
 
-    /// Every text egui laid out in `shape`.
-    fn texts(shape: &egui::epaint::Shape, out: &mut Vec<String>) {
-        match shape {
-            egui::epaint::Shape::Text(t) => out.push(t.galley.text().to_string()),
-            egui::epaint::Shape::Vec(v) => v.iter().for_each(|s| texts(s, out)),
-            _ => {}
-        }
-    }
-
     #[test]
-    fn the_panel_lists_the_rule_the_vertices_and_their_weights() {
+    fn the_table_lists_the_rule_the_vertices_and_their_weights() {
         let InteriorLoopEdge {
             edge: e,
             stencil: s,
             ..
         } = interior_loop_edge();
-        let ctx = egui::Context::default();
-        let mut shown = Vec::new();
-        for _ in 0..2 {
-            // The second pass lays the grid out at its measured widths.
-            let output = ctx.run_ui(egui::RawInput::default(), |ui| stencil_panel(ui, &s));
-            shown.clear();
-            for clipped in &output.shapes {
-                texts(&clipped.shape, &mut shown);
-            }
-            // No renderer takes the font atlas here.
-            output.drop_without_applying_deltas();
-        }
-        let has = |t: &str| shown.iter().any(|x| x == t);
-        assert!(has(&format!("edge point of {e}")), "{shown:?}");
-        assert!(has(&s.rule));
-        assert!(has("old vertex") && has("weight"));
-        for &(v, _) in &s.terms {
-            assert!(has(&v.to_string()), "{v} in {shown:?}");
-        }
-        assert_eq!(shown.iter().filter(|x| *x == "3/8").count(), 2);
-        assert_eq!(shown.iter().filter(|x| *x == "1/8").count(), 2);
-        assert!(has("new position (0.6250, 0.5000, 0.0000)"), "{shown:?}");
+        let table = stencil_table(&s);
+        assert_eq!(table.title, format!("edge point of {e}"));
+        assert_eq!(table.note, s.rule);
+        assert_eq!(table.header, ["old vertex".to_string(), "weight".into()]);
+        let rows: Vec<[String; 2]> = s
+            .terms
+            .iter()
+            .map(|&(v, w)| [v.to_string(), weight_text(w)])
+            .collect();
+        assert_eq!(table.rows, rows);
+        assert_eq!(table.rows.iter().filter(|r| r[1] == "3/8").count(), 2);
+        assert_eq!(table.rows.iter().filter(|r| r[1] == "1/8").count(), 2);
+        assert_eq!(table.footer, "new position (0.6250, 0.5000, 0.0000)");
     }
 }

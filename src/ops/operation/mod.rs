@@ -29,6 +29,9 @@ use crate::ops::Refusal;
 use crate::ops::declaration::{Declaration, Names, ParameterKind};
 use crate::ops::progressive::ProgressiveMesh;
 
+pub mod stepping;
+use stepping::Steps;
+
 /// What to redraw after an edit.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Redraw {
@@ -182,6 +185,23 @@ pub trait MeshOperation: Sync + 'static {
             }
             _ => None,
         }
+    }
+
+    /// A run of it a step at a time on `mesh` (which exists), for the editor's step mode: `None`,
+    /// the default, for an operation that runs whole. One that declares
+    /// [`Declaration::stepping`] gives `Some`, a run whose steps, taken to the end, leave the
+    /// mesh exactly as [`MeshOperation::apply`] with the same values would.
+    ///
+    /// # Refusals
+    /// As `apply`'s; the world is then exactly as it was.
+    fn step_through(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+    ) -> Option<Result<Box<dyn Steps>, Refusal>> {
+        let _ = (world, mesh, values);
+        None
     }
 
     /// Its result computed from the mesh's tables alone — the tables after and the outcome

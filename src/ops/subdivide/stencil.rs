@@ -4,7 +4,7 @@
 //! Every point of a subdivided mesh is an affine combination of the old vertices near it. A
 //! [`Stencil`] names the new point ([`NewPoint`]: an old vertex moved, an edge point or a face
 //! point), lists the old vertices with their weights and says in one line which rule made it.
-//! The rules are those of [`super::subdivide`], case for case:
+//! The rules are those of [`super`], case for case:
 //!
 //! **Loop** (Loop 1987, *Smooth subdivision surfaces based on triangles*), triangles only:
 //!
@@ -34,8 +34,8 @@
 //! A stencil's weights sum to 1 (each vertex once, weights merged where a vertex is reached
 //! twice, heaviest first) and its position is `Σ w·p`, summed in `f64`. It agrees to `f32`
 //! rounding with [`next_level_points`], whose positions come from the very functions a
-//! committed level takes them from ([`super::subdivide::loop_points`],
-//! [`super::subdivide::catmull_clark_points`]); the tests check both against the subdivided
+//! committed level takes them from ([`super::loop_points`],
+//! [`super::catmull_clark_points`]); the tests check both against the subdivided
 //! mesh for every vertex, edge and face of several meshes.
 //!
 //! [`stencil`] walks the few elements around one point through [`MeshRef`] (the selected
@@ -52,8 +52,8 @@ use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::tables::{MeshTables, extract};
 use crate::mesh::{MeshInfo, MeshRef};
 
-use super::Refusal;
-use super::subdivide::{Scheme, catmull_clark_points, loop_points};
+use super::{Scheme, catmull_clark_points, loop_points};
+use crate::ops::Refusal;
 
 /// Which point of the next level: where an old vertex moves, or a point a scheme inserts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -146,7 +146,7 @@ fn gcd(a: u64, b: u64) -> u64 {
 /// - [`Refusal::BadParameter`] for a face point under Loop (Loop inserts none);
 /// - [`Refusal::NotTriangle`] under Loop, naming a face the point's rule reads (the faces
 ///   around the vertex, or beside the edge) that is not a triangle. Only those faces are
-///   checked: [`next_level_points`] and [`super::subdivide::loop_subdivide`] refuse a mesh
+///   checked: [`next_level_points`] and [`super::loop_subdivide`] refuse a mesh
 ///   with any non-triangle face anywhere.
 pub fn stencil(m: &MeshRef<'_>, scheme: Scheme, point: NewPoint) -> Result<Stencil, Refusal> {
     let live = match point {
@@ -359,7 +359,7 @@ pub struct NextLevelPoints {
 /// Every new point of the next level of `scheme` on `mesh`, in the mesh's storage order.
 ///
 /// Computes the positions with [`loop_points`] / [`catmull_clark_points`], the functions
-/// [`super::subdivide::loop_tables`] / [`super::subdivide::catmull_clark_tables`] take a
+/// [`super::loop_tables`] / [`super::catmull_clark_tables`] take a
 /// committed level's positions from, so the points are exactly those a committed level gets;
 /// the connectivity is not built. Their rows are laid out as the old vertices (by vertex row),
 /// then one edge point per old edge (by edge row), then, for Catmull–Clark, one face point per
@@ -368,7 +368,7 @@ pub struct NextLevelPoints {
 ///
 /// # Refusals
 /// [`Refusal::Stale`] if `mesh` is not a mesh; under Loop [`Refusal::NotTriangle`] naming a
-/// face with other than three sides (as [`super::subdivide::loop_subdivide`] does).
+/// face with other than three sides (as [`super::loop_subdivide`] does).
 pub fn next_level_points(
     world: &World,
     mesh: MeshId,
