@@ -1,8 +1,8 @@
 //! The layering rules of DESIGN §1, checked on the source: no two modules of `src/editor`, of
 //! each of its rooms, of `src/mesh` or of `src/ops` import each other, directly or round a
 //! longer cycle; no room imports the editor's root back; no folder of the editor holds more
-//! than 12 files; no function outside the tests runs over 120 lines; the README is at most 400
-//! lines.
+//! than 12 files, nor any of its files more than 600 lines; no function outside the tests runs
+//! over 120 lines; the README is at most 400 lines.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -198,6 +198,33 @@ fn no_editor_folder_holds_more_than_twelve_files() {
         }
         assert!(files <= 12, "{} holds {files} files", dir.display());
     }
+}
+
+/// An editor file fits a reader's screen or two: none of `src/editor/` runs over 600 lines
+/// (tests included), so a file that grows is split by concern.
+#[test]
+fn no_editor_file_runs_over_600_lines() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src/editor");
+    let mut stack = vec![root];
+    let mut long = Vec::new();
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                let lines = std::fs::read_to_string(&path).unwrap().lines().count();
+                if lines > 600 {
+                    long.push(format!("{}: {lines} lines", path.display()));
+                }
+            }
+        }
+    }
+    assert!(
+        long.is_empty(),
+        "editor files over 600 lines:\n{}",
+        long.join("\n")
+    );
 }
 
 /// The README stays a user's page, not a manual: at most 400 lines (its key table is checked

@@ -13,6 +13,7 @@ pub mod overlay;
 pub mod picking;
 pub mod proportional;
 pub mod transform;
+pub mod typed_value;
 
 use bevy::prelude::*;
 

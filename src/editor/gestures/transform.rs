@@ -54,6 +54,7 @@ use super::handle_deform::{
     Anchors, DeformProgress, FINAL_ITERATIONS, handle_deformation, stepped_deformation,
 };
 use super::proportional::{Follow, gather};
+use super::typed_value::typed_char;
 use crate::editor::pipeline::stepping::Stepping;
 use crate::editor::session::history::UndoHistory;
 use crate::editor::session::requests::Request;
@@ -468,24 +469,6 @@ fn directions(world: &World, inset: bool) -> Vec<Vec3> {
         .iter()
         .map(|(v, _)| towards.get(&v.0).copied().unwrap_or(Vec3::ZERO))
         .collect()
-}
-
-fn typed_char(key: KeyCode) -> Option<char> {
-    Some(match key {
-        KeyCode::Digit0 | KeyCode::Numpad0 => '0',
-        KeyCode::Digit1 | KeyCode::Numpad1 => '1',
-        KeyCode::Digit2 | KeyCode::Numpad2 => '2',
-        KeyCode::Digit3 | KeyCode::Numpad3 => '3',
-        KeyCode::Digit4 | KeyCode::Numpad4 => '4',
-        KeyCode::Digit5 | KeyCode::Numpad5 => '5',
-        KeyCode::Digit6 | KeyCode::Numpad6 => '6',
-        KeyCode::Digit7 | KeyCode::Numpad7 => '7',
-        KeyCode::Digit8 | KeyCode::Numpad8 => '8',
-        KeyCode::Digit9 | KeyCode::Numpad9 => '9',
-        KeyCode::Period | KeyCode::NumpadDecimal => '.',
-        KeyCode::Minus | KeyCode::NumpadSubtract => '-',
-        _ => return None,
-    })
 }
 
 /// Where the gesture puts its vertices now (`None` without a pointer or camera), running
