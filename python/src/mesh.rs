@@ -11,7 +11,7 @@ use numpy::{
 };
 use pyo3::exceptions::{PyIndexError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyTuple};
+use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
 use bevy::math::{Vec2, Vec3};
 use pappus::cli::info_with_load_times;
@@ -241,12 +241,23 @@ impl Mesh {
         values: &[(&str, Bound<'_, PyAny>)],
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyAny>> {
-        let py = slf.py();
-        let parameters = PyDict::new(py);
+        Mesh::run_named(slf, name, &PyTuple::empty(slf.py()), values, progress)
+    }
+
+    /// Runs `name` on `elements` (as `run` reads its arguments) with these keyword values,
+    /// reporting to `progress`: what every method named after an operation comes down to.
+    fn run_named(
+        slf: &Bound<'_, Self>,
+        name: &str,
+        elements: &Bound<'_, PyTuple>,
+        values: &[(&str, Bound<'_, PyAny>)],
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        let parameters = PyDict::new(slf.py());
         for (key, value) in values {
             parameters.set_item(key, value)?;
         }
-        Mesh::run(slf, name, &PyTuple::empty(py), progress, Some(&parameters))
+        Mesh::run(slf, name, elements, progress, Some(&parameters))
     }
 
     /// Runs `name` on `elements` (one element or a list, as `run` reads its arguments) with
@@ -258,12 +269,11 @@ impl Mesh {
         values: &[(&str, f64)],
     ) -> PyResult<Py<PyAny>> {
         let py = slf.py();
-        let parameters = PyDict::new(py);
-        for &(key, value) in values {
-            parameters.set_item(key, value)?;
-        }
-        let elements = PyTuple::new(py, [elements])?;
-        Mesh::run(slf, name, &elements, None, Some(&parameters))
+        let values = values
+            .iter()
+            .map(|&(key, x)| Ok((key, x.into_pyobject(py)?.into_any())))
+            .collect::<PyResult<Vec<_>>>()?;
+        Mesh::run_named(slf, name, &PyTuple::new(py, [elements])?, &values, None)
     }
 
     /// Runs `name` on the edge between input vertices `a` and `b`, or, without `b`, on the
@@ -280,17 +290,11 @@ impl Mesh {
             Some(b) => PyTuple::new(py, [a, b])?.into_any(),
             None => a.clone(),
         };
-        let parameters = PyDict::new(py);
-        if let Some((key, word)) = choice {
-            parameters.set_item(key, word)?;
-        }
-        Mesh::run(
-            slf,
-            name,
-            &PyTuple::new(py, [element])?,
-            None,
-            Some(&parameters),
-        )
+        let values: Vec<_> = choice
+            .map(|(key, word)| (key, PyString::new(py, word).into_any()))
+            .into_iter()
+            .collect();
+        Mesh::run_named(slf, name, &PyTuple::new(py, [element])?, &values, None)
     }
 
     /// The world holding the mesh.
@@ -385,23 +389,18 @@ impl Mesh {
             .map(drop)
     }
 
-    /// A handle on the element in `row` of a kind with `count` rows (a negative row counts
-    /// from the end, as Python's indexing does); `IndexError` outside.
-    fn handle_at(
+    /// A handle on the element in `row` of the kind `list` picks from the members (a negative
+    /// row counts from the end, as Python's indexing does); `IndexError` outside.
+    fn handle_at<T: Copy + Into<ElementId>>(
         slf: &Bound<'_, Self>,
         row: i64,
         kind: &str,
-        id: impl Fn(&MeshMembers, usize) -> ElementId,
+        list: fn(&MeshMembers) -> &[T],
     ) -> PyResult<Py<PyAny>> {
         let py = slf.py();
         let mesh = slf.borrow();
-        let members = &mesh.rows().members;
-        let count = match kind {
-            "vertex" => members.vertices.len(),
-            "halfedge" => members.halfedges.len(),
-            "edge" => members.edges.len(),
-            _ => members.faces.len(),
-        };
+        let elements = list(&mesh.rows().members);
+        let count = elements.len();
         let index = if row < 0 { row + count as i64 } else { row };
         if !(0..count as i64).contains(&index) {
             return Err(PyIndexError::new_err(format!(
@@ -411,7 +410,7 @@ impl Mesh {
         let at = At::new(
             py,
             &slf.clone().unbind(),
-            id(members, index as usize),
+            elements[index as usize].into(),
             mesh.element_revision,
         );
         drop(mesh);
@@ -667,22 +666,22 @@ impl Mesh {
     /// The vertex in `row` of `vertices` (negative rows count from the end): a handle with its
     /// `id`, `position`, `halfedge` and circulators. `IndexError` outside the rows.
     fn vertex(slf: &Bound<'_, Self>, row: i64) -> PyResult<Py<PyAny>> {
-        Mesh::handle_at(slf, row, "vertex", |m, i| m.vertices[i].into())
+        Mesh::handle_at(slf, row, "vertex", |m| &m.vertices)
     }
 
     /// The halfedge in `row` of `connectivity()`'s halfedge arrays. `IndexError` outside.
     fn halfedge(slf: &Bound<'_, Self>, row: i64) -> PyResult<Py<PyAny>> {
-        Mesh::handle_at(slf, row, "halfedge", |m, i| m.halfedges[i].into())
+        Mesh::handle_at(slf, row, "halfedge", |m| &m.halfedges)
     }
 
     /// The edge in `row` of `connectivity()`'s edge arrays. `IndexError` outside.
     fn edge(slf: &Bound<'_, Self>, row: i64) -> PyResult<Py<PyAny>> {
-        Mesh::handle_at(slf, row, "edge", |m, i| m.edges[i].into())
+        Mesh::handle_at(slf, row, "edge", |m| &m.edges)
     }
 
     /// The face in `row` of `faces`. `IndexError` outside.
     fn face(slf: &Bound<'_, Self>, row: i64) -> PyResult<Py<PyAny>> {
-        Mesh::handle_at(slf, row, "face", |m, i| m.faces[i].into())
+        Mesh::handle_at(slf, row, "face", |m| &m.faces)
     }
 
     /// The element the editor's inspector calls `id` (`"v12v0"`, `"h7v0"`, `"e3v0"`,

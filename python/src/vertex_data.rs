@@ -46,28 +46,29 @@ impl VertexData {
     /// Puts every column into `soup` by row of `mesh` (NaN where a vertex has none): `quality`
     /// as its quality, the others as its named scalars, for a pickle to carry.
     pub(crate) fn put_into(&self, world: &World, mesh: MeshId, soup: &mut PolygonSoup) {
-        for (name, _) in &self.columns {
-            let column = self.column(world, mesh, name).unwrap_or_default();
+        for (name, column) in self.by_row(world, mesh) {
             if name == "quality" {
                 soup.vertex_quality = Some(column);
             } else {
-                soup.vertex_scalars.push((name.clone(), column));
+                soup.vertex_scalars.push((name.to_string(), column));
             }
         }
     }
 
-    /// The value of `name` at every vertex of `mesh` by row (NaN where a vertex has none), or
-    /// `None` when the mesh carries no such column.
-    pub(crate) fn column(&self, world: &World, mesh: MeshId, name: &str) -> Option<Vec<f32>> {
-        let (_, values) = self.columns.iter().find(|(n, _)| n == name)?;
-        let members = MeshMembers::collect(world, mesh);
-        Some(
-            members
-                .vertices
+    /// Every column by row of `mesh`'s vertices (NaN where a vertex has none), the vertices
+    /// listed once for all of them.
+    fn by_row(&self, world: &World, mesh: MeshId) -> impl Iterator<Item = (&str, Vec<f32>)> {
+        let vertices = match self.columns.is_empty() {
+            true => Vec::new(),
+            false => MeshMembers::collect(world, mesh).vertices,
+        };
+        self.columns.iter().map(move |(name, values)| {
+            let column = vertices
                 .iter()
                 .map(|v| values.get(&v.0).copied().unwrap_or(f32::NAN))
-                .collect(),
-        )
+                .collect();
+            (name.as_str(), column)
+        })
     }
 
     /// Every column as a dict of float32 arrays by row of `Mesh.vertices`.
@@ -78,9 +79,8 @@ impl VertexData {
         mesh: MeshId,
     ) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
-        for (name, _) in &self.columns {
-            let values = self.column(world, mesh, name).unwrap_or_default();
-            dict.set_item(name, PyArray1::from_vec(py, values))?;
+        for (name, column) in self.by_row(world, mesh) {
+            dict.set_item(name, PyArray1::from_vec(py, column))?;
         }
         Ok(dict)
     }
