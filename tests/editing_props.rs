@@ -117,9 +117,7 @@ fn random_edit(world: &World, mesh: MeshId, kind: u8, pick: u32, t: f32) -> Opti
 }
 
 fn run(world: &mut World, mesh: MeshId, edit: &Edit) -> bool {
-    let mut history = None;
     let mut context = EditContext {
-        history: &mut history,
         progress: &mut |_| true,
     };
     edit.run(world, mesh, &mut context).is_ok()

@@ -1110,7 +1110,7 @@ fn shift_s_simplifies_to_the_panel_ratio() {
 
 #[test]
 fn level_of_detail_and_vertex_split_follow_the_simplification() {
-    use pappus::editor::session::state::SimplificationHistory as History;
+    use pappus::ops::simplification_history::SimplificationHistory as History;
     let mut app = app();
     open(&mut app, "shape:icosphere");
     let m = mesh(&app);
@@ -1138,7 +1138,7 @@ fn level_of_detail_and_vertex_split_follow_the_simplification() {
     assert_eq!(pappus::mesh::mesh_stats(app.world(), m).faces, 640);
     // Splitting a vertex back: only the one the last applied collapse kept.
     let next = {
-        let pm = app.world().resource::<History>().pm.as_ref().unwrap();
+        let pm = History::of(app.world(), m).unwrap();
         pm.next_split_vertex().unwrap()
     };
     let other = pappus::mesh::MeshMembers::collect(app.world(), m)

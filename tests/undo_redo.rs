@@ -194,7 +194,7 @@ fn every_local_edit_undoes_and_redoes_exactly() {
 
 #[test]
 fn every_global_edit_undoes_and_redoes_exactly() {
-    use pappus::editor::session::state::SimplificationHistory as History;
+    use pappus::ops::simplification_history::SimplificationHistory as History;
     let mut app = app();
     open(&mut app, "shape:cube");
     round_trip(
@@ -219,7 +219,7 @@ fn every_global_edit_undoes_and_redoes_exactly() {
     )
     .unwrap();
     let next = {
-        let pm = app.world().resource::<History>().pm.as_ref().unwrap();
+        let pm = History::of(app.world(), active(&app).unwrap()).unwrap();
         pm.next_split_vertex().unwrap()
     };
     round_trip(&mut app, Request::Edit(Edit::local("vertex-split", next)));
@@ -228,11 +228,7 @@ fn every_global_edit_undoes_and_redoes_exactly() {
         Request::Edit(Edit::invoked("simplify:0.5").unwrap()),
     )
     .unwrap();
-    let full = app
-        .world()
-        .resource::<History>()
-        .pm
-        .as_ref()
+    let full = History::of(app.world(), active(&app).unwrap())
         .unwrap()
         .full_faces;
     round_trip(
@@ -614,7 +610,7 @@ fn a_cancelled_job_leaves_the_mesh_exactly_as_it_was() {
 
 #[test]
 fn a_finished_job_commits_as_one_undo_entry() {
-    use pappus::editor::session::state::SimplificationHistory as History;
+    use pappus::ops::simplification_history::SimplificationHistory as History;
     let mut app = app();
     jobs_from(&mut app, 100);
     open(&mut app, "shape:icosphere:3");
@@ -650,7 +646,7 @@ fn a_finished_job_commits_as_one_undo_entry() {
         );
     }
     // The simplification's history came across: the slider moves, exactly.
-    assert!(app.world().resource::<History>().pm.is_some());
+    assert!(History::of(app.world(), mesh).is_some());
     request(
         &mut app,
         Request::Edit(Edit::Operation(pappus::ops::decimate::Refine::to(Some(

@@ -25,7 +25,7 @@ use pappus::mesh::{
     Edge, ElementId, Face, Halfedge, Journal, MeshId, MeshInfo, MeshMembers, PolygonSoup, RawEdit,
     RepairReport, Vertex, VertexId, build_mesh, to_soup, validate,
 };
-use pappus::ops::progressive::ProgressiveMesh;
+use pappus::ops::simplification_history::SimplificationHistory;
 
 use crate::arrays::{
     faces_array, float_rows, positions_and_faces, read_faces, vec2_array, vec3_array,
@@ -58,8 +58,6 @@ pub struct Mesh {
     report: RepairReport,
     /// For each vertex the mesh was made from, the vertex it became (`None`: dropped).
     input_vertices: Vec<Option<VertexId>>,
-    /// The simplification history (`simplify` records it, `refine` moves along it).
-    history: Option<ProgressiveMesh>,
     /// What reading the source took, in ms (array conversion, for a mesh made from arrays).
     read_ms: f64,
     /// What building the entities took, in ms.
@@ -106,7 +104,6 @@ impl Mesh {
             mesh: built.mesh,
             report: built.report,
             input_vertices: built.input_vertices,
-            history: None,
             read_ms,
             build_ms: ms_since(start),
             element_revision: 0,
@@ -153,7 +150,6 @@ impl Mesh {
             world,
             mesh,
             input_vertices,
-            history,
             ..
         } = self;
         let (outcome, failure) = py.detach(|| {
@@ -178,20 +174,16 @@ impl Mesh {
             };
             let outcome = match &step {
                 // Whole-mesh edits run here rather than through `Step::run` so that they can
-                // report progress; the rest is the same (the history goes unless kept).
+                // report progress; the rest is the same.
                 Step::Edit(edit) => {
                     let mut context = EditContext {
-                        history,
                         progress: &mut report,
                     };
                     let applied = edit.run(world, *mesh, &mut context);
-                    if applied.is_ok() && !edit.keeps_history() {
-                        *history = None;
-                    }
                     applied.map(|a| (a.summary, Some(a.redraw)))
                 }
                 other => other
-                    .run(world, *mesh, input_vertices, history)
+                    .run(world, *mesh, input_vertices)
                     .map(|summary| (summary, None)),
             };
             (outcome, failure)
@@ -349,7 +341,7 @@ impl Mesh {
     pub(crate) fn closed_edit(&mut self, committed: bool) {
         self.rows = OnceLock::new();
         if committed {
-            self.history = None;
+            SimplificationHistory::end(&mut self.world, self.mesh);
             if MeshAttributes::of(&self.world, self.mesh).normals {
                 self.world.entity_mut(self.mesh.0).insert(StaleNormals);
             }

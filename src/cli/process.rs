@@ -91,16 +91,10 @@ pub(super) fn process_file(
     let reference = (quantity == Some(Quantity::Distance))
         .then(|| Reference::of_tables(&extract(&loaded.world, mesh).tables));
     let mut records = Vec::new();
-    let mut history = None;
     for step in steps {
         let start = Instant::now();
         let had = MeshAttributes::of(&loaded.world, mesh);
-        let outcome = step.run(
-            &mut loaded.world,
-            mesh,
-            &loaded.built.input_vertices,
-            &mut history,
-        );
+        let outcome = step.run(&mut loaded.world, mesh, &loaded.built.input_vertices);
         let ms = round(ms_since(start), 3);
         let lost = had.lost_in(MeshAttributes::of(&loaded.world, mesh));
         if !lost.is_empty() {

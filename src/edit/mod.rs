@@ -34,6 +34,7 @@ use crate::mesh::tables::{Connectivity, MeshTables};
 use crate::mesh::{InMesh, MeshInfo};
 use crate::ops::Refusal;
 use crate::ops::deform::{DeformMethod, DeformParams};
+use crate::ops::simplification_history::SimplificationHistory;
 
 mod apply;
 mod save;
@@ -204,6 +205,15 @@ impl Edit {
         self.declaration().keeps_history
     }
 
+    /// Ends `mesh`'s simplification history unless the edit keeps it: the one place that
+    /// rule is written. [`Edit::run`] calls it after the edit; an edit carried out in pieces
+    /// (a job on a copy, a stepped run) calls it when it ends.
+    pub fn settle_history(&self, world: &mut World, mesh: MeshId) {
+        if !self.keeps_history() {
+            SimplificationHistory::end(world, mesh);
+        }
+    }
+
     /// Whether the edit carries the mesh's attributes (UVs, normals, colours, groups) through;
     /// those that do not (remeshing, simplification, moves along the simplification history)
     /// drop them, and [`Edit::run`] says so in the summary. Subdivision carries UVs, colours
@@ -313,6 +323,7 @@ impl Edit {
             .push_str(&self.settle_attributes(world, mesh, had));
         // Normals kept through an edit that changed the surface no longer describe it.
         mark_normals_stale(world, mesh, self);
+        self.settle_history(world, mesh);
         #[cfg(debug_assertions)]
         if let Err(e) = crate::mesh::validate(world, mesh) {
             panic!("{} left an invalid mesh: {e}", self.label());
@@ -442,13 +453,11 @@ mod tests {
                 continue;
             };
             let (tables, computed) = on_tables.unwrap();
-            let mut history = None;
             let applied = edit
                 .run(
                     &mut world,
                     built.mesh,
                     &mut EditContext {
-                        history: &mut history,
                         progress: &mut |_| true,
                     },
                 )
@@ -507,7 +516,6 @@ mod tests {
         let m = MeshRef::new(&world);
         let before: Vec<Vec3> = vertices.iter().map(|&v| m.position(v)).collect();
         let mut context = EditContext {
-            history: &mut None,
             progress: &mut |_| true,
         };
         let few = Edit::Move(vec![(vertices[0], Vec3::ONE)]);

@@ -69,7 +69,6 @@ mod tests {
             bits(soup.vertex_normals.as_ref().unwrap())
         );
         let mut context = EditContext {
-            history: &mut None,
             progress: &mut |_| true,
         };
         // Reversing and normalizing declare that the normals still hold (turned and moved

@@ -15,7 +15,6 @@ use crate::mesh::{MeshId, MeshRef, validate};
 use crate::ops::Refusal;
 use crate::ops::deform::{DeformMethod, DeformParams};
 use crate::ops::named::Named;
-use crate::ops::progressive::ProgressiveMesh;
 
 use super::{Edit, EditContext, Invocation};
 use crate::ops::declaration::Names;
@@ -295,7 +294,7 @@ impl Step {
     }
 
     /// Runs the step on `mesh`. `input_vertices` maps the input file's vertex numbers to the
-    /// vertices they became; `history` is the simplification history a `refine` moves along.
+    /// vertices they became.
     ///
     /// # Refusals
     /// As [`Edit::run`]; a local step naming vertices the input lacks or that share no
@@ -305,7 +304,6 @@ impl Step {
         world: &mut World,
         mesh: MeshId,
         input_vertices: &[Option<VertexId>],
-        history: &mut Option<ProgressiveMesh>,
     ) -> Result<String, Refusal> {
         let edit = match self {
             Step::Validate => {
@@ -340,14 +338,9 @@ impl Step {
             }
         };
         let mut context = EditContext {
-            history,
             progress: &mut |_| true,
         };
-        let applied = edit.run(world, mesh, &mut context)?;
-        if !edit.keeps_history() {
-            *history = None;
-        }
-        Ok(applied.summary)
+        Ok(edit.run(world, mesh, &mut context)?.summary)
     }
 }
 

@@ -16,6 +16,7 @@ use crate::ops::declaration::{DROPPED_BY_SIMPLIFICATION, Declaration, Parameter}
 use crate::ops::operation::stepping::Steps;
 use crate::ops::operation::{Applied, EditContext, Invocation, MeshOperation, Redraw, Values};
 use crate::ops::progressive::{LEVEL_OF_DETAIL, ProgressiveMesh};
+use crate::ops::simplification_history::SimplificationHistory;
 use crate::ops::simplify::SimplifyParams;
 
 mod stepping;
@@ -159,49 +160,60 @@ impl MeshOperation for Refine {
     fn apply(
         &self,
         world: &mut World,
-        _: MeshId,
+        mesh: MeshId,
         values: Values<'_>,
         context: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         let faces = values.given(0).map_or(usize::MAX, |n| n as usize);
-        let pm = context.history.as_mut().ok_or(Refusal::NoHistory)?;
-        let before = pm.faces();
-        let mut touched: Vec<FaceId> = Vec::new();
-        let needed = (before.abs_diff(faces.min(pm.full_faces)) / 2).max(1);
-        let mut steps = 0usize;
         let progress = &mut *context.progress;
-        let moved = pm.go_to_faces_watching(world, faces, |w, v| {
-            touched.extend(MeshRef::new(w).faces_around(&[v]));
-            steps += 1;
-            if steps.is_multiple_of(1000) {
-                progress((steps as f32 / needed as f32).min(0.99));
-            }
-        });
-        (context.progress)(1.0);
-        let now = pm.faces();
-        match moved {
-            Ok(moved) => Ok(Applied {
-                summary: format!("{} step(s), {now} faces", moved.steps),
-                redraw: if moved.rewritten {
-                    Redraw::Whole
-                } else {
-                    Redraw::Near {
-                        faces: touched,
-                        vertices: Vec::new(),
-                    }
-                },
-                made: None,
-            }),
-            // A bulk refine that stopped on a refusal has still rewritten the mesh.
-            Err(refusal) if now != before => {
-                Ok(Applied::whole(format!("stopped at {now} faces: {refusal}")))
-            }
-            Err(refusal) => Err(refusal),
-        }
+        SimplificationHistory::move_along(world, mesh, |pm, world| {
+            refine_to(world, pm, faces, progress)
+        })
     }
 }
 
-/// Simplifies `mesh` as `params` say, recording the history in `context`.
+/// Moves `pm` (the history of the mesh in `world`) to `faces` faces, reporting to `progress`.
+fn refine_to(
+    world: &mut World,
+    pm: &mut ProgressiveMesh,
+    faces: usize,
+    progress: &mut dyn FnMut(f32) -> bool,
+) -> Result<Applied, Refusal> {
+    let before = pm.faces();
+    let mut touched: Vec<FaceId> = Vec::new();
+    let needed = (before.abs_diff(faces.min(pm.full_faces)) / 2).max(1);
+    let mut steps = 0usize;
+    let moved = pm.go_to_faces_watching(world, faces, |w, v| {
+        touched.extend(MeshRef::new(w).faces_around(&[v]));
+        steps += 1;
+        if steps.is_multiple_of(1000) {
+            progress((steps as f32 / needed as f32).min(0.99));
+        }
+    });
+    progress(1.0);
+    let now = pm.faces();
+    match moved {
+        Ok(moved) => Ok(Applied {
+            summary: format!("{} step(s), {now} faces", moved.steps),
+            redraw: if moved.rewritten {
+                Redraw::Whole
+            } else {
+                Redraw::Near {
+                    faces: touched,
+                    vertices: Vec::new(),
+                }
+            },
+            made: None,
+        }),
+        // A bulk refine that stopped on a refusal has still rewritten the mesh.
+        Err(refusal) if now != before => {
+            Ok(Applied::whole(format!("stopped at {now} faces: {refusal}")))
+        }
+        Err(refusal) => Err(refusal),
+    }
+}
+
+/// Simplifies `mesh` as `params` say, recording the history on it.
 fn simplify(
     world: &mut World,
     mesh: MeshId,
@@ -210,7 +222,7 @@ fn simplify(
 ) -> Result<Applied, Refusal> {
     let (pm, s) =
         ProgressiveMesh::simplify_with_progress(world, mesh, params, &mut *context.progress)?;
-    *context.history = Some(pm);
+    SimplificationHistory::keep(world, mesh, pm);
     let reached = if s.reached_target {
         ""
     } else {

@@ -26,6 +26,7 @@ use crate::ops::local::{
     plan_inset, plan_weld, split_edge, split_face, toggle_seam,
 };
 use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Redraw, Values, count};
+use crate::ops::simplification_history::SimplificationHistory;
 
 /// Changes the edge `e` with `change`, which says what it did and what it made (the selection
 /// moves there); the faces that were around the edge's ends, and those around what was made,
@@ -686,13 +687,13 @@ impl MeshOperation for VertexSplit {
     fn apply(
         &self,
         world: &mut World,
-        _: MeshId,
+        mesh: MeshId,
         values: Values<'_>,
-        context: &mut EditContext<'_>,
+        _: &mut EditContext<'_>,
     ) -> Result<Applied, Refusal> {
         let v = values.vertex()?;
-        let history = context.history.as_mut().ok_or(Refusal::NoHistory)?;
-        let b = history.refine_vertex(world, v)?;
+        let b =
+            SimplificationHistory::move_along(world, mesh, |pm, world| pm.refine_vertex(world, v))?;
         Ok(Applied {
             summary: format!("split back {b}"),
             redraw: Redraw::Whole,

@@ -25,6 +25,7 @@ pub mod progressive;
 pub mod refusal;
 pub mod remesh;
 pub mod reverse;
+pub mod simplification_history;
 pub mod simplify;
 pub mod smooth;
 pub mod subdivide;

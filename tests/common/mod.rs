@@ -193,9 +193,7 @@ pub fn run_edit(
     mesh: pappus::mesh::MeshId,
     edit: &pappus::edit::Edit,
 ) -> String {
-    let mut history = None;
     let mut context = pappus::edit::EditContext {
-        history: &mut history,
         progress: &mut |_| true,
     };
     edit.run(world, mesh, &mut context)

@@ -23,9 +23,9 @@ use crate::editor::session::requests::{OutcomeLog, Relation, Request};
 use crate::editor::session::schedule::EditorSystems;
 use crate::editor::session::schedule::KeyboardCaptured;
 use crate::editor::session::selection::{ActiveMesh, SelectMode, Selection, navigate};
-use crate::editor::session::state::SimplificationHistory;
 use crate::editor::view::colouring::{ColorBy, VertexValues};
 use crate::editor::view::render_sync::{RenderStats, ViewSettings};
+use crate::ops::simplification_history::SimplificationHistory;
 
 /// The panels' plugin.
 pub struct UiPlugin;
@@ -197,7 +197,10 @@ fn refresh_figures(
 
 /// The undo history, the simplification's levels and the job or opening under way.
 fn show_history_and_work(world: &World, view: &mut InspectorView) {
-    view.lod = world.resource::<SimplificationHistory>().levels();
+    view.lod = world
+        .resource::<ActiveMesh>()
+        .0
+        .and_then(|mesh| SimplificationHistory::levels(world, mesh));
     let history = world.resource::<crate::editor::session::history::UndoHistory>();
     view.history.clear();
     view.history.extend(

@@ -23,7 +23,8 @@ use crate::editor::session::history::{self, UndoHistory};
 use crate::editor::session::requests::{ConfirmDiscard, Declined, PendingDiscard, Request};
 use crate::editor::session::select_many::apply_selection_edit;
 use crate::editor::session::selection::{ActiveMesh, Selection, exists, navigate};
-use crate::editor::session::state::{Modified, SimplificationHistory, is_modified};
+use crate::editor::session::state::{Modified, is_modified};
+use crate::ops::simplification_history::SimplificationHistory;
 
 /// Applies every request written since the last run, in order (the `Apply` set).
 pub fn apply_requests(world: &mut World, mut cursor: Local<MessageCursor<Request>>) {
@@ -169,7 +170,7 @@ pub fn apply(world: &mut World, request: &Request) -> Result<String, Declined> {
             let count = despawn_mesh(world, mesh);
             world.resource_mut::<ActiveMesh>().0 = None;
             world.resource_mut::<Selection>().select_only(None);
-            world.resource_mut::<SimplificationHistory>().pm = None;
+            // The mesh's simplification history went with its entity.
             if let Some(pending) = pending {
                 history::commit(world, pending, request.label());
             }
@@ -186,16 +187,13 @@ fn apply_edit(world: &mut World, edit: &Edit) -> Result<String, Declined> {
     if jobs::wants_job(world, edit, mesh) {
         return jobs::start(world, mesh, edit.clone(), pending);
     }
-    let mut pm = world.resource_mut::<SimplificationHistory>().pm.take();
     let result = edit.run(
         world,
         mesh,
         &mut EditContext {
-            history: &mut pm,
             progress: &mut |_| true,
         },
     );
-    world.resource_mut::<SimplificationHistory>().pm = pm;
     finish_edit(
         world,
         Finished {
@@ -215,8 +213,8 @@ fn undo_or_redo(world: &mut World, redo: bool) -> Result<String, Declined> {
         "undo"
     }))?;
     // The simplification history describes the mesh as it was before the entry was applied.
-    world.resource_mut::<SimplificationHistory>().pm = None;
     if let Some(mesh) = stepped.mesh {
+        SimplificationHistory::end(world, mesh);
         mark_redraw(world, mesh, stepped.redraw);
     }
     #[cfg(debug_assertions)]

@@ -36,7 +36,7 @@ use crate::editor::session::finish::{Finished, finish_edit, report};
 use crate::editor::session::history::Pending;
 use crate::editor::session::requests::{Declined, Request};
 use crate::editor::session::selection::{Selection, exists};
-use crate::editor::session::state::SimplificationHistory;
+use crate::ops::simplification_history::SimplificationHistory;
 
 /// When an operation runs as a job.
 #[derive(Resource, Debug, Clone, Copy)]
@@ -222,18 +222,17 @@ pub fn start(
                     .on(renamed.collect())
                     .map_err(Refusal::BadParameter)?;
             }
-            let mut history = None;
             let applied = job.run(
                 &mut scratch,
                 copy,
                 &mut EditContext {
-                    history: &mut history,
                     progress: &mut |f| {
                         shared.set(f);
                         !shared.is_cancelled()
                     },
                 },
             )?;
+            let history = SimplificationHistory::take(&mut scratch, copy);
             Ok(JobOutput::Copy {
                 result: extract(&scratch, copy),
                 input,
@@ -334,7 +333,6 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
             // Written over the input's rows in their order: the rows whose ids are kept keep
             // their entities, the selected ones included.
             replace_contents(world, mesh, &input, &tables);
-            world.resource_mut::<SimplificationHistory>().pm = None;
             (applied, None)
         }
         JobOutput::Copy {
@@ -347,10 +345,12 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
             let rows = replace_contents(world, mesh, &old, &result.tables);
             // Scratch entities of the result → the entities that hold those rows now.
             let to_main = row_map(&result.members, &rows);
-            world.resource_mut::<SimplificationHistory>().pm = history.map(|mut pm| {
+            // A simplification's history, on the copy's entities → on the mesh's; any other
+            // edit's history is settled when the edit finishes.
+            if let Some(mut pm) = history {
                 pm.remap(mesh, &to_main);
-                *pm
-            });
+                SimplificationHistory::keep(world, mesh, *pm);
+            }
             // The selection's entities → their rows in the copy → those rows' entities in the
             // result.
             let to_scratch = job

@@ -24,7 +24,6 @@ use crate::editor::session::finish::report;
 use crate::editor::session::history;
 use crate::editor::session::requests::{Declined, Request};
 use crate::editor::session::selection::{ActiveMesh, MeshDirty, Selection};
-use crate::editor::session::state::SimplificationHistory;
 
 /// A file being read in the background; `None` when none is.
 #[derive(Resource, Default)]
@@ -199,7 +198,6 @@ fn install(world: &mut World, source: &Path, read: Read) -> String {
     }
     world.resource_mut::<ActiveMesh>().0 = Some(built.mesh);
     world.resource_mut::<Selection>().select_only(None);
-    world.resource_mut::<SimplificationHistory>().pm = None;
     world.entity_mut(built.mesh.0).insert(MeshDirty);
     if let Some(pending) = pending {
         history::commit(world, pending, format!("open {}", source.display()));

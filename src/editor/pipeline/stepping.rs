@@ -37,7 +37,8 @@ use crate::editor::session::finish::{Finished, finish_edit, mark_redraw};
 use crate::editor::session::history::{self, Pending};
 use crate::editor::session::requests::{Declined, StepMove};
 use crate::editor::session::selection::{ActiveMesh, MeshDirty, Selection, keep_live_selection};
-use crate::editor::session::state::{Modified, SimplificationHistory};
+use crate::editor::session::state::Modified;
+use crate::ops::simplification_history::SimplificationHistory;
 
 /// Step mode and the run in progress.
 #[derive(Resource, Default)]
@@ -64,7 +65,8 @@ pub struct SteppedRun {
     /// What became of the selected element at the last move that removed it: the element it
     /// became (selected then) and the line that says so.
     pub fate: Option<(ElementId, String)>,
-    /// The level-of-detail history from before the run, put back if the run changes nothing.
+    /// The mesh's simplification history from before the run, taken off it while the run
+    /// changes the mesh, put back if the run changes nothing or is cancelled.
     previous_history: Option<ProgressiveMesh>,
     /// Whether the mesh had unsaved changes before the run (a cancel leaves it so).
     was_modified: bool,
@@ -94,7 +96,7 @@ pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
     let pending = history::begin_edit(world, edit, mesh);
     let had = MeshAttributes::of(world, mesh);
     let was_modified = world.get::<Modified>(mesh.0).is_some();
-    let previous_history = world.resource_mut::<SimplificationHistory>().pm.take();
+    let previous_history = SimplificationHistory::take(world, mesh);
     // A deformation shows its iteration 0 (the handle placed) once the mesh before it is kept.
     match steps.open(world, mesh) {
         Ok(Some(redraw)) => mark_redraw(world, mesh, redraw),
@@ -103,7 +105,9 @@ pub fn start(world: &mut World, edit: &Edit) -> Result<String, Declined> {
             if let Some(pending) = pending {
                 history::restore(world, pending);
             }
-            world.resource_mut::<SimplificationHistory>().pm = previous_history;
+            if let Some(pm) = previous_history {
+                SimplificationHistory::keep(world, mesh, pm);
+            }
             world.entity_mut(mesh.0).insert(MeshDirty);
             return Err(Declined::Refused(refusal));
         }
@@ -197,7 +201,9 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
     } = run;
     let ended = steps.finish(world, mesh);
     let Some(mut summary) = ended.summary else {
-        world.resource_mut::<SimplificationHistory>().pm = previous_history;
+        if let Some(pm) = previous_history {
+            SimplificationHistory::keep(world, mesh, pm);
+        }
         return Ok("nothing committed: the mesh is as before".into());
     };
     if let Some(recorded) = ended.recorded {
@@ -226,8 +232,8 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
             pending,
         },
     );
-    if ended.history.is_some() {
-        world.resource_mut::<SimplificationHistory>().pm = ended.history;
+    if let Some(pm) = ended.history {
+        SimplificationHistory::keep(world, mesh, pm);
     }
     result
 }
@@ -242,7 +248,9 @@ fn cancel(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
     if let (Some(pm), Some(map)) = (&mut previous, &map) {
         pm.remap(run.mesh, map);
     }
-    world.resource_mut::<SimplificationHistory>().pm = previous;
+    if let Some(pm) = previous {
+        SimplificationHistory::keep(world, run.mesh, pm);
+    }
     let mut mesh = world.entity_mut(run.mesh.0);
     mesh.insert(MeshDirty);
     if !run.was_modified {

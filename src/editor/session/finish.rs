@@ -18,7 +18,7 @@ use super::requests::{Declined, EditOutcome, OutcomeLog};
 use super::selection::{
     MeshDirty, PositionsDirty, Selection, keep_live_selection, mark_faces_dirty,
 };
-use super::state::{Modified, PreviousShape, SimplificationHistory};
+use super::state::{Modified, PreviousShape};
 
 /// An edit that has run, with what its bookkeeping needs.
 pub struct Finished {
@@ -52,9 +52,8 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
     if let Some(pending) = pending {
         history::commit(world, pending, edit.label());
     }
-    if !edit.keeps_history() {
-        world.resource_mut::<SimplificationHistory>().pm = None;
-    }
+    // Already settled by `Edit::run` for an edit run at once; a job or a stepped run ends here.
+    edit.settle_history(world, mesh);
     if world.get_entity(mesh.0).is_err() {
         return Ok(applied.summary);
     }

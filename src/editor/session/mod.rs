@@ -32,7 +32,6 @@ impl Plugin for SessionPlugin {
             .init_resource::<SelectMode>()
             .init_resource::<ActiveMesh>()
             .init_resource::<OutcomeLog>()
-            .init_resource::<state::SimplificationHistory>()
             .init_resource::<state::PreviousShape>()
             .init_resource::<history::UndoHistory>()
             .init_resource::<ConfirmDiscard>()

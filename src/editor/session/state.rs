@@ -1,5 +1,6 @@
 //! What the editing session knows beside the meshes themselves: which mesh has unsaved
-//! changes, the last simplification's history, and the mesh before the last whole-mesh edit.
+//! changes and the mesh before the last whole-mesh edit (a mesh's simplification history is on
+//! the mesh: [`crate::ops::simplification_history`]).
 //! Every stage of the pipeline (apply, undo, jobs, the panel) reads these, so they live here,
 //! below all of them.
 
@@ -10,31 +11,11 @@ use std::sync::OnceLock;
 use crate::mesh::MeshId;
 use crate::mesh::tables::Connectivity;
 use crate::ops::geometry::closest::Reference;
-use crate::ops::progressive::ProgressiveMesh;
 
 /// Marks a mesh changed since it was opened or saved.
 #[derive(Component, Debug, Default, Clone, Copy)]
 #[component(storage = "SparseSet")]
 pub struct Modified;
-
-/// The last simplification's history: the level-of-detail slider and vertex splits move along
-/// it. An edit that does not [`crate::edit::Edit::keeps_history`] ends it (the history would no
-/// longer describe the mesh).
-#[derive(Resource, Default)]
-pub struct SimplificationHistory {
-    /// The progressive mesh, while it still matches the mesh.
-    pub pm: Option<ProgressiveMesh>,
-}
-
-impl SimplificationHistory {
-    /// The levels as the slider shows them: (coarsest, current, full) face counts.
-    pub fn levels(&self) -> Option<(usize, usize, usize)> {
-        self.pm.as_ref().map(|pm| {
-            let coarsest = pm.full_faces - pm.records.iter().map(|r| r.faces).sum::<usize>();
-            (coarsest, pm.faces(), pm.full_faces)
-        })
-    }
-}
 
 /// The mesh as it was before the last whole-mesh edit: what the distance colouring measures
 /// against (how far simplification or remeshing moved the surface). Its tables are kept when the

@@ -27,7 +27,6 @@ use crate::mesh::tables::{Connectivity, MeshTables};
 use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::declaration::{Declaration, Names, ParameterKind};
-use crate::ops::progressive::ProgressiveMesh;
 
 pub mod stepping;
 use stepping::Steps;
@@ -135,13 +134,10 @@ impl Applied {
     }
 }
 
-/// What an edit runs with beside the world: the simplification history, and the progress
-/// callback that long edits report to.
+/// What an edit runs with beside the world: the progress callback that long edits report to.
+/// (The simplification history is on the mesh entity:
+/// [`crate::ops::simplification_history`].)
 pub struct EditContext<'a> {
-    /// The simplification history: a simplification replaces it, a move along the level of
-    /// detail or a vertex split moves along it. The caller drops it after an edit whose
-    /// declaration does not keep it.
-    pub history: &'a mut Option<ProgressiveMesh>,
     /// Called with the fraction done (0–1) now and then by long edits; returning `false` asks
     /// the edit to stop early where it can (the mesh is then valid, the edit partly done).
     pub progress: &'a mut dyn FnMut(f32) -> bool,
