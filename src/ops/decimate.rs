@@ -2,17 +2,19 @@
 //! [`crate::ops::simplify`]): `simplify[:RATIO]` (Shift+S) keeps a fraction of the faces,
 //! `simplify-faces[:FACES]` a number of them. Each records every collapse in the mesh's
 //! simplification history ([`ProgressiveMesh`], Hoppe 1996), which `refine[:FACES]` — the
-//! level-of-detail slider — and vertex splits then move along.
+//! level-of-detail slider — and `vertex-split` (U) then move along.
 //!
 //! A module of its own because it joins the two below it: the history records what the
-//! simplification does, so `progressive` imports `simplify`, and this imports both.
+//! simplification does, so `progressive` imports `simplify`, and this imports both. The vertex
+//! split's adapter is here rather than beside its algorithm in `ops/local` because it moves
+//! along the history, which is built from the local operations.
 
 use bevy::prelude::World;
 
-use crate::mesh::ids::{FaceId, MeshId};
+use crate::mesh::ids::{ElementId, FaceId, MeshId};
 use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
-use crate::ops::declaration::{DROPPED_BY_SIMPLIFICATION, Declaration, Parameter};
+use crate::ops::declaration::{DROPPED_BY_SIMPLIFICATION, Declaration, Names, Parameter, Section};
 use crate::ops::operation::stepping::Steps;
 use crate::ops::operation::{Applied, EditContext, Invocation, MeshOperation, Redraw, Values};
 use crate::ops::progressive::{LEVEL_OF_DETAIL, ProgressiveMesh};
@@ -232,6 +234,44 @@ fn simplify(
         "{} -> {} faces in {} collapses{reached}",
         s.faces_before, s.faces_after, s.collapses
     )))
+}
+
+/// Splitting back the last collapse of a simplification: it moves along the history, so the
+/// history survives it, and like the simplification it drops attributes.
+pub const VERTEX_SPLIT: Declaration = Declaration::new("vertex-split")
+    .titled("Split vertex back")
+    .described("split the vertex back as it was before the simplification's last collapse into it")
+    .on_key("U")
+    .naming(Names::Vertex)
+    .in_section(Section::Local)
+    .keeping_history()
+    .dropping(DROPPED_BY_SIMPLIFICATION);
+
+/// [`crate::ops::progressive::ProgressiveMesh::refine_vertex`] as a registered operation:
+/// `vertex-split:A` after a `simplify` step, U in the editor.
+pub struct VertexSplit;
+
+impl MeshOperation for VertexSplit {
+    fn declaration(&self) -> &'static Declaration {
+        &VERTEX_SPLIT
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let v = values.vertex()?;
+        let b =
+            SimplificationHistory::move_along(world, mesh, |pm, world| pm.refine_vertex(world, v))?;
+        Ok(Applied {
+            summary: format!("split back {b}"),
+            redraw: Redraw::Whole,
+            made: Some(ElementId::Vertex(v)),
+        })
+    }
 }
 
 #[cfg(test)]

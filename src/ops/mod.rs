@@ -16,7 +16,6 @@ pub mod geometry;
 pub mod hole;
 pub mod indexed_heap;
 pub mod local;
-pub mod local_operations;
 pub mod named;
 pub mod normalize;
 pub mod operation;
@@ -56,22 +55,22 @@ pub const OPERATIONS: &[&dyn MeshOperation] = &[
     &hole::FillHoles,
     &deform::Fair,
     &param::Parameterize,
-    &local_operations::Flip,
-    &local_operations::Split,
-    &local_operations::Bisect,
-    &local_operations::Collapse,
-    &local_operations::CollapseFace,
-    &local_operations::Dissolve,
-    &local_operations::DissolveVertex,
+    &local::Flip,
+    &local::Split,
+    &local::Bisect,
+    &local::Collapse,
+    &local::CollapseFace,
+    &local::Dissolve,
+    &local::DissolveVertex,
     &hole::FillHole,
-    &local_operations::ToggleSeam,
-    &local_operations::SplitFace,
-    &local_operations::VertexSplit,
-    &local_operations::Extrude,
-    &local_operations::Inset,
-    &local_operations::Bevel,
-    &local_operations::Erase,
-    &local_operations::Weld,
+    &local::ToggleSeam,
+    &local::SplitFace,
+    &decimate::VertexSplit,
+    &local::Extrude,
+    &local::Inset,
+    &local::Bevel,
+    &local::Erase,
+    &local::Weld,
 ];
 
 /// The registered operation whose step is called `name` (the first, where several share the

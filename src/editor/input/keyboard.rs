@@ -165,8 +165,8 @@ fn selection_edit(world: &mut World, action: Action) -> Result<Option<Edit>, Dec
                 return Err(Declined::SelectFirst("faces (mode 3)".into()));
             }
             let op: &'static dyn MeshOperation = match action {
-                Action::Extrude => &crate::ops::local_operations::Extrude,
-                _ => &crate::ops::local_operations::Inset,
+                Action::Extrude => &crate::ops::local::Extrude,
+                _ => &crate::ops::local::Inset,
             };
             let faces = faces.into_iter().map(ElementId::Face).collect();
             let edit = Edit::Operation(

@@ -223,7 +223,7 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
         },
         made: None,
     };
-    let result = finish_edit(
+    finish_edit(
         world,
         Finished {
             edit,
@@ -231,11 +231,7 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
             result: Ok(applied),
             pending,
         },
-    );
-    if let Some(pm) = ended.history {
-        SimplificationHistory::keep(world, mesh, pm);
-    }
-    result
+    )
 }
 
 /// Puts the mesh back as it was before the run.

@@ -19,6 +19,7 @@ use crate::ops::operation::stepping::{
     Ended, GoesBack, Moved, NEXT, QUEUED, StepLine, StepList, StepShape, StepShow, Steps,
 };
 use crate::ops::progressive::{ProgressiveMesh, SlotIndex};
+use crate::ops::simplification_history::SimplificationHistory;
 use crate::ops::simplify::{NextCollapse, QemRun, QueuedEdge, Refused, SimplifyParams};
 
 /// How many refusals the window keeps (the latest).
@@ -300,7 +301,9 @@ impl Steps for QemSteps {
         }
     }
 
-    fn finish(mut self: Box<Self>, _: &mut World, _: MeshId) -> Ended {
+    /// Leaves the run's history on the mesh, for the level-of-detail slider, as the unstepped
+    /// simplification does.
+    fn finish(mut self: Box<Self>, world: &mut World, mesh: MeshId) -> Ended {
         let s = self.run.summary();
         self.run.detach();
         let summary = format!(
@@ -310,11 +313,8 @@ impl Steps for QemSteps {
             self.made(),
             self.at()
         );
-        Ended {
-            summary: Some(summary),
-            history: Some(self.history),
-            recorded: None,
-        }
+        SimplificationHistory::keep(world, mesh, self.history);
+        Ended::with(summary)
     }
 }
 

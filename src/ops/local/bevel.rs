@@ -98,8 +98,10 @@ use crate::mesh::attributes::{self, MeshAttributes, Seam, VertexColor, VertexNor
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::declaration::{Declaration, Names, Parameter, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values};
 
-use super::{Refusal, he, live_edge, spawn_at};
+use super::{Inset, Refusal, he, live_edge, spawn_at};
 
 /// What bevelling a vertex touches, collected by [`plan_bevel_vertex`].
 #[derive(Clone, Debug, PartialEq)]
@@ -514,6 +516,98 @@ impl RingUvs {
             let k = (j + 1) % n;
             let x = self.inside[k].or(self.ahead[k]).unwrap_or_default();
             attributes::set_corner_uv(world, inner[j], x);
+        }
+    }
+}
+
+/// Bevelling a vertex, an edge or faces: a local edit.
+pub const BEVEL: Declaration = Declaration::new("bevel")
+    .titled("Bevel")
+    .described("bevel the selected vertex or edge into a face whose corners lie AMOUNT (0–0.5) along its edges, or inset the selected faces by AMOUNT with DEPTH")
+    .on_key("Ctrl+B")
+    .naming(Names::Elements)
+    .with_parameters(&[
+        Parameter::real("AMOUNT", 0.25, 0.0, 0.999),
+        Parameter::real("DEPTH", 0.0, -1e6, 1e6),
+    ])
+    .in_section(Section::Modelling);
+
+/// Blender's bevel on what it names: one vertex or one edge ([`plan_bevel_vertex`],
+/// [`plan_bevel_edge`]: Scotty3D's `bevel_vertex` and `bevel_edge`), or faces (an inset with
+/// depth, as [`Inset`]): `bevel:ELEMENTS[:AMOUNT[:DEPTH]]`, Ctrl+B. A halfedge names its edge.
+pub struct Bevel;
+
+/// What a [`Bevel`] works on.
+enum Bevelled {
+    Vertex(VertexId),
+    Edge(EdgeId),
+    Faces,
+}
+
+impl Bevel {
+    /// What `values` name, checked for kind (not for liveness: the plans check that).
+    ///
+    /// # Refusals
+    /// [`Refusal::BadParameter`] for anything but one vertex, one edge (or halfedge) or faces.
+    fn bevelled(world: &World, values: Values<'_>) -> Result<Bevelled, Refusal> {
+        let m = MeshRef::new(world);
+        match values.elements() {
+            [ElementId::Vertex(v)] => Ok(Bevelled::Vertex(*v)),
+            [ElementId::Edge(e)] => Ok(Bevelled::Edge(*e)),
+            [ElementId::Halfedge(h)] if m.try_halfedge(*h).is_some() => {
+                Ok(Bevelled::Edge(m.edge(*h)))
+            }
+            [ElementId::Halfedge(h)] => Err(Refusal::Stale(ElementId::Halfedge(*h))),
+            faces if faces.iter().all(|x| matches!(x, ElementId::Face(_))) => Ok(Bevelled::Faces),
+            _ => Err(Refusal::BadParameter(
+                "bevel names one vertex, one edge or faces".into(),
+            )),
+        }
+    }
+}
+
+impl MeshOperation for Bevel {
+    fn declaration(&self) -> &'static Declaration {
+        &BEVEL
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, mesh: MeshId, values: Values<'_>) -> Option<Reach> {
+        let amount = values.number(0) as f32;
+        match Self::bevelled(world, values).ok()? {
+            Bevelled::Vertex(v) => {
+                Reach::local(world, plan_bevel_vertex(world, v, amount).ok()?.seeds())
+            }
+            Bevelled::Edge(e) => {
+                Reach::local(world, plan_bevel_edge(world, e, amount).ok()?.seeds())
+            }
+            Bevelled::Faces => Inset.reach(world, mesh, values),
+        }
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        mesh: MeshId,
+        values: Values<'_>,
+        context: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let amount = values.number(0) as f32;
+        let new_face = |f: FaceId| (format!("new face {f}"), Some(ElementId::Face(f)));
+        match Self::bevelled(world, values)? {
+            Bevelled::Vertex(v) => {
+                let plan = plan_bevel_vertex(world, v, amount)?;
+                Ok(Applied::carried_out(world, plan.seeds(), |world| {
+                    new_face(apply_bevel_vertex(world, plan))
+                }))
+            }
+            Bevelled::Edge(e) => {
+                let plan = plan_bevel_edge(world, e, amount)?;
+                Ok(Applied::carried_out(world, plan.seeds(), |world| {
+                    new_face(apply_bevel_edge(world, plan))
+                }))
+            }
+            Bevelled::Faces => Inset.apply(world, mesh, values, context),
         }
     }
 }

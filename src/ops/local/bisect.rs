@@ -28,8 +28,10 @@ use bevy::prelude::World;
 
 use crate::mesh::attributes;
 use crate::mesh::elements::{Edge, Halfedge, InMesh, Position, Vertex};
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::declaration::{Declaration, Names, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Values};
 
 use super::{Refusal, he, link, live_edge, spawn_at};
 
@@ -198,4 +200,35 @@ pub fn apply_bisect(world: &mut World, p: BisectPlan) -> VertexId {
 pub fn bisect_edge(world: &mut World, e: EdgeId, t: f32) -> Result<VertexId, Refusal> {
     let plan = plan_bisect(world, e, t)?;
     Ok(apply_bisect(world, plan))
+}
+
+/// Bisecting an edge: a local edit.
+pub const BISECT: Declaration = Declaration::new("bisect")
+    .titled("Bisect")
+    .described("bisect the selected edge: a vertex at its midpoint, no face cut")
+    .on_key("K")
+    .naming(Names::Edge)
+    .in_section(Section::Local);
+
+/// [`bisect_edge`] at the midpoint as a registered operation: `bisect:A,B`, K.
+pub struct Bisect;
+
+impl MeshOperation for Bisect {
+    fn declaration(&self) -> &'static Declaration {
+        &BISECT
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        Applied::on_edge(world, e, |world| {
+            let v = bisect_edge(world, e, 0.5)?;
+            Ok((format!("new vertex {v} on {e}"), v.into()))
+        })
+    }
 }

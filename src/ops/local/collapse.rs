@@ -67,8 +67,10 @@ use bevy::math::{Vec2, Vec3};
 use bevy::prelude::{Entity, World};
 
 use crate::mesh::elements::{Edge, Face, Halfedge, Position, Vertex};
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::{MAX_LOOP, MeshRef, newell_area_vector};
+use crate::ops::declaration::{Declaration, Names, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Values};
 
 use super::{Refusal, he, link, live_edge};
 
@@ -986,4 +988,38 @@ pub fn collapse_edge(
 ) -> Result<CollapseResult, Refusal> {
     let plan = plan_collapse(world, e, options)?;
     Ok(apply_collapse(world, plan))
+}
+
+/// Collapsing an edge: a local edit.
+pub const COLLAPSE: Declaration = Declaration::new("collapse")
+    .titled("Collapse")
+    .described("collapse the active edge (to its midpoint) or face (to its centroid)")
+    .on_key("C")
+    .naming(Names::Edge)
+    .in_section(Section::Local);
+
+/// [`collapse_edge`] to the midpoint as a registered operation: `collapse:A,B`, C on an edge.
+pub struct Collapse;
+
+impl MeshOperation for Collapse {
+    fn declaration(&self) -> &'static Declaration {
+        &COLLAPSE
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        Applied::on_edge(world, e, |world| {
+            let r = collapse_edge(world, e, CollapseOptions::default())?;
+            Ok((
+                format!("kept {}, removed {}", r.kept, r.removed),
+                r.kept.into(),
+            ))
+        })
+    }
 }

@@ -51,8 +51,10 @@ use crate::mesh::attributes::{
     VertexColor, VertexNormal, corner_uv, mean_color, of_element, set_corner_uv,
 };
 use crate::mesh::elements::{Edge, Face, Position, Vertex};
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::declaration::{Declaration, Names, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values};
 
 use super::{Refusal, he, link};
 
@@ -583,6 +585,44 @@ pub fn apply_collapse_face(world: &mut World, p: CollapseFacePlan) -> VertexId {
 pub fn collapse_face(world: &mut World, f: FaceId) -> Result<VertexId, Refusal> {
     let plan = plan_collapse_face(world, f)?;
     Ok(apply_collapse_face(world, plan))
+}
+
+/// Collapsing a face (the `collapse:A,B,C` step): a local edit.
+pub const COLLAPSE_FACE: Declaration = Declaration::new("collapse")
+    .titled("Collapse")
+    .described("collapse the active face to its centroid")
+    .on_key("C")
+    .naming(Names::Face)
+    .in_section(Section::Local);
+
+/// [`collapse_face`] as a registered operation: `collapse:A,B,C`, C on a face.
+pub struct CollapseFace;
+
+impl MeshOperation for CollapseFace {
+    fn declaration(&self) -> &'static Declaration {
+        &COLLAPSE_FACE
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let plan = plan_collapse_face(world, values.face().ok()?).ok()?;
+        Reach::local(world, plan.seeds())
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let plan = plan_collapse_face(world, values.face()?)?;
+        Ok(Applied::carried_out(world, plan.seeds(), |world| {
+            let made = apply_collapse_face(world, plan);
+            let summary = format!("collapsed to {made}");
+            (summary, Some(made.into()))
+        }))
+    }
 }
 
 #[cfg(test)]

@@ -15,8 +15,10 @@
 use bevy::prelude::World;
 
 use crate::mesh::elements::{Face, Vertex};
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::declaration::{Declaration, Names, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Redraw, Values};
 
 use super::{Refusal, he, link, live_edge};
 
@@ -103,4 +105,40 @@ pub fn apply_dissolve(world: &mut World, p: DissolvePlan) -> FaceId {
 pub fn dissolve_edge(world: &mut World, e: EdgeId) -> Result<FaceId, Refusal> {
     let plan = plan_dissolve(world, e)?;
     Ok(apply_dissolve(world, plan))
+}
+
+/// Dissolving an edge: a local edit.
+pub const DISSOLVE: Declaration = Declaration::new("dissolve")
+    .titled("Dissolve")
+    .described("dissolve the active edge (merge its two faces) or vertex (merge its faces)")
+    .on_key("D")
+    .naming(Names::Edge)
+    .in_section(Section::Local);
+
+/// [`dissolve_edge`] as a registered operation: `dissolve:A,B`, D on an edge.
+pub struct Dissolve;
+
+impl MeshOperation for Dissolve {
+    fn declaration(&self) -> &'static Declaration {
+        &DISSOLVE
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        let m = MeshRef::new(world);
+        let ends = m.corners(e.into());
+        let before = m.faces_around(&ends);
+        let f = dissolve_edge(world, e)?;
+        Ok(Applied {
+            summary: format!("merged into {f}"),
+            redraw: Redraw::near(world, before, ends),
+            made: Some(ElementId::Face(f)),
+        })
+    }
 }

@@ -50,8 +50,10 @@ use bevy::prelude::World;
 
 use crate::mesh::attributes::{corner_uv, set_corner_uv};
 use crate::mesh::elements::{Edge, Face, Vertex};
-use crate::mesh::ids::{ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::ids::{ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::declaration::{Declaration, Names, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values};
 
 use super::{Refusal, he, link};
 
@@ -236,6 +238,44 @@ pub fn apply_dissolve_vertex(world: &mut World, p: DissolveVertexPlan) -> FaceId
 pub fn dissolve_vertex(world: &mut World, v: VertexId) -> Result<FaceId, Refusal> {
     let plan = plan_dissolve_vertex(world, v)?;
     Ok(apply_dissolve_vertex(world, plan))
+}
+
+/// Dissolving a vertex (the `dissolve:A` step): a local edit.
+pub const DISSOLVE_VERTEX: Declaration = Declaration::new("dissolve")
+    .titled("Dissolve")
+    .described("dissolve the active vertex: merge the faces around it")
+    .on_key("D")
+    .naming(Names::Vertex)
+    .in_section(Section::Local);
+
+/// [`dissolve_vertex`] as a registered operation: `dissolve:A`, D on a vertex.
+pub struct DissolveVertex;
+
+impl MeshOperation for DissolveVertex {
+    fn declaration(&self) -> &'static Declaration {
+        &DISSOLVE_VERTEX
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let plan = plan_dissolve_vertex(world, values.vertex().ok()?).ok()?;
+        Reach::local(world, plan.seeds())
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let plan = plan_dissolve_vertex(world, values.vertex()?)?;
+        Ok(Applied::carried_out(world, plan.seeds(), |world| {
+            let made = apply_dissolve_vertex(world, plan);
+            let summary = format!("merged into {made}");
+            (summary, Some(made.into()))
+        }))
+    }
 }
 
 #[cfg(test)]

@@ -42,6 +42,8 @@ use crate::mesh::attributes::CornerUv;
 use crate::mesh::elements::{Edge, Face, InMesh, Vertex};
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::declaration::{Declaration, Names, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values, count};
 
 use super::{Refusal, he, link, live_edge};
 
@@ -315,6 +317,50 @@ pub fn faces_of(world: &World, elements: &[ElementId]) -> Result<Vec<FaceId>, Re
     faces.sort_unstable();
     faces.dedup();
     Ok(faces)
+}
+
+/// Erasing faces: a local edit.
+pub const ERASE: Declaration = Declaration::new("erase")
+    .titled("Erase")
+    .described("erase the selection: its faces become holes")
+    .on_key("X")
+    .naming(Names::Elements)
+    .in_section(Section::Modelling);
+
+/// [`plan_erase`] and [`apply_erase`] on the faces of the named elements (a vertex's, an
+/// edge's, a face): `erase:ELEMENTS`, X.
+pub struct Erase;
+
+impl MeshOperation for Erase {
+    fn declaration(&self) -> &'static Declaration {
+        &ERASE
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let plan = plan_erase(world, &faces_of(world, values.elements()).ok()?).ok()?;
+        Reach::local(world, plan.seeds())
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let plan = plan_erase(world, &faces_of(world, values.elements())?)?;
+        Ok(Applied::carried_out(world, plan.seeds(), |world| {
+            let gone = apply_erase(world, plan);
+            let summary = format!(
+                "removed {}, {}, {}",
+                count(gone.faces, "face"),
+                count(gone.edges, "edge"),
+                count(gone.vertices, "vertex")
+            );
+            (summary, None)
+        }))
+    }
 }
 
 #[cfg(test)]

@@ -64,8 +64,10 @@ use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
 use crate::mesh::groups;
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::declaration::{Declaration, Names, Parameter, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values, count};
 
-use super::{Refusal, he, spawn_at};
+use super::{Refusal, check_growth, he, spawn_at};
 
 /// What an extrusion (or an inset, [`super::inset_faces`]) made.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -574,6 +576,55 @@ pub fn extrude_directions(world: &World, faces: &[FaceId]) -> Vec<(VertexId, Vec
         *d = d.normalize_or_zero();
     }
     out
+}
+
+/// Extruding a region of faces: a local edit (the walls take the region's groups).
+pub const EXTRUDE: Declaration = Declaration::new("extrude")
+    .titled("Extrude")
+    .described("extrude the faces as one region and push it DISTANCE along its normals")
+    .naming(Names::Faces)
+    .with_parameters(&[Parameter::real("DISTANCE", 0.0, -1e6, 1e6)])
+    .in_section(Section::Modelling);
+
+/// [`plan_extrude`] and [`apply_extrude`] as a registered operation: `extrude:FACES[:DISTANCE]`,
+/// E (which then drags the distance).
+pub struct Extrude;
+
+impl MeshOperation for Extrude {
+    fn declaration(&self) -> &'static Declaration {
+        &EXTRUDE
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let plan = plan_extrude(world, &values.faces().ok()?).ok()?;
+        Reach::local(world, plan.seeds())
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let plan = {
+            let faces = values.faces()?;
+            let plan = plan_extrude(world, &faces)?;
+            plan.check_distance(values.number(0) as f32)?;
+            check_growth("extruding", faces.len(), plan.seeds().len())?;
+            plan
+        };
+        Ok(Applied::carried_out(world, plan.seeds(), |world| {
+            let done = apply_extrude(world, plan, values.number(0) as f32);
+            let summary = format!(
+                "{} lifted on {}",
+                count(done.top.len(), "face"),
+                count(done.sides.len(), "side face")
+            );
+            (summary, None)
+        }))
+    }
 }
 
 #[cfg(test)]

@@ -38,8 +38,10 @@
 use bevy::prelude::World;
 
 use crate::mesh::elements::{Face, Vertex};
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, VertexId};
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::declaration::{Declaration, Names, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Values};
 
 use super::{Refusal, he, link, live_edge};
 
@@ -173,4 +175,35 @@ pub fn apply_flip(world: &mut World, p: FlipPlan) -> EdgeId {
 pub fn flip_edge(world: &mut World, e: EdgeId) -> Result<EdgeId, Refusal> {
     let plan = plan_flip(world, e)?;
     Ok(apply_flip(world, plan))
+}
+
+/// Flipping an edge: a local edit that keeps every id and attribute.
+pub const FLIP: Declaration = Declaration::new("flip")
+    .titled("Flip")
+    .described("flip (rotate) the selected edge")
+    .on_key("Alt+R")
+    .naming(Names::Edge)
+    .in_section(Section::Local);
+
+/// [`flip_edge`] as a registered operation: `flip:A,B`, Alt+R, the *Local operations* button.
+pub struct Flip;
+
+impl MeshOperation for Flip {
+    fn declaration(&self) -> &'static Declaration {
+        &FLIP
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        Applied::on_edge(world, e, |world| {
+            let flipped = flip_edge(world, e)?;
+            Ok((format!("flipped to {flipped}"), flipped.into()))
+        })
+    }
 }

@@ -47,11 +47,13 @@ use bevy::math::Vec3;
 use bevy::prelude::World;
 
 use crate::mesh::elements::Position;
-use crate::mesh::ids::{FaceId, VertexId};
+use crate::mesh::ids::{FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::declaration::{Declaration, Names, Parameter, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values, count};
 
-use super::Refusal;
 use super::extrude::{Extruded, Ring, build_ring, check_faces, face_vertices, plan_ring};
+use super::{Refusal, check_growth};
 
 /// One face's ring and where its copies go.
 #[derive(Clone, Debug, PartialEq)]
@@ -193,6 +195,59 @@ pub fn inset_faces(
     let plan = plan_inset(world, faces)?;
     plan.check(amount, depth)?;
     Ok(apply_inset(world, plan, amount, depth))
+}
+
+/// Insetting faces (with a depth, Scotty3D's bevel face): a local edit.
+pub const INSET: Declaration = Declaration::new("inset")
+    .titled("Inset")
+    .described("inset each face: a ring of quads inside it, AMOUNT of the way to its centre, DEPTH along its normal")
+    .naming(Names::Faces)
+    .with_parameters(&[
+        Parameter::real("AMOUNT", 0.0, 0.0, 0.999),
+        Parameter::real("DEPTH", 0.0, -1e6, 1e6),
+    ])
+    .in_section(Section::Modelling);
+
+/// [`plan_inset`] and [`apply_inset`] as a registered operation: `inset:FACES[:AMOUNT[:DEPTH]]`,
+/// I (which then drags the amount); also the bevel of faces ([`Bevel`]).
+pub struct Inset;
+
+impl MeshOperation for Inset {
+    fn declaration(&self) -> &'static Declaration {
+        &INSET
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let plan = plan_inset(world, &values.faces().ok()?).ok()?;
+        Reach::local(world, plan.seeds())
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let plan = {
+            let faces = values.faces()?;
+            let plan = plan_inset(world, &faces)?;
+            plan.check(values.number(0) as f32, values.number(1) as f32)?;
+            check_growth("insetting", faces.len(), plan.seeds().len())?;
+            plan
+        };
+        Ok(Applied::carried_out(world, plan.seeds(), |world| {
+            let (amount, depth) = (values.number(0) as f32, values.number(1) as f32);
+            let done = apply_inset(world, plan, amount, depth);
+            let summary = format!(
+                "{} inset, {} around them",
+                count(done.top.len(), "face"),
+                count(done.sides.len(), "new face")
+            );
+            (summary, None)
+        }))
+    }
 }
 
 #[cfg(test)]

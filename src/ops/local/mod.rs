@@ -19,7 +19,13 @@
 //! halfedge of its own, and an edge names an interior halfedge where it has one.
 //!
 //! Each operation's module doc has a before/after picture and its refusals, in the order they
-//! are checked.
+//! are checked. Each file also holds its operation as the editor, the command line and Python
+//! use it: its `Declaration` (`FLIP`: name, title, key, what it names, its panel section) and a
+//! unit struct implementing [`crate::ops::operation::MeshOperation`] (`Flip`), whose `apply`
+//! reads the elements it names and reports through [`crate::ops::operation::Applied::on_edge`]
+//! or [`crate::ops::operation::Applied::carried_out`] (the same two an operation written
+//! outside the crate can use). The vertex split's adapter moves along the simplification
+//! history and lives with it, in [`crate::ops::decimate`].
 
 mod bevel;
 mod bisect;
@@ -41,37 +47,48 @@ mod vertex_split;
 mod weld;
 
 pub use bevel::{
-    BevelEdgePlan, BevelVertexPlan, apply_bevel_edge, apply_bevel_vertex, bevel_edge, bevel_vertex,
-    plan_bevel_edge, plan_bevel_vertex,
+    BEVEL, Bevel, BevelEdgePlan, BevelVertexPlan, apply_bevel_edge, apply_bevel_vertex, bevel_edge,
+    bevel_vertex, plan_bevel_edge, plan_bevel_vertex,
 };
-pub use bisect::{BisectPlan, apply_bisect, bisect_edge, plan_bisect};
+pub use bisect::{BISECT, Bisect, BisectPlan, apply_bisect, bisect_edge, plan_bisect};
 pub use collapse::{
-    CollapseOptions, CollapsePlan, CollapseRecord, CollapseResult, apply_collapse, collapse_edge,
-    plan_collapse, plan_collapse_halfedge,
+    COLLAPSE, Collapse, CollapseOptions, CollapsePlan, CollapseRecord, CollapseResult,
+    apply_collapse, collapse_edge, plan_collapse, plan_collapse_halfedge,
 };
 pub(crate) use collapse::{SpokeView, Wing, wing_check};
 pub(crate) use collapse::{apply_collapse_deferred, plan_collapse_in};
-pub use collapse_face::{CollapseFacePlan, apply_collapse_face, collapse_face, plan_collapse_face};
-pub use dissolve::{DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve};
+pub use collapse_face::{
+    COLLAPSE_FACE, CollapseFace, CollapseFacePlan, apply_collapse_face, collapse_face,
+    plan_collapse_face,
+};
+pub use dissolve::{
+    DISSOLVE, Dissolve, DissolvePlan, apply_dissolve, dissolve_edge, plan_dissolve,
+};
 pub use dissolve_vertex::{
-    DissolveVertexPlan, apply_dissolve_vertex, dissolve_vertex, plan_dissolve_vertex,
+    DISSOLVE_VERTEX, DissolveVertex, DissolveVertexPlan, apply_dissolve_vertex, dissolve_vertex,
+    plan_dissolve_vertex,
 };
 pub use erase::{
-    ErasePlan, Erased, apply_erase, erase_faces, faces_of, faces_of_edge, faces_of_vertex,
-    plan_erase,
+    ERASE, Erase, ErasePlan, Erased, apply_erase, erase_faces, faces_of, faces_of_edge,
+    faces_of_vertex, plan_erase,
 };
 pub use extrude::{
-    ExtrudePlan, Extruded, apply_extrude, extrude_directions, extrude_faces, plan_extrude,
+    EXTRUDE, Extrude, ExtrudePlan, Extruded, apply_extrude, extrude_directions, extrude_faces,
+    plan_extrude,
 };
 pub use fill_hole::{FillHolePlan, apply_fill_hole, fill_hole, plan_fill_hole};
-pub use flip::{FlipPlan, apply_flip, flip_edge, plan_flip};
-pub use inset::{InsetPlan, apply_inset, inset_faces, plan_inset};
-pub use seam::toggle_seam;
-pub use split::{SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint};
-pub use split_face::{SplitFacePlan, apply_split_face, plan_split_face, split_face};
+pub use flip::{FLIP, Flip, FlipPlan, apply_flip, flip_edge, plan_flip};
+pub use inset::{INSET, Inset, InsetPlan, apply_inset, inset_faces, plan_inset};
+pub use seam::{SEAM, ToggleSeam, toggle_seam};
+pub use split::{
+    SPLIT, Split, SplitPlan, apply_split, plan_split, split_edge, split_edge_midpoint,
+};
+pub use split_face::{
+    SPLIT_FACE, SplitFace, SplitFacePlan, apply_split_face, plan_split_face, split_face,
+};
 pub use vertex_split::vertex_split;
 
-pub use weld::{WeldPlan, apply_weld, plan_weld, weld_edges};
+pub use weld::{WELD, Weld, WeldPlan, apply_weld, plan_weld, weld_edges};
 
 use bevy::prelude::{Entity, World};
 

@@ -6,8 +6,11 @@ use bevy::prelude::World;
 
 use crate::mesh::InMesh;
 use crate::mesh::attributes::{MeshAttributes, Seam, set_record};
-use crate::mesh::ids::{EdgeId, ElementId};
+use crate::mesh::ids::{EdgeId, ElementId, MeshId};
+use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
+use crate::ops::declaration::{Declaration, Names, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Redraw, Values};
 
 /// Marks `e` as a seam, or unmarks it; returns whether it is one now.
 ///
@@ -32,4 +35,42 @@ pub fn toggle_seam(world: &mut World, e: EdgeId) -> Result<bool, Refusal> {
         edge.remove::<Seam>();
     }
     Ok(marked)
+}
+
+/// Marking a seam (or unmarking it): a local edit of one edge's mark.
+pub const SEAM: Declaration = Declaration::new("seam")
+    .titled("Seam")
+    .described("mark the selected edge as a seam for parameterizing (or unmark it)")
+    .on_key("Ctrl+E")
+    .naming(Names::Edge)
+    .in_section(Section::Uv)
+    .keeping_normals();
+
+/// [`toggle_seam`] as a registered operation: `seam:A,B`, Ctrl+E.
+pub struct ToggleSeam;
+
+impl MeshOperation for ToggleSeam {
+    fn declaration(&self) -> &'static Declaration {
+        &SEAM
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        let marked = toggle_seam(world, e)?;
+        Ok(Applied {
+            summary: if marked {
+                format!("{e} is a seam")
+            } else {
+                format!("{e} is no longer a seam")
+            },
+            redraw: Redraw::near(world, Vec::new(), MeshRef::new(world).corners(e.into())),
+            made: None,
+        })
+    }
 }

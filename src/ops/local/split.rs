@@ -44,8 +44,10 @@
 
 use bevy::prelude::World;
 
-use crate::mesh::ids::{EdgeId, VertexId};
+use crate::mesh::ids::{EdgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::declaration::{Declaration, Names, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Values};
 
 use super::bisect::{BisectPlan, apply_bisect, plan_bisect};
 use super::{Refusal, cut};
@@ -100,4 +102,35 @@ pub fn split_edge(world: &mut World, e: EdgeId, t: f32) -> Result<VertexId, Refu
 /// See the module doc; the world is then unchanged.
 pub fn split_edge_midpoint(world: &mut World, e: EdgeId) -> Result<VertexId, Refusal> {
     split_edge(world, e, 0.5)
+}
+
+/// Splitting an edge: a local edit.
+pub const SPLIT: Declaration = Declaration::new("split")
+    .titled("Split")
+    .described("split the selected edge at its midpoint")
+    .on_key("Alt+S")
+    .naming(Names::Edge)
+    .in_section(Section::Local);
+
+/// [`split_edge`] at the midpoint as a registered operation: `split:A,B`, Alt+S.
+pub struct Split;
+
+impl MeshOperation for Split {
+    fn declaration(&self) -> &'static Declaration {
+        &SPLIT
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        Applied::on_edge(world, e, |world| {
+            let v = split_edge(world, e, 0.5)?;
+            Ok((format!("new vertex {v}"), v.into()))
+        })
+    }
 }

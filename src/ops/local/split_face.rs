@@ -18,6 +18,8 @@ use bevy::prelude::World;
 use crate::mesh::elements::InMesh;
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::declaration::{Declaration, Names, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Redraw, Values};
 
 use super::{Refusal, cut};
 
@@ -96,4 +98,46 @@ pub fn split_face(
 ) -> Result<EdgeId, Refusal> {
     let plan = plan_split_face(world, f, a, b)?;
     Ok(apply_split_face(world, plan))
+}
+
+/// Splitting a face between two of its corners: a local edit.
+pub const SPLIT_FACE: Declaration = Declaration::new("split-face")
+    .titled("Split face")
+    .described("join two corners of a face by a new edge (the selected halfedge's tip and the corner two ahead)")
+    .on_key("J")
+    .naming(Names::FaceCorners)
+    .in_section(Section::Local);
+
+/// [`split_face`] as a registered operation: `split-face:A,B` (the face the two vertices
+/// share), J on a halfedge of a face.
+pub struct SplitFace;
+
+impl MeshOperation for SplitFace {
+    fn declaration(&self) -> &'static Declaration {
+        &SPLIT_FACE
+    }
+
+    /// The neighbourhood of the two corners (`None` when the face or a corner is gone).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let (f, a, b) = values.face_corners().ok()?;
+        MeshRef::new(world).try_face(f)?;
+        Reach::local(world, vec![a, b])
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let (f, a, b) = values.face_corners()?;
+        let before = MeshRef::new(world).faces_around(&[a, b]);
+        let e = split_face(world, f, a, b)?;
+        Ok(Applied {
+            summary: format!("new edge {e}"),
+            redraw: Redraw::near(world, before, vec![a, b]),
+            made: Some(ElementId::Edge(e)),
+        })
+    }
 }

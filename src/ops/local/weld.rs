@@ -46,6 +46,8 @@ use crate::mesh::attributes::{MeshAttributes, interpolate_vertex};
 use crate::mesh::elements::{Edge, InMesh, Position, Vertex};
 use crate::mesh::ids::{EdgeId, ElementId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+use crate::ops::declaration::{Declaration, Names, Section};
+use crate::ops::operation::{Applied, EditContext, MeshOperation, Reach, Values};
 
 use super::{Refusal, he, link, live_edge};
 
@@ -274,6 +276,49 @@ pub fn apply_weld(world: &mut World, p: WeldPlan) -> EdgeId {
 pub fn weld_edges(world: &mut World, e1: EdgeId, e2: EdgeId) -> Result<EdgeId, Refusal> {
     let plan = plan_weld(world, e1, e2)?;
     Ok(apply_weld(world, plan))
+}
+
+/// Welding two boundary edges: a local edit.
+pub const WELD: Declaration = Declaration::new("weld")
+    .titled("Weld")
+    .described("weld the first two selected boundary edges: the second onto the first")
+    .on_key("Alt+M")
+    .naming(Names::TwoEdges)
+    .in_section(Section::Modelling);
+
+/// [`plan_weld`] and [`apply_weld`] as a registered operation: `weld:A,B/C,D`, Alt+M.
+pub struct Weld;
+
+impl MeshOperation for Weld {
+    fn declaration(&self) -> &'static Declaration {
+        &WELD
+    }
+
+    /// What the plan touches (`None` when it is refused: it changes nothing).
+    fn reach(&self, world: &World, _: MeshId, values: Values<'_>) -> Option<Reach> {
+        let plan = {
+            let [a, b] = values.two_edges().ok()?;
+            plan_weld(world, a, b).ok()?
+        };
+        Reach::local(world, plan.seeds())
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let plan = {
+            let [a, b] = values.two_edges()?;
+            plan_weld(world, a, b)?
+        };
+        Ok(Applied::carried_out(world, plan.seeds(), |world| {
+            let e = apply_weld(world, plan);
+            (format!("welded into {e}"), Some(ElementId::Edge(e)))
+        }))
+    }
 }
 
 #[cfg(test)]

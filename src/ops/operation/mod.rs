@@ -28,6 +28,7 @@ use crate::mesh::{InMesh, MeshInfo, MeshRef};
 use crate::ops::Refusal;
 use crate::ops::declaration::{Declaration, Names, ParameterKind};
 
+mod local_outcome;
 pub mod stepping;
 use stepping::Steps;
 

@@ -26,7 +26,6 @@ use super::{Invocation, Redraw};
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::ops::Refusal;
 use crate::ops::declaration::IdsKept;
-use crate::ops::progressive::ProgressiveMesh;
 
 /// A colour, as sRGB components in `[0, 1]`.
 pub type Rgb = [f32; 3];
@@ -110,21 +109,16 @@ impl Moved {
 pub struct Ended {
     /// The undo entry's summary line; `None` when the run changed nothing (no entry is made).
     pub summary: Option<String>,
-    /// The simplification history it leaves (a simplification's), for the level-of-detail
-    /// slider; `None` keeps the history from before the run where the run changed nothing,
-    /// and ends it otherwise, as the operation's declaration says.
-    pub history: Option<ProgressiveMesh>,
     /// The invocation the undo entry names where it is not the one the run started with
     /// (a subdivision ended after fewer levels than asked for).
     pub recorded: Option<Invocation>,
 }
 
 impl Ended {
-    /// A run that made its summary line and leaves no history.
+    /// A run that made its summary line.
     pub fn with(summary: String) -> Self {
         Self {
             summary: Some(summary),
-            history: None,
             recorded: None,
         }
     }
@@ -242,7 +236,9 @@ pub trait Steps: Any + Send + Sync {
         Vec::new()
     }
 
-    /// Ends the run where it is: the undo entry's line and what it leaves.
+    /// Ends the run where it is: the undo entry's line and the invocation it stands for. What
+    /// the run leaves on the mesh besides its elements it puts there (a simplification its
+    /// history, [`crate::ops::simplification_history`]).
     fn finish(self: Box<Self>, world: &mut World, mesh: MeshId) -> Ended;
 }
 

@@ -172,7 +172,6 @@ impl Steps for SubdivideSteps {
         if self.done == 0 {
             return Ended {
                 summary: None,
-                history: None,
                 recorded: None,
             };
         }
