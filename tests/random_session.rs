@@ -95,11 +95,11 @@ fn draw(app: &App, rng: &mut Rng, stale: &[ElementId]) -> Request {
         // Any registered whole-mesh operation with its defaults (triangulate, reverse, normalize, remesh,
         // param, …), subdivision only while the mesh is small, as below.
         55 => {
-            let whole: Vec<_> = pappus::ops::OPERATIONS
-                .iter()
+            let whole: Vec<_> = pappus::ops::registry::operations()
+                .into_iter()
                 .filter(|op| op.declaration().names == pappus::ops::declaration::Names::Mesh)
                 .collect();
-            let op = *whole[rng.below(whole.len())];
+            let op = whole[rng.below(whole.len())];
             let invocation = pappus::edit::Invocation::with_defaults(op);
             let grows = pappus::ops::subdivide::subdivision(&invocation).is_some();
             (!grows || faces < GROW_BELOW_FACES).then_some(Edit::Operation(invocation))

@@ -102,7 +102,7 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
         .map_err(|e| PyValueError::new_err(format!("{name}: {e}")))
 }
 
-/// Every operation that declares itself whole (`pappus::ops::OPERATIONS`), as the command
+/// Every operation that declares itself whole (`pappus::ops::registry::operations()`), as the command
 /// line's steps, the editor's keys and its panel know them: one dict each, `{"name", "title",
 /// "help", "key", "job", "names", "parameters": [...]}`, in the panel's order (`"names"`: what
 /// it names beside the mesh, see [`names`]), each parameter
@@ -113,7 +113,7 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
 /// a local one as `mesh.step("NAME:ELEMENT[:VALUE…]")` (`"flip:3,17"`).
 #[pyfunction]
 fn operations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
-    pappus::ops::OPERATIONS
+    pappus::ops::registry::operations()
         .iter()
         .map(|op| {
             let d = op.declaration();

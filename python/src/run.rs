@@ -1,5 +1,5 @@
 //! `Mesh.run(name, *elements, progress=None, **parameters)`: every operation that declares
-//! itself ([`pappus::ops::OPERATIONS`]) by its name, from its declaration alone.
+//! itself ([`pappus::ops::registry`]) by its name, from its declaration alone.
 //!
 //! The elements are handles or input vertex numbers (a number a vertex, a sequence of them an
 //! edge or a face, as a step writes them); the keywords are the declared parameters' names in
@@ -121,7 +121,7 @@ pub(crate) fn invocation(
 ) -> PyResult<Invocation> {
     let name = name.replace('_', "-");
     let mut needs = Vec::new();
-    for op in pappus::ops::operations_named(&name) {
+    for op in pappus::ops::registry::operations_named(&name) {
         let d = op.declaration();
         let elements = elements_for(world, input_vertices, d.names, targets)?;
         if !d.names.admits(&elements) {
@@ -135,7 +135,7 @@ pub(crate) fn invocation(
         return Ok(invocation);
     }
     Err(PyValueError::new_err(if needs.is_empty() {
-        let known: Vec<&str> = pappus::ops::OPERATIONS
+        let known: Vec<&str> = pappus::ops::registry::operations()
             .iter()
             .map(|op| op.declaration().name)
             .collect();

@@ -19,7 +19,7 @@
 //!
 //! Adding an operation: its file in `ops/`, declaring itself whole
 //! ([`crate::ops::operation::MeshOperation`]: what it names, its parameters, its key and
-//! section), and its line in [`crate::ops::OPERATIONS`]; [`Edit::Operation`] carries it, and
+//! section), and its line in [`crate::ops::registry`]; [`Edit::Operation`] carries it, and
 //! the step parser, the keymap (which resolves the elements from the selection), the panel,
 //! Python, undo and jobs read its declaration. Two edits are not operations: the editor's
 //! gestures carry what no declared parameter can — a position for each vertex moved
@@ -60,7 +60,7 @@ pub use crate::ops::subdivide::Scheme;
 /// mesh [`Edit::run`] is given.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Edit {
-    /// An operation that declares itself whole ([`crate::ops::OPERATIONS`]: flip, collapse,
+    /// An operation that declares itself whole ([`crate::ops::registry`]: flip, collapse,
     /// …, triangulate, simplify, smooth, fair, …), with the elements it names and its
     /// parameters' values.
     Operation(Invocation),
@@ -74,10 +74,11 @@ pub enum Edit {
 }
 
 impl Edit {
-    /// The registered operation whose step is called `name` ([`crate::ops::OPERATIONS`]),
+    /// The registered operation whose step is called `name` ([`crate::ops::registry`]),
     /// with its parameters' defaults.
     pub fn registered(name: &str) -> Option<Self> {
-        crate::ops::operation(name).map(|op| Edit::Operation(Invocation::with_defaults(op)))
+        crate::ops::registry::operation(name)
+            .map(|op| Edit::Operation(Invocation::with_defaults(op)))
     }
 
     /// The registered operation called `name` on `element` (of those sharing the name, the
@@ -102,8 +103,8 @@ impl Edit {
         values: &[f64],
     ) -> Self {
         let elements = elements.into_iter().map(Into::into).collect();
-        let mut invocation =
-            crate::ops::invocation_on(name, elements).unwrap_or_else(|why| panic!("{why}"));
+        let mut invocation = crate::ops::registry::invocation_on(name, elements)
+            .unwrap_or_else(|why| panic!("{why}"));
         for (i, &x) in values.iter().enumerate() {
             invocation
                 .set(i, Some(x))
@@ -119,7 +120,7 @@ impl Edit {
     /// what it takes).
     pub fn invoked(step: &str) -> Result<Self, String> {
         let (name, args) = step.split_once(':').unwrap_or((step, ""));
-        let op = crate::ops::operation(name)
+        let op = crate::ops::registry::operation(name)
             .ok_or_else(|| format!("no registered operation is called `{name}`"))?;
         Invocation::parse(op, args).map(Edit::Operation)
     }
@@ -377,9 +378,9 @@ mod tests {
     fn every_edit_has_a_declaration_and_every_declared_step_exists() {
         use crate::ops::deform::{DeformMethod, DeformParams};
         let v = VertexId(bevy::prelude::Entity::PLACEHOLDER);
-        let registered = crate::ops::OPERATIONS
-            .iter()
-            .map(|&op| Edit::Operation(Invocation::with_defaults(op)));
+        let registered = crate::ops::registry::operations()
+            .into_iter()
+            .map(|op| Edit::Operation(Invocation::with_defaults(op)));
         let every: Vec<Edit> = registered
             .chain([
                 Edit::Move(vec![(v, Vec3::ZERO)]),
@@ -438,7 +439,7 @@ mod tests {
     fn operations_declared_on_tables_compute_there_as_applied() {
         use crate::mesh::tables::extract;
         use crate::mesh::{build_mesh, mesh_stats, shapes};
-        for &op in crate::ops::OPERATIONS {
+        for op in crate::ops::registry::operations() {
             let mut world = World::new();
             let built = build_mesh(&mut world, &shapes::icosphere(1), MeshInfo::default()).unwrap();
             let edit = Edit::Operation(Invocation::with_defaults(op));

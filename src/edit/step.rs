@@ -204,7 +204,7 @@ fn element_at(
 /// declaration, with its help line), then the others'.
 pub fn step_syntax() -> String {
     let mut text = String::from("validate |\n");
-    for op in crate::ops::OPERATIONS {
+    for op in crate::ops::registry::operations() {
         text.push_str(&op.declaration().syntax());
         text.push_str(" |\n");
     }
@@ -236,7 +236,8 @@ impl Step {
     /// share the name, the one that names what the numbers name (`A` a vertex, `A,B` an edge,
     /// `A,B,C` a face). `None` when no registered operation of that name names elements.
     fn parse_on_elements(text: &str, name: &str, args: &str) -> Option<Result<Step, String>> {
-        let ops: Vec<_> = crate::ops::operations_named(name)
+        let ops: Vec<_> = crate::ops::registry::operations_named(name)
+            .into_iter()
             .filter(|op| !op.declaration().names.is_whole_mesh())
             .collect();
         if ops.is_empty() {
@@ -279,7 +280,7 @@ impl Step {
                 });
             }
             _ => {
-                let op = crate::ops::operation(name).ok_or_else(|| {
+                let op = crate::ops::registry::operation(name).ok_or_else(|| {
                     format!("unknown step `{text}` (see `pappus process --help`)")
                 })?;
                 Edit::Operation(Invocation::parse(op, args).map_err(|why| {
@@ -465,7 +466,7 @@ mod tests {
     #[test]
     fn every_registered_operation_parses_by_its_name_to_its_defaults() {
         let mut names = std::collections::HashSet::new();
-        for &op in crate::ops::OPERATIONS {
+        for op in crate::ops::registry::operations() {
             let d = op.declaration();
             assert!(
                 names.insert((d.name, d.names)),

@@ -46,12 +46,12 @@ impl Edit {
 mod tests {
     use super::*;
     use crate::mesh::{MeshInfo, build_mesh, shapes};
-    use crate::ops::OPERATIONS;
     use crate::ops::operation::Invocation;
+    use crate::ops::registry::operations;
 
     #[test]
     fn an_operation_steps_exactly_when_it_declares_it() {
-        for op in OPERATIONS {
+        for op in operations().iter() {
             let mut world = World::new();
             let mesh = build_mesh(&mut world, &shapes::icosahedron(), MeshInfo::default())
                 .unwrap()

@@ -37,6 +37,7 @@ pub mod view;
 use bevy::prelude::*;
 use std::path::PathBuf;
 
+pub use input::add_operation::AddOperation;
 use session::requests::Request;
 pub use session::schedule::EditorSystems;
 

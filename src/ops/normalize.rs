@@ -12,7 +12,7 @@
 //! scale, and is refused.
 //!
 //! It is the operation that shows what a self-declaring operation costs: this file and its
-//! registration line in [`crate::ops::OPERATIONS`]; the step (`normalize[:SIZE]`), Alt+C,
+//! registration line in [`crate::ops::registry`]; the step (`normalize[:SIZE]`), Alt+C,
 //! the panel's button and its parameter, undo and Python's `Mesh.step` come from the
 //! declaration.
 

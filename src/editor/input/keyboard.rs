@@ -212,7 +212,7 @@ fn whole_mesh_edit(world: &mut World, action: Action) -> Result<Option<Edit>, De
 /// what to select).
 fn registered_invocation(world: &World, name: &str) -> Result<Invocation, Declined> {
     let mut needs = Vec::new();
-    for op in crate::ops::operations_named(name) {
+    for op in crate::ops::registry::operations_named(name) {
         let names = op.declaration().names;
         let invocation = world.resource::<UiState>().invocation(op);
         if names == Names::Mesh {

@@ -2,6 +2,7 @@
 //! dropped on the window ([`dropped_files`]), each turned into requests. It reads the rooms below it
 //! (session, pipeline, view, gestures); the panels and the automation read it.
 
+pub mod add_operation;
 pub mod dropped_files;
 pub mod key_names;
 pub mod keyboard;

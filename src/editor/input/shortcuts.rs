@@ -26,7 +26,7 @@ pub enum Action {
     /// The selection's vertices become the anchors of handle deformation (nothing selected:
     /// no anchors).
     MarkAnchors,
-    /// Run the registered operation of this step name ([`crate::ops::OPERATIONS`]) with the
+    /// Run the registered operation of this step name ([`crate::ops::registry`]) with the
     /// panel's values of its parameters: on the active mesh, or on the selected element it
     /// names (of the operations sharing the name, the one that names what is selected).
     Operation(&'static str),
@@ -175,7 +175,8 @@ const fn ctrl(
 /// Delete).
 pub fn keys_of(action: Action) -> Option<&'static str> {
     if let Action::Operation(name) = action
-        && let Some(keys) = crate::ops::operation(name).and_then(|op| op.declaration().key)
+        && let Some(keys) =
+            crate::ops::registry::operation(name).and_then(|op| op.declaration().key)
     {
         return Some(keys);
     }
@@ -183,18 +184,20 @@ pub fn keys_of(action: Action) -> Option<&'static str> {
 }
 
 /// Every shortcut of the editor: the table below, then the keys the registered operations
-/// declare ([`crate::ops::OPERATIONS`]).
+/// declare ([`crate::ops::registry`]).
 pub fn shortcuts() -> impl Iterator<Item = Shortcut> {
     // A key that does not read is left out here, and fails the keymap's test.
     // Operations that share a name and a key (collapse an edge or a face: C) are one shortcut,
     // with the first one's help.
-    let declared = crate::ops::OPERATIONS
-        .iter()
+    let all = crate::ops::registry::operations();
+    let declared = all
+        .clone()
+        .into_iter()
         .enumerate()
-        .filter_map(|(i, op)| {
+        .filter_map(move |(i, op)| {
             let d = op.declaration();
             let keys = d.key?;
-            let shared = crate::ops::OPERATIONS[..i]
+            let shared = all[..i]
                 .iter()
                 .any(|o| o.declaration().name == d.name && o.declaration().key == d.key);
             if shared {
@@ -493,7 +496,7 @@ pub const SHORTCUTS: &[Shortcut] = &[
 /// The registered operation an action runs, if it runs one.
 pub(super) fn registered(action: Action) -> Option<&'static dyn MeshOperation> {
     match action {
-        Action::Operation(name) => crate::ops::operation(name),
+        Action::Operation(name) => crate::ops::registry::operation(name),
         _ => None,
     }
 }
@@ -561,7 +564,7 @@ mod tests {
     #[test]
     fn declared_keys_join_the_keymap_and_no_two_shortcuts_collide() {
         let all: Vec<Shortcut> = shortcuts().collect();
-        for op in crate::ops::OPERATIONS {
+        for op in crate::ops::registry::operations() {
             let d = op.declaration();
             let Some(keys) = d.key else { continue };
             let chord = crate::editor::input::key_names::chord(keys)
@@ -569,7 +572,9 @@ mod tests {
             let found = shortcut_for(chord.key, chord.ctrl, chord.shift, chord.alt).unwrap();
             assert_eq!(found.action, Action::Operation(d.name));
             // Operations that share a name and a key have the first one's help.
-            let first = crate::ops::operation(d.name).unwrap().declaration();
+            let first = crate::ops::registry::operation(d.name)
+                .unwrap()
+                .declaration();
             assert_eq!((found.keys, found.description), (keys, first.help));
             assert_eq!(keys_of(Action::Operation(d.name)), Some(keys));
         }

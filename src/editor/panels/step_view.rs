@@ -232,7 +232,7 @@ fn list_section(ui: &mut egui::Ui, list: &StepList, requests: &mut MessageWriter
 /// The step window with no run in progress: the operations that step (their declarations
 /// say which), and a way out.
 fn idle_window(ctx: &egui::Context, pending: &mut PendingActions) {
-    let stepping: Vec<String> = crate::ops::OPERATIONS
+    let stepping: Vec<String> = crate::ops::registry::operations()
         .iter()
         .map(|op| op.declaration())
         .filter(|d| d.steps)

@@ -42,7 +42,7 @@ pub fn buttons(ui: &mut egui::Ui, pending: &mut PendingActions, row: &[(Action, 
     });
 }
 
-/// The registered operations ([`crate::ops::OPERATIONS`]) that declare `section` as theirs,
+/// The registered operations ([`crate::ops::registry`]) that declare `section` as theirs,
 /// drawn from their declarations: a button each (its help line on hover), after the fields of
 /// its parameters, whose values the button and the key use. Those without parameters share
 /// one row.
@@ -52,6 +52,7 @@ pub fn registered_operations(
     pending: &mut PendingActions,
     section: Section,
 ) {
+    state.take_up_registered();
     let here = |d: &Declaration| d.section == section;
     // One button for the operations that share a name (collapse an edge or a face): the
     // selection decides which runs.

@@ -29,11 +29,20 @@ pub struct UiState {
     /// Proportional editing: on or off, falloff, radius, distances along edges.
     pub proportional: Proportional,
     /// The panel's values of each registered operation's parameters (their defaults until
-    /// changed), one invocation per operation of [`crate::ops::OPERATIONS`].
+    /// changed), one invocation per operation of [`crate::ops::registry`], in its order.
     pub operations: Vec<Invocation>,
 }
 
 impl UiState {
+    /// Takes up the operations registered since the state was made (or last took them up),
+    /// with their defaults.
+    pub fn take_up_registered(&mut self) {
+        let all = crate::ops::registry::operations();
+        let known = self.operations.len().min(all.len());
+        let new = all[known..].iter().map(|&op| Invocation::with_defaults(op));
+        self.operations.extend(new);
+    }
+
     /// `op` with the panel's values of its parameters.
     pub fn invocation(&self, op: &'static dyn MeshOperation) -> Invocation {
         let d = op.declaration();
@@ -67,7 +76,7 @@ impl Default for UiState {
             check_validity: false,
             uv_view: false,
             proportional: Proportional::default(),
-            operations: crate::ops::OPERATIONS
+            operations: crate::ops::registry::operations()
                 .iter()
                 .map(|&op| Invocation::with_defaults(op))
                 .collect(),

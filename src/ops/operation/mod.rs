@@ -4,7 +4,7 @@
 //! its step's name, its title and help line, its key, its parameters (numbers in a range,
 //! choices of words, values left `auto`) with their defaults, its panel section, whether it may
 //! run as a job, which ids and attributes survive it — and one `apply`. Registered once in
-//! [`crate::ops::OPERATIONS`], it is then a `process` step (`name[:VALUE…]`, listed in the
+//! the process's [`crate::ops::registry`] (from this crate or another), it is then a `process` step (`name[:VALUE…]`, listed in the
 //! usage text), a key in the editor's shortcut table and help overlay, a button with its
 //! parameters in the panel section it declares, a `Mesh.step`
 //! from Python, an undoable edit, and a job on a large mesh: nothing else names it. Blender's
@@ -145,7 +145,8 @@ pub struct EditContext<'a> {
 }
 
 /// A whole-mesh operation that declares itself entirely (see the module doc). Implementors
-/// are unit structs listed in [`crate::ops::OPERATIONS`].
+/// are unit structs, Pappus's own listed in [`crate::ops::registry::BUILT_IN`]; another
+/// crate's join them through [`crate::ops::registry::register`].
 pub trait MeshOperation: Sync + 'static {
     /// What it declares: name, title, help, key, parameters, job, ids, attributes.
     fn declaration(&self) -> &'static Declaration;

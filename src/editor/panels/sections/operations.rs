@@ -100,7 +100,7 @@ mod tests {
             (crate::ops::declaration::Section::WholeMesh, &whole),
             (crate::ops::declaration::Section::Local, &local),
         ] {
-            for op in crate::ops::OPERATIONS {
+            for op in crate::ops::registry::operations() {
                 let d = op.declaration();
                 if d.section == section {
                     assert!(text.contains(d.title), "{} not in {text}", d.title);

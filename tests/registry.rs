@@ -1,0 +1,257 @@
+//! An operation written outside the crate, registered at run time: it becomes a `process` step,
+//! a key in the editor's keymap and its panel, and an entry of the list Python's
+//! `pappus.operations()` reads; one that would share a name and a kind, or a key, with a
+//! registered operation is refused with both named. (Its own test binary: the registry is the
+//! process's, and these tests add to it.)
+
+mod common;
+
+use bevy::prelude::World;
+use pappus::edit::Step;
+use pappus::mesh::ids::MeshId;
+use pappus::mesh::shapes;
+use pappus::ops::Refusal;
+use pappus::ops::declaration::{Declaration, Names, Section};
+use pappus::ops::local::flip_edge;
+use pappus::ops::operation::{Applied, EditContext, MeshOperation, Values};
+use pappus::ops::registry::{self, register};
+
+/// A student's edge rotation: Pappus's flip under another name, on a key of its own.
+struct Spin;
+
+const SPIN: Declaration = Declaration::new("spin")
+    .titled("Spin edge")
+    .described("rotate the selected edge inside its two faces")
+    .on_key("Alt+Y")
+    .naming(Names::Edge)
+    .in_section(Section::Local);
+
+impl MeshOperation for Spin {
+    fn declaration(&self) -> &'static Declaration {
+        &SPIN
+    }
+
+    fn apply(
+        &self,
+        world: &mut World,
+        _: MeshId,
+        values: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        let e = values.edge()?;
+        Applied::on_edge(world, e, |world| {
+            let spun = flip_edge(world, e)?;
+            Ok((format!("spun to {spun}"), spun.into()))
+        })
+    }
+}
+
+/// Another operation that claims `spin` on an edge.
+struct SecondSpin;
+
+const SECOND_SPIN: Declaration = Declaration::new("spin")
+    .titled("Second spin")
+    .naming(Names::Edge);
+
+impl MeshOperation for SecondSpin {
+    fn declaration(&self) -> &'static Declaration {
+        &SECOND_SPIN
+    }
+
+    fn apply(
+        &self,
+        _: &mut World,
+        _: MeshId,
+        _: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        Ok(Applied::whole("nothing".into()))
+    }
+}
+
+/// An operation on flip's key.
+struct OnFlipsKey;
+
+const ON_FLIPS_KEY: Declaration = Declaration::new("twirl")
+    .titled("Twirl")
+    .on_key("Alt+R")
+    .naming(Names::Edge);
+
+impl MeshOperation for OnFlipsKey {
+    fn declaration(&self) -> &'static Declaration {
+        &ON_FLIPS_KEY
+    }
+
+    fn apply(
+        &self,
+        _: &mut World,
+        _: MeshId,
+        _: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        Ok(Applied::whole("nothing".into()))
+    }
+}
+
+/// Registers [`Spin`] once for every test of this binary.
+fn spin_registered() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        register(Spin).expect("spin is free");
+    });
+}
+
+#[test]
+fn an_outside_operation_is_a_step_that_runs_as_the_one_it_reproduces() {
+    spin_registered();
+    assert!(pappus::edit::step_syntax().contains("spin:A,B"));
+    let names: Vec<&str> = registry::operations()
+        .iter()
+        .map(|op| op.declaration().name)
+        .collect();
+    assert_eq!(names.last(), Some(&"spin"));
+    // `spin:0,1` on an icosphere gives the faces `flip:0,1` gives.
+    let soup = shapes::icosphere(2);
+    let faces_after = |step: &str| {
+        let (mut world, built) = common::build(&soup);
+        let step = Step::parse(step).unwrap();
+        step.run(&mut world, built.mesh, &built.input_vertices)
+            .unwrap();
+        pappus::mesh::validate(&world, built.mesh).unwrap();
+        common::canonical(&pappus::mesh::to_soup(&world, built.mesh))
+    };
+    let (a, b) = {
+        let f = soup.faces().next().unwrap();
+        (f[0], f[1])
+    };
+    let spun = faces_after(&format!("spin:{a},{b}"));
+    assert_eq!(spun, faces_after(&format!("flip:{a},{b}")));
+    assert_ne!(spun, common::canonical(&soup));
+}
+
+#[test]
+fn a_second_operation_with_the_name_or_the_key_is_refused_naming_both() {
+    spin_registered();
+    let before = registry::operations().len();
+    let clash = register(SecondSpin).err().expect("refused").to_string();
+    assert!(
+        clash.contains("Second spin") && clash.contains("Spin edge"),
+        "{clash}"
+    );
+    let clash = register(OnFlipsKey).err().expect("refused").to_string();
+    assert!(
+        clash.contains("Twirl") && clash.contains("\"Flip\"") && clash.contains("Alt+R"),
+        "{clash}"
+    );
+    assert_eq!(registry::operations().len(), before);
+}
+
+#[cfg(feature = "editor")]
+mod in_the_editor {
+    use super::*;
+    use bevy::input::ButtonState;
+    use bevy::input::keyboard::{Key, KeyboardInput, NativeKey};
+    use bevy::prelude::{App, Entity, KeyCode};
+    use pappus::editor::AddOperation;
+    use pappus::editor::input::shortcuts::{Action, shortcuts};
+    use pappus::editor::session::requests::Request;
+    use pappus::editor::session::selection::ActiveMesh;
+    use pappus::mesh::ids::ElementId;
+
+    fn key(app: &mut App, key_code: KeyCode, state: ButtonState) {
+        app.world_mut().write_message(KeyboardInput {
+            key_code,
+            logical_key: Key::Unidentified(NativeKey::Unidentified),
+            state,
+            text: None,
+            repeat: false,
+            window: Entity::PLACEHOLDER,
+        });
+        app.update();
+    }
+
+    #[test]
+    fn an_added_operation_has_its_key_and_runs_on_the_selection() {
+        let mut app = common::headless_editor();
+        app.add_operation(Mirror);
+        assert!(
+            shortcuts().any(|s| s.action == Action::Operation("mirror-edge") && s.keys == "Alt+J")
+        );
+        common::send(&mut app, Request::Open("shape:icosphere".into()));
+        let mesh = app.world().resource::<ActiveMesh>().0.unwrap();
+        let members = pappus::mesh::MeshMembers::collect(app.world(), mesh);
+        let e = members.edges[0];
+        common::send(&mut app, Request::Select(Some(ElementId::Edge(e))));
+        key(&mut app, KeyCode::AltLeft, ButtonState::Pressed);
+        key(&mut app, KeyCode::KeyJ, ButtonState::Pressed);
+        key(&mut app, KeyCode::KeyJ, ButtonState::Released);
+        key(&mut app, KeyCode::AltLeft, ButtonState::Released);
+        let outcome = common::last_outcome(&app);
+        assert!(outcome.request.starts_with("mirror edge"), "{outcome:?}");
+        assert!(
+            outcome.result.as_ref().unwrap().starts_with("mirrored to"),
+            "{outcome:?}"
+        );
+    }
+
+    #[test]
+    #[should_panic(expected = "G")]
+    fn an_operation_on_a_key_of_the_editor_is_refused_at_start() {
+        let mut app = common::headless_editor();
+        app.add_operation(OnGrab);
+    }
+
+    /// Flip again, under a name and on a key of its own (the other tests of this binary may
+    /// have registered [`Spin`] already).
+    struct Mirror;
+
+    const MIRROR: Declaration = Declaration::new("mirror-edge")
+        .titled("Mirror edge")
+        .on_key("Alt+J")
+        .naming(Names::Edge)
+        .in_section(Section::Local);
+
+    impl MeshOperation for Mirror {
+        fn declaration(&self) -> &'static Declaration {
+            &MIRROR
+        }
+
+        fn apply(
+            &self,
+            world: &mut World,
+            _: MeshId,
+            values: Values<'_>,
+            _: &mut EditContext<'_>,
+        ) -> Result<Applied, Refusal> {
+            let e = values.edge()?;
+            Applied::on_edge(world, e, |world| {
+                let e = flip_edge(world, e)?;
+                Ok((format!("mirrored to {e}"), e.into()))
+            })
+        }
+    }
+
+    /// An operation on the editor's own grab key.
+    struct OnGrab;
+
+    const ON_GRAB: Declaration = Declaration::new("grab-something")
+        .titled("Grab something")
+        .on_key("G")
+        .naming(Names::Mesh);
+
+    impl MeshOperation for OnGrab {
+        fn declaration(&self) -> &'static Declaration {
+            &ON_GRAB
+        }
+
+        fn apply(
+            &self,
+            _: &mut World,
+            _: MeshId,
+            _: Values<'_>,
+            _: &mut EditContext<'_>,
+        ) -> Result<Applied, Refusal> {
+            Ok(Applied::whole("nothing".into()))
+        }
+    }
+}
