@@ -1,7 +1,7 @@
 //! A checked low-level edit's commit on a bunny-sized mesh: a flip written by hand with
-//! `RawEdit` and committed (which checks the whole mesh with `validate`) against the library's
-//! `flip_edge` (which plans, then applies, checking only the edge's neighbourhood), and
-//! `validate` alone. Run: `cargo bench --no-default-features --bench raw_edit` (the Stanford
+//! `RawEdit` and committed (which checks `validate`'s rules on what the edit touched) against
+//! the library's `flip_edge` (which plans, then applies, checking only the edge's
+//! neighbourhood), and the whole mesh's `validate` alone. Run: `cargo bench --no-default-features --bench raw_edit` (the Stanford
 //! bunny from ../shared/models when present, else an icosphere of 81 920 faces).
 
 use bevy::prelude::World;

@@ -238,3 +238,109 @@ fn the_counting_rules_are_caught() {
     );
     assert_eq!(snapshot(&mut world, mesh), before);
 }
+
+/// A small deterministic generator (xorshift64*).
+struct Rng(u64);
+
+impl Rng {
+    fn below(&mut self, n: usize) -> usize {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) % n.max(1) as u64) as usize
+    }
+}
+
+/// Rewires the elements around a random edge at random, a few links at a time, and commits:
+/// the commit's check of what the edit touched agrees with the whole mesh's check every time
+/// (valid edits stand and leave a valid mesh; invalid ones leave the world as it was).
+#[test]
+fn the_edits_check_agrees_with_the_whole_meshs_on_random_rewiring() {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let (mut valid, mut invalid) = (0, 0);
+    for soup in [
+        shapes::icosphere(1),
+        shapes::grid(4, 4),
+        shapes::quad_grid(3, 3),
+    ] {
+        let (mut world, built) = common::build(&soup);
+        let mesh = built.mesh;
+        for _ in 0..400 {
+            let members = MeshMembers::collect(&world, mesh);
+            let e = members.edges[rng.below(members.edges.len())];
+            let m = MeshRef::new(&world);
+            let h0 = m.edge_halfedge(e);
+            let mut hs: Vec<_> = [h0, m.twin(h0)]
+                .into_iter()
+                .flat_map(|h| {
+                    let mut around = vec![h, m.next(h), m.prev(h)];
+                    around.extend([m.twin(m.next(h)), m.twin(m.prev(h))]);
+                    around
+                })
+                .collect();
+            hs.dedup();
+            let vs: Vec<_> = hs.iter().map(|&h| m.to_vertex(h)).collect();
+            let es: Vec<_> = hs.iter().map(|&h| m.edge(h)).collect();
+            let fs: Vec<_> = hs.iter().filter_map(|&h| m.face(h)).collect();
+            let interior = !m.is_boundary_edge(e);
+            let mut removed = bevy::ecs::entity::EntityHashSet::default();
+            let mut edit = RawEdit::new(&mut world, mesh);
+            for i in 0..1 + rng.below(3) {
+                let h = hs[rng.below(hs.len())];
+                let g = hs[rng.below(hs.len())];
+                let v = vs[rng.below(vs.len())];
+                let ed = es[rng.below(es.len())];
+                let f = fs.get(rng.below(fs.len().max(1))).copied();
+                // Removed elements are no setter's argument: their refusals are ignored.
+                let _ = match rng.below(11) {
+                    0 => edit.set_next(h, g),
+                    1 => edit.set_twin(h, g),
+                    2 => edit.set_to_vertex(h, v),
+                    3 => edit.set_edge(h, ed),
+                    4 => edit.set_face(h, f.filter(|_| rng.below(3) > 0)),
+                    5 => edit.set_vertex_halfedge(v, h),
+                    6 => edit.set_edge_halfedge(ed, h),
+                    7 => f.map_or(Ok(()), |f| edit.set_face_halfedge(f, h)),
+                    8 => {
+                        let x: ElementId = match rng.below(4) {
+                            0 => h.into(),
+                            1 => v.into(),
+                            2 => ed.into(),
+                            _ => f.map_or(ed.into(), Into::into),
+                        };
+                        let done = edit.remove(x);
+                        if done.is_ok() {
+                            removed.insert(x.entity());
+                        }
+                        done
+                    }
+                    // A flip by hand, on the mesh as it was (it reads the links it rewires).
+                    9 if i == 0 && interior => hand_edits::flip_by_hand(&mut edit, e),
+                    // Setting a link to what it is: valid.
+                    _ => {
+                        let next = MeshRef::new(edit.world()).try_halfedge(h).map(|x| x.next);
+                        next.map_or(Ok(()), |n| edit.set_next(h, n))
+                    }
+                };
+            }
+            let whole = pappus::mesh::validate_without(edit.world(), mesh, &removed);
+            let committed = edit.commit();
+            assert_eq!(
+                committed.is_ok(),
+                whole.is_ok(),
+                "{committed:?} / {whole:?}"
+            );
+            match committed {
+                Ok(()) => {
+                    pappus::mesh::validate(&world, mesh).unwrap();
+                    valid += 1;
+                }
+                Err(_) => invalid += 1,
+            }
+        }
+    }
+    assert!(
+        valid > 100 && invalid > 100,
+        "{valid} valid, {invalid} invalid"
+    );
+}

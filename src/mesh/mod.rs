@@ -38,6 +38,7 @@ pub mod tables;
 pub mod topology;
 pub mod untangle;
 pub mod validate;
+pub mod validate_edit;
 
 pub use build::{
     BuildError, BuiltMesh, PreparedMesh, build_mesh, despawn_mesh, prepare_mesh, soup_of_tables,

@@ -5,14 +5,16 @@
 //! halfedge structure (Scotty3D's `Halfedge_Mesh`, CMU 15-462; OpenMesh's low-level setters).
 //! Halfway through such an edit the mesh is invalid by necessity, so no check can run per
 //! setter: [`RawEdit`] lets every link be set freely, journals the value each setter overwrote,
-//! and checks the whole structure once, at [`RawEdit::commit`], with the rules and messages of
-//! [`validate`](super::validate::validate). A failed check undoes the journal in reverse, so the world holds exactly the
-//! components it held before (compared element by element in the tests). A snapshot could not
-//! do this: the table extraction assumes a valid mesh, and mid-edit the mesh is not one.
+//! and checks the structure once, at [`RawEdit::commit`], with the rules and messages of
+//! [`validate`](super::validate::validate), on what the edit touched ([`validate_edit`]: the
+//! mesh was valid when the edit opened, as every mesh Pappus holds is). A failed check undoes
+//! the journal in reverse, so the world holds exactly the components it held before (compared
+//! element by element in the tests). A snapshot could not do this: the table extraction
+//! assumes a valid mesh, and mid-edit the mesh is not one.
 //!
 //! Elements made here start unlinked (their links name no entity, which the check reports as a
 //! dangling link until they are set). A removed element is no setter's argument from then on,
-//! and the commit checks the mesh as though it were gone ([`validate_without`]: a link still
+//! and the commit checks the mesh as though it were gone ([`validate_without`](super::validate::validate_without): a link still
 //! naming it is dangling) before it despawns it; until then no component moves, so a rollback
 //! leaves even the world's storage order as it was. An edit dropped without a commit rolls
 //! back, so an early return or a panic never leaves a half-rewired mesh.
@@ -28,7 +30,8 @@ use thiserror::Error;
 
 use super::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
 use super::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
-use super::validate::{Invalid, validate_without};
+use super::validate::Invalid;
+use super::validate_edit::{Before, validate_edit};
 use bevy::ecs::entity::EntityHashSet;
 
 /// Why a raw edit refused a setter or its commit.
@@ -75,6 +78,35 @@ impl Journal {
     /// The mesh the edit is of.
     pub fn mesh(&self) -> MeshId {
         self.mesh
+    }
+
+    /// What the edit changed, as it was before: each element's first journalled value, and
+    /// the elements made.
+    fn before(&self) -> Before {
+        let mut before = Before::default();
+        for undo in &self.undo {
+            match *undo {
+                Undo::Halfedge(h, x) => {
+                    before.halfedges.entry(h.0).or_insert(x);
+                }
+                Undo::Vertex(v, x) => {
+                    before.vertices.entry(v.0).or_insert(x);
+                }
+                Undo::Position(v, _) => {
+                    before.moved.insert(v.0);
+                }
+                Undo::Edge(e, x) => {
+                    before.edges.entry(e.0).or_insert(x);
+                }
+                Undo::Face(f, x) => {
+                    before.faces.entry(f.0).or_insert(x);
+                }
+                Undo::Spawned(e) => {
+                    before.made.insert(e);
+                }
+            }
+        }
+        before
     }
 }
 
@@ -361,16 +393,30 @@ impl<'w> RawEdit<'w> {
         Ok(())
     }
 
-    /// Checks the mesh ([`validate_without`], `validate`'s rules without the removed elements): valid, the removed elements are despawned and
-    /// the edit stands; else it is rolled back and the first broken rule returned, naming its
-    /// element.
+    /// Checks the mesh with `validate`'s rules, as though the removed elements were gone, on
+    /// what the edit touched ([`validate_edit`]: the mesh was valid when the edit opened, so
+    /// the check costs what the edit changed, not the mesh's size): valid, the removed
+    /// elements are despawned and the edit stands; else it is rolled back and a broken rule
+    /// returned, naming its element. Debug builds check the whole mesh too
+    /// ([`validate_without`](super::validate::validate_without)) and assert that the two
+    /// agree.
     ///
     /// # Errors
     /// [`RawEditError::Invalid`]: the mesh is exactly as before the edit.
     pub fn commit(mut self) -> Result<(), RawEditError> {
         self.closed = true;
-        if let Err(invalid) = validate_without(self.world, self.journal.mesh, &self.journal.removed)
+        let (world, journal) = (&*self.world, &self.journal);
+        let verdict = validate_edit(world, journal.mesh, &journal.removed, &journal.before());
+        #[cfg(debug_assertions)]
         {
+            let whole = super::validate::validate_without(world, journal.mesh, &journal.removed);
+            assert_eq!(
+                verdict.is_ok(),
+                whole.is_ok(),
+                "the edit's check ({verdict:?}) and the whole mesh's ({whole:?}) disagree"
+            );
+        }
+        if let Err(invalid) = verdict {
             self.undo();
             return Err(invalid.into());
         }

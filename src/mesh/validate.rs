@@ -23,7 +23,7 @@ use bevy::prelude::{Entity, World};
 use std::fmt;
 
 use super::elements::InMesh;
-use super::ids::{ElementId, HalfedgeId, MeshId};
+use super::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
 use super::members::MeshMembers;
 use super::topology::MeshRef;
 
@@ -151,17 +151,13 @@ pub fn validate_without(
         members.edges.retain(|e| !removed.contains(&e.0));
         members.faces.retain(|f| !removed.contains(&f.0));
     }
-    Checker {
-        m: MeshRef::new(world),
-        world,
-        mesh,
-        removed,
-        limit: members.halfedges.len() + 1,
-    }
-    .run(&members)
+    Checker::new(world, mesh, removed, members.halfedges.len() + 1).run(&members)
 }
 
-struct Checker<'w> {
+/// The rules, element by element: the whole check ([`validate`]) runs them on every element
+/// with counts taken over the mesh; an edit's check (`super::validate_edit`) on the elements
+/// it touched, with counts kept by difference.
+pub(super) struct Checker<'w> {
     m: MeshRef<'w>,
     world: &'w World,
     mesh: MeshId,
@@ -171,14 +167,35 @@ struct Checker<'w> {
     limit: usize,
 }
 
-fn fail<T>(element: impl Into<ElementId>, rule: Rule) -> Result<T, Invalid> {
+pub(super) fn fail<T>(element: impl Into<ElementId>, rule: Rule) -> Result<T, Invalid> {
     Err(Invalid {
         element: element.into(),
         rule,
     })
 }
 
-impl Checker<'_> {
+impl<'w> Checker<'w> {
+    /// A checker of `mesh` that takes `removed` as gone and walks no loop longer than `limit`.
+    pub(super) fn new(
+        world: &'w World,
+        mesh: MeshId,
+        removed: &'w EntityHashSet,
+        limit: usize,
+    ) -> Self {
+        Checker {
+            m: MeshRef::new(world),
+            world,
+            mesh,
+            removed,
+            limit,
+        }
+    }
+
+    /// The longest loop it walks.
+    pub(super) fn limit(&self) -> usize {
+        self.limit
+    }
+
     fn run(&self, members: &MeshMembers) -> Result<(), Invalid> {
         if members.faces.is_empty() {
             return fail(self.mesh, Rule::Empty);
@@ -202,7 +219,7 @@ impl Checker<'_> {
             && !self.removed.contains(&e)
     }
 
-    fn check_links(&self, h: HalfedgeId) -> Result<(), Invalid> {
+    pub(super) fn check_links(&self, h: HalfedgeId) -> Result<(), Invalid> {
         let Some(x) = self.m.try_halfedge(h) else {
             return fail(h, Rule::DanglingLink("self"));
         };
@@ -227,7 +244,7 @@ impl Checker<'_> {
     }
 
     /// Local halfedge rules; all links are known to be live.
-    fn check_halfedge(&self, h: HalfedgeId) -> Result<(), Invalid> {
+    pub(super) fn check_halfedge(&self, h: HalfedgeId) -> Result<(), Invalid> {
         let m = &self.m;
         let x = m.halfedge(h);
         if x.twin == h || m.twin(x.twin) != h {
@@ -254,27 +271,33 @@ impl Checker<'_> {
             *on_edge.entry(self.m.edge(h).0).or_default() += 1;
         }
         for &e in &members.edges {
-            let Some(x) = self.m.try_edge(e) else {
-                return fail(e, Rule::DanglingLink("self"));
-            };
-            if self.m.try_halfedge(x.halfedge).is_none() || !self.in_mesh(x.halfedge.0) {
-                return fail(e, Rule::DanglingLink("halfedge"));
-            }
-            if self.m.edge(x.halfedge) != e {
-                return fail(e, Rule::EdgeHalfedgeElsewhere);
-            }
-            if on_edge.get(&e.0).copied() != Some(2) {
-                return fail(e, Rule::EdgeNotTwoHalfedges);
-            }
-            if self.m.is_boundary(x.halfedge) && self.m.is_boundary(self.m.twin(x.halfedge)) {
-                return fail(e, Rule::EdgeWithoutFace);
-            }
+            self.check_edge(e, on_edge.get(&e.0).copied().unwrap_or(0))?;
         }
         if on_edge.len() != members.edges.len() {
             // Some halfedge names an edge that is not listed in this mesh: caught by
             // check_links already, so this is unreachable on a checked mesh.
             let h = members.halfedges[0];
             return fail(h, Rule::DanglingLink("edge"));
+        }
+        Ok(())
+    }
+
+    /// Edge `e`'s rules, `on` halfedges naming it.
+    pub(super) fn check_edge(&self, e: EdgeId, on: u32) -> Result<(), Invalid> {
+        let Some(x) = self.m.try_edge(e) else {
+            return fail(e, Rule::DanglingLink("self"));
+        };
+        if self.m.try_halfedge(x.halfedge).is_none() || !self.in_mesh(x.halfedge.0) {
+            return fail(e, Rule::DanglingLink("halfedge"));
+        }
+        if self.m.edge(x.halfedge) != e {
+            return fail(e, Rule::EdgeHalfedgeElsewhere);
+        }
+        if on != 2 {
+            return fail(e, Rule::EdgeNotTwoHalfedges);
+        }
+        if self.m.is_boundary(x.halfedge) && self.m.is_boundary(self.m.twin(x.halfedge)) {
+            return fail(e, Rule::EdgeWithoutFace);
         }
         Ok(())
     }
@@ -288,37 +311,48 @@ impl Checker<'_> {
         }
         let mut seen = Vec::new();
         for &f in &members.faces {
-            let Some(x) = self.m.try_face(f) else {
-                return fail(f, Rule::DanglingLink("self"));
-            };
-            if self.m.try_halfedge(x.halfedge).is_none() || !self.in_mesh(x.halfedge.0) {
-                return fail(f, Rule::DanglingLink("halfedge"));
+            self.check_face(f, claimed.get(&f.0).copied().unwrap_or(0), &mut seen)?;
+        }
+        Ok(())
+    }
+
+    /// Face `f`'s rules, `claimed` halfedges naming it; `seen` is scratch space.
+    pub(super) fn check_face(
+        &self,
+        f: FaceId,
+        claimed: u32,
+        seen: &mut Vec<VertexId>,
+    ) -> Result<(), Invalid> {
+        let Some(x) = self.m.try_face(f) else {
+            return fail(f, Rule::DanglingLink("self"));
+        };
+        if self.m.try_halfedge(x.halfedge).is_none() || !self.in_mesh(x.halfedge.0) {
+            return fail(f, Rule::DanglingLink("halfedge"));
+        }
+        if self.m.face(x.halfedge) != Some(f) {
+            return fail(f, Rule::FaceHalfedgeElsewhere);
+        }
+        seen.clear();
+        let mut h = x.halfedge;
+        loop {
+            seen.push(self.m.to_vertex(h));
+            h = self.m.next(h);
+            if h == x.halfedge {
+                break;
             }
-            if self.m.face(x.halfedge) != Some(f) {
-                return fail(f, Rule::FaceHalfedgeElsewhere);
+            if seen.len() > self.limit {
+                return fail(f, Rule::FaceLoopOpen);
             }
-            seen.clear();
-            let mut h = x.halfedge;
-            loop {
-                seen.push(self.m.to_vertex(h));
-                h = self.m.next(h);
-                if h == x.halfedge {
-                    break;
-                }
-                if seen.len() > self.limit {
-                    return fail(f, Rule::FaceLoopOpen);
-                }
-            }
-            if seen.len() < 3 {
-                return fail(f, Rule::FaceTooSmall);
-            }
-            if claimed.get(&f.0).copied() != Some(seen.len() as u32) {
-                return fail(f, Rule::FaceLoopIncomplete);
-            }
-            seen.sort_unstable();
-            if seen.windows(2).any(|w| w[0] == w[1]) {
-                return fail(f, Rule::FaceNotSimple);
-            }
+        }
+        if seen.len() < 3 {
+            return fail(f, Rule::FaceTooSmall);
+        }
+        if claimed != seen.len() as u32 {
+            return fail(f, Rule::FaceLoopIncomplete);
+        }
+        seen.sort_unstable();
+        if seen.windows(2).any(|w| w[0] == w[1]) {
+            return fail(f, Rule::FaceNotSimple);
         }
         Ok(())
     }
@@ -330,75 +364,96 @@ impl Checker<'_> {
         }
         let mut neighbours = Vec::new();
         for &v in &members.vertices {
-            match self.m.try_position(v) {
-                Some(p) if p.is_finite() => {}
-                _ => return fail(v, Rule::NonFinitePosition),
+            self.check_vertex(v, leaving.get(&v.0).copied().unwrap_or(0), &mut neighbours)?;
+        }
+        Ok(())
+    }
+
+    /// Vertex `v`'s rules, `leaving` halfedges starting at it; `neighbours` is scratch space.
+    pub(super) fn check_vertex(
+        &self,
+        v: VertexId,
+        leaving: u32,
+        neighbours: &mut Vec<VertexId>,
+    ) -> Result<(), Invalid> {
+        match self.m.try_position(v) {
+            Some(p) if p.is_finite() => {}
+            _ => return fail(v, Rule::NonFinitePosition),
+        }
+        let Some(x) = self.m.try_vertex(v) else {
+            return fail(v, Rule::DanglingLink("self"));
+        };
+        if self.m.try_halfedge(x.halfedge).is_none() || !self.in_mesh(x.halfedge.0) {
+            return fail(v, Rule::DanglingLink("halfedge"));
+        }
+        if self.m.from_vertex(x.halfedge) != v {
+            return fail(v, Rule::VertexHalfedgeElsewhere);
+        }
+        neighbours.clear();
+        let mut boundary = 0;
+        let mut h = x.halfedge;
+        loop {
+            if self.m.from_vertex(h) != v {
+                return fail(v, Rule::VertexFanOpen);
             }
-            let Some(x) = self.m.try_vertex(v) else {
-                return fail(v, Rule::DanglingLink("self"));
-            };
-            if self.m.try_halfedge(x.halfedge).is_none() || !self.in_mesh(x.halfedge.0) {
-                return fail(v, Rule::DanglingLink("halfedge"));
+            boundary += usize::from(self.m.is_boundary(h));
+            neighbours.push(self.m.to_vertex(h));
+            h = self.m.ccw_rotated(h);
+            if h == x.halfedge {
+                break;
             }
-            if self.m.from_vertex(x.halfedge) != v {
-                return fail(v, Rule::VertexHalfedgeElsewhere);
+            if neighbours.len() > self.limit {
+                return fail(v, Rule::VertexFanOpen);
             }
-            neighbours.clear();
-            let mut boundary = 0;
-            let mut h = x.halfedge;
-            loop {
-                if self.m.from_vertex(h) != v {
-                    return fail(v, Rule::VertexFanOpen);
-                }
-                boundary += usize::from(self.m.is_boundary(h));
-                neighbours.push(self.m.to_vertex(h));
-                h = self.m.ccw_rotated(h);
-                if h == x.halfedge {
-                    break;
-                }
-                if neighbours.len() > self.limit {
-                    return fail(v, Rule::VertexFanOpen);
-                }
-            }
-            if leaving.get(&v.0).copied() != Some(neighbours.len() as u32) {
-                return fail(v, Rule::NonManifoldVertex);
-            }
-            if boundary > 1 {
-                return fail(v, Rule::PinchedBoundary);
-            }
-            if boundary == 1 && !self.m.is_boundary(x.halfedge) {
-                return fail(v, Rule::BoundaryVertexHalfedge);
-            }
-            neighbours.sort_unstable();
-            if neighbours.windows(2).any(|w| w[0] == w[1]) {
-                return fail(v, Rule::DuplicateEdge);
-            }
+        }
+        if leaving != neighbours.len() as u32 {
+            return fail(v, Rule::NonManifoldVertex);
+        }
+        if boundary > 1 {
+            return fail(v, Rule::PinchedBoundary);
+        }
+        if boundary == 1 && !self.m.is_boundary(x.halfedge) {
+            return fail(v, Rule::BoundaryVertexHalfedge);
+        }
+        neighbours.sort_unstable();
+        if neighbours.windows(2).any(|w| w[0] == w[1]) {
+            return fail(v, Rule::DuplicateEdge);
         }
         Ok(())
     }
 
     fn check_boundary_loops(&self, members: &MeshMembers) -> Result<(), Invalid> {
-        let mut visited: bevy::ecs::entity::EntityHashSet = Default::default();
+        let mut visited = EntityHashSet::default();
         for &start in &members.halfedges {
-            if !self.m.is_boundary(start) || visited.contains(&start.0) {
-                continue;
+            if self.m.is_boundary(start) && !visited.contains(&start.0) {
+                self.check_boundary_loop(start, &mut visited)?;
             }
-            let mut h = start;
-            let mut len = 0;
-            loop {
-                visited.insert(h.0);
-                len += 1;
-                h = self.m.next(h);
-                if h == start {
-                    break;
-                }
-                if len > self.limit {
-                    return fail(start, Rule::BoundaryLoopBroken);
-                }
+        }
+        Ok(())
+    }
+
+    /// The boundary loop through `start` closes and has at least 3 sides; its halfedges join
+    /// `visited`.
+    pub(super) fn check_boundary_loop(
+        &self,
+        start: HalfedgeId,
+        visited: &mut EntityHashSet,
+    ) -> Result<(), Invalid> {
+        let mut h = start;
+        let mut len = 0;
+        loop {
+            visited.insert(h.0);
+            len += 1;
+            h = self.m.next(h);
+            if h == start {
+                break;
             }
-            if len < 3 {
+            if len > self.limit {
                 return fail(start, Rule::BoundaryLoopBroken);
             }
+        }
+        if len < 3 {
+            return fail(start, Rule::BoundaryLoopBroken);
         }
         Ok(())
     }
