@@ -1,11 +1,197 @@
-//! The layering rules of DESIGN §1, checked on the source: no two modules of `src/editor`, of
-//! each of its rooms, of `src/mesh` or of `src/ops` import each other, directly or round a
-//! longer cycle; no room imports the editor's root back; no folder of the editor holds more
+//! The layering rules of DESIGN §1, checked on the source: the crate's top-level modules form
+//! the declared layers ([`LAYERS`]: mesh → io → ops → edit → the command line and the editor)
+//! and none names a module of its own layer or one above it; no two modules of `src/cli`,
+//! `src/editor`, each of its rooms, `src/io`, `src/mesh`, `src/ops` or `src/ops/local` import
+//! each other, directly or round a longer cycle; no room imports the editor's root back; no folder of the editor holds more
 //! than 12 files, nor any of its files more than 600 lines; no function outside the tests runs
 //! over 120 lines; the README is at most 400 lines.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
+
+/// The crate's top-level modules, bottom layer first. A module may name (`crate::NAME`) the
+/// modules of the layers below its own and no other: the core (mesh, files, operations, the
+/// edit layer) never reaches up to the command line or the editor, and those two never reach
+/// each other. The Python package, a crate of its own, stands above them all.
+const LAYERS: &[&[&str]] = &[
+    &["process_memory", "colormap"],
+    &["memory_budget"],
+    &["mesh"],
+    &["io"],
+    &["ops"],
+    &["edit"],
+    &["source", "recovery", "fuzzing"],
+    &["cli", "editor"],
+];
+
+/// `text` without its test modules (`#[cfg(test)]` before `mod NAME {`, to the brace that
+/// closes it at the same indentation) and without comments; other lines keep their places.
+fn without_tests(text: &str) -> Vec<String> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut kept = Vec::with_capacity(lines.len());
+    let mut i = 0;
+    while i < lines.len() {
+        if lines[i].trim() == "#[cfg(test)]"
+            && let Some(next) = lines.get(i + 1)
+        {
+            let code = next.trim_start();
+            let indent = &next[..next.len() - code.len()];
+            let opens = code
+                .trim_start_matches("pub ")
+                .trim_start_matches("pub(crate) ")
+                .starts_with("mod ")
+                && code.ends_with('{');
+            if opens {
+                let close = (i + 2..lines.len())
+                    .find(|&j| lines[j] == format!("{indent}}}"))
+                    .unwrap_or(lines.len() - 1);
+                kept.extend((i..=close).map(|_| String::new()));
+                i = close + 1;
+                continue;
+            }
+        }
+        kept.push(lines[i].split("//").next().unwrap_or("").to_string());
+        i += 1;
+    }
+    kept
+}
+
+/// The files declared test-only by their parent (`#[cfg(test)] mod NAME;`), as the paths of
+/// their modules under `src` (`ops/local/testkit`).
+fn test_only_modules(files: &[(String, String)]) -> BTreeSet<String> {
+    let mut test_only = BTreeSet::new();
+    for (module, text) in files {
+        let lines: Vec<&str> = text.lines().map(str::trim).collect();
+        for pair in lines.windows(2) {
+            let declared = pair[1]
+                .trim_start_matches("pub ")
+                .trim_start_matches("pub(crate) ")
+                .strip_prefix("mod ")
+                .and_then(|rest| rest.strip_suffix(';'));
+            if pair[0] == "#[cfg(test)]"
+                && let Some(name) = declared
+            {
+                test_only.insert(match module.as_str() {
+                    "" => name.to_string(),
+                    parent => format!("{parent}/{name}"),
+                });
+            }
+        }
+    }
+    test_only
+}
+
+/// Every `.rs` file under `src`, as (its module's path, `ops/local/flip`; `ops` for
+/// `ops/mod.rs` and `ops.rs`; empty for `lib.rs` and `main.rs`), with its text.
+fn source_files() -> Vec<(String, String)> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    let mut stack = vec![root.clone()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                let rel = path.strip_prefix(&root).unwrap().with_extension("");
+                let mut module = rel.to_string_lossy().replace('\\', "/");
+                for tail in ["/mod", "lib", "main"] {
+                    if module.ends_with(tail) && (tail.starts_with('/') || module == tail) {
+                        module.truncate(module.len() - tail.len());
+                    }
+                }
+                files.push((module, std::fs::read_to_string(&path).unwrap()));
+            }
+        }
+    }
+    files.sort();
+    files
+}
+
+/// Where a file of top-level module `from` names `crate::NAME` for a top-level module of its
+/// own layer or one above: `"from → NAME: line"` each.
+fn layer_violations(files: &[(String, String)]) -> Vec<String> {
+    let layer_of = |name: &str| LAYERS.iter().position(|layer| layer.contains(&name));
+    let test_only = test_only_modules(files);
+    let mut violations = Vec::new();
+    for (module, text) in files {
+        let from = module.split('/').next().unwrap_or("");
+        let tested_alone = test_only
+            .iter()
+            .any(|t| module == t || module.starts_with(&format!("{t}/")));
+        if from.is_empty() || tested_alone {
+            continue;
+        }
+        let Some(own) = layer_of(from) else {
+            violations.push(format!("{from}: in no layer of LAYERS"));
+            continue;
+        };
+        for line in without_tests(text) {
+            for (i, _) in line.match_indices("crate::") {
+                let name: String = line[i + "crate::".len()..]
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
+                let upward = layer_of(&name).is_some_and(|to| name != from && to >= own);
+                if upward {
+                    violations.push(format!("{from} → {name}: {}", line.trim()));
+                }
+            }
+        }
+    }
+    violations
+}
+
+#[test]
+fn no_module_names_its_own_layer_or_one_above() {
+    let files = source_files();
+    let tops: BTreeSet<&str> = files
+        .iter()
+        .filter_map(|(m, _)| m.split('/').next())
+        .filter(|m| !m.is_empty())
+        .collect();
+    for top in tops {
+        assert!(
+            LAYERS.iter().any(|layer| layer.contains(&top)),
+            "src/{top} is in no layer: put it in LAYERS"
+        );
+    }
+    let violations = layer_violations(&files);
+    assert!(
+        violations.is_empty(),
+        "imports against the layers:\n{}",
+        violations.join("\n")
+    );
+}
+
+#[test]
+fn the_layer_check_finds_a_planted_upward_import() {
+    let file = |module: &str, text: &str| (module.to_string(), text.to_string());
+    let files = vec![
+        // Down a layer: fine.
+        file("ops/flip", "use crate::mesh::MeshRef;\n"),
+        // Up: the core naming the editor, a peer naming a peer.
+        file("mesh/topology", "use crate::editor::session::Selection;\n"),
+        file("cli/process", "let x = crate::editor::run(None);\n"),
+        // In a test module, or a test-only file: not the crate's layering.
+        file(
+            "io/off",
+            "#[cfg(test)]\nmod tests {\n    use crate::edit::Edit;\n}\n",
+        ),
+        file("ops/local", "#[cfg(test)]\npub(crate) mod testkit;\n"),
+        file("ops/local/testkit", "use crate::edit::Edit;\n"),
+        // In a comment: not an import.
+        file("io/obj", "// see crate::editor::input\n"),
+    ];
+    let found = layer_violations(&files);
+    assert_eq!(
+        found,
+        vec![
+            "mesh → editor: use crate::editor::session::Selection;".to_string(),
+            "cli → editor: let x = crate::editor::run(None);".to_string(),
+        ]
+    );
+}
 
 /// The sibling modules of a folder and, for each, the siblings its files name (through
 /// `super::NAME` or `crate::FOLDER::NAME`). A sub-folder counts as one module.
@@ -127,7 +313,7 @@ fn editor_rooms() -> Vec<String> {
 fn no_module_pair_imports_each_other() {
     let rooms = editor_rooms();
     assert!(rooms.len() >= 5, "the editor has rooms: {rooms:?}");
-    let folders = ["editor", "mesh", "ops", "ops/local"]
+    let folders = ["cli", "editor", "io", "mesh", "ops", "ops/local"]
         .into_iter()
         .map(String::from)
         .chain(rooms);
@@ -238,26 +424,41 @@ fn the_readme_is_at_most_400_lines() {
     assert!(lines <= 400, "the README has {lines} lines");
 }
 
-/// The functions of a Rust source over `limit` lines (signature to closing brace), before its
-/// `#[cfg(test)]` module: as `(name, first line, lines)`.
+/// What follows a function's visibility and qualifiers (`pub(in crate::x) const unsafe
+/// extern "C" fn f` → `fn f`).
+fn past_qualifiers(code: &str) -> &str {
+    let mut rest = code;
+    if let Some(after) = rest.strip_prefix("pub") {
+        rest = match after.strip_prefix('(') {
+            Some(inner) => inner.split_once(')').map_or(after, |(_, r)| r),
+            None => after,
+        }
+        .trim_start();
+    }
+    loop {
+        let before = rest;
+        for qualifier in ["const ", "async ", "unsafe ", "extern \"C\" ", "extern "] {
+            rest = rest.strip_prefix(qualifier).unwrap_or(rest);
+        }
+        if rest == before {
+            return rest;
+        }
+    }
+}
+
+/// The functions of a Rust source over `limit` lines (signature to closing brace), its test
+/// modules left out: as `(name, first line, lines)`. Every other function is measured, in
+/// `impl` and `trait` blocks too, wherever its file puts it.
 fn long_functions(text: &str, limit: usize) -> Vec<(String, usize, usize)> {
-    let lines: Vec<&str> = text
-        .lines()
-        .take_while(|l| l.trim() != "#[cfg(test)]")
-        .collect();
+    let kept = without_tests(text);
+    let lines: Vec<&str> = kept.iter().map(String::as_str).collect();
     let mut long = Vec::new();
     let mut i = 0;
     while i < lines.len() {
         let line = lines[i];
         let code = line.trim_start();
         let indent = &line[..line.len() - code.len()];
-        let signature = code
-            .trim_start_matches("pub ")
-            .trim_start_matches("pub(crate) ")
-            .trim_start_matches("pub(super) ")
-            .trim_start_matches("const ")
-            .trim_start_matches("unsafe ");
-        let Some(rest) = signature.strip_prefix("fn ") else {
+        let Some(rest) = past_qualifiers(code).strip_prefix("fn ") else {
             i += 1;
             continue;
         };
@@ -325,6 +526,16 @@ fn the_length_check_measures_functions() {
         "fn short() {{\n{body}}}\n\npub fn long(\n    a: u32,\n) -> u32 {{\n{body}{body}    a\n}}\n"
     );
     assert_eq!(long_functions(&text, 7), vec![("long".to_string(), 9, 15)]);
+    // A test-only file declared first does not hide what follows it; a test module is left
+    // out; qualifiers and a restricted visibility are read past; a method in an impl counts.
+    let inner = body.replace("    let", "        let");
+    let text = format!(
+        "#[cfg(test)]\npub(crate) mod testkit;\n\npub(in crate::ops) const unsafe fn after() {{\n{body}{body}}}\n\nimpl A {{\n    pub async fn method(&self) {{\n{inner}{inner}    }}\n}}\n\n#[cfg(test)]\nmod tests {{\n    fn in_tests() {{\n{inner}{inner}    }}\n}}\n"
+    );
+    assert_eq!(
+        long_functions(&text, 7),
+        vec![("after".to_string(), 4, 12), ("method".to_string(), 18, 12)]
+    );
 }
 
 #[test]

@@ -125,7 +125,7 @@ impl ProcessArg {
     /// The step's parse error (an unknown step, malformed arguments).
     pub fn parse(text: &str) -> Result<ProcessArg, String> {
         if text.starts_with("shape:")
-            || super::batch::is_pattern(text)
+            || is_pattern(text)
             || io::Format::from_path(Path::new(text)).is_ok()
         {
             return Ok(ProcessArg::Input(text.to_string()));
@@ -145,6 +145,11 @@ const PROCESS_HELP: &str = "Several inputs: `pappus process a.obj b.off 'scans/*
 each input runs the steps in its own World; a failed input is reported and the others go on \
 (exit code 1 if any failed); --json prints one line per input, with `input` and `output` (or \
 `error`) beside the single-file keys.";
+
+/// Whether `text` is a glob pattern (holds `*`, `?` or `[`): an input that names several files.
+pub(super) fn is_pattern(text: &str) -> bool {
+    text.contains(['*', '?', '['])
+}
 
 #[cfg(test)]
 mod tests {

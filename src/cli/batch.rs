@@ -21,16 +21,11 @@ use std::time::Instant;
 
 use serde_json::{Value, json};
 
-use super::args::ProcessArg;
+use super::args::{ProcessArg, is_pattern};
 use super::ms_since;
 use super::process::{ProcessJob, check_output, process_file};
 use super::report::round;
 use crate::edit::Step;
-
-/// Whether `text` is a glob pattern (holds `*`, `?` or `[`).
-pub(super) fn is_pattern(text: &str) -> bool {
-    text.contains(['*', '?', '['])
-}
 
 /// Runs `process`: the first input, then `rest` (more inputs, then the steps).
 ///
