@@ -1399,7 +1399,7 @@ fn colouring_by_a_quantity_paints_the_render_copy_and_goes_away() {
         })
     };
     assert!(!has_colours(&mut app));
-    app.world_mut().resource_mut::<ColorBy>().0 = Some(Quantity::Mean);
+    app.world_mut().resource_mut::<ColorBy>().0 = Some(Quantity::MEAN);
     app.update();
     let values = app.world().get::<VertexValues>(mesh(&app).0).unwrap();
     assert_eq!(values.values.len(), 642);
@@ -1428,7 +1428,7 @@ fn the_distance_colouring_measures_against_the_mesh_before_a_whole_mesh_edit() {
     use pappus::ops::geometry::Quantity;
     let mut app = app();
     open(&mut app, "shape:icosphere");
-    app.world_mut().resource_mut::<ColorBy>().0 = Some(Quantity::Distance);
+    app.world_mut().resource_mut::<ColorBy>().0 = Some(Quantity::DISTANCE);
     app.update();
     // No whole-mesh edit yet: nothing to measure against (grey).
     let values = app.world().get::<VertexValues>(mesh(&app).0).unwrap();

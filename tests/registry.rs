@@ -10,8 +10,11 @@ use bevy::prelude::World;
 use pappus::edit::Step;
 use pappus::mesh::ids::MeshId;
 use pappus::mesh::shapes;
+use pappus::mesh::tables::{Connectivity, VertexRow};
 use pappus::ops::Refusal;
 use pappus::ops::declaration::{Declaration, Names, Section};
+use pappus::ops::geometry::Quantity;
+use pappus::ops::geometry::quantity::{Given, Needs, QuantityDeclaration, VertexQuantity};
 use pappus::ops::local::flip_edge;
 use pappus::ops::operation::{Applied, EditContext, MeshOperation, Values};
 use pappus::ops::registry::{self, register};
@@ -91,6 +94,83 @@ impl MeshOperation for OnFlipsKey {
     ) -> Result<Applied, Refusal> {
         Ok(Applied::whole("nothing".into()))
     }
+}
+
+/// The number of edges from the nearest source: a quantity written outside the crate that
+/// starts from vertices.
+struct Hops;
+
+const HOPS: QuantityDeclaration = QuantityDeclaration {
+    name: "hops",
+    label: "edges from the sources",
+    colormap: pappus::colormap::ColorMap::Viridis,
+    needs: Needs::Sources,
+};
+
+impl VertexQuantity for Hops {
+    fn declaration(&self) -> &'static QuantityDeclaration {
+        &HOPS
+    }
+
+    fn per_vertex(&self, t: &Connectivity, given: &Given<'_>) -> Vec<f64> {
+        let mut hops = vec![f64::NAN; t.vertex_count()];
+        let mut queue: std::collections::VecDeque<VertexRow> =
+            given.sources.iter().copied().collect();
+        for &s in given.sources {
+            hops[s.index()] = 0.0;
+        }
+        while let Some(v) = queue.pop_front() {
+            for h in t.vertex_outgoing(v) {
+                let w = t.to_vertex(h);
+                if hops[w.index()].is_nan() {
+                    hops[w.index()] = hops[v.index()] + 1.0;
+                    queue.push_back(w);
+                }
+            }
+        }
+        hops
+    }
+}
+
+/// Registers [`Hops`] once for every test of this binary.
+fn hops_registered() -> Quantity {
+    static ONCE: std::sync::OnceLock<Quantity> = std::sync::OnceLock::new();
+    *ONCE.get_or_init(|| registry::register_quantity(Hops).expect("hops is free"))
+}
+
+#[test]
+fn an_outside_quantity_is_listed_and_a_second_of_its_name_is_refused() {
+    let hops = hops_registered();
+    assert_eq!(registry::quantity("HOPS"), Some(hops));
+    assert_eq!(registry::quantities().last(), Some(&hops));
+    let clash = registry::register_quantity(Hops).expect_err("refused");
+    assert!(
+        clash.to_string().contains("edges from the sources"),
+        "{clash}"
+    );
+    // Built-in names are taken too.
+    struct Mean;
+    const MEAN: QuantityDeclaration = QuantityDeclaration {
+        name: "mean",
+        label: "my mean",
+        colormap: pappus::colormap::ColorMap::Viridis,
+        needs: Needs::Mesh,
+    };
+    impl VertexQuantity for Mean {
+        fn declaration(&self) -> &'static QuantityDeclaration {
+            &MEAN
+        }
+        fn per_vertex(&self, t: &Connectivity, _: &Given<'_>) -> Vec<f64> {
+            vec![0.0; t.vertex_count()]
+        }
+    }
+    let clash = registry::register_quantity(Mean)
+        .expect_err("refused")
+        .to_string();
+    assert!(
+        clash.contains("my mean") && clash.contains("mean curvature"),
+        "{clash}"
+    );
 }
 
 /// Registers [`Spin`] once for every test of this binary.
@@ -192,6 +272,29 @@ mod in_the_editor {
             outcome.result.as_ref().unwrap().starts_with("mirrored to"),
             "{outcome:?}"
         );
+    }
+
+    #[test]
+    fn the_editor_colours_by_an_outside_quantity_from_the_selection() {
+        use pappus::editor::view::colouring::{ColorBy, VertexValues};
+        let hops = hops_registered();
+        let mut app = common::headless_editor();
+        common::send(&mut app, Request::Open("shape:icosphere".into()));
+        let mesh = app.world().resource::<ActiveMesh>().0.unwrap();
+        app.world_mut().resource_mut::<ColorBy>().0 = Some(hops);
+        let m = pappus::mesh::MeshMembers::collect(app.world(), mesh);
+        for &v in &m.vertices[..2] {
+            common::send(&mut app, Request::Select(Some(ElementId::Vertex(v))));
+            app.update();
+            let values = app.world().get::<VertexValues>(mesh.0).expect("coloured");
+            let hops_of = |v: pappus::mesh::VertexId| values.values[&v.0];
+            assert_eq!(hops_of(v), 0.0);
+            let r = pappus::mesh::MeshRef::new(app.world());
+            for h in r.vertex_outgoing(v) {
+                assert_eq!(hops_of(r.to_vertex(h)), 1.0);
+            }
+            assert!(values.values.values().all(|x| x.is_finite()));
+        }
     }
 
     #[test]

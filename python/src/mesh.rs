@@ -565,14 +565,17 @@ impl Mesh {
     /// A per-vertex quantity as float64 by row of `vertices`, the values the editor colours by
     /// and `pappus process --quantity NAME` writes: `mean`, `gaussian`, `angle-defect`,
     /// `max-curvature`, `min-curvature`, `valence`, `min-angle` (degrees), `edge-length` (the
-    /// mean of the vertex's edges), `distance` (to the mesh given as `to`, which only it takes).
-    /// `ValueError` for an unknown name or a misplaced `to`. The GIL is released meanwhile.
-    #[pyo3(signature = (name, *, to=None))]
+    /// mean of the vertex's edges), `distance` (to the mesh given as `to`, which only it takes),
+    /// or any other registered quantity (one that starts from vertices takes their rows as
+    /// `sources`). `ValueError` for an unknown name, a missing or misplaced `to` or `sources`,
+    /// or a source row out of range. The GIL is released meanwhile.
+    #[pyo3(signature = (name, *, to=None, sources=None))]
     fn quantity<'py>(
         &self,
         py: Python<'py>,
         name: &str,
         to: Option<PyRef<'py, Mesh>>,
+        sources: Option<Vec<i64>>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         self.no_open_edit()?;
         if let Some(other) = &to {
@@ -580,7 +583,8 @@ impl Mesh {
         }
         let quantity = quantities::quantity_named(name)?;
         let to = to.as_deref().map(|m| (&m.world, m.mesh));
-        let values = py.detach(|| quantities::per_vertex(&self.world, self.mesh, quantity, to))?;
+        let values =
+            py.detach(|| quantities::per_vertex(&self.world, self.mesh, quantity, to, sources))?;
         Ok(PyArray1::from_vec(py, values))
     }
 

@@ -14,46 +14,78 @@ use pyo3::prelude::*;
 
 use pappus::edit::soup_to_save;
 use pappus::mesh::MeshId;
+use pappus::mesh::tables::VertexRow;
 use pappus::mesh::tables::extract;
 use pappus::ops::geometry::closest::Reference;
+use pappus::ops::geometry::quantity::{Given, Needs};
 use pappus::ops::geometry::{NormalWeighting, Quantity, Surface, vertex_normals};
-use pappus::ops::named::Named;
+use pappus::ops::registry;
 
-/// The quantity called `name` (any case); `ValueError` naming the known ones otherwise.
+/// The registered quantity called `name` (any case); `ValueError` naming the known ones
+/// otherwise.
 pub(crate) fn quantity_named(name: &str) -> PyResult<Quantity> {
-    Quantity::from_name(name).ok_or_else(|| {
+    registry::quantity(name).ok_or_else(|| {
+        let names: Vec<&str> = registry::quantities().iter().map(|q| q.name()).collect();
         PyValueError::new_err(format!(
             "unknown quantity `{name}`; known: {}",
-            Quantity::names().replace('|', ", ")
+            names.join(", ")
         ))
     })
 }
 
-/// `quantity` at every vertex of `mesh`, by row. `distance` measures to `to` (its world and
-/// mesh), which it needs and the others refuse.
+/// `quantity` at every vertex of `mesh`, by row. One that measures to another surface takes
+/// it as `to` (its world and mesh), one that starts from vertices takes their rows as
+/// `sources`; each needs its own and refuses the other.
 pub(crate) fn per_vertex(
     world: &World,
     mesh: MeshId,
     quantity: Quantity,
     to: Option<(&World, MeshId)>,
+    sources: Option<Vec<i64>>,
 ) -> PyResult<Vec<f64>> {
-    match (quantity, to) {
-        (Quantity::Distance, None) => {
-            return Err(PyValueError::new_err(
-                "the distance quantity measures to another mesh: give it as `to=`",
-            ));
-        }
-        (Quantity::Distance, Some(_)) => {}
-        (_, Some(_)) => {
+    let name = quantity.name();
+    match (quantity.needs(), to.is_some(), sources.is_some()) {
+        (Needs::Other, false, _) => {
             return Err(PyValueError::new_err(format!(
-                "`to=` is for the distance quantity, not `{}`",
-                quantity.name()
+                "{name} measures to another mesh: give it as `to=`"
             )));
         }
-        (_, None) => {}
+        (Needs::Sources, _, false) => {
+            return Err(PyValueError::new_err(format!(
+                "{name} starts from vertices: give their rows as `sources=`"
+            )));
+        }
+        (Needs::Other, _, true) | (Needs::Mesh, _, true) => {
+            return Err(PyValueError::new_err(format!(
+                "`sources=` is for a quantity that starts from vertices, not `{name}`"
+            )));
+        }
+        (Needs::Sources, true, _) | (Needs::Mesh, true, _) => {
+            return Err(PyValueError::new_err(format!(
+                "`to=` is for a quantity that measures to another mesh, not `{name}`"
+            )));
+        }
+        _ => {}
     }
+    let read = extract(world, mesh);
+    let count = read.tables.vertex_count() as i64;
+    let sources: Vec<VertexRow> = sources
+        .unwrap_or_default()
+        .into_iter()
+        .map(|row| match row {
+            r if (0..count).contains(&r) => Ok(VertexRow::new(r as u32)),
+            r if (-count..0).contains(&r) => Ok(VertexRow::new((count + r) as u32)),
+            r => Err(PyValueError::new_err(format!(
+                "source row {r} is out of range for {count} vertices"
+            ))),
+        })
+        .collect::<PyResult<_>>()?;
     let reference = to.map(|(w, m)| Reference::of_tables(&extract(w, m).tables));
-    Ok(quantity.per_vertex(&extract(world, mesh).tables, reference.as_ref()))
+    let given = Given {
+        other: reference.as_ref(),
+        sources: &sources,
+    };
+    Ok(quantity.per_vertex(&read.tables, &given))
 }
 
 /// The vertex normals a save writes, by row: the file's while no edit made them stale, else

@@ -340,8 +340,10 @@ def test_distance_measures_to_another_mesh():
     np.testing.assert_array_equal(near.quantity("distance", to=near), 0.0)
     with pytest.raises(ValueError, match="give it as `to=`"):
         near.quantity("distance")
-    with pytest.raises(ValueError, match="`to=` is for the distance quantity"):
+    with pytest.raises(ValueError, match="`to=` is for a quantity that measures to another mesh"):
         near.quantity("valence", to=far)
+    with pytest.raises(ValueError, match="`sources=` is for a quantity that starts from vertices"):
+        near.quantity("distance", to=far, sources=[0])
     with pytest.raises(ValueError, match="unknown quantity `curl`; known: mean, gaussian"):
         near.quantity("curl")
 

@@ -7,9 +7,9 @@ use std::path::{Path, PathBuf};
 use crate::edit::{Step, step_syntax};
 use crate::io;
 use crate::memory_budget::Budget;
-use crate::ops::geometry::{NormalWeighting, Quantity};
+use crate::ops::geometry::NormalWeighting;
 
-use super::process::{parse_quantity, parse_weighting};
+use super::process::{QuantityArg, parse_quantity, parse_weighting};
 
 /// The command line.
 #[derive(Parser, Clone, Debug, PartialEq)]
@@ -75,9 +75,10 @@ pub enum Command {
         jobs: u32,
         /// Write this per-vertex quantity of the result into OUT (a PLY file) as `quality`,
         /// and as vertex colours: mean, gaussian, angle-defect, max-curvature, min-curvature,
-        /// valence, min-angle, edge-length, distance (to the input).
+        /// valence, min-angle, edge-length, distance (to the input), or another registered
+        /// one; one that starts from vertices takes their input numbers (`NAME:A/B`).
         #[arg(long, value_parser = parse_quantity, value_name = "NAME")]
-        quantity: Option<Quantity>,
+        quantity: Option<QuantityArg>,
         /// Write vertex normals of the result into OUT (OBJ `vn`, PLY `nx ny nz`), weighted by
         /// the faces' angles at the vertex (Thürmer & Wüthrich) or by their areas.
         #[arg(long, value_parser = parse_weighting, value_name = "angle|area")]
@@ -217,6 +218,20 @@ mod tests {
         assert!(parse("info").is_err());
         assert!(parse("--bogus").is_err());
         assert!(parse("a.obj b.obj").is_err());
+    }
+
+    #[test]
+    fn a_quantity_takes_source_vertices_only_where_it_starts_from_them() {
+        let q = parse_quantity("Mean").unwrap();
+        assert_eq!(q.quantity.name(), "mean");
+        assert!(q.sources.is_empty());
+        let e = parse_quantity("valence:0/1").unwrap_err();
+        assert_eq!(e, "valence takes no vertices");
+        let e = parse_quantity("curl").unwrap_err();
+        assert!(
+            e.starts_with("unknown quantity `curl`; known: mean, gaussian"),
+            "{e}"
+        );
     }
 
     #[test]

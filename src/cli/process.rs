@@ -10,11 +10,12 @@ use crate::colormap::Range;
 use crate::edit::Step;
 use crate::io;
 use crate::mesh::attributes::MeshAttributes;
-use crate::mesh::tables::extract;
+use crate::mesh::ids::VertexId;
+use crate::mesh::tables::{EntityRows, VertexRow, extract};
 use crate::mesh::{MeshId, PolygonSoup, to_soup};
 use crate::ops::geometry::closest::Reference;
+use crate::ops::geometry::quantity::{Given, Needs};
 use crate::ops::geometry::{NormalWeighting, Quantity, Surface, vertex_normals};
-use crate::ops::named::Named;
 
 use super::loading::load_for;
 use super::ms_since;
@@ -28,7 +29,7 @@ pub(super) struct ProcessJob {
     /// JSON instead of text.
     pub(super) json: bool,
     /// A per-vertex quantity to write into the output.
-    pub(super) quantity: Option<Quantity>,
+    pub(super) quantity: Option<QuantityArg>,
     /// Vertex normals to write into the output.
     pub(super) normals: Option<NormalWeighting>,
 }
@@ -84,12 +85,14 @@ pub(super) fn process_file(
         quantity,
         normals,
     } = job;
-    let (json, quantity, normals) = (*json, *quantity, *normals);
+    let (json, normals) = (*json, *normals);
     let mut loaded = load_for(input, steps)?;
     let mesh = loaded.built.mesh;
     // The distance quantity measures how far the steps moved the mesh from the input.
-    let reference = (quantity == Some(Quantity::Distance))
-        .then(|| Reference::of_tables(&extract(&loaded.world, mesh).tables));
+    let reference = quantity
+        .as_ref()
+        .filter(|q| q.quantity.needs() == Needs::Other)
+        .map(|_| Reference::of_tables(&extract(&loaded.world, mesh).tables));
     let mut records = Vec::new();
     for step in steps {
         let start = Instant::now();
@@ -129,8 +132,20 @@ pub(super) fn process_file(
         Some(_) => (to_soup(&loaded.world, mesh), None),
         None => crate::edit::soup_to_save(&loaded.world, mesh),
     };
-    let quantity =
-        quantity.map(|q| attach_quantity(&loaded.world, mesh, q, reference.as_ref(), &mut soup));
+    let quantity = match quantity {
+        Some(q) => {
+            let sources = q.source_vertices(&loaded.built.input_vertices)?;
+            let given = (reference.as_ref(), sources.as_slice());
+            Some(attach_quantity(
+                &loaded.world,
+                mesh,
+                q.quantity,
+                given,
+                &mut soup,
+            )?)
+        }
+        None => None,
+    };
     if let Some(weighting) = normals {
         // The soup's vertices are the mesh's table rows (see `to_soup`).
         let surface = Surface::from_tables(&extract(&loaded.world, mesh).tables);
@@ -191,12 +206,63 @@ pub(super) fn parse_weighting(name: &str) -> Result<NormalWeighting, String> {
     }
 }
 
-/// Parses a `--quantity` name.
-pub(super) fn parse_quantity(name: &str) -> Result<Quantity, String> {
-    Quantity::from_name(name).ok_or_else(|| {
-        let names: Vec<&str> = Quantity::ALL.iter().map(|(_, n)| *n).collect();
+/// A `--quantity` as given: the quantity, and the input's vertex numbers it starts from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct QuantityArg {
+    /// The registered quantity.
+    pub quantity: Quantity,
+    /// The input's vertex numbers a quantity from sources starts at (`geodesic:0/12`).
+    pub sources: Vec<u32>,
+}
+
+impl QuantityArg {
+    /// The source vertices as the mesh has them now, by entity.
+    ///
+    /// # Errors
+    /// A number the input lacks, or a vertex the steps removed.
+    fn source_vertices(&self, input: &[Option<VertexId>]) -> Result<Vec<VertexId>, String> {
+        self.sources
+            .iter()
+            .map(|&i| {
+                input.get(i as usize).copied().flatten().ok_or_else(|| {
+                    format!(
+                        "--quantity {}: the input has no vertex {i}",
+                        self.quantity.name()
+                    )
+                })
+            })
+            .collect()
+    }
+}
+
+/// Parses a `--quantity`: a registered quantity's name, then, for one that starts from
+/// vertices, their numbers in the input (`geodesic:0/12`).
+pub(super) fn parse_quantity(text: &str) -> Result<QuantityArg, String> {
+    let (name, sources) = text.split_once(':').unwrap_or((text, ""));
+    let quantity = crate::ops::registry::quantity(name).ok_or_else(|| {
+        let names: Vec<&str> = crate::ops::registry::quantities()
+            .iter()
+            .map(|q| q.name())
+            .collect();
         format!("unknown quantity `{name}`; known: {}", names.join(", "))
-    })
+    })?;
+    let sources: Vec<u32> = match sources {
+        "" => Vec::new(),
+        list => list
+            .split('/')
+            .map(|n| {
+                n.parse()
+                    .map_err(|_| format!("`{n}` is not a vertex number"))
+            })
+            .collect::<Result<_, _>>()?,
+    };
+    match (quantity.needs() == Needs::Sources, sources.is_empty()) {
+        (true, true) => Err(format!(
+            "{name} starts from vertices: give their numbers, {name}:A/B"
+        )),
+        (false, false) => Err(format!("{name} takes no vertices")),
+        _ => Ok(QuantityArg { quantity, sources }),
+    }
 }
 
 /// Computes `quantity` on `mesh` (a distance to `input`) and puts it into `soup` (whose vertices
@@ -206,11 +272,28 @@ fn attach_quantity(
     world: &World,
     mesh: MeshId,
     quantity: Quantity,
-    input: Option<&Reference>,
+    (input, sources): (Option<&Reference>, &[VertexId]),
     soup: &mut crate::mesh::PolygonSoup,
-) -> Map<String, Value> {
+) -> Result<Map<String, Value>, String> {
     let start = Instant::now();
-    let values = quantity.per_vertex(&extract(world, mesh).tables, input);
+    let read = extract(world, mesh);
+    let rows = EntityRows::new(&read.members);
+    let sources: Vec<VertexRow> = sources
+        .iter()
+        .map(|v| {
+            rows.row(v.0).map(VertexRow::new).ok_or_else(|| {
+                format!(
+                    "--quantity {}: the steps removed source {v}",
+                    quantity.name()
+                )
+            })
+        })
+        .collect::<Result<_, _>>()?;
+    let given = Given {
+        other: input,
+        sources: &sources,
+    };
+    let values = quantity.per_vertex(&read.tables, &given);
     let ms = ms_since(start);
     let map = quantity.colormap();
     let range = Range::robust(&values, 1.0, map);
@@ -235,5 +318,5 @@ fn attach_quantity(
     ] {
         out.insert(k.to_string(), v);
     }
-    out
+    Ok(out)
 }

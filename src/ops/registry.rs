@@ -1,6 +1,7 @@
-//! The registry of operations: one list for the whole process, which the command line's step
-//! parser, Python's `pappus.operations()` and `Mesh.run`, the editor's keymap, panel and step
-//! mode all read, and which takes operations at run time.
+//! The registry of operations and quantities: one list of each for the whole process, which the
+//! command line's step parser and `--quantity`, Python's `pappus.operations()`, `Mesh.run` and
+//! `Mesh.quantity`, the editor's keymap, panel, colouring and step mode all read, and which
+//! take operations and quantities at run time.
 //!
 //! Pappus's own operations ([`BUILT_IN`]) register through the same door as one written in
 //! another crate, a test or a student's lab ([`register`]); in the editor, through
@@ -58,6 +59,7 @@ use std::sync::{Arc, LazyLock, RwLock};
 
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, VertexId};
 use crate::ops::declaration::{Declaration, Names};
+use crate::ops::geometry::quantity::{Quantity, VertexQuantity};
 use crate::ops::operation::{Invocation, MeshOperation};
 use crate::ops::{
     decimate, deform, hole, local, normalize, param, remesh, reverse, smooth, subdivide,
@@ -155,6 +157,54 @@ static REGISTRY: LazyLock<RwLock<Operations>> = LazyLock::new(|| {
     }
     RwLock::new(Operations(list.into()))
 });
+
+/// The registered quantities, built-in first ([`Quantity::BUILT_IN`]), then the others in
+/// the order they came.
+static QUANTITIES: LazyLock<RwLock<Arc<[Quantity]>>> =
+    LazyLock::new(|| RwLock::new(Quantity::BUILT_IN.into()));
+
+/// Every registered quantity, built-in first.
+pub fn quantities() -> Arc<[Quantity]> {
+    match QUANTITIES.read() {
+        Ok(list) => list.clone(),
+        Err(poisoned) => poisoned.into_inner().clone(),
+    }
+}
+
+/// The registered quantity called `name` (any case).
+pub fn quantity(name: &str) -> Option<Quantity> {
+    quantities()
+        .iter()
+        .copied()
+        .find(|q| q.name().eq_ignore_ascii_case(name))
+}
+
+/// Registers `q` for the rest of the process: the editor colours by it, `process --quantity`
+/// writes it, Python's `Mesh.quantity` returns it. Returns it as the registry holds it.
+///
+/// # Errors
+/// A [`Clash`] naming both when a registered quantity has its name (any case); nothing is
+/// registered then.
+pub fn register_quantity(q: impl VertexQuantity) -> Result<Quantity, Clash> {
+    let mut list = match QUANTITIES.write() {
+        Ok(list) => list,
+        Err(poisoned) => poisoned.into_inner(),
+    };
+    let new = q.declaration();
+    if let Some(old) = list
+        .iter()
+        .find(|o| o.name().eq_ignore_ascii_case(new.name))
+    {
+        return Err(Clash {
+            new: format!("`{}` (\"{}\")", new.name, new.label),
+            old: format!("`{}` (\"{}\")", old.name(), old.label()),
+            why: "both are quantities of that name".into(),
+        });
+    }
+    let q = Quantity(Box::leak(Box::new(q)));
+    *list = list.iter().copied().chain([q]).collect();
+    Ok(q)
+}
 
 /// Why an operation was not registered: it would share a step name, or a key, with one
 /// already registered. Both are named.

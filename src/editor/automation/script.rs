@@ -33,7 +33,6 @@ use std::path::PathBuf;
 
 use crate::mesh::ids::{ElementId, parse_element};
 use crate::mesh::topology::MeshRef;
-use crate::ops::named::Named;
 
 use crate::edit::Edit;
 use crate::ops::geometry::Quantity;
@@ -195,7 +194,9 @@ impl Script {
                         .ok_or_else(bad)?,
                 ),
                 "colour" if arg == "none" => ScriptStep::Colour(None),
-                "colour" => ScriptStep::Colour(Some(Quantity::from_name(arg).ok_or_else(bad)?)),
+                "colour" => {
+                    ScriptStep::Colour(Some(crate::ops::registry::quantity(arg).ok_or_else(bad)?))
+                }
                 "exit" => ScriptStep::Exit,
                 _ => return Err(bad()),
             });

@@ -58,7 +58,7 @@ pub fn histograms(world: &World, mesh: MeshId, shown: Option<&VertexValues>) -> 
 
 /// [`histograms`] of a mesh's tables (computable away from the world).
 pub fn histograms_of_tables(t: &Connectivity, shown: Option<&VertexValues>) -> Vec<Histogram> {
-    let valence = Quantity::Valence.per_vertex(t, None);
+    let valence = Quantity::VALENCE.per_vertex(t, &Default::default());
     let most = valence.iter().copied().fold(3.0, f64::max).min(16.0);
     let angles: Vec<f64> = t.faces().flat_map(|f| corner_angles_deg(t, f)).collect();
     let mut lengths: Vec<f64> = t.edges().map(|e| f64::from(t.edge_length(e))).collect();

@@ -14,11 +14,13 @@ use bevy::prelude::{Component, Entity, Resource, With, World};
 
 use crate::colormap::{ColorMap, Range};
 use crate::mesh::MeshInfo;
-use crate::mesh::ids::{MeshId, VertexId};
-use crate::mesh::tables::extract;
+use crate::mesh::ids::{ElementId, MeshId, VertexId};
+use crate::mesh::tables::{EntityRows, VertexRow, extract};
+use crate::mesh::{MeshMembers, MeshRef};
 use crate::ops::geometry::Quantity;
+use crate::ops::geometry::quantity::{Given, Needs};
 
-use crate::editor::session::selection::{DirtyFaces, MeshDirty};
+use crate::editor::session::selection::{DirtyFaces, MeshDirty, Selection};
 use crate::editor::session::state::PreviousShape;
 
 /// The quantity the meshes are coloured by, if any (set by the panel).
@@ -70,12 +72,21 @@ pub fn vertex_values(
     range: Option<Range>,
 ) -> VertexValues {
     let read = extract(world, mesh);
-    // The distance is to the mesh before its last whole-mesh edit, where there was one.
-    let before = (quantity == Quantity::Distance)
+    // A distance is to the mesh before its last whole-mesh edit, where there was one; a
+    // quantity from sources starts at the selection's vertices.
+    let other = (quantity.needs() == Needs::Other)
         .then(|| world.get_resource::<PreviousShape>())
         .flatten()
         .and_then(|p| p.surface(mesh));
-    let values = quantity.per_vertex(&read.tables, before);
+    let sources = match quantity.needs() {
+        Needs::Sources => selected_rows(world, &read.members),
+        _ => Vec::new(),
+    };
+    let given = Given {
+        other,
+        sources: &sources,
+    };
+    let values = quantity.per_vertex(&read.tables, &given);
     let map = quantity.colormap();
     let range = range.unwrap_or_else(|| Range::robust(&values, CLAMP_PERCENTILE, map));
     VertexValues {
@@ -92,10 +103,32 @@ pub fn vertex_values(
     }
 }
 
+/// The rows of the selected elements' corners among `members` (those of other meshes left out).
+fn selected_rows(world: &World, members: &MeshMembers) -> Vec<VertexRow> {
+    let Some(selection) = world.get_resource::<Selection>() else {
+        return Vec::new();
+    };
+    let rows = EntityRows::new(members);
+    let m = MeshRef::new(world);
+    let mut sources: Vec<VertexRow> = selection
+        .elements()
+        .iter()
+        .flat_map(|&x| m.corners(x))
+        .filter_map(|v| rows.row(v.0))
+        .map(VertexRow::new)
+        .collect();
+    sources.sort_unstable();
+    sources.dedup();
+    sources
+}
+
 /// Keeps [`VertexValues`] in step with the meshes and [`ColorBy`] (the `Sync` set, before the
-/// render sync): recomputed for meshes about to be redrawn; on a change of quantity, for every
-/// mesh, each then redrawn whole.
-pub fn update_vertex_values(world: &mut World, mut shown: bevy::prelude::Local<Option<Quantity>>) {
+/// render sync): recomputed for meshes about to be redrawn; on a change of quantity, or of the
+/// selection for a quantity from sources, for every mesh, each then redrawn whole.
+pub fn update_vertex_values(
+    world: &mut World,
+    mut shown: bevy::prelude::Local<(Option<Quantity>, Vec<ElementId>)>,
+) {
     let wanted = world
         .get_resource::<ColorBy>()
         .copied()
@@ -105,8 +138,15 @@ pub fn update_vertex_values(world: &mut World, mut shown: bevy::prelude::Local<O
         .query_filtered::<Entity, With<MeshInfo>>()
         .iter(world)
         .collect();
-    let switched = *shown != wanted;
-    *shown = wanted;
+    let sources: Vec<ElementId> = match wanted.map(Quantity::needs) {
+        Some(Needs::Sources) => world
+            .get_resource::<Selection>()
+            .map(|s| s.elements().to_vec())
+            .unwrap_or_default(),
+        _ => Vec::new(),
+    };
+    let switched = shown.0 != wanted || shown.1 != sources;
+    *shown = (wanted, sources);
     for entity in meshes {
         let changed = world.get::<MeshDirty>(entity).is_some();
         let local = world.get::<DirtyFaces>(entity).is_some();
@@ -142,7 +182,7 @@ mod tests {
     fn values_cover_every_vertex_and_colour_by_the_range() {
         let mut world = World::new();
         let built = build_mesh(&mut world, &shapes::cube(), MeshInfo::default()).unwrap();
-        let v = vertex_values(&world, built.mesh, Quantity::Valence, None);
+        let v = vertex_values(&world, built.mesh, Quantity::VALENCE, None);
         assert_eq!(v.values.len(), 8);
         assert!(v.values.values().all(|&x| x == 3.0));
         let corner = built.input_vertices[0].unwrap();

@@ -6,98 +6,239 @@
 //! triangles are); the edge length is the mean length of the vertex's edges.
 
 use crate::colormap::ColorMap;
-use crate::mesh::tables::{Connectivity, FaceRow};
-use crate::ops::named::Named;
+use crate::mesh::tables::{Connectivity, FaceRow, VertexRow};
 
 use super::closest::Reference;
 use super::curvature::scalar_curvature;
 use super::surface::Surface;
 
-/// A per-vertex quantity.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Quantity {
-    /// Mean curvature `H`.
-    Mean,
-    /// Gaussian curvature `K` (angle defect over area).
-    Gaussian,
-    /// The angle defect (integrated Gaussian curvature).
-    AngleDefect,
-    /// The larger principal curvature.
-    MaxCurvature,
-    /// The smaller principal curvature.
-    MinCurvature,
-    /// The number of edges at the vertex.
-    Valence,
-    /// The smallest corner angle (degrees) of the faces around the vertex.
-    MinAngle,
-    /// The mean length of the vertex's edges.
-    EdgeLength,
-    /// The distance from the vertex to another surface: the mesh before the last whole-mesh
-    /// edit in the editor, the input on the command line (MeshLab's Hausdorff colouring).
-    Distance,
+/// What a quantity is computed from beside the mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Needs {
+    /// The mesh alone.
+    Mesh,
+    /// Another surface to measure to ([`Given::other`]): the mesh before the last whole-mesh
+    /// edit in the editor, the input on the command line, `to=` from Python.
+    Other,
+    /// Source vertices ([`Given::sources`]): the selection in the editor, `NAME:A/B` on the
+    /// command line, `sources=` from Python.
+    Sources,
 }
 
-impl Named for Quantity {
-    /// Every quantity, with its name on the command line.
-    const ALL: &'static [(Self, &'static str)] = &[
-        (Quantity::Mean, "mean"),
-        (Quantity::Gaussian, "gaussian"),
-        (Quantity::AngleDefect, "angle-defect"),
-        (Quantity::MaxCurvature, "max-curvature"),
-        (Quantity::MinCurvature, "min-curvature"),
-        (Quantity::Valence, "valence"),
-        (Quantity::MinAngle, "min-angle"),
-        (Quantity::EdgeLength, "edge-length"),
-        (Quantity::Distance, "distance"),
-    ];
+/// What a quantity declares about itself: its name on the command line and in Python, its
+/// label in the panel and the legend, its colour map, and what it needs beside the mesh.
+#[derive(Clone, Copy, Debug)]
+pub struct QuantityDeclaration {
+    /// Its name (`mean`, `geodesic`): unique among the registered quantities.
+    pub name: &'static str,
+    /// Its name in the panel and the legend ("mean curvature").
+    pub label: &'static str,
+    /// The colour map that shows it: diverging for signed quantities.
+    pub colormap: ColorMap,
+    /// What it needs beside the mesh.
+    pub needs: Needs,
+}
+
+/// What a quantity is given beside the mesh's tables.
+#[derive(Clone, Copy, Default)]
+pub struct Given<'a> {
+    /// The surface a [`Needs::Other`] quantity measures to.
+    pub other: Option<&'a Reference>,
+    /// The source vertices of a [`Needs::Sources`] quantity, by row.
+    pub sources: &'a [VertexRow],
+}
+
+/// A value per vertex of a mesh: what the editor colours by, `process --quantity` writes and
+/// Python's `Mesh.quantity` returns. Pappus's own are [`Quantity::BUILT_IN`]; another crate's
+/// join them through [`crate::ops::registry::register_quantity`].
+pub trait VertexQuantity: Sync + 'static {
+    /// What it declares.
+    fn declaration(&self) -> &'static QuantityDeclaration;
+
+    /// Its value at every vertex of the mesh in `t`, by row. Where it cannot be computed (no
+    /// other surface or no source given where it needs one) the values are NaN; it never
+    /// panics on a valid mesh.
+    fn per_vertex(&self, t: &Connectivity, given: &Given<'_>) -> Vec<f64>;
+}
+
+/// A registered quantity, by reference: cheap to copy, compared by name.
+#[derive(Clone, Copy)]
+pub struct Quantity(pub &'static dyn VertexQuantity);
+
+impl PartialEq for Quantity {
+    fn eq(&self, other: &Self) -> bool {
+        self.name() == other.name()
+    }
+}
+
+impl Eq for Quantity {}
+
+impl std::hash::Hash for Quantity {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.name().hash(state);
+    }
+}
+
+impl std::fmt::Debug for Quantity {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Quantity({})", self.name())
+    }
 }
 
 impl Quantity {
+    /// Mean curvature `H`.
+    pub const MEAN: Quantity = Quantity(&BuiltIn(Kind::Mean));
+    /// Gaussian curvature `K` (angle defect over area).
+    pub const GAUSSIAN: Quantity = Quantity(&BuiltIn(Kind::Gaussian));
+    /// The angle defect (integrated Gaussian curvature).
+    pub const ANGLE_DEFECT: Quantity = Quantity(&BuiltIn(Kind::AngleDefect));
+    /// The larger principal curvature.
+    pub const MAX_CURVATURE: Quantity = Quantity(&BuiltIn(Kind::MaxCurvature));
+    /// The smaller principal curvature.
+    pub const MIN_CURVATURE: Quantity = Quantity(&BuiltIn(Kind::MinCurvature));
+    /// The number of edges at the vertex.
+    pub const VALENCE: Quantity = Quantity(&BuiltIn(Kind::Valence));
+    /// The smallest corner angle (degrees) of the faces around the vertex.
+    pub const MIN_ANGLE: Quantity = Quantity(&BuiltIn(Kind::MinAngle));
+    /// The mean length of the vertex's edges.
+    pub const EDGE_LENGTH: Quantity = Quantity(&BuiltIn(Kind::EdgeLength));
+    /// The distance from the vertex to another surface: the mesh before the last whole-mesh
+    /// edit in the editor, the input on the command line (MeshLab's Hausdorff colouring).
+    pub const DISTANCE: Quantity = Quantity(&BuiltIn(Kind::Distance));
+
+    /// Pappus's own quantities, in the order the panel lists them.
+    pub const BUILT_IN: &[Quantity] = &[
+        Quantity::MEAN,
+        Quantity::GAUSSIAN,
+        Quantity::ANGLE_DEFECT,
+        Quantity::MAX_CURVATURE,
+        Quantity::MIN_CURVATURE,
+        Quantity::VALENCE,
+        Quantity::MIN_ANGLE,
+        Quantity::EDGE_LENGTH,
+        Quantity::DISTANCE,
+    ];
+
+    /// Its name on the command line and in Python.
+    pub fn name(self) -> &'static str {
+        self.0.declaration().name
+    }
+
     /// Its name in the panel and the legend.
     pub fn label(self) -> &'static str {
-        match self {
-            Quantity::Mean => "mean curvature",
-            Quantity::Gaussian => "Gaussian curvature",
-            Quantity::AngleDefect => "angle defect",
-            Quantity::MaxCurvature => "max principal curvature",
-            Quantity::MinCurvature => "min principal curvature",
-            Quantity::Valence => "valence",
-            Quantity::MinAngle => "smallest corner angle (°)",
-            Quantity::EdgeLength => "edge length",
-            Quantity::Distance => "distance to the mesh before",
-        }
+        self.0.declaration().label
     }
 
-    /// The colour map that shows it: diverging for signed quantities.
+    /// The colour map that shows it.
     pub fn colormap(self) -> ColorMap {
-        match self {
-            Quantity::Valence | Quantity::MinAngle | Quantity::EdgeLength | Quantity::Distance => {
-                ColorMap::Viridis
-            }
-            _ => ColorMap::Diverging,
+        self.0.declaration().colormap
+    }
+
+    /// What it needs beside the mesh.
+    pub fn needs(self) -> Needs {
+        self.0.declaration().needs
+    }
+
+    /// Its value at every vertex of the mesh in `t`, by row (NaN where it cannot be computed:
+    /// see [`VertexQuantity::per_vertex`]).
+    pub fn per_vertex(self, t: &Connectivity, given: &Given<'_>) -> Vec<f64> {
+        self.0.per_vertex(t, given)
+    }
+}
+
+/// Pappus's own quantities.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    Mean,
+    Gaussian,
+    AngleDefect,
+    MaxCurvature,
+    MinCurvature,
+    Valence,
+    MinAngle,
+    EdgeLength,
+    Distance,
+}
+
+/// One of Pappus's own quantities.
+struct BuiltIn(Kind);
+
+/// Declares a built-in quantity.
+const fn declared(
+    name: &'static str,
+    label: &'static str,
+    needs: Needs,
+    signed: bool,
+) -> QuantityDeclaration {
+    QuantityDeclaration {
+        name,
+        label,
+        colormap: if signed {
+            ColorMap::Diverging
+        } else {
+            ColorMap::Viridis
+        },
+        needs,
+    }
+}
+
+impl VertexQuantity for BuiltIn {
+    fn declaration(&self) -> &'static QuantityDeclaration {
+        use Needs::{Mesh, Other};
+        const MEAN: QuantityDeclaration = declared("mean", "mean curvature", Mesh, true);
+        const GAUSSIAN: QuantityDeclaration =
+            declared("gaussian", "Gaussian curvature", Mesh, true);
+        const DEFECT: QuantityDeclaration = declared("angle-defect", "angle defect", Mesh, true);
+        const MAX: QuantityDeclaration =
+            declared("max-curvature", "max principal curvature", Mesh, true);
+        const MIN: QuantityDeclaration =
+            declared("min-curvature", "min principal curvature", Mesh, true);
+        const VALENCE: QuantityDeclaration = declared("valence", "valence", Mesh, false);
+        const MIN_ANGLE: QuantityDeclaration =
+            declared("min-angle", "smallest corner angle (°)", Mesh, false);
+        const EDGE_LENGTH: QuantityDeclaration =
+            declared("edge-length", "edge length", Mesh, false);
+        const DISTANCE: QuantityDeclaration =
+            declared("distance", "distance to the mesh before", Other, false);
+        match self.0 {
+            Kind::Mean => &MEAN,
+            Kind::Gaussian => &GAUSSIAN,
+            Kind::AngleDefect => &DEFECT,
+            Kind::MaxCurvature => &MAX,
+            Kind::MinCurvature => &MIN,
+            Kind::Valence => &VALENCE,
+            Kind::MinAngle => &MIN_ANGLE,
+            Kind::EdgeLength => &EDGE_LENGTH,
+            Kind::Distance => &DISTANCE,
         }
     }
 
-    /// Its value at every vertex of the mesh in `t`, by row. [`Quantity::Distance`] measures to
-    /// `other` (NaN everywhere without one); the others ignore it.
-    pub fn per_vertex(self, t: &Connectivity, other: Option<&Reference>) -> Vec<f64> {
+    fn per_vertex(&self, t: &Connectivity, given: &Given<'_>) -> Vec<f64> {
+        self.0.per_vertex(t, given.other)
+    }
+}
+
+impl Kind {
+    /// Its value at every vertex of the mesh in `t`, by row. The distance measures to `other`
+    /// (NaN everywhere without one); the others ignore it.
+    fn per_vertex(self, t: &Connectivity, other: Option<&Reference>) -> Vec<f64> {
         let curvature_of = || scalar_curvature(&Surface::from_tables(t));
         match self {
-            Quantity::Mean => curvature_of().mean,
-            Quantity::Gaussian => curvature_of().gaussian,
-            Quantity::AngleDefect => curvature_of().angle_defect,
-            Quantity::MaxCurvature => curvature_of().max,
-            Quantity::MinCurvature => curvature_of().min,
-            Quantity::Distance => t
+            Kind::Mean => curvature_of().mean,
+            Kind::Gaussian => curvature_of().gaussian,
+            Kind::AngleDefect => curvature_of().angle_defect,
+            Kind::MaxCurvature => curvature_of().max,
+            Kind::MinCurvature => curvature_of().min,
+            Kind::Distance => t
                 .positions
                 .iter()
                 .map(|&p| other.map_or(f64::NAN, |r| f64::from(p.distance(r.closest(p)))))
                 .collect(),
-            Quantity::Valence => t
+            Kind::Valence => t
                 .vertices()
                 .map(|v| t.vertex_outgoing(v).count() as f64)
                 .collect(),
-            Quantity::EdgeLength => t
+            Kind::EdgeLength => t
                 .vertices()
                 .map(|v| {
                     let p = t.position(v);
@@ -110,7 +251,7 @@ impl Quantity {
                     if n > 0.0 { sum / n } else { 0.0 }
                 })
                 .collect(),
-            Quantity::MinAngle => {
+            Kind::MinAngle => {
                 let mut smallest = vec![f64::INFINITY; t.vertex_count()];
                 for f in t.faces() {
                     let least = corner_angles_deg(t, f)
@@ -160,23 +301,23 @@ mod tests {
         let built = build_mesh(&mut world, &shapes::cube(), MeshInfo::default()).unwrap();
         let t = extract(&world, built.mesh).tables;
         assert!(
-            Quantity::Valence
-                .per_vertex(&t, None)
+            Quantity::VALENCE
+                .per_vertex(&t, &Given::default())
                 .iter()
                 .all(|&v| v == 3.0)
         );
         assert!(
-            Quantity::MinAngle
-                .per_vertex(&t, None)
+            Quantity::MIN_ANGLE
+                .per_vertex(&t, &Given::default())
                 .iter()
                 .all(|&a| (a - 90.0).abs() < 1e-9)
         );
         // Three right angles at each corner: the defect is π/2.
-        for d in Quantity::AngleDefect.per_vertex(&t, None) {
+        for d in Quantity::ANGLE_DEFECT.per_vertex(&t, &Given::default()) {
             assert!((d - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
         }
         let side = 2.0 * f64::from(shapes::cube().positions[0].x.abs());
-        for l in Quantity::EdgeLength.per_vertex(&t, None) {
+        for l in Quantity::EDGE_LENGTH.per_vertex(&t, &Given::default()) {
             assert!((l - side).abs() < 1e-6, "{l}");
         }
         // Distances to the plane z = 0 are the corners' heights.
@@ -185,19 +326,39 @@ mod tests {
             bevy::math::Vec3::new(10.0, -10.0, 0.0),
             bevy::math::Vec3::new(0.0, 10.0, 0.0),
         ]]);
-        let d = Quantity::Distance.per_vertex(&t, Some(&plane));
+        let d = Quantity::DISTANCE.per_vertex(
+            &t,
+            &Given {
+                other: Some(&plane),
+                ..Given::default()
+            },
+        );
         for (d, p) in d.iter().zip(&t.positions) {
             assert_eq!(*d, f64::from(p.z.abs()));
         }
         assert!(
-            Quantity::Distance
-                .per_vertex(&t, None)
+            Quantity::DISTANCE
+                .per_vertex(&t, &Given::default())
                 .iter()
                 .all(|d| d.is_nan())
         );
-        for &(q, name) in Quantity::ALL {
-            assert_eq!(Quantity::from_name(name), Some(q));
-            assert_eq!(q.name(), name);
-        }
+        let names: Vec<&str> = Quantity::BUILT_IN.iter().map(|q| q.name()).collect();
+        assert_eq!(
+            names,
+            [
+                "mean",
+                "gaussian",
+                "angle-defect",
+                "max-curvature",
+                "min-curvature",
+                "valence",
+                "min-angle",
+                "edge-length",
+                "distance"
+            ]
+        );
+        assert_eq!(Quantity::DISTANCE.needs(), Needs::Other);
+        assert_eq!(Quantity::MEAN.colormap(), ColorMap::Diverging);
+        assert_eq!(Quantity::VALENCE.colormap(), ColorMap::Viridis);
     }
 }

@@ -8,7 +8,6 @@ use crate::colormap::{ColorMap, Range};
 use crate::editor::panels::state::InspectorView;
 use crate::editor::view::colouring::ColorBy;
 use crate::ops::geometry::Quantity;
-use crate::ops::named::Named;
 
 /// The Analysis section.
 pub const SECTION: PanelSection = PanelSection {
@@ -32,7 +31,7 @@ fn colour_section(
             .selected_text(shown)
             .show_ui(ui, |ui| {
                 ui.selectable_value(&mut colour_by.0, None, "nothing");
-                for &(q, _) in Quantity::ALL {
+                for &q in crate::ops::registry::quantities().iter() {
                     ui.selectable_value(&mut colour_by.0, Some(q), q.label());
                 }
             });
