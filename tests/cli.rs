@@ -481,6 +481,43 @@ fn the_distance_quantity_measures_how_far_the_steps_moved_the_mesh() {
 }
 
 #[test]
+fn the_geodesic_quantity_starts_from_the_input_vertices_named() {
+    // On the unit sphere the farthest point is half a great circle, π, from any vertex; the
+    // source survives a subdivision (Loop keeps the vertices' ids).
+    let (v, out_path) = process_json(
+        "shape:icosphere",
+        "geodesic.ply",
+        &["--quantity", "geodesic:0", "loop"],
+    );
+    let q = &v["quantity"];
+    assert_eq!(q["name"], "geodesic");
+    let (min, max) = (q["min"].as_f64().unwrap(), q["max"].as_f64().unwrap());
+    assert!(min.abs() < 1e-9, "{q}");
+    assert!((max - std::f64::consts::PI).abs() < 0.05, "{q}");
+    let quality = pappus::io::read(&out_path).unwrap().vertex_quality.unwrap();
+    assert_eq!(quality.len(), 2562);
+    // Two sources: half way between them at most.
+    let (v, _) = process_json(
+        "shape:icosphere",
+        "geodesic.ply",
+        &["--quantity", "geodesic:0/1"],
+    );
+    assert!(v["quantity"]["max"].as_f64().unwrap() < std::f64::consts::PI);
+    // Without its vertices, or with a number the input lacks, it is refused.
+    for (quantity, code) in [("geodesic", 2), ("geodesic:x", 2), ("geodesic:9999", 1)] {
+        let out = pappus(&[
+            "process",
+            "shape:icosphere",
+            "-o",
+            tmp("x.ply").to_str().unwrap(),
+            "--quantity",
+            quantity,
+        ]);
+        assert_eq!(out.status.code(), Some(code), "{quantity}");
+    }
+}
+
+#[test]
 fn fill_hole_closes_a_grid_through_its_step() {
     // The grid's corner 0 and its neighbour 1 are on its border.
     let (v, _) = process_json("shape:grid:3", "filled.obj", &["fill-hole:0,1", "validate"]);

@@ -348,6 +348,26 @@ def test_distance_measures_to_another_mesh():
         near.quantity("curl")
 
 
+def test_geodesic_distance_starts_from_the_sources():
+    mesh = pappus.load("shape:icosphere:4")
+    d = mesh.quantity("geodesic", sources=[0])
+    assert d.shape == (len(mesh.vertices),)
+    assert abs(d[0]) < 1e-9
+    # The unit sphere's farthest point is π away; every vertex within 3 % of π of its arc.
+    arc = np.arccos(np.clip(mesh.vertices @ mesh.vertices[0], -1, 1))
+    assert abs(d.max() - np.pi) < 0.02 * np.pi
+    assert np.max(np.abs(d - arc)) < 0.03 * np.pi
+    # A second source (the last row) brings every vertex as near or nearer, within the
+    # method's error, and is itself at no distance.
+    near = mesh.quantity("geodesic", sources=[0, -1])
+    assert np.all(near <= d + 0.03 * np.pi)
+    assert abs(near[-1]) < 0.03 * np.pi
+    with pytest.raises(ValueError, match="give their rows as `sources=`"):
+        mesh.quantity("geodesic")
+    with pytest.raises(ValueError, match="out of range"):
+        mesh.quantity("geodesic", sources=[len(mesh.vertices)])
+
+
 def test_vertex_normals_are_the_surfaces():
     mesh = pappus.load("shape:icosphere:3")
     normals = mesh.vertex_normals

@@ -14,6 +14,7 @@
 pub mod decimate;
 pub mod declaration;
 pub mod deform;
+pub mod geodesic;
 pub mod geometry;
 pub mod hole;
 pub mod indexed_heap;

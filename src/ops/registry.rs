@@ -62,7 +62,7 @@ use crate::ops::declaration::{Declaration, Names};
 use crate::ops::geometry::quantity::{Quantity, VertexQuantity};
 use crate::ops::operation::{Invocation, MeshOperation};
 use crate::ops::{
-    decimate, deform, hole, local, normalize, param, remesh, reverse, smooth, subdivide,
+    decimate, deform, geodesic, hole, local, normalize, param, remesh, reverse, smooth, subdivide,
     triangulate,
 };
 
@@ -158,10 +158,15 @@ static REGISTRY: LazyLock<RwLock<Operations>> = LazyLock::new(|| {
     RwLock::new(Operations(list.into()))
 });
 
-/// The registered quantities, built-in first ([`Quantity::BUILT_IN`]), then the others in
-/// the order they came.
-static QUANTITIES: LazyLock<RwLock<Arc<[Quantity]>>> =
-    LazyLock::new(|| RwLock::new(Quantity::BUILT_IN.into()));
+/// Pappus's quantities beyond the geometry's own ([`Quantity::BUILT_IN`]), registered after
+/// them: adding one is its module and one line here.
+const MORE_QUANTITIES: &[Quantity] = &[Quantity(&geodesic::Geodesic)];
+
+/// The registered quantities, built-in first, then the others in the order they came.
+static QUANTITIES: LazyLock<RwLock<Arc<[Quantity]>>> = LazyLock::new(|| {
+    let built_in = Quantity::BUILT_IN.iter().chain(MORE_QUANTITIES);
+    RwLock::new(built_in.copied().collect())
+});
 
 /// Every registered quantity, built-in first.
 pub fn quantities() -> Arc<[Quantity]> {
