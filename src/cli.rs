@@ -17,7 +17,6 @@
 //! inputs on threads), `recover` (the editor's recoveries).
 
 use serde_json::Value;
-use std::time::Instant;
 
 use crate::mesh::to_soup;
 
@@ -51,10 +50,6 @@ pub use report::{info_json, info_with_load_times};
 
 use process::{ProcessJob, write_mesh};
 use report::info_text;
-
-pub(super) fn ms_since(start: Instant) -> f64 {
-    start.elapsed().as_secs_f64() * 1000.0
-}
 
 /// Runs a command and returns the process exit code. Output goes to stdout, errors to stderr:
 /// 1 for a failure, 2 for a usage error (a `shape:` name that is unknown, or whose sizes pass

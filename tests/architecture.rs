@@ -1,13 +1,14 @@
 //! The layering rules of DESIGN §1, checked on the source: the crate's top-level modules form
 //! the declared layers ([`LAYERS`]: mesh → io → ops → edit → the command line and the editor)
-//! and none names a module of its own layer or one above it; no two modules of `src/cli`,
-//! `src/editor`, each of its rooms, `src/io`, `src/mesh`, `src/ops` or `src/ops/local` import
-//! each other, directly or round a longer cycle; no room imports the editor's root back; no folder of the editor holds more
+//! and none names a module of its own layer or one above it; in no folder of the crate do its
+//! modules import each other round a circle, its own file (`mod.rs`) counted as one of them
+//! (an item taken from it is an arrow to it; a `pub use` re-export is its face, not an
+//! import); no room imports the editor's root back; no folder of the editor holds more
 //! than 12 files, nor any of its files more than 600 lines; no function outside the tests runs
 //! over 120 lines; the README is at most 400 lines.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// The crate's top-level modules, bottom layer first. A module may name (`crate::NAME`) the
 /// modules of the layers below its own and no other: the core (mesh, files, operations, the
@@ -193,77 +194,283 @@ fn the_layer_check_finds_a_planted_upward_import() {
     );
 }
 
-/// The sibling modules of a folder and, for each, the siblings its files name (through
-/// `super::NAME` or `crate::FOLDER::NAME`). A sub-folder counts as one module.
-fn import_graph(folder: &str) -> BTreeMap<String, BTreeSet<String>> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("src")
-        .join(folder);
-    let module_of = |path: &Path| -> Option<String> {
-        let rel = path.strip_prefix(&root).ok()?;
-        let first = rel
-            .components()
-            .next()?
-            .as_os_str()
-            .to_string_lossy()
-            .into_owned();
-        Some(first.trim_end_matches(".rs").to_string())
-    };
-    let mut files = Vec::new();
-    let mut stack = vec![root.clone()];
-    while let Some(dir) = stack.pop() {
-        for entry in std::fs::read_dir(&dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                stack.push(path);
-            } else if path.extension().is_some_and(|e| e == "rs") {
-                files.push(path);
+/// `text`'s paths: each `use` statement's (its braces expanded, `pub use` re-exports left out:
+/// a folder's face, not an import) and every other `a::b::c` in its code, test code and
+/// comments left out.
+fn named_paths(text: &str) -> Vec<Vec<String>> {
+    let code = without_tests(text).join("\n");
+    let mut paths = Vec::new();
+    let mut rest = String::with_capacity(code.len());
+    for statement in code.split_inclusive(';') {
+        let trimmed = statement.trim_start();
+        let (visibility, body) = match trimmed.split_once("use ") {
+            Some((before, body)) if is_visibility(before.trim()) && is_use_tree(body) => {
+                (before.trim(), body)
             }
-        }
-    }
-    let modules: BTreeSet<String> = files.iter().filter_map(|f| module_of(f)).collect();
-    let crate_prefix = format!("crate::{}::", folder.replace('/', "::"));
-    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-    for file in &files {
-        let Some(from) = module_of(file) else {
-            continue;
-        };
-        // A file directly in the folder reaches its siblings as `super::`; one in a sub-folder
-        // reaches them as `super::super::` or by the crate path, and its own folder's files as
-        // `super::` (which are not siblings at this level).
-        let depth = file.strip_prefix(&root).unwrap().components().count();
-        let sibling_prefix = "super::".repeat(depth);
-        let text = std::fs::read_to_string(file).unwrap();
-        for line in text.lines().map(str::trim) {
-            if line.starts_with("//") {
+            _ => {
+                rest.push_str(statement);
                 continue;
             }
-            for prefix in [sibling_prefix.as_str(), crate_prefix.as_str()] {
-                for (i, _) in line.match_indices(prefix) {
-                    let rest = &line[i + prefix.len()..];
-                    let name: String = rest
-                        .chars()
-                        .take_while(|c| c.is_alphanumeric() || *c == '_')
-                        .collect();
-                    // `use super::{a, b}` names several.
-                    let names: Vec<String> = if let Some(list) = rest.strip_prefix('{') {
-                        list.split(['}', ','])
-                            .map(|n| n.trim().split("::").next().unwrap_or("").to_string())
-                            .collect()
-                    } else {
-                        vec![name]
-                    };
-                    for name in names {
-                        if name != from && modules.contains(&name) {
-                            graph.entry(from.clone()).or_default().insert(name);
-                        }
-                    }
-                }
+        };
+        if visibility.starts_with("pub") {
+            continue;
+        }
+        for path in expand_use(body.trim_end_matches(';')) {
+            let path = path.split(" as ").next().unwrap_or("").trim().to_string();
+            paths.push(path.split("::").map(str::to_string).collect());
+        }
+    }
+    // Every other path: an identifier followed by `::`, read to its end.
+    let chars: Vec<char> = rest.chars().collect();
+    let ident = |c: char| c.is_alphanumeric() || c == '_';
+    let mut i = 0;
+    while i < chars.len() {
+        let starts = ident(chars[i]) && (i == 0 || (!ident(chars[i - 1]) && chars[i - 1] != ':'));
+        if !starts {
+            i += 1;
+            continue;
+        }
+        let mut segments = Vec::new();
+        let mut j = i;
+        loop {
+            let start = j;
+            while j < chars.len() && ident(chars[j]) {
+                j += 1;
+            }
+            segments.push(chars[start..j].iter().collect::<String>());
+            if chars.get(j) == Some(&':')
+                && chars.get(j + 1) == Some(&':')
+                && chars.get(j + 2).is_some_and(|&c| ident(c))
+            {
+                j += 2;
+            } else {
+                break;
             }
         }
-        graph.entry(from).or_default();
+        if segments.len() > 1 {
+            paths.push(segments);
+        }
+        i = j.max(i + 1);
+    }
+    paths
+}
+
+/// Whether `text` is nothing or a visibility (`pub`, `pub(crate)`, `pub(in crate::x)`).
+fn is_visibility(text: &str) -> bool {
+    text.is_empty() || text == "pub" || (text.starts_with("pub(") && text.ends_with(')'))
+}
+
+/// Whether `body` reads as a `use` tree (`a::{b, c::d as e};`), not prose that happens to
+/// hold the word.
+fn is_use_tree(body: &str) -> bool {
+    let tree = body.trim_end().trim_end_matches(';');
+    let balanced = tree.matches('{').count() == tree.matches('}').count();
+    balanced
+        && tree
+            .chars()
+            .all(|c| c.is_alphanumeric() || "_:{},* \n\t".contains(c))
+}
+
+/// A `use` tree's paths: `a::{b, c::{d, e}}` → `a::b`, `a::c::d`, `a::c::e`.
+fn expand_use(tree: &str) -> Vec<String> {
+    let tree = tree.trim();
+    let Some(open) = tree.find('{') else {
+        return vec![tree.to_string()];
+    };
+    let (prefix, inner) = (
+        &tree[..open],
+        &tree[open + 1..tree.rfind('}').unwrap_or(tree.len())],
+    );
+    let mut parts = Vec::new();
+    let (mut depth, mut start) = (0, 0);
+    for (k, c) in inner.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => depth -= 1,
+            ',' if depth == 0 => {
+                parts.push(&inner[start..k]);
+                start = k + 1;
+            }
+            _ => {}
+        }
+    }
+    parts.push(&inner[start..]);
+    parts
+        .into_iter()
+        .filter(|p| !p.trim().is_empty())
+        .flat_map(expand_use)
+        .map(|p| format!("{prefix}{p}"))
+        .collect()
+}
+
+/// The module `path` names, seen from module `at`: the deepest module of `modules` it reaches
+/// (`crate::ops::Refusal` → `ops`, an item of `ops/mod.rs`), `None` for a path outside the
+/// crate or not starting at a module.
+fn resolve(modules: &BTreeSet<Vec<String>>, at: &[String], path: &[String]) -> Option<Vec<String>> {
+    let (mut module, mut rest): (Vec<String>, &[String]) = match path.first()?.as_str() {
+        "crate" => (Vec::new(), &path[1..]),
+        "self" => (at.to_vec(), &path[1..]),
+        "super" => {
+            let ups = path.iter().take_while(|s| *s == "super").count();
+            (at[..at.len().checked_sub(ups)?].to_vec(), &path[ups..])
+        }
+        first => {
+            let child = [at, &[first.to_string()]].concat();
+            if !modules.contains(&child) {
+                return None;
+            }
+            (at.to_vec(), path)
+        }
+    };
+    while let Some((next, tail)) = rest.split_first() {
+        let deeper = [module.as_slice(), std::slice::from_ref(next)].concat();
+        if !modules.contains(&deeper) {
+            break;
+        }
+        module = deeper;
+        rest = tail;
+    }
+    Some(module)
+}
+
+/// Each module (by path) and the modules its code names (itself left out).
+fn module_arrows(files: &[(String, String)]) -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
+    let split = |m: &str| -> Vec<String> {
+        m.split('/')
+            .filter(|s| !s.is_empty())
+            .map(str::to_string)
+            .collect()
+    };
+    let test_only = test_only_modules(files);
+    let modules: BTreeSet<Vec<String>> = files.iter().map(|(m, _)| split(m)).collect();
+    let mut arrows = BTreeMap::new();
+    for (module, text) in files {
+        let tested_alone = test_only
+            .iter()
+            .any(|t| module == t || module.starts_with(&format!("{t}/")));
+        if tested_alone {
+            continue;
+        }
+        let at = split(module);
+        let named: BTreeSet<Vec<String>> = named_paths(text)
+            .iter()
+            .filter_map(|p| resolve(&modules, &at, p))
+            .filter(|m| *m != at)
+            .collect();
+        arrows.insert(at, named);
+    }
+    arrows
+}
+
+/// The graph of folder `folder`'s modules: each child (a sub-folder counts as one) and `mod`
+/// (the folder's own file), with an arrow where one names the other.
+fn folder_graph(
+    arrows: &BTreeMap<Vec<String>, BTreeSet<Vec<String>>>,
+    folder: &[String],
+) -> BTreeMap<String, BTreeSet<String>> {
+    let node = |m: &[String]| -> Option<String> {
+        match m.strip_prefix(folder)? {
+            [] => Some("mod".to_string()),
+            [child, ..] => Some(child.clone()),
+        }
+    };
+    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (from, named) in arrows {
+        let Some(a) = node(from) else { continue };
+        let entry = graph.entry(a.clone()).or_default();
+        for b in named.iter().filter_map(|m| node(m)) {
+            if b != a {
+                entry.insert(b);
+            }
+        }
     }
     graph
+}
+
+/// Every folder of the crate (a module with modules under it) and the circle among its modules,
+/// if it has one.
+fn folder_circles(files: &[(String, String)]) -> BTreeMap<String, Vec<String>> {
+    let arrows = module_arrows(files);
+    let folders: BTreeSet<Vec<String>> = arrows
+        .keys()
+        .filter(|m| !m.is_empty())
+        .map(|m| m[..m.len() - 1].to_vec())
+        .collect();
+    folders
+        .into_iter()
+        .filter_map(|f| {
+            let circle = find_cycle(&folder_graph(&arrows, &f))?;
+            Some((f.join("/"), circle))
+        })
+        .collect()
+}
+
+/// Folders whose `mod.rs` still holds items its children take while it calls them (each is to
+/// be split: the shared items into a file of their own). The check fails on a circle anywhere
+/// else, and on a folder listed here that has none left, so the list only shrinks.
+const FOLDERS_STILL_CIRCLING: &[&str] = &[
+    "editor/panels/sections",
+    "io",
+    "io/collada",
+    "io/ply",
+    "ops/operation",
+    "ops/param",
+    "ops/simplify",
+];
+
+#[test]
+fn no_folder_imports_round_a_circle_counting_its_own_file() {
+    let circles = folder_circles(&source_files());
+    for (folder, circle) in &circles {
+        assert!(
+            FOLDERS_STILL_CIRCLING.contains(&folder.as_str()),
+            "src/{folder}: import circle {}",
+            circle.join(" -> ")
+        );
+    }
+    for folder in FOLDERS_STILL_CIRCLING {
+        assert!(
+            circles.contains_key(*folder),
+            "src/{folder} has no circle left: take it off FOLDERS_STILL_CIRCLING"
+        );
+    }
+}
+
+#[test]
+fn the_circle_check_counts_items_taken_from_a_folders_own_file() {
+    let file = |module: &str, text: &str| (module.to_string(), text.to_string());
+    // `x/mod.rs` calls its child and the child takes an item of `x/mod.rs`: a circle.
+    let planted = vec![
+        file(
+            "x",
+            "mod a;\npub fn helper() {}\npub fn run() { a::work() }\n",
+        ),
+        file("x/a", "use super::helper;\npub fn work() { helper() }\n"),
+    ];
+    assert_eq!(
+        folder_circles(&planted).get("x"),
+        Some(&vec!["a".to_string(), "mod".to_string()])
+    );
+    // A re-export (`pub use`) is the folder's face, not an import; a path in a comment or a
+    // test module names nothing.
+    let facade = vec![
+        file(
+            "x",
+            "mod a;\npub use a::work;\npub fn helper() {}\n// a::work()\n",
+        ),
+        file(
+            "x/a",
+            "use super::helper;\npub fn work() { helper() }\n#[cfg(test)]\nmod tests {\n    use crate::x::run;\n}\n",
+        ),
+    ];
+    assert_eq!(folder_circles(&facade).get("x"), None);
+    // Siblings naming each other through the crate path.
+    let siblings = vec![
+        file("y", "mod b;\nmod c;\n"),
+        file("y/b", "use crate::y::c::{Thing, other::{More}};\n"),
+        file("y/c", "fn f() { let _ = crate::y::b::make(); }\n"),
+    ];
+    assert_eq!(folder_circles(&siblings).get("y").map(Vec::len), Some(2));
 }
 
 /// A cycle of the graph, if any (as the list of modules round it).
@@ -307,23 +514,6 @@ fn editor_rooms() -> Vec<String> {
         .collect();
     rooms.sort();
     rooms
-}
-
-#[test]
-fn no_module_pair_imports_each_other() {
-    let rooms = editor_rooms();
-    assert!(rooms.len() >= 5, "the editor has rooms: {rooms:?}");
-    let folders = ["cli", "editor", "io", "mesh", "ops", "ops/local"]
-        .into_iter()
-        .map(String::from)
-        .chain(rooms);
-    for folder in folders {
-        let graph = import_graph(&folder);
-        assert!(graph.len() > 2, "{folder}: found no modules");
-        if let Some(cycle) = find_cycle(&graph) {
-            panic!("src/{folder}: import cycle {}", cycle.join(" -> "));
-        }
-    }
 }
 
 /// The editor's root (`editor/mod.rs`) adds every room's plugin; a room that named one of the

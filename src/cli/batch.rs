@@ -22,8 +22,8 @@ use std::time::Instant;
 use serde_json::{Value, json};
 
 use super::args::{ProcessArg, is_pattern};
-use super::ms_since;
 use super::process::{ProcessJob, check_output, process_file};
+use super::report::ms_since;
 use super::report::round;
 use crate::edit::Step;
 

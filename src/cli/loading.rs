@@ -10,7 +10,7 @@ use crate::mesh::{BuiltMesh, build_mesh};
 use crate::ops::subdivide::subdivision;
 use crate::process_memory;
 
-use super::ms_since;
+use super::report::ms_since;
 
 /// About how many bytes of a mesh file hold one row of the mesh it builds (a vertex, halfedge,
 /// edge or face): the bunny's OBJ holds 417 000 rows in 3.0 MB. Binary files hold more rows a

@@ -18,7 +18,7 @@ use crate::ops::geometry::quantity::{Given, Needs};
 use crate::ops::geometry::{NormalWeighting, Quantity, Surface, vertex_normals};
 
 use super::loading::load_for;
-use super::ms_since;
+use super::report::ms_since;
 use super::report::{info_json, info_text, round};
 
 /// What `process` does to each input: the steps and the output options.

@@ -132,6 +132,11 @@ fn geometry_json(
     (curvature_out, normals)
 }
 
+/// Milliseconds since `start`.
+pub(super) fn ms_since(start: std::time::Instant) -> f64 {
+    start.elapsed().as_secs_f64() * 1000.0
+}
+
 pub(super) fn round(x: f64, digits: i32) -> f64 {
     let scale = 10f64.powi(digits);
     (x * scale).round() / scale
