@@ -413,8 +413,6 @@ const FOLDERS_STILL_CIRCLING: &[&str] = &[
     "io",
     "io/collada",
     "io/ply",
-    "ops/operation",
-    "ops/param",
     "ops/simplify",
 ];
 

@@ -27,7 +27,7 @@
 
 use bevy::prelude::{Resource, World};
 
-use crate::edit::{Applied, Edit, Redraw};
+use crate::edit::{Applied, Edit, Invocation, Redraw};
 use crate::mesh::attributes::MeshAttributes;
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::ops::operation::stepping::{Moved, Steps};
@@ -206,7 +206,9 @@ fn finish(world: &mut World, run: SteppedRun) -> Result<String, Declined> {
         }
         return Ok("nothing committed: the mesh is as before".into());
     };
-    if let Some(recorded) = ended.recorded {
+    if let (Some(values), Edit::Operation(started)) = (ended.recorded, &edit)
+        && let Ok(recorded) = Invocation::new(started.operation(), &values)
+    {
         edit = Edit::Operation(recorded);
     }
     summary.push_str(&edit.settle_attributes(world, mesh, had));

@@ -5,7 +5,7 @@
 
 use bevy::prelude::World;
 
-use super::Applied;
+use super::outcome::Applied;
 use crate::mesh::ids::{EdgeId, ElementId, VertexId};
 use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;

@@ -22,7 +22,7 @@ use std::any::Any;
 use bevy::math::{Quat, Vec3};
 use bevy::prelude::World;
 
-use super::{Invocation, Redraw};
+use super::outcome::Redraw;
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::ops::Refusal;
 use crate::ops::declaration::IdsKept;
@@ -109,9 +109,9 @@ impl Moved {
 pub struct Ended {
     /// The undo entry's summary line; `None` when the run changed nothing (no entry is made).
     pub summary: Option<String>,
-    /// The invocation the undo entry names where it is not the one the run started with
-    /// (a subdivision ended after fewer levels than asked for).
-    pub recorded: Option<Invocation>,
+    /// The values of the operation's parameters the undo entry names where they are not those
+    /// the run started with (a subdivision ended after fewer levels than asked for).
+    pub recorded: Option<Vec<Option<f64>>>,
 }
 
 impl Ended {

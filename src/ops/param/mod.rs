@@ -60,26 +60,9 @@ use crate::mesh::tables::{Connectivity, EdgeRow, NONE, extract};
 
 pub use cut::CutMesh;
 pub use distortion::Distortion;
-pub use operation::Parameterize;
+pub use operation::{PARAMETERIZE, Parameterize};
 pub use params::{BoundaryShape, ParamError, ParamMethod, ParamParams, UnknownName};
 pub use tutte::Solver;
-
-use crate::ops::declaration::{Declaration, Parameter, Section};
-
-/// Parameterization: a job on a large mesh; only UVs change.
-pub const PARAMETERIZE: Declaration = Declaration::new("param")
-    .titled("Parameterize")
-    .described(
-        "unwrap the mesh onto the plane, a UV per corner: Tutte (uniform), mean-value, harmonic \
-         or LSCM; a fixed boundary on a circle or a square; cut along the marked seams",
-    )
-    .on_key("Shift+U")
-    .with_parameters(&[
-        Parameter::choice("METHOD", operation::METHODS, 1),
-        Parameter::choice("BOUNDARY", operation::SHAPES, 0),
-    ])
-    .in_section(Section::Uv)
-    .as_job();
 
 /// What a parameterization did and how good it is.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -4,18 +4,34 @@
 
 use bevy::prelude::World;
 
-use super::{BoundaryShape, PARAMETERIZE, ParamMethod, ParamParams, parameterize_in_place};
+use super::parameterize_in_place;
+use super::params::{BoundaryShape, ParamMethod, ParamParams};
 use crate::mesh::ids::MeshId;
 use crate::ops::Refusal;
-use crate::ops::declaration::Declaration;
+use crate::ops::declaration::{Declaration, Parameter, Section};
 use crate::ops::named::Named;
 use crate::ops::operation::{Applied, EditContext, MeshOperation, Values};
 
 /// The methods' words, in [`ParamMethod::ALL`]'s order (a test checks it).
-pub(super) const METHODS: &[&str] = &["uniform", "mean-value", "harmonic", "lscm"];
+const METHODS: &[&str] = &["uniform", "mean-value", "harmonic", "lscm"];
 
 /// The boundary shapes' words, in [`BoundaryShape::ALL`]'s order (a test checks it).
-pub(super) const SHAPES: &[&str] = &["circle", "square"];
+const SHAPES: &[&str] = &["circle", "square"];
+
+/// Parameterization: a job on a large mesh; only UVs change.
+pub const PARAMETERIZE: Declaration = Declaration::new("param")
+    .titled("Parameterize")
+    .described(
+        "unwrap the mesh onto the plane, a UV per corner: Tutte (uniform), mean-value, harmonic \
+         or LSCM; a fixed boundary on a circle or a square; cut along the marked seams",
+    )
+    .on_key("Shift+U")
+    .with_parameters(&[
+        Parameter::choice("METHOD", METHODS, 1),
+        Parameter::choice("BOUNDARY", SHAPES, 0),
+    ])
+    .in_section(Section::Uv)
+    .as_job();
 
 /// [`parameterize_in_place`] as an operation.
 pub struct Parameterize;

@@ -19,8 +19,8 @@ use crate::mesh::members::of_kind;
 use crate::mesh::topology::MeshRef;
 use crate::ops::Refusal;
 use crate::ops::declaration::IdsKept;
+use crate::ops::operation::Redraw;
 use crate::ops::operation::stepping::{Ended, GoesBack, MAX_DRAWN, Moved, StepShow, Steps};
-use crate::ops::operation::{Invocation, MeshOperation, Redraw};
 
 /// Subdivision previewed and committed a level at a time (see the module doc).
 pub struct SubdivideSteps {
@@ -182,8 +182,7 @@ impl Steps for SubdivideSteps {
         ));
         // A later level refused still leaves the levels made: the entry names those.
         if self.done < self.levels {
-            let operation: &'static dyn MeshOperation = self.scheme.operation();
-            ended.recorded = Invocation::new(operation, &[Some(f64::from(self.done))]).ok();
+            ended.recorded = Some(vec![Some(f64::from(self.done))]);
         }
         ended
     }
