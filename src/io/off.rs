@@ -8,8 +8,8 @@
 
 use std::fmt::Write as _;
 
-use super::ParseError;
 use super::text::{Numbers, cap, check_text, index, lines};
+use crate::io::error::ParseError;
 use crate::mesh::soup::PolygonSoup;
 
 /// Parses OFF text.

@@ -16,10 +16,10 @@ use std::collections::HashMap;
 use std::collections::hash_map::Entry;
 use std::hash::Hash;
 
-use super::ParseError;
 use super::corners::{attach_corner_normals, per_vertex};
 use super::skipped::Skipped;
 use super::text::Numbers;
+use crate::io::error::ParseError;
 use crate::memory_budget;
 use crate::mesh::groups::{FaceGroups, Group, GroupRows, GroupTable};
 use crate::mesh::soup::PolygonSoup;

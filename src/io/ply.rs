@@ -38,9 +38,9 @@ mod fixed_rows;
 use bevy::math::{Vec2, Vec3};
 use std::fmt::Write as _;
 
-use super::ParseError;
 use super::strips::strip_triangles;
 use super::text::{Numbers, cap};
+use crate::io::error::ParseError;
 use crate::mesh::soup::PolygonSoup;
 
 /// How a PLY body is encoded.

@@ -25,7 +25,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use super::IoError;
+use crate::io::error::IoError;
 
 /// How many links [`resolve_links`] follows before giving up (Linux's own limit is 40).
 const MAX_LINKS: usize = 40;

@@ -14,8 +14,8 @@ use bevy::math::Vec3;
 use bevy::platform::collections::HashMap;
 use std::fmt::Write as _;
 
-use super::ParseError;
 use super::text::{Numbers, check_text, lines};
+use crate::io::error::ParseError;
 use crate::mesh::soup::PolygonSoup;
 use crate::mesh::topology::newell_area_vector;
 

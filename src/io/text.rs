@@ -4,7 +4,7 @@
 use bevy::math::Vec3;
 use std::borrow::Cow;
 
-use super::ParseError;
+use crate::io::error::ParseError;
 
 /// Fails on the first NUL byte: a text format that holds one is a binary file.
 pub fn check_text(bytes: &[u8]) -> Result<(), ParseError> {

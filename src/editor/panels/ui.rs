@@ -13,8 +13,9 @@ use crate::mesh::ids::ElementId;
 use crate::mesh::topology::MeshRef;
 use crate::mesh::{InMesh, MeshInfo};
 
+use super::sections::SECTIONS;
 use super::sections::folding::PanelSections;
-use super::sections::{PanelContext, SECTIONS};
+use super::state::PanelContext;
 use super::state::{InspectorView, PendingActions, SelectedView, UiFields};
 use crate::editor::input::keyboard::perform;
 use crate::editor::input::shortcuts::shortcuts;

@@ -20,7 +20,7 @@ use roxmltree::Node;
 use std::collections::HashMap;
 
 use super::{Ids, child, children, line_of, reference};
-use crate::io::ParseError;
+use crate::io::error::ParseError;
 use crate::io::obj::channel;
 use crate::io::parts::{NO_POSITION, Part};
 use crate::io::strips::strip_triangles;

@@ -29,10 +29,10 @@ mod tests;
 use roxmltree::{Document, Node, ParsingOptions};
 use std::collections::HashMap;
 
-use super::ParseError;
 use super::parts::{Part, assemble};
 use super::skipped::Skipped;
 use super::text::Numbers;
+use crate::io::error::ParseError;
 use crate::mesh::soup::PolygonSoup;
 
 /// Every element with an `id`, by id.

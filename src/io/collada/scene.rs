@@ -18,7 +18,7 @@ use roxmltree::Node;
 
 use super::geometry::floats;
 use super::{Ids, child, children, line_of, reference};
-use crate::io::ParseError;
+use crate::io::error::ParseError;
 use crate::io::text::Numbers;
 
 /// Node trees nested deeper than this (or `<instance_node>`s naming each other in a cycle)

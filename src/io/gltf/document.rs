@@ -17,7 +17,7 @@
 use gltf::json::validation::{Error as Invalid, Validate};
 use gltf::json::{Path as JsonPath, Root};
 
-use crate::io::ParseError;
+use crate::io::error::ParseError;
 
 /// The document, the `.glb`'s binary chunk, and the notes on what was tolerated.
 pub(super) struct Parsed {

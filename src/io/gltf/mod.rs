@@ -34,10 +34,10 @@ use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
 use std::path::Path;
 
-use super::ParseError;
 use super::parts::{NO_POSITION, Part, assemble};
 use super::skipped::Skipped;
 use super::strips::strip_triangles;
+use crate::io::error::ParseError;
 use crate::mesh::groups::Group;
 use crate::mesh::soup::PolygonSoup;
 use buffers::Buffers;

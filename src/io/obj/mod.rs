@@ -44,10 +44,10 @@ use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::ParseError;
 use super::corners::attach_corner_normals;
 use super::skipped::Skipped;
 use super::text::{Numbers, cap, check_text, lines};
+use crate::io::error::ParseError;
 use crate::mesh::soup::PolygonSoup;
 use crate::process_memory;
 use groups::{GroupReader, GroupWriter, writable_in_order};

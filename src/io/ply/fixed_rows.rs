@@ -192,7 +192,7 @@ fn read_faces(
 mod tests {
     use super::super::{Binary, Header, PlyEncoding, body_values, header, write};
     use super::*;
-    use crate::io::ParseError;
+    use crate::io::error::ParseError;
     use crate::io::tests::mixed;
     use bevy::math::Vec3;
 

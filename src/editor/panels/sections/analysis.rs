@@ -3,9 +3,9 @@
 
 use bevy_egui::egui;
 
-use super::PanelSection;
 use crate::colormap::{ColorMap, Range};
 use crate::editor::panels::state::InspectorView;
+use crate::editor::panels::state::PanelSection;
 use crate::editor::view::colouring::ColorBy;
 use crate::ops::geometry::Quantity;
 

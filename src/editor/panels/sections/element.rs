@@ -4,9 +4,9 @@
 
 use bevy_egui::egui;
 
-use super::PanelSection;
 use crate::edit::Edit;
 use crate::editor::input::shortcuts::Action;
+use crate::editor::panels::state::PanelSection;
 use crate::editor::panels::state::{InspectorView, UiFields};
 use crate::editor::session::requests::{Relation, Request};
 use crate::mesh::ids::{ElementId, parse_element};

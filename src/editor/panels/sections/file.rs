@@ -3,7 +3,7 @@
 
 use bevy_egui::egui;
 
-use super::PanelSection;
+use crate::editor::panels::state::PanelSection;
 use std::path::PathBuf;
 
 use crate::editor::input::shortcuts::Action;

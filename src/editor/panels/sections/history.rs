@@ -2,8 +2,8 @@
 
 use bevy_egui::egui;
 
-use super::PanelSection;
 use crate::editor::input::shortcuts::Action;
+use crate::editor::panels::state::PanelSection;
 use crate::editor::panels::state::{InspectorView, PendingActions};
 use crate::editor::panels::widgets::shortcut_label;
 

@@ -3,7 +3,7 @@
 
 use bevy_egui::egui;
 
-use super::{PanelContext, PanelSection};
+use crate::editor::panels::state::{PanelContext, PanelSection};
 
 /// The Log section.
 pub const SECTION: PanelSection = PanelSection {

@@ -4,9 +4,9 @@
 
 use bevy_egui::egui;
 
-use super::{PanelContext, PanelSection};
 use crate::editor::input::shortcuts::Action;
 use crate::editor::panels::state::{InspectorView, PendingActions};
+use crate::editor::panels::state::{PanelContext, PanelSection};
 use crate::editor::panels::widgets::shortcut_label;
 use crate::editor::view::readability::WireframeDensity;
 use crate::editor::view::render_sync::ViewSettings;

@@ -21,56 +21,7 @@ pub mod selection;
 pub mod shape;
 pub mod uv;
 
-use bevy_egui::egui;
-
-use super::state::{InspectorView, PendingActions, UiFields};
-use crate::editor::gestures::handle_deform::Anchors;
-use crate::editor::session::panel_state::UiState;
-use crate::editor::session::requests::{OutcomeLog, Request};
-use crate::editor::session::selection::SelectMode;
-use crate::editor::view::colouring::ColorBy;
-use crate::editor::view::readability::WireframeDensity;
-use crate::editor::view::render_sync::ViewSettings;
-
-/// What a section draws from and what it may change: the snapshot and the log (read), the
-/// panel's state and the view's settings (changed in place; the panel writes them back to the
-/// world only when they differ), and the requests and actions its clicks make (sent after the
-/// panel is drawn, in the order made).
-pub struct PanelContext<'a> {
-    /// What the panels show, copied out of the world this frame.
-    pub view: &'a InspectorView,
-    /// The outcomes of the requests so far.
-    pub log: &'a OutcomeLog,
-    /// The text fields.
-    pub fields: &'a mut UiFields,
-    /// The panel's state: the operations' parameters, the overlays.
-    pub state: &'a mut UiState,
-    /// What a click selects.
-    pub mode: &'a mut SelectMode,
-    /// How the mesh is drawn.
-    pub settings: &'a mut ViewSettings,
-    /// How dense the wireframe is on screen.
-    pub density: &'a WireframeDensity,
-    /// The quantity the mesh is coloured by.
-    pub colour_by: &'a mut ColorBy,
-    /// The deformation's anchors and method.
-    pub anchors: &'a mut Anchors,
-    /// Actions that need the world, run in the next `Input` set.
-    pub pending: &'a mut PendingActions,
-    /// Requests made this frame.
-    pub requests: Vec<Request>,
-}
-
-/// One section of the panel.
-#[derive(Clone, Copy)]
-pub struct PanelSection {
-    /// Its title, which also names it in the remembered list of open sections.
-    pub title: &'static str,
-    /// Whether it is open before the user has folded anything.
-    pub open_at_first: bool,
-    /// Draws its contents (the title and the folding are the panel's).
-    pub draw: fn(&mut egui::Ui, &mut PanelContext),
-}
+pub use crate::editor::panels::state::{PanelContext, PanelSection};
 
 /// The sections, in the panel's order.
 pub const SECTIONS: [PanelSection; 12] = [
@@ -92,6 +43,15 @@ pub const SECTIONS: [PanelSection; 12] = [
 pub(crate) mod testing {
     //! Drawing a section headless: egui without a window, its output's text read back.
     use super::*;
+    use crate::editor::gestures::handle_deform::Anchors;
+    use crate::editor::panels::state::{InspectorView, PendingActions, UiFields};
+    use crate::editor::session::panel_state::UiState;
+    use crate::editor::session::requests::{OutcomeLog, Request};
+    use crate::editor::session::selection::SelectMode;
+    use crate::editor::view::colouring::ColorBy;
+    use crate::editor::view::readability::WireframeDensity;
+    use crate::editor::view::render_sync::ViewSettings;
+    use bevy_egui::egui;
 
     /// The panel's resources as the editor starts with them.
     #[derive(Default)]

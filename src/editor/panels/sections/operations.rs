@@ -6,10 +6,10 @@
 
 use bevy_egui::egui;
 
-use super::{PanelContext, PanelSection};
 use crate::edit::Edit;
 use crate::editor::input::shortcuts::Action;
 use crate::editor::panels::state::PendingActions;
+use crate::editor::panels::state::{PanelContext, PanelSection};
 use crate::editor::panels::widgets::{buttons, registered_operations};
 use crate::editor::session::panel_state::UiState;
 use crate::editor::session::requests::Request;

@@ -3,8 +3,8 @@
 
 use bevy_egui::egui;
 
-use super::PanelSection;
 use crate::editor::input::shortcuts::Action;
+use crate::editor::panels::state::PanelSection;
 use crate::editor::panels::state::PendingActions;
 use crate::editor::panels::widgets::buttons;
 use crate::editor::session::selection::SelectMode;

@@ -3,9 +3,9 @@
 
 use bevy_egui::egui;
 
-use super::PanelSection;
 use crate::editor::gestures::handle_deform::Anchors;
 use crate::editor::input::shortcuts::Action;
+use crate::editor::panels::state::PanelSection;
 use crate::editor::panels::state::PendingActions;
 use crate::editor::panels::widgets::{button, registered_operations, shortcut_label};
 use crate::editor::session::panel_state::UiState;

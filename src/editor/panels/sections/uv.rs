@@ -3,7 +3,7 @@
 
 use bevy_egui::egui;
 
-use super::PanelSection;
+use crate::editor::panels::state::PanelSection;
 use crate::editor::panels::state::PendingActions;
 use crate::editor::panels::widgets::registered_operations;
 use crate::editor::session::panel_state::UiState;
