@@ -19,7 +19,7 @@ use bevy::math::{Vec2, Vec3};
 use roxmltree::Node;
 use std::collections::HashMap;
 
-use super::{Ids, child, children, line_of, reference};
+use super::xml::{Ids, child, children, line_of, reference};
 use crate::io::error::ParseError;
 use crate::io::obj::channel;
 use crate::io::parts::{NO_POSITION, Part};

@@ -25,6 +25,7 @@ mod geometry;
 mod scene;
 #[cfg(test)]
 mod tests;
+mod xml;
 
 use roxmltree::{Document, Node, ParsingOptions};
 use std::collections::HashMap;
@@ -34,9 +35,7 @@ use super::skipped::Skipped;
 use super::text::Numbers;
 use crate::io::error::ParseError;
 use crate::mesh::soup::PolygonSoup;
-
-/// Every element with an `id`, by id.
-type Ids<'a, 'input> = HashMap<&'a str, Node<'a, 'input>>;
+use xml::{Ids, child, children, line_of, reference};
 
 /// Each placed `<geometry>`'s mesh, read once (`None`: not a polygon mesh).
 type Parts = HashMap<roxmltree::NodeId, Option<Part>>;
@@ -152,27 +151,4 @@ fn notes(root: Node, scene: &scene::Scene, parts: &Parts) -> Option<String> {
         parts.values().filter(|p| p.is_none()).count(),
     );
     skipped.note()
-}
-
-/// The first child element with this tag name.
-fn child<'a, 'input>(node: Node<'a, 'input>, name: &str) -> Option<Node<'a, 'input>> {
-    node.children().find(|c| c.has_tag_name(name))
-}
-
-/// The child elements with this tag name.
-fn children<'a, 'input>(
-    node: Node<'a, 'input>,
-    name: &'static str,
-) -> impl Iterator<Item = Node<'a, 'input>> {
-    node.children().filter(move |c| c.has_tag_name(name))
-}
-
-/// The 1-based line an element starts on.
-fn line_of(node: Node) -> usize {
-    node.document().text_pos_at(node.range().start).row as usize
-}
-
-/// The id a `#id` URL names (a URL without `#` is taken as the id itself).
-fn reference(url: &str) -> &str {
-    url.strip_prefix('#').unwrap_or(url)
 }

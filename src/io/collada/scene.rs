@@ -17,7 +17,7 @@ use bevy::math::{Mat4, Vec3, Vec4};
 use roxmltree::Node;
 
 use super::geometry::floats;
-use super::{Ids, child, children, line_of, reference};
+use super::xml::{Ids, child, children, line_of, reference};
 use crate::io::error::ParseError;
 use crate::io::text::Numbers;
 
