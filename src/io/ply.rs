@@ -34,14 +34,19 @@
 //! exactly the plain `x y z` header.
 
 mod fixed_rows;
+mod rows;
 
 use bevy::math::{Vec2, Vec3};
 use std::fmt::Write as _;
 
 use super::strips::strip_triangles;
-use super::text::{Numbers, cap};
+use super::text::Numbers;
 use crate::io::error::ParseError;
 use crate::mesh::soup::PolygonSoup;
+use rows::{
+    Element, MAX_SCALARS, Property, Role, Row, Scalar, corner_uvs_of_vertices,
+    reserve_vertex_columns,
+};
 
 /// How a PLY body is encoded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -52,122 +57,6 @@ pub enum PlyEncoding {
     BinaryLittleEndian,
     /// Binary, big-endian.
     BinaryBigEndian,
-}
-
-/// The eight PLY scalar types.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Scalar {
-    I8,
-    U8,
-    I16,
-    U16,
-    I32,
-    U32,
-    F32,
-    F64,
-}
-
-impl Scalar {
-    fn parse(name: &str) -> Option<Scalar> {
-        Some(match name {
-            "char" | "int8" => Scalar::I8,
-            "uchar" | "uint8" => Scalar::U8,
-            "short" | "int16" => Scalar::I16,
-            "ushort" | "uint16" => Scalar::U16,
-            "int" | "int32" => Scalar::I32,
-            "uint" | "uint32" => Scalar::U32,
-            "float" | "float32" => Scalar::F32,
-            "double" | "float64" => Scalar::F64,
-            _ => return None,
-        })
-    }
-
-    fn size(self) -> usize {
-        match self {
-            Scalar::I8 | Scalar::U8 => 1,
-            Scalar::I16 | Scalar::U16 => 2,
-            Scalar::I32 | Scalar::U32 | Scalar::F32 => 4,
-            Scalar::F64 => 8,
-        }
-    }
-
-    fn is_integer(self) -> bool {
-        !matches!(self, Scalar::F32 | Scalar::F64)
-    }
-
-    /// The value whose bytes start `b` (which holds at least [`Scalar::size`] of them).
-    #[inline]
-    fn decode(self, b: &[u8], big_endian: bool) -> f64 {
-        fn take<const N: usize>(b: &[u8], big_endian: bool) -> [u8; N] {
-            let mut a: [u8; N] = b[..N].try_into().expect("N bytes");
-            if big_endian {
-                a.reverse();
-            }
-            a
-        }
-        match self {
-            Scalar::I8 => f64::from(i8::from_le_bytes([b[0]])),
-            Scalar::U8 => f64::from(b[0]),
-            Scalar::I16 => f64::from(i16::from_le_bytes(take(b, big_endian))),
-            Scalar::U16 => f64::from(u16::from_le_bytes(take(b, big_endian))),
-            Scalar::I32 => f64::from(i32::from_le_bytes(take(b, big_endian))),
-            Scalar::U32 => f64::from(u32::from_le_bytes(take(b, big_endian))),
-            Scalar::F32 => f64::from(f32::from_le_bytes(take(b, big_endian))),
-            Scalar::F64 => f64::from_le_bytes(take(b, big_endian)),
-        }
-    }
-}
-
-/// What the reader does with a property's values.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Role {
-    /// Coordinate 0, 1 or 2 of a vertex.
-    Coordinate(usize),
-    /// A vertex's `quality`.
-    Quality,
-    /// A vertex's `nx` (0), `ny` (1) or `nz` (2).
-    Normal(usize),
-    /// A vertex's `red` (0), `green` (1) or `blue` (2).
-    Color(usize),
-    /// A vertex's texture coordinate `u` (0) or `v` (1) (also `s t`, `texture_u texture_v`,
-    /// `texture_s texture_t`).
-    Uv(usize),
-    /// A face's `texcoord` list: `u v` per corner (MeshLab's per-corner UVs).
-    TexCoord,
-    /// Another scalar of a vertex, kept as column `k` of the soup's
-    /// [`vertex_scalars`](PolygonSoup::vertex_scalars) (columns numbered across the header in
-    /// order of first appearance; at most [`MAX_SCALARS`]).
-    Scalar(usize),
-    /// The corners of a face.
-    Corners,
-    /// A `tristrips` element's `vertex_indices`: strips, `-1` between them.
-    Strip,
-    /// Read past.
-    Skip,
-}
-
-#[derive(Debug)]
-enum Property {
-    Scalar {
-        name: String,
-        ty: Scalar,
-        role: Role,
-    },
-    List {
-        name: String,
-        count: Scalar,
-        item: Scalar,
-        role: Role,
-    },
-}
-
-#[derive(Debug)]
-struct Element {
-    name: String,
-    count: usize,
-    properties: Vec<Property>,
-    /// The header line declaring it.
-    line: usize,
 }
 
 /// Where values come from: text tokens or binary bytes.
@@ -382,10 +271,6 @@ fn header(bytes: &[u8]) -> Result<Header, ParseError> {
     Err(ParseError::byte(bytes.len(), "file ends inside the header"))
 }
 
-/// The most vertex scalars kept beside the ones Pappus has a column for; more are read past
-/// (and named in the load's note).
-pub const MAX_SCALARS: usize = 8;
-
 /// Makes a `vertex` element's scalar property that has no role of its own a kept column
 /// ([`Role::Scalar`]), the same column for the same name in another `vertex` element.
 fn keep_as_column(element: &str, property: &mut Property, scalars: &mut Vec<String>) {
@@ -491,17 +376,6 @@ fn check_element(element: &Element) -> Result<(), ParseError> {
     }
 }
 
-/// A colour channel as a byte: an integer as it is, a floating-point value as a fraction of
-/// full intensity (scaled by 255 and rounded); clamped to 0–255 (NaN gives 0).
-fn channel(v: f64, ty: Scalar) -> u8 {
-    let v = if ty.is_integer() {
-        v
-    } else {
-        (v * 255.0).round()
-    };
-    v.clamp(0.0, 255.0) as u8
-}
-
 /// Reads every element's values in header order, keeping positions, faces, and the vertices'
 /// quality and colours when the vertex element has them.
 ///
@@ -581,113 +455,6 @@ fn body_values<V: Values>(
     // Per-face UVs win; per-vertex ones give every corner of a vertex the same UV.
     soup.corner_uvs = face_uv.or_else(|| corner_uvs_of_vertices(&soup, vertex_uv));
     Ok(soup)
-}
-
-/// Per-vertex UVs as corner UVs: each corner takes its vertex's ((0, 0) for an index out of
-/// range, a face the builder drops).
-fn corner_uvs_of_vertices(soup: &PolygonSoup, vertex_uv: Option<Vec<Vec2>>) -> Option<Vec<Vec2>> {
-    vertex_uv.map(|uv| {
-        let at = |&i: &u32| uv.get(i as usize).copied().unwrap_or(Vec2::ZERO);
-        soup.indices.iter().map(at).collect()
-    })
-}
-
-/// Makes room for a `vertex` element's rows in the soup's columns, and starts the columns its
-/// properties bring (quality, normals, colours, UVs). Vertices read before (another `vertex`
-/// element, in an odd file) get 0 and black, so that the columns keep one value per position.
-fn reserve_vertex_columns(
-    element: &Element,
-    soup: &mut PolygonSoup,
-    vertex_uv: &mut Option<Vec<Vec2>>,
-    len: usize,
-) {
-    let has = |role: Role| {
-        element
-            .properties
-            .iter()
-            .any(|p| matches!(p, Property::Scalar { role: r, .. } if *r == role))
-    };
-    let before = soup.positions.len();
-    if (0..2).all(|k| has(Role::Uv(k))) {
-        vertex_uv.get_or_insert_with(|| vec![Vec2::ZERO; before]);
-    }
-    let n = cap(element.count, len / 12);
-    soup.positions.reserve(n);
-    if has(Role::Quality) {
-        let q = soup.vertex_quality.get_or_insert_with(|| vec![0.0; before]);
-        q.reserve(n);
-    }
-    if (0..3).all(|k| has(Role::Normal(k))) {
-        let v = soup
-            .vertex_normals
-            .get_or_insert_with(|| vec![Vec3::ZERO; before]);
-        v.reserve(n);
-    }
-    if (0..3).all(|k| has(Role::Color(k))) {
-        let c = soup
-            .vertex_colors
-            .get_or_insert_with(|| vec![[0; 3]; before]);
-        c.reserve(n);
-    }
-    for property in &element.properties {
-        if let Property::Scalar {
-            name,
-            role: Role::Scalar(k),
-            ..
-        } = property
-            && *k == soup.vertex_scalars.len()
-        {
-            soup.vertex_scalars.push((name.clone(), vec![0.0; before]));
-        }
-    }
-    for (_, column) in &mut soup.vertex_scalars {
-        column.reserve(n);
-    }
-}
-
-/// One row's scalar properties, by role.
-#[derive(Default)]
-struct Row {
-    position: [f32; 3],
-    quality: f32,
-    color: [u8; 3],
-    normal: [f32; 3],
-    uv: [f32; 2],
-    scalars: [f32; MAX_SCALARS],
-}
-
-impl Row {
-    fn set(&mut self, role: Role, ty: Scalar, v: f64) {
-        match role {
-            Role::Coordinate(k) => self.position[k] = v as f32,
-            Role::Quality => self.quality = v as f32,
-            Role::Color(k) => self.color[k] = channel(v, ty),
-            Role::Normal(k) => self.normal[k] = v as f32,
-            Role::Uv(k) => self.uv[k] = v as f32,
-            Role::Scalar(k) => self.scalars[k] = v as f32,
-            Role::Corners | Role::Strip | Role::TexCoord | Role::Skip => {}
-        }
-    }
-
-    /// Adds the row as a vertex, with a value in every column the soup has.
-    fn push_vertex(&self, soup: &mut PolygonSoup, vertex_uv: &mut Option<Vec<Vec2>>) {
-        soup.positions.push(Vec3::from_array(self.position));
-        if let Some(q) = &mut soup.vertex_quality {
-            q.push(self.quality);
-        }
-        if let Some(c) = &mut soup.vertex_colors {
-            c.push(self.color);
-        }
-        if let Some(v) = &mut soup.vertex_normals {
-            v.push(Vec3::from_array(self.normal));
-        }
-        if let Some(v) = vertex_uv {
-            v.push(Vec2::from_array(self.uv));
-        }
-        for (k, (_, column)) in soup.vertex_scalars.iter_mut().enumerate() {
-            column.push(self.scalars[k]);
-        }
-    }
 }
 
 /// The list properties of the row being read: its corners (or strips) and its `texcoord`

@@ -16,7 +16,9 @@
 
 use bevy::math::Vec2;
 
-use super::{Element, Property, Role, Row, Scalar, reserve_vertex_columns};
+use super::rows::{
+    Element, Property, Role, Row, Scalar, corner_uvs_of_vertices, reserve_vertex_columns,
+};
 use crate::mesh::soup::PolygonSoup;
 
 /// One scalar property of a fixed-size row: where it sits in the row and what it holds.
@@ -124,7 +126,7 @@ pub(super) fn read(
             }
         }
     }
-    soup.corner_uvs = super::corner_uvs_of_vertices(&soup, vertex_uv);
+    soup.corner_uvs = corner_uvs_of_vertices(&soup, vertex_uv);
     Some(soup)
 }
 
