@@ -405,27 +405,14 @@ fn folder_circles(files: &[(String, String)]) -> BTreeMap<String, Vec<String>> {
         .collect()
 }
 
-/// Folders whose `mod.rs` still holds items its children take while it calls them (each is to
-/// be split: the shared items into a file of their own). The check fails on a circle anywhere
-/// else, and on a folder listed here that has none left, so the list only shrinks.
-const FOLDERS_STILL_CIRCLING: &[&str] = &["ops/simplify"];
-
 #[test]
 fn no_folder_imports_round_a_circle_counting_its_own_file() {
     let circles = folder_circles(&source_files());
-    for (folder, circle) in &circles {
-        assert!(
-            FOLDERS_STILL_CIRCLING.contains(&folder.as_str()),
-            "src/{folder}: import circle {}",
-            circle.join(" -> ")
-        );
-    }
-    for folder in FOLDERS_STILL_CIRCLING {
-        assert!(
-            circles.contains_key(*folder),
-            "src/{folder} has no circle left: take it off FOLDERS_STILL_CIRCLING"
-        );
-    }
+    let found: Vec<String> = circles
+        .iter()
+        .map(|(folder, circle)| format!("src/{folder}: {}", circle.join(" -> ")))
+        .collect();
+    assert!(found.is_empty(), "import circles:\n{}", found.join("\n"));
 }
 
 #[test]
