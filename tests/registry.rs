@@ -19,19 +19,13 @@ use pappus::ops::local::flip_edge;
 use pappus::ops::operation::{Applied, EditContext, MeshOperation, Values};
 use pappus::ops::registry::{self, register};
 
-/// A student's edge rotation: Pappus's flip under another name, on a key of its own.
-struct Spin;
+/// Pappus's flip under a declaration of its own, saying `verb to EDGE`: a student's edge
+/// rotation as a lab would register it.
+struct FlipAs(&'static Declaration, &'static str);
 
-const SPIN: Declaration = Declaration::new("spin")
-    .titled("Spin edge")
-    .described("rotate the selected edge inside its two faces")
-    .on_key("Alt+Y")
-    .naming(Names::Edge)
-    .in_section(Section::Local);
-
-impl MeshOperation for Spin {
+impl MeshOperation for FlipAs {
     fn declaration(&self) -> &'static Declaration {
-        &SPIN
+        self.0
     }
 
     fn apply(
@@ -43,58 +37,49 @@ impl MeshOperation for Spin {
     ) -> Result<Applied, Refusal> {
         let e = values.edge()?;
         Applied::on_edge(world, e, |world| {
-            let spun = flip_edge(world, e)?;
-            Ok((format!("spun to {spun}"), spun.into()))
+            let flipped = flip_edge(world, e)?;
+            Ok((format!("{} to {flipped}", self.1), flipped.into()))
         })
     }
 }
 
-/// Another operation that claims `spin` on an edge.
-struct SecondSpin;
+/// An operation that changes nothing, under a declaration that should be refused.
+struct Idle(&'static Declaration);
 
+impl MeshOperation for Idle {
+    fn declaration(&self) -> &'static Declaration {
+        self.0
+    }
+
+    fn apply(
+        &self,
+        _: &mut World,
+        _: MeshId,
+        _: Values<'_>,
+        _: &mut EditContext<'_>,
+    ) -> Result<Applied, Refusal> {
+        Ok(Applied::whole("nothing".into()))
+    }
+}
+
+/// A student's edge rotation, on a key of its own.
+const SPIN: Declaration = Declaration::new("spin")
+    .titled("Spin edge")
+    .described("rotate the selected edge inside its two faces")
+    .on_key("Alt+Y")
+    .naming(Names::Edge)
+    .in_section(Section::Local);
+
+/// Another operation that claims `spin` on an edge.
 const SECOND_SPIN: Declaration = Declaration::new("spin")
     .titled("Second spin")
     .naming(Names::Edge);
 
-impl MeshOperation for SecondSpin {
-    fn declaration(&self) -> &'static Declaration {
-        &SECOND_SPIN
-    }
-
-    fn apply(
-        &self,
-        _: &mut World,
-        _: MeshId,
-        _: Values<'_>,
-        _: &mut EditContext<'_>,
-    ) -> Result<Applied, Refusal> {
-        Ok(Applied::whole("nothing".into()))
-    }
-}
-
 /// An operation on flip's key.
-struct OnFlipsKey;
-
 const ON_FLIPS_KEY: Declaration = Declaration::new("twirl")
     .titled("Twirl")
     .on_key("Alt+R")
     .naming(Names::Edge);
-
-impl MeshOperation for OnFlipsKey {
-    fn declaration(&self) -> &'static Declaration {
-        &ON_FLIPS_KEY
-    }
-
-    fn apply(
-        &self,
-        _: &mut World,
-        _: MeshId,
-        _: Values<'_>,
-        _: &mut EditContext<'_>,
-    ) -> Result<Applied, Refusal> {
-        Ok(Applied::whole("nothing".into()))
-    }
-}
 
 /// The number of edges from the nearest source: a quantity written outside the crate that
 /// starts from vertices.
@@ -173,11 +158,11 @@ fn an_outside_quantity_is_listed_and_a_second_of_its_name_is_refused() {
     );
 }
 
-/// Registers [`Spin`] once for every test of this binary.
+/// Registers `spin` (a [`FlipAs`]) once for every test of this binary.
 fn spin_registered() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
-        register(Spin).expect("spin is free");
+        register(FlipAs(&SPIN, "spun")).expect("spin is free");
     });
 }
 
@@ -213,12 +198,18 @@ fn an_outside_operation_is_a_step_that_runs_as_the_one_it_reproduces() {
 fn a_second_operation_with_the_name_or_the_key_is_refused_naming_both() {
     spin_registered();
     let before = registry::operations().len();
-    let clash = register(SecondSpin).err().expect("refused").to_string();
+    let clash = register(Idle(&SECOND_SPIN))
+        .err()
+        .expect("refused")
+        .to_string();
     assert!(
         clash.contains("Second spin") && clash.contains("Spin edge"),
         "{clash}"
     );
-    let clash = register(OnFlipsKey).err().expect("refused").to_string();
+    let clash = register(Idle(&ON_FLIPS_KEY))
+        .err()
+        .expect("refused")
+        .to_string();
     assert!(
         clash.contains("Twirl") && clash.contains("\"Flip\"") && clash.contains("Alt+R"),
         "{clash}"
@@ -253,7 +244,7 @@ mod in_the_editor {
     #[test]
     fn an_added_operation_has_its_key_and_runs_on_the_selection() {
         let mut app = common::headless_editor();
-        app.add_operation(Mirror);
+        app.add_operation(FlipAs(&MIRROR, "mirrored"));
         assert!(
             shortcuts().any(|s| s.action == Action::Operation("mirror-edge") && s.keys == "Alt+J")
         );
@@ -301,60 +292,20 @@ mod in_the_editor {
     #[should_panic(expected = "G")]
     fn an_operation_on_a_key_of_the_editor_is_refused_at_start() {
         let mut app = common::headless_editor();
-        app.add_operation(OnGrab);
+        app.add_operation(Idle(&ON_GRAB));
     }
 
     /// Flip again, under a name and on a key of its own (the other tests of this binary may
-    /// have registered [`Spin`] already).
-    struct Mirror;
-
+    /// have registered `spin` already).
     const MIRROR: Declaration = Declaration::new("mirror-edge")
         .titled("Mirror edge")
         .on_key("Alt+J")
         .naming(Names::Edge)
         .in_section(Section::Local);
 
-    impl MeshOperation for Mirror {
-        fn declaration(&self) -> &'static Declaration {
-            &MIRROR
-        }
-
-        fn apply(
-            &self,
-            world: &mut World,
-            _: MeshId,
-            values: Values<'_>,
-            _: &mut EditContext<'_>,
-        ) -> Result<Applied, Refusal> {
-            let e = values.edge()?;
-            Applied::on_edge(world, e, |world| {
-                let e = flip_edge(world, e)?;
-                Ok((format!("mirrored to {e}"), e.into()))
-            })
-        }
-    }
-
     /// An operation on the editor's own grab key.
-    struct OnGrab;
-
     const ON_GRAB: Declaration = Declaration::new("grab-something")
         .titled("Grab something")
         .on_key("G")
         .naming(Names::Mesh);
-
-    impl MeshOperation for OnGrab {
-        fn declaration(&self) -> &'static Declaration {
-            &ON_GRAB
-        }
-
-        fn apply(
-            &self,
-            _: &mut World,
-            _: MeshId,
-            _: Values<'_>,
-            _: &mut EditContext<'_>,
-        ) -> Result<Applied, Refusal> {
-            Ok(Applied::whole("nothing".into()))
-        }
-    }
 }

@@ -191,11 +191,6 @@ impl<'w> Checker<'w> {
         }
     }
 
-    /// The longest loop it walks.
-    pub(super) fn limit(&self) -> usize {
-        self.limit
-    }
-
     fn run(&self, members: &MeshMembers) -> Result<(), Invalid> {
         if members.faces.is_empty() {
             return fail(self.mesh, Rule::Empty);

@@ -22,7 +22,7 @@
 //! entity count, so no walk runs forever whatever the links say.
 
 use bevy::ecs::entity::{EntityHashMap, EntityHashSet};
-use bevy::prelude::{Entity, World};
+use bevy::prelude::{Component, Entity, World};
 
 use super::elements::{Edge, Face, Halfedge, InMesh, Vertex};
 use super::ids::{EdgeId, FaceId, HalfedgeId, MeshId, VertexId};
@@ -64,7 +64,7 @@ pub fn validate_edit(
     let limit = world.entities().len() as usize + 1;
     let checker = Checker::new(world, mesh, removed, limit);
     let was = Was { world, before };
-    let region = Region::of(&checker, &was, removed);
+    let region = Region::of(&was, removed, limit);
     for &h in &region.halfedges {
         checker.check_links(h)?;
     }
@@ -143,27 +143,26 @@ struct Was<'a> {
 }
 
 impl Was<'_> {
-    /// `h`'s links before the edit (`None`: made by it, or no halfedge).
-    fn halfedge(&self, h: HalfedgeId) -> Option<Halfedge> {
-        if self.before.made.contains(&h.0) {
+    /// Element `e`'s `C` before the edit: its first journalled value where the edit changed
+    /// it, else as it is now (`None`: made by the edit, or no such element).
+    fn component<C: Component + Copy>(&self, e: Entity, changed: &EntityHashMap<C>) -> Option<C> {
+        if self.before.made.contains(&e) {
             return None;
         }
-        match self.before.halfedges.get(&h.0) {
+        match changed.get(&e) {
             Some(&x) => Some(x),
-            None => self.world.get::<Halfedge>(h.0).copied(),
+            None => self.world.get::<C>(e).copied(),
         }
+    }
+
+    /// `h`'s links before the edit (`None`: made by it, or no halfedge).
+    fn halfedge(&self, h: HalfedgeId) -> Option<Halfedge> {
+        self.component(h.0, &self.before.halfedges)
     }
 
     /// The halfedges on `e` before the edit (none for an edge it made).
     fn edge_halfedges(&self, e: EdgeId) -> Vec<HalfedgeId> {
-        if self.before.made.contains(&e.0) {
-            return Vec::new();
-        }
-        let edge = match self.before.edges.get(&e.0) {
-            Some(&x) => Some(x),
-            None => self.world.get::<Edge>(e.0).copied(),
-        };
-        let Some(h) = edge.map(|x| x.halfedge) else {
+        let Some(h) = self.component(e.0, &self.before.edges).map(|x| x.halfedge) else {
             return Vec::new();
         };
         let mut on = vec![h];
@@ -173,14 +172,7 @@ impl Was<'_> {
 
     /// `f`'s loop before the edit (empty for a face it made).
     fn face_loop(&self, f: FaceId, limit: usize) -> Vec<HalfedgeId> {
-        if self.before.made.contains(&f.0) {
-            return Vec::new();
-        }
-        let face = match self.before.faces.get(&f.0) {
-            Some(&x) => Some(x),
-            None => self.world.get::<Face>(f.0).copied(),
-        };
-        let Some(start) = face.map(|x| x.halfedge) else {
+        let Some(start) = self.component(f.0, &self.before.faces).map(|x| x.halfedge) else {
             return Vec::new();
         };
         self.walk(start, limit, |x| x.next)
@@ -188,14 +180,10 @@ impl Was<'_> {
 
     /// The halfedges leaving `v` before the edit (none for a vertex it made).
     fn leaving(&self, v: VertexId, limit: usize) -> Vec<HalfedgeId> {
-        if self.before.made.contains(&v.0) {
-            return Vec::new();
-        }
-        let vertex = match self.before.vertices.get(&v.0) {
-            Some(&x) => Some(x),
-            None => self.world.get::<Vertex>(v.0).copied(),
-        };
-        let Some(start) = vertex.map(|x| x.halfedge) else {
+        let Some(start) = self
+            .component(v.0, &self.before.vertices)
+            .map(|x| x.halfedge)
+        else {
             return Vec::new();
         };
         // Counter-clockwise: twin(prev(h)).
@@ -235,10 +223,9 @@ struct Region {
 }
 
 impl Region {
-    fn of(checker: &Checker<'_>, was: &Was<'_>, removed: &EntityHashSet) -> Region {
+    fn of(was: &Was<'_>, removed: &EntityHashSet, limit: usize) -> Region {
         let before = was.before;
         let world = was.world;
-        let limit = checker.limit();
         let mut halfedges = Unique::default();
         let mut edges = Unique::default();
         let mut faces = Unique::default();

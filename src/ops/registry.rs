@@ -294,7 +294,9 @@ fn overlap(a: Names, b: Names) -> bool {
 /// The registered operation whose step is called `name` (the first, where several share the
 /// name and differ in what they name: `collapse` an edge or a face).
 pub fn operation(name: &str) -> Option<&'static dyn MeshOperation> {
-    operations_named(name).into_iter().next()
+    operations()
+        .into_iter()
+        .find(|op| op.declaration().name == name)
 }
 
 /// The registered operations whose step is called `name`, in registry order: one, or several
