@@ -8,10 +8,7 @@ mod hand_edits;
 
 use bevy::math::Vec3;
 use bevy::prelude::{Entity, World};
-use pappus::mesh::{
-    Edge, EdgeId, ElementId, Face, Halfedge, InMesh, MeshId, MeshMembers, MeshRef, Position,
-    RawEdit, RawEditError, Rule, Vertex, shapes,
-};
+use pappus::mesh::{EdgeId, ElementId, MeshMembers, MeshRef, RawEdit, RawEditError, Rule, shapes};
 use pappus::ops::local::flip_edge;
 
 /// The corner cycles of the faces beside `e`, each rotated to its smallest entity, sorted.
@@ -81,50 +78,11 @@ fn a_flip_by_hand_is_the_librarys_on_spot() {
     assert!(compare_flips(&soup, 13) > 500);
 }
 
-/// One entity's element components.
-type Components = (
-    Entity,
-    Option<Halfedge>,
-    Option<Vertex>,
-    Option<Position>,
-    Option<Edge>,
-    Option<Face>,
-    Option<InMesh>,
-);
-
-/// Every element component of `mesh`'s entities, and how many entities the world holds.
-#[derive(Debug, PartialEq)]
-struct Snapshot {
-    entities: usize,
-    rows: Vec<Components>,
-}
-
-fn snapshot(world: &mut World, mesh: MeshId) -> Snapshot {
-    let members = MeshMembers::collect(world, mesh);
-    let mut rows: Vec<_> = members
-        .entities()
-        .map(|e| {
-            (
-                e,
-                world.get::<Halfedge>(e).copied(),
-                world.get::<Vertex>(e).copied(),
-                world.get::<Position>(e).copied(),
-                world.get::<Edge>(e).copied(),
-                world.get::<Face>(e).copied(),
-                world.get::<InMesh>(e).copied(),
-            )
-        })
-        .collect();
-    rows.sort_by_key(|r| r.0);
-    let entities = world.query::<Entity>().iter(world).count();
-    Snapshot { entities, rows }
-}
-
 #[test]
 fn a_broken_edit_is_refused_naming_the_rule_and_leaves_the_world_as_it_was() {
     let (mut world, built) = common::build(&shapes::icosphere(1));
     let mesh = built.mesh;
-    let before = snapshot(&mut world, mesh);
+    let before = common::snapshot(&mut world, mesh);
     let members = MeshMembers::collect(&world, mesh);
     let order = format!("{members:?}");
     let (h, other) = (members.halfedges[0], members.halfedges[7]);
@@ -143,7 +101,7 @@ fn a_broken_edit_is_refused_naming_the_rule_and_leaves_the_world_as_it_was() {
         matches!(invalid.rule, Rule::DanglingLink(_) | Rule::NextPrevDisagree),
         "{invalid}"
     );
-    assert_eq!(snapshot(&mut world, mesh), before);
+    assert_eq!(common::snapshot(&mut world, mesh), before);
     // Even the storage order, which gives the rows of the flat tables and of Python's arrays.
     assert_eq!(format!("{:?}", MeshMembers::collect(&world, mesh)), order);
     assert!(world.get_entity(e.0).is_err() && world.get_entity(v.0).is_err());
@@ -154,7 +112,7 @@ fn a_broken_edit_is_refused_naming_the_rule_and_leaves_the_world_as_it_was() {
 fn an_edit_dropped_without_a_commit_rolls_back() {
     let (mut world, built) = common::build(&shapes::icosphere(1));
     let mesh = built.mesh;
-    let before = snapshot(&mut world, mesh);
+    let before = common::snapshot(&mut world, mesh);
     let members = MeshMembers::collect(&world, mesh);
     {
         let mut edit = RawEdit::new(&mut world, mesh);
@@ -162,10 +120,10 @@ fn an_edit_dropped_without_a_commit_rolls_back() {
             .unwrap();
         edit.new_face();
     }
-    assert_eq!(snapshot(&mut world, mesh), before);
+    assert_eq!(common::snapshot(&mut world, mesh), before);
     let edit = RawEdit::new(&mut world, mesh);
     edit.rollback();
-    assert_eq!(snapshot(&mut world, mesh), before);
+    assert_eq!(common::snapshot(&mut world, mesh), before);
 }
 
 #[test]
@@ -212,7 +170,7 @@ fn the_counting_rules_are_caught() {
     // The three halfedges of one face made another's, that face removed.
     let (f, g) = (members.faces[0], members.faces[30]);
     let loop_of_g: Vec<_> = m.face_halfedges(g).collect();
-    let before = snapshot(&mut world, mesh);
+    let before = common::snapshot(&mut world, mesh);
     let mut edit = RawEdit::new(&mut world, mesh);
     edit.set_edge(h, e1).unwrap();
     edit.set_edge(t, e1).unwrap();
@@ -236,7 +194,7 @@ fn the_counting_rules_are_caught() {
         (invalid.element, invalid.rule),
         (f.into(), Rule::FaceLoopIncomplete)
     );
-    assert_eq!(snapshot(&mut world, mesh), before);
+    assert_eq!(common::snapshot(&mut world, mesh), before);
 }
 
 /// A small deterministic generator (xorshift64*).

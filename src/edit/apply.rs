@@ -28,6 +28,10 @@ impl Edit {
             return Err(Refusal::Stale(ElementId::Mesh(mesh)));
         }
         match self {
+            // A lab's operation is checked against the one it reproduces first.
+            Edit::Operation(op) if op.declaration().reference.is_some() => {
+                super::lab::apply_checked(op, world, mesh, context)
+            }
             Edit::Operation(op) => op.apply(world, mesh, context),
             Edit::Move(moves) => Ok(Applied {
                 summary: match moves.as_slice() {

@@ -37,6 +37,7 @@ use crate::ops::deform::{DeformMethod, DeformParams};
 use crate::ops::simplification_history::SimplificationHistory;
 
 mod apply;
+pub mod lab;
 mod save;
 mod step;
 mod stepped;

@@ -117,6 +117,13 @@ pub fn headless_app() -> App {
 /// Runs the editor until its window closes; returns the process exit code. Opens `path`, or
 /// the default model.
 pub fn run(path: Option<PathBuf>) -> i32 {
+    run_with(path, |_| {})
+}
+
+/// [`run`], with `extend` given the app before it starts: a lab or a plugin adds its
+/// operations there (`app.add_operation(MyFlip)`, [`AddOperation`]), its systems and
+/// resources.
+pub fn run_with(path: Option<PathBuf>, extend: impl FnOnce(&mut App)) -> i32 {
     let open = path.or_else(|| {
         let default = PathBuf::from(DEFAULT_MODEL);
         Some(if default.exists() {
@@ -156,6 +163,7 @@ pub fn run(path: Option<PathBuf>) -> i32 {
     if let Some(script) = script {
         app.insert_resource(script);
     }
+    extend(&mut app);
     // Unsaved work goes to a recovery file once the editor is idle after an edit, and a panic
     // finishes a recovery write in flight before the process ends.
     app.insert_resource(pipeline::recovery::Autosave::into_folder(

@@ -93,6 +93,10 @@ pub struct Declaration {
     /// Whether step mode runs it a step at a time
     /// (`crate::ops::operation::MeshOperation::step_through`).
     pub steps: bool,
+    /// The operation it claims to reproduce (`"flip"`), for a lab: applying it runs both on
+    /// copies of the mesh and compares them ([`crate::edit::lab`]); `None` for an operation
+    /// that is its own reference.
+    pub reference: Option<&'static str>,
 }
 
 impl Declaration {
@@ -116,6 +120,7 @@ impl Declaration {
             keeps_normals: false,
             carries: Carries::All,
             steps: false,
+            reference: None,
         }
     }
 
@@ -204,6 +209,16 @@ impl Declaration {
     pub const fn editor_only(self) -> Self {
         Self {
             is_step: false,
+            ..self
+        }
+    }
+
+    /// It reproduces the registered operation called `reference` (a student's flip claims
+    /// `"flip"`): each application is checked against it on copies of the mesh first, and an
+    /// invalid or panicking result is refused with the mesh untouched ([`crate::edit::lab`]).
+    pub const fn checked_against(self, reference: &'static str) -> Self {
+        Self {
+            reference: Some(reference),
             ..self
         }
     }

@@ -97,6 +97,15 @@ pub enum Refusal {
     /// Only the vertex kept by the last collapse can be split back.
     #[error("{0} is not the next vertex to split (that is {1}); use the level slider")]
     NotNextSplit(ElementId, ElementId),
+    /// A lab's operation checked against its reference ([`crate::edit::lab`]) left an invalid
+    /// mesh, panicked, or was refused where the reference applies: the text is the lab's
+    /// report.
+    #[error("{0}")]
+    Lab(String),
+    /// A checked low-level edit ([`RawEdit`](crate::mesh::RawEdit)) broke a rule at its
+    /// commit, and was rolled back: the element and the rule.
+    #[error("the edit would break the mesh: {0}")]
+    Broken(crate::mesh::Invalid),
     /// The mesh breaks an invariant (the text says which, and where).
     #[error("invalid: {0}")]
     Invalid(String),
@@ -132,5 +141,20 @@ pub enum Refusal {
 impl From<OverBudget> for Refusal {
     fn from(e: OverBudget) -> Self {
         Refusal::OverBudget(e.0)
+    }
+}
+
+/// A raw edit's error as an operation's refusal, so that an operation written with
+/// [`RawEdit`](crate::mesh::RawEdit) (a lab's flip) can pass its errors on with `?`: an
+/// element not of the mesh is stale, a position not finite is said so, a broken rule is
+/// [`Refusal::Broken`].
+impl From<crate::mesh::RawEditError> for Refusal {
+    fn from(e: crate::mesh::RawEditError) -> Self {
+        use crate::mesh::RawEditError as E;
+        match e {
+            E::NotInMesh(x) => Refusal::Stale(x),
+            E::NotFinite(_, p) | E::NewVertexNotFinite(p) => Refusal::NotFinite(p),
+            E::Invalid(invalid) => Refusal::Broken(invalid),
+        }
     }
 }

@@ -48,6 +48,47 @@ pub fn elements(world: &World, mesh: pappus::mesh::MeshId) -> Elements {
     Elements { vertices, faces }
 }
 
+/// One entity's element components.
+type Components = (
+    bevy::prelude::Entity,
+    Option<pappus::mesh::Halfedge>,
+    Option<pappus::mesh::Vertex>,
+    Option<pappus::mesh::Position>,
+    Option<pappus::mesh::Edge>,
+    Option<pappus::mesh::Face>,
+    Option<pappus::mesh::InMesh>,
+);
+
+/// Every element component of `mesh`'s entities, and how many entities the world holds.
+#[derive(Debug, PartialEq)]
+pub struct Snapshot {
+    entities: usize,
+    rows: Vec<Components>,
+}
+
+/// `mesh`'s [`Snapshot`]: equal before and after an edit only where the world holds exactly
+/// what it held.
+pub fn snapshot(world: &mut World, mesh: pappus::mesh::MeshId) -> Snapshot {
+    let members = pappus::mesh::MeshMembers::collect(world, mesh);
+    let mut rows: Vec<_> = members
+        .entities()
+        .map(|e| {
+            (
+                e,
+                world.get::<pappus::mesh::Halfedge>(e).copied(),
+                world.get::<pappus::mesh::Vertex>(e).copied(),
+                world.get::<pappus::mesh::Position>(e).copied(),
+                world.get::<pappus::mesh::Edge>(e).copied(),
+                world.get::<pappus::mesh::Face>(e).copied(),
+                world.get::<pappus::mesh::InMesh>(e).copied(),
+            )
+        })
+        .collect();
+    rows.sort_by_key(|r| r.0);
+    let entities = world.query::<bevy::prelude::Entity>().iter(world).count();
+    Snapshot { entities, rows }
+}
+
 /// Whether a test whose fixture is missing must fail rather than skip: under CI (`CI=true`,
 /// as `.ci/run` runs), where a green run must have run every test.
 pub fn skipping_is_failure() -> bool {

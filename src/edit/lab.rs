@@ -1,0 +1,600 @@
+//! Lab mode: a student's operation checked against the operation it claims to reproduce.
+//!
+//! A course lab (CMU 15-462's Scotty3D, the halfedge labs built on OpenMesh) hands a student a
+//! skeleton in which they write edge flip, split and collapse, and leaves them to find their
+//! mistakes from traces and by eye. Here an operation declares the registered operation it
+//! reproduces ([`crate::ops::declaration::Declaration::checked_against`]), and every
+//! application of it is checked first: [`compare`] copies the mesh into two scratch worlds whose
+//! elements have the same ids, runs the student's operation on one and the reference on the
+//! other, each under `catch_unwind`, validates both and compares them:
+//!
+//! - surviving elements by id: the same vertices, edges, faces and halfedges kept, each vertex
+//!   at the same place (within a millionth of the mesh's size, as a midpoint computed two
+//!   ways may differ in its last bit), each face with the same corner cycle, each edge with
+//!   the same ends, each halfedge between the same vertices on the same face;
+//! - what is new by what it is: new vertices by position, new faces by their corner cycles,
+//!   new edges and halfedges by their ends (a student's new elements get other ids than the
+//!   reference's, in whatever order they were made).
+//!
+//! The report ([`LabReport`]) is one [`Verdict`] and names elements by the mesh's own ids.
+//! [`apply_checked`] is what [`super::Edit::run`] does with an operation that declares a
+//! reference: an invalid, panicking or lone refused result is refused with the report and the
+//! mesh untouched (only the copies saw it); a valid one, the same or not, is applied to the
+//! mesh (it is the student's result to look at), the report appended to its summary. The
+//! copies cost two reads and two writes of the mesh's tables: a lab's meshes are small, and a
+//! lab is about being told, not speed.
+
+use std::fmt;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+use bevy::ecs::entity::{EntityHashMap, EntityHashSet};
+use bevy::math::Vec3;
+use bevy::prelude::{Entity, World};
+
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, HalfedgeId, MeshId, VertexId};
+use crate::mesh::tables::{extract, spawn_connectivity};
+use crate::mesh::{MeshInfo, MeshMembers, MeshRef, validate};
+use crate::ops::Refusal;
+use crate::ops::operation::{Applied, EditContext, Invocation, count};
+
+/// What checking a lab's operation against its reference found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LabReport {
+    /// The reference's name (`"flip"`).
+    pub reference: &'static str,
+    /// What was found.
+    pub verdict: Verdict,
+}
+
+/// How a lab's operation compares with its reference, on copies of the mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// A valid mesh, the reference's: the same elements kept, each the same, and what is new
+    /// the same.
+    Same,
+    /// A valid mesh that is not the reference's: the first difference found.
+    Different(String),
+    /// An invalid mesh: the element (by the mesh's id, or what it is where it is new) and the
+    /// rule it breaks.
+    Invalid(String),
+    /// It panicked: the message.
+    Panicked(String),
+    /// Refused where the reference applies.
+    RefusedAlone(Refusal),
+    /// Applied (validly) where the reference refuses: the reference's reason.
+    AppliedAlone(Refusal),
+    /// Refused, as the reference is: its own reason.
+    BothRefused(Refusal),
+    /// The reference itself left an invalid mesh or panicked (a bug in it): nothing to compare
+    /// a valid result with.
+    ReferenceFailed(String),
+}
+
+impl Verdict {
+    /// Whether the student's result may be applied to the mesh: it is valid (the same as the
+    /// reference's or not). An invalid, panicking or refused result is not.
+    pub fn admits(&self) -> bool {
+        matches!(
+            self,
+            Verdict::Same
+                | Verdict::Different(_)
+                | Verdict::AppliedAlone(_)
+                | Verdict::ReferenceFailed(_)
+        )
+    }
+}
+
+impl fmt::Display for LabReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let reference = self.reference;
+        match &self.verdict {
+            Verdict::Same => write!(f, "same as {reference}"),
+            Verdict::Different(what) => write!(f, "valid, but not what {reference} makes: {what}"),
+            Verdict::Invalid(what) => write!(f, "invalid: {what}; the mesh is as it was"),
+            Verdict::Panicked(what) => write!(f, "panicked: {what}; the mesh is as it was"),
+            Verdict::RefusedAlone(why) => write!(f, "refused ({why}) where {reference} applies"),
+            Verdict::AppliedAlone(why) => write!(f, "applied where {reference} refuses ({why})"),
+            Verdict::BothRefused(why) => write!(f, "refused, as {reference} is: {why}"),
+            Verdict::ReferenceFailed(what) => {
+                write!(
+                    f,
+                    "{reference} itself failed here ({what}): nothing to compare with"
+                )
+            }
+        }
+    }
+}
+
+/// Applies `student` (an invocation of an operation that declares a reference) to `mesh` if
+/// [`compare`] finds its result valid, appending the report to its summary.
+///
+/// # Refusals
+/// [`Refusal::Lab`] with the report where the result was invalid, panicked or was refused
+/// (the mesh is untouched: only the copies saw it); [`compare`]'s own refusals.
+pub fn apply_checked(
+    student: &Invocation,
+    world: &mut World,
+    mesh: MeshId,
+    context: &mut EditContext<'_>,
+) -> Result<Applied, Refusal> {
+    let report = compare(world, mesh, student)?;
+    if !report.verdict.admits() {
+        return Err(Refusal::Lab(report.to_string()));
+    }
+    // The copy showed the result valid; the operation, a function of the mesh, makes it again.
+    let mut applied = student.apply(world, mesh, context)?;
+    applied.summary = format!("{}; lab: {report}", applied.summary);
+    Ok(applied)
+}
+
+/// Runs `student` and the reference it declares on two copies of `mesh` (with the same element
+/// ids) and compares the results; `world` is only read.
+///
+/// # Refusals
+/// [`Refusal::BadParameter`] where the operation declares no reference, or no registered
+/// operation of that name takes the elements; [`Refusal::Stale`] where an element it names is
+/// not one of `mesh`'s.
+pub fn compare(world: &World, mesh: MeshId, student: &Invocation) -> Result<LabReport, Refusal> {
+    let declared = student.declaration();
+    let name = declared.reference.ok_or_else(|| {
+        Refusal::BadParameter(format!(
+            "{} declares no reference to compare with",
+            declared.name
+        ))
+    })?;
+    let mut reference = crate::ops::registry::invocation_on(name, student.elements().to_vec())
+        .map_err(Refusal::BadParameter)?;
+    let given = student.values();
+    for i in 0..declared
+        .parameters
+        .len()
+        .min(reference.declaration().parameters.len())
+    {
+        // A value the reference does not take leaves its default.
+        let _ = reference.set(i, given.given(i));
+    }
+    let copy = Copy::of(world, mesh);
+    let yours = copy.run(&copy.renamed(student)?);
+    let theirs = copy.run(&copy.renamed(&reference)?);
+    let verdict = match (yours, theirs) {
+        (Ran::Panicked(why), _) => Verdict::Panicked(why),
+        (Ran::Invalid(why), _) => Verdict::Invalid(why),
+        (Ran::Refused(why), Ran::Refused(_)) => Verdict::BothRefused(why),
+        (Ran::Refused(why), _) => Verdict::RefusedAlone(why),
+        (Ran::Valid(_), Ran::Refused(why)) => Verdict::AppliedAlone(why),
+        (Ran::Valid(_), Ran::Invalid(why) | Ran::Panicked(why)) => Verdict::ReferenceFailed(why),
+        (Ran::Valid(a), Ran::Valid(b)) => match copy.difference(&a, &b) {
+            None => Verdict::Same,
+            Some(what) => Verdict::Different(what),
+        },
+    };
+    Ok(LabReport {
+        reference: name,
+        verdict,
+    })
+}
+
+/// A mesh read once, to be spawned as any number of copies with the same element ids, and the
+/// way back from a copy's ids to the mesh's.
+struct Copy {
+    tables: crate::mesh::tables::Connectivity,
+    /// The copy's elements before any operation, by kind and row.
+    rows: MeshMembers,
+    to_copy: EntityHashMap<Entity>,
+    to_mesh: EntityHashMap<Entity>,
+    /// Positions closer than this are one position.
+    tolerance: f32,
+}
+
+/// What an operation did to a copy.
+enum Ran {
+    Valid(Box<World>),
+    Invalid(String),
+    Panicked(String),
+    Refused(Refusal),
+}
+
+impl Copy {
+    fn of(world: &World, mesh: MeshId) -> Self {
+        let original = extract(world, mesh);
+        let (_, rows, _) = Self::spawned(&original.tables);
+        let pairs = |a: &MeshMembers, b: &MeshMembers| -> Vec<(Entity, Entity)> {
+            let of = |m: &MeshMembers| -> Vec<Entity> {
+                let v = m.vertices.iter().map(|x| x.0);
+                let h = m.halfedges.iter().map(|x| x.0);
+                let e = m.edges.iter().map(|x| x.0);
+                v.chain(h)
+                    .chain(e)
+                    .chain(m.faces.iter().map(|x| x.0))
+                    .collect()
+            };
+            of(a).into_iter().zip(of(b)).collect()
+        };
+        let (lo, hi) = original.tables.positions.iter().fold(
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+        );
+        Self {
+            to_copy: pairs(&original.members, &rows).into_iter().collect(),
+            to_mesh: pairs(&rows, &original.members).into_iter().collect(),
+            tolerance: (hi - lo).length().max(f32::MIN_POSITIVE) * 1e-6,
+            tables: original.tables,
+            rows,
+        }
+    }
+
+    /// A fresh world holding the tables as its only mesh: the same ids each time (a fresh
+    /// world hands out entities in order).
+    fn spawned(tables: &crate::mesh::tables::Connectivity) -> (World, MeshMembers, MeshId) {
+        let mut world = World::new();
+        let (mesh, rows) = spawn_connectivity(&mut world, tables, MeshInfo::default());
+        (world, rows, mesh)
+    }
+
+    /// `invocation` naming the copy's elements.
+    fn renamed(&self, invocation: &Invocation) -> Result<Invocation, Refusal> {
+        let elements = invocation.elements().iter().map(|&x| {
+            let e = self.to_copy.get(&x.entity()).ok_or(Refusal::Stale(x))?;
+            Ok(x.with_entity(*e))
+        });
+        let elements = elements.collect::<Result<Vec<_>, Refusal>>()?;
+        invocation
+            .clone()
+            .on(elements)
+            .map_err(Refusal::BadParameter)
+    }
+
+    /// Runs `invocation` on a fresh copy.
+    fn run(&self, invocation: &Invocation) -> Ran {
+        let (mut world, rows, mesh) = Self::spawned(&self.tables);
+        debug_assert_eq!(rows.vertices, self.rows.vertices, "copies share their ids");
+        let mut context = EditContext {
+            progress: &mut |_| true,
+        };
+        let ran = catch_unwind(AssertUnwindSafe(|| {
+            invocation.apply(&mut world, mesh, &mut context)
+        }));
+        match ran {
+            Err(payload) => Ran::Panicked(panic_message(payload.as_ref())),
+            // A raw edit's commit found the broken rule first (and rolled back).
+            Ok(Err(Refusal::Broken(invalid))) => Ran::Invalid(self.said(&invalid)),
+            Ok(Err(why)) => Ran::Refused(why),
+            Ok(Ok(_)) => match validate(&world, mesh) {
+                Ok(()) => Ran::Valid(Box::new(world)),
+                Err(invalid) => Ran::Invalid(self.said(&invalid)),
+            },
+        }
+    }
+
+    /// A broken rule, its element named by the mesh's id.
+    fn said(&self, invalid: &crate::mesh::Invalid) -> String {
+        format!("{}: {}", self.name(invalid.element), invalid.rule)
+    }
+
+    /// An element of a copy by the mesh's id, or as new.
+    fn name(&self, x: ElementId) -> String {
+        match self.to_mesh.get(&x.entity()) {
+            Some(&e) => x.with_entity(e).to_string(),
+            None => format!("a new {}", kind(x)),
+        }
+    }
+
+    /// The first way in which `a` (the student's copy) is not `b` (the reference's), or
+    /// `None` where they are the same mesh.
+    fn difference(&self, a: &World, b: &World) -> Option<String> {
+        let (a, b) = (Side::of(a, self), Side::of(b, self));
+        let made = match match_made_vertices(&a, &b, self.tolerance) {
+            Ok(made) => made,
+            Err(what) => return Some(what),
+        };
+        let (ka, kb) = (Keys::of(&a, &made), Keys::of(&b, &identity(b.made.len())));
+        let say = |cs: &[Corner]| {
+            let named = cs.iter().map(|&c| match c {
+                Corner::Kept(v) => self.name(ElementId::Vertex(VertexId(v))),
+                Corner::Made(i) => format!("a new vertex at {}", b.made[i].1),
+            });
+            named.collect::<Vec<_>>().join(" ")
+        };
+        let compared = self
+            .vertices_differ(&a, &b)
+            .and_then(|()| self.faces_differ((&a, &ka), (&b, &kb), &say))
+            .and_then(|()| self.edges_differ((&a, &ka), (&b, &kb), &say))
+            .and_then(|()| self.halfedges_differ((&a, &ka), (&b, &kb), &say));
+        compared.err()
+    }
+
+    /// The first vertex kept by one and not the other, or put elsewhere.
+    fn vertices_differ(&self, a: &Side, b: &Side) -> Result<(), String> {
+        for &v in &self.rows.vertices {
+            let name = self.name(ElementId::Vertex(v));
+            match (a.m.try_position(v), b.m.try_position(v)) {
+                (Some(p), Some(q)) if p.distance(q) > self.tolerance => {
+                    return Err(format!(
+                        "{name}: yours puts it at {p}, the reference at {q}"
+                    ));
+                }
+                (p, q) => survival(&name, p.is_some(), q.is_some())?,
+            }
+        }
+        Ok(())
+    }
+
+    /// The first face kept by one and not the other or with other corners, or a new face
+    /// that only one makes.
+    fn faces_differ(
+        &self,
+        (a, ka): (&Side, &Keys),
+        (b, kb): (&Side, &Keys),
+        say: &dyn Fn(&[Corner]) -> String,
+    ) -> Result<(), String> {
+        for &f in &self.rows.faces {
+            let name = self.name(ElementId::Face(f));
+            match (ka.face(a, f), kb.face(b, f)) {
+                (Some(x), Some(y)) if x != y => {
+                    let (x, y) = (say(&x), say(&y));
+                    return Err(format!("{name}: corners {x}, the reference has {y}"));
+                }
+                (x, y) => survival(&name, x.is_some(), y.is_some())?,
+            }
+        }
+        let made = |s: &Side, k: &Keys| sorted(s.made_faces.iter().filter_map(|&f| k.face(s, f)));
+        first_unshared(&made(a, ka), &made(b, kb), "a new face with corners", say)
+    }
+
+    /// The first edge kept by one and not the other or with other ends, or a new edge that
+    /// only one makes.
+    fn edges_differ(
+        &self,
+        (a, ka): (&Side, &Keys),
+        (b, kb): (&Side, &Keys),
+        say: &dyn Fn(&[Corner]) -> String,
+    ) -> Result<(), String> {
+        for &e in &self.rows.edges {
+            let name = self.name(ElementId::Edge(e));
+            let ends = |s: &Side, k: &Keys| s.m.try_edge(e).map(|_| k.ends(s, e));
+            match (ends(a, ka), ends(b, kb)) {
+                (Some(x), Some(y)) if x != y => {
+                    let (x, y) = (say(&x), say(&y));
+                    return Err(format!("{name}: joins {x}, the reference's joins {y}"));
+                }
+                (x, y) => survival(&name, x.is_some(), y.is_some())?,
+            }
+        }
+        let made = |s: &Side, k: &Keys| sorted(s.made_edges.iter().map(|&e| k.ends(s, e)));
+        first_unshared(&made(a, ka), &made(b, kb), "a new edge joining", say)
+    }
+
+    /// The first halfedge kept by one and not the other, or between other vertices, or on
+    /// another face.
+    fn halfedges_differ(
+        &self,
+        (a, ka): (&Side, &Keys),
+        (b, kb): (&Side, &Keys),
+        say: &dyn Fn(&[Corner]) -> String,
+    ) -> Result<(), String> {
+        let way = |s: &Side, k: &Keys, h| {
+            s.m.try_halfedge(h)?;
+            Some((k.directed(s, h), s.m.face(h).and_then(|f| k.face(s, f))))
+        };
+        let said = |(ends, on): &(Vec<Corner>, Option<Vec<Corner>>)| {
+            let on = on
+                .as_deref()
+                .map_or("the boundary".into(), |c| format!("the face {}", say(c)));
+            format!("from {} on {on}", say(ends).replacen(' ', " to ", 1))
+        };
+        for &h in &self.rows.halfedges {
+            let name = self.name(ElementId::Halfedge(h));
+            match (way(a, ka, h), way(b, kb, h)) {
+                (Some(x), Some(y)) if x != y => {
+                    let (x, y) = (said(&x), said(&y));
+                    return Err(format!("{name}: {x}, the reference's {y}"));
+                }
+                (x, y) => survival(&name, x.is_some(), y.is_some())?,
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A copy after an operation: its walker, and what it made (elements not among the copy's
+/// rows before).
+struct Side<'w> {
+    m: MeshRef<'w>,
+    made: Vec<(VertexId, Vec3)>,
+    made_faces: Vec<FaceId>,
+    made_edges: Vec<EdgeId>,
+}
+
+impl<'w> Side<'w> {
+    fn of(world: &'w World, copy: &Copy) -> Self {
+        let now = MeshMembers::collect(world, mesh_of(world));
+        let before: EntityHashSet = copy.to_mesh.keys().copied().collect();
+        let m = MeshRef::new(world);
+        let mut made: Vec<(VertexId, Vec3)> = (now.vertices.iter())
+            .filter(|v| !before.contains(&v.0))
+            .map(|&v| (v, m.position(v)))
+            .collect();
+        made.sort_unstable_by_key(|(v, _)| *v);
+        let new = |xs: Vec<Entity>| -> Vec<Entity> {
+            let mut xs: Vec<Entity> = xs.into_iter().filter(|x| !before.contains(x)).collect();
+            xs.sort_unstable();
+            xs
+        };
+        Self {
+            made,
+            made_faces: new(now.faces.iter().map(|f| f.0).collect())
+                .into_iter()
+                .map(FaceId)
+                .collect(),
+            made_edges: new(now.edges.iter().map(|e| e.0).collect())
+                .into_iter()
+                .map(EdgeId)
+                .collect(),
+            m,
+        }
+    }
+}
+
+/// The only mesh of a copy's world.
+fn mesh_of(world: &World) -> MeshId {
+    let mut query = world.try_query::<(Entity, &MeshInfo)>();
+    let found = query
+        .as_mut()
+        .and_then(|q| q.iter(world).next().map(|(e, _)| e));
+    MeshId(found.unwrap_or(Entity::PLACEHOLDER))
+}
+
+/// A vertex of a copy as both copies can name it: one of the mesh's, by id, or the `i`th of the
+/// vertices the reference made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Corner {
+    Kept(Entity),
+    Made(usize),
+}
+
+/// Names a side's vertices as [`Corner`]s: the side's `i`th made vertex is the reference's
+/// `made[i]`th.
+struct Keys {
+    made: EntityHashMap<usize>,
+}
+
+impl Keys {
+    fn of(side: &Side, made: &[usize]) -> Self {
+        let pairs = side.made.iter().zip(made).map(|(&(v, _), &i)| (v.0, i));
+        Self {
+            made: pairs.collect(),
+        }
+    }
+
+    fn corner(&self, v: VertexId) -> Corner {
+        match self.made.get(&v.0) {
+            Some(&i) => Corner::Made(i),
+            None => Corner::Kept(v.0),
+        }
+    }
+
+    /// A face's corner cycle, started at its least corner (the orientation kept); `None` for a
+    /// face the side does not have.
+    fn face(&self, side: &Side, f: FaceId) -> Option<Vec<Corner>> {
+        side.m.try_face(f)?;
+        let mut cycle: Vec<Corner> = side.m.face_vertices(f).map(|v| self.corner(v)).collect();
+        let least = (0..cycle.len()).min_by_key(|&i| cycle[i]).unwrap_or(0);
+        cycle.rotate_left(least);
+        Some(cycle)
+    }
+
+    /// A halfedge's ends, in its direction.
+    fn directed(&self, side: &Side, h: HalfedgeId) -> Vec<Corner> {
+        vec![
+            self.corner(side.m.from_vertex(h)),
+            self.corner(side.m.to_vertex(h)),
+        ]
+    }
+
+    /// An edge's ends, in order.
+    fn ends(&self, side: &Side, e: EdgeId) -> Vec<Corner> {
+        let mut ends = self.directed(side, side.m.edge_halfedge(e));
+        ends.sort_unstable();
+        ends
+    }
+}
+
+/// `0, 1, …, n - 1`.
+fn identity(n: usize) -> Vec<usize> {
+    (0..n).collect()
+}
+
+/// The items, sorted.
+fn sorted<T: Ord>(items: impl Iterator<Item = T>) -> Vec<T> {
+    let mut items: Vec<T> = items.collect();
+    items.sort_unstable();
+    items
+}
+
+/// Which of the reference's made vertices each of the student's is (the nearest within the
+/// tolerance, each taken once), or the difference: another number of them, or one with none
+/// of the reference's near it.
+fn match_made_vertices(a: &Side, b: &Side, tolerance: f32) -> Result<Vec<usize>, String> {
+    if a.made.len() != b.made.len() {
+        return Err(format!(
+            "yours makes {}, the reference {}",
+            count(a.made.len(), "new vertex"),
+            b.made.len()
+        ));
+    }
+    let mut taken = vec![false; b.made.len()];
+    let mut matched = Vec::with_capacity(a.made.len());
+    for &(_, p) in &a.made {
+        let far = |i: usize| p.distance(b.made[i].1);
+        let nearest = (0..b.made.len())
+            .filter(|&i| !taken[i])
+            .min_by(|&i, &j| far(i).total_cmp(&far(j)))
+            .filter(|&i| far(i) <= tolerance)
+            .ok_or_else(|| format!("yours makes a new vertex at {p}, the reference none there"))?;
+        taken[nearest] = true;
+        matched.push(nearest);
+    }
+    Ok(matched)
+}
+
+/// The difference where one side kept the element `name` and the other removed it.
+fn survival(name: &str, yours: bool, reference: bool) -> Result<(), String> {
+    match (yours, reference) {
+        (true, false) => Err(format!("{name}: yours keeps it, the reference removes it")),
+        (false, true) => Err(format!("{name}: yours removes it, the reference keeps it")),
+        _ => Ok(()),
+    }
+}
+
+/// The first item of sorted `a` not in sorted `b` (counting repeats), or of `b` not in `a`,
+/// said as `what` and the item as `say` writes it.
+fn first_unshared(
+    a: &[Vec<Corner>],
+    b: &[Vec<Corner>],
+    what: &str,
+    say: &dyn Fn(&[Corner]) -> String,
+) -> Result<(), String> {
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() || j < b.len() {
+        match (a.get(i), b.get(j)) {
+            (Some(x), Some(y)) if x == y => (i, j) = (i + 1, j + 1),
+            (Some(x), y) if y.is_none_or(|y| x < y) => {
+                return Err(format!(
+                    "yours makes {what} {}, the reference does not",
+                    say(x)
+                ));
+            }
+            (_, Some(y)) => {
+                return Err(format!(
+                    "the reference makes {what} {}, yours does not",
+                    say(y)
+                ));
+            }
+            _ => break,
+        }
+    }
+    Ok(())
+}
+
+/// An element's kind in words.
+fn kind(x: ElementId) -> &'static str {
+    match x {
+        ElementId::Vertex(_) => "vertex",
+        ElementId::Halfedge(_) => "halfedge",
+        ElementId::Edge(_) => "edge",
+        ElementId::Face(_) => "face",
+        ElementId::Mesh(_) => "mesh",
+    }
+}
+
+/// A panic's message, where it carried one.
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    match (
+        payload.downcast_ref::<&str>(),
+        payload.downcast_ref::<String>(),
+    ) {
+        (Some(s), _) => (*s).to_string(),
+        (_, Some(s)) => s.clone(),
+        _ => "no message".into(),
+    }
+}
