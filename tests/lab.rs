@@ -9,7 +9,7 @@ mod mistakes;
 #[path = "../examples/lab/student.rs"]
 mod student;
 
-use bevy::prelude::World;
+use bevy::prelude::{App, World};
 use pappus::edit::lab::{LabReport, Verdict, compare};
 use pappus::edit::{Edit, EditContext, Invocation};
 use pappus::mesh::{EdgeId, ElementId, MeshId, MeshMembers, MeshRef, shapes, validate};
@@ -179,6 +179,7 @@ fn a_panicking_or_corrupting_operation_is_refused_and_leaves_the_mesh_as_it_was(
     let panics: &'static dyn MeshOperation = &OnEdge {
         declaration: &PANICS,
         run: |_, _, e| panic!("the student's bug at {e}"),
+        says: "",
     };
     let corrupts: &'static dyn MeshOperation = &OnEdge {
         declaration: &WRITES_BY_HAND,
@@ -187,6 +188,7 @@ fn a_panicking_or_corrupting_operation_is_refused_and_leaves_the_mesh_as_it_was(
             world.get_mut::<pappus::mesh::Halfedge>(h.0).unwrap().next = h;
             Ok(e.into())
         },
+        says: "",
     };
     let (mut world, built) = common::build(&shapes::icosphere(2));
     let mesh = built.mesh;
@@ -244,4 +246,55 @@ fn refusals_are_compared_too() {
     let flip = pappus::ops::registry::operation("flip").unwrap();
     assert!(compare(&world, mesh, &invocation(flip, boundary)).is_err());
     let _ = &mut world;
+}
+
+/// In the editor the example's operations are keys of their own: Alt+1 on the selected edge
+/// flips it and says it was the same as `flip`; Alt+5 is refused with the mesh as it was, and
+/// undo takes back only the flip.
+#[test]
+fn the_example_labs_keys_report_in_the_editor() {
+    use bevy::input::ButtonState;
+    use bevy::prelude::KeyCode;
+    use pappus::editor::AddOperation;
+    use pappus::editor::session::requests::Request;
+    use pappus::editor::session::selection::ActiveMesh;
+    let mut app = common::headless_editor();
+    for op in student::LAB.into_iter().chain(mistakes::MISTAKES) {
+        app.add_operation(op);
+    }
+    common::send(&mut app, Request::Open("shape:icosphere".into()));
+    let mesh = app.world().resource::<ActiveMesh>().0.unwrap();
+    let e = interior_edges(app.world(), mesh, 1, 0)[9];
+    let press = |app: &mut App, k: KeyCode| {
+        common::key(app, KeyCode::AltLeft, ButtonState::Pressed);
+        common::key(app, k, ButtonState::Pressed);
+        common::key(app, k, ButtonState::Released);
+        common::key(app, KeyCode::AltLeft, ButtonState::Released);
+    };
+    let before = common::elements(app.world(), mesh);
+    common::send(&mut app, Request::Select(Some(ElementId::Edge(e))));
+    press(&mut app, KeyCode::Digit1);
+    let outcome = common::last_outcome(&app);
+    assert!(outcome.request.starts_with("lab flip"), "{outcome:?}");
+    assert!(
+        outcome
+            .result
+            .as_ref()
+            .unwrap()
+            .ends_with("lab: same as flip"),
+        "{outcome:?}"
+    );
+    let flipped = common::elements(app.world(), mesh);
+    assert_ne!(flipped, before);
+    common::send(&mut app, Request::Select(Some(ElementId::Edge(e))));
+    press(&mut app, KeyCode::Digit5);
+    let outcome = common::last_outcome(&app);
+    let refused = outcome.result.as_ref().unwrap_err();
+    assert!(
+        refused.to_string().contains("the mesh is as it was"),
+        "{outcome:?}"
+    );
+    assert_eq!(common::elements(app.world(), mesh), flipped);
+    common::send(&mut app, Request::Undo);
+    assert_eq!(common::elements(app.world(), mesh), before);
 }

@@ -33,10 +33,12 @@ pub const MISTAKES: [OnEdge; 2] = [
     OnEdge {
         declaration: &FLIP_THE_OTHER_WAY,
         run: |world, mesh, e| flip_the_other_way(world, mesh, e).map(|()| e.into()),
+        says: "turned",
     },
     OnEdge {
         declaration: &FLIP_FORGETTING_A_FACE,
         run: |world, mesh, e| flip_forgetting_a_face(world, mesh, e).map(|()| e.into()),
+        says: "turned",
     },
 ];
 

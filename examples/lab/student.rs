@@ -6,7 +6,8 @@
 //!
 //! The conventions are the reference's (each `ops/local/` file's module doc draws them): which
 //! halfedge, edge and face keep their ids, which are new, where the new vertex goes. Each
-//! application logs every element it touched, by id, at the `trace` level.
+//! application logs every element it touched, by id, at the `trace` level under the target
+//! `lab` (which the editor keeps at every level for its Log section).
 
 use bevy::log::trace;
 use bevy::prelude::World;
@@ -51,6 +52,8 @@ pub struct OnEdge {
     pub declaration: &'static Declaration,
     /// What it does; `Err` leaves the world as it was.
     pub run: fn(&mut World, MeshId, EdgeId) -> Result<ElementId, Refusal>,
+    /// What its summary says before the element it returns ("turned", "new vertex").
+    pub says: &'static str,
 }
 
 /// The student's three operations, as the example registers them.
@@ -58,14 +61,17 @@ pub const LAB: [OnEdge; 3] = [
     OnEdge {
         declaration: &LAB_FLIP,
         run: |world, mesh, e| flip(world, mesh, e).map(|()| e.into()),
+        says: "turned",
     },
     OnEdge {
         declaration: &LAB_SPLIT,
         run: |world, mesh, e| split(world, mesh, e).map(Into::into),
+        says: "new vertex",
     },
     OnEdge {
         declaration: &LAB_COLLAPSE,
         run: |world, mesh, e| collapse(world, mesh, e).map(Into::into),
+        says: "kept",
     },
 ];
 
@@ -84,13 +90,13 @@ impl MeshOperation for OnEdge {
         let e = values.edge()?;
         Applied::on_edge(world, e, |world| {
             let made = (self.run)(world, mesh, e)?;
-            Ok((format!("{} {e}: {made}", self.declaration.title), made))
+            Ok((format!("{} {made}", self.says), made))
         })
     }
 }
 
-/// The two triangles on an interior edge, as a lab names them: `h` runs a → b in face `f`
-/// (a, b, c), its twin `t` runs b → a in face `g` (b, a, d); `a_out` and `b_out` are the
+/// The two triangles on an interior edge, as a lab names them: `h` runs a -> b in face `f`
+/// (a, b, c), its twin `t` runs b -> a in face `g` (b, a, d); `a_out` and `b_out` are the
 /// halfedges a and b start with.
 pub struct Wings {
     pub h: HalfedgeId,
@@ -144,8 +150,8 @@ impl Wings {
     }
 }
 
-/// Flips `e`: the edge turns to join c and d; every element keeps its id. `h` becomes d → c,
-/// `t` becomes c → d; `tn` moves into `h`'s face, `hn` into `t`'s.
+/// Flips `e`: the edge turns to join c and d; every element keeps its id. `h` becomes d -> c,
+/// `t` becomes c -> d; `tn` moves into `h`'s face, `hn` into `t`'s.
 ///
 /// # Refusals
 /// As [`check_flip`].
@@ -155,7 +161,8 @@ pub fn flip(world: &mut World, mesh: MeshId, e: EdgeId) -> Result<(), Refusal> {
     rewire_flip(&mut edit, &w)?;
     edit.commit()?;
     trace!(
-        "lab flip {e}: {} now {} → {}, {} now {} → {}; {} moved to {}, {} to {}",
+        target: "lab",
+        "lab flip {e}: {} now {} -> {}, {} now {} -> {}; {} moved to {}, {} to {}",
         w.h, w.d, w.c, w.t, w.c, w.d, w.tn, w.f, w.hn, w.g
     );
     Ok(())
@@ -187,7 +194,7 @@ pub fn check_flip(m: &MeshRef, e: EdgeId) -> Result<Wings, Refusal> {
 pub fn rewire_flip(edit: &mut RawEdit, w: &Wings) -> Result<(), RawEditError> {
     edit.set_to_vertex(w.h, w.c)?;
     edit.set_to_vertex(w.t, w.d)?;
-    // f: h (d → c), hp (c → a), tn (a → d); g: t (c → d), tp (d → b), hn (b → c).
+    // f: h (d -> c), hp (c -> a), tn (a -> d); g: t (c -> d), tp (d -> b), hn (b -> c).
     for (x, next) in [(w.h, w.hp), (w.hp, w.tn), (w.tn, w.h)] {
         edit.set_next(x, next)?;
     }
@@ -209,7 +216,7 @@ pub fn rewire_flip(edit: &mut RawEdit, w: &Wings) -> Result<(), RawEditError> {
 }
 
 /// Splits `e` at its midpoint m, joining m to c and d: two triangles become four. The edge
-/// keeps `h` (now a → m) with a new twin; `t` (now b → m) moves to a new edge m b with a new
+/// keeps `h` (now a -> m) with a new twin; `t` (now b -> m) moves to a new edge m b with a new
 /// twin; `f` keeps (a, m, c), `g` keeps (b, m, d), two new faces take (m, b, c) and (m, a, d).
 /// Returns m.
 ///
@@ -225,10 +232,10 @@ pub fn split(world: &mut World, mesh: MeshId, e: EdgeId) -> Result<VertexId, Ref
     let middle = m.position(w.a).lerp(m.position(w.b), 0.5);
     let mut edit = RawEdit::new(world, mesh);
     let mid = edit.new_vertex(middle)?;
-    // The new edge m b, with t and t2 (m → b); h2 (m → a) joins h on the old edge.
+    // The new edge m b, with t and t2 (m -> b); h2 (m -> a) joins h on the old edge.
     let (mb, t2, h2) = edit.new_edge();
-    let (mc, n1, n2) = edit.new_edge(); // n1: m → c in f, n2: c → m
-    let (md, n3, n4) = edit.new_edge(); // n3: m → d in g, n4: d → m
+    let (mc, n1, n2) = edit.new_edge(); // n1: m -> c in f, n2: c -> m
+    let (md, n3, n4) = edit.new_edge(); // n3: m -> d in g, n4: d -> m
     let (f2, g2) = (edit.new_face(), edit.new_face());
     edit.set_twin(w.h, h2)?;
     edit.set_twin(w.t, t2)?;
@@ -258,8 +265,9 @@ pub fn split(world: &mut World, mesh: MeshId, e: EdgeId) -> Result<VertexId, Ref
     let _ = (mc, md);
     edit.commit()?;
     trace!(
+        target: "lab",
         "lab split {e}: new vertex {mid}, edges {mb} {mc} {md}, faces {f2} {g2}; \
-         {} now → {mid}, {} now on {mb}",
+         {} now -> {mid}, {} now on {mb}",
         w.h, w.t
     );
     Ok(mid)
@@ -323,6 +331,7 @@ pub fn collapse(world: &mut World, mesh: MeshId, e: EdgeId) -> Result<VertexId, 
     }
     edit.commit()?;
     trace!(
+        target: "lab",
         "lab collapse {e}: kept {} at {middle}, removed {} {f} {g} {gone_c} {gone_d} and six halfedges",
         w.a, w.b
     );

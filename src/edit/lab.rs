@@ -6,7 +6,8 @@
 //! reproduces ([`crate::ops::declaration::Declaration::checked_against`]), and every
 //! application of it is checked first: [`compare`] copies the mesh into two scratch worlds whose
 //! elements have the same ids, runs the student's operation on one and the reference on the
-//! other, each under `catch_unwind`, validates both and compares them:
+//! other, each under `catch_unwind` (and with its log messages dropped: they would name the
+//! copies' elements), validates both and compares them:
 //!
 //! - surviving elements by id: the same vertices, edges, faces and halfedges kept, each vertex
 //!   at the same place (within a millionth of the mesh's size, as a midpoint computed two
@@ -251,9 +252,14 @@ impl Copy {
         let mut context = EditContext {
             progress: &mut |_| true,
         };
-        let ran = catch_unwind(AssertUnwindSafe(|| {
-            invocation.apply(&mut world, mesh, &mut context)
-        }));
+        // Its log messages would name the copy's elements: only the run on the mesh itself
+        // speaks.
+        let quiet = tracing::subscriber::NoSubscriber::default();
+        let ran = tracing::subscriber::with_default(quiet, || {
+            catch_unwind(AssertUnwindSafe(|| {
+                invocation.apply(&mut world, mesh, &mut context)
+            }))
+        });
         match ran {
             Err(payload) => Ran::Panicked(panic_message(payload.as_ref())),
             // A raw edit's commit found the broken rule first (and rolled back).

@@ -143,12 +143,18 @@ pub fn run_with(path: Option<PathBuf>, extend: impl FnOnce(&mut App)) -> i32 {
         Err(_) => None,
     };
     let mut app = App::new();
-    app.add_plugins(DefaultPlugins.set(WindowPlugin {
+    let plugins = DefaultPlugins.set(WindowPlugin {
         primary_window: Some(Window {
             title: "Pappus".into(),
             resolution: (1280u32, 800u32).into(),
             ..default()
         }),
+        ..default()
+    });
+    // The log's messages are kept for the Log section, a lab's at every level.
+    app.add_plugins(plugins.set(bevy::log::LogPlugin {
+        filter: session::log_capture::log_filter(),
+        custom_layer: session::capture_layer,
         ..default()
     }))
     .add_plugins((

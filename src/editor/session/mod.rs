@@ -1,12 +1,13 @@
 //! The session room: what the editor holds and the messages it runs on. The [`requests`] in
 //! and outcomes out, the [`selection`] and its changes ([`select_many`]), undo
 //! ([`history`]), the bookkeeping that ends every edit ([`finish`]), which meshes have unsaved
-//! work ([`state`]), the native file dialogs ([`dialog`]) and the frame's stages
-//! ([`schedule`]). It is the lowest room: every other one reads it, it reads none of them.
+//! work ([`state`]), the native file dialogs ([`dialog`]), the frame's stages
+//! ([`schedule`]) and the log's messages kept for the panel ([`log_capture`]). It is the lowest room: every other one reads it, it reads none of them.
 
 pub mod dialog;
 pub mod finish;
 pub mod history;
+pub mod log_capture;
 pub mod panel_state;
 pub mod requests;
 pub mod schedule;
@@ -48,4 +49,13 @@ impl Plugin for SessionWindowPlugin {
         app.init_resource::<dialog::OpenDialog>()
             .add_systems(Update, dialog::receive.in_set(EditorSystems::Input));
     }
+}
+
+/// The log layer the editor gives Bevy's `LogPlugin`: it keeps the messages in the
+/// [`OutcomeLog`] (made here if the session has not made it yet, so that the messages of the
+/// app's start are kept too), for the Log section.
+pub fn capture_layer(app: &mut App) -> Option<bevy::log::BoxedLayer> {
+    app.init_resource::<OutcomeLog>();
+    let messages = app.world().resource::<OutcomeLog>().messages.clone();
+    Some(log_capture::layer(messages))
 }

@@ -31,6 +31,8 @@ pub struct UiState {
     /// The panel's values of each registered operation's parameters (their defaults until
     /// changed), one invocation per operation of [`crate::ops::registry`], in its order.
     pub operations: Vec<Invocation>,
+    /// The least important level of message the Log section shows (info until switched).
+    pub log_level: bevy::log::Level,
 }
 
 impl UiState {
@@ -80,6 +82,7 @@ impl Default for UiState {
                 .iter()
                 .map(|&op| Invocation::with_defaults(op))
                 .collect(),
+            log_level: bevy::log::Level::INFO,
         };
         // Filling every hole of a scan in the editor means patches that continue the surface
         // (Liepa); the `fill-holes` step keeps its one polygon each by default.

@@ -319,6 +319,9 @@ pub struct EditOutcome {
 pub struct OutcomeLog {
     /// Up to [`OutcomeLog::CAPACITY`] entries.
     pub entries: Vec<EditOutcome>,
+    /// The log's messages, as the editor's log layer keeps them
+    /// ([`super::capture_layer`]; none in an app without it).
+    pub messages: super::log_capture::LogMessages,
 }
 
 impl OutcomeLog {
