@@ -40,34 +40,38 @@ def flip(mesh, edge):
 
 def split(mesh, edge):
     """Puts a vertex m at the middle of ``edge`` (between the triangles (a, b, c) and
-    (b, a, d)) and joins it to c and d: four triangles (a, m, c), (m, b, c), (m, a, d) and
-    (b, m, d). Returns m."""
+    (b, a, d)) and joins it to c and d: four triangles (a, m, c), (m, b, c), (b, m, d) and
+    (m, a, d). As Pappus's split: the edge keeps h (now a -> m) with a new twin; t (now
+    b -> m) moves to a new edge m-b with a new twin; f keeps (a, m, c), g keeps (b, m, d).
+    Returns m."""
     h = edge.halfedge  # a -> b, in face f; becomes a -> m
-    t = h.twin  # b -> a, in face g; becomes m -> a
+    t = h.twin  # b -> a, in face g; becomes b -> m
     h1, t1 = h.next, t.next  # b -> c, a -> d
     h2, t2 = h1.next, t1.next  # c -> a, d -> b
     a, b = h.from_vertex, h.to_vertex
     c, d = h1.to_vertex, t1.to_vertex
     f, g = h.face, t.face
-    b_leaves_by_t = b.halfedge == t
     middle = [(p + q) / 2 for p, q in zip(a.position, b.position)]
     with mesh.edit() as e:
         m = e.new_vertex(middle)
-        _, x, y = e.new_edge()  # x: m -> b, y: b -> m
+        mb, x, y = e.new_edge()  # x: m -> b, t's twin; y: m -> a, h's twin on the old edge
         _, p, q = e.new_edge()  # p: c -> m, q: m -> c
         _, r, s = e.new_edge()  # r: d -> m, s: m -> d
         f2, g2 = e.new_face(), e.new_face()
-        for half, tip in [(h, m), (x, b), (y, m), (p, m), (q, c), (r, m), (s, d)]:
+        e.set_twin(h, y)
+        e.set_edge(y, edge)
+        e.set_twin(t, x)
+        e.set_edge(t, mb)
+        e.set_halfedge(mb, t)
+        for half, tip in [(h, m), (t, m), (x, b), (y, a), (p, m), (q, c), (r, m), (s, d)]:
             e.set_to_vertex(half, tip)
-        faces = [(f, [h, q, h2]), (f2, [x, h1, p]), (g, [t, t1, r]), (g2, [y, s, t2])]
+        faces = [(f, [h, q, h2]), (f2, [x, h1, p]), (g, [t, s, t2]), (g2, [y, t1, r])]
         for face, cycle in faces:
             for k, half in enumerate(cycle):
                 e.set_next(half, cycle[(k + 1) % 3])
                 e.set_face(half, face)
             e.set_halfedge(face, cycle[0])
         e.set_halfedge(m, x)
-        if b_leaves_by_t:  # t now leaves m
-            e.set_halfedge(b, y)
     return m
 
 

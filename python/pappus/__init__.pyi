@@ -77,6 +77,28 @@ def operations() -> List[Dict[str, Any]]:
     ``"automatic"`` says what the operation then does). Each runs as
     ``mesh.step("NAME[:VALUE...]")``, missing values taking their defaults."""
 
+def lab(
+    mesh: "Mesh",
+    reference: str,
+    function: Callable[..., Any],
+    *elements: Any,
+    **parameters: Any,
+) -> "LabReport":
+    """Checks ``function(copy, *handles)``, a student's operation written with
+    ``with copy.edit()``, against the registered operation ``reference`` on these elements: both
+    run on copies of ``mesh`` with the same element ids, and the report says whether the result
+    is valid and the same, or what differs, or the broken rule, or the exception. ``mesh`` is
+    never changed. ``ValueError`` for an unknown reference or elements it does not take."""
+
+class LabReport:
+    """What :func:`lab` found; ``str(report)`` is the report as the editor says it."""
+
+    verdict: str
+    detail: Optional[str]
+    reference: str
+    @property
+    def same(self) -> bool: ...
+
 def output_stem(source: Union[str, os.PathLike]) -> str:
     """``{stem}`` as ``pappus process -o`` names it: a file's name without its extension, or a
     shape's name and sizes joined by dashes (``"shape:icosphere:3"`` → ``"icosphere-3"``)."""

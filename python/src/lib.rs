@@ -29,6 +29,7 @@ mod elements;
 mod errors;
 mod groups;
 mod handles;
+mod lab_mode;
 mod mesh;
 mod mesh_edit;
 mod outcome;
@@ -39,6 +40,7 @@ mod vertex_data;
 use connectivity::ConnectivityArrays;
 use errors::{InvalidMesh, PappusError, ParseError, Refused, StaleElement, io_error, user_warning};
 use handles::{EdgeHandle, FaceHandle, HalfedgeHandle, VertexHandle};
+use lab_mode::{LabReportPy, lab};
 use mesh::Mesh;
 use mesh_edit::MeshEdit;
 
@@ -190,9 +192,9 @@ fn parameter<'py>(
 mod _pappus {
     #[pymodule_export]
     use super::{
-        ConnectivityArrays, EdgeHandle, FaceHandle, HalfedgeHandle, InvalidMesh, Mesh, MeshEdit,
-        PappusError, ParseError, Refused, StaleElement, VertexHandle, load, memory_budget,
-        operations, set_memory_budget,
+        ConnectivityArrays, EdgeHandle, FaceHandle, HalfedgeHandle, InvalidMesh, LabReportPy, Mesh,
+        MeshEdit, PappusError, ParseError, Refused, StaleElement, VertexHandle, lab, load,
+        memory_budget, operations, set_memory_budget,
     };
 
     use pyo3::prelude::*;

@@ -22,8 +22,8 @@ use pappus::mesh::attributes::{MeshAttributes, StaleNormals};
 use pappus::mesh::ids::parse_element;
 use pappus::mesh::tables::EntityRows;
 use pappus::mesh::{
-    Edge, ElementId, Face, Halfedge, Journal, MeshId, MeshInfo, MeshMembers, PolygonSoup, RawEdit,
-    RepairReport, Vertex, VertexId, build_mesh, to_soup, validate,
+    Edge, ElementId, Face, Halfedge, Invalid, Journal, MeshId, MeshInfo, MeshMembers, PolygonSoup,
+    RawEdit, RepairReport, Vertex, VertexId, build_mesh, to_soup, validate,
 };
 use pappus::ops::simplification_history::SimplificationHistory;
 
@@ -71,6 +71,8 @@ pub struct Mesh {
     vertex_data: VertexData,
     /// The journal of the low-level edit open on the mesh (`with mesh.edit()`), if one is.
     open_edit: Option<Journal>,
+    /// The rule the last commit of such an edit found broken, until `pappus.lab` reads it.
+    broken: Option<Invalid>,
 }
 
 /// Each element's row in its kind's arrays.
@@ -110,7 +112,67 @@ impl Mesh {
             rows: OnceLock::new(),
             vertex_data,
             open_edit: None,
+            broken: None,
         })
+    }
+
+    /// A copy's world lent to a lab's function (`pappus.lab`, [`crate::lab_mode`]): the mesh alone,
+    /// with no repair report, input numbering or file data.
+    pub(crate) fn lent(world: World, mesh: MeshId) -> Mesh {
+        Mesh {
+            world,
+            mesh,
+            report: RepairReport::default(),
+            input_vertices: Vec::new(),
+            read_ms: 0.0,
+            build_ms: 0.0,
+            element_revision: 0,
+            rows: OnceLock::new(),
+            vertex_data: VertexData::default(),
+            open_edit: None,
+            broken: None,
+        }
+    }
+
+    /// Gives a lent world back: the world (an edit left open rolled back first), whether one
+    /// was open, and the rule the last commit found broken. The mesh then holds nothing, and
+    /// every handle on it is stale.
+    pub(crate) fn give_back(&mut self) -> (World, bool, Option<Invalid>) {
+        let left_open = match self.open_edit.take() {
+            Some(journal) => {
+                RawEdit::resume(&mut self.world, journal).rollback();
+                true
+            }
+            None => false,
+        };
+        self.element_revision += 1;
+        self.rows = OnceLock::new();
+        (
+            std::mem::take(&mut self.world),
+            left_open,
+            self.broken.take(),
+        )
+    }
+
+    /// Records the rule a commit found broken.
+    pub(crate) fn broke(&mut self, invalid: Invalid) {
+        self.broken = Some(invalid);
+    }
+
+    /// The mesh entity.
+    pub(crate) fn id(&self) -> MeshId {
+        self.mesh
+    }
+
+    /// The registered operation `name` on `targets` with these keyword values, as `run` reads
+    /// them.
+    pub(crate) fn invocation_of(
+        &self,
+        name: &str,
+        targets: &[run::Target],
+        parameters: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Invocation> {
+        run::invocation(&self.world, &self.input_vertices, name, targets, parameters)
     }
 
     /// The mesh as a soup: vertices in table order, faces as vertex cycles, attributes.

@@ -141,6 +141,9 @@ impl MeshEdit {
         }
         let committed = edit.commit();
         mesh.closed_edit(committed.is_ok());
+        if let Err(RawEditError::Invalid(invalid)) = &committed {
+            mesh.broke(invalid.clone());
+        }
         match committed {
             Ok(()) => Ok(false),
             Err(e) => Err(InvalidMesh::new_err(format!(

@@ -60,6 +60,8 @@ pub enum Verdict {
     Invalid(String),
     /// It panicked: the message.
     Panicked(String),
+    /// It raised an exception (a Python function, [`compare_with`]): its type and message.
+    Raised(String),
     /// Refused where the reference applies.
     RefusedAlone(Refusal),
     /// Applied (validly) where the reference refuses: the reference's reason.
@@ -93,6 +95,7 @@ impl fmt::Display for LabReport {
             Verdict::Different(what) => write!(f, "valid, but not what {reference} makes: {what}"),
             Verdict::Invalid(what) => write!(f, "invalid: {what}; the mesh is as it was"),
             Verdict::Panicked(what) => write!(f, "panicked: {what}; the mesh is as it was"),
+            Verdict::Raised(what) => write!(f, "raised {what}; the mesh is as it was"),
             Verdict::RefusedAlone(why) => write!(f, "refused ({why}) where {reference} applies"),
             Verdict::AppliedAlone(why) => write!(f, "applied where {reference} refuses ({why})"),
             Verdict::BothRefused(why) => write!(f, "refused, as {reference} is: {why}"),
@@ -154,23 +157,76 @@ pub fn compare(world: &World, mesh: MeshId, student: &Invocation) -> Result<LabR
         // A value the reference does not take leaves its default.
         let _ = reference.set(i, given.given(i));
     }
+    compare_with(world, mesh, &reference, |world, copy, elements| {
+        let renamed = student.clone().on(elements.to_vec());
+        match renamed.map_err(Refusal::BadParameter).and_then(|student| {
+            let mut context = EditContext {
+                progress: &mut |_| true,
+            };
+            student.apply(world, copy, &mut context)
+        }) {
+            Ok(_) => Ended::Done,
+            Err(why) => Ended::Refused(why),
+        }
+    })
+}
+
+/// How a student's attempt on its copy ended, before the copy is validated: what
+/// [`compare_with`] takes from an attempt that is not a registered operation (a Python
+/// function). A panic is caught by [`compare_with`] itself.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Ended {
+    /// It finished: the copy is then validated and compared.
+    Done,
+    /// It refused, with its reason ([`Refusal::Broken`] where its checked edit broke a rule:
+    /// the report names the rule and the element).
+    Refused(Refusal),
+    /// It raised an exception: its type and message.
+    Raised(String),
+}
+
+/// Runs `attempt` — given a copy of `mesh` and the elements `reference` names, by the copy's
+/// ids — and `reference` on another copy with the same ids, and compares the results; `world`
+/// is only read. [`compare`] is this with a registered operation as the attempt.
+///
+/// # Refusals
+/// [`Refusal::Stale`] where an element `reference` names is not one of `mesh`'s.
+pub fn compare_with(
+    world: &World,
+    mesh: MeshId,
+    reference: &Invocation,
+    attempt: impl FnOnce(&mut World, MeshId, &[ElementId]) -> Ended,
+) -> Result<LabReport, Refusal> {
     let copy = Copy::of(world, mesh);
-    let yours = copy.run(&copy.renamed(student)?);
-    let theirs = copy.run(&copy.renamed(&reference)?);
+    let theirs = copy.renamed(reference)?;
+    let elements = theirs.elements().to_vec();
+    let yours = copy.attempt(|world, mesh| attempt(world, mesh, &elements));
+    let theirs = copy.attempt(|world, mesh| {
+        let mut context = EditContext {
+            progress: &mut |_| true,
+        };
+        match theirs.apply(world, mesh, &mut context) {
+            Ok(_) => Ended::Done,
+            Err(why) => Ended::Refused(why),
+        }
+    });
     let verdict = match (yours, theirs) {
         (Ran::Panicked(why), _) => Verdict::Panicked(why),
+        (Ran::Raised(why), _) => Verdict::Raised(why),
         (Ran::Invalid(why), _) => Verdict::Invalid(why),
         (Ran::Refused(why), Ran::Refused(_)) => Verdict::BothRefused(why),
         (Ran::Refused(why), _) => Verdict::RefusedAlone(why),
         (Ran::Valid(_), Ran::Refused(why)) => Verdict::AppliedAlone(why),
-        (Ran::Valid(_), Ran::Invalid(why) | Ran::Panicked(why)) => Verdict::ReferenceFailed(why),
+        (Ran::Valid(_), Ran::Invalid(why) | Ran::Panicked(why) | Ran::Raised(why)) => {
+            Verdict::ReferenceFailed(why)
+        }
         (Ran::Valid(a), Ran::Valid(b)) => match copy.difference(&a, &b) {
             None => Verdict::Same,
             Some(what) => Verdict::Different(what),
         },
     };
     Ok(LabReport {
-        reference: name,
+        reference: reference.declaration().name,
         verdict,
     })
 }
@@ -192,6 +248,7 @@ enum Ran {
     Valid(Box<World>),
     Invalid(String),
     Panicked(String),
+    Raised(String),
     Refused(Refusal),
 }
 
@@ -245,27 +302,23 @@ impl Copy {
             .map_err(Refusal::BadParameter)
     }
 
-    /// Runs `invocation` on a fresh copy.
-    fn run(&self, invocation: &Invocation) -> Ran {
+    /// Runs `attempt` on a fresh copy: how it ended, and the copy where it is valid.
+    fn attempt(&self, attempt: impl FnOnce(&mut World, MeshId) -> Ended) -> Ran {
         let (mut world, rows, mesh) = Self::spawned(&self.tables);
         debug_assert_eq!(rows.vertices, self.rows.vertices, "copies share their ids");
-        let mut context = EditContext {
-            progress: &mut |_| true,
-        };
         // Its log messages would name the copy's elements: only the run on the mesh itself
         // speaks.
         let quiet = tracing::subscriber::NoSubscriber::default();
-        let ran = tracing::subscriber::with_default(quiet, || {
-            catch_unwind(AssertUnwindSafe(|| {
-                invocation.apply(&mut world, mesh, &mut context)
-            }))
+        let ended = tracing::subscriber::with_default(quiet, || {
+            catch_unwind(AssertUnwindSafe(|| attempt(&mut world, mesh)))
         });
-        match ran {
+        match ended {
             Err(payload) => Ran::Panicked(panic_message(payload.as_ref())),
+            Ok(Ended::Raised(why)) => Ran::Raised(why),
             // A raw edit's commit found the broken rule first (and rolled back).
-            Ok(Err(Refusal::Broken(invalid))) => Ran::Invalid(self.said(&invalid)),
-            Ok(Err(why)) => Ran::Refused(why),
-            Ok(Ok(_)) => match validate(&world, mesh) {
+            Ok(Ended::Refused(Refusal::Broken(invalid))) => Ran::Invalid(self.said(&invalid)),
+            Ok(Ended::Refused(why)) => Ran::Refused(why),
+            Ok(Ended::Done) => match validate(&world, mesh) {
                 Ok(()) => Ran::Valid(Box::new(world)),
                 Err(invalid) => Ran::Invalid(self.said(&invalid)),
             },
