@@ -9,11 +9,11 @@ largest difference between the two distances as a share of potpourri3d's largest
 the median of 5 runs of each one-shot computation in milliseconds — for Pappus
 `mesh.quantity("geodesic", sources=[0])` (the mesh's tables read, both systems built and
 factored, solved), for potpourri3d the solver built (its two factorizations) and
-`compute_distance(0)`. Two potpourri3d solvers: `use_robust=False`, the same method as
-Pappus's (heat time t = h², h the mean edge length, lumped mass, cotangent Laplacian of the
-mesh's own triangles), and its default `use_robust=True`, which builds the Laplacian on the
-intrinsic Delaunay triangulation (Sharp & Crane 2020) and so stays right on meshes whose
-obtuse, non-Delaunay triangles make the plain cotangent heat flow negative.
+`compute_distance(0)`. Two potpourri3d solvers: its default `use_robust=True`, the same
+method as Pappus's (heat time t = h², h the mean edge length, lumped mass, the cotangent
+Laplacian of the intrinsic Delaunay triangulation, Sharp & Crane 2020), which stays right on
+meshes whose obtuse, non-Delaunay triangles make the plain cotangent heat flow negative; and
+`use_robust=False`, the cotangent Laplacian of the mesh's own triangles.
 
 Usage: python3 benches/geodesic_vs_potpourri3d.py [MODEL ...]
 Needs: the Pappus package (pip install ./), potpourri3d and numpy.

@@ -8,6 +8,7 @@
 pub mod closest;
 pub mod cotan;
 pub mod curvature;
+pub mod intrinsic;
 pub mod normals;
 pub mod quantity;
 pub mod surface;
