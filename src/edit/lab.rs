@@ -28,7 +28,7 @@
 use std::fmt;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
-use bevy::ecs::entity::{EntityHashMap, EntityHashSet};
+use bevy::ecs::entity::EntityHashMap;
 use bevy::math::Vec3;
 use bevy::prelude::{Entity, World};
 
@@ -197,7 +197,7 @@ pub fn compare_with(
     reference: &Invocation,
     attempt: impl FnOnce(&mut World, MeshId, &[ElementId]) -> Ended,
 ) -> Result<LabReport, Refusal> {
-    let copy = Copy::of(world, mesh);
+    let mut copy = Copy::of(world, mesh);
     let theirs = copy.renamed(reference)?;
     let elements = theirs.elements().to_vec();
     let yours = copy.attempt(|world, mesh| attempt(world, mesh, &elements));
@@ -237,8 +237,13 @@ struct Copy {
     tables: crate::mesh::tables::Connectivity,
     /// The copy's elements before any operation, by kind and row.
     rows: MeshMembers,
-    to_copy: EntityHashMap<Entity>,
-    to_mesh: EntityHashMap<Entity>,
+    /// The mesh's elements, by kind and row.
+    original: MeshMembers,
+    /// Each element of a copy before any operation, by its entity's index (a fresh world
+    /// numbers its entities from 0): the copy's entity and the mesh's.
+    initial: Vec<Option<(Entity, Entity)>>,
+    /// The copy spawned to learn the copies' ids, kept for the first attempt.
+    spare: Option<(World, MeshId)>,
     /// Positions closer than this are one position.
     tolerance: f32,
 }
@@ -255,30 +260,29 @@ enum Ran {
 impl Copy {
     fn of(world: &World, mesh: MeshId) -> Self {
         let original = extract(world, mesh);
-        let (_, rows, _) = Self::spawned(&original.tables);
-        let pairs = |a: &MeshMembers, b: &MeshMembers| -> Vec<(Entity, Entity)> {
-            let of = |m: &MeshMembers| -> Vec<Entity> {
-                let v = m.vertices.iter().map(|x| x.0);
-                let h = m.halfedges.iter().map(|x| x.0);
-                let e = m.edges.iter().map(|x| x.0);
-                v.chain(h)
-                    .chain(e)
-                    .chain(m.faces.iter().map(|x| x.0))
-                    .collect()
-            };
-            of(a).into_iter().zip(of(b)).collect()
-        };
+        let (spare, rows, copy) = Self::spawned(&original.tables);
+        let mut initial = vec![None; crate::mesh::ids::slots_for(rows.entities())];
+        for (c, o) in rows.entities().zip(original.members.entities()) {
+            initial[crate::mesh::ids::slot(c)] = Some((c, o));
+        }
         let (lo, hi) = original.tables.positions.iter().fold(
             (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
             |(lo, hi), &p| (lo.min(p), hi.max(p)),
         );
         Self {
-            to_copy: pairs(&original.members, &rows).into_iter().collect(),
-            to_mesh: pairs(&rows, &original.members).into_iter().collect(),
+            initial,
+            spare: Some((spare, copy)),
             tolerance: (hi - lo).length().max(f32::MIN_POSITIVE) * 1e-6,
             tables: original.tables,
+            original: original.members,
             rows,
         }
+    }
+
+    /// The mesh's element that `e` was in a copy before any operation, if it was one.
+    fn original_of(&self, e: Entity) -> Option<Entity> {
+        let (copy, original) = (*self.initial.get(crate::mesh::ids::slot(e))?)?;
+        (copy == e).then_some(original)
     }
 
     /// A fresh world holding the tables as its only mesh: the same ids each time (a fresh
@@ -292,8 +296,9 @@ impl Copy {
     /// `invocation` naming the copy's elements.
     fn renamed(&self, invocation: &Invocation) -> Result<Invocation, Refusal> {
         let elements = invocation.elements().iter().map(|&x| {
-            let e = self.to_copy.get(&x.entity()).ok_or(Refusal::Stale(x))?;
-            Ok(x.with_entity(*e))
+            let row = self.original.entities().position(|e| e == x.entity());
+            let e = row.and_then(|row| self.rows.entities().nth(row));
+            Ok(x.with_entity(e.ok_or(Refusal::Stale(x))?))
         });
         let elements = elements.collect::<Result<Vec<_>, Refusal>>()?;
         invocation
@@ -303,9 +308,12 @@ impl Copy {
     }
 
     /// Runs `attempt` on a fresh copy: how it ended, and the copy where it is valid.
-    fn attempt(&self, attempt: impl FnOnce(&mut World, MeshId) -> Ended) -> Ran {
-        let (mut world, rows, mesh) = Self::spawned(&self.tables);
-        debug_assert_eq!(rows.vertices, self.rows.vertices, "copies share their ids");
+    fn attempt(&mut self, attempt: impl FnOnce(&mut World, MeshId) -> Ended) -> Ran {
+        let (mut world, mesh) = self.spare.take().unwrap_or_else(|| {
+            let (world, rows, mesh) = Self::spawned(&self.tables);
+            debug_assert_eq!(rows.vertices, self.rows.vertices, "copies share their ids");
+            (world, mesh)
+        });
         // Its log messages would name the copy's elements: only the run on the mesh itself
         // speaks.
         let quiet = tracing::subscriber::NoSubscriber::default();
@@ -332,8 +340,8 @@ impl Copy {
 
     /// An element of a copy by the mesh's id, or as new.
     fn name(&self, x: ElementId) -> String {
-        match self.to_mesh.get(&x.entity()) {
-            Some(&e) => x.with_entity(e).to_string(),
+        match self.original_of(x.entity()) {
+            Some(e) => x.with_entity(e).to_string(),
             None => format!("a new {}", kind(x)),
         }
     }
@@ -365,14 +373,14 @@ impl Copy {
     /// The first vertex kept by one and not the other, or put elsewhere.
     fn vertices_differ(&self, a: &Side, b: &Side) -> Result<(), String> {
         for &v in &self.rows.vertices {
-            let name = self.name(ElementId::Vertex(v));
             match (a.m.try_position(v), b.m.try_position(v)) {
                 (Some(p), Some(q)) if p.distance(q) > self.tolerance => {
+                    let name = self.name(ElementId::Vertex(v));
                     return Err(format!(
                         "{name}: yours puts it at {p}, the reference at {q}"
                     ));
                 }
-                (p, q) => survival(&name, p.is_some(), q.is_some())?,
+                (p, q) => self.survival(ElementId::Vertex(v), p.is_some(), q.is_some())?,
             }
         }
         Ok(())
@@ -387,13 +395,12 @@ impl Copy {
         say: &dyn Fn(&[Corner]) -> String,
     ) -> Result<(), String> {
         for &f in &self.rows.faces {
-            let name = self.name(ElementId::Face(f));
             match (ka.face(a, f), kb.face(b, f)) {
                 (Some(x), Some(y)) if x != y => {
-                    let (x, y) = (say(&x), say(&y));
+                    let (name, x, y) = (self.name(ElementId::Face(f)), say(&x), say(&y));
                     return Err(format!("{name}: corners {x}, the reference has {y}"));
                 }
-                (x, y) => survival(&name, x.is_some(), y.is_some())?,
+                (x, y) => self.survival(ElementId::Face(f), x.is_some(), y.is_some())?,
             }
         }
         let made = |s: &Side, k: &Keys| sorted(s.made_faces.iter().filter_map(|&f| k.face(s, f)));
@@ -409,14 +416,13 @@ impl Copy {
         say: &dyn Fn(&[Corner]) -> String,
     ) -> Result<(), String> {
         for &e in &self.rows.edges {
-            let name = self.name(ElementId::Edge(e));
             let ends = |s: &Side, k: &Keys| s.m.try_edge(e).map(|_| k.ends(s, e));
             match (ends(a, ka), ends(b, kb)) {
                 (Some(x), Some(y)) if x != y => {
-                    let (x, y) = (say(&x), say(&y));
+                    let (name, x, y) = (self.name(ElementId::Edge(e)), say(&x), say(&y));
                     return Err(format!("{name}: joins {x}, the reference's joins {y}"));
                 }
-                (x, y) => survival(&name, x.is_some(), y.is_some())?,
+                (x, y) => self.survival(ElementId::Edge(e), x.is_some(), y.is_some())?,
             }
         }
         let made = |s: &Side, k: &Keys| sorted(s.made_edges.iter().map(|&e| k.ends(s, e)));
@@ -431,27 +437,49 @@ impl Copy {
         (b, kb): (&Side, &Keys),
         say: &dyn Fn(&[Corner]) -> String,
     ) -> Result<(), String> {
+        // Its ends, and its face: a kept one by id (the faces are the same by now), a new one by
+        // its corners.
         let way = |s: &Side, k: &Keys, h| {
             s.m.try_halfedge(h)?;
-            Some((k.directed(s, h), s.m.face(h).and_then(|f| k.face(s, f))))
+            let on = s.m.face(h).map(|f| match self.original_of(f.0) {
+                Some(_) => (Some(f), None),
+                None => (None, k.face(s, f)),
+            });
+            Some((k.directed(s, h), on))
         };
-        let said = |(ends, on): &(Vec<Corner>, Option<Vec<Corner>>)| {
-            let on = on
-                .as_deref()
-                .map_or("the boundary".into(), |c| format!("the face {}", say(c)));
-            format!("from {} on {on}", say(ends).replacen(' ', " to ", 1))
+        let said = |s: &Side, k: &Keys, h| {
+            let ends = k.directed(s, h);
+            let on = s.m.face(h).and_then(|f| k.face(s, f));
+            let on = on.map_or("the boundary".into(), |c| format!("the face {}", say(&c)));
+            format!("from {} to {} on {on}", say(&ends[..1]), say(&ends[1..]))
         };
         for &h in &self.rows.halfedges {
-            let name = self.name(ElementId::Halfedge(h));
             match (way(a, ka, h), way(b, kb, h)) {
                 (Some(x), Some(y)) if x != y => {
-                    let (x, y) = (said(&x), said(&y));
+                    let name = self.name(ElementId::Halfedge(h));
+                    let (x, y) = (said(a, ka, h), said(b, kb, h));
                     return Err(format!("{name}: {x}, the reference's {y}"));
                 }
-                (x, y) => survival(&name, x.is_some(), y.is_some())?,
+                (x, y) => self.survival(ElementId::Halfedge(h), x.is_some(), y.is_some())?,
             }
         }
         Ok(())
+    }
+
+    /// The difference where one side kept the element `x` and the other removed it.
+    fn survival(&self, x: ElementId, yours: bool, reference: bool) -> Result<(), String> {
+        let name = || self.name(x);
+        match (yours, reference) {
+            (true, false) => Err(format!(
+                "{}: yours keeps it, the reference removes it",
+                name()
+            )),
+            (false, true) => Err(format!(
+                "{}: yours removes it, the reference keeps it",
+                name()
+            )),
+            _ => Ok(()),
+        }
     }
 }
 
@@ -467,15 +495,16 @@ struct Side<'w> {
 impl<'w> Side<'w> {
     fn of(world: &'w World, copy: &Copy) -> Self {
         let now = MeshMembers::collect(world, mesh_of(world));
-        let before: EntityHashSet = copy.to_mesh.keys().copied().collect();
         let m = MeshRef::new(world);
         let mut made: Vec<(VertexId, Vec3)> = (now.vertices.iter())
-            .filter(|v| !before.contains(&v.0))
+            .filter(|v| copy.original_of(v.0).is_none())
             .map(|&v| (v, m.position(v)))
             .collect();
         made.sort_unstable_by_key(|(v, _)| *v);
         let new = |xs: Vec<Entity>| -> Vec<Entity> {
-            let mut xs: Vec<Entity> = xs.into_iter().filter(|x| !before.contains(x)).collect();
+            let mut xs: Vec<Entity> = (xs.into_iter())
+                .filter(|&x| copy.original_of(x).is_none())
+                .collect();
             xs.sort_unstable();
             xs
         };
@@ -543,15 +572,15 @@ impl Keys {
     }
 
     /// A halfedge's ends, in its direction.
-    fn directed(&self, side: &Side, h: HalfedgeId) -> Vec<Corner> {
-        vec![
+    fn directed(&self, side: &Side, h: HalfedgeId) -> [Corner; 2] {
+        [
             self.corner(side.m.from_vertex(h)),
             self.corner(side.m.to_vertex(h)),
         ]
     }
 
     /// An edge's ends, in order.
-    fn ends(&self, side: &Side, e: EdgeId) -> Vec<Corner> {
+    fn ends(&self, side: &Side, e: EdgeId) -> [Corner; 2] {
         let mut ends = self.directed(side, side.m.edge_halfedge(e));
         ends.sort_unstable();
         ends
@@ -596,20 +625,11 @@ fn match_made_vertices(a: &Side, b: &Side, tolerance: f32) -> Result<Vec<usize>,
     Ok(matched)
 }
 
-/// The difference where one side kept the element `name` and the other removed it.
-fn survival(name: &str, yours: bool, reference: bool) -> Result<(), String> {
-    match (yours, reference) {
-        (true, false) => Err(format!("{name}: yours keeps it, the reference removes it")),
-        (false, true) => Err(format!("{name}: yours removes it, the reference keeps it")),
-        _ => Ok(()),
-    }
-}
-
 /// The first item of sorted `a` not in sorted `b` (counting repeats), or of `b` not in `a`,
 /// said as `what` and the item as `say` writes it.
-fn first_unshared(
-    a: &[Vec<Corner>],
-    b: &[Vec<Corner>],
+fn first_unshared<T: Ord + AsRef<[Corner]>>(
+    a: &[T],
+    b: &[T],
     what: &str,
     say: &dyn Fn(&[Corner]) -> String,
 ) -> Result<(), String> {
@@ -620,13 +640,13 @@ fn first_unshared(
             (Some(x), y) if y.is_none_or(|y| x < y) => {
                 return Err(format!(
                     "yours makes {what} {}, the reference does not",
-                    say(x)
+                    say(x.as_ref())
                 ));
             }
             (_, Some(y)) => {
                 return Err(format!(
                     "the reference makes {what} {}, yours does not",
-                    say(y)
+                    say(y.as_ref())
                 ));
             }
             _ => break,
