@@ -24,6 +24,48 @@
 //! mesh (it is the student's result to look at), the report appended to its summary. The
 //! copies cost two reads and two writes of the mesh's tables: a lab's meshes are small, and a
 //! lab is about being told, not speed.
+//!
+//! ```
+//! use bevy::prelude::World;
+//! use pappus::edit::lab::{Verdict, compare};
+//! use pappus::edit::{EditContext, Invocation};
+//! use pappus::mesh::{MeshId, MeshInfo, MeshMembers, build_mesh, shapes};
+//! use pappus::ops::Refusal;
+//! use pappus::ops::declaration::{Declaration, Names};
+//! use pappus::ops::operation::{Applied, MeshOperation, Values};
+//!
+//! /// A "student's" flip that calls Pappus's own: the lab finds it the same.
+//! struct MyFlip;
+//!
+//! const MY_FLIP: Declaration = Declaration::new("my-flip")
+//!     .naming(Names::Edge)
+//!     .checked_against("flip");
+//!
+//! impl MeshOperation for MyFlip {
+//!     fn declaration(&self) -> &'static Declaration {
+//!         &MY_FLIP
+//!     }
+//!
+//!     fn apply(
+//!         &self,
+//!         world: &mut World,
+//!         _: MeshId,
+//!         values: Values<'_>,
+//!         _: &mut EditContext<'_>,
+//!     ) -> Result<Applied, Refusal> {
+//!         let e = pappus::ops::local::flip_edge(world, values.edge()?)?;
+//!         Ok(Applied::whole(format!("flipped {e}")))
+//!     }
+//! }
+//!
+//! let mut world = World::new();
+//! let built = build_mesh(&mut world, &shapes::icosphere(1), MeshInfo::default()).unwrap();
+//! let e = MeshMembers::collect(&world, built.mesh).edges[0];
+//! let flip = Invocation::with_defaults(&MyFlip).on(vec![e.into()]).unwrap();
+//! let report = compare(&world, built.mesh, &flip).unwrap();
+//! assert_eq!(report.verdict, Verdict::Same);
+//! assert_eq!(report.to_string(), "same as flip");
+//! ```
 
 use std::fmt;
 use std::panic::{AssertUnwindSafe, catch_unwind};

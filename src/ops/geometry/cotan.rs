@@ -19,6 +19,11 @@ pub fn cotan_edges(s: &Surface) -> Vec<(u32, u32, f64)> {
             edges.push((i.min(j), i.max(j), w));
         }
     }
+    merged(edges)
+}
+
+/// Weights `(i, j, w)` with `i < j`, sorted and those of one pair of vertices added up.
+pub fn merged(mut edges: Vec<(u32, u32, f64)>) -> Vec<(u32, u32, f64)> {
     edges.sort_unstable_by_key(|&(i, j, _)| (i, j));
     let mut merged: Vec<(u32, u32, f64)> = Vec::with_capacity(edges.len() / 2 + 1);
     for (i, j, w) in edges {

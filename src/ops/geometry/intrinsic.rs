@@ -199,15 +199,7 @@ impl Intrinsic {
                 }
             }
         }
-        edges.sort_unstable_by_key(|&(i, j, _)| (i, j));
-        let mut merged: Vec<(u32, u32, f64)> = Vec::with_capacity(edges.len() / 2 + 1);
-        for (i, j, w) in edges {
-            match merged.last_mut() {
-                Some(last) if (last.0, last.1) == (i, j) => last.2 += w,
-                _ => merged.push((i, j, w)),
-            }
-        }
-        merged
+        super::cotan::merged(edges)
     }
 
     /// The mean length of the edges (each counted once).
