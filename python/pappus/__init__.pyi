@@ -270,6 +270,12 @@ class Mesh:
     leaves the mesh untouched; a parameter out of range raises ValueError.
     """
 
+    @staticmethod
+    def from_trimesh(t: Any) -> "Mesh":
+        """``Mesh(t.vertices, t.faces)`` from a ``trimesh.Trimesh``, its rows in trimesh's order."""
+    def to_trimesh(self) -> Any:
+        """This mesh as a ``trimesh.Trimesh`` (``process=False``: rows kept); ``ValueError``
+        for a mesh with polygons (``triangulate()`` first)."""
     def __init__(self, vertices: npt.ArrayLike, faces: FacesLike) -> None:
         """From an N×3 float array and M×3 / M×4 integer faces (or a list of polygons).
 

@@ -1232,6 +1232,47 @@ impl Mesh {
         Ok((restore, (state,)).into_pyobject(py)?.into_any())
     }
 
+    /// A mesh from a `trimesh.Trimesh`: `Mesh(t.vertices, t.faces)`, its rows in trimesh's
+    /// order (repaired as any input is). Raises `AttributeError` for an object without
+    /// `vertices` and `faces`, and as `Mesh(...)` does.
+    #[staticmethod]
+    fn from_trimesh(py: Python<'_>, t: &Bound<'_, PyAny>) -> PyResult<Mesh> {
+        let vertices = t.getattr("vertices")?;
+        let mut mesh = Mesh::new(py, vertices.extract()?, &t.getattr("faces")?)?;
+        mesh.world
+            .get_mut::<MeshInfo>(mesh.mesh.0)
+            .expect("the mesh entity")
+            .name = "trimesh".into();
+        Ok(mesh)
+    }
+
+    /// This mesh as a `trimesh.Trimesh`, with `process=False` so that its rows stay this
+    /// mesh's (`vertices`, `faces`). Raises `ValueError` for a mesh with polygons, which trimesh
+    /// cannot hold (`triangulate()` first), and `ImportError` without trimesh installed.
+    fn to_trimesh<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let (vertices, faces) = self.arrays(py)?;
+        let triangles = faces
+            .getattr("shape")
+            .ok()
+            .and_then(|s| s.extract::<(usize, usize)>().ok())
+            .is_some_and(|(_, k)| k == 3);
+        if !triangles {
+            return Err(PyValueError::new_err(
+                "trimesh holds triangles only: triangulate() the mesh first",
+            ));
+        }
+        let trimesh = py.import("trimesh").map_err(|e| {
+            pyo3::exceptions::PyImportError::new_err(format!(
+                "to_trimesh needs trimesh (pip install trimesh): {e}"
+            ))
+        })?;
+        let keywords = PyDict::new(py);
+        keywords.set_item("vertices", vertices)?;
+        keywords.set_item("faces", faces)?;
+        keywords.set_item("process", false)?;
+        trimesh.getattr("Trimesh")?.call((), Some(&keywords))
+    }
+
     /// Rebuilds a mesh from `__reduce__`'s state dict.
     #[staticmethod]
     fn _from_state(state: &Bound<'_, PyDict>) -> PyResult<Mesh> {
