@@ -14,16 +14,18 @@
 //!   ways may differ in its last bit), each face with the same corner cycle, each edge with
 //!   the same ends, each halfedge between the same vertices on the same face;
 //! - what is new by what it is: new vertices by position, new faces by their corner cycles,
-//!   new edges and halfedges by their ends (a student's new elements get other ids than the
-//!   reference's, in whatever order they were made).
+//!   new edges by their ends (a student's new elements get other ids than the reference's, in
+//!   whatever order they were made; new halfedges are those of the new faces and edges).
 //!
 //! The report ([`LabReport`]) is one [`Verdict`] and names elements by the mesh's own ids.
 //! [`apply_checked`] is what [`super::Edit::run`] does with an operation that declares a
 //! reference: an invalid, panicking or lone refused result is refused with the report and the
 //! mesh untouched (only the copies saw it); a valid one, the same or not, is applied to the
-//! mesh (it is the student's result to look at), the report appended to its summary. The
-//! copies cost two reads and two writes of the mesh's tables: a lab's meshes are small, and a
-//! lab is about being told, not speed.
+//! mesh (it is the student's result to look at: the operation runs once more, on the mesh
+//! itself, as a function of the mesh), the report appended to its summary. A check costs one
+//! read of the mesh's tables, two fresh worlds written from them and a whole validation of
+//! each: about 25 ms on a 6 000-triangle mesh and 0.5 s on the 69 451-triangle bunny (release
+//! build). A lab's meshes are small, and a lab is about being told, not speed.
 //!
 //! ```
 //! use bevy::prelude::World;
