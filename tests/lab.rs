@@ -227,7 +227,7 @@ fn a_panicking_or_corrupting_operation_is_refused_and_leaves_the_mesh_as_it_was(
 /// both refused; an operation without a reference is no lab's.
 #[test]
 fn refusals_are_compared_too() {
-    let (mut world, built) = common::build(&shapes::grid(3, 3));
+    let (world, built) = common::build(&shapes::grid(3, 3));
     let mesh = built.mesh;
     let m = MeshRef::new(&world);
     let boundary = MeshMembers::collect(&world, mesh)
@@ -245,7 +245,6 @@ fn refusals_are_compared_too() {
     );
     let flip = pappus::ops::registry::operation("flip").unwrap();
     assert!(compare(&world, mesh, &invocation(flip, boundary)).is_err());
-    let _ = &mut world;
 }
 
 /// In the editor the example's operations are keys of their own: Alt+1 on the selected edge

@@ -262,7 +262,6 @@ pub fn split(world: &mut World, mesh: MeshId, e: EdgeId) -> Result<VertexId, Ref
     }
     edit.set_edge_halfedge(mb, w.t)?;
     edit.set_vertex_halfedge(mid, t2)?;
-    let _ = (mc, md);
     edit.commit()?;
     trace!(
         target: "lab",

@@ -135,14 +135,14 @@ fn attempt(
         });
     let (back, left_open, broken) = copy.bind(py).borrow_mut().give_back();
     *world = back;
-    match called {
+    match (called, broken) {
         _ if left_open => Ended::Raised("left a `mesh.edit()` open (it was rolled back)".into()),
-        Ok(_) => Ended::Done,
-        Err(_) if broken.is_some() => Ended::Refused(Refusal::Broken(broken.expect("some"))),
-        Err(e) if e.is_instance_of::<Refused>(py) => {
+        (Ok(_), _) => Ended::Done,
+        (Err(_), Some(invalid)) => Ended::Refused(Refusal::Broken(invalid)),
+        (Err(e), None) if e.is_instance_of::<Refused>(py) => {
             Ended::Refused(Refusal::Lab(e.value(py).to_string()))
         }
-        Err(e) => Ended::Raised(described(py, &e)),
+        (Err(e), None) => Ended::Raised(described(py, &e)),
     }
 }
 

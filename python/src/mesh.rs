@@ -708,16 +708,9 @@ impl Mesh {
         parameters: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Py<PyAny>> {
         let targets = run::targets(slf, elements)?;
-        let invocation = {
-            let mesh = slf.try_borrow()?;
-            run::invocation(
-                &mesh.world,
-                &mesh.input_vertices,
-                name,
-                &targets,
-                parameters,
-            )?
-        };
+        let invocation = slf
+            .try_borrow()?
+            .invocation_of(name, &targets, parameters)?;
         Mesh::run_invocation(slf, invocation, progress)
     }
 

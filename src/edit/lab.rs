@@ -201,18 +201,26 @@ pub fn compare(world: &World, mesh: MeshId, student: &Invocation) -> Result<LabR
         // A value the reference does not take leaves its default.
         let _ = reference.set(i, given.given(i));
     }
-    compare_with(world, mesh, &reference, |world, copy, elements| {
-        let renamed = student.clone().on(elements.to_vec());
-        match renamed.map_err(Refusal::BadParameter).and_then(|student| {
-            let mut context = EditContext {
-                progress: &mut |_| true,
-            };
-            student.apply(world, copy, &mut context)
-        }) {
-            Ok(_) => Ended::Done,
-            Err(why) => Ended::Refused(why),
-        }
-    })
+    compare_with(
+        world,
+        mesh,
+        &reference,
+        |world, copy, elements| match student.clone().on(elements.to_vec()) {
+            Ok(student) => applied(&student, world, copy),
+            Err(why) => Ended::Refused(Refusal::BadParameter(why)),
+        },
+    )
+}
+
+/// How applying `invocation` to `mesh` ended (a panic is the caller's to catch).
+fn applied(invocation: &Invocation, world: &mut World, mesh: MeshId) -> Ended {
+    let mut context = EditContext {
+        progress: &mut |_| true,
+    };
+    match invocation.apply(world, mesh, &mut context) {
+        Ok(_) => Ended::Done,
+        Err(why) => Ended::Refused(why),
+    }
 }
 
 /// How a student's attempt on its copy ended, before the copy is validated: what
@@ -245,26 +253,18 @@ pub fn compare_with(
     let theirs = copy.renamed(reference)?;
     let elements = theirs.elements().to_vec();
     let yours = copy.attempt(|world, mesh| attempt(world, mesh, &elements));
-    let theirs = copy.attempt(|world, mesh| {
-        let mut context = EditContext {
-            progress: &mut |_| true,
-        };
-        match theirs.apply(world, mesh, &mut context) {
-            Ok(_) => Ended::Done,
-            Err(why) => Ended::Refused(why),
-        }
-    });
+    let theirs = copy.attempt(|world, mesh| applied(&theirs, world, mesh));
     let verdict = match (yours, theirs) {
         (Ran::Panicked(why), _) => Verdict::Panicked(why),
         (Ran::Raised(why), _) => Verdict::Raised(why),
         (Ran::Invalid(why), _) => Verdict::Invalid(why),
         (Ran::Refused(why), Ran::Refused(_)) => Verdict::BothRefused(why),
         (Ran::Refused(why), _) => Verdict::RefusedAlone(why),
-        (Ran::Valid(_), Ran::Refused(why)) => Verdict::AppliedAlone(why),
-        (Ran::Valid(_), Ran::Invalid(why) | Ran::Panicked(why) | Ran::Raised(why)) => {
+        (Ran::Valid(..), Ran::Refused(why)) => Verdict::AppliedAlone(why),
+        (Ran::Valid(..), Ran::Invalid(why) | Ran::Panicked(why) | Ran::Raised(why)) => {
             Verdict::ReferenceFailed(why)
         }
-        (Ran::Valid(a), Ran::Valid(b)) => match copy.difference(&a, &b) {
+        (Ran::Valid(a, ma), Ran::Valid(b, mb)) => match copy.difference((&a, ma), (&b, mb)) {
             None => Verdict::Same,
             Some(what) => Verdict::Different(what),
         },
@@ -294,7 +294,7 @@ struct Copy {
 
 /// What an operation did to a copy.
 enum Ran {
-    Valid(Box<World>),
+    Valid(Box<World>, MeshId),
     Invalid(String),
     Panicked(String),
     Raised(String),
@@ -371,7 +371,7 @@ impl Copy {
             Ok(Ended::Refused(Refusal::Broken(invalid))) => Ran::Invalid(self.said(&invalid)),
             Ok(Ended::Refused(why)) => Ran::Refused(why),
             Ok(Ended::Done) => match validate(&world, mesh) {
-                Ok(()) => Ran::Valid(Box::new(world)),
+                Ok(()) => Ran::Valid(Box::new(world), mesh),
                 Err(invalid) => Ran::Invalid(self.said(&invalid)),
             },
         }
@@ -386,13 +386,13 @@ impl Copy {
     fn name(&self, x: ElementId) -> String {
         match self.original_of(x.entity()) {
             Some(e) => x.with_entity(e).to_string(),
-            None => format!("a new {}", kind(x)),
+            None => format!("a new {}", x.kind()),
         }
     }
 
     /// The first way in which `a` (the student's copy) is not `b` (the reference's), or
     /// `None` where they are the same mesh.
-    fn difference(&self, a: &World, b: &World) -> Option<String> {
+    fn difference(&self, a: (&World, MeshId), b: (&World, MeshId)) -> Option<String> {
         let (a, b) = (Side::of(a, self), Side::of(b, self));
         let made = match match_made_vertices(&a, &b, self.tolerance) {
             Ok(made) => made,
@@ -537,43 +537,22 @@ struct Side<'w> {
 }
 
 impl<'w> Side<'w> {
-    fn of(world: &'w World, copy: &Copy) -> Self {
-        let now = MeshMembers::collect(world, mesh_of(world));
+    fn of((world, mesh): (&'w World, MeshId), copy: &Copy) -> Self {
+        let now = MeshMembers::collect(world, mesh);
         let m = MeshRef::new(world);
-        let mut made: Vec<(VertexId, Vec3)> = (now.vertices.iter())
-            .filter(|v| copy.original_of(v.0).is_none())
+        let made = |e: Entity| copy.original_of(e).is_none();
+        let mut vertices: Vec<(VertexId, Vec3)> = (now.vertices.iter())
+            .filter(|v| made(v.0))
             .map(|&v| (v, m.position(v)))
             .collect();
-        made.sort_unstable_by_key(|(v, _)| *v);
-        let new = |xs: Vec<Entity>| -> Vec<Entity> {
-            let mut xs: Vec<Entity> = (xs.into_iter())
-                .filter(|&x| copy.original_of(x).is_none())
-                .collect();
-            xs.sort_unstable();
-            xs
-        };
+        vertices.sort_unstable_by_key(|(v, _)| *v);
         Self {
-            made,
-            made_faces: new(now.faces.iter().map(|f| f.0).collect())
-                .into_iter()
-                .map(FaceId)
-                .collect(),
-            made_edges: new(now.edges.iter().map(|e| e.0).collect())
-                .into_iter()
-                .map(EdgeId)
-                .collect(),
+            made: vertices,
+            made_faces: sorted(now.faces.into_iter().filter(|f| made(f.0))),
+            made_edges: sorted(now.edges.into_iter().filter(|e| made(e.0))),
             m,
         }
     }
-}
-
-/// The only mesh of a copy's world.
-fn mesh_of(world: &World) -> MeshId {
-    let mut query = world.try_query::<(Entity, &MeshInfo)>();
-    let found = query
-        .as_mut()
-        .and_then(|q| q.iter(world).next().map(|(e, _)| e));
-    MeshId(found.unwrap_or(Entity::PLACEHOLDER))
 }
 
 /// A vertex of a copy as both copies can name it: one of the mesh's, by id, or the `i`th of the
@@ -697,17 +676,6 @@ fn first_unshared<T: Ord + AsRef<[Corner]>>(
         }
     }
     Ok(())
-}
-
-/// An element's kind in words.
-fn kind(x: ElementId) -> &'static str {
-    match x {
-        ElementId::Vertex(_) => "vertex",
-        ElementId::Halfedge(_) => "halfedge",
-        ElementId::Edge(_) => "edge",
-        ElementId::Face(_) => "face",
-        ElementId::Mesh(_) => "mesh",
-    }
 }
 
 /// A panic's message, where it carried one.

@@ -132,6 +132,17 @@ impl ElementId {
         }
     }
 
+    /// Its kind in a word: "vertex", "halfedge", "edge", "face" or "mesh".
+    pub fn kind(self) -> &'static str {
+        match self {
+            Self::Vertex(_) => "vertex",
+            Self::Halfedge(_) => "halfedge",
+            Self::Edge(_) => "edge",
+            Self::Face(_) => "face",
+            Self::Mesh(_) => "mesh",
+        }
+    }
+
     /// The entity behind the id.
     pub fn entity(self) -> Entity {
         match self {

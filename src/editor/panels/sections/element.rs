@@ -51,13 +51,7 @@ fn selection_section(
         );
         return;
     };
-    let kind = match sel.id {
-        ElementId::Vertex(_) => "vertex",
-        ElementId::Halfedge(_) => "halfedge",
-        ElementId::Edge(_) => "edge",
-        ElementId::Face(_) => "face",
-        ElementId::Mesh(_) => "mesh",
-    };
+    let kind = sel.id.kind();
     ui.label(
         egui::RichText::new(format!("{kind} {}", sel.id))
             .strong()
