@@ -15,27 +15,32 @@ fn main() {
     let Cli {
         file,
         command,
+        show,
         max_memory,
     } = Cli::parse();
     if let Some(budget) = max_memory {
         pappus::memory_budget::set(budget);
     }
     let code = match command {
-        None => open_editor(file),
+        None => open_editor(file, show),
         Some(command) => cli::run(command),
     };
     std::process::exit(code);
 }
 
-/// Opens the editor on `file` (or the default model) and returns its exit code.
+/// Opens the editor on `file` (or the default model), or on what a script hands over
+/// (`--show`), and returns its exit code.
 #[cfg(feature = "editor")]
-fn open_editor(file: Option<std::path::PathBuf>) -> i32 {
-    pappus::editor::run(file)
+fn open_editor(file: Option<std::path::PathBuf>, show: Option<std::path::PathBuf>) -> i32 {
+    match show {
+        Some(request) => pappus::editor::run_show(&request),
+        None => pappus::editor::run(file),
+    }
 }
 
 /// This build has no editor: says so, and returns 2.
 #[cfg(not(feature = "editor"))]
-fn open_editor(_file: Option<std::path::PathBuf>) -> i32 {
+fn open_editor(_file: Option<std::path::PathBuf>, _show: Option<std::path::PathBuf>) -> i32 {
     eprintln!(
         "pappus: this build has no editor (built without the `editor` feature); \
          use a subcommand: info, convert, process (see `pappus --help`)"

@@ -1801,3 +1801,82 @@ fn a_subdivision_past_the_memory_budget_is_refused_and_changes_nothing() {
         assert_eq!(after, before, "the mesh is as it was");
     }
 }
+
+#[test]
+fn a_shown_mesh_colours_by_the_scripts_array_and_goes_back_with_its_selection() {
+    use pappus::editor::automation::show::{GivenArray, ShowPlugin, ShowRequest};
+    use pappus::editor::view::colouring::{ColorBy, VertexValues};
+    let folder = std::env::temp_dir().join(format!("pappus-shown-{}", std::process::id()));
+    let mut app = app();
+    // Each vertex's value is its input number; a name Pappus has is registered apart.
+    let height = GivenArray {
+        name: "show-test-height".into(),
+        values: (0..642).map(f64::from).collect(),
+    };
+    let valence = GivenArray {
+        name: "valence".into(),
+        values: vec![0.0; 642],
+    };
+    app.add_plugins(ShowPlugin {
+        request: ShowRequest {
+            mesh: "shape:icosphere".into(),
+            name: Some("a script's sphere".into()),
+            quantities: vec![height, valence],
+            hand_back: folder.clone(),
+        },
+    });
+    open(&mut app, "shape:icosphere");
+    app.update();
+    let shown = app.world().resource::<ColorBy>().0.unwrap();
+    assert_eq!(shown.name(), "show-test-height");
+    let info = app
+        .world()
+        .get::<pappus::mesh::MeshInfo>(mesh(&app).0)
+        .unwrap();
+    assert_eq!(info.name, "a script's sphere");
+    assert!(pappus::ops::registry::quantity("valence-script").is_some());
+    let vertices = pappus::mesh::members::of_kind::<pappus::mesh::Vertex, _>(
+        app.world(),
+        mesh(&app),
+        pappus::mesh::VertexId,
+    );
+    let values = app.world().get::<VertexValues>(mesh(&app).0).unwrap();
+    for (i, v) in vertices.iter().enumerate() {
+        assert_eq!(values.values[&v.0], i as f64);
+    }
+    // Nothing edited: the answer says so, with the selection by kind as rows.
+    let edge = some_interior_edge(&app);
+    let face = pappus::mesh::MeshMembers::collect(app.world(), mesh(&app)).faces[7];
+    {
+        let mut selection = app.world_mut().resource_mut::<Selection>();
+        selection.select_only(Some(ElementId::Edge(edge)));
+        selection.add(ElementId::Face(face));
+    }
+    pappus::editor::automation::show::hand_back(app.world_mut(), &folder).unwrap();
+    let answer: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(folder.join("answer.json")).unwrap())
+            .unwrap();
+    assert_eq!(answer["edited"], false);
+    let (a, b) = MeshRef::new(app.world()).edge_vertices(edge);
+    let row = |v: pappus::mesh::VertexId| vertices.iter().position(|&w| w == v).unwrap();
+    assert_eq!(
+        answer["selection"]["edges"],
+        serde_json::json!([[row(a), row(b)]])
+    );
+    assert_eq!(answer["selection"]["faces"], serde_json::json!([7]));
+    assert_eq!(answer["selection"]["vertices"], serde_json::json!([]));
+    // A flip, then the window closes: the mesh goes back edited, the same size, as a PLY.
+    app.world_mut()
+        .write_message(Request::Edit(Edit::local("flip", edge)));
+    app.update();
+    app.world_mut().write_message(AppExit::Success);
+    app.update();
+    let answer: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(folder.join("answer.json")).unwrap())
+            .unwrap();
+    assert_eq!(answer["edited"], true);
+    assert_eq!(answer["notes"], serde_json::json!([]));
+    let back = pappus::io::read(&folder.join("mesh.ply")).unwrap();
+    assert_eq!((back.positions.len(), back.face_count()), (642, 1280));
+    std::fs::remove_dir_all(&folder).unwrap();
+}

@@ -46,11 +46,13 @@ from ._pappus import (
     operations,
     set_memory_budget,
 )
+from .show import EditorUnavailable, Selection, show
 
 __all__ = [
     "SHAPES",
     "Connectivity",
     "Edge",
+    "EditorUnavailable",
     "Face",
     "Halfedge",
     "InvalidMesh",
@@ -61,6 +63,7 @@ __all__ = [
     "PappusError",
     "ParseError",
     "Refused",
+    "Selection",
     "StaleElement",
     "Vertex",
     "__version__",
@@ -71,6 +74,7 @@ __all__ = [
     "output_stem",
     "process_file",
     "set_memory_budget",
+    "show",
 ]
 
 

@@ -90,6 +90,44 @@ def lab(
     is valid and the same, or what differs, or the broken rule, or the exception. ``mesh`` is
     never changed. ``ValueError`` for an unknown reference or elements it does not take."""
 
+class EditorUnavailable(PappusError):
+    """The editor cannot be started: no ``pappus`` program, or no display. The message says what
+    to install or set."""
+
+class Selection:
+    """What the user selected in the editor's window, by kind, in the order selected; rows as
+    the mesh's when the window closed."""
+
+    vertices: List["Vertex"]
+    halfedges: List["Halfedge"]
+    edges: List["Edge"]
+    faces: List["Face"]
+    @property
+    def vertex_rows(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def halfedge_rows(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def edge_rows(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def face_rows(self) -> npt.NDArray[np.int64]: ...
+    def __len__(self) -> int: ...
+
+def show(
+    mesh: "Mesh",
+    quantities: Optional[Dict[str, npt.ArrayLike]] = None,
+    *,
+    screenshot: Union[str, os.PathLike, None] = None,
+    script: Optional[str] = None,
+    timeout: Optional[float] = None,
+) -> "Mesh":
+    """Opens Pappus's editor on ``mesh`` with ``quantities`` (one value per vertex each) as
+    colour maps, blocks until the window closes, and returns ``mesh`` as the user left it
+    (rebuilt when edited: old handles stale), ``mesh.selection`` what was selected.
+    ``screenshot`` writes a PNG and closes; ``script`` runs editor steps (``PAPPUS_SCRIPT``'s
+    syntax). The editor is ``PAPPUS_EDITOR``, else ``pappus`` on PATH. Raises
+    EditorUnavailable, ValueError (a quantity's length), PappusError (the editor failed or
+    timed out; the mesh unchanged)."""
+
 class LabReport:
     """What :func:`lab` found; ``str(report)`` is the report as the editor says it."""
 
@@ -273,6 +311,9 @@ class Mesh:
     @staticmethod
     def from_trimesh(t: Any) -> "Mesh":
         """``Mesh(t.vertices, t.faces)`` from a ``trimesh.Trimesh``, its rows in trimesh's order."""
+    @property
+    def selection(self) -> Optional[Selection]:
+        """What the user selected in the editor when :func:`show` last returned; None before."""
     def to_trimesh(self) -> Any:
         """This mesh as a ``trimesh.Trimesh`` (``process=False``: rows kept); ``ValueError``
         for a mesh with polygons (``triangulate()`` first)."""

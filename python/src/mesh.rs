@@ -73,6 +73,8 @@ pub struct Mesh {
     open_edit: Option<Journal>,
     /// The rule the last commit of such an edit found broken, until `pappus.lab` reads it.
     broken: Option<Invalid>,
+    /// What the user selected in the editor's window when `pappus.show` last returned.
+    selection: Option<Py<PyAny>>,
 }
 
 /// Each element's row in its kind's arrays.
@@ -113,6 +115,7 @@ impl Mesh {
             vertex_data,
             open_edit: None,
             broken: None,
+            selection: None,
         })
     }
 
@@ -131,6 +134,7 @@ impl Mesh {
             vertex_data: VertexData::default(),
             open_edit: None,
             broken: None,
+            selection: None,
         }
     }
 
@@ -1270,6 +1274,42 @@ impl Mesh {
     #[staticmethod]
     fn _from_state(state: &Bound<'_, PyDict>) -> PyResult<Mesh> {
         Mesh::from_state(state)
+    }
+
+    /// What the user selected in the editor's window when `pappus.show` last returned on
+    /// this mesh (a `pappus.Selection`: handles and rows by kind), or `None` before. Its
+    /// handles go stale with an edit as any handle does; its rows are the rows when the window
+    /// closed.
+    #[getter]
+    fn selection(&self, py: Python<'_>) -> Option<Py<PyAny>> {
+        self.selection.as_ref().map(|s| s.clone_ref(py))
+    }
+
+    /// Keeps what `pappus.show` read back as [`Mesh::selection`].
+    fn _set_selection(&mut self, selection: Py<PyAny>) {
+        self.selection = Some(selection);
+    }
+
+    /// Takes `other`'s mesh as this one's (what `pappus.show` does with the mesh the editor
+    /// hands back after an edit): its elements, numbering and file data; the name stays this
+    /// mesh's. Every handle
+    /// taken on this mesh before is stale afterwards; `other` is left with this mesh's old
+    /// contents. `RuntimeError` while an edit is open on either.
+    fn _take(&mut self, mut other: PyRefMut<'_, Mesh>) -> PyResult<()> {
+        if self.open_edit.is_some() || other.open_edit.is_some() {
+            return Err(edit_open());
+        }
+        let revision = self.element_revision.max(other.element_revision) + 1;
+        let name = self.name();
+        std::mem::swap(self, &mut *other);
+        if let Some(mut info) = self.world.get_mut::<MeshInfo>(self.mesh.0) {
+            info.name = name;
+        }
+        self.element_revision = revision;
+        self.rows = OnceLock::new();
+        other.element_revision = revision;
+        other.rows = OnceLock::new();
+        Ok(())
     }
 
     /// `<pappus.Mesh 'name': V vertices, F faces>`.

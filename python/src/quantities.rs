@@ -84,6 +84,7 @@ pub(crate) fn per_vertex(
     let given = Given {
         other: reference.as_ref(),
         sources: &sources,
+        vertices: &read.members.vertices,
     };
     Ok(quantity.per_vertex(&read.tables, &given))
 }

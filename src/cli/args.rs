@@ -26,6 +26,11 @@ pub struct Cli {
     /// A batch command; without one, the editor opens.
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// Open the editor on what a script hands over and hand the mesh back when the window
+    /// closes: REQUEST is the JSON file Python's `pappus.show` writes (the mesh, its arrays,
+    /// the folder the mesh goes back to).
+    #[arg(long, value_name = "REQUEST", conflicts_with = "file")]
+    pub show: Option<PathBuf>,
     /// The memory an operation may ask for: a size (2G, 512M) or a share of the available
     /// memory (50%); default 75%. An operation whose result would need more is refused with
     /// its estimate.
@@ -165,10 +170,16 @@ mod tests {
         let editor = |file: Option<&str>| Cli {
             file: file.map(PathBuf::from),
             command: None,
+            show: None,
             max_memory: None,
         };
         assert_eq!(parse("").unwrap(), editor(None));
         assert_eq!(parse("bunny.obj").unwrap(), editor(Some("bunny.obj")));
+        assert_eq!(
+            parse("--show /tmp/r.json").unwrap().show,
+            Some(PathBuf::from("/tmp/r.json"))
+        );
+        assert!(parse("a.obj --show /tmp/r.json").is_err());
         assert_eq!(
             parse("info a.off --json").unwrap().command,
             Some(Command::Info {

@@ -292,6 +292,7 @@ fn attach_quantity(
     let given = Given {
         other: input,
         sources: &sources,
+        vertices: &read.members.vertices,
     };
     let values = quantity.per_vertex(&read.tables, &given);
     let ms = ms_since(start);

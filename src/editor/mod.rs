@@ -120,6 +120,23 @@ pub fn run(path: Option<PathBuf>) -> i32 {
     run_with(path, |_| {})
 }
 
+/// Runs the editor on what a script hands over (`pappus --show REQUEST`, what Python's
+/// `pappus.show` runs; [`automation::show`] says what the request holds and what goes back
+/// when the window closes). Returns the process exit code: 2 when the request cannot be read.
+pub fn run_show(request: &std::path::Path) -> i32 {
+    let request = match automation::show::ShowRequest::read(request) {
+        Ok(request) => request,
+        Err(e) => {
+            eprintln!("pappus: --show: {e}");
+            return 2;
+        }
+    };
+    let mesh = request.mesh.clone();
+    run_with(Some(mesh), move |app| {
+        app.add_plugins(automation::show::ShowPlugin { request });
+    })
+}
+
 /// [`run`], with `extend` given the app before it starts: a lab or a plugin adds its
 /// operations there (`app.add_operation(MyFlip)`, [`AddOperation`]), its systems and
 /// resources.

@@ -1,11 +1,13 @@
 //! The automation room: the editor driven without a person. Scripts of keys, clicks and
 //! screenshots (`PAPPUS_SCRIPT`, [`script`]), the frame pacing that lets an idle window sleep
-//! ([`pacing`]) and the frame-time breakdown a script logs ([`frame_stats`]). The top room: it
+//! ([`pacing`]), the frame-time breakdown a script logs ([`frame_stats`]) and a Python
+//! script's mesh shown and handed back (`pappus.show`, [`show`]). The top room: it
 //! reads the others, none reads it.
 
 pub mod frame_stats;
 pub mod pacing;
 pub mod script;
+pub mod show;
 
 use bevy::prelude::*;
 

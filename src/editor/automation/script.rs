@@ -1,7 +1,8 @@
 //! Scripted runs of the real editor, for screenshots and the windowed test.
 //!
 //! `PAPPUS_SCRIPT` holds steps separated by `;`, run one after another, each once the previous
-//! is done:
+//! is done; the first waits one frame (for the file named on the command line to be asked
+//! for) and no step starts while a file is being read:
 //!
 //! | step | meaning |
 //! |---|---|
@@ -9,7 +10,9 @@
 //! | `key:NAME` | press and release a key through the same input path as a person (`key:R`, `key:3`, `key:.`, `key:Period`, `key:Enter`, `key:Escape`, `key:Delete`, `key:Backspace`, `key:Minus`, `key:Equal`, `key:F9`, `key:Right`, `key:Left`, `key:End`, `key:PageUp`, `key:PageDown`); `key:Shift+S`, `key:Ctrl+T`, `key:Alt+M` hold a modifier |
 //! | `select-edge:A,B` | select the edge between the input file's vertices A and B (0-based) |
 //! | `select-vertex:A` | select the input file's vertex A |
+//! | `select-face:N` | select the input file's face N (0-based) |
 //! | `select:ID` | select an element by id (`f12v0`) |
+//! | `select-…:+…` | any of the four with `+` before its argument adds to the selection instead (`select-face:+3`) |
 //! | `box:X0,Y0,X1,Y1` | box select the rectangle between these fractions of the window (0–1, from the top left), as B and a drag would; the box stays drawn until the next `key:Escape` |
 //! | `uv-select:U,V` | select the face whose UV polygon holds (U, V), as a click in the UV view does (`uv-select:0.5,0.5`) |
 //! | `open:PATH` | open a file (or `shape:NAME`) as Ctrl+O would |
@@ -39,7 +42,7 @@ use crate::ops::geometry::Quantity;
 
 use crate::editor::input::key_names::chord;
 use crate::editor::session::requests::Request;
-use crate::editor::session::requests::StepMove;
+use crate::editor::session::requests::{SelectionEdit, StepMove};
 use crate::editor::session::selection::ActiveMesh;
 
 /// One scripted step (see the module doc).
@@ -49,12 +52,13 @@ pub enum ScriptStep {
     Wait(u32),
     /// Press and release a key, holding a modifier (Shift or Control) if given.
     Key(Option<KeyCode>, KeyCode),
-    /// Select the edge between two input vertices.
-    SelectEdge(u32, u32),
-    /// Select an input vertex.
-    SelectVertex(u32),
-    /// Select an element by id.
-    Select(ElementId),
+    /// Select an element, alone or (`add`) added to the selection.
+    Select {
+        /// The element.
+        target: Target,
+        /// Whether it joins the selection rather than replacing it.
+        add: bool,
+    },
     /// Box select between two corners, as fractions of the window.
     Box(Vec2, Vec2),
     /// Select the face at a point of the UV layout.
@@ -77,6 +81,55 @@ pub enum ScriptStep {
     Measure(u32),
     /// Quit.
     Exit,
+}
+
+/// An element a script selects: by the input file's numbering (a freshly opened mesh lists
+/// its vertices and faces in file order) or by id.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Target {
+    /// The edge between two input vertices.
+    Edge(u32, u32),
+    /// An input vertex.
+    Vertex(u32),
+    /// An input face.
+    Face(u32),
+    /// An element by id.
+    Id(ElementId),
+}
+
+impl Target {
+    /// Reads a `select…` step's argument (`+` already taken off).
+    fn parse(step: &str, arg: &str) -> Option<Target> {
+        let number = |x: &str| x.trim().parse().ok();
+        match step {
+            "select-edge" => {
+                let (a, b) = arg.split_once(',')?;
+                Some(Target::Edge(number(a)?, number(b)?))
+            }
+            "select-vertex" => number(arg).map(Target::Vertex),
+            "select-face" => number(arg).map(Target::Face),
+            "select" => parse_element(arg.trim()).map(Target::Id),
+            _ => None,
+        }
+    }
+
+    /// The element in the active mesh, or a warning naming what is missing.
+    fn find(self, world: &World) -> Result<ElementId, String> {
+        let found = match self {
+            Target::Edge(a, b) => input_edge(world, a, b),
+            Target::Vertex(a) => input_element::<crate::mesh::Vertex>(world, a)
+                .map(|v| ElementId::Vertex(crate::mesh::VertexId(v))),
+            Target::Face(n) => input_element::<crate::mesh::Face>(world, n)
+                .map(|f| ElementId::Face(crate::mesh::FaceId(f))),
+            Target::Id(x) => Some(x),
+        };
+        found.ok_or_else(|| match self {
+            Target::Edge(a, b) => format!("no edge between input vertices {a} and {b}"),
+            Target::Vertex(a) => format!("no input vertex {a}"),
+            Target::Face(n) => format!("no input face {n}"),
+            Target::Id(x) => format!("no element {x}"),
+        })
+    }
 }
 
 /// The steps still to run.
@@ -136,15 +189,14 @@ impl Script {
                         _ => return Err(bad()),
                     }
                 }
-                "select-edge" => {
-                    let (a, b) = arg.split_once(',').ok_or_else(bad)?;
-                    ScriptStep::SelectEdge(
-                        a.trim().parse().map_err(|_| bad())?,
-                        b.trim().parse().map_err(|_| bad())?,
-                    )
+                "select" | "select-edge" | "select-vertex" | "select-face" => {
+                    let (add, arg) = match arg.trim().strip_prefix('+') {
+                        Some(rest) => (true, rest),
+                        None => (false, arg),
+                    };
+                    let target = Target::parse(name, arg).ok_or_else(bad)?;
+                    ScriptStep::Select { target, add }
                 }
-                "select" => ScriptStep::Select(parse_element(arg).ok_or_else(bad)?),
-                "select-vertex" => ScriptStep::SelectVertex(arg.trim().parse().map_err(|_| bad())?),
                 "box" => {
                     let v: Vec<f32> = arg
                         .split(',')
@@ -203,7 +255,9 @@ impl Script {
         }
         Ok(Script {
             steps,
-            waiting: 0,
+            // The first frame's requests (the file to open) are applied after the script's
+            // first run: wait for them.
+            waiting: 1,
             shots_pending: 0,
             measuring: None,
             measuring_cpu: None,
@@ -233,6 +287,9 @@ pub fn run_script(world: &mut World) {
             break;
         }
         script.shots_pending = 0;
+        if crate::editor::pipeline::opening::busy(world).is_some() {
+            break;
+        }
         let Some(step) = script.steps.pop_front() else {
             break;
         };
@@ -259,13 +316,17 @@ fn log_measurement(
     super::frame_stats::log_breakdown(world);
 }
 
-/// Selects `element` for a script step, or warns with `missing` when there is none.
-fn script_select(world: &mut World, element: Option<ElementId>, missing: String) {
+/// Selects `element` for a script step (alone, or added to the selection), or warns with
+/// what is missing.
+fn script_select(world: &mut World, element: Result<ElementId, String>, add: bool) {
     match element {
-        Some(x) => {
+        Ok(x) if add => {
+            world.write_message(Request::Selection(SelectionEdit::Add(vec![x])));
+        }
+        Ok(x) => {
             world.write_message(Request::Select(Some(x)));
         }
-        None => bevy::log::warn!("script: {missing}"),
+        Err(missing) => bevy::log::warn!("script: {missing}"),
     }
 }
 
@@ -292,25 +353,17 @@ fn run_step(
             script.release = modifier.into_iter().chain([key]).collect();
             script.waiting = 2;
         }
-        ScriptStep::SelectEdge(a, b) => {
-            let edge = input_edge(world, a, b);
-            script_select(
-                world,
-                edge,
-                format!("no edge between input vertices {a} and {b}"),
-            );
-            script.waiting = 1;
-        }
-        ScriptStep::SelectVertex(a) => {
-            let vertex = input_vertex(world, a).map(ElementId::Vertex);
-            script_select(world, vertex, format!("no input vertex {a}"));
+        ScriptStep::Select { target, add } => {
+            let element = target.find(world);
+            script_select(world, element, add);
             script.waiting = 1;
         }
         ScriptStep::UvSelect(u, v) => {
             let layout = world.resource::<crate::editor::panels::uv_view::UvLayout>();
             let face = crate::editor::panels::uv_view::face_at(layout, Vec2::new(u, v))
-                .map(ElementId::Face);
-            script_select(world, face, format!("no face at UV ({u}, {v})"));
+                .map(ElementId::Face)
+                .ok_or_else(|| format!("no face at UV ({u}, {v})"));
+            script_select(world, face, false);
             script.waiting = 1;
         }
         ScriptStep::Lod(faces) => {
@@ -343,10 +396,6 @@ fn run_step(
             world.write_message(Request::Open(path));
             script.waiting = 2;
         }
-        ScriptStep::Select(id) => {
-            world.write_message(Request::Select(Some(id)));
-            script.waiting = 1;
-        }
         ScriptStep::Box(from, to) => {
             let size = world
                 .query_filtered::<&Window, With<PrimaryWindow>>()
@@ -361,9 +410,7 @@ fn run_step(
                     armed: true,
                     drag: Some((a, b)),
                 };
-            world.write_message(Request::Selection(
-                crate::editor::session::requests::SelectionEdit::Replace(elements),
-            ));
+            world.write_message(Request::Selection(SelectionEdit::Replace(elements)));
             script.waiting = 2;
         }
         ScriptStep::Shot(path) => {
@@ -403,20 +450,19 @@ fn send_key(world: &mut World, key: KeyCode, state: ButtonState) {
     });
 }
 
-/// The edge between two vertices named by their index in the input file: vertices are listed
-/// in file order by a freshly built mesh, so the index is the position in that list.
-fn input_vertex(world: &World, a: u32) -> Option<crate::mesh::VertexId> {
+/// The element of kind `K` at `index` in the input file: a freshly built mesh lists its
+/// vertices and faces in file order, so the index is the position in that list.
+fn input_element<K: bevy::prelude::Component>(world: &World, index: u32) -> Option<Entity> {
     let mesh = world.resource::<ActiveMesh>().0?;
-    let vertices =
-        crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(world, mesh, crate::mesh::VertexId);
-    vertices.get(a as usize).copied()
+    crate::mesh::members::of_kind::<K, _>(world, mesh, |e| e)
+        .get(index as usize)
+        .copied()
 }
 
+/// The edge between the input file's vertices `a` and `b`.
 fn input_edge(world: &World, a: u32, b: u32) -> Option<ElementId> {
-    let mesh = world.resource::<ActiveMesh>().0?;
-    let vertices =
-        crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(world, mesh, crate::mesh::VertexId);
-    let (va, vb) = (*vertices.get(a as usize)?, *vertices.get(b as usize)?);
+    let va = crate::mesh::VertexId(input_element::<crate::mesh::Vertex>(world, a)?);
+    let vb = crate::mesh::VertexId(input_element::<crate::mesh::Vertex>(world, b)?);
     let m = MeshRef::new(world);
     m.find_halfedge(va, vb).map(|h| ElementId::Edge(m.edge(h)))
 }
@@ -430,6 +476,26 @@ mod tests {
         let script = Script::parse("uv-select:0.25, 0.5").unwrap();
         assert_eq!(script.steps[0], ScriptStep::UvSelect(0.25, 0.5));
         assert!(Script::parse("uv-select:0.25").is_err());
+        let script = Script::parse("select-edge:0, 5;select-face:+3;select:+f12v0").unwrap();
+        let picks: Vec<ScriptStep> = script.steps.into_iter().collect();
+        assert_eq!(
+            picks,
+            vec![
+                ScriptStep::Select {
+                    target: Target::Edge(0, 5),
+                    add: false
+                },
+                ScriptStep::Select {
+                    target: Target::Face(3),
+                    add: true
+                },
+                ScriptStep::Select {
+                    target: Target::Id(parse_element("f12v0").unwrap()),
+                    add: true
+                },
+            ]
+        );
+        assert!(Script::parse("select-face:x").is_err());
         let script = Script::parse("key:M;key:Ctrl+Z;key:Ctrl+Y").unwrap();
         let keys: Vec<ScriptStep> = script.steps.into_iter().collect();
         assert_eq!(

@@ -23,7 +23,7 @@ use crate::editor::session::history::{self, UndoHistory};
 use crate::editor::session::requests::{ConfirmDiscard, Declined, PendingDiscard, Request};
 use crate::editor::session::select_many::apply_selection_edit;
 use crate::editor::session::selection::{ActiveMesh, Selection, exists, navigate};
-use crate::editor::session::state::{Modified, is_modified};
+use crate::editor::session::state::{Modified, ReturnsToScript, is_modified};
 use crate::ops::simplification_history::SimplificationHistory;
 
 /// Applies every request written since the last run, in order (the `Apply` set).
@@ -41,7 +41,7 @@ pub fn apply_requests(world: &mut World, mut cursor: Local<MessageCursor<Request
 }
 
 /// Asks before closing the window over unsaved changes (the window's close button only
-/// requests; this decides).
+/// requests; this decides), unless the mesh goes back to a script ([`ReturnsToScript`]).
 pub fn close_requested(
     world: &mut World,
     mut cursor: Local<MessageCursor<bevy::window::WindowCloseRequested>>,
@@ -53,10 +53,12 @@ pub fn close_requested(
     if !requested {
         return;
     }
-    let modified = world
-        .resource::<ActiveMesh>()
-        .0
-        .is_some_and(|m| is_modified(world, m));
+    // A mesh a script waits for goes back to it: nothing is lost by closing.
+    let modified = !world.contains_resource::<ReturnsToScript>()
+        && world
+            .resource::<ActiveMesh>()
+            .0
+            .is_some_and(|m| is_modified(world, m));
     if modified {
         world.resource_mut::<ConfirmDiscard>().0 = Some(PendingDiscard::Quit);
     } else {

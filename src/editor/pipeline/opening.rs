@@ -127,7 +127,7 @@ pub(super) fn cancel(world: &mut World) -> Option<String> {
 }
 
 /// The label of the file being read, if one is.
-pub(super) fn busy(world: &World) -> Option<String> {
+pub fn busy(world: &World) -> Option<String> {
     world
         .get_resource::<Opening>()?
         .0

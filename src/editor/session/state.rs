@@ -12,6 +12,12 @@ use crate::mesh::MeshId;
 use crate::mesh::tables::Connectivity;
 use crate::ops::geometry::closest::Reference;
 
+/// The mesh goes back to a script when the window closes (`pappus.show`, see
+/// [`crate::editor::automation::show`]), into this folder: closing then asks nothing about
+/// unsaved changes, because they are not lost.
+#[derive(Resource, Debug, Clone)]
+pub struct ReturnsToScript(pub std::path::PathBuf);
+
 /// Marks a mesh changed since it was opened or saved.
 #[derive(Component, Debug, Default, Clone, Copy)]
 #[component(storage = "SparseSet")]

@@ -41,11 +41,12 @@ pub struct VertexValues {
 }
 
 impl VertexValues {
-    /// The colour of vertex `v` (linear RGBA for the renderer); mid-grey if it has no value.
+    /// The colour of vertex `v` (linear RGBA for the renderer); mid-grey if it has no value
+    /// (none, or NaN: a quantity that cannot be computed there, a given array's new vertex).
     pub fn colour(&self, v: VertexId) -> [f32; 4] {
         let srgb = match self.values.get(&v.0) {
-            Some(&value) => self.map.at(self.range.fraction(value)),
-            None => [128, 128, 128],
+            Some(&value) if !value.is_nan() => self.map.at(self.range.fraction(value)),
+            _ => [128, 128, 128],
         };
         let [r, g, b] = srgb.map(|c| srgb_to_linear(c as f32 / 255.0));
         [r, g, b, 1.0]
@@ -85,6 +86,7 @@ pub fn vertex_values(
     let given = Given {
         other,
         sources: &sources,
+        vertices: &read.members.vertices,
     };
     let values = quantity.per_vertex(&read.tables, &given);
     let map = quantity.colormap();

@@ -11,6 +11,7 @@ pub mod curvature;
 pub mod intrinsic;
 pub mod normals;
 pub mod quantity;
+pub mod stored;
 pub mod surface;
 
 pub use cotan::cotan_edges;

@@ -6,6 +6,7 @@
 //! triangles are); the edge length is the mean length of the vertex's edges.
 
 use crate::colormap::ColorMap;
+use crate::mesh::VertexId;
 use crate::mesh::tables::{Connectivity, FaceRow, VertexRow};
 
 use super::closest::Reference;
@@ -46,6 +47,10 @@ pub struct Given<'a> {
     pub other: Option<&'a Reference>,
     /// The source vertices of a [`Needs::Sources`] quantity, by row.
     pub sources: &'a [VertexRow],
+    /// The vertex at each row, for a quantity whose values are kept on the vertices rather
+    /// than computed ([`super::stored::StoredQuantity`]); empty where the caller has no
+    /// entities (such a quantity is then NaN everywhere).
+    pub vertices: &'a [VertexId],
 }
 
 /// A value per vertex of a mesh: what the editor colours by, `process --quantity` writes and

@@ -1,0 +1,121 @@
+//! A quantity whose values are given rather than computed: an array a script hands to the
+//! editor (`pappus.show(mesh, quantities={"geodesic": d})`), shown beside Pappus's own
+//! quantities with its colour map and legend.
+//!
+//! The values are kept by vertex entity, not by row, so they follow the vertices through
+//! edits: a vertex an edit keeps keeps its value; a vertex it makes has none (NaN, which the
+//! editor draws grey and the colour range leaves out). A caller that reads it without the
+//! entities behind the rows ([`Given::vertices`] empty) gets NaN everywhere.
+
+use bevy::ecs::entity::EntityHashMap;
+
+use crate::colormap::ColorMap;
+use crate::mesh::VertexId;
+use crate::mesh::tables::Connectivity;
+
+use super::quantity::{Given, Needs, QuantityDeclaration, VertexQuantity};
+
+/// Values given per vertex, by vertex entity (see the module doc).
+pub struct StoredQuantity {
+    declaration: &'static QuantityDeclaration,
+    values: EntityHashMap<f64>,
+}
+
+impl StoredQuantity {
+    /// A quantity named `name` (unique among the registered ones: the caller checks) and
+    /// labelled `label`, with `values` at these vertices. Its colour map is diverging when the
+    /// finite values have both signs, viridis otherwise.
+    ///
+    /// The declaration's strings live as long as the process (a registered quantity's do);
+    /// a process registers a handful of these, never one per frame.
+    pub fn new(name: &str, label: &str, values: impl IntoIterator<Item = (VertexId, f64)>) -> Self {
+        let values: EntityHashMap<f64> = values.into_iter().map(|(v, x)| (v.0, x)).collect();
+        let finite = || values.values().filter(|x| x.is_finite());
+        let signed = finite().any(|&x| x < 0.0) && finite().any(|&x| x > 0.0);
+        let declaration = Box::leak(Box::new(QuantityDeclaration {
+            name: Box::leak(name.into()),
+            label: Box::leak(label.into()),
+            colormap: if signed {
+                ColorMap::Diverging
+            } else {
+                ColorMap::Viridis
+            },
+            needs: Needs::Mesh,
+        }));
+        Self {
+            declaration,
+            values,
+        }
+    }
+}
+
+impl VertexQuantity for StoredQuantity {
+    fn declaration(&self) -> &'static QuantityDeclaration {
+        self.declaration
+    }
+
+    fn per_vertex(&self, t: &Connectivity, given: &Given<'_>) -> Vec<f64> {
+        if given.vertices.len() != t.vertex_count() {
+            return vec![f64::NAN; t.vertex_count()];
+        }
+        given
+            .vertices
+            .iter()
+            .map(|v| self.values.get(&v.0).copied().unwrap_or(f64::NAN))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::tables::extract;
+    use crate::mesh::{MeshInfo, build_mesh, shapes};
+    use bevy::prelude::World;
+
+    #[test]
+    fn values_follow_the_vertices_and_are_nan_where_none_was_given() {
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &shapes::cube(), MeshInfo::default()).unwrap();
+        let read = extract(&world, built.mesh);
+        // A value on every vertex but the first, equal to its input number.
+        let given: Vec<(VertexId, f64)> = built
+            .input_vertices
+            .iter()
+            .enumerate()
+            .skip(1)
+            .map(|(i, v)| (v.unwrap(), i as f64))
+            .collect();
+        let q = StoredQuantity::new("heights", "heights", given);
+        assert_eq!(q.declaration().colormap, ColorMap::Viridis);
+        let values = q.per_vertex(
+            &read.tables,
+            &Given {
+                vertices: &read.members.vertices,
+                ..Given::default()
+            },
+        );
+        for (row, v) in read.members.vertices.iter().enumerate() {
+            let input = built.input_vertices.iter().position(|&w| w == Some(*v));
+            match input {
+                Some(0) => assert!(values[row].is_nan()),
+                Some(i) => assert_eq!(values[row], i as f64),
+                None => unreachable!("every vertex of a cube is an input vertex"),
+            }
+        }
+        // Without the entities behind the rows, nothing can be read.
+        let blind = q.per_vertex(&read.tables, &Given::default());
+        assert!(blind.iter().all(|x| x.is_nan()));
+        let signed = StoredQuantity::new("s", "s", [(read.members.vertices[0], -1.0)]);
+        assert_eq!(signed.declaration().colormap, ColorMap::Viridis);
+        let signed = StoredQuantity::new(
+            "t",
+            "t",
+            [
+                (read.members.vertices[0], -1.0),
+                (read.members.vertices[1], 2.0),
+            ],
+        );
+        assert_eq!(signed.declaration().colormap, ColorMap::Diverging);
+    }
+}
