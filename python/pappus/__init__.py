@@ -20,6 +20,7 @@ plain function of plain values, so any executor maps it (``dask.distributed``'s 
 ``concurrent.futures``, ``multiprocessing``); see the README's recipe.
 """
 
+import collections.abc
 import time
 import warnings
 from pathlib import Path
@@ -39,6 +40,7 @@ from ._pappus import (
     Refused,
     StaleElement,
     Vertex,
+    VertexData,
     __version__,
     lab,
     load,
@@ -47,6 +49,9 @@ from ._pappus import (
     set_memory_budget,
 )
 from .show import EditorUnavailable, Selection, show
+
+# `mesh.vertex_data` is a mapping (keys, items, values, get, `in`, `del`, assignment).
+collections.abc.MutableMapping.register(VertexData)
 
 __all__ = [
     "SHAPES",
@@ -66,6 +71,7 @@ __all__ = [
     "Selection",
     "StaleElement",
     "Vertex",
+    "VertexData",
     "__version__",
     "lab",
     "load",

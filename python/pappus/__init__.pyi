@@ -90,6 +90,21 @@ def lab(
     is valid and the same, or what differs, or the broken rule, or the exception. ``mesh`` is
     never changed. ``ValueError`` for an unknown reference or elements it does not take."""
 
+class VertexData:
+    """``Mesh.vertex_data``: a mutable mapping of names to float32 arrays by row (a copy on
+    read); assigning takes one value per vertex (``ValueError`` otherwise)."""
+
+    def __getitem__(self, name: str) -> npt.NDArray[np.float32]: ...
+    def __setitem__(self, name: str, values: npt.ArrayLike) -> None: ...
+    def __delitem__(self, name: str) -> None: ...
+    def __contains__(self, name: object) -> bool: ...
+    def __len__(self) -> int: ...
+    def __iter__(self) -> Iterable[str]: ...
+    def keys(self) -> List[str]: ...
+    def values(self) -> List[npt.NDArray[np.float32]]: ...
+    def items(self) -> List[Tuple[str, npt.NDArray[np.float32]]]: ...
+    def get(self, name: str, default: Any = None) -> Any: ...
+
 class EditorUnavailable(PappusError):
     """The editor cannot be started: no ``pappus`` program, or no display. The message says what
     to install or set."""
@@ -336,10 +351,11 @@ class Mesh:
         """N×3 float32 normals by row: the file's while no edit changed the surface, else
         angle-weighted ones (what a save writes)."""
     @property
-    def vertex_data(self) -> Dict[str, npt.NDArray[np.float32]]:
-        """The per-vertex scalars the source carried that the mesh has no column for (a PLY's
-        ``quality``), float32 by row; each value follows its vertex through edits, a vertex an
-        edit made reads NaN. Empty when there are none. A copy."""
+    def vertex_data(self) -> "VertexData":
+        """Named per-vertex scalars, float32 by row: the source's (a PLY's ``quality``) and the
+        script's (``mesh.vertex_data["d"] = array``). Each value follows its vertex through
+        edits; a vertex an edit made gets the value interpolated at its place on the surface
+        before (a split's midpoint: the mean of its edge's ends). A PLY save writes them."""
     def quantity(self, name: str, *, to: Optional["Mesh"] = None) -> npt.NDArray[np.float64]:
         """A per-vertex quantity by row, as the editor colours by and ``pappus process
         --quantity NAME`` writes: ``mean``, ``gaussian``, ``angle-defect``, ``max-curvature``,

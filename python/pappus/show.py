@@ -90,8 +90,9 @@ def show(mesh, quantities=None, *, screenshot=None, script=None, timeout=None):
 
     When the user edited the mesh (anything in the undo history, even undone), ``mesh`` is
     rebuilt from what the editor hands back: its rows are then the editor's, every handle taken
-    before is stale, and what a PLY cannot hold (face groups, seam marks, the file's extra
-    vertex scalars) is named in a ``UserWarning``. Without an edit, ``mesh`` is untouched.
+    before is stale, and what did not come back (face groups and seam marks, which a PLY cannot
+    hold; ``vertex_data``, which the editor does not carry) is named in a ``UserWarning``.
+    Without an edit, ``mesh`` is untouched.
 
     ``screenshot`` (a path) writes a PNG of the window once the mesh is drawn and closes it,
     for scripts and tests; ``script`` runs editor steps first (``PAPPUS_SCRIPT``'s syntax:
@@ -150,7 +151,15 @@ def show(mesh, quantities=None, *, screenshot=None, script=None, timeout=None):
             mesh._set_selection(Selection([], [], [], []))
             return mesh
         if answer["edited"]:
+            lost = list(mesh.vertex_data)
             mesh._take(load(str(folder / "back" / answer["mesh"])))
+            if lost:
+                warnings.warn(
+                    f"pappus.show: vertex_data {lost} did not come back: the editor does not carry"
+                    " a script's per-vertex arrays through its edits",
+                    UserWarning,
+                    stacklevel=2,
+                )
     mesh._set_selection(_selection(mesh, answer["selection"]))
     return mesh
 

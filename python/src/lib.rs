@@ -43,6 +43,7 @@ use handles::{EdgeHandle, FaceHandle, HalfedgeHandle, VertexHandle};
 use lab_mode::{LabReportPy, lab};
 use mesh::Mesh;
 use mesh_edit::MeshEdit;
+use vertex_data::VertexDataView;
 
 /// Milliseconds since `start`.
 pub(crate) fn ms_since(start: Instant) -> f64 {
@@ -193,8 +194,8 @@ mod _pappus {
     #[pymodule_export]
     use super::{
         ConnectivityArrays, EdgeHandle, FaceHandle, HalfedgeHandle, InvalidMesh, LabReportPy, Mesh,
-        MeshEdit, PappusError, ParseError, Refused, StaleElement, VertexHandle, lab, load,
-        memory_budget, operations, set_memory_budget,
+        MeshEdit, PappusError, ParseError, Refused, StaleElement, VertexDataView, VertexHandle,
+        lab, load, memory_budget, operations, set_memory_budget,
     };
 
     use pyo3::prelude::*;

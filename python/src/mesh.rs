@@ -40,7 +40,7 @@ use crate::ms_since;
 use crate::outcome::Made;
 use crate::quantities;
 use crate::run::{self, Before, Changes};
-use crate::vertex_data::VertexData;
+use crate::vertex_data::{VertexData, VertexDataView};
 
 /// One halfedge mesh (polygons allowed), owned by Python.
 ///
@@ -212,6 +212,7 @@ impl Mesh {
         self.no_open_edit()?;
         let ids = ids_kept(&step);
         let before = track.then(|| Before::start(&mut self.world, self.mesh, ids));
+        let surface = self.vertex_data.surface_before(&self.world, self.mesh);
         let Mesh {
             world,
             mesh,
@@ -257,6 +258,9 @@ impl Mesh {
         self.rows = OnceLock::new();
         if outcome.is_ok() && ids == IdsKept::VerticesOnly {
             self.element_revision += 1;
+        }
+        if let (Ok(_), Some(surface)) = (&outcome, &surface) {
+            self.vertex_data.carry(surface, &self.world, self.mesh);
         }
         if let Some(e) = failure {
             let summary = outcome.as_ref().map(|(summary, _)| summary.clone());
@@ -382,8 +386,31 @@ impl Mesh {
     /// Opens a low-level edit (`RuntimeError` when one is open).
     pub(crate) fn open_edit(&mut self) -> PyResult<()> {
         self.no_open_edit()?;
+        self.vertex_data.opened_edit(&self.world, self.mesh);
         self.open_edit = Some(RawEdit::new(&mut self.world, self.mesh).suspend());
         Ok(())
+    }
+
+    /// `vertex_data[name]` by row, if there is such a column.
+    pub(crate) fn vertex_data_column(&self, name: &str) -> PyResult<Option<Vec<f32>>> {
+        self.no_open_edit()?;
+        Ok(self.vertex_data.column(name, &self.world, self.mesh))
+    }
+
+    /// Sets `vertex_data[name]` from values by row.
+    pub(crate) fn set_vertex_data(&mut self, name: &str, values: &[f32]) -> PyResult<()> {
+        self.no_open_edit()?;
+        self.vertex_data.set(name, values, &self.world, self.mesh)
+    }
+
+    /// Removes `vertex_data[name]`; whether it was there.
+    pub(crate) fn remove_vertex_data(&mut self, name: &str) -> bool {
+        self.vertex_data.remove(name)
+    }
+
+    /// The names of `vertex_data`'s columns.
+    pub(crate) fn vertex_data_names(&self) -> Vec<String> {
+        self.vertex_data.names()
     }
 
     /// The world and the open edit's journal, taken out until [`Mesh::set_aside`] or
@@ -406,6 +433,8 @@ impl Mesh {
     /// mesh; the file's normals no longer describe its surface) or rolled back.
     pub(crate) fn closed_edit(&mut self, committed: bool) {
         self.rows = OnceLock::new();
+        self.vertex_data
+            .closed_edit(committed, &self.world, self.mesh);
         if committed {
             SimplificationHistory::end(&mut self.world, self.mesh);
             if MeshAttributes::of(&self.world, self.mesh).normals {
@@ -611,12 +640,16 @@ impl Mesh {
         self.set_positions(py, moves)
     }
 
-    /// The per-vertex scalars the source carried that the mesh has no column for (a PLY's
-    /// `quality`): a dict of float32 arrays by row of `vertices`. Each value follows its vertex
-    /// through edits; a vertex an edit made reads NaN. Empty when the source had none. A copy.
+    /// The mesh's named per-vertex scalars: those the source carried that the mesh has no
+    /// column for (a PLY's `quality`) and the script's own (`mesh.vertex_data["d"] = array`,
+    /// one value per vertex). A mapping of float32 arrays by row of `vertices`; each value
+    /// follows its vertex through edits, a vertex an edit made gets the value interpolated at
+    /// its place on the surface before, and a PLY save writes them as vertex properties.
     #[getter]
-    fn vertex_data<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.vertex_data.dict(py, &self.world, self.mesh)
+    fn vertex_data(slf: &Bound<'_, Self>) -> VertexDataView {
+        VertexDataView {
+            mesh: slf.clone().unbind(),
+        }
     }
 
     /// The vertex normals, N×3 float32 by row of `vertices`: what a save writes (the file's

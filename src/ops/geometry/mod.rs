@@ -5,6 +5,7 @@
 //! table row, and returns one value per vertex (or face) row: the caller maps rows back to
 //! entities through the tables' members.
 
+pub mod carry;
 pub mod closest;
 pub mod cotan;
 pub mod curvature;

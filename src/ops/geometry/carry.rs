@@ -1,0 +1,138 @@
+//! Values on a mesh's vertices carried to the vertices an edit makes: a new vertex takes the
+//! value at its closest point on the surface as it was before the edit, interpolated linearly
+//! (barycentrically) in the triangle that point lies on.
+//!
+//! One rule for every operation, so that no operation needs to say what it does with a user's
+//! arrays: a split's midpoint lies on its edge and gets the mean of the edge's ends; a
+//! subdivision's new vertex lies near the face it came from and gets that face's blend of its
+//! corners; a remeshed vertex the value of the surface under it. Vertices an edit keeps keep
+//! their own values (the caller's map is by entity); this module only answers for the others.
+//! A corner with no value (NaN) is left out and the other corners' weights renormalised; with
+//! none left the value is NaN. This is the attribute transfer of remeshing pipelines
+//! (Botsch et al., *Polygon Mesh Processing*, 2010, §6.5: project onto the input and
+//! interpolate there).
+
+use std::sync::OnceLock;
+
+use bevy::math::Vec3;
+use bevy::prelude::World;
+
+use crate::mesh::topology::MeshRef;
+use crate::mesh::{MeshId, MeshMembers, VertexId};
+
+use super::closest::Reference;
+
+/// A mesh's surface as it was, for reading values at points on it (see the module doc). Its
+/// closest-point grid is built at the first read, so an edit that makes no vertex (a flip, a
+/// collapse) pays only for the copy of the triangles.
+pub struct SurfaceBefore {
+    triangles: Vec<[Vec3; 3]>,
+    corners: Vec<[VertexId; 3]>,
+    reference: OnceLock<Reference>,
+}
+
+impl SurfaceBefore {
+    /// The surface of `mesh` now: every face fanned from its first corner into triangles.
+    pub fn of(world: &World, mesh: MeshId) -> Self {
+        let m = MeshRef::new(world);
+        let members = MeshMembers::collect(world, mesh);
+        let mut corners = Vec::with_capacity(members.faces.len());
+        for &f in &members.faces {
+            let ring: Vec<VertexId> = m.face_vertices(f).collect();
+            for k in 1..ring.len().saturating_sub(1) {
+                corners.push([ring[0], ring[k], ring[k + 1]]);
+            }
+        }
+        let triangles = corners.iter().map(|t| t.map(|v| m.position(v))).collect();
+        Self {
+            triangles,
+            corners,
+            reference: OnceLock::new(),
+        }
+    }
+
+    /// The value at the point of the surface closest to `p`, interpolated from its triangle's
+    /// corners' values (`value` of a corner; NaN for one without), the corners where they were
+    /// when the surface was read. NaN where no corner has a value or the surface has no
+    /// triangle.
+    pub fn value_at(&self, p: Vec3, value: impl Fn(VertexId) -> f32) -> f32 {
+        if self.corners.is_empty() {
+            return f32::NAN;
+        }
+        let reference = self
+            .reference
+            .get_or_init(|| Reference::from_triangles(self.triangles.clone()));
+        let (q, t) = reference.closest_on(p);
+        let weights = barycentric(q, self.triangles[t]);
+        let corners = self.corners[t];
+        let (mut sum, mut total) = (0.0, 0.0);
+        for (v, w) in corners.into_iter().zip(weights) {
+            let x = value(v);
+            if !x.is_nan() {
+                sum += w * x;
+                total += w;
+            }
+        }
+        if total > 0.0 { sum / total } else { f32::NAN }
+    }
+}
+
+/// The barycentric weights of `q`, a point of triangle `[a, b, c]`. Equal weights for a
+/// degenerate triangle; a weight slightly outside [0, 1] from rounding is clamped.
+fn barycentric(q: Vec3, [a, b, c]: [Vec3; 3]) -> [f32; 3] {
+    let (ab, ac, aq) = (b - a, c - a, q - a);
+    let (d00, d01, d11) = (ab.dot(ab), ab.dot(ac), ac.dot(ac));
+    let (d20, d21) = (aq.dot(ab), aq.dot(ac));
+    let denominator = d00 * d11 - d01 * d01;
+    if denominator.abs() <= f32::EPSILON * d00 * d11 {
+        return [1.0; 3];
+    }
+    let v = ((d11 * d20 - d01 * d21) / denominator).clamp(0.0, 1.0);
+    let w = ((d00 * d21 - d01 * d20) / denominator).clamp(0.0, 1.0);
+    [(1.0 - v - w).max(0.0), v, w]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{MeshInfo, PolygonSoup, build_mesh};
+
+    #[test]
+    fn a_point_takes_the_linear_blend_of_its_triangles_corners() {
+        let mut world = World::new();
+        // A unit square as two triangles.
+        let soup = PolygonSoup::from_faces(
+            vec![
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(1.0, 0.0, 0.0),
+                Vec3::new(1.0, 1.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+            ],
+            &[vec![0, 1, 2], vec![0, 2, 3]],
+        );
+        let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
+        let v: Vec<VertexId> = built.input_vertices.iter().map(|v| v.unwrap()).collect();
+        let surface = SurfaceBefore::of(&world, built.mesh);
+        // The value is x + 2y at the corners: linear, so any point gets x + 2y exactly.
+        let value = |x: VertexId| {
+            let p = MeshRef::new(&world).position(x);
+            p.x + 2.0 * p.y
+        };
+        for (p, expected) in [
+            (Vec3::new(0.5, 0.5, 0.0), 1.5),
+            (Vec3::new(0.25, 0.75, 0.0), 1.75),
+            // Above the square: the point below it.
+            (Vec3::new(0.5, 0.0, 3.0), 0.5),
+        ] {
+            let got = surface.value_at(p, value);
+            assert!((got - expected).abs() < 1e-6, "{p}: {got}");
+        }
+        // A corner without a value is left out: on the edge (0, 2) only 0 and 2 count.
+        // (0.75, 0.25) is 1/4 of corner 0, 1/2 of corner 1 and 1/4 of corner 2 (value 3): the
+        // two kept weigh 1/2 in all, so the value is (1/4 * 3) / (1/2).
+        let some = |x: VertexId| if x == v[1] { f32::NAN } else { value(x) };
+        let got = surface.value_at(Vec3::new(0.75, 0.25, 0.0), some);
+        assert!((got - 1.5).abs() < 1e-6, "{got}");
+        assert!(surface.value_at(Vec3::ZERO, |_| f32::NAN).is_nan());
+    }
+}
