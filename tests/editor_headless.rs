@@ -1811,17 +1811,24 @@ fn a_shown_mesh_colours_by_the_scripts_array_and_goes_back_with_its_selection() 
     // Each vertex's value is its input number; a name Pappus has is registered apart.
     let height = GivenArray {
         name: "show-test-height".into(),
+        on_faces: false,
         values: (0..642).map(f64::from).collect(),
     };
     let valence = GivenArray {
         name: "valence".into(),
+        on_faces: false,
         values: vec![0.0; 642],
+    };
+    let face_rows = GivenArray {
+        name: "show-test-face-rows".into(),
+        on_faces: true,
+        values: (0..1280).map(f64::from).collect(),
     };
     app.add_plugins(ShowPlugin {
         request: ShowRequest {
             mesh: "shape:icosphere".into(),
             name: Some("a script's sphere".into()),
-            quantities: vec![height, valence],
+            quantities: vec![height, valence, face_rows],
             hand_back: folder.clone(),
         },
     });
@@ -1844,6 +1851,36 @@ fn a_shown_mesh_colours_by_the_scripts_array_and_goes_back_with_its_selection() 
     for (i, v) in vertices.iter().enumerate() {
         assert_eq!(values.values[&v.0], i as f64);
     }
+    assert!(!values.on_faces);
+    // An array on the faces: each face one colour, its corners render vertices of their own.
+    let on_faces = pappus::ops::registry::quantity("show-test-face-rows").unwrap();
+    app.world_mut().resource_mut::<ColorBy>().0 = Some(on_faces);
+    app.update();
+    let faces = pappus::mesh::members::of_kind::<pappus::mesh::Face, _>(
+        app.world(),
+        mesh(&app),
+        pappus::mesh::FaceId,
+    );
+    let values = app.world().get::<VertexValues>(mesh(&app).0).unwrap();
+    assert!(values.on_faces);
+    for (i, f) in faces.iter().enumerate() {
+        assert_eq!(values.values[&f.0], i as f64);
+    }
+    let drawn: usize = app
+        .world_mut()
+        .query_filtered::<&Mesh3d, With<RenderOf>>()
+        .iter(app.world())
+        .map(|m| m.0.clone())
+        .collect::<Vec<_>>()
+        .iter()
+        .map(|h| {
+            let asset = app.world().resource::<Assets<Mesh>>().get(h).unwrap();
+            assert!(asset.attribute(Mesh::ATTRIBUTE_COLOR).is_some());
+            asset.count_vertices()
+        })
+        .sum();
+    assert_eq!(drawn, 3 * 1280);
+    app.world_mut().resource_mut::<ColorBy>().0 = Some(shown);
     // Nothing edited: the answer says so, with the selection by kind as rows.
     let edge = some_interior_edge(&app);
     let face = pappus::mesh::MeshMembers::collect(app.world(), mesh(&app)).faces[7];

@@ -83,10 +83,12 @@ def show(mesh, quantities=None, *, screenshot=None, script=None, timeout=None):
     as the user left it, with ``mesh.selection`` what they had selected (a :class:`Selection`).
 
     ``quantities`` maps names to arrays of one value per vertex (in the order of
-    ``mesh.vertices``; NaN where there is none): each is listed in the editor's Analysis section
-    beside Pappus's own quantities, with its colour map and legend, and the mesh opens coloured
-    by the first. The values stay on their vertices through edits in the window (a new vertex
-    has none and is drawn grey).
+    ``mesh.vertices``) or one per face (in the order of ``mesh.faces``; each face drawn in one
+    colour), told apart by their length (per vertex where the counts are equal); NaN where
+    there is none. Each is listed in the editor's Analysis section beside Pappus's own
+    quantities, with its colour map and legend, and the mesh opens coloured by the first. The
+    values stay on their elements through edits in the window (a new one has none and is
+    drawn grey).
 
     When the user edited the mesh (anything in the undo history, even undone), ``mesh`` is
     rebuilt from what the editor hands back: its rows are then the editor's, every handle taken
@@ -116,9 +118,9 @@ def show(mesh, quantities=None, *, screenshot=None, script=None, timeout=None):
         folder = Path(folder)
         mesh.save(folder / "mesh.ply")
         listed = []
-        for i, (name, values) in enumerate(names_and_values):
+        for i, (name, values, per) in enumerate(names_and_values):
             values.astype("<f8").tofile(folder / f"quantity{i}.f64")
-            listed.append({"name": name, "values": f"quantity{i}.f64"})
+            listed.append({"name": name, "per": per, "values": f"quantity{i}.f64"})
         request = {
             "mesh": "mesh.ply",
             "name": mesh.name,
@@ -229,18 +231,19 @@ def _with_display(command, headless):
 
 
 def _quantities(mesh, quantities):
-    count = len(mesh.vertices)
+    count, faces = len(mesh.vertices), len(mesh.faces)
     checked = []
     for name, values in quantities.items():
         if not isinstance(name, str) or not name.strip() or ";" in name:
             raise ValueError(f"a quantity's name must be a non-empty string without ';', not {name!r}")
         array = np.asarray(values, dtype=np.float64).reshape(-1)
-        if array.shape[0] != count:
+        if array.shape[0] not in (count, faces):
             raise ValueError(
                 f"quantity {name!r} has {array.shape[0]} values; the mesh has {count} vertices"
-                " (one value per vertex, in the order of mesh.vertices)"
+                f" and {faces} faces (one value per vertex, in the order of mesh.vertices, or"
+                " one per face, in the order of mesh.faces)"
             )
-        checked.append((name, array))
+        checked.append((name, array, "vertex" if array.shape[0] == count else "face"))
     return checked
 
 

@@ -85,6 +85,7 @@ pub(crate) fn per_vertex(
         other: reference.as_ref(),
         sources: &sources,
         vertices: &read.members.vertices,
+        faces: &read.members.faces,
     };
     Ok(quantity.per_vertex(&read.tables, &given))
 }

@@ -63,10 +63,10 @@ def test_without_a_display_a_window_is_refused_at_once(editor):
         pappus.show(mesh)
 
 
-def test_a_quantity_has_one_value_per_vertex(editor):
+def test_a_quantity_has_one_value_per_vertex_or_per_face(editor):
     mesh = pappus.load("shape:icosahedron")
-    with pytest.raises(ValueError, match="12 vertices"):
-        pappus.show(mesh, {"per face": np.zeros(20)}, screenshot="x.png")
+    with pytest.raises(ValueError, match="12 vertices and 20 faces"):
+        pappus.show(mesh, {"seven": np.zeros(7)}, screenshot="x.png")
     with pytest.raises(ValueError, match="name"):
         pappus.show(mesh, {"": np.zeros(12)}, screenshot="x.png")
 
@@ -132,9 +132,13 @@ def test_a_quantity_is_drawn_in_its_colour_map(editor, tmp_path):
     Image = pytest.importorskip("PIL.Image")  # installed by .ci/run: never skipped there
     mesh = pappus.load("shape:icosphere:3")
     heights = mesh.vertices[:, 1].astype(np.float64) + 1.0  # one sign: viridis
+    # Per face: the height of each face's first corner.
+    face_heights = heights[mesh.faces[:, 0]]
     plain, coloured = tmp_path / "plain.png", tmp_path / "coloured.png"
+    faces = tmp_path / "faces.png"
     pappus.show(mesh, screenshot=plain, timeout=300)
     pappus.show(mesh, {"height": heights}, screenshot=coloured, timeout=300)
+    pappus.show(mesh, {"face height": face_heights}, screenshot=faces, timeout=300)
 
     def greens(path):
         """The share of the window's pixels that viridis's green and yellow-green give (green
@@ -146,3 +150,4 @@ def test_a_quantity_is_drawn_in_its_colour_map(editor, tmp_path):
 
     assert greens(plain) < 0.002, greens(plain)
     assert greens(coloured) > 0.02, greens(coloured)
+    assert greens(faces) > 0.02, greens(faces)

@@ -293,6 +293,7 @@ fn attach_quantity(
         other: input,
         sources: &sources,
         vertices: &read.members.vertices,
+        faces: &read.members.faces,
     };
     let values = quantity.per_vertex(&read.tables, &given);
     let ms = ms_since(start);

@@ -6,14 +6,16 @@
 //!
 //! ```json
 //! { "mesh": "mesh.ply", "name": "bunny.obj",
-//!   "quantities": [ { "name": "geodesic", "values": "geodesic.f64" } ],
+//!   "quantities": [ { "name": "geodesic", "values": "geodesic.f64" },
+//!                   { "name": "area", "per": "face", "values": "area.f64" } ],
 //!   "hand_back": "back" }
 //! ```
 //!
 //! `name`, optional, is what the panel calls the mesh (the script's mesh's name rather than the
 //! temporary file's).
-//! Each quantity's values are little-endian `f64`, one per vertex of the mesh file, in its
-//! order. Once the mesh is open they become [`StoredQuantity`]s, listed in the Analysis
+//! Each quantity's values are little-endian `f64`, one per vertex of the mesh file in its order
+//! (`"per": "face"`: one per face, each face drawn in one colour). Once the mesh is open they
+//! become [`StoredQuantity`]s, listed in the Analysis
 //! section beside Pappus's own (a name Pappus already has is shown as given and registered as
 //! `NAME-script`); the mesh opens coloured by the first, with the Analysis section (its legend)
 //! open.
@@ -42,7 +44,7 @@ use serde_json::{Value, json};
 
 use crate::edit::soup_to_save;
 use crate::io;
-use crate::mesh::ids::{ElementId, MeshId};
+use crate::mesh::ids::{ElementId, FaceId, MeshId};
 use crate::mesh::tables::EntityRows;
 use crate::mesh::topology::MeshRef;
 use crate::mesh::{MeshMembers, VertexId};
@@ -70,11 +72,13 @@ pub struct ShowRequest {
     pub hand_back: PathBuf,
 }
 
-/// One array a script gives: a value per vertex of the mesh file, in its order.
+/// One array a script gives: a value per vertex (or per face) of the mesh file, in its order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GivenArray {
     /// Its name, as the script gave it.
     pub name: String,
+    /// Its values are the faces' rather than the vertices'.
+    pub on_faces: bool,
     /// Its values.
     pub values: Vec<f64>,
 }
@@ -121,8 +125,19 @@ impl ShowRequest {
                 .chunks_exact(8)
                 .map(|b| f64::from_le_bytes(b.try_into().expect("chunks of 8")))
                 .collect();
+            let on_faces = match q.get("per").and_then(Value::as_str) {
+                None | Some("vertex") => false,
+                Some("face") => true,
+                Some(other) => {
+                    return Err(format!(
+                        "{}: quantity {name}: \"per\" is \"vertex\" or \"face\", not {other:?}",
+                        path.display()
+                    ));
+                }
+            };
             quantities.push(GivenArray {
                 name: name.to_string(),
+                on_faces,
                 values,
             });
         }
@@ -169,8 +184,8 @@ impl Plugin for ShowPlugin {
 }
 
 /// Once the mesh is open: names it as the script does, registers each given array as a
-/// quantity on its vertices (an array whose length is not the vertex count is left out with a
-/// warning), colours by the first and opens the Analysis section, where its legend is.
+/// quantity on its vertices or faces (an array whose length is not their count is left out
+/// with a warning), colours by the first and opens the Analysis section, where its legend is.
 pub fn give_arrays_once_open(world: &mut World) {
     if world.resource::<ShowSession>().opened.is_some() {
         return;
@@ -189,25 +204,36 @@ pub fn give_arrays_once_open(world: &mut World) {
     {
         info.name = name;
     }
-    // A freshly opened mesh lists its vertices in file order.
+    // A freshly opened mesh lists its vertices and faces in file order.
     let vertices = crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(world, mesh, VertexId);
+    let faces = crate::mesh::members::of_kind::<crate::mesh::Face, _>(world, mesh, FaceId);
     let mut first = None;
     for array in waiting {
-        if array.values.len() != vertices.len() {
+        let (count, kind) = match array.on_faces {
+            true => (faces.len(), "faces"),
+            false => (vertices.len(), "vertices"),
+        };
+        if array.values.len() != count {
             warn!(
-                "show: {} has {} values for {} vertices; not shown",
+                "show: {} has {} values for {count} {kind}; not shown",
                 array.name,
                 array.values.len(),
-                vertices.len()
             );
             continue;
         }
         let name = free_name(&array.name);
-        let stored = StoredQuantity::new(
-            &name,
-            &array.name,
-            vertices.iter().copied().zip(array.values),
-        );
+        let stored = match array.on_faces {
+            true => StoredQuantity::on_faces(
+                &name,
+                &array.name,
+                faces.iter().copied().zip(array.values),
+            ),
+            false => StoredQuantity::new(
+                &name,
+                &array.name,
+                vertices.iter().copied().zip(array.values),
+            ),
+        };
         match crate::ops::registry::register_quantity(stored) {
             Ok(q) => {
                 first.get_or_insert(q);
@@ -345,7 +371,8 @@ mod tests {
         std::fs::write(
             &request,
             r#"{"mesh": "m.ply", "hand_back": "back",
-                "quantities": [{"name": "height", "values": "h.f64"}]}"#,
+                "quantities": [{"name": "height", "values": "h.f64"},
+                               {"name": "area", "per": "face", "values": "h.f64"}]}"#,
         )
         .unwrap();
         let read = ShowRequest::read(&request).unwrap();
@@ -354,10 +381,18 @@ mod tests {
         assert_eq!(read.hand_back, folder.join("back"));
         assert_eq!(
             read.quantities,
-            vec![GivenArray {
-                name: "height".into(),
-                values: vec![1.5, -2.0, 3.25]
-            }]
+            vec![
+                GivenArray {
+                    name: "height".into(),
+                    on_faces: false,
+                    values: vec![1.5, -2.0, 3.25]
+                },
+                GivenArray {
+                    name: "area".into(),
+                    on_faces: true,
+                    values: vec![1.5, -2.0, 3.25]
+                }
+            ]
         );
         // Values that are not whole f64s, a quantity without a name, no mesh: each named.
         std::fs::write(folder.join("h.f64"), [0u8; 7]).unwrap();

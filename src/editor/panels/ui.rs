@@ -131,11 +131,10 @@ pub fn snapshot(world: &mut World) {
     {
         selected.facts.push(("group".into(), group));
     }
-    // The value of the quantity on display at a selected vertex.
+    // The value of the quantity on display at a selected vertex (a face, for values on faces).
     if let Some(selected) = view.selected.as_mut()
-        && let ElementId::Vertex(v) = selected.id
         && let Some(values) = active.and_then(|mesh| world.get::<VertexValues>(mesh.0))
-        && let Some(value) = values.values.get(&v.0)
+        && let Some(value) = values.values.get(&selected.id.entity())
     {
         selected
             .facts

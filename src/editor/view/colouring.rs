@@ -14,7 +14,7 @@ use bevy::prelude::{Component, Entity, Resource, With, World};
 
 use crate::colormap::{ColorMap, Range};
 use crate::mesh::MeshInfo;
-use crate::mesh::ids::{ElementId, MeshId, VertexId};
+use crate::mesh::ids::{ElementId, MeshId};
 use crate::mesh::tables::{EntityRows, VertexRow, extract};
 use crate::mesh::{MeshMembers, MeshRef};
 use crate::ops::geometry::Quantity;
@@ -27,13 +27,17 @@ use crate::editor::session::state::PreviousShape;
 #[derive(Resource, Debug, Default, Clone, Copy, PartialEq, Eq)]
 pub struct ColorBy(pub Option<Quantity>);
 
-/// A mesh's values of the quantity on display, by vertex, and how they map to colours.
+/// A mesh's values of the quantity on display, by vertex (by face for a quantity on the
+/// faces), and how they map to colours.
 #[derive(Component, Debug, Clone)]
 pub struct VertexValues {
     /// The quantity.
     pub quantity: Quantity,
-    /// Its value at each vertex.
+    /// Its value at each vertex, or at each face when [`VertexValues::on_faces`].
     pub values: EntityHashMap<f64>,
+    /// The values are the faces' ([`crate::ops::geometry::quantity::VertexQuantity::per_face`]):
+    /// each face is drawn in one colour.
+    pub on_faces: bool,
     /// The colour map.
     pub map: ColorMap,
     /// The values the map spans.
@@ -41,10 +45,11 @@ pub struct VertexValues {
 }
 
 impl VertexValues {
-    /// The colour of vertex `v` (linear RGBA for the renderer); mid-grey if it has no value
-    /// (none, or NaN: a quantity that cannot be computed there, a given array's new vertex).
-    pub fn colour(&self, v: VertexId) -> [f32; 4] {
-        let srgb = match self.values.get(&v.0) {
+    /// The colour of `element`, a vertex (a face for values on faces), in linear RGBA for
+    /// the renderer; mid-grey if it has no value (none, or NaN: a quantity that cannot be
+    /// computed there, a given array's new element).
+    pub fn colour(&self, element: Entity) -> [f32; 4] {
+        let srgb = match self.values.get(&element) {
             Some(&value) if !value.is_nan() => self.map.at(self.range.fraction(value)),
             _ => [128, 128, 128],
         };
@@ -87,19 +92,27 @@ pub fn vertex_values(
         other,
         sources: &sources,
         vertices: &read.members.vertices,
+        faces: &read.members.faces,
     };
-    let values = quantity.per_vertex(&read.tables, &given);
+    let (values, elements, on_faces): (Vec<f64>, Vec<Entity>, bool) =
+        match quantity.per_face(&read.tables, &given) {
+            Some(values) => (
+                values,
+                read.members.faces.iter().map(|f| f.0).collect(),
+                true,
+            ),
+            None => (
+                quantity.per_vertex(&read.tables, &given),
+                read.members.vertices.iter().map(|v| v.0).collect(),
+                false,
+            ),
+        };
     let map = quantity.colormap();
     let range = range.unwrap_or_else(|| Range::robust(&values, CLAMP_PERCENTILE, map));
     VertexValues {
         quantity,
-        values: read
-            .members
-            .vertices
-            .iter()
-            .zip(values)
-            .map(|(v, x)| (v.0, x))
-            .collect(),
+        values: elements.into_iter().zip(values).collect(),
+        on_faces,
         map,
         range,
     }
@@ -187,7 +200,7 @@ mod tests {
         let v = vertex_values(&world, built.mesh, Quantity::VALENCE, None);
         assert_eq!(v.values.len(), 8);
         assert!(v.values.values().all(|&x| x == 3.0));
-        let corner = built.input_vertices[0].unwrap();
+        let corner = built.input_vertices[0].unwrap().0;
         // Every value equal: the range is [3, 4] and 3 is its low end.
         assert_eq!(v.colour(corner)[3], 1.0);
         assert_eq!(v.range.fraction(3.0), 0.0);

@@ -30,6 +30,9 @@ pub struct RenderData {
     pub triangle_faces: Vec<FaceId>,
     /// The mesh vertex behind each render vertex (for colouring by a quantity).
     pub vertices: Vec<VertexId>,
+    /// The face each render vertex belongs to, when drawn a face at a time
+    /// ([`render_data_by_face`]; empty otherwise).
+    pub vertex_faces: Vec<FaceId>,
     /// The texture coordinate of each render vertex (only when drawn with UVs; empty
     /// otherwise).
     pub uvs: Vec<[f32; 2]>,
@@ -67,6 +70,25 @@ pub fn render_data(world: &World, faces: &[FaceId], smooth: bool, uvs: bool) -> 
                 next
             });
             corners.push(i);
+        }
+        fan(&mut out, &corners, f);
+    }
+    out
+}
+
+/// [`render_data`] with every face's corners render vertices of their own (no UVs), so that a
+/// face can be drawn in one colour: what colouring by a quantity on the faces draws. Each
+/// render vertex records its face in [`RenderData::vertex_faces`].
+pub fn render_data_by_face(world: &World, faces: &[FaceId], smooth: bool) -> RenderData {
+    let m = MeshRef::new(world);
+    let mut out = RenderData::default();
+    let mut corners = Vec::new();
+    for &f in faces {
+        corners.clear();
+        for v in m.face_vertices(f) {
+            corners.push(out.positions.len() as u32);
+            push_vertex(&m, &mut out, v, smooth);
+            out.vertex_faces.push(f);
         }
         fan(&mut out, &corners, f);
     }

@@ -33,7 +33,9 @@ use crate::mesh::ids::{FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 
 use super::colouring::VertexValues;
-use super::render_data::{RenderData, edge_line_ends, render_data, smooth_normal};
+use super::render_data::{
+    RenderData, edge_line_ends, render_data, render_data_by_face, smooth_normal,
+};
 use crate::editor::session::selection::{DirtyFaces, MeshDirty, PositionsDirty};
 
 /// The render entity of a mesh: carries its [`Mesh3d`] and [`TriangleFaces`].
@@ -331,11 +333,19 @@ fn chunk_surface(
     faces: &[FaceId],
     settings: ViewSettings,
 ) -> ChunkSurface {
+    let values = mesh.and_then(|m| world.get::<VertexValues>(m.0));
+    if let Some(values) = values.filter(|v| v.on_faces) {
+        // Each face in one colour: corners of their own, coloured by their face.
+        let data = render_data_by_face(world, faces, settings.smooth);
+        let colours = data.vertex_faces.iter().map(|f| values.colour(f.0));
+        return ChunkSurface {
+            colours: Some(colours.collect()),
+            data,
+        };
+    }
     let uvs = settings.checker && mesh.is_some_and(|m| MeshAttributes::of(world, m).uv);
     let data = render_data(world, faces, settings.smooth, uvs);
-    let colours = mesh
-        .and_then(|m| world.get::<VertexValues>(m.0))
-        .map(|values| data.vertices.iter().map(|&v| values.colour(v)).collect());
+    let colours = values.map(|values| data.vertices.iter().map(|&v| values.colour(v.0)).collect());
     ChunkSurface { data, colours }
 }
 

@@ -6,8 +6,8 @@
 //! triangles are); the edge length is the mean length of the vertex's edges.
 
 use crate::colormap::ColorMap;
-use crate::mesh::VertexId;
 use crate::mesh::tables::{Connectivity, FaceRow, VertexRow};
+use crate::mesh::{FaceId, VertexId};
 
 use super::closest::Reference;
 use super::curvature::scalar_curvature;
@@ -51,6 +51,8 @@ pub struct Given<'a> {
     /// than computed ([`super::stored::StoredQuantity`]); empty where the caller has no
     /// entities (such a quantity is then NaN everywhere).
     pub vertices: &'a [VertexId],
+    /// The face at each row, likewise for a quantity kept on the faces.
+    pub faces: &'a [FaceId],
 }
 
 /// A value per vertex of a mesh: what the editor colours by, `process --quantity` writes and
@@ -64,6 +66,14 @@ pub trait VertexQuantity: Sync + 'static {
     /// other surface or no source given where it needs one) the values are NaN; it never
     /// panics on a valid mesh.
     fn per_vertex(&self, t: &Connectivity, given: &Given<'_>) -> Vec<f64>;
+
+    /// Its value at every face, by row, for a quantity that lives on the faces (the editor
+    /// then colours each face flat); `None`, the default, for one that lives on the vertices.
+    /// Such a quantity's [`VertexQuantity::per_vertex`] is still what the command line and
+    /// Python read.
+    fn per_face(&self, _t: &Connectivity, _given: &Given<'_>) -> Option<Vec<f64>> {
+        None
+    }
 }
 
 /// A registered quantity, by reference: cheap to copy, compared by name.
@@ -148,6 +158,12 @@ impl Quantity {
     /// see [`VertexQuantity::per_vertex`]).
     pub fn per_vertex(self, t: &Connectivity, given: &Given<'_>) -> Vec<f64> {
         self.0.per_vertex(t, given)
+    }
+
+    /// Its value at every face by row, for a quantity on the faces (see
+    /// [`VertexQuantity::per_face`]).
+    pub fn per_face(self, t: &Connectivity, given: &Given<'_>) -> Option<Vec<f64>> {
+        self.0.per_face(t, given)
     }
 }
 

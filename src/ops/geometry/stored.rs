@@ -2,23 +2,27 @@
 //! editor (`pappus.show(mesh, quantities={"geodesic": d})`), shown beside Pappus's own
 //! quantities with its colour map and legend.
 //!
-//! The values are kept by vertex entity, not by row, so they follow the vertices through
-//! edits: a vertex an edit keeps keeps its value; a vertex it makes has none (NaN, which the
-//! editor draws grey and the colour range leaves out). A caller that reads it without the
-//! entities behind the rows ([`Given::vertices`] empty) gets NaN everywhere.
+//! The values are kept by vertex (or face) entity, not by row, so they follow the elements
+//! through edits: an element an edit keeps keeps its value; one it makes has none (NaN, which
+//! the editor draws grey and the colour range leaves out). A caller that reads it without the
+//! entities behind the rows ([`Given::vertices`], [`Given::faces`] empty) gets NaN everywhere.
+//! Values on faces are also read per vertex, as the mean of the vertex's faces' values, for
+//! what colours vertices (the command line, Python).
 
 use bevy::ecs::entity::EntityHashMap;
+use bevy::prelude::Entity;
 
 use crate::colormap::ColorMap;
-use crate::mesh::VertexId;
 use crate::mesh::tables::Connectivity;
+use crate::mesh::{FaceId, VertexId};
 
 use super::quantity::{Given, Needs, QuantityDeclaration, VertexQuantity};
 
-/// Values given per vertex, by vertex entity (see the module doc).
+/// Values given per vertex or per face, by entity (see the module doc).
 pub struct StoredQuantity {
     declaration: &'static QuantityDeclaration,
     values: EntityHashMap<f64>,
+    on_faces: bool,
 }
 
 impl StoredQuantity {
@@ -29,7 +33,30 @@ impl StoredQuantity {
     /// The declaration's strings live as long as the process (a registered quantity's do);
     /// a process registers a handful of these, never one per frame.
     pub fn new(name: &str, label: &str, values: impl IntoIterator<Item = (VertexId, f64)>) -> Self {
-        let values: EntityHashMap<f64> = values.into_iter().map(|(v, x)| (v.0, x)).collect();
+        Self::by_entity(
+            name,
+            label,
+            values.into_iter().map(|(v, x)| (v.0, x)),
+            false,
+        )
+    }
+
+    /// As [`StoredQuantity::new`], with the values on these faces.
+    pub fn on_faces(
+        name: &str,
+        label: &str,
+        values: impl IntoIterator<Item = (FaceId, f64)>,
+    ) -> Self {
+        Self::by_entity(name, label, values.into_iter().map(|(f, x)| (f.0, x)), true)
+    }
+
+    fn by_entity(
+        name: &str,
+        label: &str,
+        values: impl IntoIterator<Item = (Entity, f64)>,
+        on_faces: bool,
+    ) -> Self {
+        let values: EntityHashMap<f64> = values.into_iter().collect();
         let finite = || values.values().filter(|x| x.is_finite());
         let signed = finite().any(|&x| x < 0.0) && finite().any(|&x| x > 0.0);
         let declaration = Box::leak(Box::new(QuantityDeclaration {
@@ -45,7 +72,15 @@ impl StoredQuantity {
         Self {
             declaration,
             values,
+            on_faces,
         }
+    }
+
+    /// The value of each of these elements (NaN for one without).
+    fn read(&self, elements: impl Iterator<Item = Entity>) -> Vec<f64> {
+        elements
+            .map(|e| self.values.get(&e).copied().unwrap_or(f64::NAN))
+            .collect()
     }
 }
 
@@ -55,14 +90,36 @@ impl VertexQuantity for StoredQuantity {
     }
 
     fn per_vertex(&self, t: &Connectivity, given: &Given<'_>) -> Vec<f64> {
-        if given.vertices.len() != t.vertex_count() {
-            return vec![f64::NAN; t.vertex_count()];
+        if !self.on_faces {
+            if given.vertices.len() != t.vertex_count() {
+                return vec![f64::NAN; t.vertex_count()];
+            }
+            return self.read(given.vertices.iter().map(|v| v.0));
         }
-        given
-            .vertices
-            .iter()
-            .map(|v| self.values.get(&v.0).copied().unwrap_or(f64::NAN))
+        let Some(faces) = self.per_face(t, given) else {
+            return vec![f64::NAN; t.vertex_count()];
+        };
+        t.vertices()
+            .map(|v| {
+                let (sum, n) = t
+                    .vertex_outgoing(v)
+                    .filter_map(|h| t.face(h))
+                    .map(|f| faces[f.index()])
+                    .filter(|x| !x.is_nan())
+                    .fold((0.0, 0.0), |(s, n), x| (s + x, n + 1.0));
+                if n > 0.0 { sum / n } else { f64::NAN }
+            })
             .collect()
+    }
+
+    fn per_face(&self, t: &Connectivity, given: &Given<'_>) -> Option<Vec<f64>> {
+        if !self.on_faces {
+            return None;
+        }
+        if given.faces.len() != t.face_count() {
+            return Some(vec![f64::NAN; t.face_count()]);
+        }
+        Some(self.read(given.faces.iter().map(|f| f.0)))
     }
 }
 
