@@ -135,7 +135,7 @@ def show(
     script: Optional[str] = None,
     timeout: Optional[float] = None,
 ) -> "Mesh":
-    """Opens Pappus's editor on ``mesh`` with ``quantities`` (one value per vertex each) as
+    """Opens Pappus's editor on ``mesh`` with ``quantities`` (one value per vertex, or per face) as
     colour maps, blocks until the window closes, and returns ``mesh`` as the user left it
     (rebuilt when edited: old handles stale), ``mesh.selection`` what was selected.
     ``screenshot`` writes a PNG and closes; ``script`` runs editor steps (``PAPPUS_SCRIPT``'s

@@ -92,21 +92,24 @@ def show(mesh, quantities=None, *, screenshot=None, script=None, timeout=None):
 
     When the user edited the mesh (anything in the undo history, even undone), ``mesh`` is
     rebuilt from what the editor hands back: its rows are then the editor's, every handle taken
-    before is stale, and what did not come back (face groups and seam marks, which a PLY cannot
-    hold; ``vertex_data``, which the editor does not carry) is named in a ``UserWarning``.
+    before is stale, input vertex numbers are the editor's rows, and what did not come back
+    (what a PLY cannot hold, such as face groups; ``vertex_data``, which the editor does not
+    carry) is named in a ``UserWarning``; seam marks do not come back.
     Without an edit, ``mesh`` is untouched.
 
     ``screenshot`` (a path) writes a PNG of the window once the mesh is drawn and closes it,
     for scripts and tests; ``script`` runs editor steps first (``PAPPUS_SCRIPT``'s syntax:
     ``"select-edge:0,5;select-face:+3"``; ending it with ``exit`` closes the window). Either runs
-    under ``xvfb-run`` by itself when there is no display. ``timeout`` (seconds) stops a window
-    that has not closed by then and raises.
+    under ``xvfb-run`` by itself when there is no display (and then closes the window after the
+    script). ``timeout`` (seconds) stops a window that has not closed by then and raises; so
+    does Ctrl+C, which stops the editor too.
 
     The editor is the program ``PAPPUS_EDITOR`` names, else ``pappus`` on ``PATH``.
 
     Raises :class:`EditorUnavailable` (no editor, no display: the message says what to install
     or set), ``ValueError`` for a quantity of the wrong length, :class:`PappusError` when the
-    editor fails or times out (with the end of its output); the mesh is then untouched.
+    editor fails or times out (with the end of its output; the mesh is then untouched) or what
+    it handed back cannot be read (kept in a folder the message names).
     """
     editor = _find_editor()
     names_and_values = _quantities(mesh, quantities or {})
@@ -114,6 +117,9 @@ def show(mesh, quantities=None, *, screenshot=None, script=None, timeout=None):
         s for s in [script, f"wait:30;shot:{Path(screenshot).resolve()};exit" if screenshot else None] if s
     )
     command = _with_display([editor], headless=bool(steps))
+    if command[0] != editor and not steps.rstrip().endswith("exit"):
+        # Off-screen nobody can close the window: it closes after the script.
+        steps += ";exit"
     with tempfile.TemporaryDirectory(prefix="pappus-show-") as folder:
         folder = Path(folder)
         mesh.save(folder / "mesh.ply")
@@ -141,27 +147,40 @@ def show(mesh, quantities=None, *, screenshot=None, script=None, timeout=None):
                 f"the editor ended with code {code} without handing the mesh back;"
                 " the mesh is unchanged" + _tail(output)
             )
-        answer = json.loads(answer_path.read_text())
-        for note in answer.get("notes", []):
-            warnings.warn(f"pappus.show: {note}", UserWarning, stacklevel=2)
-        if answer["mesh"] is None:
+        try:
+            return _take_back(mesh, folder / "back")
+        except Exception as e:
+            kept = Path(tempfile.mkdtemp(prefix="pappus-show-kept-"))
+            shutil.copytree(folder / "back", kept, dirs_exist_ok=True)
+            raise PappusError(
+                f"what the editor handed back could not be read ({e}); it is kept in {kept}"
+                " (mesh.ply, answer.json)"
+            ) from e
+
+
+def _take_back(mesh, back):
+    """Reads the editor's answer in ``back`` into ``mesh`` and its selection; ``mesh``."""
+    answer = json.loads((back / "answer.json").read_text())
+    for note in answer.get("notes", []):
+        warnings.warn(f"pappus.show: {note}", UserWarning, stacklevel=3)
+    if answer["mesh"] is None:
+        warnings.warn(
+            "pappus.show: the window closed with no mesh open; the mesh is unchanged",
+            UserWarning,
+            stacklevel=3,
+        )
+        mesh._set_selection(Selection([], [], [], []))
+        return mesh
+    if answer["edited"]:
+        lost = list(mesh.vertex_data)
+        mesh._take(load(str(back / answer["mesh"])))
+        if lost:
             warnings.warn(
-                "pappus.show: the window closed with no mesh open; the mesh is unchanged",
+                f"pappus.show: vertex_data {lost} did not come back: the editor does not carry"
+                " a script's per-vertex arrays through its edits",
                 UserWarning,
-                stacklevel=2,
+                stacklevel=3,
             )
-            mesh._set_selection(Selection([], [], [], []))
-            return mesh
-        if answer["edited"]:
-            lost = list(mesh.vertex_data)
-            mesh._take(load(str(folder / "back" / answer["mesh"])))
-            if lost:
-                warnings.warn(
-                    f"pappus.show: vertex_data {lost} did not come back: the editor does not carry"
-                    " a script's per-vertex arrays through its edits",
-                    UserWarning,
-                    stacklevel=2,
-                )
     mesh._set_selection(_selection(mesh, answer["selection"]))
     return mesh
 
@@ -179,16 +198,37 @@ def _run(command, environment, timeout):
         try:
             output, _ = child.communicate(timeout=timeout)
         except subprocess.TimeoutExpired:
-            if hasattr(os, "killpg"):
-                os.killpg(child.pid, signal.SIGKILL)
-            else:
-                child.kill()
-            output, _ = child.communicate()
+            output = _stop(child)
             raise PappusError(
                 f"the editor's window was still open after {timeout} s; the mesh is unchanged"
                 + _tail(output)
             ) from None
+        except BaseException:
+            # Ctrl+C reaches only this process (the editor has a session of its own).
+            _stop(child)
+            raise
     return child.returncode, output
+
+
+def _stop(child):
+    """Stops the editor and what it started: asked first (xvfb-run then cleans up its server),
+    killed after five seconds. Its output."""
+    def signal_all(number):
+        if hasattr(os, "killpg"):
+            try:
+                os.killpg(child.pid, number)
+            except ProcessLookupError:
+                pass
+        else:
+            child.kill()
+
+    signal_all(signal.SIGTERM)
+    try:
+        output, _ = child.communicate(timeout=5)
+    except subprocess.TimeoutExpired:
+        signal_all(signal.SIGKILL)
+        output, _ = child.communicate()
+    return output
 
 
 def _find_editor():

@@ -154,6 +154,12 @@ macro_rules! handle_class {
 
         #[pymethods]
         impl $name {
+            /// What Python's garbage collector follows: the mesh (a mesh's selection holds
+            /// handles, a cycle only the collector can free).
+            fn __traverse__(&self, visit: pyo3::PyVisit<'_>) -> Result<(), pyo3::PyTraverseError> {
+                visit.call(&self.at.mesh)
+            }
+
             /// The editor inspector's id (`v12v0`): the same element for as long as it exists.
             #[getter]
             fn id(&self) -> String {

@@ -65,6 +65,10 @@ pub struct Mesh {
     /// Moves on with every edit that rewrote the non-vertex elements in place (subdivision:
     /// [`IdsKept::VerticesOnly`]), so that a handle taken before it knows it names nothing.
     element_revision: u64,
+    /// The element revision from which vertex handles are good: a vertex handle survives the
+    /// edits that move `element_revision` on (subdivision keeps vertices), but not a mesh
+    /// replaced whole (`_take`, a lab's copy given back), whose entities are another world's.
+    vertex_epoch: u64,
     /// Each element's row, found when a handle first asks after an edit.
     rows: OnceLock<Rows>,
     /// The per-vertex scalars the source carried (a PLY's quality), by vertex.
@@ -111,6 +115,7 @@ impl Mesh {
             read_ms,
             build_ms: ms_since(start),
             element_revision: 0,
+            vertex_epoch: 0,
             rows: OnceLock::new(),
             vertex_data,
             open_edit: None,
@@ -130,6 +135,7 @@ impl Mesh {
             read_ms: 0.0,
             build_ms: 0.0,
             element_revision: 0,
+            vertex_epoch: 0,
             rows: OnceLock::new(),
             vertex_data: VertexData::default(),
             open_edit: None,
@@ -150,6 +156,7 @@ impl Mesh {
             None => false,
         };
         self.element_revision += 1;
+        self.vertex_epoch = self.element_revision;
         self.rows = OnceLock::new();
         (
             std::mem::take(&mut self.world),
@@ -445,7 +452,10 @@ impl Mesh {
 
     /// Whether `id` is still an element of this mesh, the same one it was at `revision`.
     pub(crate) fn holds(&self, id: ElementId, revision: u64) -> bool {
-        let same = matches!(id, ElementId::Vertex(_)) || revision == self.element_revision;
+        let same = match id {
+            ElementId::Vertex(_) => revision >= self.vertex_epoch,
+            _ => revision == self.element_revision,
+        };
         same && match id {
             ElementId::Vertex(v) => self.world.get::<Vertex>(v.0).is_some(),
             ElementId::Halfedge(h) => self.world.get::<Halfedge>(h.0).is_some(),
@@ -1318,6 +1328,19 @@ impl Mesh {
         self.selection.as_ref().map(|s| s.clone_ref(py))
     }
 
+    /// What Python's garbage collector follows: the selection, whose handles point back here.
+    fn __traverse__(&self, visit: pyo3::PyVisit<'_>) -> Result<(), pyo3::PyTraverseError> {
+        if let Some(selection) = &self.selection {
+            visit.call(selection)?;
+        }
+        Ok(())
+    }
+
+    /// Breaks a cycle through the selection for the garbage collector.
+    fn __clear__(&mut self) {
+        self.selection = None;
+    }
+
     /// Keeps what `pappus.show` read back as [`Mesh::selection`].
     fn _set_selection(&mut self, selection: Py<PyAny>) {
         self.selection = Some(selection);
@@ -1338,10 +1361,11 @@ impl Mesh {
         if let Some(mut info) = self.world.get_mut::<MeshInfo>(self.mesh.0) {
             info.name = name;
         }
-        self.element_revision = revision;
-        self.rows = OnceLock::new();
-        other.element_revision = revision;
-        other.rows = OnceLock::new();
+        for mesh in [&mut *self, &mut *other] {
+            mesh.element_revision = revision;
+            mesh.vertex_epoch = revision;
+            mesh.rows = OnceLock::new();
+        }
         Ok(())
     }
 

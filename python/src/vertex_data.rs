@@ -66,8 +66,9 @@ impl VertexData {
         (!self.is_empty()).then(|| SurfaceBefore::of(world, mesh))
     }
 
-    /// After an edit: each vertex of `mesh` without a value in a column gets the value
-    /// interpolated at its place on `before` (see the module doc). Values of vertices the edit
+    /// After an edit: each vertex of `mesh` the edit made (not on `before`) gets the value
+    /// interpolated at its place on `before` (see the module doc); a vertex that had no value
+    /// keeps none. Values of vertices the edit
     /// removed are dropped once a column holds more values than the mesh has vertices (their
     /// keys, generation included, never name a later vertex).
     pub(crate) fn carry(&mut self, before: &SurfaceBefore, world: &World, mesh: MeshId) {
@@ -76,7 +77,7 @@ impl VertexData {
         for (_, column) in &mut self.columns {
             let made: Vec<(VertexId, f32)> = vertices
                 .iter()
-                .filter(|v| !column.contains_key(&v.0))
+                .filter(|v| !before.had(**v) && !column.contains_key(&v.0))
                 .map(|&v| {
                     let value = before.value_at(m.position(v), |c| {
                         column.get(&c.0).copied().unwrap_or(f32::NAN)
@@ -131,6 +132,13 @@ impl VertexData {
         world: &World,
         mesh: MeshId,
     ) -> PyResult<()> {
+        if !pappus::io::keeps_vertex_scalar(name) {
+            return Err(PyValueError::new_err(format!(
+                "vertex_data[{name:?}]: a name a PLY file would not give back as itself (empty, \
+                 with whitespace, or a column of its own: x y z nx ny nz red green blue u v s t \
+                 texture_u texture_v texture_s texture_t); choose another"
+            )));
+        }
         let vertices = MeshMembers::collect(world, mesh).vertices;
         if values.len() != vertices.len() {
             return Err(PyValueError::new_err(format!(

@@ -680,7 +680,18 @@ def test_a_scripts_vertex_array_travels_through_a_split_a_loop_level_and_a_ply(t
     np.testing.assert_array_equal(pappus.load(path).vertex_data["height"], carried)
     with pytest.raises(ValueError, match="one value per vertex"):
         mesh.vertex_data["height"] = heights
+    # A vertex without a value keeps none through an edit that moves it.
+    lonely = np.zeros(len(mesh.vertices))
+    lonely[0] = np.nan
+    mesh.vertex_data["lonely"] = lonely
+    mesh.smooth()
+    assert np.isnan(mesh.vertex_data["lonely"][0])
+    # A name a PLY would read back as something else is refused.
+    for name in ["x", "nz", "red", "u", "texture_v", "two words", ""]:
+        with pytest.raises(ValueError, match="PLY"):
+            mesh.vertex_data[name] = lonely
     del mesh.vertex_data["height"]
+    del mesh.vertex_data["lonely"]
     assert len(mesh.vertex_data) == 0
     with pytest.raises(KeyError):
         mesh.vertex_data["height"]

@@ -74,11 +74,11 @@ def test_the_split_by_hand_is_mesh_split():
 
 def test_a_vertex_made_by_hand_reads_its_vertex_data_off_the_surface_before():
     mesh = pappus.load("shape:icosphere:1")
-    mesh.vertex_data["x"] = mesh.vertices[:, 0]
+    mesh.vertex_data["across"] = mesh.vertices[:, 0]
     h = mesh.edge(3).halfedge
     ends = (h.from_vertex.position[0], h.to_vertex.position[0])
     m = edits.split(mesh, mesh.edge(3))
-    assert mesh.vertex_data["x"][m.row] == pytest.approx(sum(ends) / 2, abs=1e-6)
+    assert mesh.vertex_data["across"][m.row] == pytest.approx(sum(ends) / 2, abs=1e-6)
 
 
 def test_a_broken_flip_names_the_rule_and_leaves_the_mesh_as_it_was():

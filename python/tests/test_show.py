@@ -113,6 +113,7 @@ def test_an_edit_in_the_window_comes_back_and_ends_the_old_handles(editor):
     before = mesh.faces.copy()
     edge = mesh.edge(5)
     h = edge.halfedge
+    h_vertex = h.from_vertex
     a, b = h.from_vertex.row, h.to_vertex.row
     # The corners opposite the edge: where the flipped edge runs.
     opposite = {h.next.to_vertex.row, h.twin.next.to_vertex.row}
@@ -120,6 +121,9 @@ def test_an_edit_in_the_window_comes_back_and_ends_the_old_handles(editor):
     assert mesh.name == "icosphere:2"
     with pytest.raises(pappus.StaleElement):
         edge.halfedge
+    # Vertex handles too: the mesh is another world's now, whatever its entities' numbers.
+    with pytest.raises(pappus.StaleElement):
+        h_vertex.position
     assert mesh.faces.shape == before.shape
     mesh.validate()
     # The flipped edge is what stays selected, now between the opposite corners.

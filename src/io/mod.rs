@@ -31,7 +31,7 @@ use std::path::Path;
 use crate::mesh::soup::PolygonSoup;
 
 pub use error::IoError;
-pub use ply::PlyEncoding;
+pub use ply::{PlyEncoding, keeps_vertex_scalar};
 pub use save::ignore_file_size_signal;
 pub use stl::StlEncoding;
 

@@ -330,23 +330,41 @@ fn property<'a>(
     } else {
         let ty = ty(first)?;
         let name = t.next().unwrap_or("").to_string();
-        let role = match (element, name.as_str()) {
-            ("vertex", "x") => Role::Coordinate(0),
-            ("vertex", "y") => Role::Coordinate(1),
-            ("vertex", "z") => Role::Coordinate(2),
-            ("vertex", "quality") => Role::Quality,
-            ("vertex", "nx") => Role::Normal(0),
-            ("vertex", "ny") => Role::Normal(1),
-            ("vertex", "nz") => Role::Normal(2),
-            ("vertex", "red") => Role::Color(0),
-            ("vertex", "green") => Role::Color(1),
-            ("vertex", "blue") => Role::Color(2),
-            ("vertex", "u" | "s" | "texture_u" | "texture_s") => Role::Uv(0),
-            ("vertex", "v" | "t" | "texture_v" | "texture_t") => Role::Uv(1),
+        let role = match element {
+            "vertex" => vertex_role(&name),
             _ => Role::Skip,
         };
         Ok(Property::Scalar { name, ty, role })
     }
+}
+
+/// What a vertex property called `name` is read as: a column of the mesh's own, or a named
+/// scalar ([`Role::Skip`] here; the reader keeps it by name).
+fn vertex_role(name: &str) -> Role {
+    match name {
+        "x" => Role::Coordinate(0),
+        "y" => Role::Coordinate(1),
+        "z" => Role::Coordinate(2),
+        "quality" => Role::Quality,
+        "nx" => Role::Normal(0),
+        "ny" => Role::Normal(1),
+        "nz" => Role::Normal(2),
+        "red" => Role::Color(0),
+        "green" => Role::Color(1),
+        "blue" => Role::Color(2),
+        "u" | "s" | "texture_u" | "texture_s" => Role::Uv(0),
+        "v" | "t" | "texture_v" | "texture_t" => Role::Uv(1),
+        _ => Role::Skip,
+    }
+}
+
+/// Whether a vertex scalar called `name` would come back from a PLY as itself: a name with no
+/// whitespace that is none of the columns Pappus reads by name (`x`, `nx`, `red`, `u`, …; a
+/// scalar `x` would be read as the vertices' x). `quality` is its own column and comes back.
+pub fn keeps_vertex_scalar(name: &str) -> bool {
+    !name.is_empty()
+        && !name.chars().any(char::is_whitespace)
+        && matches!(vertex_role(name), Role::Skip | Role::Quality)
 }
 
 /// A non-empty `vertex` element needs `x y z`; a non-empty `face` element needs its index list.

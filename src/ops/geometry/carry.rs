@@ -14,6 +14,7 @@
 
 use std::sync::OnceLock;
 
+use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
@@ -26,6 +27,7 @@ use super::closest::Reference;
 /// closest-point grid is built at the first read, so an edit that makes no vertex (a flip, a
 /// collapse) pays only for the copy of the triangles.
 pub struct SurfaceBefore {
+    vertices: EntityHashSet,
     triangles: Vec<[Vec3; 3]>,
     corners: Vec<[VertexId; 3]>,
     reference: OnceLock<Reference>,
@@ -45,10 +47,16 @@ impl SurfaceBefore {
         }
         let triangles = corners.iter().map(|t| t.map(|v| m.position(v))).collect();
         Self {
+            vertices: members.vertices.iter().map(|v| v.0).collect(),
             triangles,
             corners,
             reference: OnceLock::new(),
         }
+    }
+
+    /// Whether `v` was a vertex of the mesh then (an edit since did not make it).
+    pub fn had(&self, v: VertexId) -> bool {
+        self.vertices.contains(&v.0)
     }
 
     /// The value at the point of the surface closest to `p`, interpolated from its triangle's
@@ -113,6 +121,7 @@ mod tests {
         let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
         let v: Vec<VertexId> = built.input_vertices.iter().map(|v| v.unwrap()).collect();
         let surface = SurfaceBefore::of(&world, built.mesh);
+        assert!(v.iter().all(|&x| surface.had(x)));
         // The value is x + 2y at the corners: linear, so any point gets x + 2y exactly.
         let value = |x: VertexId| {
             let p = MeshRef::new(&world).position(x);
