@@ -50,7 +50,8 @@ from ._pappus import (
 )
 from .show import EditorUnavailable, Selection, show
 
-# `mesh.vertex_data` is a mapping (keys, items, values, get, `in`, `del`, assignment).
+# `mesh.vertex_data` is a mapping: keys, items, values, get, pop, update, clear, `in`, `del`,
+# assignment.
 collections.abc.MutableMapping.register(VertexData)
 
 __all__ = [

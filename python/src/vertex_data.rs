@@ -259,8 +259,11 @@ impl VertexDataView {
         }
     }
 
-    fn __contains__(&self, py: Python<'_>, name: &str) -> PyResult<bool> {
-        Ok(self.keys(py)?.iter().any(|n| n == name))
+    fn __contains__(&self, py: Python<'_>, name: &Bound<'_, PyAny>) -> PyResult<bool> {
+        let Ok(name) = name.extract::<String>() else {
+            return Ok(false);
+        };
+        Ok(self.keys(py)?.contains(&name))
     }
 
     fn __len__(&self, py: Python<'_>) -> PyResult<usize> {
@@ -300,10 +303,50 @@ impl VertexDataView {
         name: &str,
         default: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
-        match self.__contains__(py, name)? {
+        match self.keys(py)?.iter().any(|n| n == name) {
             true => Ok(Some(self.__getitem__(py, name)?.into_any())),
             false => Ok(default),
         }
+    }
+
+    /// Column `name`, removed; `default` without one (`KeyError` without either).
+    #[pyo3(signature = (name, default=None))]
+    fn pop<'py>(
+        &self,
+        py: Python<'py>,
+        name: &str,
+        default: Option<Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        match self.get(py, name, None)? {
+            Some(column) => {
+                self.__delitem__(py, name)?;
+                Ok(column)
+            }
+            None => default.ok_or_else(|| PyKeyError::new_err(name.to_string())),
+        }
+    }
+
+    /// Sets every column of `columns` (a mapping, or `(name, array)` pairs), as assignment does.
+    fn update(&self, py: Python<'_>, columns: &Bound<'_, PyAny>) -> PyResult<()> {
+        let pairs = match columns.cast::<PyDict>() {
+            Ok(dict) => dict.items().into_any(),
+            Err(_) if columns.hasattr("keys")? => columns.call_method0("items")?,
+            Err(_) => columns.clone(),
+        };
+        for pair in pairs.try_iter()? {
+            let (name, values): (String, numpy::PyArrayLike1<'_, f32, numpy::AllowTypeChange>) =
+                pair?.extract()?;
+            self.__setitem__(py, &name, values)?;
+        }
+        Ok(())
+    }
+
+    /// Removes every column.
+    fn clear(&self, py: Python<'_>) -> PyResult<()> {
+        for name in self.keys(py)? {
+            self.__delitem__(py, &name)?;
+        }
+        Ok(())
     }
 
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {

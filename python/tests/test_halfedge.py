@@ -691,7 +691,11 @@ def test_a_scripts_vertex_array_travels_through_a_split_a_loop_level_and_a_ply(t
         with pytest.raises(ValueError, match="PLY"):
             mesh.vertex_data[name] = lonely
     del mesh.vertex_data["height"]
-    del mesh.vertex_data["lonely"]
+    assert 3 not in mesh.vertex_data and mesh.vertex_data.get("height") is None
+    assert np.isnan(mesh.vertex_data.pop("lonely")[0]) and len(mesh.vertex_data) == 0
+    mesh.vertex_data.update({"a": lonely, "b": lonely})
+    assert list(mesh.vertex_data) == ["a", "b"]
+    mesh.vertex_data.clear()
     assert len(mesh.vertex_data) == 0
     with pytest.raises(KeyError):
         mesh.vertex_data["height"]

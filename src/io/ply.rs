@@ -847,6 +847,16 @@ mod tests {
     /// value for value, in every encoding and through the writer; a ninth is read past and
     /// named, as are a face's scalars.
     #[test]
+    fn a_scalar_comes_back_unless_its_name_is_a_column_of_its_own() {
+        for kept in ["confidence", "quality", "height_2"] {
+            assert!(keeps_vertex_scalar(kept), "{kept}");
+        }
+        for taken in ["x", "nz", "red", "u", "t", "texture_v", "a b", ""] {
+            assert!(!keeps_vertex_scalar(taken), "{taken}");
+        }
+    }
+
+    #[test]
     fn other_vertex_scalars_are_kept_by_name() {
         let mut header = format!(
             "element vertex 3\n{XYZ}property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\nproperty double confidence\nproperty short intensity\n"
