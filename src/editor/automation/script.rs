@@ -115,20 +115,17 @@ impl Target {
 
     /// The element in the active mesh, or a warning naming what is missing.
     fn find(self, world: &World) -> Result<ElementId, String> {
-        let found = match self {
-            Target::Edge(a, b) => input_edge(world, a, b),
+        match self {
+            Target::Edge(a, b) => input_edge(world, a, b)
+                .ok_or_else(|| format!("no edge between input vertices {a} and {b}")),
             Target::Vertex(a) => input_element::<crate::mesh::Vertex>(world, a)
-                .map(|v| ElementId::Vertex(crate::mesh::VertexId(v))),
+                .map(|v| ElementId::Vertex(crate::mesh::VertexId(v)))
+                .ok_or_else(|| format!("no input vertex {a}")),
             Target::Face(n) => input_element::<crate::mesh::Face>(world, n)
-                .map(|f| ElementId::Face(crate::mesh::FaceId(f))),
-            Target::Id(x) => Some(x),
-        };
-        found.ok_or_else(|| match self {
-            Target::Edge(a, b) => format!("no edge between input vertices {a} and {b}"),
-            Target::Vertex(a) => format!("no input vertex {a}"),
-            Target::Face(n) => format!("no input face {n}"),
-            Target::Id(x) => format!("no element {x}"),
-        })
+                .map(|f| ElementId::Face(crate::mesh::FaceId(f)))
+                .ok_or_else(|| format!("no input face {n}")),
+            Target::Id(x) => Ok(x),
+        }
     }
 }
 

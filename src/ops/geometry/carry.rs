@@ -18,10 +18,11 @@ use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::topology::MeshRef;
-use crate::mesh::{MeshId, MeshMembers, VertexId};
+use crate::mesh::tables::extract;
+use crate::mesh::{MeshId, VertexId};
 
 use super::closest::Reference;
+use super::surface::Surface;
 
 /// A mesh's surface as it was, for reading values at points on it (see the module doc). Its
 /// closest-point grid is built at the first read, so an edit that makes no vertex (a flip, a
@@ -34,22 +35,22 @@ pub struct SurfaceBefore {
 }
 
 impl SurfaceBefore {
-    /// The surface of `mesh` now: every face fanned from its first corner into triangles.
+    /// The surface of `mesh` now, read in bulk: its faces fanned into triangles as
+    /// [`Surface::from_tables`] fans them.
     pub fn of(world: &World, mesh: MeshId) -> Self {
-        let m = MeshRef::new(world);
-        let members = MeshMembers::collect(world, mesh);
-        let mut corners = Vec::with_capacity(members.faces.len());
-        for &f in &members.faces {
-            let ring: Vec<VertexId> = m.face_vertices(f).collect();
-            for k in 1..ring.len().saturating_sub(1) {
-                corners.push([ring[0], ring[k], ring[k + 1]]);
-            }
-        }
-        let triangles = corners.iter().map(|t| t.map(|v| m.position(v))).collect();
+        let read = extract(world, mesh);
+        let surface = Surface::from_tables(&read.tables);
+        let vertices = &read.members.vertices;
         Self {
-            vertices: members.vertices.iter().map(|v| v.0).collect(),
-            triangles,
-            corners,
+            vertices: vertices.iter().map(|v| v.0).collect(),
+            triangles: (0..surface.triangles.len())
+                .map(|i| surface.corners(i).map(|p| p.as_vec3()))
+                .collect(),
+            corners: surface
+                .triangles
+                .iter()
+                .map(|t| t.map(|row| vertices[row as usize]))
+                .collect(),
             reference: OnceLock::new(),
         }
     }
@@ -103,7 +104,7 @@ fn barycentric(q: Vec3, [a, b, c]: [Vec3; 3]) -> [f32; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::{MeshInfo, PolygonSoup, build_mesh};
+    use crate::mesh::{MeshInfo, MeshRef, PolygonSoup, build_mesh};
 
     #[test]
     fn a_point_takes_the_linear_blend_of_its_triangles_corners() {
