@@ -40,7 +40,7 @@ from ._pappus import (
     Refused,
     StaleElement,
     Vertex,
-    VertexData,
+    ElementData,
     __version__,
     lab,
     load,
@@ -50,15 +50,16 @@ from ._pappus import (
 )
 from .show import EditorUnavailable, Selection, show
 
-# `mesh.vertex_data` is a mapping: keys, items, values, get, pop, update, clear, `in`, `del`,
-# assignment.
-collections.abc.MutableMapping.register(VertexData)
+# `mesh.vertex_data` and `mesh.face_data` are mappings: keys, items, values, get, pop, update,
+# clear, `in`, `del`, assignment.
+collections.abc.MutableMapping.register(ElementData)
 
 __all__ = [
     "SHAPES",
     "Connectivity",
     "Edge",
     "EditorUnavailable",
+    "ElementData",
     "Face",
     "Halfedge",
     "InvalidMesh",
@@ -72,7 +73,6 @@ __all__ = [
     "Selection",
     "StaleElement",
     "Vertex",
-    "VertexData",
     "__version__",
     "lab",
     "load",

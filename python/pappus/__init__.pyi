@@ -90,9 +90,11 @@ def lab(
     is valid and the same, or what differs, or the broken rule, or the exception. ``mesh`` is
     never changed. ``ValueError`` for an unknown reference or elements it does not take."""
 
-class VertexData:
-    """``Mesh.vertex_data``: a mutable mapping of names to float32 arrays by row (a copy on
-    read); assigning takes one value per vertex (``ValueError`` otherwise)."""
+class ElementData:
+    """``Mesh.vertex_data`` and ``Mesh.face_data``: a mutable mapping of names to float32
+    arrays by row of the vertices or the faces (a copy on read); assigning takes one value per
+    element (``ValueError`` otherwise, or for a name a PLY file would read back as another
+    property)."""
 
     def __getitem__(self, name: str) -> npt.NDArray[np.float32]: ...
     def __setitem__(self, name: str, values: npt.ArrayLike) -> None: ...
@@ -354,11 +356,17 @@ class Mesh:
         """N×3 float32 normals by row: the file's while no edit changed the surface, else
         angle-weighted ones (what a save writes)."""
     @property
-    def vertex_data(self) -> "VertexData":
+    def vertex_data(self) -> "ElementData":
         """Named per-vertex scalars, float32 by row: the source's (a PLY's ``quality``) and the
         script's (``mesh.vertex_data["d"] = array``). Each value follows its vertex through
         edits; a vertex an edit made gets the value interpolated at its place on the surface
         before (a split's midpoint: the mean of its edge's ends). A PLY save writes them."""
+    @property
+    def face_data(self) -> "ElementData":
+        """Named per-face scalars, float32 by row of ``faces``: the source's (a PLY's face
+        properties) and the script's (``mesh.face_data["label"] = array``). Each value follows
+        its face through edits (a flip keeps both faces); a face an edit made takes the value
+        of the face it was cut from (the one its centroid lay on). A PLY save writes them."""
     def quantity(self, name: str, *, to: Optional["Mesh"] = None) -> npt.NDArray[np.float64]:
         """A per-vertex quantity by row, as the editor colours by and ``pappus process
         --quantity NAME`` writes: ``mean``, ``gaussian``, ``angle-defect``, ``max-curvature``,

@@ -93,8 +93,8 @@ def show(mesh, quantities=None, *, screenshot=None, script=None, timeout=None):
     When the user edited the mesh (anything in the undo history, even undone), ``mesh`` is
     rebuilt from what the editor hands back: its rows are then the editor's, every handle taken
     before is stale, input vertex numbers are the editor's rows, and what did not come back
-    (what a PLY cannot hold, such as face groups; ``vertex_data``, which the editor does not
-    carry) is named in a ``UserWarning``; seam marks do not come back.
+    (what a PLY cannot hold, such as face groups; ``vertex_data`` and ``face_data``, which the
+    editor does not carry) is named in a ``UserWarning``; seam marks do not come back.
     Without an edit, ``mesh`` is untouched.
 
     ``screenshot`` (a path) writes a PNG of the window once the mesh is drawn and closes it,
@@ -172,12 +172,13 @@ def _take_back(mesh, back):
         mesh._set_selection(Selection([], [], [], []))
         return mesh
     if answer["edited"]:
-        lost = list(mesh.vertex_data)
+        lost = [f"vertex_data[{n!r}]" for n in mesh.vertex_data]
+        lost += [f"face_data[{n!r}]" for n in mesh.face_data]
         mesh._take(load(str(back / answer["mesh"])))
         if lost:
             warnings.warn(
-                f"pappus.show: vertex_data {lost} did not come back: the editor does not carry"
-                " a script's per-vertex arrays through its edits",
+                f"pappus.show: {', '.join(lost)} did not come back: the editor does not carry"
+                " a script's per-element arrays through its edits",
                 UserWarning,
                 stacklevel=3,
             )

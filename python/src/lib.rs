@@ -25,6 +25,7 @@ use pappus::source::{SourceError, read_source};
 
 mod arrays;
 mod connectivity;
+mod element_data;
 mod elements;
 mod errors;
 mod groups;
@@ -35,15 +36,14 @@ mod mesh_edit;
 mod outcome;
 mod quantities;
 mod run;
-mod vertex_data;
 
 use connectivity::ConnectivityArrays;
+use element_data::ElementDataView;
 use errors::{InvalidMesh, PappusError, ParseError, Refused, StaleElement, io_error, user_warning};
 use handles::{EdgeHandle, FaceHandle, HalfedgeHandle, VertexHandle};
 use lab_mode::{LabReportPy, lab};
 use mesh::Mesh;
 use mesh_edit::MeshEdit;
-use vertex_data::VertexDataView;
 
 /// Milliseconds since `start`.
 pub(crate) fn ms_since(start: Instant) -> f64 {
@@ -82,8 +82,8 @@ fn memory_budget() -> (u64, String) {
 
 /// Loads a mesh from a file (.obj .off .ply .stl .glb .gltf .dae, by extension) or a procedural shape
 /// (`"shape:torus"`, `"shape:icosphere:6"`), repaired as the command line repairs it. The GIL
-/// is released while it reads and builds. A PLY's per-vertex quality is kept in
-/// `Mesh.vertex_data`; what a reader had to approximate is reported with `warnings.warn`.
+/// is released while it reads and builds. A PLY's vertex quality and other vertex and face
+/// properties are kept in `Mesh.vertex_data` and `Mesh.face_data`; what a reader had to approximate is reported with `warnings.warn`.
 ///
 /// Raises `ParseError` (with the line) for a malformed file, `FileNotFoundError` / `OSError` for the
 /// file system, `ValueError` for an unknown extension or shape, or a file with no usable face.
@@ -97,7 +97,7 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
     let read_ms = ms_since(start);
     let name = path.display().to_string();
     let warn = |message: String| user_warning(py, message);
-    // The vertex quality the mesh has no column for is kept in `Mesh.vertex_data`.
+    // The scalars the mesh has no column for are kept in `Mesh.vertex_data` and `face_data`.
     for note in &soup.notes {
         warn(format!("{name}: {note}"))?;
     }
@@ -193,8 +193,8 @@ fn parameter<'py>(
 mod _pappus {
     #[pymodule_export]
     use super::{
-        ConnectivityArrays, EdgeHandle, FaceHandle, HalfedgeHandle, InvalidMesh, LabReportPy, Mesh,
-        MeshEdit, PappusError, ParseError, Refused, StaleElement, VertexDataView, VertexHandle,
+        ConnectivityArrays, EdgeHandle, ElementDataView, FaceHandle, HalfedgeHandle, InvalidMesh,
+        LabReportPy, Mesh, MeshEdit, PappusError, ParseError, Refused, StaleElement, VertexHandle,
         lab, load, memory_budget, operations, set_memory_budget,
     };
 

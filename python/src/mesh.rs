@@ -31,6 +31,7 @@ use crate::arrays::{
     faces_array, float_rows, positions_and_faces, read_faces, vec2_array, vec3_array,
 };
 use crate::connectivity::ConnectivityArrays;
+use crate::element_data::{ElementData, ElementDataView, Per};
 use crate::elements::number;
 use crate::errors::{InvalidMesh, Refused, io_error, user_warning, with_outcome_note};
 use crate::groups::{face_groups_dict, face_groups_from};
@@ -40,7 +41,6 @@ use crate::ms_since;
 use crate::outcome::Made;
 use crate::quantities;
 use crate::run::{self, Before, Changes};
-use crate::vertex_data::{VertexData, VertexDataView};
 
 /// One halfedge mesh (polygons allowed), owned by Python.
 ///
@@ -71,8 +71,8 @@ pub struct Mesh {
     vertex_epoch: u64,
     /// Each element's row, found when a handle first asks after an edit.
     rows: OnceLock<Rows>,
-    /// The per-vertex scalars the source carried (a PLY's quality), by vertex.
-    vertex_data: VertexData,
+    /// The named scalars of vertices and faces (a PLY's quality, a script's own), by element.
+    element_data: ElementData,
     /// The journal of the low-level edit open on the mesh (`with mesh.edit()`), if one is.
     open_edit: Option<Journal>,
     /// The rule the last commit of such an edit found broken, until `pappus.lab` reads it.
@@ -106,7 +106,7 @@ impl Mesh {
         let start = Instant::now();
         let mut world = World::new();
         let built = build_mesh(&mut world, soup, info).map_err(|e| e.to_string())?;
-        let vertex_data = VertexData::of_soup(soup, &built.input_vertices);
+        let element_data = ElementData::of_soup(soup, &built);
         Ok(Mesh {
             world,
             mesh: built.mesh,
@@ -117,7 +117,7 @@ impl Mesh {
             element_revision: 0,
             vertex_epoch: 0,
             rows: OnceLock::new(),
-            vertex_data,
+            element_data,
             open_edit: None,
             broken: None,
             selection: None,
@@ -137,7 +137,7 @@ impl Mesh {
             element_revision: 0,
             vertex_epoch: 0,
             rows: OnceLock::new(),
-            vertex_data: VertexData::default(),
+            element_data: ElementData::default(),
             open_edit: None,
             broken: None,
             selection: None,
@@ -219,7 +219,7 @@ impl Mesh {
         self.no_open_edit()?;
         let ids = ids_kept(&step);
         let before = track.then(|| Before::start(&mut self.world, self.mesh, ids));
-        let surface = self.vertex_data.surface_before(&self.world, self.mesh);
+        let surface = self.element_data.surface_before(&self.world, self.mesh);
         let Mesh {
             world,
             mesh,
@@ -267,7 +267,8 @@ impl Mesh {
             self.element_revision += 1;
         }
         if let (Ok(_), Some(surface)) = (&outcome, &surface) {
-            self.vertex_data.carry(surface, &self.world, self.mesh);
+            let faces_renewed = ids == IdsKept::VerticesOnly;
+            (self.element_data).carry(surface, &self.world, self.mesh, faces_renewed);
         }
         if let Some(e) = failure {
             let summary = outcome.as_ref().map(|(summary, _)| summary.clone());
@@ -393,31 +394,31 @@ impl Mesh {
     /// Opens a low-level edit (`RuntimeError` when one is open).
     pub(crate) fn open_edit(&mut self) -> PyResult<()> {
         self.no_open_edit()?;
-        self.vertex_data.opened_edit(&self.world, self.mesh);
+        self.element_data.opened_edit(&self.world, self.mesh);
         self.open_edit = Some(RawEdit::new(&mut self.world, self.mesh).suspend());
         Ok(())
     }
 
-    /// `vertex_data[name]` by row, if there is such a column.
-    pub(crate) fn vertex_data_column(&self, name: &str) -> PyResult<Option<Vec<f32>>> {
+    /// `vertex_data[name]` or `face_data[name]` by row, if there is such a column.
+    pub(crate) fn data_column(&self, per: Per, name: &str) -> PyResult<Option<Vec<f32>>> {
         self.no_open_edit()?;
-        Ok(self.vertex_data.column(name, &self.world, self.mesh))
+        Ok(self.element_data.column(per, name, &self.world, self.mesh))
     }
 
-    /// Sets `vertex_data[name]` from values by row.
-    pub(crate) fn set_vertex_data(&mut self, name: &str, values: &[f32]) -> PyResult<()> {
+    /// Sets `vertex_data[name]` or `face_data[name]` from values by row.
+    pub(crate) fn set_data(&mut self, per: Per, name: &str, values: &[f32]) -> PyResult<()> {
         self.no_open_edit()?;
-        self.vertex_data.set(name, values, &self.world, self.mesh)
+        (self.element_data).set(per, name, values, &self.world, self.mesh)
     }
 
-    /// Removes `vertex_data[name]`; whether it was there.
-    pub(crate) fn remove_vertex_data(&mut self, name: &str) -> bool {
-        self.vertex_data.remove(name)
+    /// Removes `vertex_data[name]` or `face_data[name]`; whether it was there.
+    pub(crate) fn remove_data(&mut self, per: Per, name: &str) -> bool {
+        self.element_data.remove(per, name)
     }
 
-    /// The names of `vertex_data`'s columns.
-    pub(crate) fn vertex_data_names(&self) -> Vec<String> {
-        self.vertex_data.names()
+    /// The names of `vertex_data`'s or `face_data`'s columns.
+    pub(crate) fn data_names(&self, per: Per) -> Vec<String> {
+        self.element_data.names(per)
     }
 
     /// The world and the open edit's journal, taken out until [`Mesh::set_aside`] or
@@ -440,7 +441,7 @@ impl Mesh {
     /// mesh; the file's normals no longer describe its surface) or rolled back.
     pub(crate) fn closed_edit(&mut self, committed: bool) {
         self.rows = OnceLock::new();
-        self.vertex_data
+        self.element_data
             .closed_edit(committed, &self.world, self.mesh);
         if committed {
             SimplificationHistory::end(&mut self.world, self.mesh);
@@ -571,10 +572,9 @@ impl Mesh {
             "face_groups",
             face_groups_dict(py, soup.face_groups.as_ref())?,
         )?;
-        state.set_item(
-            "vertex_data",
-            self.vertex_data.dict(py, &self.world, self.mesh)?,
-        )?;
+        let data = |per| self.element_data.dict(py, per, &self.world, self.mesh);
+        state.set_item("vertex_data", data(Per::Vertex)?)?;
+        state.set_item("face_data", data(Per::Face)?)?;
         state.set_item("name", self.name())?;
         let repairs: Vec<usize> = self.report.entries().iter().map(|&(_, n)| n).collect();
         state.set_item("repairs", repairs)?;
@@ -656,9 +656,24 @@ impl Mesh {
     /// follows its vertex through edits, a vertex an edit made gets the value interpolated at
     /// its place on the surface before, and a PLY save writes them as vertex properties.
     #[getter]
-    fn vertex_data(slf: &Bound<'_, Self>) -> VertexDataView {
-        VertexDataView {
+    fn vertex_data(slf: &Bound<'_, Self>) -> ElementDataView {
+        ElementDataView {
             mesh: slf.clone().unbind(),
+            per: Per::Vertex,
+        }
+    }
+
+    /// The mesh's named per-face scalars: a PLY's face properties (`quality`, `flags`, …) and
+    /// the script's own (`mesh.face_data["label"] = array`, one value per face). A mapping of
+    /// float32 arrays by row of `faces`; each value follows its face through edits (a flip
+    /// keeps both faces), a face an edit made takes the value of the face it was cut from (the
+    /// one its centroid lies on before the edit), and a PLY save writes them as face
+    /// properties.
+    #[getter]
+    fn face_data(slf: &Bound<'_, Self>) -> ElementDataView {
+        ElementDataView {
+            mesh: slf.clone().unbind(),
+            per: Per::Face,
         }
     }
 
@@ -861,16 +876,19 @@ impl Mesh {
     }
 
     /// Writes the mesh to `path`, the format chosen by its extension (.obj .off .ply .stl .glb .gltf), with
-    /// the attributes it has (UVs, normals, colours, and `vertex_data`, which PLY holds). Writes
+    /// the attributes it has (UVs, normals, colours, and `vertex_data` and `face_data`, which
+    /// PLY holds). Writes
     /// a temporary file and renames it over the target, so a failed save leaves the old file.
     /// Raises `ValueError` for an unknown extension or `.dae` (read only), `OSError` when the
     /// file system refuses. What the format cannot hold (OFF and STL: UVs, normals, colours;
-    /// all but PLY: `vertex_data`; STL and glTF: polygons, written as triangles) is dropped
+    /// all but PLY: `vertex_data` and `face_data`; STL and glTF: polygons, written as
+    /// triangles) is dropped
     /// with a `UserWarning` naming it.
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
         self.no_open_edit()?;
         let (mut soup, recomputed) = pappus::edit::soup_to_save(&self.world, self.mesh);
-        self.vertex_data.put_into(&self.world, self.mesh, &mut soup);
+        self.element_data
+            .put_into(&self.world, self.mesh, &mut soup);
         let dropped = io::dropped(&path, &soup);
         py.detach(|| io::write(&path, &soup))
             .map_err(|e| io_error(py, e))?;
@@ -1451,6 +1469,12 @@ impl Mesh {
                 } else {
                     soup.vertex_scalars.push((name, values));
                 }
+            }
+        }
+        if let Some(data) = state.get_item("face_data")?.filter(|d| !d.is_none()) {
+            for (name, values) in data.cast::<PyDict>()?.iter() {
+                let values: PyReadonlyArray1<'_, f32> = values.extract()?;
+                (soup.face_scalars).push((name.extract()?, values.as_array().to_vec()));
             }
         }
         if let Some(groups) = state.get_item("face_groups")?.filter(|g| !g.is_none()) {

@@ -648,6 +648,65 @@ def test_a_plys_other_vertex_properties_are_kept_and_saved(tmp_path):
         mesh.save(tmp_path / "scan.obj")
 
 
+def test_a_plys_face_properties_and_a_scripts_face_array_travel(tmp_path):
+    path = tmp_path / "labelled.ply"
+    path.write_text(
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 2\nproperty list uchar int vertex_indices\n"
+        "property uchar label\nproperty float quality\nend_header\n"
+        "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 7 0.5\n3 0 2 3 9 -1\n"
+    )
+    mesh = pappus.load(path)
+    assert list(mesh.face_data) == ["label", "quality"]
+    np.testing.assert_array_equal(mesh.face_data["label"], [7, 9])
+    np.testing.assert_array_equal(mesh.face_data["quality"], [0.5, -1])
+    # A flip keeps both faces, and their values.
+    mesh.flip(_inner_edge(mesh))
+    np.testing.assert_array_equal(np.sort(mesh.face_data["label"]), [7, 9])
+    # A split's new faces take the value of the face they were cut from.
+    out = mesh.split(_inner_edge(mesh))
+    made = [x for x in out.created if isinstance(x, pappus.Face)]
+    labels = mesh.face_data["label"]
+    assert len(made) == 2 and sorted(labels) == [7, 7, 9, 9]
+    mesh.save(tmp_path / "again.ply")
+    np.testing.assert_array_equal(pappus.load(tmp_path / "again.ply").face_data["label"], labels)
+    back = pickle.loads(pickle.dumps(mesh))
+    np.testing.assert_array_equal(back.face_data["quality"], mesh.face_data["quality"])
+    with pytest.warns(UserWarning, match="face properties"):
+        mesh.save(tmp_path / "labelled.obj")
+    with pytest.raises(ValueError, match="one value per face"):
+        mesh.face_data["label"] = [1, 2]
+    for name in ["vertex_indices", "texcoord", "two words", ""]:
+        with pytest.raises(ValueError, match="PLY"):
+            mesh.face_data[name] = labels
+    assert isinstance(mesh.face_data, pappus.ElementData) and "face" in repr(mesh.face_data)
+
+
+def _inner_edge(mesh):
+    """The one edge of a two-triangle square that is not on its boundary."""
+    (edge,) = [h.edge for h in mesh.face(0).halfedges() if not h.edge.is_boundary]
+    return edge
+
+
+def test_a_face_array_follows_each_face_to_its_children_in_subdivision():
+    mesh = pappus.load("shape:icosphere:2")
+    mesh.face_data["parent"] = np.arange(len(mesh.faces))
+    mesh.face_data["some"] = np.where(np.arange(len(mesh.faces)) % 2 == 0, 1.0, np.nan)
+    mesh.loop()
+    # Loop cuts each triangle in four, listed one after another in the old face order; every
+    # child reads the face its centroid lies on before, its parent.
+    children = np.arange(len(mesh.faces)) // 4
+    np.testing.assert_array_equal(mesh.face_data["parent"], children)
+    # A face without a value gives its children none.
+    assert np.isnan(mesh.face_data["some"][children % 2 == 1]).all()
+    assert (mesh.face_data["some"][children % 2 == 0] == 1).all()
+    quads = pappus.load("shape:torus")
+    sides = np.array([len(f) for f in quads.faces])
+    quads.face_data["parent"] = np.arange(len(sides))
+    quads.catmull_clark()
+    np.testing.assert_array_equal(quads.face_data["parent"], np.repeat(np.arange(len(sides)), sides))
+
+
 def test_an_outcome_pickles_as_its_summary():
     mesh = pappus.load("shape:icosphere:2")
     out = mesh.simplify(ratio=0.5)

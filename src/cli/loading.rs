@@ -57,11 +57,9 @@ fn read_and_build(input: &str) -> Result<Loaded, String> {
     let start = Instant::now();
     let (soup, info) = crate::source::read_source(Path::new(input)).map_err(|e| e.to_string())?;
     let read_ms = ms_since(start);
-    let dropped = soup.vertex_attributes();
-    if !dropped.is_empty() {
+    if let Some(names) = soup.scalars_not_kept() {
         eprintln!(
-            "pappus: {input}: the file's vertex {} is not kept (outputs carry positions, faces, UVs, normals and colours, and what --quantity or --normals adds)",
-            dropped.join(", ")
+            "pappus: {input}: the file's {names} is not kept (outputs carry positions, faces, UVs, normals and colours, and what --quantity or --normals adds)"
         );
     }
     for note in &soup.notes {

@@ -31,7 +31,7 @@ use std::path::Path;
 use crate::mesh::soup::PolygonSoup;
 
 pub use error::IoError;
-pub use ply::{PlyEncoding, keeps_vertex_scalar};
+pub use ply::{PlyEncoding, keeps_face_scalar, keeps_vertex_scalar};
 pub use save::ignore_file_size_signal;
 pub use stl::StlEncoding;
 
@@ -104,10 +104,10 @@ impl Format {
 
 /// What the soup carries that a file at `path` (its format by extension) cannot hold, in a
 /// person's words (`"UVs"`, `"normals"`, `"colours"`, `"quality"`, `"other vertex
-/// properties"`, `"groups"`, then `"polygon faces (written as triangles)"`), in that order:
-/// empty when a save keeps everything, or when the extension names no format Pappus writes (the
-/// save itself then fails). OBJ and glTF hold all but the quality and other vertex properties,
-/// PLY all but the groups, OFF and STL none of them; STL and glTF hold triangles only.
+/// properties"`, `"face properties"`, `"groups"`, then `"polygon faces (written as
+/// triangles)"`), in that order: empty when a save keeps everything, or when the extension
+/// names no format Pappus writes (the save itself then fails). OBJ and glTF hold all but the
+/// quality and the vertex and face properties, PLY all but the groups, OFF and STL none of them; STL and glTF hold triangles only.
 pub fn dropped(path: &Path, soup: &PolygonSoup) -> Vec<&'static str> {
     let Ok(format) = Format::from_path(path) else {
         return Vec::new();
@@ -119,13 +119,15 @@ pub fn dropped(path: &Path, soup: &PolygonSoup) -> Vec<&'static str> {
         ("colours", has.colors),
         ("quality", soup.vertex_quality.is_some()),
         ("other vertex properties", !soup.vertex_scalars.is_empty()),
+        ("face properties", !soup.face_scalars.is_empty()),
         ("groups", has.groups),
     ];
     let holds = |what: &str| match format {
         Format::Ply => what != "groups",
-        Format::Obj | Format::Gltf | Format::Glb => {
-            !matches!(what, "quality" | "other vertex properties")
-        }
+        Format::Obj | Format::Gltf | Format::Glb => !matches!(
+            what,
+            "quality" | "other vertex properties" | "face properties"
+        ),
         Format::Off | Format::Stl | Format::Collada => false,
     };
     let triangles_only = matches!(format, Format::Stl | Format::Gltf | Format::Glb);
@@ -141,11 +143,7 @@ pub fn dropped(path: &Path, soup: &PolygonSoup) -> Vec<&'static str> {
 /// The sentence for what a save into `path` drops: `"m.off: UVs and normals dropped (OFF
 /// cannot hold them)"`.
 pub fn dropped_note(path: &Path, dropped: &[&str]) -> String {
-    let list = match dropped {
-        [] => String::new(),
-        [one] => (*one).to_string(),
-        [init @ .., last] => format!("{} and {last}", init.join(", ")),
-    };
+    let list = crate::mesh::attributes::listed(dropped);
     let format = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_uppercase())

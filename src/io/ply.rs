@@ -16,8 +16,10 @@
 //! turn a strip's corners are left out), as some Stanford scans were saved. Up to
 //! [`MAX_SCALARS`] other scalar properties of the vertex (`confidence`, `intensity`, `alpha`,
 //! …) become the soup's named [`vertex_scalars`](PolygonSoup::vertex_scalars); every other
-//! property (a list, a face's scalar, a normal missing a component) and every other element is
-//! read past, in the order the header declares them, and named in the soup's notes. The vertex element must have
+//! property (a list, a normal missing a component) and every other element is read past, in
+//! the order the header declares them, and named in the soup's notes. Up to [`MAX_SCALARS`]
+//! scalar properties of the face (`quality`, `flags`, `area`, …, any name: a face has no column
+//! of its own) become the soup's [`face_scalars`](PolygonSoup::face_scalars). The vertex element must have
 //! `x`, `y` and `z`, and a face or strips element its index list. Indices
 //! must be non-negative integers; out-of-range ones are kept for the builder to drop. In an
 //! ASCII body a `float` property is parsed as an `f32` directly (not through `f64`), so what
@@ -30,7 +32,8 @@
 //! position; then `list uchar int vertex_indices` (`list int int` when a
 //! face has more than 255 corners, `uint` indices when one exceeds `i32::MAX`), binary
 //! little-endian by default or ASCII / big-endian on request, followed by `list uchar float
-//! texcoord` when the corner UVs differ at some vertex (a seam). A soup without attributes gets
+//! texcoord` when the corner UVs differ at some vertex (a seam), and a `float` property for each
+//! face scalar with one value per face. A soup without attributes gets
 //! exactly the plain `x y z` header.
 
 mod fixed_rows;
@@ -44,8 +47,8 @@ use super::text::Numbers;
 use crate::io::error::ParseError;
 use crate::mesh::soup::PolygonSoup;
 use rows::{
-    Element, MAX_SCALARS, Property, Role, Row, Scalar, corner_uvs_of_vertices,
-    reserve_vertex_columns,
+    Element, MAX_SCALARS, Property, Role, Row, Scalar, corner_uvs_of_vertices, push_face_scalars,
+    reserve_face_columns, reserve_vertex_columns,
 };
 
 /// How a PLY body is encoded.
@@ -198,8 +201,8 @@ fn header(bytes: &[u8]) -> Result<Header, ParseError> {
     let mut encoding = None;
     let mut elements: Vec<Element> = Vec::new();
     let mut foreign = (0, None);
-    // The names of the vertex scalars kept as columns, by column.
-    let mut scalars: Vec<String> = Vec::new();
+    // The names of the vertex and the face scalars kept as columns, by column.
+    let mut scalars: [Vec<String>; 2] = Default::default();
     let mut at = 0;
     for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
         let line = i + 1;
@@ -271,13 +274,19 @@ fn header(bytes: &[u8]) -> Result<Header, ParseError> {
     Err(ParseError::byte(bytes.len(), "file ends inside the header"))
 }
 
-/// Makes a `vertex` element's scalar property that has no role of its own a kept column
-/// ([`Role::Scalar`]), the same column for the same name in another `vertex` element.
-fn keep_as_column(element: &str, property: &mut Property, scalars: &mut Vec<String>) {
+/// Makes a `vertex` or `face` element's scalar property that has no role of its own a kept
+/// column ([`Role::Scalar`], [`Role::FaceScalar`]), the same column for the same name in
+/// another element of that name. `scalars` holds the vertex columns' names, then the faces'.
+fn keep_as_column(element: &str, property: &mut Property, scalars: &mut [Vec<String>; 2]) {
     let Property::Scalar { name, role, .. } = property else {
         return;
     };
-    if element != "vertex" || *role != Role::Skip {
+    let (scalars, kept): (_, fn(usize) -> Role) = match element {
+        "vertex" => (&mut scalars[0], Role::Scalar),
+        "face" => (&mut scalars[1], Role::FaceScalar),
+        _ => return,
+    };
+    if *role != Role::Skip {
         return;
     }
     let column = match scalars.iter().position(|s| s == name) {
@@ -288,7 +297,7 @@ fn keep_as_column(element: &str, property: &mut Property, scalars: &mut Vec<Stri
         }
         None => return,
     };
-    *role = Role::Scalar(column);
+    *role = kept(column);
 }
 
 /// A `property` line's declaration after its keyword (`float x`, `list uchar int
@@ -367,6 +376,15 @@ pub fn keeps_vertex_scalar(name: &str) -> bool {
         && matches!(vertex_role(name), Role::Skip | Role::Quality)
 }
 
+/// Whether a face scalar called `name` would come back from a PLY as itself: a name with no
+/// whitespace that is not one of the face's lists (`vertex_indices`, `vertex_index`,
+/// `texcoord`).
+pub fn keeps_face_scalar(name: &str) -> bool {
+    !name.is_empty()
+        && !name.chars().any(char::is_whitespace)
+        && !matches!(name, "vertex_indices" | "vertex_index" | "texcoord")
+}
+
 /// A non-empty `vertex` element needs `x y z`; a non-empty `face` element needs its index list.
 fn check_element(element: &Element) -> Result<(), ParseError> {
     let has = |role: Role| {
@@ -428,8 +446,12 @@ fn body_values<V: Values>(
             face_uv = Some(vec![Vec2::ZERO; soup.indices.len()]);
         }
         let is_vertex = element.name == "vertex";
+        let is_face = element.name == "face";
         if is_vertex {
             reserve_vertex_columns(element, &mut soup, &mut vertex_uv, len);
+        }
+        if is_face {
+            reserve_face_columns(element, &mut soup);
         }
         for _ in 0..element.count {
             let corners_before = soup.indices.len();
@@ -451,6 +473,9 @@ fn body_values<V: Values>(
             if is_vertex {
                 row.push_vertex(&mut soup, &mut vertex_uv);
             }
+            if is_face {
+                push_face_scalars(&row, &mut soup);
+            }
             if let Some(face_uv) = &mut face_uv {
                 let corners = soup.indices.len() - corners_before;
                 if has_texcoord && lists.texcoord.len() == 2 * corners {
@@ -469,6 +494,10 @@ fn body_values<V: Values>(
         soup.notes.push(format!(
             "{bad_texcoords} face(s) whose `texcoord` list does not hold 2 values per corner: their UVs are (0, 0)"
         ));
+    }
+    let faces = soup.face_count();
+    for (_, column) in &mut soup.face_scalars {
+        column.resize(faces, f32::NAN);
     }
     // Per-face UVs win; per-vertex ones give every corner of a vertex the same UV.
     soup.corner_uvs = face_uv.or_else(|| corner_uvs_of_vertices(&soup, vertex_uv));
@@ -618,6 +647,8 @@ struct Layout<'a> {
     quality: Option<&'a [f32]>,
     /// The other vertex scalars with one value per position and a name PLY can hold.
     scalars: Vec<(&'a str, &'a [f32])>,
+    /// The face scalars with one value per face and a name PLY can hold.
+    face_scalars: Vec<(&'a str, &'a [f32])>,
     colors: Option<&'a [[u8; 3]]>,
     normals: Option<&'a [Vec3]>,
     /// One UV a vertex, when every corner of each vertex has the same UV (bit for bit).
@@ -662,16 +693,17 @@ impl<'a> Layout<'a> {
             true => Scalar::I32,
             false => Scalar::U8,
         };
+        let whole = |columns: &'a [(String, Vec<f32>)], len: usize, keeps: fn(&str) -> bool| {
+            columns
+                .iter()
+                .filter(move |(name, column)| column.len() == len && keeps(name))
+                .map(|(name, column)| (name.as_str(), column.as_slice()))
+                .collect()
+        };
         Self {
             quality: soup.vertex_quality.as_deref().filter(|q| q.len() == n),
-            scalars: soup
-                .vertex_scalars
-                .iter()
-                .filter(|(name, column)| {
-                    column.len() == n && !name.is_empty() && !name.contains(char::is_whitespace)
-                })
-                .map(|(name, column)| (name.as_str(), column.as_slice()))
-                .collect(),
+            scalars: whole(&soup.vertex_scalars, n, keeps_vertex_scalar),
+            face_scalars: whole(&soup.face_scalars, soup.face_count(), keeps_face_scalar),
             colors: soup.vertex_colors.as_deref().filter(|c| c.len() == n),
             normals: soup.vertex_normals.as_deref().filter(|v| v.len() == n),
             face_uv: corner_uvs.filter(|_| vertex_uv.is_none()),
@@ -732,6 +764,9 @@ impl<'a> Layout<'a> {
                 type_name(self.texcoord_count)
             );
         }
+        for (name, _) in &self.face_scalars {
+            let _ = writeln!(header, "property float {name}");
+        }
         header.push_str("end_header\n");
         header
     }
@@ -772,6 +807,9 @@ impl<'a> Layout<'a> {
                 for uv in &uvs[start..start + face.len()] {
                     let _ = write!(body, " {} {}", uv.x, uv.y);
                 }
+            }
+            for (_, column) in &self.face_scalars {
+                let _ = write!(body, " {}", column[f]);
             }
             body.push('\n');
         }
@@ -818,6 +856,9 @@ impl<'a> Layout<'a> {
                     put(uv.y.to_le_bytes(), big, out);
                 }
             }
+            for (_, column) in &self.face_scalars {
+                put(column[f].to_le_bytes(), big, out);
+            }
         }
     }
 }
@@ -845,7 +886,7 @@ mod tests {
 
     /// A scanner's vertex scalars (and MeshLab's `alpha` after the colours) are kept by name,
     /// value for value, in every encoding and through the writer; a ninth is read past and
-    /// named, as are a face's scalars.
+    /// named.
     #[test]
     fn a_scalar_comes_back_unless_its_name_is_a_column_of_its_own() {
         for kept in ["confidence", "quality", "height_2"] {
@@ -853,6 +894,12 @@ mod tests {
         }
         for taken in ["x", "nz", "red", "u", "t", "texture_v", "a b", ""] {
             assert!(!keeps_vertex_scalar(taken), "{taken}");
+        }
+        for kept in ["quality", "red", "x", "label"] {
+            assert!(keeps_face_scalar(kept), "{kept}");
+        }
+        for taken in ["vertex_indices", "vertex_index", "texcoord", "a\tb", ""] {
+            assert!(!keeps_face_scalar(taken), "{taken}");
         }
     }
 
@@ -892,10 +939,7 @@ mod tests {
         assert_eq!(soup.vertex_scalars[1].1, [0.25, 0.5, 1e-3_f64 as f32]);
         assert_eq!(soup.vertex_scalars[2].1, [-7.0, 8.0, 9.0]);
         assert_eq!(soup.vertex_colors, Some(vec![[1, 2, 3]; 3]));
-        assert_eq!(
-            soup.notes,
-            ["skipped: `vertex` property `extra5`, `face` property `area`"]
-        );
+        assert_eq!(soup.notes, ["skipped: `vertex` property `extra5`"]);
         assert_eq!(soup.vertex_attributes(), names);
         for e in [
             PlyEncoding::Ascii,
@@ -904,6 +948,70 @@ mod tests {
         ] {
             let back = read(&write(&soup, e)).unwrap();
             assert_eq!(back.vertex_scalars, soup.vertex_scalars, "{e:?}");
+        }
+    }
+
+    /// A face's scalars are kept by name, whatever the name, one value a face in face order:
+    /// before or after the corners list, in every encoding and through the writer (binary
+    /// bodies through the general reader, which the fixed-row one leaves them to). A face of a
+    /// later element without the property, or of strips, gets NaN; a ninth is read past.
+    #[test]
+    fn face_scalars_are_kept_by_name_with_nan_where_a_face_has_none() {
+        let mut header = format!(
+            "element vertex 4\n{XYZ}element face 2\nproperty uchar flags\n\
+             property list uchar int vertex_indices\nproperty double quality\nproperty float red\n"
+        );
+        for k in 0..6 {
+            let _ = writeln!(header, "property float extra{k}");
+        }
+        header.push_str(
+            "element tristrips 1\nproperty list int int vertex_indices\n\
+             element face 1\nproperty list uchar int vertex_indices\nproperty float quality\n\
+             end_header\n",
+        );
+        let extras = " 0 0 0 0 0 0";
+        let ascii = format!(
+            "ply\nformat ascii 1.0\n{header}0 0 0\n1 0 0\n1 1 0\n0 1 0\n\
+             7 3 0 1 2 0.25 255{extras}\n3 3 0 2 3 -1.5 0{extras}\n4 0 1 2 3\n3 1 2 3 8\n"
+        );
+        let soup = read(ascii.as_bytes()).unwrap();
+        let names: Vec<&str> = soup.face_scalars.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "flags", "quality", "red", "extra0", "extra1", "extra2", "extra3", "extra4"
+            ]
+        );
+        let bits = |s: &PolygonSoup| -> Vec<Vec<u32>> {
+            let column = |c: &Vec<f32>| c.iter().map(|x| x.to_bits()).collect();
+            s.face_scalars.iter().map(|(_, c)| column(c)).collect()
+        };
+        let nan = f32::NAN.to_bits();
+        // Two faces of the first element, two triangles of the strip, one of the last element.
+        assert_eq!(soup.face_count(), 5);
+        assert_eq!(
+            bits(&soup)[0],
+            [7.0f32.to_bits(), 3.0f32.to_bits(), nan, nan, nan]
+        );
+        let quality = [0.25f32, -1.5].map(f32::to_bits);
+        assert_eq!(
+            bits(&soup)[1],
+            [quality[0], quality[1], nan, nan, 8.0f32.to_bits()]
+        );
+        assert_eq!(bits(&soup)[2][..2], [255.0f32.to_bits(), 0]);
+        assert_eq!(soup.notes, ["skipped: `face` property `extra5`"]);
+        assert_eq!(
+            soup.scalars_not_kept().as_deref(),
+            Some("face flags, quality, red, extra0, extra1, extra2, extra3 and extra4")
+        );
+        for e in [
+            PlyEncoding::Ascii,
+            PlyEncoding::BinaryLittleEndian,
+            PlyEncoding::BinaryBigEndian,
+        ] {
+            let back = read(&write(&soup, e)).unwrap();
+            assert_eq!(bits(&back), bits(&soup), "{e:?}");
+            assert!(same_bits(&back, &soup), "{e:?}");
         }
     }
 
@@ -1133,10 +1241,9 @@ mod tests {
         assert_eq!(soup.face(0), &[0, 1, 2]);
         assert_eq!(
             soup.notes,
-            vec![
-                "skipped: `vertex` property `nx`, `vertex` property `junk`, `face` property `flags`, element `edge` (1)"
-            ]
+            vec!["skipped: `vertex` property `nx`, `vertex` property `junk`, element `edge` (1)"]
         );
+        assert_eq!(soup.face_scalars, [("flags".to_string(), vec![3.0])]);
     }
 
     /// A 3 × 3 grid of vertices as two strips with a restart between them, in ASCII and in

@@ -144,12 +144,7 @@ impl MeshAttributes {
 
     /// The names joined for a sentence: `UVs`, `UVs and normals`, `UVs, normals and colours`.
     pub fn describe(self) -> String {
-        let names = self.names();
-        match names.as_slice() {
-            [] => String::new(),
-            [one] => (*one).to_string(),
-            [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
-        }
+        listed(&self.names())
     }
 
     /// The note an outcome ends with when an operation dropped these (empty when none):
@@ -355,6 +350,15 @@ pub fn set_record(world: &mut World, mesh: MeshId, has: MeshAttributes) {
 /// Whether halfedge `h` is a face halfedge (and so should carry a UV when the mesh has them).
 pub fn is_corner(world: &World, h: HalfedgeId) -> bool {
     world.get::<Halfedge>(h.0).is_some_and(|x| x.face.is_some())
+}
+
+/// Names joined for a sentence: empty for none, `UVs`, `UVs and normals`, `UVs, normals and colours`.
+pub fn listed(names: &[&str]) -> String {
+    match names {
+        [] => String::new(),
+        [one] => (*one).to_string(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
 }
 
 #[cfg(test)]

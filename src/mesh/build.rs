@@ -13,7 +13,7 @@ use thiserror::Error;
 use super::attributes::AttributeColumns;
 use super::elements::MeshInfo;
 use super::groups::FaceGroups;
-use super::ids::{MeshId, VertexId};
+use super::ids::{FaceId, MeshId, VertexId};
 use super::members::MeshMembers;
 use super::repair::{RepairReport, RepairedFaces, repair};
 use super::soup::PolygonSoup;
@@ -45,6 +45,10 @@ pub struct BuiltMesh {
     /// For each vertex of the input soup, the vertex it became (`None` if dropped). Lets scripts
     /// name elements by their index in the input file.
     pub input_vertices: Vec<Option<VertexId>>,
+    /// Each face with the input face it came from (several faces share one where the repairs
+    /// cut a face), when the soup carries [`face_scalars`](PolygonSoup::face_scalars): their
+    /// only reader. Empty otherwise, so that a load without them pays nothing for it.
+    pub face_sources: Vec<(FaceId, u32)>,
 }
 
 /// A soup repaired and laid out as tables, not yet in any world: what [`build_mesh`] computes
@@ -56,6 +60,8 @@ pub struct PreparedMesh {
     report: RepairReport,
     /// For each input vertex, its vertex row ([`NONE`] if dropped).
     input_vertex: Vec<u32>,
+    /// For each face row, its input face, when the soup has face scalars (else empty).
+    input_face: Vec<u32>,
 }
 
 impl PreparedMesh {
@@ -91,10 +97,15 @@ pub fn prepare_mesh(soup: &PolygonSoup) -> Result<PreparedMesh, BuildError> {
     }
     let mut connectivity = Connectivity::from_corners(faces.corners());
     connectivity.attributes = attribute_columns(soup, &faces, &connectivity);
+    let input_face = match soup.face_scalars.is_empty() {
+        true => Vec::new(),
+        false => input_faces(soup, &faces),
+    };
     Ok(PreparedMesh {
         connectivity,
         report,
         input_vertex: faces.input_vertex,
+        input_face,
     })
 }
 
@@ -107,10 +118,12 @@ pub fn spawn_prepared(world: &mut World, prepared: PreparedMesh, info: MeshInfo)
         .iter()
         .map(|&v| (v != NONE).then(|| vertices[v as usize]))
         .collect();
+    let face_sources = rows.faces.into_iter().zip(prepared.input_face).collect();
     BuiltMesh {
         mesh,
         report: prepared.report,
         input_vertices,
+        face_sources,
     }
 }
 
@@ -169,20 +182,35 @@ fn attribute_columns(
         columns.colors = Some(input.iter().map(|&i| colors[i as usize]).collect());
     }
     if let Some(groups) = soup.face_groups.as_ref().filter(|_| has.groups) {
-        // Each repaired face takes the group of the input face its first corner came from.
-        let input_face = |corner: u32| soup.face_starts.partition_point(|&s| s <= corner) - 1;
-        let of_face = faces
-            .face_starts
-            .iter()
-            .take(faces.face_count())
-            .map(|&first| groups.of_face[input_face(source[first as usize])])
-            .collect();
+        let input = input_faces(soup, faces);
+        let of_face = input.iter().map(|&f| groups.of_face[f as usize]).collect();
         columns.groups = Some(FaceGroups {
             table: groups.table.clone(),
             of_face,
         });
     }
     columns
+}
+
+/// For each repaired face, the input face its first corner came from. The repairs keep the
+/// input's face order, so the search walks forward from the last face found; a face out of
+/// that order is found by bisection.
+fn input_faces(soup: &PolygonSoup, faces: &RepairedFaces) -> Vec<u32> {
+    let (starts, n) = (&soup.face_starts, soup.face_count());
+    let mut at = 0;
+    let mut out = Vec::with_capacity(faces.face_count());
+    for &first in faces.face_starts.iter().take(faces.face_count()) {
+        let corner = faces.source_corner[first as usize];
+        let inside = |f: usize| f < n && starts[f] <= corner && corner < starts[f + 1];
+        if !inside(at) {
+            at = match inside(at + 1) {
+                true => at + 1,
+                false => starts.partition_point(|&s| s <= corner) - 1,
+            };
+        }
+        out.push(at as u32);
+    }
+    out
 }
 
 /// The mesh as a polygon soup: vertices in table order, faces as vertex cycles, with the
@@ -240,4 +268,27 @@ pub fn despawn_mesh(world: &mut World, mesh: MeshId) -> usize {
         count += usize::from(world.despawn(e));
     }
     count + usize::from(world.despawn(mesh.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bevy::math::Vec3;
+
+    /// Each face names the input face it came from, a dropped face leaving a gap; a soup
+    /// without face scalars pays nothing for it.
+    #[test]
+    fn faces_name_their_input_face_when_the_soup_has_face_scalars() {
+        let positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::ONE];
+        // The middle face repeats a vertex and is dropped.
+        let mut soup = PolygonSoup::from_faces(positions, &[[0, 1, 2], [0, 0, 1], [1, 3, 2]]);
+        let mut world = World::new();
+        let plain = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
+        assert!(plain.face_sources.is_empty());
+        soup.face_scalars = vec![("w".to_string(), vec![10.0, 20.0, 30.0])];
+        let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
+        let faces = MeshMembers::collect(&world, built.mesh).faces;
+        let sources: Vec<(FaceId, u32)> = faces.iter().copied().zip([0, 2]).collect();
+        assert_eq!(built.face_sources, sources);
+    }
 }

@@ -11,7 +11,7 @@
 
 use bevy::math::{Vec2, Vec3};
 
-use super::attributes::MeshAttributes;
+use super::attributes::{MeshAttributes, listed};
 use super::groups::FaceGroups;
 
 /// Positions and polygonal faces, unchecked.
@@ -32,6 +32,10 @@ pub struct PolygonSoup {
     /// properties Pappus has no column for: `confidence`, `intensity`, `alpha`, …), one value
     /// per position each.
     pub vertex_scalars: Vec<(String, Vec<f32>)>,
+    /// Named scalars per face, in the order the file declared them (a PLY's face properties:
+    /// `quality`, `flags`, `area`, …), one value per face each, in face order (NaN where a
+    /// face had none: one read from an element that does not declare the property).
+    pub face_scalars: Vec<(String, Vec<f32>)>,
     /// A colour per vertex (8-bit sRGB), when the soup carries one. One per position.
     pub vertex_colors: Option<Vec<[u8; 3]>>,
     /// A normal per vertex, when the soup carries one. One per position.
@@ -59,6 +63,7 @@ impl PolygonSoup {
             face_starts,
             vertex_quality: None,
             vertex_scalars: Vec::new(),
+            face_scalars: Vec::new(),
             vertex_colors: None,
             vertex_normals: None,
             corner_uvs: None,
@@ -96,6 +101,18 @@ impl PolygonSoup {
             .into_iter()
             .chain(self.vertex_scalars.iter().map(|(name, _)| name.as_str()))
             .collect()
+    }
+
+    /// The scalars the soup carries that a mesh built from it does not keep, in a person's
+    /// words for a message (`"vertex quality, confidence and face flags"`); `None` without any.
+    pub fn scalars_not_kept(&self) -> Option<String> {
+        let faces: Vec<&str> = self.face_scalars.iter().map(|(n, _)| n.as_str()).collect();
+        let parts: Vec<String> = [("vertex", self.vertex_attributes()), ("face", faces)]
+            .into_iter()
+            .filter(|(_, names)| !names.is_empty())
+            .map(|(kind, names)| format!("{kind} {}", listed(&names)))
+            .collect();
+        (!parts.is_empty()).then(|| listed(&parts.iter().map(String::as_str).collect::<Vec<_>>()))
     }
 
     /// The attributes of the soup a mesh keeps: which of corner UVs, vertex normals, vertex

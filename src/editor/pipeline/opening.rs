@@ -202,12 +202,10 @@ fn install(world: &mut World, source: &Path, read: Read) -> String {
     if let Some(pending) = pending {
         history::commit(world, pending, format!("open {}", source.display()));
     }
-    let dropped = soup.vertex_attributes();
-    let mut dropped = match dropped.is_empty() {
-        true => String::new(),
-        false => format!(
-            "; the file's vertex {} is not kept (saving writes positions, faces, UVs, normals and colours)",
-            dropped.join(", ")
+    let mut dropped = match soup.scalars_not_kept() {
+        None => String::new(),
+        Some(names) => format!(
+            "; the file's {names} is not kept (saving writes positions, faces, UVs, normals and colours)"
         ),
     };
     for note in &soup.notes {

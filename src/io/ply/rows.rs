@@ -91,6 +91,9 @@ pub(super) enum Role {
     /// [`vertex_scalars`](PolygonSoup::vertex_scalars) (columns numbered across the header in
     /// order of first appearance; at most [`MAX_SCALARS`]).
     Scalar(usize),
+    /// A scalar of a face, kept as column `k` of the soup's
+    /// [`face_scalars`](PolygonSoup::face_scalars) (numbered as the vertex ones are).
+    FaceScalar(usize),
     /// The corners of a face.
     Corners,
     /// A `tristrips` element's `vertex_indices`: strips, `-1` between them.
@@ -204,7 +207,6 @@ pub(super) fn reserve_vertex_columns(
 }
 
 /// One row's scalar properties, by role.
-#[derive(Default)]
 pub(super) struct Row {
     pub(super) position: [f32; 3],
     pub(super) quality: f32,
@@ -212,6 +214,22 @@ pub(super) struct Row {
     pub(super) normal: [f32; 3],
     pub(super) uv: [f32; 2],
     pub(super) scalars: [f32; MAX_SCALARS],
+    /// A face's kept scalars (NaN for a column its element does not declare).
+    pub(super) face: [f32; MAX_SCALARS],
+}
+
+impl Default for Row {
+    fn default() -> Self {
+        Self {
+            position: [0.0; 3],
+            quality: 0.0,
+            color: [0; 3],
+            normal: [0.0; 3],
+            uv: [0.0; 2],
+            scalars: [0.0; MAX_SCALARS],
+            face: [f32::NAN; MAX_SCALARS],
+        }
+    }
 }
 
 impl Row {
@@ -223,6 +241,7 @@ impl Row {
             Role::Normal(k) => self.normal[k] = v as f32,
             Role::Uv(k) => self.uv[k] = v as f32,
             Role::Scalar(k) => self.scalars[k] = v as f32,
+            Role::FaceScalar(k) => self.face[k] = v as f32,
             Role::Corners | Role::Strip | Role::TexCoord | Role::Skip => {}
         }
     }
@@ -245,5 +264,33 @@ impl Row {
         for (k, (_, column)) in soup.vertex_scalars.iter_mut().enumerate() {
             column.push(self.scalars[k]);
         }
+    }
+}
+
+/// Starts the face columns a `face` element's properties bring: the faces read before it
+/// (another face element, a strips element) get NaN.
+pub(super) fn reserve_face_columns(element: &Element, soup: &mut PolygonSoup) {
+    for property in &element.properties {
+        if let Property::Scalar {
+            name,
+            role: Role::FaceScalar(k),
+            ..
+        } = property
+            && *k == soup.face_scalars.len()
+        {
+            let faces = soup.face_count();
+            soup.face_scalars
+                .push((name.clone(), vec![f32::NAN; faces]));
+        }
+    }
+}
+
+/// Gives the face just read (the soup's last) its row's value in every face column; a face
+/// read without one (from a strips element) gets NaN.
+pub(super) fn push_face_scalars(row: &Row, soup: &mut PolygonSoup) {
+    let faces = soup.face_count();
+    for (k, (_, column)) in soup.face_scalars.iter_mut().enumerate() {
+        column.resize(faces.saturating_sub(1), f32::NAN);
+        column.push(row.face[k]);
     }
 }

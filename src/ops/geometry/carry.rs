@@ -8,7 +8,9 @@
 //! corners; a remeshed vertex the value of the surface under it. Vertices an edit keeps keep
 //! their own values (the caller's map is by entity); this module only answers for the others.
 //! A corner with no value (NaN) is left out and the other corners' weights renormalised; with
-//! none left the value is NaN. This is the attribute transfer of remeshing pipelines
+//! none left the value is NaN. A value on faces is carried the same way: a face an edit made
+//! takes the value of the face its centroid lies on (a split's halves, a subdivision's
+//! children: the face they were cut from). This is the attribute transfer of remeshing pipelines
 //! (Botsch et al., *Polygon Mesh Processing*, 2010, §6.5: project onto the input and
 //! interpolate there).
 
@@ -19,7 +21,7 @@ use bevy::math::Vec3;
 use bevy::prelude::World;
 
 use crate::mesh::tables::extract;
-use crate::mesh::{MeshId, VertexId};
+use crate::mesh::{FaceId, MeshId, VertexId};
 
 use super::closest::Reference;
 use super::surface::Surface;
@@ -29,8 +31,11 @@ use super::surface::Surface;
 /// collapse) pays only for the copy of the triangles.
 pub struct SurfaceBefore {
     vertices: EntityHashSet,
+    faces: EntityHashSet,
     triangles: Vec<[Vec3; 3]>,
     corners: Vec<[VertexId; 3]>,
+    /// The face each triangle was cut from.
+    triangle_face: Vec<FaceId>,
     reference: OnceLock<Reference>,
 }
 
@@ -40,9 +45,10 @@ impl SurfaceBefore {
     pub fn of(world: &World, mesh: MeshId) -> Self {
         let read = extract(world, mesh);
         let surface = Surface::from_tables(&read.tables);
-        let vertices = &read.members.vertices;
+        let (vertices, faces) = (&read.members.vertices, &read.members.faces);
         Self {
             vertices: vertices.iter().map(|v| v.0).collect(),
+            faces: faces.iter().map(|f| f.0).collect(),
             triangles: (0..surface.triangles.len())
                 .map(|i| surface.corners(i).map(|p| p.as_vec3()))
                 .collect(),
@@ -50,6 +56,9 @@ impl SurfaceBefore {
                 .triangles
                 .iter()
                 .map(|t| t.map(|row| vertices[row as usize]))
+                .collect(),
+            triangle_face: (surface.triangle_face.iter())
+                .map(|&row| faces[row as usize])
                 .collect(),
             reference: OnceLock::new(),
         }
@@ -60,18 +69,37 @@ impl SurfaceBefore {
         self.vertices.contains(&v.0)
     }
 
+    /// Whether `f` was a face of the mesh then.
+    pub fn had_face(&self, f: FaceId) -> bool {
+        self.faces.contains(&f.0)
+    }
+
+    /// The point of the surface closest to `p` and the triangle it lies on; `None` for a
+    /// surface without triangles.
+    fn closest(&self, p: Vec3) -> Option<(Vec3, usize)> {
+        if self.triangles.is_empty() {
+            return None;
+        }
+        let reference = self
+            .reference
+            .get_or_init(|| Reference::from_triangles(self.triangles.clone()));
+        Some(reference.closest_on(p))
+    }
+
+    /// The face the point of the surface closest to `p` lies on: where a new face whose
+    /// centroid is `p` came from. `None` for a surface without faces.
+    pub fn face_at(&self, p: Vec3) -> Option<FaceId> {
+        self.closest(p).map(|(_, t)| self.triangle_face[t])
+    }
+
     /// The value at the point of the surface closest to `p`, interpolated from its triangle's
     /// corners' values (`value` of a corner; NaN for one without), the corners where they were
     /// when the surface was read. NaN where no corner has a value or the surface has no
     /// triangle.
     pub fn value_at(&self, p: Vec3, value: impl Fn(VertexId) -> f32) -> f32 {
-        if self.corners.is_empty() {
+        let Some((q, t)) = self.closest(p) else {
             return f32::NAN;
-        }
-        let reference = self
-            .reference
-            .get_or_init(|| Reference::from_triangles(self.triangles.clone()));
-        let (q, t) = reference.closest_on(p);
+        };
         let weights = barycentric(q, self.triangles[t]);
         let corners = self.corners[t];
         let (mut sum, mut total) = (0.0, 0.0);
@@ -144,5 +172,16 @@ mod tests {
         let got = surface.value_at(Vec3::new(0.75, 0.25, 0.0), some);
         assert!((got - 1.5).abs() < 1e-6, "{got}");
         assert!(surface.value_at(Vec3::ZERO, |_| f32::NAN).is_nan());
+        // The two faces: the centroid of each, and a point above, lie on their own face.
+        let faces = crate::mesh::MeshMembers::collect(&world, built.mesh).faces;
+        assert!(faces.iter().all(|&f| surface.had_face(f)));
+        assert_eq!(
+            surface.face_at(Vec3::new(2.0, 1.0, 0.0) / 3.0),
+            Some(faces[0])
+        );
+        assert_eq!(
+            surface.face_at(Vec3::new(1.0, 2.0, 5.0) / 3.0),
+            Some(faces[1])
+        );
     }
 }
