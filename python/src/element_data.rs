@@ -20,7 +20,8 @@ use pyo3::types::PyDict;
 
 use pappus::mesh::build::BuiltMesh;
 use pappus::mesh::topology::MeshRef;
-use pappus::mesh::{FaceId, MeshId, MeshMembers, PolygonSoup};
+use pappus::mesh::{FaceId, MeshId, MeshMembers, PolygonSoup, VertexId};
+use pappus::ops::declaration::FaceChildren;
 use pappus::ops::geometry::carry::SurfaceBefore;
 use pyo3::exceptions::{PyKeyError, PyValueError};
 
@@ -171,14 +172,15 @@ impl ElementData {
     /// value from `before` (see the module doc); one that finds none there keeps none. Values
     /// of elements the edit removed are dropped once a column holds more values than the mesh
     /// has elements of its kind (their keys, generation included, never name a later one).
-    /// With `faces_renewed` (subdivision, which rewrites the faces in place: an old face's
-    /// entity names one of its children, or another face's), every face reads its value anew.
+    /// With `renewed` (subdivision, which rewrites the faces in place: an old face's entity
+    /// names one of its children, or another face's), every face reads its value anew: its
+    /// parent's, by the layout the edit declares, else the face its centroid lay on.
     pub(crate) fn carry(
         &mut self,
         before: &SurfaceBefore,
         world: &World,
         mesh: MeshId,
-        faces_renewed: bool,
+        renewed: Option<Option<FaceChildren>>,
     ) {
         let members = MeshMembers::collect(world, mesh);
         let m = MeshRef::new(world);
@@ -191,19 +193,30 @@ impl ElementData {
                 .map(|v| v.0)
                 .collect();
             self.vertex.carry(&live, &made, |e, column| {
-                let p = m.position(pappus::mesh::VertexId(e));
+                let p = m.position(VertexId(e));
                 before.value_at(p, |c| column.get(&c.0).copied().unwrap_or(f32::NAN))
             });
         }
         if !self.face.0.is_empty() {
             let live = Per::Face.of(&members);
-            let made: Vec<(FaceId, Option<FaceId>)> = members
-                .faces
-                .iter()
-                .filter(|f| faces_renewed || !before.had_face(**f))
-                .map(|&f| (f, before.face_at(m.face_centroid(f))))
-                .collect();
-            if faces_renewed {
+            let parents = renewed
+                .flatten()
+                .and_then(|children| before.face_parents(children, live.len()));
+            let made: Vec<(FaceId, Option<FaceId>)> = match parents {
+                Some(parents) => members
+                    .faces
+                    .iter()
+                    .copied()
+                    .zip(parents.into_iter().map(Some))
+                    .collect(),
+                None => members
+                    .faces
+                    .iter()
+                    .filter(|f| renewed.is_some() || !before.had_face(**f))
+                    .map(|&f| (f, before.face_at(m.face_centroid(f))))
+                    .collect(),
+            };
+            if renewed.is_some() {
                 // Every value is read from the columns as they were, then replaces them.
                 for (_, column) in &mut self.face.0 {
                     let old = std::mem::take(column);
@@ -228,6 +241,51 @@ impl ElementData {
         }
     }
 
+    /// The vertex columns for the mesh `to`, handed back from elsewhere (the editor, under
+    /// `pappus.show`), whose vertex at row `j` was this mesh's (`mesh`'s) vertex at row
+    /// `sources[j]` (-1: a vertex made there). A kept vertex keeps its value; a made one reads
+    /// its value off this mesh's surface at its place, as after an edit here. Face columns do
+    /// not go over: faces are not traced. `None` when `sources` does not have one row per
+    /// vertex of `to`.
+    pub(crate) fn handed_over(
+        &self,
+        (world, mesh): (&World, MeshId),
+        to: (&World, MeshId),
+        sources: &[i64],
+    ) -> Option<ElementData> {
+        let new_vertices = MeshMembers::collect(to.0, to.1).vertices;
+        if sources.len() != new_vertices.len() {
+            return None;
+        }
+        let old_rows = Per::Vertex.rows(world, mesh);
+        let made = sources.iter().any(|&s| s < 0);
+        let surface = (made && !self.vertex.0.is_empty()).then(|| SurfaceBefore::of(world, mesh));
+        let m = MeshRef::new(to.0);
+        let carried = |column: &EntityHashMap<f32>| {
+            let old = |row: i64| old_rows.get(usize::try_from(row).ok()?);
+            let value = |v: &VertexId, &row: &i64| match (old(row), &surface) {
+                (Some(e), _) => column.get(e).copied(),
+                (None, Some(surface)) => Some(surface.value_at(m.position(*v), |c| {
+                    column.get(&c.0).copied().unwrap_or(f32::NAN)
+                })),
+                (None, None) => None,
+            };
+            (new_vertices.iter().zip(sources))
+                .filter_map(|(v, row)| Some((v.0, value(v, row)?)))
+                .filter(|(_, x)| !x.is_nan())
+                .collect()
+        };
+        let vertex = self
+            .vertex
+            .0
+            .iter()
+            .map(|(name, column)| (name.clone(), carried(column)));
+        Some(ElementData {
+            vertex: Columns(vertex.collect()),
+            ..ElementData::default()
+        })
+    }
+
     /// Keeps the surface as a hand edit opens, for [`ElementData::closed_edit`].
     pub(crate) fn opened_edit(&mut self, world: &World, mesh: MeshId) {
         self.surface_at_edit = self.surface_before(world, mesh);
@@ -238,7 +296,7 @@ impl ElementData {
         if let Some(before) = self.surface_at_edit.take()
             && committed
         {
-            self.carry(&before, world, mesh, false);
+            self.carry(&before, world, mesh, None);
         }
     }
 

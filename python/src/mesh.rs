@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 use std::time::Instant;
 
+use bevy::ecs::entity::EntityHashMap;
 use bevy::prelude::{Entity, World};
 use numpy::{
     AllowTypeChange, PyArray1, PyArrayLike2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2,
@@ -15,7 +16,7 @@ use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
 use bevy::math::{Vec2, Vec3};
 use pappus::cli::info_with_load_times;
-use pappus::edit::{Edit, IdsKept, Invocation};
+use pappus::edit::{Declaration, Edit, FaceChildren, IdsKept, Invocation};
 use pappus::edit::{EditContext, Step};
 use pappus::io;
 use pappus::mesh::attributes::{MeshAttributes, StaleNormals};
@@ -101,6 +102,23 @@ impl Rows {
 }
 
 impl Mesh {
+    /// This mesh's input numbering for `to`, whose vertex at row `j` is this mesh's vertex at
+    /// row `sources[j]` (-1: none): an input number names the same vertex, or none where the
+    /// vertex is gone.
+    fn inputs_handed_over(&self, to: &Mesh, sources: &[i64]) -> Vec<Option<VertexId>> {
+        let old = MeshMembers::collect(&self.world, self.mesh).vertices;
+        let new = MeshMembers::collect(&to.world, to.mesh).vertices;
+        let mut now: EntityHashMap<VertexId> = EntityHashMap::default();
+        for (&v, &row) in new.iter().zip(sources) {
+            if let Some(was) = usize::try_from(row).ok().and_then(|r| old.get(r)) {
+                now.insert(was.0, v);
+            }
+        }
+        (self.input_vertices.iter())
+            .map(|v| now.get(&(*v)?.0).copied())
+            .collect()
+    }
+
     /// Builds `soup` into a fresh world.
     pub(crate) fn build(soup: &PolygonSoup, info: MeshInfo, read_ms: f64) -> Result<Mesh, String> {
         let start = Instant::now();
@@ -267,8 +285,8 @@ impl Mesh {
             self.element_revision += 1;
         }
         if let (Ok(_), Some(surface)) = (&outcome, &surface) {
-            let faces_renewed = ids == IdsKept::VerticesOnly;
-            (self.element_data).carry(surface, &self.world, self.mesh, faces_renewed);
+            let renewed = (ids == IdsKept::VerticesOnly).then(|| face_children(&step));
+            (self.element_data).carry(surface, &self.world, self.mesh, renewed);
         }
         if let Some(e) = failure {
             let summary = outcome.as_ref().map(|(summary, _)| summary.clone());
@@ -1369,9 +1387,30 @@ impl Mesh {
     /// mesh's. Every handle
     /// taken on this mesh before is stale afterwards; `other` is left with this mesh's old
     /// contents. `RuntimeError` while an edit is open on either.
-    fn _take(&mut self, mut other: PyRefMut<'_, Mesh>) -> PyResult<()> {
+    ///
+    /// With `vertex_sources` (for each of `other`'s vertices, the row of this mesh's vertex it
+    /// is, -1 for one made since), this mesh's input numbers and `vertex_data` go over to
+    /// `other`'s vertices ([`ElementData::handed_over`]); `ValueError` when it does not have one
+    /// row per vertex of `other`.
+    #[pyo3(signature = (other, vertex_sources=None))]
+    fn _take(
+        &mut self,
+        mut other: PyRefMut<'_, Mesh>,
+        vertex_sources: Option<Vec<i64>>,
+    ) -> PyResult<()> {
         if self.open_edit.is_some() || other.open_edit.is_some() {
             return Err(edit_open());
+        }
+        if let Some(sources) = vertex_sources {
+            let to = (&other.world, other.mesh);
+            let data = (self.element_data)
+                .handed_over((&self.world, self.mesh), to, &sources)
+                .ok_or_else(|| {
+                    PyValueError::new_err("vertex_sources needs one row per vertex of the mesh")
+                })?;
+            let inputs = self.inputs_handed_over(&other, &sources);
+            other.element_data = data;
+            other.input_vertices = inputs;
         }
         let revision = self.element_revision.max(other.element_revision) + 1;
         let name = self.name();
@@ -1529,11 +1568,21 @@ fn report_from(counts: &[usize]) -> RepairReport {
     report
 }
 
+/// The declaration of the operation a step runs, if it runs one.
+fn declaration(step: &Step) -> Option<&'static Declaration> {
+    match step {
+        Step::Edit(edit) => Some(edit.declaration()),
+        Step::On(invocation, _) => Some(invocation.declaration()),
+        Step::Validate | Step::Deform(_) => None,
+    }
+}
+
 /// Which element ids a step keeps (see [`IdsKept`]).
 fn ids_kept(step: &Step) -> IdsKept {
-    match step {
-        Step::Edit(edit) => edit.keeps_ids(),
-        Step::On(invocation, _) => invocation.declaration().ids,
-        Step::Validate | Step::Deform(_) => IdsKept::All,
-    }
+    declaration(step).map_or(IdsKept::All, |d| d.ids)
+}
+
+/// How a step lays out the faces it makes, when it renumbers them (see [`FaceChildren`]).
+fn face_children(step: &Step) -> Option<FaceChildren> {
+    declaration(step).and_then(|d| d.face_children)
 }

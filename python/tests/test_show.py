@@ -132,6 +132,33 @@ def test_an_edit_in_the_window_comes_back_and_ends_the_old_handles(editor):
     assert ends == opposite
 
 
+def test_your_vertex_arrays_and_input_numbers_follow_an_edit_in_the_window(editor):
+    mesh = pappus.load("shape:icosphere:2")
+    positions = mesh.vertices.copy()
+    mesh.vertex_data["height"] = positions[:, 2]
+    mesh.face_data["label"] = np.arange(len(mesh.faces))
+    h = mesh.edge(5).halfedge
+    a, b = h.from_vertex.row, h.to_vertex.row
+    # A collapse in the window: one vertex goes, another takes its row in the editor's order.
+    with pytest.warns(UserWarning, match=r"face_data\['label'\] did not come back"):
+        pappus.show(mesh, script=f"select-edge:{a},{b};key:C;exit", timeout=300)
+    assert len(mesh.vertices) == len(positions) - 1 and "label" not in mesh.face_data
+    # Input numbers still name the vertices they named, wherever their rows went: each is
+    # where it was, but the one the collapse kept (moved to the edge's midpoint) and the one
+    # it removed (none).
+    rows = mesh.__reduce__()[1][0]["input_rows"]
+    assert (rows < 0).sum() == 1 and min(rows[a], rows[b]) == -1
+    kept = max(rows[a], rows[b])
+    moved = np.flatnonzero(np.any(mesh.vertices[rows] != positions, axis=1))
+    np.testing.assert_array_equal(np.sort(moved), np.sort([a, b]))
+    np.testing.assert_allclose(mesh.vertices[kept], (positions[a] + positions[b]) / 2, atol=1e-6)
+    # vertex_data followed them: each vertex's height is its own, the kept one's its end's.
+    height = mesh.vertex_data["height"]
+    others = np.setdiff1d(np.arange(len(positions)), [a, b])
+    np.testing.assert_array_equal(height[rows[others]], positions[others, 2])
+    assert height[kept] in (positions[a, 2], positions[b, 2])
+
+
 def test_a_quantity_is_drawn_in_its_colour_map(editor, tmp_path):
     Image = pytest.importorskip("PIL.Image")  # installed by .ci/run: never skipped there
     mesh = pappus.load("shape:icosphere:3")

@@ -46,7 +46,7 @@ pub use step::{Step, elements_at, step_syntax};
 
 /// What an operation declares about itself (defined beside the operations, in
 /// [`crate::ops::declaration`], so that `ops` need not import this layer).
-pub use crate::ops::declaration::{Carries, Declaration, IdsKept};
+pub use crate::ops::declaration::{Carries, Declaration, FaceChildren, IdsKept};
 
 use crate::ops::operation::count;
 /// What an edit returns and runs with, and one use of an operation that declares itself

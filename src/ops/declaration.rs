@@ -26,6 +26,50 @@ pub enum IdsKept {
     VerticesOnly,
 }
 
+/// How an operation that renumbers the faces (subdivision) lays out the faces it makes: each
+/// old face's children one after another, in the old face order, and the same again at each
+/// further level (a subdivision run LEVELS times). What lets a value on a face (a script's
+/// `face_data`) follow it to its children exactly, where geometry alone would give a face near
+/// an edge its neighbour's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FaceChildren {
+    /// Each face becomes this many faces of as many sides as it had (Loop: 4 triangles).
+    Each(u32),
+    /// Each face becomes one face per corner, each of this many sides (Catmull–Clark: quads).
+    PerCorner(u32),
+}
+
+impl FaceChildren {
+    /// The old face (its row) each of `made` faces came from, for old faces of `sides`
+    /// corners each: the layout applied level after level until it makes `made` faces. `None`
+    /// when no number of levels (up to 16) makes exactly that many: the faces were not laid out
+    /// this way, and the caller must not assume they were.
+    pub fn parents(self, sides: &[u32], made: usize) -> Option<Vec<u32>> {
+        let (mut children, mut sides_now) = (vec![1u64; sides.len()], sides.to_vec());
+        for _ in 0..16 {
+            for (c, s) in children.iter_mut().zip(&mut sides_now) {
+                let factor = match self {
+                    FaceChildren::Each(n) => n,
+                    FaceChildren::PerCorner(k) => std::mem::replace(s, k),
+                };
+                *c = c.saturating_mul(u64::from(factor));
+            }
+            let total = children.iter().fold(0u64, |t, &c| t.saturating_add(c));
+            if total == made as u64 {
+                let rows = children.iter().enumerate();
+                return Some(
+                    rows.flat_map(|(f, &c)| std::iter::repeat_n(f as u32, c as usize))
+                        .collect(),
+                );
+            }
+            if total > made as u64 {
+                return None;
+            }
+        }
+        None
+    }
+}
+
 impl IdsKept {
     /// Whether `x`'s id still names the same element after the edit (if it survived).
     pub fn keeps(self, x: crate::mesh::ids::ElementId) -> bool {
@@ -79,6 +123,8 @@ pub struct Declaration {
     pub on_tables: bool,
     /// Which element ids keep their meaning through it.
     pub ids: IdsKept,
+    /// How it lays out the faces it makes, when it renumbers them (subdivision).
+    pub face_children: Option<FaceChildren>,
     /// Whether the simplification history still describes the mesh after it.
     pub keeps_history: bool,
     /// Whether its uses merge into one undo step while one mouse press lasts (the frames of a
@@ -115,6 +161,7 @@ impl Declaration {
             job: false,
             on_tables: false,
             ids: IdsKept::All,
+            face_children: None,
             keeps_history: false,
             merges_while_held: false,
             keeps_normals: false,
@@ -245,10 +292,11 @@ impl Declaration {
         }
     }
 
-    /// Only vertex ids survive it.
-    pub const fn renumbering(self) -> Self {
+    /// Only vertex ids survive it; the faces it makes are laid out as `children` say.
+    pub const fn renumbering(self, children: FaceChildren) -> Self {
         Self {
             ids: IdsKept::VerticesOnly,
+            face_children: Some(children),
             ..self
         }
     }
@@ -605,8 +653,31 @@ mod tests {
         assert!(!moved.is_step && !moved.job && !moved.keeps_history);
         assert_eq!(moved.carries, Carries::All);
         assert_eq!(
-            Declaration::new("loop").renumbering().ids,
+            Declaration::new("loop")
+                .renumbering(FaceChildren::Each(4))
+                .ids,
             IdsKept::VerticesOnly
         );
+    }
+
+    /// Children listed after their parent, level after level; a count no level makes is not
+    /// taken for this layout.
+    #[test]
+    fn face_children_name_their_parents_at_every_level() {
+        let each = FaceChildren::Each(4);
+        assert_eq!(each.parents(&[3, 3], 8), Some(vec![0, 0, 0, 0, 1, 1, 1, 1]));
+        assert_eq!(each.parents(&[3], 16), Some(vec![0; 16]));
+        assert_eq!(each.parents(&[3, 3], 9), None);
+        let quads = FaceChildren::PerCorner(4);
+        // A triangle and a pentagon: 3 + 5 quads, then 4 of each.
+        assert_eq!(
+            quads.parents(&[3, 5], 8),
+            Some([vec![0; 3], vec![1; 5]].concat())
+        );
+        assert_eq!(
+            quads.parents(&[3, 5], 32),
+            Some([vec![0; 12], vec![1; 20]].concat())
+        );
+        assert_eq!(quads.parents(&[3, 5], 7), None);
     }
 }

@@ -211,6 +211,15 @@ pub fn register_quantity(q: impl VertexQuantity) -> Result<Quantity, Clash> {
     Ok(q)
 }
 
+/// Every registered quantity follows an undo's or redo's new entities
+/// ([`VertexQuantity::follow`]: `map` from the entity each element had to the one that stands
+/// for it now).
+pub fn quantities_follow(map: &crate::mesh::change::Remap) {
+    for q in quantities().iter() {
+        q.0.follow(map);
+    }
+}
+
 /// Why an operation was not registered: it would share a step name, or a key, with one
 /// already registered. Both are named.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]

@@ -49,7 +49,7 @@ use crate::mesh::tables::{
 use super::Refusal;
 use crate::memory_budget::Estimate;
 
-use crate::ops::declaration::{Declaration, Parameter};
+use crate::ops::declaration::{Declaration, FaceChildren, Parameter};
 
 mod operation;
 pub mod stencil;
@@ -73,7 +73,7 @@ pub const LOOP: Declaration = Declaration::new("loop")
     .computed_on_tables()
     .as_job()
     .stepping()
-    .renumbering()
+    .renumbering(FaceChildren::Each(4))
     .carrying_some(CARRIES_SOME);
 
 /// Catmull–Clark subdivision: as [`LOOP`].
@@ -85,7 +85,7 @@ pub const CATMULL_CLARK: Declaration = Declaration::new("catmull-clark")
     .computed_on_tables()
     .as_job()
     .stepping()
-    .renumbering()
+    .renumbering(FaceChildren::PerCorner(4))
     .carrying_some(CARRIES_SOME);
 
 /// A subdivision scheme (the edit layer names it as `crate::edit::Scheme`).

@@ -11,7 +11,8 @@
 //! Elements brought back by an undo get new entities (Bevy never reuses an id), so every
 //! application returns a remap, which is passed to the entries that name the restored state:
 //! the rest of the stack the entry came from. The selection is remapped the same way and
-//! returns to what it was on the restored side.
+//! returns to what it was on the restored side, and so are the values a script gave by entity
+//! (`pappus.show`'s arrays: [`registry::quantities_follow`]).
 //!
 //! The entries hold only what changed, and their bytes are counted: past
 //! [`UndoHistory::limit_bytes`] the oldest are dropped. Consecutive moves of one vertex within
@@ -28,9 +29,11 @@ use crate::mesh::despawn_mesh;
 use crate::mesh::ids::{ElementId, MeshId};
 use crate::mesh::tables::MeshTables;
 use crate::mesh::topology::MeshRef;
+use crate::ops::registry;
 
 use crate::edit::{Edit, MergeKey, Reach, Redraw};
 
+use super::origins::VertexOrigins;
 use super::selection::{ActiveMesh, Selection, exists, keep_live_selection};
 
 /// What an entry puts back.
@@ -389,6 +392,10 @@ pub fn restore(world: &mut World, pending: Pending) -> Option<Remap> {
     for entry in history.undo.iter_mut().chain(history.redo.iter_mut()) {
         entry.remap(&mut map);
     }
+    registry::quantities_follow(&map);
+    if let Some(mut origins) = world.get_resource_mut::<VertexOrigins>() {
+        origins.follow(&map);
+    }
     let selection = pending
         .selection
         .map(|x| remap_element(x, &mut map))
@@ -417,6 +424,10 @@ pub fn step(world: &mut World, redo: bool) -> Option<Stepped> {
     let (inverse, mut map, mesh, redraw) = entry.record.apply(world);
     for other in world.resource_mut::<UndoHistory>().stack(redo).iter_mut() {
         other.remap(&mut map);
+    }
+    registry::quantities_follow(&map);
+    if let Some(mut origins) = world.get_resource_mut::<VertexOrigins>() {
+        origins.follow(&map);
     }
     let selection = entry
         .selection

@@ -9,8 +9,9 @@
 //! their own values (the caller's map is by entity); this module only answers for the others.
 //! A corner with no value (NaN) is left out and the other corners' weights renormalised; with
 //! none left the value is NaN. A value on faces is carried the same way: a face an edit made
-//! takes the value of the face its centroid lies on (a split's halves, a subdivision's
-//! children: the face they were cut from). This is the attribute transfer of remeshing pipelines
+//! takes the value of the face its centroid lies on (a split's halves: the face they were cut
+//! from), or, after an edit that declares how it lays out the faces it makes (subdivision,
+//! [`FaceChildren`]), its parent's, exactly. This is the attribute transfer of remeshing pipelines
 //! (Botsch et al., *Polygon Mesh Processing*, 2010, §6.5: project onto the input and
 //! interpolate there).
 
@@ -22,6 +23,7 @@ use bevy::prelude::World;
 
 use crate::mesh::tables::extract;
 use crate::mesh::{FaceId, MeshId, VertexId};
+use crate::ops::declaration::FaceChildren;
 
 use super::closest::Reference;
 use super::surface::Surface;
@@ -34,7 +36,8 @@ pub struct SurfaceBefore {
     faces: EntityHashSet,
     triangles: Vec<[Vec3; 3]>,
     corners: Vec<[VertexId; 3]>,
-    /// The face each triangle was cut from.
+    /// The face each triangle was cut from (each face's triangles one after another, in row
+    /// order).
     triangle_face: Vec<FaceId>,
     reference: OnceLock<Reference>,
 }
@@ -84,6 +87,28 @@ impl SurfaceBefore {
             .reference
             .get_or_init(|| Reference::from_triangles(self.triangles.clone()));
         Some(reference.closest_on(p))
+    }
+
+    /// The face (as it was) each face of a mesh of `made` faces came from, by row, when an
+    /// edit laid them out as `children` say ([`FaceChildren::parents`]); `None` when it did
+    /// not.
+    pub fn face_parents(&self, children: FaceChildren, made: usize) -> Option<Vec<FaceId>> {
+        // Each face's sides: its fan's triangles and two.
+        let mut faces: Vec<(FaceId, u32)> = Vec::new();
+        for &f in &self.triangle_face {
+            match faces.last_mut() {
+                Some((last, sides)) if *last == f => *sides += 1,
+                _ => faces.push((f, 3)),
+            }
+        }
+        let sides: Vec<u32> = faces.iter().map(|&(_, s)| s).collect();
+        let parents = children.parents(&sides, made)?;
+        Some(
+            parents
+                .into_iter()
+                .map(|row| faces[row as usize].0)
+                .collect(),
+        )
     }
 
     /// The face the point of the surface closest to `p` lies on: where a new face whose
@@ -183,5 +208,8 @@ mod tests {
             surface.face_at(Vec3::new(1.0, 2.0, 5.0) / 3.0),
             Some(faces[1])
         );
+        let quads = surface.face_parents(FaceChildren::PerCorner(4), 6);
+        assert_eq!(quads, Some([[faces[0]; 3], [faces[1]; 3]].concat()));
+        assert_eq!(surface.face_parents(FaceChildren::Each(4), 6), None);
     }
 }

@@ -6,6 +6,7 @@
 //! triangles are); the edge length is the mean length of the vertex's edges.
 
 use crate::colormap::ColorMap;
+use crate::mesh::change::Remap;
 use crate::mesh::tables::{Connectivity, FaceRow, VertexRow};
 use crate::mesh::{FaceId, VertexId};
 
@@ -74,6 +75,12 @@ pub trait VertexQuantity: Sync + 'static {
     fn per_face(&self, _t: &Connectivity, _given: &Given<'_>) -> Option<Vec<f64>> {
         None
     }
+
+    /// An undo or redo brought elements back under new entities (`map`: from the entity each
+    /// had to the one that stands for it now). A quantity that keeps values by entity
+    /// ([`super::stored::StoredQuantity`]) gives them to the new entities; the default, for one
+    /// computed from the mesh, does nothing.
+    fn follow(&self, _map: &Remap) {}
 }
 
 /// A registered quantity, by reference: cheap to copy, compared by name.

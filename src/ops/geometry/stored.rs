@@ -4,15 +4,18 @@
 //!
 //! The values are kept by vertex (or face) entity, not by row, so they follow the elements
 //! through edits: an element an edit keeps keeps its value; one it makes has none (NaN, which
-//! the editor draws grey and the colour range leaves out). A caller that reads it without the
+//! the editor draws grey and the colour range leaves out); one an undo brings back under a new
+//! entity gets its value again ([`VertexQuantity::follow`]). A caller that reads it without the
 //! entities behind the rows ([`Given::vertices`], [`Given::faces`] empty) gets NaN everywhere.
 //! Values on faces are also read per vertex, as the mean of the vertex's faces' values, for
 //! what colours vertices (the command line, Python).
 
 use bevy::ecs::entity::EntityHashMap;
 use bevy::prelude::Entity;
+use std::sync::{PoisonError, RwLock};
 
 use crate::colormap::ColorMap;
+use crate::mesh::change::Remap;
 use crate::mesh::tables::Connectivity;
 use crate::mesh::{FaceId, VertexId};
 
@@ -21,7 +24,9 @@ use super::quantity::{Given, Needs, QuantityDeclaration, VertexQuantity};
 /// Values given per vertex or per face, by entity (see the module doc).
 pub struct StoredQuantity {
     declaration: &'static QuantityDeclaration,
-    values: EntityHashMap<f64>,
+    /// Written only when an undo or redo gives elements new entities
+    /// ([`VertexQuantity::follow`]): a registered quantity is shared.
+    values: RwLock<EntityHashMap<f64>>,
     on_faces: bool,
 }
 
@@ -71,15 +76,16 @@ impl StoredQuantity {
         }));
         Self {
             declaration,
-            values,
+            values: RwLock::new(values),
             on_faces,
         }
     }
 
     /// The value of each of these elements (NaN for one without).
     fn read(&self, elements: impl Iterator<Item = Entity>) -> Vec<f64> {
+        let values = self.values.read().unwrap_or_else(PoisonError::into_inner);
         elements
-            .map(|e| self.values.get(&e).copied().unwrap_or(f64::NAN))
+            .map(|e| values.get(&e).copied().unwrap_or(f64::NAN))
             .collect()
     }
 }
@@ -120,6 +126,15 @@ impl VertexQuantity for StoredQuantity {
             return Some(vec![f64::NAN; t.face_count()]);
         }
         Some(self.read(given.faces.iter().map(|f| f.0)))
+    }
+
+    fn follow(&self, map: &Remap) {
+        let mut values = self.values.write().unwrap_or_else(PoisonError::into_inner);
+        let moved: Vec<(Entity, f64)> = map
+            .iter()
+            .filter_map(|(old, &new)| Some((new, *values.get(old)?)))
+            .collect();
+        values.extend(moved);
     }
 }
 
