@@ -10,12 +10,14 @@
 //!   editor's pipeline and the command line need to know about it.
 //! - [`io`]: file formats (OBJ, OFF, PLY, STL), all to and from a [`mesh::soup::PolygonSoup`].
 //! - [`colormap`]: the colour maps quantities on a mesh are shown and exported with.
+//! - [`checks`]: whether the build checks its own work as it goes (`CHECKED`).
 //! - [`cli`]: the batch command line (`info`, `convert`, `process`), no window needed.
 //! - [`process_memory`]: the `pappus` program's allocator settings (freed memory kept for reuse).
 //! - `editor`: the Bevy application (the window, rendering, picking, the panels), behind the
 //!   `editor` cargo feature, on by default. Without it the crate is the core above, built on
 //!   Bevy's ECS and math alone: no window, no GPU, no rendering crates to compile.
 
+pub mod checks;
 pub mod cli;
 pub mod colormap;
 pub mod edit;

@@ -15,7 +15,7 @@ use std::path::PathBuf;
 /// edit layer) never reaches up to the command line or the editor, and those two never reach
 /// each other. The Python package, a crate of its own, stands above them all.
 const LAYERS: &[&[&str]] = &[
-    &["process_memory", "colormap"],
+    &["checks", "process_memory", "colormap"],
     &["memory_budget"],
     &["mesh"],
     &["io"],

@@ -355,7 +355,11 @@ impl Copy {
     fn attempt(&mut self, attempt: impl FnOnce(&mut World, MeshId) -> Ended) -> Ran {
         let (mut world, mesh) = self.spare.take().unwrap_or_else(|| {
             let (world, rows, mesh) = Self::spawned(&self.tables);
-            debug_assert_eq!(rows.vertices, self.rows.vertices, "copies share their ids");
+            crate::checks::checked_assert_eq!(
+                rows.vertices,
+                self.rows.vertices,
+                "copies share their ids"
+            );
             (world, mesh)
         });
         // Its log messages would name the copy's elements: only the run on the mesh itself

@@ -326,7 +326,7 @@ impl Edit {
         // Normals kept through an edit that changed the surface no longer describe it.
         mark_normals_stale(world, mesh, self);
         self.settle_history(world, mesh);
-        #[cfg(debug_assertions)]
+        #[cfg(any(debug_assertions, feature = "checked"))]
         if let Err(e) = crate::mesh::validate(world, mesh) {
             panic!("{} left an invalid mesh: {e}", self.label());
         }

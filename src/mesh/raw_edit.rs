@@ -407,7 +407,7 @@ impl<'w> RawEdit<'w> {
         self.closed = true;
         let (world, journal) = (&*self.world, &self.journal);
         let verdict = validate_edit(world, journal.mesh, &journal.removed, &journal.before());
-        #[cfg(debug_assertions)]
+        #[cfg(any(debug_assertions, feature = "checked"))]
         {
             let whole = super::validate::validate_without(world, journal.mesh, &journal.removed);
             assert_eq!(

@@ -495,7 +495,7 @@ fn detach_faces(
             continue;
         }
         for c in faces.corners(f) {
-            debug_assert_eq!(twin[c], NONE, "a detached face keeps no twins");
+            crate::checks::checked_assert_eq!(twin[c], NONE, "a detached face keeps no twins");
             let v = faces.indices[c] as usize;
             if taken[v] {
                 positions.push(positions[v]);

@@ -219,7 +219,7 @@ fn undo_or_redo(world: &mut World, redo: bool) -> Result<String, Declined> {
         SimplificationHistory::end(world, mesh);
         mark_redraw(world, mesh, stepped.redraw);
     }
-    #[cfg(debug_assertions)]
+    #[cfg(any(debug_assertions, feature = "checked"))]
     if let Some(mesh) = world.resource::<ActiveMesh>().0
         && let Err(e) = crate::mesh::validate(world, mesh)
     {

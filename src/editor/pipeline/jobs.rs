@@ -362,7 +362,7 @@ fn commit(world: &mut World, job: &mut RunningJob, output: JobOutput) -> Result<
         }
     };
     crate::edit::mark_normals_stale(world, mesh, &job.edit);
-    #[cfg(debug_assertions)]
+    #[cfg(any(debug_assertions, feature = "checked"))]
     if let Err(e) = crate::mesh::validate(world, mesh) {
         panic!("{} left an invalid mesh: {e}", job.label);
     }

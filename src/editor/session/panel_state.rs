@@ -87,10 +87,10 @@ impl Default for UiState {
         // Filling every hole of a scan in the editor means patches that continue the surface
         // (Liepa); the `fill-holes` step keeps its one polygon each by default.
         let faired = state.set_parameter("fill-holes", 0, Some(1.0));
-        debug_assert!(faired.is_ok(), "{faired:?}");
+        crate::checks::checked_assert!(faired.is_ok(), "{faired:?}");
         // The panel's Inset button insets a quarter of the way in (the I key drags from none).
         let quarter = state.set_parameter("inset", 0, Some(0.25));
-        debug_assert!(quarter.is_ok(), "{quarter:?}");
+        crate::checks::checked_assert!(quarter.is_ok(), "{quarter:?}");
         state
     }
 }

@@ -241,7 +241,7 @@ pub fn plan_bevel_vertex(
 /// on a fresh plan (one made on the world as it is): the mesh then passes
 /// [`crate::mesh::validate()`]. In debug builds it plans again and asserts the plan is unchanged.
 pub fn apply_bevel_vertex(world: &mut World, plan: BevelVertexPlan) -> FaceId {
-    debug_assert_eq!(
+    crate::checks::checked_assert_eq!(
         plan_bevel_vertex(world, plan.v, plan.amount).as_ref(),
         Ok(&plan),
         "stale bevel plan"
@@ -310,7 +310,7 @@ pub fn plan_bevel_edge(world: &World, e: EdgeId, amount: f32) -> Result<BevelEdg
 /// on a fresh plan (one made on the world as it is): the mesh then passes
 /// [`crate::mesh::validate()`]. In debug builds it plans again and asserts the plan is unchanged.
 pub fn apply_bevel_edge(world: &mut World, plan: BevelEdgePlan) -> FaceId {
-    debug_assert_eq!(
+    crate::checks::checked_assert_eq!(
         plan_bevel_edge(world, plan.edge, plan.amount).as_ref(),
         Ok(&plan),
         "stale bevel plan"

@@ -95,7 +95,7 @@ pub fn plan_bisect(world: &World, e: EdgeId, t: f32) -> Result<BisectPlan, Refus
 
 /// Carries out a bisection planned by [`plan_bisect`]. Returns the new vertex.
 pub fn apply_bisect(world: &mut World, p: BisectPlan) -> VertexId {
-    debug_assert_eq!(
+    crate::checks::checked_assert_eq!(
         plan_bisect(world, p.edge, p.param),
         Ok(p),
         "stale bisect plan"

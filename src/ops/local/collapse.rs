@@ -814,7 +814,7 @@ pub(crate) fn apply_collapse_deferred(
     p: CollapsePlan,
     removed: &mut Vec<Entity>,
 ) -> (CollapseResult, [Option<EdgeId>; 3]) {
-    debug_assert_eq!(
+    crate::checks::checked_assert_eq!(
         plan_collapse_halfedge(world, p.h, p.options).as_ref(),
         Ok(&p),
         "stale collapse plan"
@@ -920,7 +920,7 @@ fn fold_triangle(world: &mut World, p: &CollapsePlan, fold: Fold) -> EdgeId {
     // edge touches b and goes).
     let (own, other) = (&p.around[fold.side], &p.around[1 - fold.side]);
     let (to_wing, along_next) = (own[1 % own.len()], other[other.len() - 1]);
-    debug_assert_eq!((to_wing.links.twin, along_next.id), (fold.prev, fold.next));
+    crate::checks::checked_assert_eq!((to_wing.links.twin, along_next.id), (fold.prev, fold.next));
     let (on, op) = (along_next.links.twin, to_wing.id);
     let (from_a, from_b) = if fold.side == 0 {
         (to_wing, along_next)

@@ -532,7 +532,7 @@ impl Carry {
 /// Carries out a collapse planned by [`plan_collapse_face`] on the unchanged world, attributes
 /// included. Returns the merged vertex.
 pub fn apply_collapse_face(world: &mut World, p: CollapseFacePlan) -> VertexId {
-    debug_assert_eq!(
+    crate::checks::checked_assert_eq!(
         plan_collapse_face(world, p.face).as_ref(),
         Ok(&p),
         "stale face collapse plan"

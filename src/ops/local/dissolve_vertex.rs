@@ -194,7 +194,7 @@ pub fn plan_dissolve_vertex(world: &World, v: VertexId) -> Result<DissolveVertex
 /// Carries out a dissolve planned by [`plan_dissolve_vertex`] on the unchanged world. Returns
 /// the merged face.
 pub fn apply_dissolve_vertex(world: &mut World, p: DissolveVertexPlan) -> FaceId {
-    debug_assert_eq!(
+    crate::checks::checked_assert_eq!(
         plan_dissolve_vertex(world, p.v).as_ref(),
         Ok(&p),
         "stale vertex dissolve plan"

@@ -154,7 +154,10 @@ pub fn plan_erase(world: &World, faces: &[FaceId]) -> Result<ErasePlan, Refusal>
             .collect();
         match gap_starts[..] {
             [] => {
-                debug_assert!(full.iter().all(|x| !x), "{v} is a corner of an erased face");
+                crate::checks::checked_assert!(
+                    full.iter().all(|x| !x),
+                    "{v} is a corner of an erased face"
+                );
                 removed_vertices.push(v);
             }
             [i] => {
@@ -214,7 +217,7 @@ pub fn plan_erase(world: &World, faces: &[FaceId]) -> Result<ErasePlan, Refusal>
 /// Carries out an erase planned by [`plan_erase`] on the unchanged world. Returns what was
 /// removed.
 pub fn apply_erase(world: &mut World, plan: ErasePlan) -> Erased {
-    debug_assert_eq!(
+    crate::checks::checked_assert_eq!(
         plan_erase(world, &plan.faces).as_ref(),
         Ok(&plan),
         "stale erase plan"

@@ -511,7 +511,7 @@ pub fn plan_extrude(world: &World, faces: &[FaceId]) -> Result<ExtrudePlan, Refu
 /// `distance` should pass [`ExtrudePlan::check_distance`]; where it does not, a vertex whose
 /// new position would not be finite stays at its distance-0 place, so the mesh stays valid.
 pub fn apply_extrude(world: &mut World, plan: ExtrudePlan, distance: f32) -> Extruded {
-    debug_assert_eq!(
+    crate::checks::checked_assert_eq!(
         plan_extrude(world, &plan.ring.faces).as_ref(),
         Ok(&plan),
         "stale extrude plan"

@@ -121,7 +121,7 @@ pub fn plan_flip(world: &World, e: EdgeId) -> Result<FlipPlan, Refusal> {
 /// Carries out a flip planned by [`plan_flip`] on the unchanged world. Returns the edge (the
 /// same entity, now joining the other two vertices).
 pub fn apply_flip(world: &mut World, p: FlipPlan) -> EdgeId {
-    debug_assert_eq!(plan_flip(world, p.edge), Ok(p), "stale flip plan");
+    crate::checks::checked_assert_eq!(plan_flip(world, p.edge), Ok(p), "stale flip plan");
     // `h` comes to point at c inside f and `t` at d inside g: they take the UVs of those
     // corners, which `hn` (at c in f) and `tn` (at d in g) hold; every other corner keeps its own.
     let uvs = crate::mesh::attributes::of_element(world, p.edge.0)

@@ -159,7 +159,7 @@ pub fn plan_inset(world: &World, faces: &[FaceId]) -> Result<InsetPlan, Refusal>
 /// position is still applied (an `amount` outside `[0, 1)` folds the inner face over), and a
 /// copy whose position would not be finite stays on its vertex, so the mesh stays valid.
 pub fn apply_inset(world: &mut World, plan: InsetPlan, amount: f32, depth: f32) -> Extruded {
-    debug_assert_eq!(
+    crate::checks::checked_assert_eq!(
         plan_inset(world, &plan.faces()).as_ref(),
         Ok(&plan),
         "stale inset plan"

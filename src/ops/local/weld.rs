@@ -228,7 +228,7 @@ pub fn plan_weld(world: &World, e1: EdgeId, e2: EdgeId) -> Result<WeldPlan, Refu
 
 /// Carries out a weld planned by [`plan_weld`] on the unchanged world. Returns the kept edge.
 pub fn apply_weld(world: &mut World, p: WeldPlan) -> EdgeId {
-    debug_assert_eq!(
+    crate::checks::checked_assert_eq!(
         plan_weld(world, p.e1, p.e2).as_ref(),
         Ok(&p),
         "stale weld plan"

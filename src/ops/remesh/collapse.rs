@@ -101,7 +101,7 @@ fn collapse_choice(
             .any(|n| n != a && n != b && m.position(n).distance(target) > high)
     };
     let (da, db) = (degree.of(a), degree.of(b));
-    debug_assert_eq!(
+    crate::checks::checked_assert_eq!(
         (da, db),
         (
             feature_degree(m, a, features),

@@ -364,7 +364,7 @@ impl FlatTriangles {
     /// merged vertex has afterwards to `ring`, with its other end and that end's position.
     pub fn apply(&mut self, p: Plan, mut ring: impl FnMut(u32, u32, Vec3)) -> Collapsed {
         let [ra, rb] = &self.rings;
-        debug_assert!(
+        crate::checks::checked_assert!(
             ra[0].links.edge == p.edge && ra[0].links.to == p.b && rb[0].links.to == p.a,
             "a plan is applied right after it is made"
         );

@@ -248,7 +248,7 @@ impl QemRun {
         let (a, b) = (result.kept, result.removed);
         let quadric = &mut self.table.quadric;
         quadric[a.slot()] = quadric[a.slot()] + quadric[b.slot()];
-        debug_assert!(
+        crate::checks::checked_assert!(
             ring_matches(&MeshRef::new(world), a, &self.ring),
             "the plan's ring of {a} differs from the mesh after the collapse"
         );

@@ -393,7 +393,7 @@ pub fn next_level_points(
             .zip(p[nv + ne..].iter().copied())
             .collect(),
     };
-    debug_assert_eq!(
+    crate::checks::checked_assert_eq!(
         p.len(),
         nv + ne + faces.len(),
         "the new vertex rows' layout"

@@ -65,7 +65,7 @@ impl PanelSections {
     /// Draws the section titled `title` with `contents` when it is open; a click on the title
     /// folds it.
     pub fn show(&mut self, ui: &mut egui::Ui, title: &str, contents: impl FnOnce(&mut egui::Ui)) {
-        debug_assert!(
+        crate::checks::checked_assert!(
             SECTIONS.iter().any(|s| s.title == title),
             "{title} is not in SECTIONS"
         );
