@@ -1999,5 +1999,23 @@ fn a_shown_array_keeps_its_values_through_undo_and_redo() {
         .write_message(Request::Edit(Edit::local("split", edge)));
     app.update();
     assert_eq!(sources(&mut app), [vec![-1], (0..642).collect()].concat());
+    // Subdivision rewrites the faces in place: the array on faces is forgotten (drawn grey,
+    // never on faces it was not given for), the one on vertices kept on the old vertices.
+    app.world_mut()
+        .write_message(Request::Edit(Edit::registered("loop").unwrap()));
+    app.update();
+    update_until(&mut app, |app| {
+        use pappus::editor::pipeline::jobs::Jobs;
+        app.world().resource::<Jobs>().running.is_none()
+    });
+    let summary = last_outcome(&app).result.clone().unwrap();
+    // (Another test's arrays may be registered in this process too.)
+    let said = summary.contains("show-undo-faces") && summary.contains("forgotten: the faces");
+    assert!(said, "{summary}");
+    let q = pappus::ops::registry::quantity("show-undo-faces").unwrap();
+    app.world_mut().resource_mut::<ColorBy>().0 = Some(q);
+    app.update();
+    let values = app.world().get::<VertexValues>(mesh(&app).0).unwrap();
+    assert!(values.values.values().all(|x| x.is_nan()));
     let _ = std::fs::remove_dir_all(&folder);
 }

@@ -59,6 +59,8 @@ use std::sync::{Arc, LazyLock, RwLock};
 
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, VertexId};
 use crate::ops::declaration::{Declaration, Names};
+use bevy::ecs::world::WorldId;
+
 use crate::ops::geometry::quantity::{Quantity, VertexQuantity};
 use crate::ops::operation::{Invocation, MeshOperation};
 use crate::ops::{
@@ -211,13 +213,22 @@ pub fn register_quantity(q: impl VertexQuantity) -> Result<Quantity, Clash> {
     Ok(q)
 }
 
-/// Every registered quantity follows an undo's or redo's new entities
+/// Every registered quantity follows an undo's or redo's new entities in `world`
 /// ([`VertexQuantity::follow`]: `map` from the entity each element had to the one that stands
 /// for it now).
-pub fn quantities_follow(map: &crate::mesh::change::Remap) {
+pub fn quantities_follow(world: WorldId, map: &crate::mesh::change::Remap) {
     for q in quantities().iter() {
-        q.0.follow(map);
+        q.0.follow(world, map);
     }
+}
+
+/// Every registered quantity hears that an edit in `world` rewrote the faces in place
+/// ([`VertexQuantity::faces_renumbered`]); the names of those that forgot their values.
+pub fn quantities_faces_renumbered(world: WorldId) -> Vec<&'static str> {
+    (quantities().iter())
+        .filter(|q| q.0.faces_renumbered(world))
+        .map(|q| q.name())
+        .collect()
 }
 
 /// Why an operation was not registered: it would share a step name, or a key, with one

@@ -240,6 +240,7 @@ pub fn give_arrays_once_open(world: &mut World) {
                 vertices.iter().copied().zip(array.values),
             ),
         };
+        let stored = stored.of_world(world.id());
         match crate::ops::registry::register_quantity(stored) {
             Ok(q) => {
                 first.get_or_insert(q);

@@ -3,13 +3,15 @@
 //!
 //! After an applied edit, [`finish_edit`]: records the undo entry, ends the simplification
 //! history unless the edit keeps it, marks the mesh modified, marks what must be redrawn, moves
-//! the selection to what the edit made (or keeps it where its element survived). (The edit has
+//! the selection to what the edit made (or keeps it where its element survived); after an edit
+//! that rewrites the faces in place, values given by face entity are forgotten, and the
+//! summary says so. (The edit has
 //! validated the mesh already in debug builds: see [`Edit::run`].) [`report`] then logs the
 //! outcome and writes it as an [`EditOutcome`] message.
 
 use bevy::prelude::World;
 
-use crate::edit::{Applied, Edit, Redraw};
+use crate::edit::{Applied, Edit, IdsKept, Redraw};
 use crate::mesh::MeshId;
 use crate::ops::Refusal;
 
@@ -44,7 +46,15 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
         result,
         pending,
     } = finished;
-    let applied = result?;
+    let mut applied = result?;
+    if edit.keeps_ids() == IdsKept::VerticesOnly {
+        // Face entities now name other faces: values a script gave by face are forgotten.
+        let forgotten = crate::ops::registry::quantities_faces_renumbered(world.id());
+        if !forgotten.is_empty() {
+            let names = crate::mesh::attributes::listed(&forgotten);
+            applied.summary += &format!(" — {names} forgotten: the faces were renumbered");
+        }
+    }
     if let Some(before) = pending.as_ref().and_then(Pending::tables) {
         let tables = before.tables.clone();
         world.resource_mut::<PreviousShape>().set(mesh, tables);

@@ -392,7 +392,7 @@ pub fn restore(world: &mut World, pending: Pending) -> Option<Remap> {
     for entry in history.undo.iter_mut().chain(history.redo.iter_mut()) {
         entry.remap(&mut map);
     }
-    registry::quantities_follow(&map);
+    registry::quantities_follow(world.id(), &map);
     if let Some(mut origins) = world.get_resource_mut::<VertexOrigins>() {
         origins.follow(&map);
     }
@@ -425,7 +425,7 @@ pub fn step(world: &mut World, redo: bool) -> Option<Stepped> {
     for other in world.resource_mut::<UndoHistory>().stack(redo).iter_mut() {
         other.remap(&mut map);
     }
-    registry::quantities_follow(&map);
+    registry::quantities_follow(world.id(), &map);
     if let Some(mut origins) = world.get_resource_mut::<VertexOrigins>() {
         origins.follow(&map);
     }

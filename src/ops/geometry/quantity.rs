@@ -6,6 +6,8 @@
 //! triangles are); the edge length is the mean length of the vertex's edges.
 
 use crate::colormap::ColorMap;
+use bevy::ecs::world::WorldId;
+
 use crate::mesh::change::Remap;
 use crate::mesh::tables::{Connectivity, FaceRow, VertexRow};
 use crate::mesh::{FaceId, VertexId};
@@ -76,11 +78,19 @@ pub trait VertexQuantity: Sync + 'static {
         None
     }
 
-    /// An undo or redo brought elements back under new entities (`map`: from the entity each
-    /// had to the one that stands for it now). A quantity that keeps values by entity
-    /// ([`super::stored::StoredQuantity`]) gives them to the new entities; the default, for one
-    /// computed from the mesh, does nothing.
-    fn follow(&self, _map: &Remap) {}
+    /// An undo or redo in `world` brought elements back under new entities (`map`: from the
+    /// entity each had to the one that stands for it now). A quantity that keeps values by
+    /// entity of that world ([`super::stored::StoredQuantity`]) gives them to the new entities;
+    /// the default, for one computed from the mesh, does nothing.
+    fn follow(&self, _world: WorldId, _map: &Remap) {}
+
+    /// An edit in `world` rewrote the faces in place (subdivision: only vertex ids survive
+    /// it), so a face entity now names another face. A quantity that keeps values by face
+    /// entity of that world forgets them rather than draw them on the wrong faces, and says
+    /// whether it had any; the default, for one computed from the mesh, does nothing.
+    fn faces_renumbered(&self, _world: WorldId) -> bool {
+        false
+    }
 }
 
 /// A registered quantity, by reference: cheap to copy, compared by name.

@@ -5,12 +5,15 @@
 //! The values are kept by vertex (or face) entity, not by row, so they follow the elements
 //! through edits: an element an edit keeps keeps its value; one it makes has none (NaN, which
 //! the editor draws grey and the colour range leaves out); one an undo brings back under a new
-//! entity gets its value again ([`VertexQuantity::follow`]). A caller that reads it without the
+//! entity gets its value again ([`VertexQuantity::follow`]). Values on faces are forgotten
+//! when an edit rewrites the faces in place (subdivision, [`VertexQuantity::faces_renumbered`]),
+//! and then drawn grey: never on faces they were not given for. A caller that reads it without the
 //! entities behind the rows ([`Given::vertices`], [`Given::faces`] empty) gets NaN everywhere.
 //! Values on faces are also read per vertex, as the mean of the vertex's faces' values, for
 //! what colours vertices (the command line, Python).
 
 use bevy::ecs::entity::EntityHashMap;
+use bevy::ecs::world::WorldId;
 use bevy::prelude::Entity;
 use std::sync::{PoisonError, RwLock};
 
@@ -28,6 +31,10 @@ pub struct StoredQuantity {
     /// ([`VertexQuantity::follow`]): a registered quantity is shared.
     values: RwLock<EntityHashMap<f64>>,
     on_faces: bool,
+    /// The world whose entities the values are keyed by, once told ([`StoredQuantity::of_world`]):
+    /// only that world's undo and renumbering edits move them (entity ids of two worlds may
+    /// coincide).
+    world: Option<WorldId>,
 }
 
 impl StoredQuantity {
@@ -78,6 +85,17 @@ impl StoredQuantity {
             declaration,
             values: RwLock::new(values),
             on_faces,
+            world: None,
+        }
+    }
+
+    /// The same, its values keyed by the entities of `world`: that world's undo and redo and
+    /// its edits that renumber faces move them ([`VertexQuantity::follow`],
+    /// [`VertexQuantity::faces_renumbered`]); without it they stay as given.
+    pub fn of_world(self, world: WorldId) -> Self {
+        Self {
+            world: Some(world),
+            ..self
         }
     }
 
@@ -128,7 +146,22 @@ impl VertexQuantity for StoredQuantity {
         Some(self.read(given.faces.iter().map(|f| f.0)))
     }
 
-    fn follow(&self, map: &Remap) {
+    fn faces_renumbered(&self, world: WorldId) -> bool {
+        if self.world != Some(world) {
+            return false;
+        }
+        let mut values = self.values.write().unwrap_or_else(PoisonError::into_inner);
+        let had = self.on_faces && !values.is_empty();
+        if self.on_faces {
+            values.clear();
+        }
+        had
+    }
+
+    fn follow(&self, world: WorldId, map: &Remap) {
+        if self.world != Some(world) {
+            return;
+        }
         let mut values = self.values.write().unwrap_or_else(PoisonError::into_inner);
         let moved: Vec<(Entity, f64)> = map
             .iter()
@@ -189,5 +222,31 @@ mod tests {
             ],
         );
         assert_eq!(signed.declaration().colormap, ColorMap::Diverging);
+    }
+
+    /// An undo's remap and a renumbering edit move the values of their own world's quantity
+    /// only; a renumbering forgets values on faces, never on vertices.
+    #[test]
+    fn only_its_own_worlds_undo_and_renumbering_move_the_values() {
+        let (mut mine, other) = (World::new(), World::new());
+        let built = build_mesh(&mut mine, &shapes::cube(), MeshInfo::default()).unwrap();
+        let read = extract(&mine, built.mesh);
+        let v = read.members.vertices[0];
+        let face = read.members.faces[0];
+        let back = VertexId(mine.spawn_empty().id());
+        let at = |q: &StoredQuantity, e: Entity| q.read(std::iter::once(e))[0];
+        let on_vertices = StoredQuantity::new("v", "v", [(v, 2.0)]).of_world(mine.id());
+        let map = Remap::from_iter([(v.0, back.0)]);
+        on_vertices.follow(other.id(), &map);
+        assert!(at(&on_vertices, back.0).is_nan());
+        on_vertices.follow(mine.id(), &map);
+        assert_eq!(at(&on_vertices, back.0), 2.0);
+        assert!(!on_vertices.faces_renumbered(mine.id()));
+        assert_eq!(at(&on_vertices, v.0), 2.0);
+        let on_faces = StoredQuantity::on_faces("f", "f", [(face, 3.0)]).of_world(mine.id());
+        assert!(!on_faces.faces_renumbered(other.id()));
+        assert_eq!(at(&on_faces, face.0), 3.0);
+        assert!(on_faces.faces_renumbered(mine.id()));
+        assert!(at(&on_faces, face.0).is_nan());
     }
 }
