@@ -1984,21 +1984,28 @@ fn a_shown_array_keeps_its_values_through_undo_and_redo() {
     assert!(all_valued(&mut app), "after redoing a flip");
     // The hand-back names each vertex's row in the mesh shown, through the undo; a vertex a
     // split makes has none.
-    let sources = |app: &mut App| -> Vec<i64> {
+    // (Vertex sources, face sources), each sorted.
+    let sources = |app: &mut App| -> [Vec<i64>; 2] {
         pappus::editor::automation::show::hand_back(app.world_mut(), &folder).unwrap();
         let text = std::fs::read_to_string(folder.join("answer.json")).unwrap();
         let answer: serde_json::Value = serde_json::from_str(&text).unwrap();
-        let mut sources: Vec<i64> =
-            serde_json::from_value(answer["vertex_sources"].clone()).unwrap();
-        sources.sort_unstable();
-        sources
+        ["vertex_sources", "face_sources"].map(|kind| {
+            let mut sources: Vec<i64> = serde_json::from_value(answer[kind].clone()).unwrap();
+            sources.sort_unstable();
+            sources
+        })
     };
-    assert_eq!(sources(&mut app), (0..642).collect::<Vec<i64>>());
+    let all = |n: i64| (0..n).collect::<Vec<i64>>();
+    assert_eq!(sources(&mut app), [all(642), all(1280)]);
     let edge = some_interior_edge(&app);
     app.world_mut()
         .write_message(Request::Edit(Edit::local("split", edge)));
     app.update();
-    assert_eq!(sources(&mut app), [vec![-1], (0..642).collect()].concat());
+    // The split's two new faces have none either (the other two halves keep their faces').
+    let [vertices, faces] = sources(&mut app);
+    assert_eq!(vertices, [vec![-1], all(642)].concat());
+    assert_eq!((faces[..2].to_vec(), faces.len()), (vec![-1, -1], 1282));
+    assert!(faces[2..].windows(2).all(|w| w[0] < w[1]) && faces[2] >= 0);
     // Subdivision rewrites the faces in place: the array on faces is forgotten (drawn grey,
     // never on faces it was not given for), the one on vertices kept on the old vertices.
     app.world_mut()
@@ -2017,5 +2024,9 @@ fn a_shown_array_keeps_its_values_through_undo_and_redo() {
     app.update();
     let values = app.world().get::<VertexValues>(mesh(&app).0).unwrap();
     assert!(values.values.values().all(|x| x.is_nan()));
+    // No face has an origin after it either; the old vertices keep theirs.
+    let [vertices, faces] = sources(&mut app);
+    assert!(faces.iter().all(|&row| row == -1) && faces.len() == 4 * 1282);
+    assert_eq!(vertices[vertices.len() - 642..], all(642));
     let _ = std::fs::remove_dir_all(&folder);
 }

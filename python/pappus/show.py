@@ -92,11 +92,11 @@ def show(mesh, quantities=None, *, screenshot=None, script=None, timeout=None):
 
     When the user edited the mesh (anything in the undo history, even undone), ``mesh`` is
     rebuilt from what the editor hands back: its rows are then the editor's and every handle
-    taken before is stale. The editor says which of the mesh's rows each vertex was, so input
-    vertex numbers still name the same vertices and ``vertex_data`` follows them (a vertex made
-    in the window reads its value off the surface as it was); what did not come back (what a
-    PLY cannot hold, such as face groups; ``face_data``: the editor does not trace faces) is
-    named in a ``UserWarning``; seam marks do not come back.
+    taken before is stale. The editor says which of the mesh's rows each vertex and face was,
+    so input vertex numbers still name the same vertices and ``vertex_data`` and ``face_data``
+    follow them (an element made in the window reads its value off the surface as it was, as
+    after an edit in Python); what did not come back (what a PLY cannot hold, such as face
+    groups) is named in a ``UserWarning``; seam marks do not come back.
     Without an edit, ``mesh`` is untouched.
 
     ``screenshot`` (a path) writes a PNG of the window once the mesh is drawn and closes it,
@@ -174,17 +174,18 @@ def _take_back(mesh, back):
         mesh._set_selection(Selection([], [], [], []))
         return mesh
     if answer["edited"]:
-        # Each vertex's row in the mesh shown: the script's vertex_data and input numbers
-        # follow it (None when another file was opened in the window).
+        # Each element's row in the mesh shown: the script's vertex_data, face_data and input
+        # numbers follow it (None when another file was opened in the window).
         sources = answer.get("vertex_sources")
-        lost = [f"face_data[{n!r}]" for n in mesh.face_data]
+        faces = answer.get("face_sources")
+        lost = [] if faces is not None else [f"face_data[{n!r}]" for n in mesh.face_data]
         if sources is None:
             lost = [f"vertex_data[{n!r}]" for n in mesh.vertex_data] + lost
-        mesh._take(load(str(back / answer["mesh"])), sources)
+        mesh._take(load(str(back / answer["mesh"])), sources, faces)
         if lost:
             warnings.warn(
-                f"pappus.show: {', '.join(lost)} did not come back: the editor does not trace"
-                " faces (or the mesh shown was replaced) through its edits",
+                f"pappus.show: {', '.join(lost)} did not come back: the mesh shown was"
+                " replaced in the window",
                 UserWarning,
                 stacklevel=3,
             )

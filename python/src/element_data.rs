@@ -241,48 +241,73 @@ impl ElementData {
         }
     }
 
-    /// The vertex columns for the mesh `to`, handed back from elsewhere (the editor, under
+    /// The columns for the mesh `to`, handed back from elsewhere (the editor, under
     /// `pappus.show`), whose vertex at row `j` was this mesh's (`mesh`'s) vertex at row
-    /// `sources[j]` (-1: a vertex made there). A kept vertex keeps its value; a made one reads
-    /// its value off this mesh's surface at its place, as after an edit here. Face columns do
-    /// not go over: faces are not traced. `None` when `sources` does not have one row per
-    /// vertex of `to`.
+    /// `vertex_sources[j]` (-1: a vertex made there), and likewise its faces by
+    /// `face_sources`. A kept element keeps its value; a made one reads its value off this
+    /// mesh's surface at its place, as after an edit here (a vertex the blend there, a face
+    /// the value of the face under its centroid). Without `face_sources` the face columns do
+    /// not go over. `None` when a list does not have one row per element of `to`.
     pub(crate) fn handed_over(
         &self,
         (world, mesh): (&World, MeshId),
         to: (&World, MeshId),
-        sources: &[i64],
+        vertex_sources: &[i64],
+        face_sources: Option<&[i64]>,
     ) -> Option<ElementData> {
-        let new_vertices = MeshMembers::collect(to.0, to.1).vertices;
-        if sources.len() != new_vertices.len() {
+        let new = MeshMembers::collect(to.0, to.1);
+        let faces = face_sources.unwrap_or_default();
+        let counts = (
+            vertex_sources.len(),
+            face_sources.map_or(new.faces.len(), <[i64]>::len),
+        );
+        if counts != (new.vertices.len(), new.faces.len()) {
             return None;
         }
-        let old_rows = Per::Vertex.rows(world, mesh);
-        let made = sources.iter().any(|&s| s < 0);
-        let surface = (made && !self.vertex.0.is_empty()).then(|| SurfaceBefore::of(world, mesh));
+        let old = MeshMembers::collect(world, mesh);
+        let made = vertex_sources.iter().chain(faces).any(|&s| s < 0);
+        let surface = made.then(|| self.surface_before(world, mesh)).flatten();
         let m = MeshRef::new(to.0);
-        let carried = |column: &EntityHashMap<f32>| {
-            let old = |row: i64| old_rows.get(usize::try_from(row).ok()?);
-            let value = |v: &VertexId, &row: &i64| match (old(row), &surface) {
-                (Some(e), _) => column.get(e).copied(),
-                (None, Some(surface)) => Some(surface.value_at(m.position(*v), |c| {
-                    column.get(&c.0).copied().unwrap_or(f32::NAN)
-                })),
+        // Each new element with its value's place: the old element it is, else where it lies.
+        let was = |rows: &[Entity], row: i64| rows.get(usize::try_from(row).ok()?).copied();
+        let (old_vertices, old_faces) = (Per::Vertex.of(&old), Per::Face.of(&old));
+        let vertex = self.vertex.0.iter().map(|(name, column)| {
+            let value = |(v, &row): (&VertexId, &i64)| match (was(&old_vertices, row), &surface) {
+                (Some(e), _) => Some((v.0, *column.get(&e)?)),
+                (None, Some(surface)) => Some((
+                    v.0,
+                    surface.value_at(m.position(*v), |c| {
+                        column.get(&c.0).copied().unwrap_or(f32::NAN)
+                    }),
+                )),
                 (None, None) => None,
             };
-            (new_vertices.iter().zip(sources))
-                .filter_map(|(v, row)| Some((v.0, value(v, row)?)))
-                .filter(|(_, x)| !x.is_nan())
-                .collect()
-        };
-        let vertex = self
-            .vertex
+            let values = new.vertices.iter().zip(vertex_sources).filter_map(value);
+            (name.clone(), values.filter(|(_, x)| !x.is_nan()).collect())
+        });
+        let face = self
+            .face
             .0
             .iter()
-            .map(|(name, column)| (name.clone(), carried(column)));
+            .filter(|_| face_sources.is_some())
+            .map(|(name, column)| {
+                let value = |(f, &row): (&FaceId, &i64)| {
+                    let from = match (was(&old_faces, row), &surface) {
+                        (Some(e), _) => e,
+                        (None, Some(surface)) => surface.face_at(m.face_centroid(*f))?.0,
+                        (None, None) => return None,
+                    };
+                    Some((f.0, *column.get(&from)?))
+                };
+                (
+                    name.clone(),
+                    new.faces.iter().zip(faces).filter_map(value).collect(),
+                )
+            });
         Some(ElementData {
             vertex: Columns(vertex.collect()),
-            ..ElementData::default()
+            face: Columns(face.collect()),
+            surface_at_edit: None,
         })
     }
 

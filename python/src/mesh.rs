@@ -1390,23 +1390,26 @@ impl Mesh {
     ///
     /// With `vertex_sources` (for each of `other`'s vertices, the row of this mesh's vertex it
     /// is, -1 for one made since), this mesh's input numbers and `vertex_data` go over to
-    /// `other`'s vertices ([`ElementData::handed_over`]); `ValueError` when it does not have one
-    /// row per vertex of `other`.
-    #[pyo3(signature = (other, vertex_sources=None))]
+    /// `other`'s vertices, and with `face_sources` too (the same for faces) its `face_data`
+    /// ([`ElementData::handed_over`]); `ValueError` when a list does not have one row per
+    /// element of `other`.
+    #[pyo3(signature = (other, vertex_sources=None, face_sources=None))]
     fn _take(
         &mut self,
         mut other: PyRefMut<'_, Mesh>,
         vertex_sources: Option<Vec<i64>>,
+        face_sources: Option<Vec<i64>>,
     ) -> PyResult<()> {
         if self.open_edit.is_some() || other.open_edit.is_some() {
             return Err(edit_open());
         }
         if let Some(sources) = vertex_sources {
             let to = (&other.world, other.mesh);
+            let faces = face_sources.as_deref();
             let data = (self.element_data)
-                .handed_over((&self.world, self.mesh), to, &sources)
+                .handed_over((&self.world, self.mesh), to, &sources, faces)
                 .ok_or_else(|| {
-                    PyValueError::new_err("vertex_sources needs one row per vertex of the mesh")
+                    PyValueError::new_err("the sources need one row per element of the mesh")
                 })?;
             let inputs = self.inputs_handed_over(&other, &sources);
             other.element_data = data;

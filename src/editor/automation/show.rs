@@ -30,10 +30,11 @@
 //!   (an edit, an undo of one, another file opened); the script keeps its own mesh, and its
 //!   ids, when it is false. The selection is by kind, as rows of `mesh.ply`: `vertices` and
 //!   `faces` as rows, `edges` as their two vertices' rows, `halfedges` as their (from, to)
-//!   vertices' rows. `vertex_sources` gives, for each vertex of `mesh.ply`, its row in the
-//!   request's mesh (-1 for a vertex made in the window; [`VertexOrigins`], followed through
-//!   undo), so that the script's per-vertex arrays and input numbers follow the edits; `null`
-//!   when the mesh is another (a file opened in the window). `notes` says what did not go
+//!   vertices' rows. `vertex_sources` and `face_sources` give, for each vertex and face of
+//!   `mesh.ply`, its row in the request's mesh (-1 for one made in the window, and for every
+//!   face after subdivision; [`Origins`], followed through undo), so that the script's
+//!   per-element arrays and input numbers follow the edits; `null` when the mesh is another (a
+//!   file opened in the window). `notes` says what did not go
 //!   back (what PLY cannot hold, an operation still running). With no mesh open at the end,
 //!   `"mesh"` is `null`.
 //!
@@ -58,7 +59,7 @@ use crate::editor::panels::sections::folding::PanelSections;
 use crate::editor::pipeline::jobs::Jobs;
 use crate::editor::pipeline::{recovery, stepping};
 use crate::editor::session::history::UndoHistory;
-use crate::editor::session::origins::VertexOrigins;
+use crate::editor::session::origins::Origins;
 use crate::editor::session::schedule::EditorSystems;
 use crate::editor::session::selection::{ActiveMesh, Selection};
 use crate::editor::session::state::ReturnsToScript;
@@ -212,7 +213,7 @@ pub fn give_arrays_once_open(world: &mut World) {
     // A freshly opened mesh lists its vertices and faces in file order.
     let vertices = crate::mesh::members::of_kind::<crate::mesh::Vertex, _>(world, mesh, VertexId);
     let faces = crate::mesh::members::of_kind::<crate::mesh::Face, _>(world, mesh, FaceId);
-    world.insert_resource(VertexOrigins::of(&vertices));
+    world.insert_resource(Origins::of(&vertices, &faces));
     let mut first = None;
     for array in waiting {
         let (count, kind) = match array.on_faces {
@@ -319,16 +320,17 @@ pub fn hand_back(world: &mut World, folder: &Path) -> Result<(), String> {
             let opened = world.resource::<ShowSession>().opened;
             let mark = world.resource::<UndoHistory>().mark();
             let edited = opened.is_none_or(|(first, at)| first != mesh || mark > at);
-            // Where each vertex came from, when the mesh is the one the script gave.
-            let sources = opened.filter(|&(first, _)| first == mesh).map(|_| {
-                let vertices = MeshMembers::collect(world, mesh).vertices;
-                let origins = world.get_resource::<VertexOrigins>();
-                origins.map(|o| o.rows(&vertices))
-            });
+            // Where each element came from, when the mesh is the one the script gave.
+            let members = MeshMembers::collect(world, mesh);
+            let origins = (world.get_resource::<Origins>())
+                .filter(|_| opened.is_some_and(|(first, _)| first == mesh));
+            let vertex_sources = origins.map(|o| o.vertex_rows(&members.vertices));
+            let face_sources = origins.map(|o| o.face_rows(&members.faces));
             json!({
                 "mesh": "mesh.ply",
                 "edited": edited,
-                "vertex_sources": sources.flatten(),
+                "vertex_sources": vertex_sources,
+                "face_sources": face_sources,
                 "selection": selection_rows(world, mesh),
                 "notes": notes,
             })

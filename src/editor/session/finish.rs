@@ -16,6 +16,7 @@ use crate::mesh::MeshId;
 use crate::ops::Refusal;
 
 use super::history::{self, Pending};
+use super::origins::Origins;
 use super::requests::{Declined, EditOutcome, OutcomeLog};
 use super::selection::{
     MeshDirty, PositionsDirty, Selection, keep_live_selection, mark_faces_dirty,
@@ -48,6 +49,9 @@ pub fn finish_edit(world: &mut World, finished: Finished) -> Result<String, Decl
     } = finished;
     let mut applied = result?;
     if edit.keeps_ids() == IdsKept::VerticesOnly {
+        if let Some(mut origins) = world.get_resource_mut::<Origins>() {
+            origins.faces_renumbered();
+        }
         // Face entities now name other faces: values a script gave by face are forgotten.
         let forgotten = crate::ops::registry::quantities_faces_renumbered(world.id());
         if !forgotten.is_empty() {

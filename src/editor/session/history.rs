@@ -33,7 +33,7 @@ use crate::ops::registry;
 
 use crate::edit::{Edit, MergeKey, Reach, Redraw};
 
-use super::origins::VertexOrigins;
+use super::origins::Origins;
 use super::selection::{ActiveMesh, Selection, exists, keep_live_selection};
 
 /// What an entry puts back.
@@ -393,7 +393,7 @@ pub fn restore(world: &mut World, pending: Pending) -> Option<Remap> {
         entry.remap(&mut map);
     }
     registry::quantities_follow(world.id(), &map);
-    if let Some(mut origins) = world.get_resource_mut::<VertexOrigins>() {
+    if let Some(mut origins) = world.get_resource_mut::<Origins>() {
         origins.follow(&map);
     }
     let selection = pending
@@ -426,7 +426,7 @@ pub fn step(world: &mut World, redo: bool) -> Option<Stepped> {
         other.remap(&mut map);
     }
     registry::quantities_follow(world.id(), &map);
-    if let Some(mut origins) = world.get_resource_mut::<VertexOrigins>() {
+    if let Some(mut origins) = world.get_resource_mut::<Origins>() {
         origins.follow(&map);
     }
     let selection = entry

@@ -1,47 +1,77 @@
-//! Where each vertex came from: its row in the mesh a session opened with (a script's mesh
-//! under `pappus.show`), so that what the editor hands back can say which of the script's
-//! rows each vertex is, and the script's per-vertex arrays and input numbers follow the user's
-//! edits.
+//! Where each vertex and face came from: its row in the mesh a session opened with (a
+//! script's mesh under `pappus.show`), so that what the editor hands back can say which of the
+//! script's rows each element is, and the script's per-element arrays and input numbers follow
+//! the user's edits.
 //!
-//! Kept by vertex entity. An edit keeps a vertex's entity (subdivision included: old vertices
-//! keep theirs); one it makes has no origin. An undo or redo that brings a vertex back gives it
-//! a new entity, so [`history`](super::history) passes its remap here, as it does to the
-//! selection.
+//! Kept by entity. An edit keeps an element's entity (subdivision keeps the old vertices'); one
+//! it makes has no origin. An undo or redo that brings an element back gives it a new entity,
+//! so [`history`](super::history) passes its remap here, as it does to the selection. An edit
+//! that rewrites the faces in place (subdivision) leaves every face without an origin
+//! ([`Origins::faces_renumbered`], called by [`finish`](super::finish)): a face entity then
+//! names another face.
 
 use bevy::ecs::entity::EntityHashMap;
 use bevy::prelude::{Entity, Resource};
 
-use crate::mesh::VertexId;
 use crate::mesh::change::Remap;
+use crate::mesh::{FaceId, VertexId};
 
-/// Each vertex's row in the mesh the session opened with (see the module doc).
+/// Each vertex's and face's row in the mesh the session opened with (see the module doc).
 #[derive(Resource, Debug, Default)]
-pub struct VertexOrigins(EntityHashMap<u32>);
+pub struct Origins {
+    vertices: EntityHashMap<u32>,
+    faces: EntityHashMap<u32>,
+}
 
-impl VertexOrigins {
-    /// The origins of a mesh as it opened: `vertices` by row.
-    pub fn of(vertices: &[VertexId]) -> Self {
-        Self(
-            (vertices.iter().enumerate())
-                .map(|(row, v)| (v.0, row as u32))
-                .collect(),
-        )
+/// Each entity of `elements` with its row.
+fn by_row(elements: impl Iterator<Item = Entity>) -> EntityHashMap<u32> {
+    elements
+        .enumerate()
+        .map(|(row, e)| (e, row as u32))
+        .collect()
+}
+
+/// The row of each of `elements` in `origins`, -1 for one without.
+fn rows_of(origins: &EntityHashMap<u32>, elements: impl Iterator<Item = Entity>) -> Vec<i64> {
+    elements
+        .map(|e| origins.get(&e).map_or(-1, |&row| i64::from(row)))
+        .collect()
+}
+
+impl Origins {
+    /// The origins of a mesh as it opened: its `vertices` and `faces` by row.
+    pub fn of(vertices: &[VertexId], faces: &[FaceId]) -> Self {
+        Self {
+            vertices: by_row(vertices.iter().map(|v| v.0)),
+            faces: by_row(faces.iter().map(|f| f.0)),
+        }
     }
 
-    /// An undo or redo brought vertices back under new entities (`map`: from the entity each
+    /// An undo or redo brought elements back under new entities (`map`: from the entity each
     /// had to the one that stands for it now): they keep their origins.
     pub fn follow(&mut self, map: &Remap) {
-        let moved: Vec<(Entity, u32)> = (map.iter())
-            .filter_map(|(old, &new)| Some((new, *self.0.get(old)?)))
-            .collect();
-        self.0.extend(moved);
+        for origins in [&mut self.vertices, &mut self.faces] {
+            let moved: Vec<(Entity, u32)> = (map.iter())
+                .filter_map(|(old, &new)| Some((new, *origins.get(old)?)))
+                .collect();
+            origins.extend(moved);
+        }
+    }
+
+    /// An edit rewrote the faces in place: no face has an origin any more.
+    pub fn faces_renumbered(&mut self) {
+        self.faces.clear();
     }
 
     /// The origin of each of `vertices`, -1 for a vertex made since the session opened.
-    pub fn rows(&self, vertices: &[VertexId]) -> Vec<i64> {
-        (vertices.iter())
-            .map(|v| self.0.get(&v.0).map_or(-1, |&row| i64::from(row)))
-            .collect()
+    pub fn vertex_rows(&self, vertices: &[VertexId]) -> Vec<i64> {
+        rows_of(&self.vertices, vertices.iter().map(|v| v.0))
+    }
+
+    /// The origin of each of `faces`, -1 for a face made since the session opened (or since
+    /// the faces were renumbered).
+    pub fn face_rows(&self, faces: &[FaceId]) -> Vec<i64> {
+        rows_of(&self.faces, faces.iter().map(|f| f.0))
     }
 }
 
@@ -51,12 +81,17 @@ mod tests {
     use bevy::prelude::World;
 
     #[test]
-    fn a_vertex_keeps_its_origin_under_a_new_entity_and_a_new_one_has_none() {
+    fn an_element_keeps_its_origin_under_a_new_entity_and_a_new_one_has_none() {
         let mut world = World::new();
         let [a, b, c, d, e] = [(); 5].map(|()| VertexId(world.spawn_empty().id()));
-        let mut origins = VertexOrigins::of(&[a, b, c]);
-        // b was removed and brought back as d.
-        origins.follow(&Remap::from_iter([(b.0, d.0)]));
-        assert_eq!(origins.rows(&[a, c, d, e]), [0, 2, 1, -1]);
+        let [f, g, h] = [(); 3].map(|()| FaceId(world.spawn_empty().id()));
+        let mut origins = Origins::of(&[a, b, c], &[f, g]);
+        // b was removed and brought back as d, g as h.
+        origins.follow(&Remap::from_iter([(b.0, d.0), (g.0, h.0)]));
+        assert_eq!(origins.vertex_rows(&[a, c, d, e]), [0, 2, 1, -1]);
+        assert_eq!(origins.face_rows(&[h, f]), [1, 0]);
+        origins.faces_renumbered();
+        assert_eq!(origins.face_rows(&[h, f]), [-1, -1]);
+        assert_eq!(origins.vertex_rows(&[a]), [0]);
     }
 }
