@@ -13,6 +13,7 @@
 //! generation included, so an element that reuses a removed one's slot never inherits a value.
 
 use bevy::ecs::entity::{Entity, EntityHashMap, EntityHashSet};
+use bevy::math::Vec3;
 use bevy::prelude::World;
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -79,19 +80,19 @@ impl Columns {
         )
     }
 
-    /// Gives each element of `made` (element, where its value is read: a corner blend of the
-    /// surface before, or the face it came from) the value `read` finds there, and drops the
-    /// values of elements gone once a column holds more values than there are `live` ones.
-    fn carry(
+    /// Gives each element of `made` (with where its value is read: its place on the surface
+    /// before, or the face it came from) the value `read` finds there, and drops the values of
+    /// elements gone once a column holds more values than there are `live` ones.
+    fn carry<T>(
         &mut self,
         live: &[Entity],
-        made: &[Entity],
-        read: impl Fn(Entity, &EntityHashMap<f32>) -> f32,
+        made: &[(Entity, T)],
+        read: impl Fn(&T, &EntityHashMap<f32>) -> f32,
     ) {
         for (_, column) in &mut self.0 {
             let values: Vec<(Entity, f32)> = made
                 .iter()
-                .map(|&e| (e, read(e, column)))
+                .map(|(e, place)| (*e, read(place, column)))
                 .filter(|(_, x)| !x.is_nan())
                 .collect();
             column.extend(values);
@@ -99,6 +100,16 @@ impl Columns {
                 let live: EntityHashSet = live.iter().copied().collect();
                 column.retain(|e, _| live.contains(e));
             }
+        }
+    }
+
+    /// Every column anew: each element of `elements` takes the value of the element it came
+    /// from (none without one), read from the columns as they were.
+    fn renew(&mut self, elements: &[(Entity, Option<Entity>)]) {
+        for (_, column) in &mut self.0 {
+            let old = std::mem::take(column);
+            let value = |&(e, from): &(Entity, Option<Entity>)| Some((e, *old.get(&from?)?));
+            column.extend(elements.iter().filter_map(value));
         }
     }
 
@@ -172,72 +183,51 @@ impl ElementData {
     /// value from `before` (see the module doc); one that finds none there keeps none. Values
     /// of elements the edit removed are dropped once a column holds more values than the mesh
     /// has elements of its kind (their keys, generation included, never name a later one).
-    /// With `renewed` (subdivision, which rewrites the faces in place: an old face's entity
-    /// names one of its children, or another face's), every face reads its value anew: its
-    /// parent's, by the layout the edit declares, else the face its centroid lay on.
+    /// With `renumbered`, the layout of an edit that rewrote the faces in place (subdivision:
+    /// an old face's entity names one of its children, or another face's), every face reads
+    /// its value anew: its parent's by that layout, else (counts it does not explain) the
+    /// value of the face its centroid lay on.
     pub(crate) fn carry(
         &mut self,
         before: &SurfaceBefore,
         world: &World,
         mesh: MeshId,
-        renewed: Option<Option<FaceChildren>>,
+        renumbered: Option<FaceChildren>,
     ) {
         let members = MeshMembers::collect(world, mesh);
         let m = MeshRef::new(world);
         if !self.vertex.0.is_empty() {
             let live = Per::Vertex.of(&members);
-            let made: Vec<Entity> = members
-                .vertices
-                .iter()
+            let made: Vec<(Entity, Vec3)> = (members.vertices.iter())
                 .filter(|v| !before.had(**v))
-                .map(|v| v.0)
+                .map(|&v| (v.0, m.position(v)))
                 .collect();
-            self.vertex.carry(&live, &made, |e, column| {
-                let p = m.position(VertexId(e));
-                before.value_at(p, |c| column.get(&c.0).copied().unwrap_or(f32::NAN))
-            });
+            (self.vertex).carry(&live, &made, |&p, column| blend(before, column, p));
         }
         if !self.face.0.is_empty() {
             let live = Per::Face.of(&members);
-            let parents = renewed
-                .flatten()
-                .and_then(|children| before.face_parents(children, live.len()));
-            let made: Vec<(FaceId, Option<FaceId>)> = match parents {
-                Some(parents) => members
-                    .faces
-                    .iter()
-                    .copied()
-                    .zip(parents.into_iter().map(Some))
-                    .collect(),
-                None => members
-                    .faces
-                    .iter()
-                    .filter(|f| renewed.is_some() || !before.had_face(**f))
-                    .map(|&f| (f, before.face_at(m.face_centroid(f))))
+            // Each face that needs a value, with the face it came from.
+            let under_centroid =
+                |f: &FaceId| (f.0, before.face_at(m.face_centroid(*f)).map(|g| g.0));
+            let from: Vec<(Entity, Option<Entity>)> = match renumbered {
+                Some(children) => match before.face_parents(children, live.len()) {
+                    Some(parents) => (live.iter().copied())
+                        .zip(parents.into_iter().map(|p| Some(p.0)))
+                        .collect(),
+                    None => members.faces.iter().map(under_centroid).collect(),
+                },
+                None => (members.faces.iter())
+                    .filter(|f| !before.had_face(**f))
+                    .map(under_centroid)
                     .collect(),
             };
-            if renewed.is_some() {
-                // Every value is read from the columns as they were, then replaces them.
-                for (_, column) in &mut self.face.0 {
-                    let old = std::mem::take(column);
-                    column.extend(
-                        made.iter()
-                            .filter_map(|&(f, from)| Some((f.0, *old.get(&from?.0)?))),
-                    );
-                }
-                return;
+            match renumbered {
+                Some(_) => self.face.renew(&from),
+                None => self.face.carry(&live, &from, |&from, column| {
+                    from.and_then(|f| column.get(&f).copied())
+                        .unwrap_or(f32::NAN)
+                }),
             }
-            let source: EntityHashMap<Entity> = made
-                .iter()
-                .filter_map(|&(f, from)| Some((f.0, from?.0)))
-                .collect();
-            let made: Vec<Entity> = made.iter().map(|(f, _)| f.0).collect();
-            self.face.carry(&live, &made, |e, column| {
-                let from = source.get(&e);
-                from.and_then(|from| column.get(from))
-                    .copied()
-                    .unwrap_or(f32::NAN)
-            });
         }
     }
 
@@ -274,12 +264,7 @@ impl ElementData {
         let vertex = self.vertex.0.iter().map(|(name, column)| {
             let value = |(v, &row): (&VertexId, &i64)| match (was(&old_vertices, row), &surface) {
                 (Some(e), _) => Some((v.0, *column.get(&e)?)),
-                (None, Some(surface)) => Some((
-                    v.0,
-                    surface.value_at(m.position(*v), |c| {
-                        column.get(&c.0).copied().unwrap_or(f32::NAN)
-                    }),
-                )),
+                (None, Some(surface)) => Some((v.0, blend(surface, column, m.position(*v)))),
                 (None, None) => None,
             };
             let values = new.vertices.iter().zip(vertex_sources).filter_map(value);
@@ -448,6 +433,12 @@ impl ElementData {
         }
         Ok(dict)
     }
+}
+
+/// The value at the point of `surface` closest to `p`, blended from its corners' values in
+/// `column` (a corner without one left out).
+fn blend(surface: &SurfaceBefore, column: &EntityHashMap<f32>, p: Vec3) -> f32 {
+    surface.value_at(p, |c| column.get(&c.0).copied().unwrap_or(f32::NAN))
 }
 
 /// `Mesh.vertex_data` and `Mesh.face_data`: the mesh's named scalars of one kind of element as

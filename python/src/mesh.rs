@@ -16,7 +16,7 @@ use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
 use bevy::math::{Vec2, Vec3};
 use pappus::cli::info_with_load_times;
-use pappus::edit::{Declaration, Edit, FaceChildren, IdsKept, Invocation};
+use pappus::edit::{Declaration, Edit, IdsKept, Invocation};
 use pappus::edit::{EditContext, Step};
 use pappus::io;
 use pappus::mesh::attributes::{MeshAttributes, StaleNormals};
@@ -285,8 +285,8 @@ impl Mesh {
             self.element_revision += 1;
         }
         if let (Ok(_), Some(surface)) = (&outcome, &surface) {
-            let renewed = (ids == IdsKept::VerticesOnly).then(|| face_children(&step));
-            (self.element_data).carry(surface, &self.world, self.mesh, renewed);
+            let renumbered = declaration(&step).and_then(|d| d.face_children);
+            (self.element_data).carry(surface, &self.world, self.mesh, renumbered);
         }
         if let Some(e) = failure {
             let summary = outcome.as_ref().map(|(summary, _)| summary.clone());
@@ -1583,9 +1583,4 @@ fn declaration(step: &Step) -> Option<&'static Declaration> {
 /// Which element ids a step keeps (see [`IdsKept`]).
 fn ids_kept(step: &Step) -> IdsKept {
     declaration(step).map_or(IdsKept::All, |d| d.ids)
-}
-
-/// How a step lays out the faces it makes, when it renumbers them (see [`FaceChildren`]).
-fn face_children(step: &Step) -> Option<FaceChildren> {
-    declaration(step).and_then(|d| d.face_children)
 }

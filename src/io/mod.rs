@@ -107,7 +107,8 @@ impl Format {
 /// properties"`, `"face properties"`, `"groups"`, then `"polygon faces (written as
 /// triangles)"`), in that order: empty when a save keeps everything, or when the extension
 /// names no format Pappus writes (the save itself then fails). OBJ and glTF hold all but the
-/// quality and the vertex and face properties, PLY all but the groups, OFF and STL none of them; STL and glTF hold triangles only.
+/// quality and the vertex and face properties, PLY all but the groups, OFF and STL none of
+/// them; STL and glTF hold triangles only.
 pub fn dropped(path: &Path, soup: &PolygonSoup) -> Vec<&'static str> {
     let Ok(format) = Format::from_path(path) else {
         return Vec::new();

@@ -47,8 +47,8 @@ use super::text::Numbers;
 use crate::io::error::ParseError;
 use crate::mesh::soup::PolygonSoup;
 use rows::{
-    Element, MAX_SCALARS, Property, Role, Row, Scalar, corner_uvs_of_vertices, push_face_scalars,
-    reserve_face_columns, reserve_vertex_columns,
+    Element, MAX_SCALARS, Property, Role, Row, Scalar, corner_uvs_of_vertices, finish_face_columns,
+    push_face_scalars, reserve_face_columns, reserve_vertex_columns,
 };
 
 /// How a PLY body is encoded.
@@ -495,10 +495,7 @@ fn body_values<V: Values>(
             "{bad_texcoords} face(s) whose `texcoord` list does not hold 2 values per corner: their UVs are (0, 0)"
         ));
     }
-    let faces = soup.face_count();
-    for (_, column) in &mut soup.face_scalars {
-        column.resize(faces, f32::NAN);
-    }
+    finish_face_columns(&mut soup);
     // Per-face UVs win; per-vertex ones give every corner of a vertex the same UV.
     soup.corner_uvs = face_uv.or_else(|| corner_uvs_of_vertices(&soup, vertex_uv));
     Ok(soup)

@@ -45,6 +45,16 @@ pub fn remapped(map: &Remap, e: Entity) -> Entity {
     map.get(&e).copied().unwrap_or(e)
 }
 
+/// Gives each entity `map` renames (from the entity an element had to the one that stands for
+/// it now) the value its old entity has in `values`, keeping the old one's: what values kept by
+/// entity beside the mesh do after an undo or redo brings elements back under new entities.
+pub fn follow_renamed<T: Copy>(values: &mut EntityHashMap<T>, map: &Remap) {
+    let moved: Vec<(Entity, T)> = (map.iter())
+        .filter_map(|(old, &new)| Some((new, *values.get(old)?)))
+        .collect();
+    values.extend(moved);
+}
+
 /// A vertex's attributes (see [`crate::mesh::attributes`]), where it has them.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct VertexAttributes {

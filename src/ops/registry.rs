@@ -57,10 +57,10 @@
 
 use std::sync::{Arc, LazyLock, RwLock};
 
-use crate::mesh::ids::{EdgeId, ElementId, FaceId, VertexId};
-use crate::ops::declaration::{Declaration, Names};
 use bevy::ecs::world::WorldId;
 
+use crate::mesh::ids::{EdgeId, ElementId, FaceId, VertexId};
+use crate::ops::declaration::{Declaration, Names};
 use crate::ops::geometry::quantity::{Quantity, VertexQuantity};
 use crate::ops::operation::{Invocation, MeshOperation};
 use crate::ops::{

@@ -34,9 +34,8 @@
 //!   `mesh.ply`, its row in the request's mesh (-1 for one made in the window, and for every
 //!   face after subdivision; [`Origins`], followed through undo), so that the script's
 //!   per-element arrays and input numbers follow the edits; `null` when the mesh is another (a
-//!   file opened in the window). `notes` says what did not go
-//!   back (what PLY cannot hold, an operation still running). With no mesh open at the end,
-//!   `"mesh"` is `null`.
+//!   file opened in the window). `notes` says what did not go back (what PLY cannot hold, an
+//!   operation still running). With no mesh open at the end, `"mesh"` is `null`.
 //!
 //! The recovery of the session's work is forgotten once the answer is written: the script has
 //! it.

@@ -392,10 +392,7 @@ pub fn restore(world: &mut World, pending: Pending) -> Option<Remap> {
     for entry in history.undo.iter_mut().chain(history.redo.iter_mut()) {
         entry.remap(&mut map);
     }
-    registry::quantities_follow(world.id(), &map);
-    if let Some(mut origins) = world.get_resource_mut::<Origins>() {
-        origins.follow(&map);
-    }
+    follow_renamed_elsewhere(world, &map);
     let selection = pending
         .selection
         .map(|x| remap_element(x, &mut map))
@@ -425,10 +422,7 @@ pub fn step(world: &mut World, redo: bool) -> Option<Stepped> {
     for other in world.resource_mut::<UndoHistory>().stack(redo).iter_mut() {
         other.remap(&mut map);
     }
-    registry::quantities_follow(world.id(), &map);
-    if let Some(mut origins) = world.get_resource_mut::<Origins>() {
-        origins.follow(&map);
-    }
+    follow_renamed_elsewhere(world, &map);
     let selection = entry
         .selection
         .map(|x| remap_element(x, &mut map))
@@ -451,6 +445,15 @@ pub fn step(world: &mut World, redo: bool) -> Option<Stepped> {
         mesh,
         redraw,
     })
+}
+
+/// What keeps values by entity beside the mesh follows the elements an undo, a redo or a
+/// restore brought back under new entities: a script's arrays and the show session's origins.
+fn follow_renamed_elsewhere(world: &mut World, map: &Remap) {
+    registry::quantities_follow(world.id(), map);
+    if let Some(mut origins) = world.get_resource_mut::<Origins>() {
+        origins.follow(map);
+    }
 }
 
 fn remap_element(x: ElementId, map: &mut Remap) -> ElementId {

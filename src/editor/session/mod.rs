@@ -1,6 +1,7 @@
 //! The session room: what the editor holds and the messages it runs on. The [`requests`] in
 //! and outcomes out, the [`selection`] and its changes ([`select_many`]), undo
-//! ([`history`]) and where each vertex came from ([`origins`]), the bookkeeping that ends every edit ([`finish`]), which meshes have unsaved
+//! ([`history`]) and where each vertex and face came from ([`origins`]), the bookkeeping that
+//! ends every edit ([`finish`]), which meshes have unsaved
 //! work ([`state`]), the native file dialogs ([`dialog`]), the frame's stages
 //! ([`schedule`]) and the log's messages kept for the panel ([`log_capture`]). It is the lowest room: every other one reads it, it reads none of them.
 

@@ -13,7 +13,7 @@
 use bevy::ecs::entity::EntityHashMap;
 use bevy::prelude::{Entity, Resource};
 
-use crate::mesh::change::Remap;
+use crate::mesh::change::{Remap, follow_renamed};
 use crate::mesh::{FaceId, VertexId};
 
 /// Each vertex's and face's row in the mesh the session opened with (see the module doc).
@@ -50,12 +50,8 @@ impl Origins {
     /// An undo or redo brought elements back under new entities (`map`: from the entity each
     /// had to the one that stands for it now): they keep their origins.
     pub fn follow(&mut self, map: &Remap) {
-        for origins in [&mut self.vertices, &mut self.faces] {
-            let moved: Vec<(Entity, u32)> = (map.iter())
-                .filter_map(|(old, &new)| Some((new, *origins.get(old)?)))
-                .collect();
-            origins.extend(moved);
-        }
+        follow_renamed(&mut self.vertices, map);
+        follow_renamed(&mut self.faces, map);
     }
 
     /// An edit rewrote the faces in place: no face has an origin any more.

@@ -18,8 +18,8 @@
 use bevy::math::Vec2;
 
 use super::rows::{
-    Element, Property, Role, Row, Scalar, corner_uvs_of_vertices, push_face_scalars,
-    reserve_face_columns, reserve_vertex_columns,
+    Element, Property, Role, Row, Scalar, corner_uvs_of_vertices, finish_face_columns,
+    push_face_scalars, reserve_face_columns, reserve_vertex_columns,
 };
 use crate::mesh::soup::PolygonSoup;
 
@@ -139,10 +139,7 @@ pub(super) fn read(
             }
         }
     }
-    let faces = soup.face_count();
-    for (_, column) in &mut soup.face_scalars {
-        column.resize(faces, f32::NAN);
-    }
+    finish_face_columns(&mut soup);
     soup.corner_uvs = corner_uvs_of_vertices(&soup, vertex_uv);
     Some(soup)
 }

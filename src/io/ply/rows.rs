@@ -190,17 +190,17 @@ pub(super) fn reserve_vertex_columns(
             .get_or_insert_with(|| vec![[0; 3]; before]);
         c.reserve(n);
     }
-    for property in &element.properties {
-        if let Property::Scalar {
-            name,
-            role: Role::Scalar(k),
-            ..
-        } = property
-            && *k == soup.vertex_scalars.len()
-        {
-            soup.vertex_scalars.push((name.clone(), vec![0.0; before]));
-        }
-    }
+    let vertex_column = |role: Role| match role {
+        Role::Scalar(k) => Some(k),
+        _ => None,
+    };
+    start_columns(
+        element,
+        vertex_column,
+        &mut soup.vertex_scalars,
+        before,
+        0.0,
+    );
     for (_, column) in &mut soup.vertex_scalars {
         column.reserve(n);
     }
@@ -270,18 +270,45 @@ impl Row {
 /// Starts the face columns a `face` element's properties bring: the faces read before it
 /// (another face element, a strips element) get NaN.
 pub(super) fn reserve_face_columns(element: &Element, soup: &mut PolygonSoup) {
+    let face_column = |role: Role| match role {
+        Role::FaceScalar(k) => Some(k),
+        _ => None,
+    };
+    let faces = soup.face_count();
+    start_columns(
+        element,
+        face_column,
+        &mut soup.face_scalars,
+        faces,
+        f32::NAN,
+    );
+}
+
+/// Adds to `columns` each column `element`'s scalar properties bring (those `column_of`
+/// numbers as the next one: columns are numbered across the header in order of first
+/// appearance), with `fill` for the `before` rows read before it.
+fn start_columns(
+    element: &Element,
+    column_of: impl Fn(Role) -> Option<usize>,
+    columns: &mut Vec<(String, Vec<f32>)>,
+    before: usize,
+    fill: f32,
+) {
     for property in &element.properties {
-        if let Property::Scalar {
-            name,
-            role: Role::FaceScalar(k),
-            ..
-        } = property
-            && *k == soup.face_scalars.len()
+        if let Property::Scalar { name, role, .. } = property
+            && column_of(*role) == Some(columns.len())
         {
-            let faces = soup.face_count();
-            soup.face_scalars
-                .push((name.clone(), vec![f32::NAN; faces]));
+            columns.push((name.clone(), vec![fill; before]));
         }
+    }
+}
+
+/// Ends the face columns once the body is read: a face read after the last face element's
+/// rows (from strips) gets NaN.
+pub(super) fn finish_face_columns(soup: &mut PolygonSoup) {
+    let faces = soup.face_count();
+    for (_, column) in &mut soup.face_scalars {
+        column.resize(faces, f32::NAN);
     }
 }
 

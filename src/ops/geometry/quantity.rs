@@ -5,9 +5,9 @@
 //! angle is the smallest corner angle, in degrees, of the faces around the vertex (where thin
 //! triangles are); the edge length is the mean length of the vertex's edges.
 
-use crate::colormap::ColorMap;
 use bevy::ecs::world::WorldId;
 
+use crate::colormap::ColorMap;
 use crate::mesh::change::Remap;
 use crate::mesh::tables::{Connectivity, FaceRow, VertexRow};
 use crate::mesh::{FaceId, VertexId};

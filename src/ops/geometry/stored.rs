@@ -18,7 +18,7 @@ use bevy::prelude::Entity;
 use std::sync::{PoisonError, RwLock};
 
 use crate::colormap::ColorMap;
-use crate::mesh::change::Remap;
+use crate::mesh::change::{Remap, follow_renamed};
 use crate::mesh::tables::Connectivity;
 use crate::mesh::{FaceId, VertexId};
 
@@ -27,8 +27,9 @@ use super::quantity::{Given, Needs, QuantityDeclaration, VertexQuantity};
 /// Values given per vertex or per face, by entity (see the module doc).
 pub struct StoredQuantity {
     declaration: &'static QuantityDeclaration,
-    /// Written only when an undo or redo gives elements new entities
-    /// ([`VertexQuantity::follow`]): a registered quantity is shared.
+    /// Written only when an undo or redo gives elements new entities, or an edit renumbers the
+    /// faces ([`VertexQuantity::follow`], [`VertexQuantity::faces_renumbered`]): a registered
+    /// quantity is shared.
     values: RwLock<EntityHashMap<f64>>,
     on_faces: bool,
     /// The world whose entities the values are keyed by, once told ([`StoredQuantity::of_world`]):
@@ -147,14 +148,12 @@ impl VertexQuantity for StoredQuantity {
     }
 
     fn faces_renumbered(&self, world: WorldId) -> bool {
-        if self.world != Some(world) {
+        if !self.on_faces || self.world != Some(world) {
             return false;
         }
         let mut values = self.values.write().unwrap_or_else(PoisonError::into_inner);
-        let had = self.on_faces && !values.is_empty();
-        if self.on_faces {
-            values.clear();
-        }
+        let had = !values.is_empty();
+        values.clear();
         had
     }
 
@@ -163,11 +162,7 @@ impl VertexQuantity for StoredQuantity {
             return;
         }
         let mut values = self.values.write().unwrap_or_else(PoisonError::into_inner);
-        let moved: Vec<(Entity, f64)> = map
-            .iter()
-            .filter_map(|(old, &new)| Some((new, *values.get(old)?)))
-            .collect();
-        values.extend(moved);
+        follow_renamed(&mut values, map);
     }
 }
 
