@@ -40,7 +40,7 @@ use crate::mesh::topology::{MeshRef, newell_area_vector};
 use super::Refusal;
 use super::indexed_heap::{IndexedHeap, slot_of};
 
-mod flat;
+pub(crate) mod flat;
 mod run;
 mod to_target;
 pub use run::{NextCollapse, QemRun, QueuedEdge, Refused};

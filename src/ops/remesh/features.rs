@@ -9,11 +9,11 @@
 //! only by merging into its neighbour along the line, and move only along it (in the
 //! thin-triangle clean-up), both only where the line is straight there; any other count, a
 //! feature corner, which never moves or goes. The degrees of a collapse pass are read from the
-//! flat tables in one pass ([`FeatureDegrees`]) and stay right through it.
+//! flat tables in one pass ([`EdgeTable::feature_degree_rows`]) and stay right through it.
 
 use bevy::ecs::entity::EntityHashSet;
 
-use crate::mesh::ids::{EdgeId, VertexId, slots_for};
+use crate::mesh::ids::EdgeId;
 use crate::mesh::members::MeshMembers;
 use crate::mesh::topology::MeshRef;
 
@@ -62,40 +62,23 @@ pub(super) fn without_noise(
     sharp
 }
 
-/// How many feature edges (boundary edges included) meet at `v`: 0 for a free vertex, 2 on a
-/// feature line, any other count a feature corner.
-pub(super) fn feature_degree(m: &MeshRef<'_>, v: VertexId, features: &EntityHashSet) -> usize {
-    m.vertex_outgoing(v)
-        .filter(|&h| features.contains(&m.edge(h).0))
-        .count()
-}
-
 impl EdgeTable {
-    /// How many feature edges meet at each vertex (see [`feature_degree`]).
-    pub(super) fn feature_degrees(&self, features: &EntityHashSet) -> FeatureDegrees {
+    /// How many feature edges meet at each vertex (boundary edges included; 0
+    /// for a free vertex, 2 on a feature line, any other count a feature corner), by vertex row,
+    /// where `feature` says by edge row which edges are features. They stay right through a
+    /// collapse pass: a collapse removes a free vertex, or a line vertex whose two feature
+    /// edges become the survivor's one, and feature edges never merge (see
+    /// [`super::collapse`]).
+    pub(super) fn feature_degree_rows(&self, feature: &[bool]) -> Vec<u8> {
         let t = &self.tables;
-        let mut degree = vec![0u8; slots_for(self.members.vertices.iter().map(|v| v.0))];
-        for (e, &h) in self.members.edges.iter().zip(&t.edge_halfedge) {
-            if features.contains(&e.0) {
-                for end in [h, t.twin[h as usize]] {
-                    let v = self.members.vertices[t.to_vertex[end as usize] as usize];
-                    degree[v.slot()] = degree[v.slot()].saturating_add(1);
-                }
+        let mut degree = vec![0u8; t.positions.len()];
+        for (&h, _) in t.edge_halfedge.iter().zip(feature).filter(|(_, f)| **f) {
+            for end in [h, t.twin[h as usize]] {
+                let v = t.to_vertex[end as usize] as usize;
+                degree[v] = degree[v].saturating_add(1);
             }
         }
-        FeatureDegrees(degree)
-    }
-}
-
-/// Feature degrees by entity index, taken before a collapse pass. They stay right through
-/// it: a collapse removes a free vertex, or a line vertex whose two feature edges become the
-/// survivor's one, and feature edges never merge (see [`super::collapse::collapse_choice`]).
-pub(super) struct FeatureDegrees(Vec<u8>);
-
-impl FeatureDegrees {
-    /// How many feature edges meet at `v`.
-    pub(super) fn of(&self, v: VertexId) -> usize {
-        self.0[v.slot()] as usize
+        degree
     }
 }
 

@@ -184,7 +184,7 @@ fn edge_length(m: &MeshRef<'_>, e: EdgeId) -> f32 {
 
 /// The mesh's edges with their lengths, read in one pass over the world ([`extract`]) rather
 /// than through several entity lookups an edge: each pass starts from it. Split and collapse
-/// read it; its feature degrees are read in [`features`] ([`EdgeTable::feature_degrees`]).
+/// read it; its feature degrees are read in [`features`] ([`EdgeTable::feature_degree_rows`]).
 struct EdgeTable {
     tables: Connectivity,
     members: MeshMembers,

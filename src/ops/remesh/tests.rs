@@ -136,43 +136,45 @@ pub(super) fn built(case: &Case) -> (World, MeshId) {
     (world, mesh)
 }
 
-/// What each case remeshed to before the loop became [`super::RemeshRun`]'s passes: the
-/// summary's splits, collapses and flips, and the result's fingerprint.
+/// What each case remeshes to: the summary's splits, collapses and flips, and the result's
+/// fingerprint. Pinned again when the collapse pass moved onto flat tables: its collapses are
+/// the same, element for element, but the survivors lie in another storage order, so the
+/// later passes meet the edges in another order.
 const PINNED: [(&str, [usize; 3], Fingerprint); 4] = [
     (
         "cube",
-        [466, 137, 372],
+        [467, 136, 373],
         Fingerprint {
-            vertices: 337,
-            faces: 670,
-            hash: 0x293d1bfd0b4cecb6,
+            vertices: 339,
+            faces: 674,
+            hash: 0x9237297e9692312b,
         },
     ),
     (
         "wavy grid",
-        [344, 175, 109],
+        [347, 180, 101],
         Fingerprint {
-            vertices: 290,
-            faces: 498,
-            hash: 0x49076e1fdf162744,
+            vertices: 288,
+            faces: 494,
+            hash: 0xcc59038e82336a23,
         },
     ),
     (
         "fandisk",
-        [1768, 2257, 1757],
+        [1791, 2275, 1739],
         Fingerprint {
-            vertices: 5986,
-            faces: 11968,
-            hash: 0xe4ee8ed182b8a2b5,
+            vertices: 5991,
+            faces: 11978,
+            hash: 0xed3f82ada27783ee,
         },
     ),
     (
         "bunny",
-        [7157, 12699, 7213],
+        [7157, 12725, 7253],
         Fingerprint {
-            vertices: 29292,
-            faces: 58317,
-            hash: 0x88de5c3b0bf6ede1,
+            vertices: 29266,
+            faces: 58265,
+            hash: 0x28d728a60c42d261,
         },
     ),
 ];

@@ -46,7 +46,7 @@ struct Links {
 }
 
 /// A triangle mesh as flat rows, with what the collapses removed.
-pub(super) struct FlatTriangles {
+pub(crate) struct FlatTriangles {
     he: Vec<Links>,
     position: Vec<Vec3>,
     vertex_halfedge: Vec<u32>,
@@ -117,7 +117,7 @@ impl Side {
 /// An accepted collapse of the edge of halfedge `h`: its start `a` stays, moved to
 /// `position`, its tip `b` goes. Its two rings stay in [`FlatTriangles`] until it is applied.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Plan {
+pub(crate) struct Plan {
     a: u32,
     b: u32,
     edge: u32,
@@ -127,7 +127,7 @@ pub(super) struct Plan {
 }
 
 /// What one collapse did, by row.
-pub(super) struct Collapsed {
+pub(crate) struct Collapsed {
     /// The vertex that stayed and the one that went.
     pub kept: u32,
     pub removed: u32,
@@ -196,6 +196,51 @@ impl FlatTriangles {
     /// The halfedge an edge names: its start is the end a collapse of the edge keeps.
     pub fn edge_halfedge(&self, e: u32) -> u32 {
         self.edge_halfedge[e as usize]
+    }
+
+    /// The tip of halfedge `h`.
+    pub fn tip(&self, h: u32) -> u32 {
+        self.he[h as usize].to
+    }
+
+    /// The twin of halfedge `h`.
+    pub fn twin(&self, h: u32) -> u32 {
+        self.he[h as usize].twin
+    }
+
+    /// The halfedge after `h` around its face (or its boundary loop).
+    pub fn next(&self, h: u32) -> u32 {
+        self.he[h as usize].next
+    }
+
+    /// The edge of halfedge `h`, as numbered in [`FlatTriangles::new`].
+    pub fn edge(&self, h: u32) -> u32 {
+        self.he[h as usize].edge
+    }
+
+    /// Whether a triangle lies left of halfedge `h`.
+    pub fn has_face(&self, h: u32) -> bool {
+        self.he[h as usize].face != NONE
+    }
+
+    /// Where vertex `v` is now.
+    pub fn position(&self, v: u32) -> Vec3 {
+        self.position[v as usize]
+    }
+
+    /// The halfedges leaving `v`, counter-clockwise from its own (none for a vertex without
+    /// one); at most [`MAX_LOOP`], as the walks on entities are bounded.
+    pub fn outgoing(&self, v: u32) -> impl Iterator<Item = u32> + '_ {
+        let start = self.vertex_halfedge[v as usize];
+        let mut at = (start != NONE).then_some(start);
+        let mut left = MAX_LOOP;
+        std::iter::from_fn(move || {
+            let h = at?;
+            left -= 1;
+            let next = self.he[self.he[h as usize].prev as usize].twin;
+            at = (next != start && left > 0).then_some(next);
+            Some(h)
+        })
     }
 
     /// Reads both rings of the edge of `h` into `self.rings`, counter-clockwise, starting with
