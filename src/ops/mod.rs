@@ -22,6 +22,7 @@ pub mod local;
 pub mod named;
 pub mod normalize;
 pub mod operation;
+pub(crate) mod parallel;
 pub mod param;
 pub mod progressive;
 pub mod refusal;

@@ -264,6 +264,46 @@ pub(crate) fn write_links(world: &mut World, c: &Connectivity, mesh: MeshId, row
     write_attributes(world, c, mesh, rows);
 }
 
+/// Writes the links of the listed rows of `c` into their entities (`rows`, row for row, as
+/// [`write_links`] writes every row): each listed vertex's halfedge and position, each listed
+/// halfedge's six links, each listed face's halfedge. For a pass that edited a few rows of
+/// tables read by [`super::extract`] and spawned or despawned nothing; a row listed twice is
+/// written twice, a row whose entity is gone is skipped.
+pub(crate) fn write_listed_rows(
+    world: &mut World,
+    c: &Connectivity,
+    rows: &MeshMembers,
+    (vertices, halfedges, faces): (&[VertexRow], &[HalfedgeRow], &[FaceRow]),
+) {
+    let h = |x: HalfedgeRow| rows.halfedges[x.index()];
+    let mut q = world.query::<(&mut Vertex, &mut Position)>();
+    for &v in vertices {
+        if let Ok((mut x, mut p)) = q.get_mut(world, rows.vertices[v.index()].0) {
+            x.halfedge = h(c.vertex_halfedge(v));
+            p.0 = c.position(v);
+        }
+    }
+    let mut q = world.query::<&mut Halfedge>();
+    for &i in halfedges {
+        if let Ok(mut x) = q.get_mut(world, rows.halfedges[i.index()].0) {
+            *x = Halfedge {
+                twin: h(c.twin(i)),
+                next: h(c.next(i)),
+                prev: h(c.prev(i)),
+                vertex: rows.vertices[c.to_vertex(i).index()],
+                edge: rows.edges[c.edge(i).index()],
+                face: c.face(i).map(|f| rows.faces[f.index()]),
+            };
+        }
+    }
+    let mut q = world.query::<&mut Face>();
+    for &f in faces {
+        if let Ok(mut x) = q.get_mut(world, rows.faces[f.index()].0) {
+            x.halfedge = h(c.face_halfedge(f));
+        }
+    }
+}
+
 /// Calls `write(i, item)` with the `D` item of `rows[i]`, for every row. When the world's `D`
 /// items are exactly `rows`, in order (a world holding one mesh whose rows were made in one
 /// pass: the command line's, a script's), that is one walk through the table in storage

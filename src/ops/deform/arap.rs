@@ -29,13 +29,11 @@ use bevy::math::{DMat3, DQuat, DVec3};
 
 use crate::ops::Refusal;
 use crate::ops::geometry::{Surface, cotan_edges};
+use crate::ops::parallel::in_parallel;
 
 use super::anderson::Anderson;
 use super::rotation::closest_rotation;
 use super::system::{HeldSystem, k_harmonic};
-
-/// Vertices per thread below which the local step stays on one thread.
-const MIN_VERTICES_PER_THREAD: usize = 4096;
 
 /// An as-rigid-as-possible deformation in progress (see the module doc).
 pub struct Arap {
@@ -314,26 +312,4 @@ impl Arap {
     pub fn energy(&self) -> f64 {
         self.local.iter().map(|fit| fit.energy).sum()
     }
-}
-
-/// Runs `f(index, item)` over `items`, split into contiguous chunks over the available cores
-/// (one thread for short slices).
-fn in_parallel<T: Send>(items: &mut [T], f: impl Fn(usize, &mut T) + Sync) {
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let threads = cores.min(items.len() / MIN_VERTICES_PER_THREAD).max(1);
-    if threads == 1 {
-        items.iter_mut().enumerate().for_each(|(i, x)| f(i, x));
-        return;
-    }
-    let chunk = items.len().div_ceil(threads);
-    std::thread::scope(|scope| {
-        for (c, part) in items.chunks_mut(chunk).enumerate() {
-            let f = &f;
-            scope.spawn(move || {
-                for (k, x) in part.iter_mut().enumerate() {
-                    f(c * chunk + k, x);
-                }
-            });
-        }
-    });
 }

@@ -11,53 +11,63 @@
 //! feature corner, which never moves or goes. The degrees of a collapse pass are read from the
 //! flat tables in one pass ([`EdgeTable::feature_degree_rows`]) and stay right through it.
 
-use bevy::ecs::entity::EntityHashSet;
+use bevy::math::Vec3;
 
-use crate::mesh::ids::EdgeId;
-use crate::mesh::members::MeshMembers;
-use crate::mesh::topology::MeshRef;
+use crate::mesh::tables::{Connectivity, EdgeRow};
+use crate::mesh::topology::newell_area_vector;
 
 use super::EdgeTable;
 
-/// Whether `e` is sharp: on the boundary, or with a dihedral angle whose cosine is under
-/// `cos_limit` (its faces' normals turn by more than the feature angle).
-pub(super) fn is_feature(m: &MeshRef<'_>, e: EdgeId, cos_limit: f32) -> bool {
-    let h = m.edge_halfedge(e);
-    let (Some(f), Some(g)) = (m.face(h), m.face(m.twin(h))) else {
-        return true;
-    };
-    let (n0, n1) = (
-        m.face_area_vector(f).normalize_or_zero(),
-        m.face_area_vector(g).normalize_or_zero(),
-    );
-    n0.dot(n1) < cos_limit
+/// The feature edges of the triangle mesh in `t`, by edge row: the sharp ones (on the
+/// boundary, or with a dihedral angle whose cosine is under `cos_limit`: their faces' normals
+/// turn by more than the feature angle), less the sides of dented triangles
+/// ([`without_noise`]).
+pub(super) fn feature_rows(t: &Connectivity, cos_limit: f32) -> Vec<bool> {
+    let normal: Vec<Vec3> = t
+        .faces()
+        .map(|f| {
+            let corners: Vec<Vec3> = t
+                .face_halfedges(f)
+                .map(|h| t.position(t.to_vertex(h)))
+                .collect();
+            newell_area_vector(&corners).normalize_or_zero()
+        })
+        .collect();
+    let sharp = t
+        .edges()
+        .map(|e| {
+            let h = t.edge_halfedge(e);
+            match (t.face(h), t.face(t.twin(h))) {
+                (Some(f), Some(g)) => normal[f.index()].dot(normal[g.index()]) < cos_limit,
+                _ => true,
+            }
+        })
+        .collect();
+    without_noise(t, sharp)
 }
 
-/// The sharp edges (`sharp`: boundary edges and edges over the dihedral limit) less the three
-/// sides of every dented triangle, one whose three sides are all sharp and none on the
-/// boundary: scanner noise (a single triangle tilted against all its neighbours), not a crease.
+/// The sharp edges (`sharp`, by edge row: boundary edges and edges over the dihedral limit)
+/// less the three sides of every dented triangle, one whose three sides are all sharp and none
+/// on the boundary: scanner noise (a single triangle tilted against all its neighbours), not a
+/// crease.
 ///
 /// Kept as features, a dent's sides would pin a knot of vertices that the triangles around
 /// cannot fit; a crease never dents a lone triangle. A sharp line folded back on itself (two
 /// sharp edges at under 30°) looks like noise too, but real creases do that, so those stay.
 /// (What this measured: `docs/remesh.md`.)
-pub(super) fn without_noise(
-    m: &MeshRef<'_>,
-    members: &MeshMembers,
-    mut sharp: EntityHashSet,
-) -> EntityHashSet {
-    let creased = |e: EdgeId| sharp.contains(&e.0) && !m.is_boundary_edge(e);
-    let mut noise: Vec<EdgeId> = Vec::new();
-    for &f in &members.faces {
+pub(super) fn without_noise(t: &Connectivity, mut sharp: Vec<bool>) -> Vec<bool> {
+    let creased = |e: EdgeRow| sharp[e.index()] && !t.is_boundary_edge(e);
+    let mut noise: Vec<EdgeRow> = Vec::new();
+    for f in t.faces() {
         // Every face is a triangle (checked before).
-        let h = m.face_halfedge(f);
-        let sides = [h, m.next(h), m.prev(h)].map(|h| m.edge(h));
+        let h = t.face_halfedge(f);
+        let sides = [h, t.next(h), t.prev(h)].map(|h| t.edge(h));
         if sides.iter().all(|&e| creased(e)) {
             noise.extend(sides);
         }
     }
     for e in noise {
-        sharp.remove(&e.0);
+        sharp[e.index()] = false;
     }
     sharp
 }
@@ -85,6 +95,8 @@ impl EdgeTable {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::tables::{MeshTables, extract};
+    use crate::mesh::topology::MeshRef;
     use crate::mesh::{MeshInfo, PolygonSoup, build_mesh};
     use bevy::prelude::World;
 
@@ -93,17 +105,19 @@ mod tests {
     fn kept_of(soup: &PolygonSoup, pairs: &[(usize, usize)]) -> Vec<(usize, usize)> {
         let mut world = World::new();
         let built = build_mesh(&mut world, soup, MeshInfo::default()).unwrap();
-        let members = MeshMembers::collect(&world, built.mesh);
+        let MeshTables { tables, members } = extract(&world, built.mesh);
         let m = MeshRef::new(&world);
         let v = |i: usize| built.input_vertices[i].unwrap();
-        let edge = |(a, b): (usize, usize)| m.edge(m.find_halfedge(v(a), v(b)).unwrap());
-        let sharp = pairs.iter().map(|&p| edge(p).0).collect();
-        let kept = without_noise(&m, &members, sharp);
-        pairs
-            .iter()
-            .copied()
-            .filter(|&p| kept.contains(&edge(p).0))
-            .collect()
+        let row = |(a, b): (usize, usize)| {
+            let e = m.edge(m.find_halfedge(v(a), v(b)).unwrap());
+            members.edges.iter().position(|&x| x == e).unwrap()
+        };
+        let mut sharp = vec![false; members.edges.len()];
+        for &p in pairs {
+            sharp[row(p)] = true;
+        }
+        let kept = without_noise(&tables, sharp);
+        pairs.iter().copied().filter(|&p| kept[row(p)]).collect()
     }
 
     #[test]

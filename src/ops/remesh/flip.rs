@@ -13,65 +13,168 @@ use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
-use crate::mesh::ids::{EdgeId, HalfedgeId, MeshId, VertexId, slots_for};
+use crate::mesh::ids::{EdgeId, HalfedgeId, MeshId};
+use crate::mesh::members::MeshMembers;
 use crate::mesh::stats::{THIN_ANGLE_DEG, min_corner_angle_deg};
-use crate::mesh::tables::NONE;
-use crate::mesh::tables::{MeshTables, extract};
+use crate::mesh::tables::write::write_listed_rows;
+use crate::mesh::tables::{
+    Connectivity, EdgeRow, FaceRow, HalfedgeRow, MeshTables, NONE, VertexRow, extract,
+};
 use crate::mesh::topology::MeshRef;
 use crate::ops::local::flip_edge;
 
 /// Flips the interior non-feature edges of `mesh` where that brings the valences of their
 /// four vertices closer to 6 (4 on the boundary), or leaves them as close and the edge was
 /// not [`locally_delaunay`]; only flips that [`flip_keeps_shape`]. Returns the flipped edges
-/// (each edge is visited once, and a flip keeps its id).
+/// (each edge is visited once, in table order, and a flip keeps its id).
+///
+/// The pass runs on the tables read by [`extract`]: each flip is checked as
+/// [`crate::ops::local::plan_flip`] checks it and made as [`crate::ops::local::apply_flip`]
+/// makes it, row for row ([`flip_rows`]), and only the rows the flips changed are written
+/// back. Reading each edge through its entity cost most of the pass.
 pub(super) fn flip_to_valence(
     world: &mut World,
     mesh: MeshId,
     features: &EntityHashSet,
 ) -> Vec<EdgeId> {
-    let MeshTables { tables: t, members } = extract(world, mesh);
-    // Valences and targets by entity index, kept up to date flip by flip (a flip changes only
+    let MeshTables {
+        tables: mut t,
+        members,
+    } = extract(world, mesh);
+    // Valences and targets by vertex row, kept up to date flip by flip (a flip changes only
     // its four vertices' valences, and never which vertices are on the boundary).
-    let mut valence = vec![0i32; slots_for(members.vertices.iter().map(|v| v.0))];
+    let mut valence = vec![0i32; t.vertex_count()];
     let mut target = vec![6i32; valence.len()];
     // Every halfedge into a vertex pairs with one out of it.
     for &v in &t.to_vertex {
-        valence[members.vertices[v as usize].slot()] += 1;
+        valence[v as usize] += 1;
     }
-    for (v, &h) in members.vertices.iter().zip(&t.vertex_halfedge) {
+    for (v, &h) in t.vertex_halfedge.iter().enumerate() {
         // A boundary vertex's halfedge is its boundary one.
         if t.face[h as usize] == NONE {
-            target[v.slot()] = 4;
+            target[v] = 4;
         }
     }
     let mut flipped = Vec::new();
-    for e in members.edges {
-        let m = MeshRef::new(world);
-        if m.try_edge(e).is_none() || features.contains(&e.0) || m.is_boundary_edge(e) {
+    let mut changed = ChangedRows::default();
+    for (row, &e) in members.edges.iter().enumerate() {
+        let row = EdgeRow::new(row as u32);
+        if features.contains(&e.0) || t.is_boundary_edge(row) {
             continue;
         }
-        let h = m.edge_halfedge(e);
-        let ends = [
-            m.from_vertex(h),
-            m.to_vertex(h),
-            m.to_vertex(m.next(h)),
-            m.to_vertex(m.next(m.twin(h))),
-        ]
-        .map(VertexId::slot);
+        let h = t.edge_halfedge(row);
+        let ends = quad_rows(&t, h);
         let change = [-1, -1, 1, 1];
-        let deviation = |k: usize, delta: i32| (valence[ends[k]] + delta - target[ends[k]]).abs();
+        let deviation = |k: usize, delta: i32| {
+            let v = ends[k].index();
+            (valence[v] + delta - target[v]).abs()
+        };
         let before: i32 = (0..4).map(|k| deviation(k, 0)).sum();
         let after: i32 = (0..4).map(|k| deviation(k, change[k])).sum();
+        let corners = ends.map(|v| t.position(v));
         // Closer valences; or as close, and a better-shaped pair.
-        let better = after < before || (after == before && !locally_delaunay(&m, h));
-        if better && flip_keeps_shape(&m, h) && flip_edge(world, e).is_ok() {
+        let better = after < before || (after == before && !delaunay(corners));
+        if better && keeps_shape(corners) && flip_allowed(&t, h, &valence) {
+            flip_rows(&mut t, h, &mut changed);
             for k in 0..4 {
-                valence[ends[k]] += change[k];
+                valence[ends[k].index()] += change[k];
             }
             flipped.push(e);
         }
     }
+    changed.write(world, &t, &members);
     flipped
+}
+
+/// The rows a pass on the tables changed, to write back.
+#[derive(Default)]
+struct ChangedRows {
+    vertices: Vec<VertexRow>,
+    halfedges: Vec<HalfedgeRow>,
+    faces: Vec<FaceRow>,
+}
+
+impl ChangedRows {
+    /// Writes each changed row of `t` into its entity (`members`, row for row), once.
+    fn write(mut self, world: &mut World, t: &Connectivity, members: &MeshMembers) {
+        self.vertices.sort_unstable();
+        self.vertices.dedup();
+        self.halfedges.sort_unstable();
+        self.halfedges.dedup();
+        self.faces.sort_unstable();
+        self.faces.dedup();
+        let listed = (&self.vertices[..], &self.halfedges[..], &self.faces[..]);
+        write_listed_rows(world, t, members, listed);
+    }
+}
+
+/// The rows `a b c d` around the edge of `h`, between triangles a b c and b a d.
+fn quad_rows(t: &Connectivity, h: HalfedgeRow) -> [VertexRow; 4] {
+    let twin = t.twin(h);
+    [
+        t.to_vertex(twin),
+        t.to_vertex(h),
+        t.to_vertex(t.next(h)),
+        t.to_vertex(t.next(twin)),
+    ]
+}
+
+/// Whether the interior edge of `h` may flip, as [`crate::ops::local::plan_flip`] decides
+/// (see its module doc): the new diagonal's ends differ and are not joined already, each end
+/// of the old one keeps at least 3 edges (2 on the boundary; `valence` by vertex row), and
+/// neither face already holds the corner it would gain.
+fn flip_allowed(t: &Connectivity, h: HalfedgeRow, valence: &[i32]) -> bool {
+    let twin = t.twin(h);
+    let [a, b, c, d] = quad_rows(t, h);
+    let (Some(f), Some(g)) = (t.face(h), t.face(twin)) else {
+        return false;
+    };
+    if c == d || t.find_halfedge(c, d).is_some() {
+        return false;
+    }
+    let holds = |f: FaceRow, v: VertexRow| t.face_halfedges(f).any(|x| t.to_vertex(x) == v);
+    [a, b].into_iter().all(|v| {
+        let minimum = if t.is_boundary_vertex(v) { 2 } else { 3 };
+        valence[v.index()] > minimum
+    }) && !holds(f, d)
+        && !holds(g, c)
+}
+
+/// Flips the edge of `h` in the tables as [`crate::ops::local::apply_flip`] flips it on the
+/// entities (`h` comes to run d → c in its face, its twin c → d; each face names its flipped
+/// halfedge; an end that named the halfedge it loses names the one after it), and lists the
+/// rows it changed in `changed`.
+fn flip_rows(t: &mut Connectivity, h: HalfedgeRow, changed: &mut ChangedRows) {
+    let twin = t.twin(h);
+    let (hn, hp, tn, tp) = (t.next(h), t.prev(h), t.next(twin), t.prev(twin));
+    let [a, b, c, d] = quad_rows(t, h);
+    let (f, g) = (t.face(h), t.face(twin));
+    let (hnn, tnn) = (t.next(hn), t.next(tn));
+    t.set_to_vertex(h, c);
+    t.set_to_vertex(twin, d);
+    t.link(h, hnn);
+    t.link(hp, tn);
+    t.link(tn, h);
+    t.set_face(tn, f);
+    t.link(twin, tnn);
+    t.link(tp, hn);
+    t.link(hn, twin);
+    t.set_face(hn, g);
+    for (face, halfedge) in [(f, h), (g, twin)] {
+        if let Some(face) = face {
+            t.face_halfedge[face.index()] = halfedge.get();
+            changed.faces.push(face);
+        }
+    }
+    for (v, lost, replacement) in [(a, h, tn), (b, twin, hn)] {
+        if t.vertex_halfedge(v) == lost {
+            t.set_vertex_halfedge(v, replacement);
+            changed.vertices.push(v);
+        }
+    }
+    changed
+        .halfedges
+        .extend([h, twin, hn, hp, tn, tp, hnn, tnn]);
 }
 
 /// The sides of the triangles with an angle under [`THIN_ANGLE_DEG`].
@@ -144,7 +247,11 @@ pub(super) fn quad_corners(m: &MeshRef<'_>, h: HalfedgeId) -> [Vec3; 4] {
 /// facing it, at c and at d, sum to at most 180°. Flipping an edge that is not makes the
 /// pair's smallest angle larger.
 pub(crate) fn locally_delaunay(m: &MeshRef<'_>, h: HalfedgeId) -> bool {
-    let [a, b, c, d] = quad_corners(m, h);
+    delaunay(quad_corners(m, h))
+}
+
+/// [`locally_delaunay`] on the corners `a b c d` of the pair a b c, b a d.
+fn delaunay([a, b, c, d]: [Vec3; 4]) -> bool {
     let angle = |apex: Vec3| (a - apex).angle_between(b - apex);
     angle(c) + angle(d) <= std::f32::consts::PI + 1e-4
 }
@@ -155,7 +262,11 @@ pub(crate) fn locally_delaunay(m: &MeshRef<'_>, h: HalfedgeId) -> bool {
 /// non-convex quad, for instance one whose corner is a locked vertex split onto a crease,
 /// and leave a zero-area triangle that nothing can move.
 fn flip_keeps_shape(m: &MeshRef<'_>, h: HalfedgeId) -> bool {
-    let [a, b, c, d] = quad_corners(m, h);
+    keeps_shape(quad_corners(m, h))
+}
+
+/// [`flip_keeps_shape`] on the corners `a b c d` of the pair a b c, b a d.
+fn keeps_shape([a, b, c, d]: [Vec3; 4]) -> bool {
     let normal = (b - a).cross(c - a) + (a - b).cross(d - b);
     // The quad is a d b c; the new diagonal is d c.
     [[a, d, c], [d, b, c]].iter().all(|&[p, q, r]| {
@@ -171,6 +282,7 @@ fn flip_keeps_shape(m: &MeshRef<'_>, h: HalfedgeId) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::ids::VertexId;
     use crate::mesh::{MeshInfo, PolygonSoup, build_mesh};
 
     /// Triangles a b c and b a d; whether flipping a b keeps both new triangles in shape.

@@ -95,7 +95,6 @@ use crate::mesh::ids::{EdgeId, MeshId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::tables::Connectivity;
 use crate::mesh::tables::{MeshTables, extract};
-use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
 pub use operation::Remesh;
@@ -174,12 +173,6 @@ pub fn remesh_with_progress(
         }
     }
     Ok(run.summary())
-}
-
-/// The length of `e`.
-fn edge_length(m: &MeshRef<'_>, e: EdgeId) -> f32 {
-    let (a, b) = m.edge_vertices(e);
-    m.position(a).distance(m.position(b))
 }
 
 /// The mesh's edges with their lengths, read in one pass over the world ([`extract`]) rather

@@ -22,6 +22,7 @@ use crate::mesh::topology::MeshRef;
 
 use super::distance_to_segment;
 use crate::ops::geometry::closest::Reference;
+use crate::ops::parallel::in_parallel;
 
 /// The free vertices' one-rings and fans as flat arrays. Smoothing takes many steps over one
 /// connectivity, so the world is read once before them and written once after, and each step
@@ -38,6 +39,8 @@ pub(super) struct Smoother {
     /// For free vertex `k`, its triangles are `fan[fan_start[k]..fan_start[k + 1]]`.
     fan_start: Vec<u32>,
     fan: Vec<[u32; 3]>,
+    /// By free vertex, its next position (a step's scratch).
+    targets: Vec<Vec3>,
 }
 
 impl Smoother {
@@ -59,6 +62,7 @@ impl Smoother {
             ring: Vec::new(),
             fan_start: vec![0],
             fan: Vec::new(),
+            targets: Vec::new(),
             vertices: members.vertices,
         };
         let mut outgoing = Vec::new();
@@ -92,7 +96,12 @@ impl Smoother {
     /// plane (the normal: the sum of its triangles' area vectors).
     pub(super) fn step(&mut self) {
         let p = &self.positions;
-        for (k, &i) in self.free.iter().enumerate() {
+        let mut targets = std::mem::take(&mut self.targets);
+        targets.resize(self.free.len(), Vec3::ZERO);
+        // Each target is computed from the old positions alone (Jacobi), so the cores may
+        // share the vertices out in any way.
+        in_parallel(&mut targets, |k, target| {
+            let i = self.free[k];
             let ring = &self.ring[self.ring_start[k] as usize..self.ring_start[k + 1] as usize];
             let fan = &self.fan[self.fan_start[k] as usize..self.fan_start[k + 1] as usize];
             let here = p[i as usize];
@@ -106,9 +115,12 @@ impl Smoother {
                 .sum::<Vec3>()
                 .normalize_or_zero();
             let step = centroid - here;
-            let target = here + 0.2 * (step - normal * normal.dot(step));
+            *target = here + 0.2 * (step - normal * normal.dot(step));
+        });
+        for (&i, &target) in self.free.iter().zip(&targets) {
             self.next[i as usize] = target;
         }
+        self.targets = targets;
         // Every free vertex is rewritten each step and the others never move, so swapping
         // leaves both buffers right.
         std::mem::swap(&mut self.positions, &mut self.next);
@@ -157,11 +169,24 @@ pub(super) fn project(
     vertices: &[VertexId],
     reference: &Reference,
 ) -> Vec<VertexId> {
+    let mut q = world.query::<&crate::mesh::Position>();
+    let mut at: Vec<Option<(Vec3, Vec3)>> = vertices
+        .iter()
+        .map(|&v| q.get(world, v.0).ok().map(|p| (p.0, p.0)))
+        .collect();
+    // One search a vertex, each on its own: shared out over the cores.
+    in_parallel(&mut at, |_, slot| {
+        if let Some((from, to)) = slot {
+            *to = reference.closest(*from);
+        }
+    });
     let mut moved = Vec::new();
-    for &v in vertices {
-        if let Some(mut position) = world.get_mut::<crate::mesh::Position>(v.0) {
-            let to = reference.closest(position.0);
-            if bits(position.0) != bits(to) {
+    let mut q = world.query::<&mut crate::mesh::Position>();
+    for (&v, slot) in vertices.iter().zip(at) {
+        if let Some((from, to)) = slot
+            && let Ok(mut position) = q.get_mut(world, v.0)
+        {
+            if bits(from) != bits(to) {
                 moved.push(v);
             }
             position.0 = to;

@@ -23,19 +23,19 @@ use bevy::math::Vec3;
 use bevy::prelude::World;
 
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
-use crate::mesh::members::MeshMembers;
-use crate::mesh::topology::MeshRef;
+use crate::mesh::tables::{Connectivity, MeshTables, extract};
+use crate::mesh::topology::newell_area_vector;
 use crate::ops::Refusal;
 use crate::ops::geometry::closest::Reference;
 
 use super::collapse::collapse_short;
-use super::features::{is_feature, without_noise};
+use super::features::feature_rows;
 use super::finish::{DETAIL_TOLERANCE, clean_up_thin, fill_grooves, restore_tips};
 use super::flip::flip_to_valence;
 use super::pass::{Pass, PassReport, Touched};
 use super::relax::{Smoother, project};
 use super::split::split_long;
-use super::{RemeshParams, RemeshSummary, edge_length};
+use super::{RemeshParams, RemeshSummary};
 
 /// A remesh under way, one pass a call to [`RemeshRun::next_pass`].
 ///
@@ -68,21 +68,21 @@ pub struct RemeshRun {
 ///
 /// # Refusals
 /// [`Refusal::OverBudget`], [`Refusal::BadParameter`] for a length that is not positive.
-fn check_budget(
-    m: &MeshRef<'_>,
-    members: &MeshMembers,
-    length: f32,
-    iterations: u32,
-) -> Result<(), Refusal> {
+fn check_budget(t: &Connectivity, length: f32, iterations: u32) -> Result<(), Refusal> {
     if !(length > 0.0 && length.is_finite()) {
         return Err(Refusal::BadParameter(format!(
             "the target edge length must be positive (it is {length})"
         )));
     }
-    let area: f64 = members
-        .faces
-        .iter()
-        .map(|&f| 0.5 * f64::from(m.face_area_vector(f).length()))
+    let area: f64 = t
+        .faces()
+        .map(|f| {
+            let corners: Vec<Vec3> = t
+                .face_halfedges(f)
+                .map(|h| t.position(t.to_vertex(h)))
+                .collect();
+            0.5 * f64::from(newell_area_vector(&corners).length())
+        })
         .sum();
     let triangle = 3f64.sqrt() / 4.0 * f64::from(length).powi(2);
     let faces = (area / triangle).min(u64::MAX as f64 / 8.0) as u64;
@@ -108,31 +108,35 @@ impl RemeshRun {
         if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
             return Err(Refusal::Stale(ElementId::Mesh(mesh)));
         }
-        let members = MeshMembers::collect(world, mesh);
-        let m = MeshRef::new(world);
-        if let Some(&f) = members.faces.iter().find(|&&f| m.face_degree(f) != 3) {
-            return Err(Refusal::NotTriangle(ElementId::Face(f)));
+        // One read of the mesh into tables: every walk below is over rows.
+        let MeshTables { tables: t, members } = extract(world, mesh);
+        if let Some(f) = t.first_non_triangle() {
+            return Err(Refusal::NotTriangle(ElementId::Face(
+                members.faces[f.index()],
+            )));
         }
         let length = params.target_length.unwrap_or_else(|| {
-            let sum: f32 = members.edges.iter().map(|&e| edge_length(&m, e)).sum();
-            sum / members.edges.len().max(1) as f32
+            let sum: f32 = t.edges().map(|e| t.edge_length(e)).sum();
+            sum / t.edge_count().max(1) as f32
         });
-        check_budget(&m, &members, length, params.iterations)?;
-        let reference = Reference::new(&m, &members);
-        let tips: Vec<Vec3> = members
-            .vertices
-            .iter()
-            .filter(|&&v| !m.is_boundary_vertex(v))
-            .map(|&v| m.position(v))
+        check_budget(&t, length, params.iterations)?;
+        let reference = Reference::from_triangles(
+            t.faces()
+                .map(|f| t.triangle_halfedges(f).map(|h| t.position(t.to_vertex(h))))
+                .collect(),
+        );
+        let tips: Vec<Vec3> = t
+            .vertices()
+            .filter(|&v| !t.is_boundary_vertex(v))
+            .map(|v| t.position(v))
             .collect();
         let cos_limit = params.feature_angle_deg.to_radians().cos();
-        let sharp: EntityHashSet = members
-            .edges
+        let features: EntityHashSet = feature_rows(&t, cos_limit)
             .iter()
-            .filter(|&&e| is_feature(&m, e, cos_limit))
-            .map(|e| e.0)
+            .zip(&members.edges)
+            .filter(|&(&feature, _)| feature)
+            .map(|(_, e)| e.0)
             .collect();
-        let features = without_noise(&m, &members, sharp);
         Ok(Self {
             mesh,
             iterations: params.iterations,
@@ -276,6 +280,8 @@ mod tests {
     use super::*;
     use crate::mesh::elements::{Edge, InMesh, Vertex};
     use crate::mesh::ids::EdgeId;
+    use crate::mesh::members::MeshMembers;
+    use crate::mesh::topology::MeshRef;
     use crate::mesh::{MeshInfo, build_mesh, shapes, validate};
     use crate::ops::remesh::remesh_with_progress;
     use crate::ops::remesh::tests::{Case, built, cases, counts, fingerprint, pinned};
