@@ -18,7 +18,6 @@ use bevy::math::Vec3;
 use bevy::prelude::World;
 
 use crate::mesh::ids::{EdgeId, HalfedgeId, MeshId, VertexId};
-use crate::mesh::members::MeshMembers;
 use crate::mesh::stats::min_corner_angle_deg;
 use crate::mesh::tables::{MeshTables, extract};
 use crate::mesh::topology::MeshRef;
@@ -28,6 +27,7 @@ use super::distance_to_segment;
 use super::flip::{flip_thin, quad_corners, thin_triangle_edges};
 use super::relax::relax_thin_corners;
 use crate::ops::geometry::closest::Reference;
+use crate::ops::parallel::in_parallel;
 
 /// How far from the input (times the target length) the finished remesh may leave an input
 /// vertex or the middle of one of its edges before [`restore_tips`] and [`fill_grooves`] put
@@ -55,17 +55,23 @@ pub(super) fn restore_tips(
     length: f32,
     tolerance: f32,
 ) -> EntityHashSet {
-    let members = MeshMembers::collect(world, mesh);
-    let surface = Reference::new(&MeshRef::new(world), &members);
-    let mut far: Vec<(f32, Vec3, usize)> = tips
-        .iter()
-        .filter(|&&p| !surface.is_near(p, tolerance))
-        .filter_map(|&p| {
+    let MeshTables { tables: t, members } = extract(world, mesh);
+    let surface = Reference::from_triangles(
+        t.faces()
+            .map(|f| t.triangle_halfedges(f).map(|h| t.position(t.to_vertex(h))))
+            .collect(),
+    );
+    // One search a tip, each on its own: shared out over the cores.
+    let mut found: Vec<Option<(f32, Vec3, usize)>> = vec![None; tips.len()];
+    in_parallel(&mut found, |i, slot| {
+        let p = tips[i];
+        if !surface.is_near(p, tolerance) {
             let (q, row) = surface.closest_on(p);
             let d = q.distance(p);
-            (d > tolerance).then_some((d, p, row))
-        })
-        .collect();
+            *slot = (d > tolerance).then_some((d, p, row));
+        }
+    });
+    let mut far: Vec<(f32, Vec3, usize)> = found.into_iter().flatten().collect();
     far.sort_by(|a, b| b.0.total_cmp(&a.0));
     let mut restored: Vec<Vec3> = Vec::new();
     let mut pinned = EntityHashSet::default();
@@ -113,20 +119,18 @@ pub(super) fn fill_grooves(
 ) -> Vec<VertexId> {
     let MeshTables { tables: t, members } = extract(world, mesh);
     let at = |h: u32| t.positions[t.to_vertex[h as usize] as usize];
-    let mut far: Vec<(f32, EdgeId, Vec3)> = members
-        .edges
-        .iter()
-        .zip(&t.edge_halfedge)
-        .filter_map(|(&e, &h)| {
-            let middle = (at(h) + at(t.twin[h as usize])) / 2.0;
-            if input.is_near(middle, tolerance) {
-                return None;
-            }
+    // One search an edge, each on its own: shared out over the cores.
+    let mut found: Vec<Option<(f32, EdgeId, Vec3)>> = vec![None; members.edges.len()];
+    in_parallel(&mut found, |i, slot| {
+        let h = t.edge_halfedge[i];
+        let middle = (at(h) + at(t.twin[h as usize])) / 2.0;
+        if !input.is_near(middle, tolerance) {
             let q = input.closest(middle);
             let d = q.distance(middle);
-            (d > tolerance).then_some((d, e, q))
-        })
-        .collect();
+            *slot = (d > tolerance).then_some((d, members.edges[i], q));
+        }
+    });
+    let mut far: Vec<(f32, EdgeId, Vec3)> = found.into_iter().flatten().collect();
     far.sort_by(|a, b| b.0.total_cmp(&a.0));
     let mut added = Vec::new();
     for (gap, e, q) in far {
@@ -228,6 +232,7 @@ fn split_onto(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::members::MeshMembers;
     use crate::mesh::{MeshInfo, PolygonSoup, build_mesh};
 
     /// The square (±1, ±1, 0) as two triangles split along the diagonal from (−1, −1) to
