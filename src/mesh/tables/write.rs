@@ -245,15 +245,7 @@ pub(crate) fn write_links(world: &mut World, c: &Connectivity, mesh: MeshId, row
         p.0 = c.position(v);
     });
     for_each_row::<&mut Halfedge, _>(world, &rows.halfedges, |i, mut x| {
-        let i = HalfedgeRow::new(i as u32);
-        *x = Halfedge {
-            twin: h(c.twin(i)),
-            next: h(c.next(i)),
-            prev: h(c.prev(i)),
-            vertex: rows.vertices[c.to_vertex(i).index()],
-            edge: rows.edges[c.edge(i).index()],
-            face: c.face(i).map(|f| rows.faces[f.index()]),
-        };
+        *x = halfedge_of_row(c, rows, HalfedgeRow::new(i as u32));
     });
     for_each_row::<&mut Edge, _>(world, &rows.edges, |i, mut x| {
         x.halfedge = h(c.edge_halfedge(EdgeRow::new(i as u32)));
@@ -262,6 +254,19 @@ pub(crate) fn write_links(world: &mut World, c: &Connectivity, mesh: MeshId, row
         x.halfedge = h(c.face_halfedge(FaceRow::new(i as u32)));
     });
     write_attributes(world, c, mesh, rows);
+}
+
+/// Halfedge row `i` of `c` as its component, each link the entity of its row in `rows`.
+fn halfedge_of_row(c: &Connectivity, rows: &MeshMembers, i: HalfedgeRow) -> Halfedge {
+    let h = |x: HalfedgeRow| rows.halfedges[x.index()];
+    Halfedge {
+        twin: h(c.twin(i)),
+        next: h(c.next(i)),
+        prev: h(c.prev(i)),
+        vertex: rows.vertices[c.to_vertex(i).index()],
+        edge: rows.edges[c.edge(i).index()],
+        face: c.face(i).map(|f| rows.faces[f.index()]),
+    }
 }
 
 /// Writes the links of the listed rows of `c` into their entities (`rows`, row for row, as
@@ -286,14 +291,7 @@ pub(crate) fn write_listed_rows(
     let mut q = world.query::<&mut Halfedge>();
     for &i in halfedges {
         if let Ok(mut x) = q.get_mut(world, rows.halfedges[i.index()].0) {
-            *x = Halfedge {
-                twin: h(c.twin(i)),
-                next: h(c.next(i)),
-                prev: h(c.prev(i)),
-                vertex: rows.vertices[c.to_vertex(i).index()],
-                edge: rows.edges[c.edge(i).index()],
-                face: c.face(i).map(|f| rows.faces[f.index()]),
-            };
+            *x = halfedge_of_row(c, rows, i);
         }
     }
     let mut q = world.query::<&mut Face>();

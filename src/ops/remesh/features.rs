@@ -14,9 +14,8 @@
 use bevy::math::Vec3;
 
 use crate::mesh::tables::{Connectivity, EdgeRow};
-use crate::mesh::topology::newell_area_vector;
 
-use super::EdgeTable;
+use super::{EdgeTable, triangle_area_vector};
 
 /// The feature edges of the triangle mesh in `t`, by edge row: the sharp ones (on the
 /// boundary, or with a dihedral angle whose cosine is under `cos_limit`: their faces' normals
@@ -25,13 +24,7 @@ use super::EdgeTable;
 pub(super) fn feature_rows(t: &Connectivity, cos_limit: f32) -> Vec<bool> {
     let normal: Vec<Vec3> = t
         .faces()
-        .map(|f| {
-            let corners: Vec<Vec3> = t
-                .face_halfedges(f)
-                .map(|h| t.position(t.to_vertex(h)))
-                .collect();
-            newell_area_vector(&corners).normalize_or_zero()
-        })
+        .map(|f| triangle_area_vector(t, f).normalize_or_zero())
         .collect();
     let sharp = t
         .edges()

@@ -24,7 +24,6 @@ use bevy::prelude::World;
 
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::mesh::tables::{Connectivity, MeshTables, extract};
-use crate::mesh::topology::newell_area_vector;
 use crate::ops::Refusal;
 use crate::ops::geometry::closest::Reference;
 
@@ -35,7 +34,7 @@ use super::flip::flip_to_valence;
 use super::pass::{Pass, PassReport, Touched};
 use super::relax::{Smoother, project};
 use super::split::split_long;
-use super::{RemeshParams, RemeshSummary};
+use super::{RemeshParams, RemeshSummary, triangle_area_vector};
 
 /// A remesh under way, one pass a call to [`RemeshRun::next_pass`].
 ///
@@ -76,13 +75,7 @@ fn check_budget(t: &Connectivity, length: f32, iterations: u32) -> Result<(), Re
     }
     let area: f64 = t
         .faces()
-        .map(|f| {
-            let corners: Vec<Vec3> = t
-                .face_halfedges(f)
-                .map(|h| t.position(t.to_vertex(h)))
-                .collect();
-            0.5 * f64::from(newell_area_vector(&corners).length())
-        })
+        .map(|f| 0.5 * f64::from(triangle_area_vector(t, f).length()))
         .sum();
     let triangle = 3f64.sqrt() / 4.0 * f64::from(length).powi(2);
     let faces = (area / triangle).min(u64::MAX as f64 / 8.0) as u64;
