@@ -272,8 +272,9 @@ fn halfedge_of_row(c: &Connectivity, rows: &MeshMembers, i: HalfedgeRow) -> Half
 /// Writes the links of the listed rows of `c` into their entities (`rows`, row for row, as
 /// [`write_links`] writes every row): each listed vertex's halfedge and position, each listed
 /// halfedge's six links, each listed face's halfedge. For a pass that edited a few rows of
-/// tables read by [`super::extract`] and spawned or despawned nothing; a row listed twice is
-/// written twice, a row whose entity is gone is skipped.
+/// tables read by [`super::extract`] and spawned or despawned nothing. It writes no edge's
+/// halfedge and no attribute column: a pass that changes those needs [`write_links`]. A row
+/// listed twice is written twice, a row whose entity is gone is skipped.
 pub(crate) fn write_listed_rows(
     world: &mut World,
     c: &Connectivity,

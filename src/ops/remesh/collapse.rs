@@ -7,7 +7,7 @@
 //! (link condition, degenerate faces, and a 60° bound on how far a face normal may turn), so a
 //! refused edge is skipped and the mesh stays valid; the tables make the same collapses the
 //! entities would, element for element (see [`crate::ops::simplify::flat`]). Features
-//! restrict where the survivor may go ([`collapse_choice`]): a feature vertex stays put, a
+//! restrict where the survivor may go ([`CollapseRules::collapse_choice`]): a feature vertex stays put, a
 //! feature-line vertex goes only along a line straight to within L/20 there, and a feature
 //! corner never goes; no collapse merges two feature edges into one.
 
@@ -24,7 +24,7 @@ use super::{EdgeTable, distance_to_segment};
 const MAX_NORMAL_TURN_DEG: f32 = 60.0;
 
 /// Collapses the edges of `mesh` shorter than `low` (4/5 L), shortest first (ties by edge
-/// entity), where [`collapse_choice`] allows and the collapse checks (with a 60° normal bound)
+/// entity), where [`CollapseRules::collapse_choice`] allows and the collapse checks (with a 60° normal bound)
 /// accept. Returns how many, and the surviving vertices, each once, less those a later
 /// collapse of the pass removed.
 pub(super) fn collapse_short(
@@ -54,7 +54,7 @@ pub(super) fn collapse_short(
     let mut flat = FlatTriangles::new(&table.tables, &numbers, edges.len());
     let mut edge_alive = vec![true; edges.len()];
     let limit = MAX_NORMAL_TURN_DEG.to_radians().cos();
-    let pass = Pass {
+    let rules = CollapseRules {
         feature: &feature,
         degree: &degree,
         high,
@@ -65,7 +65,7 @@ pub(super) fn collapse_short(
         if !edge_alive[e as usize] {
             continue;
         }
-        let Some((h, target)) = pass.collapse_choice(&flat, e) else {
+        let Some((h, target)) = rules.collapse_choice(&flat, e) else {
             continue;
         };
         if let Some(plan) = flat.plan(h, target, limit) {
@@ -85,7 +85,7 @@ pub(super) fn collapse_short(
 }
 
 /// What a collapse pass decides by: the feature edges and degrees by row, 4/3 L and 4/5 L.
-struct Pass<'a> {
+struct CollapseRules<'a> {
     /// By edge row: whether the edge is a feature.
     feature: &'a [bool],
     /// By vertex row: how many feature edges meet there
@@ -95,7 +95,7 @@ struct Pass<'a> {
     low: f32,
 }
 
-impl Pass<'_> {
+impl CollapseRules<'_> {
     /// How the short edge `e` may collapse without harming a feature: the halfedge whose start
     /// survives (its tip is removed) and where the survivor goes; `None` if it may not, or if
     /// it is no longer shorter than `low` (an earlier collapse of the pass moved an end).

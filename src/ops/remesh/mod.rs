@@ -40,8 +40,10 @@
 //! a feature corner, or a feature line or boundary that bends there.
 //!
 //! Each pass starts from the mesh read into flat tables ([`extract`]): the edge lengths, the
-//! valences and the feature degrees come from array passes, and only the edges a pass acts on
-//! are read through the entities.
+//! valences and the feature degrees come from array passes. The collapses and the flips are
+//! made on the tables and written back once a pass (the same edits, element for element, as
+//! the local operations make on the entities); the splits go through the entities. Attributes
+//! are dropped at the first pass (remeshing carries none), so no pass leaves a stale one.
 //! Features are kept ([`features`]): boundary edges and edges whose dihedral angle exceeds
 //! [`RemeshParams::feature_angle_deg`] (less the sides of triangles dented by scanner noise,
 //! see [`without_noise`](features::without_noise)) are split (both halves stay features) but

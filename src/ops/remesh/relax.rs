@@ -221,7 +221,7 @@ const RELAX_SLIDE: [f32; 4] = [0.1, 0.2, 0.3, 0.4];
 ///   plane, each projected onto `reference`.
 /// - A vertex on a feature line or the boundary (two feature edges) slides along one of them
 ///   ([`RELAX_SLIDE`]), only where the line is straight to within `tolerance` there: the line
-///   keeps its shape, as in [`super::collapse::collapse_choice`].
+///   keeps its shape, as in the collapse pass ([`super::collapse`]).
 /// - A feature corner stays, and so does a vertex in `pinned` (a tip [`super::finish::restore_tips`] put
 ///   back).
 ///

@@ -6,8 +6,9 @@
 //! A run makes, for each iteration, the passes [`Pass::ITERATION`] (split, collapse, flip,
 //! relax, project; see the [`remesh`](super) module doc for what each does), then after the
 //! last iteration one [`Pass::Finish`] (tips and grooves put back, thin triangles cleaned
-//! up). Each pass is ordinary edits of the world (splits, collapses, flips, moves), and the
-//! mesh is valid between any two. [`remesh_with_progress`](super::remesh_with_progress) is this
+//! up). Each pass edits the world (splits on the entities; collapses and flips made on tables,
+//! as the local operations make them, and written back; moves), and the mesh is valid between
+//! any two. The first pass drops the mesh's attributes, which remeshing does not carry. [`remesh_with_progress`](super::remesh_with_progress) is this
 //! loop run to the end, so a run stepped by hand ends in the very same mesh, to the bit.
 //!
 //! The relaxation and the projection are two passes, where the loop once projected inside the
@@ -22,6 +23,7 @@ use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
+use crate::mesh::attributes::drop_attributes;
 use crate::mesh::ids::{ElementId, MeshId, VertexId};
 use crate::mesh::tables::{Connectivity, MeshTables, extract};
 use crate::ops::Refusal;
@@ -197,6 +199,10 @@ impl RemeshRun {
             return None;
         }
         let mesh = self.mesh;
+        if self.done == 0 {
+            // The passes on tables carry no attributes: none is left to go stale.
+            drop_attributes(world, mesh);
+        }
         let mut touched = Touched::default();
         let count = match pass {
             Pass::Split => {
@@ -600,6 +606,29 @@ mod tests {
         assert!(run.next_pass(&mut world).is_none());
         assert_eq!(fingerprint(&world, mesh), still);
         assert_ne!(before, still);
+    }
+
+    #[test]
+    fn the_first_pass_drops_the_attributes_the_run_does_not_carry() {
+        let mut soup = shapes::icosphere(2);
+        soup.corner_uvs = Some(
+            soup.indices
+                .iter()
+                .map(|&i| soup.positions[i as usize].truncate())
+                .collect(),
+        );
+        soup.vertex_colors = Some(vec![[9, 9, 9]; soup.positions.len()]);
+        let mut world = World::new();
+        let mesh = build_mesh(&mut world, &soup, MeshInfo::default())
+            .unwrap()
+            .mesh;
+        let had = crate::mesh::attributes::MeshAttributes::of(&world, mesh);
+        assert!(had.uv && had.colors);
+        let mut run = RemeshRun::start(&world, mesh, &RemeshParams::default()).unwrap();
+        // Before the flips on tables could leave a corner's UV on the wrong vertex.
+        assert_eq!(run.next_pass(&mut world).unwrap().pass, Pass::Split);
+        assert!(crate::mesh::attributes::MeshAttributes::of(&world, mesh).is_empty());
+        validate(&world, mesh).unwrap();
     }
 
     #[test]

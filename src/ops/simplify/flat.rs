@@ -1,4 +1,6 @@
-//! Edge collapses on flat triangle tables: the simplifier's inner loop without entities.
+//! Edge collapses on flat triangle tables: the simplifier's inner loop without entities, and
+//! the remesher's collapse pass ([`crate::ops::remesh`]), which reads and writes them the same
+//! way.
 //!
 //! [`super::simplify`] reads the mesh into tables once ([`crate::mesh::tables::extract`]),
 //! makes every collapse here on `u32` rows, and writes the surviving rows back in one pass
