@@ -34,8 +34,8 @@ use bevy::prelude::{Entity, World};
 
 use crate::mesh::despawn::Despawner;
 use crate::mesh::ids::{EdgeId, ElementId, MeshId, VertexId, slots_for};
-use crate::mesh::tables::{Connectivity, FaceRow, MeshTables, VertexRow, extract};
-use crate::mesh::topology::{MeshRef, newell_area_vector};
+use crate::mesh::tables::{Connectivity, MeshTables, VertexRow, extract};
+use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
 use super::indexed_heap::{IndexedHeap, slot_of};
@@ -401,7 +401,7 @@ fn vertex_quadrics(t: &Connectivity, params: &SimplifyParams) -> Vec<Quadric> {
     let sharp = params.feature_angle_deg.to_radians().cos();
     let area_vector: Vec<DVec3> = t
         .faces()
-        .map(|f| face_area_vector(t, f).as_dvec3())
+        .map(|f| t.triangle_area_vector(f).as_dvec3())
         .collect();
     let unit_normal: Vec<Option<DVec3>> = area_vector.iter().map(|a| a.try_normalize()).collect();
     for h in t.halfedges() {
@@ -428,11 +428,6 @@ fn vertex_quadrics(t: &Connectivity, params: &SimplifyParams) -> Vec<Quadric> {
         }
     }
     quadric
-}
-
-/// A triangle's area vector from the tables, as [`MeshRef::face_area_vector`] computes it.
-fn face_area_vector(t: &Connectivity, f: FaceRow) -> Vec3 {
-    newell_area_vector(&t.triangle_halfedges(f).map(|h| t.position(t.to_vertex(h))))
 }
 
 /// `e`'s heap key at its current cost, for its ends and their positions

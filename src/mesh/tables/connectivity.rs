@@ -21,7 +21,7 @@ use bevy::math::Vec3;
 
 use super::rows::{EdgeRow, FaceRow, HalfedgeRow, NONE, RowCounts, VertexRow};
 use crate::mesh::attributes::AttributeColumns;
-use crate::mesh::topology::MAX_LOOP;
+use crate::mesh::topology::{MAX_LOOP, newell_area_vector};
 
 /// Halfedge connectivity as flat tables, one row per element, with the positions.
 ///
@@ -371,6 +371,20 @@ impl Connectivity {
         let first = self.face_halfedge(f);
         let second = self.next(first);
         [first, second, self.next(second)]
+    }
+
+    /// The positions of the corners of face `f`, in the order of
+    /// [`Connectivity::triangle_halfedges`] (the tips of its first three halfedges).
+    #[inline]
+    pub fn triangle_corners(&self, f: FaceRow) -> [Vec3; 3] {
+        self.triangle_halfedges(f)
+            .map(|h| self.position(self.to_vertex(h)))
+    }
+
+    /// Twice the vector area of triangle `f` (Newell's, over [`Connectivity::triangle_corners`]),
+    /// as [`crate::mesh::MeshRef::face_area_vector`] computes it on the entities, to the bit.
+    pub fn triangle_area_vector(&self, f: FaceRow) -> Vec3 {
+        newell_area_vector(&self.triangle_corners(f))
     }
 
     /// The first face that is not a triangle, if any (three `next` steps from its halfedge do

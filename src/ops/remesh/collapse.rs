@@ -7,9 +7,9 @@
 //! (link condition, degenerate faces, and a 60° bound on how far a face normal may turn), so a
 //! refused edge is skipped and the mesh stays valid; the tables make the same collapses the
 //! entities would, element for element (see [`crate::ops::simplify::flat`]). Features
-//! restrict where the survivor may go ([`CollapseRules::collapse_choice`]): a feature vertex stays put, a
-//! feature-line vertex goes only along a line straight to within L/20 there, and a feature
-//! corner never goes; no collapse merges two feature edges into one.
+//! restrict where the survivor may go ([`CollapseRules::collapse_choice`]): a feature vertex
+//! stays put, a feature-line vertex goes only along a line straight to within L/20 there, and
+//! a feature corner never goes; no collapse merges two feature edges into one.
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
@@ -24,9 +24,9 @@ use super::{EdgeTable, distance_to_segment};
 const MAX_NORMAL_TURN_DEG: f32 = 60.0;
 
 /// Collapses the edges of `mesh` shorter than `low` (4/5 L), shortest first (ties by edge
-/// entity), where [`CollapseRules::collapse_choice`] allows and the collapse checks (with a 60° normal bound)
-/// accept. Returns how many, and the surviving vertices, each once, less those a later
-/// collapse of the pass removed.
+/// entity), where [`CollapseRules::collapse_choice`] allows and the collapse checks (with a
+/// 60° normal bound) accept. Returns how many, and the surviving vertices, each once, less
+/// those a later collapse of the pass removed.
 pub(super) fn collapse_short(
     world: &mut World,
     mesh: MeshId,

@@ -15,7 +15,7 @@ use bevy::math::Vec3;
 
 use crate::mesh::tables::{Connectivity, EdgeRow};
 
-use super::{EdgeTable, triangle_area_vector};
+use super::EdgeTable;
 
 /// The feature edges of the triangle mesh in `t`, by edge row: the sharp ones (on the
 /// boundary, or with a dihedral angle whose cosine is under `cos_limit`: their faces' normals
@@ -24,7 +24,7 @@ use super::{EdgeTable, triangle_area_vector};
 pub(super) fn feature_rows(t: &Connectivity, cos_limit: f32) -> Vec<bool> {
     let normal: Vec<Vec3> = t
         .faces()
-        .map(|f| triangle_area_vector(t, f).normalize_or_zero())
+        .map(|f| t.triangle_area_vector(f).normalize_or_zero())
         .collect();
     let sharp = t
         .edges()

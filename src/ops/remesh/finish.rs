@@ -56,11 +56,7 @@ pub(super) fn restore_tips(
     tolerance: f32,
 ) -> EntityHashSet {
     let MeshTables { tables: t, members } = extract(world, mesh);
-    let surface = Reference::from_triangles(
-        t.faces()
-            .map(|f| t.triangle_halfedges(f).map(|h| t.position(t.to_vertex(h))))
-            .collect(),
-    );
+    let surface = Reference::from_triangles(t.faces().map(|f| t.triangle_corners(f)).collect());
     // One search a tip, each on its own: shared out over the cores.
     let mut found: Vec<Option<(f32, Vec3, usize)>> = vec![None; tips.len()];
     in_parallel(&mut found, |i, slot| {

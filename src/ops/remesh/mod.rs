@@ -95,9 +95,8 @@ use bevy::prelude::World;
 
 use crate::mesh::ids::{EdgeId, MeshId};
 use crate::mesh::members::MeshMembers;
-use crate::mesh::tables::{Connectivity, FaceRow};
+use crate::mesh::tables::Connectivity;
 use crate::mesh::tables::{MeshTables, extract};
-use crate::mesh::topology::newell_area_vector;
 
 use super::Refusal;
 pub use operation::Remesh;
@@ -215,13 +214,6 @@ impl EdgeTable {
             .map(|(&e, _)| e)
             .collect()
     }
-}
-
-/// Twice the vector area of triangle `f` of `t` (Newell's, over its corners from its own
-/// halfedge, as [`MeshRef::face_area_vector`](crate::mesh::topology::MeshRef::face_area_vector)
-/// computes it on the entities).
-fn triangle_area_vector(t: &Connectivity, f: FaceRow) -> Vec3 {
-    newell_area_vector(&t.triangle_halfedges(f).map(|h| t.position(t.to_vertex(h))))
 }
 
 /// How far `p` is from the segment `a b`.

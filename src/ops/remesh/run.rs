@@ -8,7 +8,8 @@
 //! last iteration one [`Pass::Finish`] (tips and grooves put back, thin triangles cleaned
 //! up). Each pass edits the world (splits on the entities; collapses and flips made on tables,
 //! as the local operations make them, and written back; moves), and the mesh is valid between
-//! any two. The first pass drops the mesh's attributes, which remeshing does not carry. [`remesh_with_progress`](super::remesh_with_progress) is this
+//! any two. The first pass drops the mesh's attributes, which remeshing does not carry.
+//! [`remesh_with_progress`](super::remesh_with_progress) is this
 //! loop run to the end, so a run stepped by hand ends in the very same mesh, to the bit.
 //!
 //! The relaxation and the projection are two passes, where the loop once projected inside the
@@ -36,7 +37,7 @@ use super::flip::flip_to_valence;
 use super::pass::{Pass, PassReport, Touched};
 use super::relax::{Smoother, project};
 use super::split::split_long;
-use super::{RemeshParams, RemeshSummary, triangle_area_vector};
+use super::{RemeshParams, RemeshSummary};
 
 /// A remesh under way, one pass a call to [`RemeshRun::next_pass`].
 ///
@@ -77,7 +78,7 @@ fn check_budget(t: &Connectivity, length: f32, iterations: u32) -> Result<(), Re
     }
     let area: f64 = t
         .faces()
-        .map(|f| 0.5 * f64::from(triangle_area_vector(t, f).length()))
+        .map(|f| 0.5 * f64::from(t.triangle_area_vector(f).length()))
         .sum();
     let triangle = 3f64.sqrt() / 4.0 * f64::from(length).powi(2);
     let faces = (area / triangle).min(u64::MAX as f64 / 8.0) as u64;
@@ -115,11 +116,8 @@ impl RemeshRun {
             sum / t.edge_count().max(1) as f32
         });
         check_budget(&t, length, params.iterations)?;
-        let reference = Reference::from_triangles(
-            t.faces()
-                .map(|f| t.triangle_halfedges(f).map(|h| t.position(t.to_vertex(h))))
-                .collect(),
-        );
+        let reference =
+            Reference::from_triangles(t.faces().map(|f| t.triangle_corners(f)).collect());
         let tips: Vec<Vec3> = t
             .vertices()
             .filter(|&v| !t.is_boundary_vertex(v))
