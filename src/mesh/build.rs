@@ -6,17 +6,18 @@
 //! element is ever seen half-built. The flat tables, and the passes between them and the
 //! entities, live in [`super::tables`]; this module only joins the soup to them.
 
-use bevy::math::Vec2;
+use bevy::math::{Vec2, Vec3};
 use bevy::prelude::World;
 use thiserror::Error;
 
-use super::attributes::AttributeColumns;
-use super::elements::MeshInfo;
-use super::groups::FaceGroups;
-use super::ids::{FaceId, MeshId, VertexId};
+use super::attributes::{AttributeColumns, CornerUv, MeshAttributes, VertexColor, VertexNormal};
+use super::elements::{Face, Halfedge, MeshInfo, Position, Vertex};
+use super::groups::{FaceGroup, FaceGroups, GroupTable};
+use super::ids::{FaceId, MeshId, VertexId, slot};
 use super::members::MeshMembers;
 use super::repair::{RepairReport, RepairedFaces, repair};
 use super::soup::PolygonSoup;
+use super::tables::read::for_each_element;
 use super::tables::{Connectivity, NONE, spawn_connectivity};
 
 /// Why a soup could not become a mesh at all (local defects are repaired, not errors).
@@ -214,13 +215,85 @@ fn input_faces(soup: &PolygonSoup, faces: &RepairedFaces) -> Vec<u32> {
 }
 
 /// The mesh as a polygon soup: vertices in table order, faces as vertex cycles, with the
-/// attributes the mesh has (corner UVs, vertex normals and colours). The inverse of
-/// [`build_mesh`] up to the repairs.
+/// attributes the mesh has (corner UVs, vertex normals and colours, face groups). The inverse
+/// of [`build_mesh`] up to the repairs, and exactly [`soup_of_tables`] of the mesh's
+/// [`extract`](super::tables::extract)ed tables.
 ///
-/// Read through the mesh's tables ([`super::tables::extract`], each kind in storage order):
-/// half the time of reading element by element (10 against 22 ms for the bunny).
+/// Read straight from the entities, without the tables: each kind in storage order (the
+/// tables' row order), each face walked through its halfedges, a vertex's row found through
+/// an array indexed by vertex entity. Saving a mesh of a million faces so holds the soup and
+/// that array above the World (about 30 bytes a face), where the tables and the list of every
+/// element's entity took 190.
 pub fn to_soup(world: &World, mesh: MeshId) -> PolygonSoup {
-    soup_of_tables(&super::tables::extract(world, mesh).tables)
+    let (mut vertex_count, mut slots) = (0, 0);
+    for_each_element::<&Vertex>(world, mesh, |e, _| {
+        vertex_count += 1;
+        slots = slots.max(slot(e) + 1);
+    });
+    let (mut face_count, mut corners) = (0, 0);
+    for_each_element::<&Face>(world, mesh, |_, _| face_count += 1);
+    for_each_element::<&Halfedge>(world, mesh, |_, h| corners += usize::from(h.face.is_some()));
+    let mut soup = PolygonSoup::with_capacity(vertex_count, face_count, corners);
+    let mut vertex_row = vec![NONE; slots];
+    for_each_element::<(&Vertex, &Position)>(world, mesh, |e, (_, p)| {
+        vertex_row[slot(e)] = soup.positions.len() as u32;
+        soup.positions.push(p.0);
+    });
+    let has = MeshAttributes::of(world, mesh);
+    let mut uvs = has.uv.then(|| Vec::with_capacity(corners));
+    // Registered wherever a face is (a mesh without faces has none to walk); UVs where the
+    // mesh has them.
+    let mut halfedges = world.try_query::<&Halfedge>();
+    let mut corner_uvs = world.try_query::<&CornerUv>().filter(|_| has.uv);
+    let mut face = Vec::new();
+    for_each_element::<&Face>(world, mesh, |_, f| {
+        face.clear();
+        let first = match halfedges.as_mut().map(|q| q.get(world, f.halfedge.0)) {
+            Some(Ok(start)) => start.prev,
+            _ => return,
+        };
+        let mut h = first;
+        while let Some(Ok(x)) = halfedges.as_mut().map(|q| q.get(world, h.0)) {
+            face.push(vertex_row[slot(x.vertex.0)]);
+            if let Some(out) = &mut uvs {
+                let uv = corner_uvs.as_mut().and_then(|q| q.get(world, h.0).ok());
+                out.push(uv.map_or(Vec2::ZERO, |uv| uv.0));
+            }
+            h = x.next;
+            if h == first {
+                break;
+            }
+        }
+        soup.push_face(&face);
+    });
+    soup.corner_uvs = uvs;
+    if has.normals {
+        let mut normals = Vec::with_capacity(vertex_count);
+        for_each_element::<(&Vertex, Option<&VertexNormal>)>(world, mesh, |_, (_, n)| {
+            normals.push(n.map_or(Vec3::ZERO, |n| n.0));
+        });
+        soup.vertex_normals = Some(normals);
+    }
+    if has.colors {
+        let mut colors = Vec::with_capacity(vertex_count);
+        for_each_element::<(&Vertex, Option<&VertexColor>)>(world, mesh, |_, (_, c)| {
+            colors.push(c.map_or([0; 3], |c| c.0));
+        });
+        soup.vertex_colors = Some(colors);
+    }
+    if has.groups
+        && let Some(table) = world.get::<GroupTable>(mesh.0)
+    {
+        let mut of_face = Vec::with_capacity(face_count);
+        for_each_element::<(&Face, Option<&FaceGroup>)>(world, mesh, |_, (_, g)| {
+            of_face.push(g.map_or(0, |g| g.0));
+        });
+        soup.face_groups = Some(FaceGroups {
+            table: table.clone(),
+            of_face,
+        });
+    }
+    soup
 }
 
 /// The polygon soup of a mesh's tables ([`super::tables::extract`]): what [`to_soup`] gives,
@@ -273,7 +346,69 @@ pub fn despawn_mesh(world: &mut World, mesh: MeshId) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use bevy::math::Vec3;
+    use crate::mesh::groups::Group;
+    use crate::mesh::shapes;
+    use crate::mesh::tables::extract;
+    use crate::ops::local::{CollapseOptions, collapse_edge, flip_edge, split_edge};
+
+    /// A soup with every attribute a soup carries: corner UVs, vertex normals and colours,
+    /// face groups.
+    fn with_every_attribute(mut soup: PolygonSoup) -> PolygonSoup {
+        let (corners, vertices, faces) =
+            (soup.indices.len(), soup.positions.len(), soup.face_count());
+        soup.corner_uvs = Some((0..corners).map(|k| Vec2::new(k as f32, 0.25)).collect());
+        soup.vertex_normals = Some(
+            (0..vertices)
+                .map(|v| Vec3::new(0.0, v as f32, 1.0))
+                .collect(),
+        );
+        soup.vertex_colors = Some((0..vertices).map(|v| [v as u8, 7, 9]).collect());
+        let group = |name: &str| Group {
+            group: Some(name.into()),
+            ..Group::default()
+        };
+        soup.face_groups = Some(FaceGroups {
+            table: GroupTable {
+                material_libraries: Vec::new(),
+                groups: vec![group("a"), group("b")],
+            },
+            of_face: (0..faces as u32).map(|f| f % 2).collect(),
+        });
+        soup
+    }
+
+    /// Read straight from the entities, the soup is the one the tables give, bit for bit:
+    /// closed and open meshes, with and without attributes, freshly built and after local
+    /// edits have scattered the rows' entities and storage.
+    #[test]
+    fn the_soup_read_from_the_entities_is_the_tables_soup() {
+        let soups = [
+            shapes::icosphere(2),
+            shapes::grid_with_holes(3),
+            with_every_attribute(shapes::grid_with_holes(2)),
+            with_every_attribute(shapes::torus(6, 5)),
+        ];
+        for soup in soups {
+            let mut world = World::new();
+            let mesh = build_mesh(&mut world, &soup, MeshInfo::default())
+                .unwrap()
+                .mesh;
+            let of_tables = |world: &World| soup_of_tables(&extract(world, mesh).tables);
+            assert_eq!(to_soup(&world, mesh), of_tables(&world));
+            let edges = MeshMembers::collect(&world, mesh).edges;
+            // Some edits are refused (an edge gone with an earlier collapse, a flip that would
+            // break the mesh); the mesh stays valid either way.
+            for (k, &e) in edges.iter().enumerate().step_by(2) {
+                let _ = match k % 3 {
+                    0 => split_edge(&mut world, e, 0.3).map(drop),
+                    1 => flip_edge(&mut world, e).map(drop),
+                    _ => collapse_edge(&mut world, e, CollapseOptions::default()).map(drop),
+                };
+            }
+            assert!(crate::mesh::validate(&world, mesh).is_ok());
+            assert_eq!(to_soup(&world, mesh), of_tables(&world));
+        }
+    }
 
     /// Each face names the input face it came from, a dropped face leaving a gap; a soup
     /// without face scalars pays nothing for it.

@@ -173,8 +173,9 @@ pub fn extract(world: &World, mesh: MeshId) -> MeshTables {
     MeshTables { tables: t, members }
 }
 
-/// Calls `each` with every element of `mesh` that has the components `D`, in storage order.
-fn for_each_element<D: ReadOnlyQueryData>(
+/// Calls `each` with every element of `mesh` that has the components `D`, in storage order (the
+/// order of [`MeshMembers::collect`], which is the order of [`extract`]'s rows).
+pub(crate) fn for_each_element<D: ReadOnlyQueryData>(
     world: &World,
     mesh: MeshId,
     mut each: impl FnMut(Entity, D::Item<'_, '_>),
