@@ -11,8 +11,12 @@
 //!   bookkeeping (the entity's location, change ticks) and the capacity its tables and entity
 //!   list hold spare after growing.
 //!
-//! Run: `cargo bench --bench world_bytes [-- MESH]` (default `shape:icosphere:8`, 1.3 M
-//! triangles; any file Pappus reads).
+//! Each phase also gives the process's resident high-water mark, which `/usr/bin/time` reports:
+//! the live bytes plus what the allocator holds (freed blocks kept for reuse, as the `pappus`
+//! program asks of it; `--no-keep` measures glibc's defaults instead).
+//!
+//! Run: `cargo bench --bench world_bytes [-- MESH] [--no-keep]` (default `shape:icosphere:8`,
+//! 1.3 M triangles; any file Pappus reads).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
@@ -74,6 +78,17 @@ fn reset_peak() -> usize {
     now
 }
 
+/// The process's resident high-water mark (`VmHWM`), in MiB: what `/usr/bin/time` reports as
+/// the peak, the allocator's kept and scattered pages included (0 where `/proc` is missing).
+fn resident_high_water_mb() -> f64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    let kb = status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok());
+    kb.unwrap_or(0.0) / 1024.0
+}
+
 fn mb(bytes: usize) -> f64 {
     bytes as f64 / (1 << 20) as f64
 }
@@ -92,6 +107,9 @@ fn bytes_per_entity<B: Bundle<Effect: NoBundleEffect>>(n: usize, bundle: impl Fn
 
 fn main() {
     let arg = std::env::args().skip(1).find(|a| !a.starts_with('-'));
+    // As the `pappus` program runs, unless told not to: freed memory kept for reuse.
+    let kept =
+        !std::env::args().any(|a| a == "--no-keep") && pappus::process_memory::keep_freed_memory();
     let source = arg.unwrap_or_else(|| "shape:icosphere:8".into());
     let start = live();
     let soup = match source.strip_prefix("shape:icosphere:") {
@@ -100,14 +118,15 @@ fn main() {
     };
     let soup_bytes = live() - start;
     let faces = soup.face_count();
-    println!("{source}: {faces} faces");
-    println!("| phase | MB | bytes per face |");
-    println!("|---|---:|---:|");
+    println!("{source}: {faces} faces, freed memory kept: {kept}");
+    println!("| phase | MB | bytes per face | resident high-water MB |");
+    println!("|---|---:|---:|---:|");
     let row = |name: &str, bytes: usize| {
         println!(
-            "| {name} | {:.1} | {:.0} |",
+            "| {name} | {:.1} | {:.0} | {:.0} |",
             mb(bytes),
-            bytes as f64 / faces as f64
+            bytes as f64 / faces as f64,
+            resident_high_water_mb()
         );
     };
     row("the soup as read", soup_bytes);

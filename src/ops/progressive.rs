@@ -18,7 +18,7 @@ use crate::mesh::change::remapped;
 use crate::mesh::elements::Vertex;
 use crate::mesh::ids::{ElementId, MeshId, VertexId, slots_for};
 use crate::mesh::members::of_kind;
-use crate::mesh::tables::write::{release_rows, reserve_rows_while, write_links};
+use crate::mesh::tables::write::{SpawnWith, release_rows, reserve_rows_while, write_links};
 use crate::mesh::tables::{Connectivity, RowCounts, VertexRow, extract};
 use crate::mesh::topology::MeshRef;
 
@@ -406,6 +406,7 @@ impl ProgressiveMesh {
             before.plus(added),
             self.mesh,
             Some(old),
+            SpawnWith::NONE,
             &mut |_| {},
             || replay(&mut tables, records, &mut rows, &old.vertices),
         );

@@ -40,7 +40,7 @@ use crate::mesh::MeshMembers;
 use crate::mesh::attributes::{AttributeColumns, mean_color};
 use crate::mesh::groups::FaceGroups;
 use crate::mesh::ids::{ElementId, FaceId, MeshId};
-use crate::mesh::tables::write::{reserve_rows_while, write_links};
+use crate::mesh::tables::write::{SpawnWith, reserve_rows_while, write_links};
 use crate::mesh::tables::{
     Connectivity, FaceCorners, FaceRow, HalfedgeRow, MeshTables, NONE, RowCounts, VertexRow,
     extract,
@@ -390,6 +390,7 @@ fn subdivide(
         counts,
         mesh,
         Some(&members),
+        SpawnWith::NONE,
         &mut rows_made,
         move || scheme.run_levels(tables, levels),
     );

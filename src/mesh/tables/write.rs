@@ -3,8 +3,10 @@
 //! [`spawn_connectivity`] spawns tables as a new mesh; [`replace_contents`] (and the undo
 //! records, through `write_tables`) makes an existing mesh's elements be new tables, reusing
 //! its entities row for row. Both are two passes: `reserve_rows` makes the right number of
-//! entities of each kind exist (old ones kept, new ones batch-spawned with placeholder links,
-//! the surplus despawned), then `write_links` writes every link and position. Between the two
+//! entities of each kind exist (old ones kept, new ones batch-spawned with placeholder links
+//! and with the attribute components the tables' columns give them, so that no row moves
+//! table when the columns are written; the surplus despawned), then `write_links` writes every
+//! link and position. Between the two
 //! the world holds placeholders, so they run back to back; the bulk operations (subdivision,
 //! progressive refinement) put their table computation in between, on another thread
 //! (`reserve_rows_while`). Those passes are crate-internal for that reason.
@@ -14,7 +16,9 @@
 //! anything outside these calls; the first rows of each kind keep the entities of the old rows
 //! (a selected vertex stays selected).
 
-use bevy::math::Vec3;
+use bevy::ecs::bundle::NoBundleEffect;
+use bevy::math::{Vec2, Vec3};
+use bevy::prelude::Bundle;
 use bevy::prelude::{Entity, World};
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -74,11 +78,12 @@ pub(crate) fn write_tables(
     old: Option<&MeshMembers>,
 ) -> MeshMembers {
     let counts = c.row_counts();
+    let with = SpawnWith::of(c);
     let rows = if counts.total() >= FAULT_AHEAD_ROWS && process_memory::keeps_freed_memory() {
         // Nothing to compute beside the reserve: the second thread only faults pages in ahead.
-        reserve_rows_while(world, counts, mesh, old, &mut |_| {}, || ()).1
+        reserve_rows_while(world, counts, mesh, old, with, &mut |_| {}, || ()).1
     } else {
-        reserve_rows(world, counts, mesh, old, &mut |_| {})
+        reserve_rows(world, counts, mesh, old, with, &mut |_| {})
     };
     write_links(world, c, mesh, &rows);
     rows
@@ -89,6 +94,41 @@ pub(crate) fn write_tables(
 /// thread would do nothing): about 10 MB of them, where that saves milliseconds and starting
 /// the thread costs microseconds.
 const FAULT_AHEAD_ROWS: usize = 100_000;
+
+/// The attribute components new rows are spawned with, so that writing the attribute columns
+/// afterwards ([`write_attributes`]) finds them in place instead of moving every row into
+/// another archetype: Bevy keeps the capacity of a table or archetype it empties, and grows the
+/// one the rows move into by doubling, one row at a time.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct SpawnWith {
+    /// Every halfedge row gets a `CornerUv` (a boundary halfedge's is then removed: few move).
+    corner_uvs: bool,
+    /// Every vertex row gets a `VertexNormal`.
+    normals: bool,
+    /// Every vertex row gets a `VertexColor`.
+    colors: bool,
+}
+
+impl SpawnWith {
+    /// None: rows whose attribute columns are not known yet (a bulk operation computing its
+    /// tables while the rows are made).
+    pub(crate) const NONE: Self = Self {
+        corner_uvs: false,
+        normals: false,
+        colors: false,
+    };
+
+    /// What [`write_attributes`] will give the rows of `c`.
+    fn of(c: &Connectivity) -> Self {
+        let columns = &c.attributes;
+        let (nv, nh) = (c.positions.len(), c.twin.len());
+        Self {
+            corner_uvs: columns.uv.as_ref().map(Vec::len) == Some(nh),
+            normals: columns.normals.as_ref().map(Vec::len) == Some(nv),
+            colors: columns.colors.as_ref().map(Vec::len) == Some(nv),
+        }
+    }
+}
 
 /// Makes `counts` rows of each kind exist in `mesh`: the entities of `old` first (reused as
 /// they are), then new ones spawned in one batch per kind with placeholder links; the rest of
@@ -107,6 +147,7 @@ pub(crate) fn reserve_rows(
     counts: RowCounts,
     mesh: MeshId,
     old: Option<&MeshMembers>,
+    with: SpawnWith,
     progress: &mut dyn FnMut(f32),
 ) -> MeshMembers {
     let total = counts.total().max(1) as f32;
@@ -118,12 +159,16 @@ pub(crate) fn reserve_rows(
     let member = InMesh(mesh);
     let none = HalfedgeId(Entity::PLACEHOLDER);
     let old_of = |f: fn(&MeshMembers) -> Vec<Entity>| old.map(f).unwrap_or_default();
-    let vertices = entities_for(
-        world,
-        counts.vertices,
-        old_of(|o| o.vertices.iter().map(|v| v.0).collect()),
-        (Vertex { halfedge: none }, Position(Vec3::ZERO), member),
-    );
+    let vertex = (Vertex { halfedge: none }, Position(Vec3::ZERO), member);
+    let old_vertices = old_of(|o| o.vertices.iter().map(|v| v.0).collect());
+    let n = counts.vertices;
+    let (normal, color) = (VertexNormal(Vec3::ZERO), VertexColor([0; 3]));
+    let vertices = match (with.normals, with.colors) {
+        (false, false) => entities_for(world, n, old_vertices, vertex),
+        (true, false) => entities_after(world, n, old_vertices, vertex, (vertex, normal)),
+        (false, true) => entities_after(world, n, old_vertices, vertex, (vertex, color)),
+        (true, true) => entities_after(world, n, old_vertices, vertex, (vertex, normal, color)),
+    };
     done(counts.vertices);
     let placeholder = Halfedge {
         twin: none,
@@ -133,12 +178,18 @@ pub(crate) fn reserve_rows(
         edge: EdgeId(Entity::PLACEHOLDER),
         face: None,
     };
-    let halfedges = entities_for(
-        world,
-        counts.halfedges,
-        old_of(|o| o.halfedges.iter().map(|h| h.0).collect()),
-        (placeholder, member),
-    );
+    let old_halfedges = old_of(|o| o.halfedges.iter().map(|h| h.0).collect());
+    let (n, halfedge) = (counts.halfedges, (placeholder, member));
+    let halfedges = match with.corner_uvs {
+        false => entities_for(world, n, old_halfedges, halfedge),
+        true => entities_after(
+            world,
+            n,
+            old_halfedges,
+            halfedge,
+            (halfedge, CornerUv(Vec2::ZERO)),
+        ),
+    };
     done(counts.halfedges);
     let edges = entities_for(
         world,
@@ -177,6 +228,7 @@ pub(crate) fn reserve_rows_while<T: Send>(
     counts: RowCounts,
     mesh: MeshId,
     old: Option<&MeshMembers>,
+    with: SpawnWith,
     progress: &mut dyn FnMut(f32),
     compute: impl FnOnce() -> T + Send,
 ) -> (T, MeshMembers) {
@@ -188,7 +240,7 @@ pub(crate) fn reserve_rows_while<T: Send>(
             process_memory::fault_in_heap_while(rows_bytes, || !reserved.load(Ordering::Relaxed));
             computed
         });
-        let rows = reserve_rows(world, counts, mesh, old, progress);
+        let rows = reserve_rows(world, counts, mesh, old, with, progress);
         reserved.store(true, Ordering::Relaxed);
         let computed = worker
             .join()
@@ -453,6 +505,37 @@ fn entities_for<B>(world: &mut World, n: usize, old: Vec<Entity>, placeholder: B
 where
     B: bevy::prelude::Bundle<Effect: bevy::ecs::bundle::NoBundleEffect> + Clone,
 {
+    let mut ids = kept(world, n, old);
+    let keep = ids.len();
+    ids.extend(world.spawn_batch(std::iter::repeat_n(placeholder, n - keep)));
+    ids
+}
+
+/// [`entities_for`] with the new rows spawned as `with` (the placeholder and attribute
+/// components), the table of the `bare` placeholder made first (a batch of none of it): tables
+/// are then made in the order they were when the attributes were inserted after the spawn,
+/// and queries meet them in that order.
+fn entities_after<B, W>(
+    world: &mut World,
+    n: usize,
+    old: Vec<Entity>,
+    bare: B,
+    with: W,
+) -> Vec<Entity>
+where
+    B: Bundle<Effect: NoBundleEffect> + Clone,
+    W: Bundle<Effect: NoBundleEffect> + Clone,
+{
+    let mut ids = kept(world, n, old);
+    let keep = ids.len();
+    world.spawn_batch(std::iter::repeat_n(bare, 0));
+    ids.extend(world.spawn_batch(std::iter::repeat_n(with, n - keep)));
+    ids
+}
+
+/// The first `n` entities of `old` (the rows kept); the rest of `old` despawned, and the freed
+/// ids about to be taken for the `n - kept` new rows sorted.
+fn kept(world: &mut World, n: usize, old: Vec<Entity>) -> Vec<Entity> {
     let keep = old.len().min(n);
     // Last row first: rows a bulk edit spawned sit at the end of their table in row order, so
     // each despawn then takes the table's last row, moving no other row into its place (and
@@ -464,7 +547,6 @@ where
     let mut ids = old;
     ids.truncate(keep);
     sort_free_ids(world, n - keep);
-    ids.extend(world.spawn_batch(std::iter::repeat_n(placeholder, n - keep)));
     ids
 }
 
@@ -523,5 +605,65 @@ mod tests {
         // More entities with the component than rows: lookups only.
         world.spawn(Position(Vec3::ZERO));
         assert_eq!(written(&mut world, &rows[..500]), expected[..500]);
+    }
+
+    /// Rows spawned with the attribute components their columns give them: writing the
+    /// columns then moves no row, so no table is left holding the capacity of rows that moved
+    /// out (the halfedge tables' capacities sum to the halfedges, not twice them).
+    #[test]
+    fn rows_are_spawned_with_their_attributes_and_move_no_table() {
+        use crate::mesh::{build_mesh, shapes, validate};
+        let mut soup = shapes::grid_with_holes(3);
+        let (corners, vertices) = (soup.indices.len(), soup.positions.len());
+        soup.corner_uvs = Some((0..corners).map(|k| Vec2::new(k as f32, 1.0)).collect());
+        soup.vertex_normals = Some(vec![Vec3::Z; vertices]);
+        soup.vertex_colors = Some(vec![[1, 2, 3]; vertices]);
+        let mut world = World::new();
+        let mesh = build_mesh(&mut world, &soup, MeshInfo::default())
+            .unwrap()
+            .mesh;
+        assert!(validate(&world, mesh).is_ok());
+        let capacity_of = |world: &World, id| -> (usize, usize) {
+            let mut held = (0, 0);
+            // Archetypes that differ by a sparse-set component share a table.
+            let mut tables: Vec<_> = world
+                .archetypes()
+                .iter()
+                .filter(|a| a.contains(id))
+                .map(|a| a.table_id())
+                .collect();
+            tables.sort_unstable_by_key(|t| t.as_usize());
+            tables.dedup();
+            for table in tables {
+                let table = world.storages().tables.get(table).unwrap();
+                held.0 += table.capacity();
+                held.1 += table.entity_count() as usize;
+            }
+            held
+        };
+        let members = MeshMembers::collect(&world, mesh);
+        for (id, rows) in [
+            (world.component_id::<Halfedge>(), members.halfedges.len()),
+            (world.component_id::<Vertex>(), members.vertices.len()),
+        ] {
+            let (capacity, held) = capacity_of(&world, id.unwrap());
+            assert_eq!(held, rows);
+            assert!(
+                capacity <= rows + 8,
+                "{capacity} rows' room for {rows} rows"
+            );
+        }
+        // Every corner has its UV, every boundary halfedge none; every vertex its normal and
+        // colour.
+        let uvs = members
+            .halfedges
+            .iter()
+            .filter(|h| world.get::<CornerUv>(h.0).is_some())
+            .count();
+        assert_eq!(uvs, corners);
+        for v in &members.vertices {
+            assert_eq!(world.get::<VertexColor>(v.0), Some(&VertexColor([1, 2, 3])));
+            assert_eq!(world.get::<VertexNormal>(v.0), Some(&VertexNormal(Vec3::Z)));
+        }
     }
 }
