@@ -3,10 +3,10 @@
 //! [`spawn_connectivity`] spawns tables as a new mesh; [`replace_contents`] (and the undo
 //! records, through `write_tables`) makes an existing mesh's elements be new tables, reusing
 //! its entities row for row. Both are two passes: `reserve_rows` makes the right number of
-//! entities of each kind exist (old ones kept, new ones batch-spawned with placeholder links
-//! and with the attribute components the tables' columns give them, so that no row moves
-//! table when the columns are written; the surplus despawned), then `write_links` writes every
-//! link and position. Between the two
+//! entities of each kind exist (old ones kept, new ones batch-spawned with placeholder links,
+//! a new mesh's with the attribute components the tables' columns give them, so that no row
+//! moves table when the columns are written; the surplus despawned), then `write_links` writes
+//! every link and position. Between the two
 //! the world holds placeholders, so they run back to back; the bulk operations (subdivision,
 //! progressive refinement) put their table computation in between, on another thread
 //! (`reserve_rows_while`). Those passes are crate-internal for that reason.
@@ -78,7 +78,13 @@ pub(crate) fn write_tables(
     old: Option<&MeshMembers>,
 ) -> MeshMembers {
     let counts = c.row_counts();
-    let with = SpawnWith::of(c);
+    // Only a new mesh's rows: an old mesh's rows may still carry attributes the tables drop,
+    // and new rows spawned into the final tables ahead of the old rows moving there would come
+    // first in storage order.
+    let with = match old {
+        None => SpawnWith::of(c),
+        Some(_) => SpawnWith::NONE,
+    };
     let rows = if counts.total() >= FAULT_AHEAD_ROWS && process_memory::keeps_freed_memory() {
         // Nothing to compute beside the reserve: the second thread only faults pages in ahead.
         reserve_rows_while(world, counts, mesh, old, with, &mut |_| {}, || ()).1
@@ -95,9 +101,9 @@ pub(crate) fn write_tables(
 /// the thread costs microseconds.
 const FAULT_AHEAD_ROWS: usize = 100_000;
 
-/// The attribute components new rows are spawned with, so that writing the attribute columns
-/// afterwards ([`write_attributes`]) finds them in place instead of moving every row into
-/// another archetype: Bevy keeps the capacity of a table or archetype it empties, and grows the
+/// The attribute components a new mesh's rows are spawned with, so that writing the attribute
+/// columns afterwards ([`write_attributes`]) finds them in place instead of moving every row
+/// into another archetype: Bevy keeps the capacity of a table or archetype it empties, and grows the
 /// one the rows move into by doubling, one row at a time.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct SpawnWith {
