@@ -2,7 +2,7 @@
 //!
 //! [`build_mesh`] is the one way a mesh enters a world: it repairs the soup
 //! ([`super::repair`]), lays out the halfedge tables ([`Connectivity::from_corners`]) and
-//! spawns them ([`spawn_connectivity`]). Every element is spawned once, already linked, so no
+//! spawns them ([`spawn_tables`]). Every element is spawned once, already linked, so no
 //! element is ever seen half-built. The flat tables, and the passes between them and the
 //! entities, live in [`super::tables`]; this module only joins the soup to them.
 
@@ -18,7 +18,7 @@ use super::members::MeshMembers;
 use super::repair::{RepairReport, RepairedFaces, repair};
 use super::soup::PolygonSoup;
 use super::tables::read::for_each_element;
-use super::tables::{Connectivity, NONE, spawn_connectivity};
+use super::tables::{Connectivity, NONE, spawn_tables};
 
 /// Why a soup could not become a mesh at all (local defects are repaired, not errors).
 #[derive(Debug, Error, Clone, PartialEq, Eq)]
@@ -110,16 +110,19 @@ pub fn prepare_mesh(soup: &PolygonSoup) -> Result<PreparedMesh, BuildError> {
     })
 }
 
-/// Spawns a prepared mesh into `world`: every element once, already linked.
+/// Spawns a prepared mesh into `world`: every element once, already linked
+/// ([`spawn_tables`]).
 pub fn spawn_prepared(world: &mut World, prepared: PreparedMesh, info: MeshInfo) -> BuiltMesh {
-    let (mesh, rows) = spawn_connectivity(world, &prepared.connectivity, info);
-    let vertices = rows.vertices;
+    let (mesh, rows) = spawn_tables(world, prepared.connectivity, info);
     let input_vertices = prepared
         .input_vertex
         .iter()
-        .map(|&v| (v != NONE).then(|| vertices[v as usize]))
+        .map(|&v| (v != NONE).then(|| rows.vertex(v)))
         .collect();
-    let face_sources = rows.faces.into_iter().zip(prepared.input_face).collect();
+    let face_sources = (0..)
+        .zip(prepared.input_face)
+        .map(|(f, input)| (rows.face(f), input))
+        .collect();
     BuiltMesh {
         mesh,
         report: prepared.report,

@@ -11,7 +11,7 @@ use super::elements::{Edge, Face, Halfedge, InMesh, Vertex};
 use super::ids::{EdgeId, FaceId, HalfedgeId, MeshId, VertexId};
 
 /// The elements of one mesh, by kind.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct MeshMembers {
     /// Its vertices.
     pub vertices: Vec<VertexId>,

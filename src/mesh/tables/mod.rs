@@ -13,6 +13,8 @@
 //!   behind every row).
 //! - [`write`]: tables → entities ([`spawn_connectivity`], [`replace_contents`] and the two
 //!   passes under them, `reserve_rows` and `write_links`).
+//! - [`spawn`]: tables → a new mesh in one pass, each link written as its row is spawned
+//!   ([`spawn_tables`]): what a load uses.
 //!
 //! # Layout
 //! Four kinds of rows, each numbered from 0: vertices, halfedges, edges, faces. The tables hold
@@ -37,9 +39,11 @@
 pub mod connectivity;
 pub mod read;
 pub mod rows;
+pub mod spawn;
 pub mod write;
 
 pub use connectivity::{Connectivity, FaceCorners, HalfedgeLinks};
 pub use read::{EntityRows, MeshTables, extract};
 pub use rows::{EdgeRow, FaceRow, HalfedgeRow, NONE, RowCounts, VertexRow};
+pub use spawn::{SpawnedRows, spawn_tables};
 pub use write::{replace_contents, spawn_connectivity};

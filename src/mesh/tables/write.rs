@@ -99,7 +99,7 @@ pub(crate) fn write_tables(
 /// rows are made ([`reserve_rows_while`]), where the program keeps freed memory (elsewhere that
 /// thread would do nothing): about 10 MB of them, where that saves milliseconds and starting
 /// the thread costs microseconds.
-const FAULT_AHEAD_ROWS: usize = 100_000;
+pub(super) const FAULT_AHEAD_ROWS: usize = 100_000;
 
 /// The attribute components a new mesh's rows are spawned with, so that writing the attribute
 /// columns afterwards ([`write_attributes`]) finds them in place instead of moving every row
@@ -367,7 +367,7 @@ pub(crate) fn write_listed_rows(
 /// order; otherwise a lookup per row (12–18 ns each: the entity's location, then its row).
 /// The walk checks every entity against `rows` and, at the first that differs, leaves the
 /// rest to the lookups, which then write every row.
-fn for_each_row<D: IterQueryData, Id: ContainsEntity>(
+pub(super) fn for_each_row<D: IterQueryData, Id: ContainsEntity>(
     world: &mut World,
     rows: &[Id],
     mut write: impl FnMut(usize, D::Item<'_, '_>),
@@ -565,7 +565,7 @@ fn kept(world: &mut World, n: usize, old: Vec<Entity>) -> Vec<Entity> {
 /// So the freed ids about to be reused are taken, sorted and handed back: the batch spawn then
 /// takes them again, front to back. Fresh ids are in order already, and a world that has freed
 /// none (a mesh just loaded and subdivided) pays nothing.
-fn sort_free_ids(world: &mut World, count: usize) {
+pub(super) fn sort_free_ids(world: &mut World, count: usize) {
     let spawned: usize = world.archetypes().iter().map(|a| a.len() as usize).sum();
     let freed = (world.entities().len() as usize).saturating_sub(spawned);
     let Ok(count) = u32::try_from(count.min(freed)) else {
