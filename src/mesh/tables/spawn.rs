@@ -19,10 +19,9 @@
 //!   rows exist, so at the end of the load the World stands nearly alone: no tables, no list of
 //!   entities.
 //!
-//! The mesh is the general writer's, element for element and link for link; its entities may
-//! be numbered apart by the ids the general writer sets aside (`sort_free_ids` takes fresh ids
-//! where it counts freed ones that are only the padding of Bevy's entity records), so ties
-//! broken by entity order fall the same way.
+//! The mesh is the general writer's, entity for entity and link for link: each batch sets ids
+//! aside first as the general writer does (`sort_free_ids`), and the foresight models what that
+//! takes ([`Numbering`]), so ties broken by entity order fall the same way.
 
 use bevy::ecs::bundle::NoBundleEffect;
 use bevy::ecs::entity::EntityGeneration;
@@ -294,8 +293,8 @@ fn spawn_rows(world: &mut World, c: &mut Connectivity, mesh: MeshId) -> SpawnedR
         &mut c.prev,
         &mut c.to_vertex,
         &mut c.edge,
+        &mut c.face,
     ]);
-    release(&mut [&mut c.face]);
     let edges = spawn_kind(
         world,
         at.edge,

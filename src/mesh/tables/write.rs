@@ -126,12 +126,11 @@ impl SpawnWith {
 
     /// What [`write_attributes`] will give the rows of `c`.
     fn of(c: &Connectivity) -> Self {
-        let columns = &c.attributes;
-        let (nv, nh) = (c.positions.len(), c.twin.len());
+        let fit = fitting_columns(c);
         Self {
-            corner_uvs: columns.uv.as_ref().map(Vec::len) == Some(nh),
-            normals: columns.normals.as_ref().map(Vec::len) == Some(nv),
-            colors: columns.colors.as_ref().map(Vec::len) == Some(nv),
+            corner_uvs: fit.uv,
+            normals: fit.normals,
+            colors: fit.colors,
         }
     }
 }
@@ -393,8 +392,27 @@ pub(super) fn for_each_row<D: IterQueryData, Id: ContainsEntity>(
     }
 }
 
-/// Makes the attributes of `mesh` be the columns of `c` (see [`crate::mesh::attributes`]): a
-/// column of the right length is written into its components (UVs on face halfedges only) and
+/// The attribute columns of `c` that fit its rows (one value a row of their kind, groups that
+/// name rows of their table): those [`write_attributes`] writes; a column that does not fit is
+/// left out.
+fn fitting_columns(c: &Connectivity) -> MeshAttributes {
+    let columns = &c.attributes;
+    let counts = c.row_counts();
+    MeshAttributes {
+        uv: columns.uv.as_ref().map(Vec::len) == Some(counts.halfedges),
+        normals: columns.normals.as_ref().map(Vec::len) == Some(counts.vertices),
+        colors: columns.colors.as_ref().map(Vec::len) == Some(counts.vertices),
+        seams: columns.seams.as_ref().map(Vec::len) == Some(counts.edges),
+        groups: columns
+            .groups
+            .as_ref()
+            .is_some_and(|g| g.fits(counts.faces)),
+    }
+}
+
+/// Makes the attributes of `mesh` be the columns of `c` (see [`crate::mesh::attributes`]),
+/// whose rows are the entities `rows` (as [`write_links`], its one caller, checks): a column
+/// that fits ([`fitting_columns`]) is written into its components (UVs on face halfedges only) and
 /// recorded on the mesh; an attribute the mesh had and the tables do not carry is removed from
 /// every element and from the record. A mesh that had none, written from tables that carry
 /// none, costs one lookup.
@@ -409,30 +427,12 @@ pub(crate) fn write_attributes(
     if before.is_empty() && columns.is_empty() {
         return;
     }
-    let uv = columns
-        .uv
-        .as_deref()
-        .filter(|v| v.len() == rows.halfedges.len());
-    let normals = columns
-        .normals
-        .as_deref()
-        .filter(|v| v.len() == rows.vertices.len());
-    let colors = columns
-        .colors
-        .as_deref()
-        .filter(|v| v.len() == rows.vertices.len());
-    let seams = columns
-        .seams
-        .as_deref()
-        .filter(|v| v.len() == rows.edges.len());
-    let groups = columns.groups.as_ref().filter(|g| g.fits(rows.faces.len()));
-    let now = MeshAttributes {
-        uv: uv.is_some(),
-        normals: normals.is_some(),
-        colors: colors.is_some(),
-        seams: seams.is_some(),
-        groups: groups.is_some(),
-    };
+    let now = fitting_columns(c);
+    let uv = columns.uv.as_deref().filter(|_| now.uv);
+    let normals = columns.normals.as_deref().filter(|_| now.normals);
+    let colors = columns.colors.as_deref().filter(|_| now.colors);
+    let seams = columns.seams.as_deref().filter(|_| now.seams);
+    let groups = columns.groups.as_ref().filter(|_| now.groups);
     remove_attributes(world, mesh, before.lost_in(now));
     if let Some(uv) = uv {
         let corners = rows
