@@ -1282,8 +1282,8 @@ fn a_large_file_opens_in_the_background_and_can_be_cancelled() {
     assert_eq!(counts(&app), torus, "one undo brings the torus back");
 }
 
-/// A large mesh's panel figures are counted on a thread (the last ones shown meanwhile), and its
-/// validity is checked when the panel asks.
+/// A large mesh's panel figures are read a slice a frame and counted on a thread (the last ones
+/// shown meanwhile), and its validity is checked when the panel asks.
 #[test]
 fn a_large_meshs_figures_are_counted_apart_and_its_validity_when_asked() {
     use pappus::editor::panels::{state::InspectorView, ui::snapshot};

@@ -89,13 +89,13 @@ pub fn clear_history(world: &mut World) {
     }
 }
 
-/// Logs the mean of every timing diagnostic since [`clear_history`] (one `frame-stats:` line
-/// each, slowest first), if the plugin is present.
+/// Logs the mean and the longest of every timing diagnostic since [`clear_history`] (one
+/// `frame-stats:` line each, slowest first), if the plugin is present.
 pub fn log_breakdown(world: &World) {
     let Some(store) = world.get_resource::<DiagnosticsStore>() else {
         return;
     };
-    let mut rows: Vec<(String, f64, usize)> = store
+    let mut rows: Vec<(String, f64, f64, usize)> = store
         .iter()
         .filter(|d| d.is_enabled)
         .filter(|d| {
@@ -111,14 +111,15 @@ pub fn log_breakdown(world: &World) {
                 (
                     d.path().as_str().to_string(),
                     d.values().sum::<f64>() / n as f64,
+                    d.values().copied().fold(f64::NEG_INFINITY, f64::max),
                     n,
                 )
             })
         })
         .collect();
     rows.sort_by(|a, b| b.1.total_cmp(&a.1));
-    for (path, mean, n) in rows {
-        bevy::log::info!("frame-stats: {path} {mean:.2} ms (mean of {n})");
+    for (path, mean, max, n) in rows {
+        bevy::log::info!("frame-stats: {path} {mean:.2} ms (mean of {n}, the longest {max:.2})");
     }
 }
 

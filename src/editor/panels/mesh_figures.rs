@@ -5,16 +5,20 @@
 //! during a drag); this module decides *where*. A mesh under [`JobSettings::min_faces_figures_apart`] faces is counted on
 //! the frame (about 150 ms on the bunny, 100 of it the validity check). A larger one would stall
 //! the window for seconds (the 1.1 M-face scan: about 2 s of validation and 1.2 s of
-//! statistics), so its tables are read on the frame and the statistics and histograms counted
-//! from them on a thread of their own, the last figures shown meanwhile; its validity is checked
-//! when asked (the panel's button), since every mesh an operation leaves is valid by
-//! construction and the full check stays a frame-long wait.
+//! statistics), so its tables are read a slice of [`READ_SLICE`] a frame ([`GradualRead`]: read
+//! in one go they held a frame of the 1.3 M-face icosphere for 650 ms after every edit) and the
+//! statistics and histograms counted from them on a thread of their own, the last figures shown
+//! meanwhile; an edit during the read starts it again. Its validity is checked when asked (the
+//! panel's button), since every mesh an operation leaves is valid by construction and the full
+//! check stays a frame-long wait.
 
 use bevy::prelude::{Resource, World};
+use bevy::window::RequestRedraw;
 use std::path::PathBuf;
 use std::thread::JoinHandle;
+use std::time::Duration;
 
-use crate::mesh::tables::extract;
+use crate::mesh::tables::{GradualRead, MeshTables};
 use crate::mesh::{MeshId, MeshInfo, MeshStats, mesh_stats, stats_of_tables, validate};
 
 use super::plots::{Histogram, histograms, histograms_of_tables};
@@ -41,12 +45,24 @@ pub struct MeshView {
 /// What a counting thread hands back.
 type Figures = (MeshStats, Vec<Histogram>);
 
-/// Figures being counted on a thread: the mesh generation they are for, and the thread.
+/// What a frame may spend reading a large mesh's tables for its figures.
+pub const READ_SLICE: Duration = Duration::from_millis(6);
+
+/// Figures being counted apart from the frame: the mesh generation they are for, and where
+/// they stand.
 #[derive(Resource, Default)]
-pub struct Counting(Option<(usize, JoinHandle<Figures>)>);
+pub struct Counting(Option<(usize, Apart)>);
+
+/// The two steps of counting a large mesh's figures.
+enum Apart {
+    /// Its tables being read, a slice a frame, with the quantity shown on it.
+    Reading(Box<(GradualRead, Option<VertexValues>)>),
+    /// The figures being counted from the tables on a thread.
+    Counting(JoinHandle<Figures>),
+}
 
 /// Counts the figures of `mesh` (at mesh `generation`) into `view`: at once for a small mesh,
-/// by starting a thread for a large one (see the module doc).
+/// by starting to read a large one's tables (see the module doc; [`collect`] goes on).
 pub fn count(
     world: &mut World,
     view: &mut Option<MeshView>,
@@ -73,15 +89,7 @@ pub fn count(
         *shown_histograms = histograms(world, mesh, world.get::<VertexValues>(mesh.0));
         return;
     }
-    let tables = extract(world, mesh).tables;
     let shown = world.get::<VertexValues>(mesh.0).cloned();
-    let thread = std::thread::Builder::new()
-        .name("panel figures".into())
-        .spawn(move || {
-            let stats = stats_of_tables(&tables);
-            let histograms = histograms_of_tables(&tables, shown.as_ref());
-            (stats, histograms)
-        });
     let previous = view.take();
     *view = Some(MeshView {
         name: info.name,
@@ -90,41 +98,72 @@ pub fn count(
         validation: None,
         counting: true,
     });
-    // Without a thread (the system refused one) the figures stay unknown until the next change.
-    world.resource_mut::<Counting>().0 = thread.ok().map(|t| (generation, t));
+    world.resource_mut::<Counting>().0 = Some((
+        generation,
+        Apart::Reading(Box::new((GradualRead::new(mesh), shown))),
+    ));
+    world.write_message(RequestRedraw);
 }
 
-/// Takes the figures a thread has finished counting into `view`, if they are for `generation`
-/// (figures of an older mesh are dropped). Returns whether the view changed.
+/// Starts the thread that counts the figures of `tables`; `None` when the system refused one
+/// (the figures then stay unknown until the next change).
+fn count_apart(tables: MeshTables, shown: Option<VertexValues>) -> Option<JoinHandle<Figures>> {
+    std::thread::Builder::new()
+        .name("panel figures".into())
+        .spawn(move || {
+            let stats = stats_of_tables(&tables.tables);
+            let histograms = histograms_of_tables(&tables.tables, shown.as_ref());
+            (stats, histograms)
+        })
+        .ok()
+}
+
+/// Goes on counting a large mesh's figures: reads the next slice of its tables, starts the
+/// counting thread once they are read, and takes the figures it has finished into `view`, if
+/// they are for `generation` (figures of an older mesh are dropped). Asks for the next frame
+/// while there is more to do. Returns whether the view changed.
 pub fn collect(
     world: &mut World,
     view: &mut Option<MeshView>,
     shown_histograms: &mut Vec<Histogram>,
     generation: usize,
 ) -> bool {
-    let finished = world
-        .resource::<Counting>()
-        .0
-        .as_ref()
-        .is_some_and(|(_, t)| t.is_finished());
-    if !finished {
-        return false;
-    }
-    let Some((counted, thread)) = world.resource_mut::<Counting>().0.take() else {
-        return false;
-    };
-    let Ok((stats, histograms)) = thread.join() else {
+    let Some((counted, apart)) = world.resource_mut::<Counting>().0.take() else {
         return false;
     };
     if counted != generation {
         return false;
     }
-    if let Some(mesh) = view.as_mut() {
-        mesh.stats = Some(stats);
-        mesh.counting = false;
+    let next = match apart {
+        Apart::Reading(mut reading) => match reading.0.advance(world, READ_SLICE) {
+            Ok(None) => Some(Apart::Reading(reading)),
+            Ok(Some(tables)) => count_apart(tables, reading.1).map(Apart::Counting),
+            Err(broken) => {
+                bevy::log::warn!("panel figures: {broken}; they are counted after the next edit");
+                if let Some(mesh) = view.as_mut() {
+                    mesh.counting = false;
+                }
+                None
+            }
+        },
+        Apart::Counting(thread) if !thread.is_finished() => Some(Apart::Counting(thread)),
+        Apart::Counting(thread) => {
+            let Ok((stats, histograms)) = thread.join() else {
+                return false;
+            };
+            if let Some(mesh) = view.as_mut() {
+                mesh.stats = Some(stats);
+                mesh.counting = false;
+            }
+            *shown_histograms = histograms;
+            return true;
+        }
+    };
+    if next.is_some() {
+        world.write_message(RequestRedraw);
     }
-    *shown_histograms = histograms;
-    true
+    world.resource_mut::<Counting>().0 = next.map(|apart| (counted, apart));
+    false
 }
 
 /// Checks the validity of `mesh` on the frame, for the panel's button.

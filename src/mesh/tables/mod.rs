@@ -15,6 +15,8 @@
 //!   passes under them, `reserve_rows` and `write_links`).
 //! - [`spawn`]: tables → a new mesh in one pass, each link written as its row is spawned
 //!   ([`spawn_tables`]): what a load uses.
+//! - [`gradual`]: entities → tables a slice at a time ([`GradualRead`]), for a reader that may
+//!   not hold a frame for the whole mesh.
 //!
 //! # Layout
 //! Four kinds of rows, each numbered from 0: vertices, halfedges, edges, faces. The tables hold
@@ -37,12 +39,14 @@
 //! [`super::build`] sit above it.
 
 pub mod connectivity;
+pub mod gradual;
 pub mod read;
 pub mod rows;
 pub mod spawn;
 pub mod write;
 
 pub use connectivity::{Connectivity, FaceCorners, HalfedgeLinks};
+pub use gradual::{GradualRead, ReadBroken};
 pub use read::{EntityRows, MeshTables, extract};
 pub use rows::{EdgeRow, FaceRow, HalfedgeRow, NONE, RowCounts, VertexRow};
 pub use spawn::{SpawnedRows, spawn_tables};
