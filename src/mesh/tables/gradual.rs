@@ -17,20 +17,24 @@
 //!
 //! Rows follow the archetypes' order, which is not always the storage order `extract` gives (a
 //! halfedge with a corner UV sits in another archetype of the same table), so the tables are
-//! the same mesh numbered possibly otherwise. Only connectivity and positions are read: no
-//! attribute column. What a read finds inconsistent — an element listed twice, a link to an
+//! the same mesh numbered possibly otherwise, with the same attribute columns (corner UVs,
+//! normals, colours, seams, face groups; what an element lacks reads as `extract` reads it).
+//! What a read finds inconsistent — an element listed twice, a link to an
 //! entity outside the mesh, an element gone — ends it with [`ReadBroken`]; it never panics.
 
 use std::time::{Duration, Instant};
 
 use bevy::ecs::archetype::ArchetypeId;
 use bevy::ecs::component::ComponentId;
+use bevy::math::{Vec2, Vec3};
 use bevy::prelude::{Entity, World};
 
 use super::connectivity::Connectivity;
 use super::read::MeshTables;
 use super::rows::NONE;
+use crate::mesh::attributes::{CornerUv, MeshAttributes, Seam, VertexColor, VertexNormal};
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, Position, Vertex};
+use crate::mesh::groups::{FaceGroup, FaceGroups, GroupTable};
 use crate::mesh::ids::{EdgeId, FaceId, HalfedgeId, MeshId, VertexId, slot};
 use crate::mesh::members::MeshMembers;
 
@@ -154,12 +158,12 @@ impl GradualRead {
         };
         let Some((kinds, in_mesh)) = kind_components(world) else {
             // No element was ever spawned: an empty mesh.
-            self.finish_listing();
+            self.finish_listing(world);
             return Ok(true);
         };
         let archetypes = world.archetypes();
         let Some(current) = archetypes.get(ArchetypeId::new(archetype)) else {
-            self.finish_listing();
+            self.finish_listing(world);
             return Ok(true);
         };
         let kind = kinds.iter().position(|&k| current.contains(k));
@@ -218,7 +222,7 @@ impl GradualRead {
     /// Reserves the tables for the listed elements and moves on to reading them. Nothing is
     /// written yet: the rows are pushed as they are read, so the pages are touched a slice at a
     /// time rather than all in this one.
-    fn finish_listing(&mut self) {
+    fn finish_listing(&mut self, world: &World) {
         let m = &self.members;
         let (nv, nh) = (m.vertices.len(), m.halfedges.len());
         let t = &mut self.tables;
@@ -236,6 +240,20 @@ impl GradualRead {
         }
         t.edge_halfedge.reserve_exact(m.edges.len());
         t.face_halfedge.reserve_exact(m.faces.len());
+        let has = MeshAttributes::of(world, self.mesh);
+        let a = &mut t.attributes;
+        a.uv = has.uv.then(|| Vec::with_capacity(nh));
+        a.normals = has.normals.then(|| Vec::with_capacity(nv));
+        a.colors = has.colors.then(|| Vec::with_capacity(nv));
+        a.seams = has.seams.then(|| Vec::with_capacity(m.edges.len()));
+        a.groups = has
+            .groups
+            .then(|| world.get::<GroupTable>(self.mesh.0))
+            .flatten()
+            .map(|table| FaceGroups {
+                table: table.clone(),
+                of_face: Vec::with_capacity(m.faces.len()),
+            });
         self.stage = Stage::Reading { kind: 0, at: 0 };
     }
 
@@ -280,9 +298,17 @@ impl GradualRead {
                 let halfedge = row(e.get::<Vertex>()?.halfedge.0)?;
                 t.positions.push(e.get::<Position>()?.0);
                 t.vertex_halfedge.push(halfedge);
+                let a = &mut t.attributes;
+                if let Some(normals) = a.normals.as_mut() {
+                    normals.push(e.get::<VertexNormal>().map_or(Vec3::ZERO, |n| n.0));
+                }
+                if let Some(colors) = a.colors.as_mut() {
+                    colors.push(e.get::<VertexColor>().map_or([0; 3], |c| c.0));
+                }
             }
             1 => {
-                let x = world.get::<Halfedge>(self.members.halfedges[i].0)?;
+                let e = world.get_entity(self.members.halfedges[i].0).ok()?;
+                let x = e.get::<Halfedge>()?;
                 let face = match x.face {
                     Some(f) => row(f.0)?,
                     None => NONE,
@@ -306,14 +332,23 @@ impl GradualRead {
                 for (column, link) in columns.into_iter().zip(links) {
                     column.push(link);
                 }
+                if let Some(uv) = t.attributes.uv.as_mut() {
+                    uv.push(e.get::<CornerUv>().map_or(Vec2::ZERO, |c| c.0));
+                }
             }
             2 => {
-                let x = world.get::<Edge>(self.members.edges[i].0)?;
-                t.edge_halfedge.push(row(x.halfedge.0)?);
+                let e = world.get_entity(self.members.edges[i].0).ok()?;
+                t.edge_halfedge.push(row(e.get::<Edge>()?.halfedge.0)?);
+                if let Some(seams) = t.attributes.seams.as_mut() {
+                    seams.push(e.contains::<Seam>());
+                }
             }
             _ => {
-                let x = world.get::<Face>(self.members.faces[i].0)?;
-                t.face_halfedge.push(row(x.halfedge.0)?);
+                let e = world.get_entity(self.members.faces[i].0).ok()?;
+                t.face_halfedge.push(row(e.get::<Face>()?.halfedge.0)?);
+                if let Some(groups) = t.attributes.groups.as_mut() {
+                    groups.of_face.push(e.get::<FaceGroup>().map_or(0, |g| g.0));
+                }
             }
         }
         Some(())
@@ -331,6 +366,7 @@ mod tests {
     use super::*;
     use crate::mesh::tables::extract;
     use crate::mesh::{MeshInfo, build_mesh, shapes, stats_of_tables};
+    use bevy::math::Vec2;
 
     /// Reads `mesh` gradually with a zero slice: 50 elements a call.
     fn read_all(world: &World, mesh: MeshId) -> (MeshTables, usize) {
@@ -403,6 +439,53 @@ mod tests {
             named(&read_all(&world, torus).0),
             named(&extract(&world, torus))
         );
+    }
+
+    /// Each element's attributes, by entity: (entity, the values' bits), sorted.
+    fn attributes(m: &MeshTables) -> Vec<(Entity, Vec<u32>)> {
+        let (a, k) = (&m.tables.attributes, &m.members);
+        let mut all = Vec::new();
+        for (i, v) in k.vertices.iter().enumerate() {
+            let mut bits: Vec<u32> = a.normals.as_ref().unwrap()[i]
+                .to_array()
+                .map(f32::to_bits)
+                .into();
+            bits.extend(a.colors.as_ref().unwrap()[i].map(u32::from));
+            all.push((v.0, bits));
+        }
+        for (i, h) in k.halfedges.iter().enumerate() {
+            let uv = a.uv.as_ref().unwrap()[i].to_array().map(f32::to_bits);
+            all.push((h.0, uv.into()));
+        }
+        all.sort_unstable();
+        all
+    }
+
+    #[test]
+    fn a_gradual_read_gives_the_attributes_extract_gives() {
+        let mut soup = shapes::grid_with_holes(3);
+        let n = soup.positions.len();
+        soup.vertex_normals = Some(
+            soup.positions
+                .iter()
+                .map(|p| p.normalize_or_zero())
+                .collect(),
+        );
+        soup.vertex_colors = Some((0..n).map(|i| [i as u8, 7, (i / 3) as u8]).collect());
+        let corners = soup.indices.len();
+        soup.corner_uvs = Some((0..corners).map(|c| Vec2::new(c as f32, 0.5)).collect());
+        let mut world = World::new();
+        let mesh = build_mesh(&mut world, &soup, MeshInfo::default())
+            .unwrap()
+            .mesh;
+        let (gradual, _) = read_all(&world, mesh);
+        let whole = extract(&world, mesh);
+        assert_eq!(
+            gradual.tables.attributes.present(),
+            whole.tables.attributes.present()
+        );
+        assert_eq!(attributes(&gradual), attributes(&whole));
+        assert_eq!(named(&gradual), named(&whole));
     }
 
     #[test]
