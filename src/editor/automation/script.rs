@@ -22,7 +22,7 @@
 //! | `zoom:F` | multiply the camera's distance to what it looks at by F (`zoom:0.5` comes twice as close) |
 //! | `colour:NAME` | colour the mesh by a quantity (`colour:mean`, names as `process --quantity`; `colour:none`) |
 //! | `shot:PATH` | save a screenshot of the window to PATH (PNG) and wait until it is written |
-//! | `measure:N` | let N frames pass and log their mean frame time |
+//! | `measure:N` | let N frames pass and log their mean and longest frame time |
 //! | `exit` | quit |
 //!
 //! Example: `PAPPUS_SCRIPT='wait:5;select-edge:0,1;shot:before.png;key:Alt+R;wait:3;shot:after.png;exit'`.
@@ -138,6 +138,8 @@ pub struct Script {
     measuring: Option<(u32, std::time::Instant)>,
     /// The process's CPU time when the measurement began.
     measuring_cpu: Option<f64>,
+    /// While measuring: when this frame's script run began, and the longest frame so far (ms).
+    frame_clock: Option<(std::time::Instant, f64)>,
     /// Keys to release at the next step (so a held modifier is seen with its key).
     release: Vec<KeyCode>,
 }
@@ -258,6 +260,7 @@ impl Script {
             shots_pending: 0,
             measuring: None,
             measuring_cpu: None,
+            frame_clock: None,
             release: Vec::new(),
         })
     }
@@ -268,6 +271,11 @@ pub fn run_script(world: &mut World) {
     let Some(mut script) = world.remove_resource::<Script>() else {
         return;
     };
+    if let Some((last, longest)) = script.frame_clock {
+        let now = std::time::Instant::now();
+        let frame = (now - last).as_secs_f64() * 1000.0;
+        script.frame_clock = Some((now, longest.max(frame)));
+    }
     let pending = world.resource::<PendingShots>().0.clone();
     for key in std::mem::take(&mut script.release) {
         send_key(world, key, ButtonState::Released);
@@ -278,7 +286,8 @@ pub fn run_script(world: &mut World) {
             break;
         }
         if let Some((frames, start)) = script.measuring.take() {
-            log_measurement(world, frames, start, script.measuring_cpu);
+            let longest = script.frame_clock.take().map_or(0.0, |(_, l)| l);
+            log_measurement(world, frames, start, longest, script.measuring_cpu);
         }
         if script.shots_pending > 0 && pending.load(std::sync::atomic::Ordering::SeqCst) > 0 {
             break;
@@ -297,15 +306,19 @@ pub fn run_script(world: &mut World) {
     world.insert_resource(script);
 }
 
-/// Logs the mean frame time (and the process's CPU time a frame) of a `measure:N` step.
+/// Logs the mean and the longest frame time (and the process's CPU time a frame) of a
+/// `measure:N` step.
 fn log_measurement(
     world: &mut World,
     frames: u32,
     start: std::time::Instant,
+    longest: f64,
     cpu_then: Option<f64>,
 ) {
     let ms = start.elapsed().as_secs_f64() * 1000.0 / f64::from(frames.max(1));
-    bevy::log::info!("measure: mean frame time {ms:.1} ms over {frames} frames");
+    bevy::log::info!(
+        "measure: mean frame time {ms:.1} ms over {frames} frames (the longest {longest:.1} ms)"
+    );
     if let (Some(now), Some(then)) = (super::frame_stats::process_cpu_ms(), cpu_then) {
         let cpu = (now - then) / f64::from(frames.max(1));
         bevy::log::info!("measure: process CPU {cpu:.1} ms a frame (all threads)");
@@ -339,6 +352,7 @@ fn run_step(
         ScriptStep::Measure(n) => {
             script.waiting = n;
             script.measuring = Some((n, std::time::Instant::now()));
+            script.frame_clock = Some((std::time::Instant::now(), 0.0));
             script.measuring_cpu = super::frame_stats::process_cpu_ms();
             super::frame_stats::clear_history(world);
         }
