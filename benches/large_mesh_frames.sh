@@ -16,6 +16,11 @@
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
+# Recoveries of this script's own runs (each ends with unsaved edits) go to a folder of their
+# own, so no run opens behind the offer to restore the last one's.
+XDG_STATE_HOME=$(mktemp -d)
+export XDG_STATE_HOME
+trap 'rm -rf "$XDG_STATE_HOME"' EXIT
 REPEAT=${REPEAT:-3}
 BINARIES=("$@")
 if [ ${#BINARIES[@]} -eq 0 ]; then

@@ -104,6 +104,8 @@ fn setup(mut commands: Commands, step: Res<Step>) {
         Msaa::Off,
         Tonemapping::None,
         DebandDither::Disabled,
+        // As the editor's camera: one light cluster.
+        bevy::light::cluster::ClusterConfig::Single,
         Transform::from_xyz(0.0, 0.0, 3.0).looking_at(Vec3::ZERO, Vec3::Y),
     ));
     if two_cameras {

@@ -71,6 +71,10 @@ pub fn setup_scene(mut commands: Commands, mut materials: ResMut<Assets<SurfaceM
         Msaa::Off,
         Tonemapping::None,
         DebandDither::Disabled,
+        // No light to assign to clusters (the surface carries its own, see `surface`): one
+        // cluster keeps Bevy's clustering passes small. (`ClusterConfig::None` fails wgpu's
+        // validation in Bevy 0.19.)
+        bevy::light::cluster::ClusterConfig::Single,
     ));
     commands.insert_resource(ClearColor(Color::srgb(0.32, 0.34, 0.38)));
     commands.insert_resource(SceneMaterials {
