@@ -147,7 +147,7 @@ impl GradualRead {
     }
 
     /// Lists elements until the time is up (`false`) or the listing is done (`true`, the
-    /// tables then sized).
+    /// tables then reserved).
     fn list(
         &mut self,
         world: &World,
