@@ -4,7 +4,9 @@
 //! reactive mode ([`WinitSettings::desktop_app`]): a frame is drawn when input arrives (keys,
 //! the pointer, the wheel, a resize, a dropped file) or when egui asks for one (an animation, a
 //! tooltip). [`keep_drawing`] asks for the next frame while work is under way that no input
-//! drives: a running job (its progress bar), a script (screenshots, the frame-time bench). A
+//! drives: a running job (its progress bar), a script (screenshots, the frame-time bench); the
+//! panel's figures and the autosave ask for their own while they read a large mesh a slice a
+//! frame ([`crate::mesh::tables::GradualRead`]), and the figures while their thread counts. A
 //! native file dialog answers on another thread, so while one is open the editor looks for the
 //! answer ten times a second instead of drawing continuously; an autosave waiting for the editor
 //! to be idle ([`crate::editor::pipeline::recovery`]) wakes it four times a second until the recovery is written.
