@@ -16,8 +16,8 @@ use bevy::prelude::{Resource, World};
 use bevy::window::RequestRedraw;
 use std::path::PathBuf;
 use std::thread::JoinHandle;
-use std::time::Duration;
 
+use crate::editor::automation::pacing::READ_SLICE;
 use crate::mesh::tables::{GradualRead, MeshTables};
 use crate::mesh::{MeshId, MeshInfo, MeshStats, mesh_stats, stats_of_tables, validate};
 
@@ -44,9 +44,6 @@ pub struct MeshView {
 
 /// What a counting thread hands back.
 type Figures = (MeshStats, Vec<Histogram>);
-
-/// What a frame may spend reading a large mesh's tables for its figures.
-pub const READ_SLICE: Duration = Duration::from_millis(6);
 
 /// Figures being counted apart from the frame: the mesh generation they are for, and where
 /// they stand.

@@ -30,6 +30,7 @@ use bevy::prelude::{DetectChanges, Resource, World};
 use bevy::window::RequestRedraw;
 
 use super::jobs::Jobs;
+use crate::editor::automation::pacing::READ_SLICE;
 use crate::editor::session::requests::{Declined, RecoveryAnswer};
 use crate::editor::session::selection::ActiveMesh;
 use crate::editor::session::state::{Modified, is_modified};
@@ -94,9 +95,6 @@ impl Autosave {
             && (self.edited_at.is_some() || self.reading.is_some() || self.writing.is_some())
     }
 }
-
-/// What a frame may spend reading the mesh for its recovery.
-pub const READ_SLICE: Duration = Duration::from_millis(6);
 
 /// The recovery offered at start, until it is answered.
 #[derive(Resource, Default, Debug)]

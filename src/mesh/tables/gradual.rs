@@ -104,11 +104,6 @@ impl GradualRead {
         }
     }
 
-    /// The mesh being read.
-    pub fn mesh(&self) -> MeshId {
-        self.mesh
-    }
-
     /// Reads on for about `slice` (the clock is read every thousand elements or so), and
     /// returns the tables once every element is read (the read is then spent).
     ///
