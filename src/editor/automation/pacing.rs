@@ -31,10 +31,6 @@ use crate::editor::pipeline::jobs::Jobs;
 use crate::editor::pipeline::recovery::Autosave;
 use crate::editor::session::dialog::OpenDialog;
 
-/// What a frame may spend reading a large mesh a slice at a time
-/// ([`crate::mesh::tables::GradualRead`]), for the panel's figures or the autosave.
-pub const READ_SLICE: Duration = Duration::from_millis(6);
-
 /// How often the editor looks for a file dialog's answer while one is open.
 pub const DIALOG_POLL: Duration = Duration::from_millis(100);
 

@@ -17,12 +17,11 @@ use bevy::window::RequestRedraw;
 use std::path::PathBuf;
 use std::thread::JoinHandle;
 
-use crate::editor::automation::pacing::READ_SLICE;
 use crate::mesh::tables::{GradualRead, MeshTables};
 use crate::mesh::{MeshId, MeshInfo, MeshStats, mesh_stats, stats_of_tables, validate};
 
 use super::plots::{Histogram, histograms, histograms_of_tables};
-use crate::editor::pipeline::jobs::JobSettings;
+use crate::editor::pipeline::jobs::{JobSettings, READ_SLICE};
 use crate::editor::view::colouring::VertexValues;
 use crate::editor::view::render_sync::RenderChunks;
 

@@ -38,6 +38,10 @@ use crate::editor::session::requests::{Declined, Request};
 use crate::editor::session::selection::{Selection, exists};
 use crate::ops::simplification_history::SimplificationHistory;
 
+/// What a frame may spend reading a large mesh a slice at a time
+/// ([`crate::mesh::tables::GradualRead`]), for the panel's figures or the autosave.
+pub const READ_SLICE: std::time::Duration = std::time::Duration::from_millis(6);
+
 /// When an operation runs as a job.
 #[derive(Resource, Debug, Clone, Copy)]
 pub struct JobSettings {

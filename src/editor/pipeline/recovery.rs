@@ -29,8 +29,7 @@ use bevy::ecs::change_detection::Tick;
 use bevy::prelude::{DetectChanges, Resource, World};
 use bevy::window::RequestRedraw;
 
-use super::jobs::Jobs;
-use crate::editor::automation::pacing::READ_SLICE;
+use super::jobs::{Jobs, READ_SLICE};
 use crate::editor::session::requests::{Declined, RecoveryAnswer};
 use crate::editor::session::selection::ActiveMesh;
 use crate::editor::session::state::{Modified, is_modified};
