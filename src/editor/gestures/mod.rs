@@ -10,6 +10,7 @@ pub mod camera;
 pub mod drag;
 pub mod handle_deform;
 pub mod overlay;
+pub mod overlay_lines;
 pub mod picking;
 pub mod proportional;
 pub mod transform;
@@ -50,12 +51,13 @@ impl Plugin for GesturesPlugin {
 }
 
 /// The pointer's part: picking observers, the box and the vertex drag, the camera controls,
-/// and the overlay's gizmos.
+/// and the overlay's gizmos and lines.
 pub struct GesturesWindowPlugin;
 
 impl Plugin for GesturesWindowPlugin {
     fn build(&self, app: &mut App) {
-        app.init_gizmo_group::<overlay::HighlightGizmos>()
+        app.add_plugins(overlay_lines::OverlayLinesPlugin)
+            .init_gizmo_group::<overlay::HighlightGizmos>()
             .init_resource::<drag::VertexDrag>()
             .init_resource::<drag::PointerCaptured>()
             .add_systems(Startup, overlay::configure_gizmos)
@@ -73,7 +75,8 @@ impl Plugin for GesturesWindowPlugin {
                         .after(EditorSystems::Apply)
                         .before(fit_near_plane)
                         .before(EditorSystems::Sync),
-                    overlay::draw_overlay.after(EditorSystems::Sync),
+                    (overlay::draw_overlay, overlay_lines::update_overlay_lines)
+                        .after(EditorSystems::Sync),
                 ),
             )
             .add_systems(bevy_egui::EguiPrimaryContextPass, box_select::draw_box)

@@ -1,9 +1,11 @@
 //! What is drawn over the surface each frame: the selection, the hover highlight, vertex dots
-//! and halfedge arrows (offset into their face, as Dandelion and Scotty3D draw them), and the
+//! and halfedge arrows (offset into their face, with one barb on the face's side, as Dandelion
+//! and Scotty3D draw them), and the
 //! edges marked as seams.
 //!
-//! An exclusive system gathers the shapes from the mesh ([`gather_overlay`]); a plain system
-//! draws them with gizmos ([`draw_overlay`]). Arrows and dots cover the whole mesh only while it
+//! An exclusive system gathers the shapes from the mesh ([`gather_overlay`]). The thin lines
+//! (arrows, dots, plain lines) are drawn as one mesh ([`super::overlay_lines`]); the thick
+//! highlights with gizmos ([`draw_overlay`]). Arrows and dots cover the whole mesh only while it
 //! is small (see [`SMALL_MESH_FACES`]); on a large mesh they are drawn around the selection.
 
 use bevy::color::Color;
@@ -65,8 +67,9 @@ pub enum Shape {
     Ring(Vec3, f32, Color),
     /// A thick arrow over everything.
     HighlightArrow(Vec3, Vec3, Color),
-    /// A thin arrow.
-    Arrow(Vec3, Vec3, Color),
+    /// A thin halfedge arrow: from, to, and a point on its face's side, towards which its one
+    /// barb leans.
+    Arrow(Vec3, Vec3, Vec3, Color),
     /// A dot of the given world radius.
     Dot(Vec3, f32, Color),
     /// A large dot over everything.
@@ -84,8 +87,9 @@ pub struct Overlay {
 }
 
 /// The arrow of halfedge `h`: its segment pulled towards the centre of its face (away from the
-/// other face on the boundary) and shortened, so the two halfedges of an edge sit side by side.
-pub fn halfedge_arrow(m: &MeshRef<'_>, h: HalfedgeId) -> (Vec3, Vec3) {
+/// other face on the boundary) and shortened, so the two halfedges of an edge sit side by side;
+/// then the point it was pulled towards, on its face's side.
+pub fn halfedge_arrow(m: &MeshRef<'_>, h: HalfedgeId) -> (Vec3, Vec3, Vec3) {
     let (a, b) = (m.position(m.from_vertex(h)), m.position(m.to_vertex(h)));
     let inside = match m.face(h) {
         Some(f) => m.face_centroid(f),
@@ -98,7 +102,7 @@ pub fn halfedge_arrow(m: &MeshRef<'_>, h: HalfedgeId) -> (Vec3, Vec3) {
     };
     let pull = |p: Vec3| p + (inside - p) * 0.12;
     let (pa, pb) = (pull(a), pull(b));
-    (pa.lerp(pb, 0.12), pa.lerp(pb, 0.88))
+    (pa.lerp(pb, 0.12), pa.lerp(pb, 0.88), inside)
 }
 
 fn mean_edge_near(m: &MeshRef<'_>, v: VertexId) -> f32 {
@@ -123,7 +127,7 @@ fn element_shapes(m: &MeshRef<'_>, x: ElementId, color: Color, out: &mut Vec<Sha
             out.push(Shape::Highlight(m.position(a), m.position(b), color));
         }
         ElementId::Halfedge(h) => {
-            let (a, b) = halfedge_arrow(m, h);
+            let (a, b, _) = halfedge_arrow(m, h);
             out.push(Shape::HighlightArrow(a, b, color));
         }
         ElementId::Face(f) => face_outline(m, f, color, out),
@@ -253,8 +257,8 @@ fn dots_and_arrows(
         }
         if settings.halfedges {
             for &h in &members.halfedges {
-                let (a, b) = halfedge_arrow(m, h);
-                shapes.push(Shape::Arrow(a, b, ARROW));
+                let (a, b, inside) = halfedge_arrow(m, h);
+                shapes.push(Shape::Arrow(a, b, inside, ARROW));
             }
         }
     } else if settings.halfedges {
@@ -274,8 +278,8 @@ fn dots_and_arrows(
             _ => Vec::new(),
         };
         for h in near {
-            let (a, b) = halfedge_arrow(m, h);
-            shapes.push(Shape::Arrow(a, b, ARROW));
+            let (a, b, inside) = halfedge_arrow(m, h);
+            shapes.push(Shape::Arrow(a, b, inside, ARROW));
         }
     }
 }
@@ -313,10 +317,9 @@ fn gesture_shapes(world: &World, m: &MeshRef<'_>, shapes: &mut Vec<Shape>) {
     }
 }
 
-/// Draws the gathered shapes.
+/// Draws the gathered highlights (the thin shapes are [`super::overlay_lines`]'s).
 pub fn draw_overlay(
     overlay: Res<Overlay>,
-    mut thin: Gizmos,
     mut thick: Gizmos<HighlightGizmos>,
     cameras: Query<&GlobalTransform, With<Camera3d>>,
 ) {
@@ -326,14 +329,9 @@ pub fn draw_overlay(
         .map_or(Quat::IDENTITY, |t| t.compute_transform().rotation);
     for shape in &overlay.shapes {
         match *shape {
-            Shape::Line(a, b, c) => {
-                thin.line(a, b, c);
-            }
+            Shape::Line(..) | Shape::Arrow(..) | Shape::Dot(..) => {}
             Shape::Highlight(a, b, c) => {
                 thick.line(a, b, c);
-            }
-            Shape::Arrow(a, b, c) => {
-                thin.arrow(a, b, c).with_tip_length(a.distance(b) * 0.2);
             }
             Shape::HighlightArrow(a, b, c) => {
                 thick.arrow(a, b, c).with_tip_length(a.distance(b) * 0.25);
@@ -342,9 +340,6 @@ pub fn draw_overlay(
                 thick
                     .circle(Isometry3d::new(p, facing), r, c)
                     .resolution(64);
-            }
-            Shape::Dot(p, r, c) => {
-                thin.circle(Isometry3d::new(p, facing), r, c).resolution(6);
             }
             Shape::HighlightDot(p, r, c) => {
                 thick
@@ -363,7 +358,4 @@ pub fn configure_gizmos(mut store: ResMut<GizmoConfigStore>) {
     let (config, _) = store.config_mut::<HighlightGizmos>();
     config.line.width = 4.0;
     config.depth_bias = -0.9;
-    let (config, _) = store.config_mut::<DefaultGizmoConfigGroup>();
-    config.line.width = 1.5;
-    config.depth_bias = -0.001;
 }
