@@ -23,6 +23,7 @@
 pub mod attributes;
 pub mod build;
 pub mod change;
+pub mod closure;
 pub mod despawn;
 pub mod elements;
 pub mod groups;

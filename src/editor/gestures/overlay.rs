@@ -1,7 +1,6 @@
 //! What is drawn over the surface each frame: the selection, the hover highlight, vertex dots
 //! and halfedge arrows (offset into their face, with one barb on the face's side, as Dandelion
-//! and Scotty3D draw them), and the
-//! edges marked as seams.
+//! and Scotty3D draw them), and the edges marked as seams.
 //!
 //! An exclusive system gathers the shapes from the mesh ([`gather_overlay`]). The thin lines
 //! (arrows, dots, plain lines) are drawn as one mesh ([`super::overlay_lines`]); the thick
@@ -65,8 +64,8 @@ pub enum Shape {
     Highlight(Vec3, Vec3, Color),
     /// A thick circle facing the camera: centre, radius.
     Ring(Vec3, f32, Color),
-    /// A thick arrow over everything.
-    HighlightArrow(Vec3, Vec3, Color),
+    /// A thick halfedge arrow over everything, its barb as [`Shape::Arrow`]'s.
+    HighlightArrow(Vec3, Vec3, Vec3, Color),
     /// A thin halfedge arrow: from, to, and a point on its face's side, towards which its one
     /// barb leans.
     Arrow(Vec3, Vec3, Vec3, Color),
@@ -127,8 +126,8 @@ fn element_shapes(m: &MeshRef<'_>, x: ElementId, color: Color, out: &mut Vec<Sha
             out.push(Shape::Highlight(m.position(a), m.position(b), color));
         }
         ElementId::Halfedge(h) => {
-            let (a, b, _) = halfedge_arrow(m, h);
-            out.push(Shape::HighlightArrow(a, b, color));
+            let (a, b, inside) = halfedge_arrow(m, h);
+            out.push(Shape::HighlightArrow(a, b, inside, color));
         }
         ElementId::Face(f) => face_outline(m, f, color, out),
         ElementId::Mesh(_) => {}
@@ -333,8 +332,11 @@ pub fn draw_overlay(
             Shape::Highlight(a, b, c) => {
                 thick.line(a, b, c);
             }
-            Shape::HighlightArrow(a, b, c) => {
-                thick.arrow(a, b, c).with_tip_length(a.distance(b) * 0.25);
+            Shape::HighlightArrow(a, b, inside, c) => {
+                thick.line(a, b, c);
+                if let Some(tip) = super::overlay_lines::barb(a, b, inside) {
+                    thick.line(b, tip, c);
+                }
             }
             Shape::Ring(p, r, c) => {
                 thick

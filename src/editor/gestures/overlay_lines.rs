@@ -120,23 +120,23 @@ fn fixed(a: Vec3, b: Vec3, color: impl Into<LinearRgba>) -> Segment {
     }
 }
 
-/// The shaft from `a` to `b` and a barb back from `b` at 45°, leaning towards `inside` (a
-/// point off the shaft's line; where there is none, the shaft alone).
+/// The shaft from `a` to `b` and its [`barb`].
 fn arrow(a: Vec3, b: Vec3, inside: Vec3, color: LinearRgba, out: &mut Vec<Segment>) {
     out.push(fixed(a, b, color));
-    let Some(along) = (b - a).try_normalize() else {
-        return;
-    };
+    if let Some(tip) = barb(a, b, inside) {
+        out.push(fixed(b, tip, color));
+    }
+}
+
+/// The free end of an arrow's one barb: back from its head `b` at 45°, [`TIP_FRACTION`] of the
+/// shaft long, leaning towards `inside` (its face's side). `None` where `inside` lies on the
+/// shaft's line or the shaft has no length.
+pub fn barb(a: Vec3, b: Vec3, inside: Vec3) -> Option<Vec3> {
+    let along = (b - a).try_normalize()?;
     let towards = inside - b;
-    let Some(across) = (towards - along * towards.dot(along)).try_normalize() else {
-        return;
-    };
+    let across = (towards - along * towards.dot(along)).try_normalize()?;
     let tip = a.distance(b) * TIP_FRACTION;
-    out.push(fixed(
-        b,
-        b + (across - along) * (tip * std::f32::consts::FRAC_1_SQRT_2),
-        color,
-    ));
+    Some(b + (across - along) * (tip * std::f32::consts::FRAC_1_SQRT_2))
 }
 
 /// The corners of a dot's hexagon about its centre, in the camera's plane (right, up), for a

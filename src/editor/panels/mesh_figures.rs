@@ -1,5 +1,6 @@
-//! The panel's figures of the active mesh — statistics, validity, histograms — counted where
-//! they do not stall the window.
+//! The panel's figures of the active mesh — statistics, validity, histograms, and the mesh
+//! closed over its holes that tells the renderer whether its back faces can be seen
+//! ([`crate::editor::view::culling`]) — counted where they do not stall the window.
 //!
 //! They are O(mesh). [`super::ui::snapshot`] decides *when* (once the mesh stands still, never
 //! during a drag); this module decides *where*. A mesh under [`JobSettings::min_faces_figures_apart`] faces is counted on
@@ -17,12 +18,14 @@ use bevy::window::RequestRedraw;
 use std::path::PathBuf;
 use std::thread::JoinHandle;
 
-use crate::mesh::tables::{GradualRead, MeshTables};
-use crate::mesh::{MeshId, MeshInfo, MeshStats, mesh_stats, stats_of_tables, validate};
+use crate::mesh::closure::Closure;
+use crate::mesh::tables::{GradualRead, MeshTables, extract};
+use crate::mesh::{MeshId, MeshInfo, MeshStats, stats_of_tables, validate};
 
 use super::plots::{Histogram, histograms, histograms_of_tables};
 use crate::editor::pipeline::jobs::{JobSettings, READ_SLICE};
 use crate::editor::view::colouring::VertexValues;
+use crate::editor::view::culling::Closures;
 use crate::editor::view::render_sync::RenderChunks;
 
 /// The active mesh as the panel shows it.
@@ -41,13 +44,14 @@ pub struct MeshView {
     pub counting: bool,
 }
 
-/// What a counting thread hands back.
-type Figures = (MeshStats, Vec<Histogram>);
+/// What a counting thread hands back: the statistics, the histograms and the mesh closed over
+/// its holes (for [`crate::editor::view::culling`]).
+type Figures = (MeshStats, Vec<Histogram>, Closure);
 
-/// Figures being counted apart from the frame: the mesh generation they are for, and where
-/// they stand.
+/// Figures being counted apart from the frame: the mesh generation they are for, the mesh, and
+/// where they stand.
 #[derive(Resource, Default)]
-pub struct Counting(Option<(usize, Apart)>);
+pub struct Counting(Option<(usize, MeshId, Apart)>);
 
 /// The two steps of counting a large mesh's figures.
 enum Apart {
@@ -75,10 +79,12 @@ pub fn count(
         .get_resource::<JobSettings>()
         .is_some_and(|s| faces >= s.min_faces_figures_apart);
     if !large {
+        let read = extract(world, mesh);
+        record_closure(world, mesh, generation, Closure::of(&read.tables));
         *view = Some(MeshView {
             name: info.name,
             path: info.path,
-            stats: Some(mesh_stats(world, mesh)),
+            stats: Some(stats_of_tables(&read.tables)),
             validation: Some(validate(world, mesh).map_err(|e| e.to_string())),
             counting: false,
         });
@@ -96,6 +102,7 @@ pub fn count(
     });
     world.resource_mut::<Counting>().0 = Some((
         generation,
+        mesh,
         Apart::Reading(Box::new((GradualRead::new(mesh), shown))),
     ));
     world.write_message(RequestRedraw);
@@ -109,7 +116,7 @@ fn count_apart(tables: MeshTables, shown: Option<VertexValues>) -> Option<JoinHa
         .spawn(move || {
             let stats = stats_of_tables(&tables.tables);
             let histograms = histograms_of_tables(&tables.tables, shown.as_ref());
-            (stats, histograms)
+            (stats, histograms, Closure::of(&tables.tables))
         })
         .ok()
 }
@@ -124,7 +131,7 @@ pub fn collect(
     shown_histograms: &mut Vec<Histogram>,
     generation: usize,
 ) -> bool {
-    let Some((counted, apart)) = world.resource_mut::<Counting>().0.take() else {
+    let Some((counted, mesh, apart)) = world.resource_mut::<Counting>().0.take() else {
         return false;
     };
     if counted != generation {
@@ -144,9 +151,10 @@ pub fn collect(
         },
         Apart::Counting(thread) if !thread.is_finished() => Some(Apart::Counting(thread)),
         Apart::Counting(thread) => {
-            let Ok((stats, histograms)) = thread.join() else {
+            let Ok((stats, histograms, closure)) = thread.join() else {
                 return false;
             };
+            record_closure(world, mesh, counted, closure);
             if let Some(mesh) = view.as_mut() {
                 mesh.stats = Some(stats);
                 mesh.counting = false;
@@ -158,8 +166,15 @@ pub fn collect(
     if next.is_some() {
         world.write_message(RequestRedraw);
     }
-    world.resource_mut::<Counting>().0 = next.map(|apart| (counted, apart));
+    world.resource_mut::<Counting>().0 = next.map(|apart| (counted, mesh, apart));
     false
+}
+
+/// Hands `mesh`'s closure, counted at render `generation`, to the renderer.
+fn record_closure(world: &mut World, mesh: MeshId, generation: usize, closure: Closure) {
+    if let Some(mut closures) = world.get_resource_mut::<Closures>() {
+        closures.record(mesh, generation, closure);
+    }
 }
 
 /// Checks the validity of `mesh` on the frame, for the panel's button.

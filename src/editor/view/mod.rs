@@ -1,9 +1,10 @@
 //! The view room: how the meshes look. The render copies that follow the entities
 //! ([`render_sync`], from what [`render_data`] builds), colouring by a quantity ([`colouring`]), the wireframe kept readable
-//! ([`readability`]), the scene and its camera state ([`scene`]) and the surface shader
-//! ([`surface`]). It reads only the session and pipeline rooms.
+//! ([`readability`]), the scene and its camera state ([`scene`]), the surface shader
+//! ([`surface`]) and its back faces left undrawn where none can be seen ([`culling`]). It reads only the session and pipeline rooms.
 
 pub mod colouring;
+pub mod culling;
 pub mod readability;
 pub mod render_data;
 pub mod render_sync;
@@ -23,6 +24,7 @@ impl Plugin for ViewPlugin {
             .init_resource::<colouring::ColorBy>()
             .init_resource::<render_sync::RenderStats>()
             .init_resource::<readability::WireframeDensity>()
+            .init_resource::<culling::Closures>()
             .add_systems(
                 Update,
                 (
@@ -43,7 +45,10 @@ impl Plugin for ViewWindowPlugin {
     fn build(&self, app: &mut App) {
         app.add_plugins(surface::SurfacePlugin)
             .init_resource::<scene::PanelInsets>()
-            .add_systems(Startup, scene::setup_scene)
+            .add_systems(
+                Startup,
+                (scene::setup_scene, culling::detect_software_renderer),
+            )
             .add_systems(
                 Update,
                 (
@@ -51,6 +56,9 @@ impl Plugin for ViewWindowPlugin {
                         .after(EditorSystems::Apply)
                         .before(EditorSystems::Sync),
                     readability::show_readable_wireframes
+                        .after(EditorSystems::Sync)
+                        .before(EditorSystems::Ui),
+                    culling::choose_culling
                         .after(EditorSystems::Sync)
                         .before(EditorSystems::Ui),
                     scene::fit_camera_viewport.in_set(EditorSystems::Ui),

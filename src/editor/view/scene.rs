@@ -50,8 +50,11 @@ pub const BACK_COLOR: Color = Color::srgb(0.42, 0.47, 0.58);
 /// Materials shared by every mesh.
 #[derive(Resource, Debug, Clone)]
 pub struct SceneMaterials {
-    /// The surface of meshes.
+    /// The surface of meshes, both sides drawn.
     pub surface: Handle<SurfaceMaterial>,
+    /// The same surface with back faces left undrawn, for a mesh none of whose back faces can
+    /// be seen (see [`super::culling`]).
+    pub surface_culled: Handle<SurfaceMaterial>,
 }
 
 /// Spawns the camera and makes the materials. There are no lights: the surface material
@@ -77,11 +80,17 @@ pub fn setup_scene(mut commands: Commands, mut materials: ResMut<Assets<SurfaceM
         bevy::light::cluster::ClusterConfig::Single,
     ));
     commands.insert_resource(ClearColor(Color::srgb(0.32, 0.34, 0.38)));
+    let surface = SurfaceMaterial {
+        color: SURFACE_COLOR.into(),
+        back_color: BACK_COLOR.into(),
+        cull_back_faces: false,
+    };
     commands.insert_resource(SceneMaterials {
-        surface: materials.add(SurfaceMaterial {
-            color: SURFACE_COLOR.into(),
-            back_color: BACK_COLOR.into(),
+        surface_culled: materials.add(SurfaceMaterial {
+            cull_back_faces: true,
+            ..surface.clone()
         }),
+        surface: materials.add(surface),
     });
 }
 

@@ -1,0 +1,382 @@
+//! A mesh closed over its holes, and which way it faces: whether its back faces can be seen
+//! from a point.
+//!
+//! Every mesh Pappus holds is oriented, so each connected component faces one way throughout.
+//! Close each of its boundary loops with a cone from the loop's centroid — a triangle
+//! `(centroid, from, to)` on every boundary halfedge, oriented as a face filling the hole would
+//! be — and the component bounds a volume. Its signed volume (the divergence theorem:
+//! `Σ p₀ · (p₁ × p₂) / 6` over the triangles of its faces and cones) is positive when the faces
+//! point out of it and negative when they point into it (an inside-out component).
+//!
+//! From an eye outside every component, a sight line crosses the closed surfaces alternately
+//! inwards and outwards, and where a component faces outward its first inward crossing is a
+//! front face, unless it is a hole's: only through a hole can a sight line reach back faces.
+//! A hole whose loop, seen along its normal (the loop's area vector), is a simple polygon can
+//! be closed by a surface that is a height field over that view, lying within the slab its
+//! loop spans along the normal. A sight line from an eye on the inner side of that slab crosses
+//! such a cap only outwards. So when every component faces outward, the eye lies outside the
+//! bounding box and on the inner side of every hole's slab, no back face can be seen
+//! ([`Closure::back_faces_hidden_from`]). A component enclosing no volume (a flat sheet) is not
+//! counted as facing either way, and a hole that doubles back on itself in that view (or has no
+//! area) lets no eye pass. What the argument leaves out is a surface that passes through itself
+//! (a fold dragged by hand, a cap through the mesh), where a back face can be nearest the eye.
+
+use bevy::math::{DVec3, Vec2, Vec3};
+
+use super::tables::Connectivity;
+
+/// The volume a mesh bounds once its holes are closed, and its holes.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Closure {
+    /// The signed volume each connected component bounds, its holes closed by cones: positive
+    /// where its faces point outward.
+    pub volumes: Vec<f64>,
+    /// Every hole, or `None` for one that lets no eye pass (see the module doc).
+    pub holes: Vec<Option<Hole>>,
+    /// The smallest box holding every vertex, `None` for a mesh without vertices.
+    pub bounds: Option<(Vec3, Vec3)>,
+}
+
+/// A hole: where it is, which way a face filling it would face, and how far its loop strays
+/// from its plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hole {
+    /// The centroid of its loop's vertices.
+    pub centre: Vec3,
+    /// The unit normal of its loop's area vector, pointing out of the mesh.
+    pub normal: Vec3,
+    /// The farthest a loop vertex lies from the plane through `centre` along `normal`.
+    pub reach: f32,
+}
+
+/// Below this share of the bounding box's volume, a component's volume counts as none.
+const FLAT: f64 = 1e-9;
+
+/// Loops longer than this are not checked for doubling back (a quadratic check) and let no eye
+/// pass.
+const LONGEST_CHECKED_LOOP: usize = 4096;
+
+impl Closure {
+    /// Closes the mesh of `t` (see the module doc). Assumes consistent tables, as
+    /// [`super::tables::extract`] reads them.
+    pub fn of(t: &Connectivity) -> Self {
+        let component = component_of_vertices(t);
+        let components = component.iter().map(|&c| c as usize + 1).max().unwrap_or(0);
+        let mut volumes = vec![0.0; components];
+        let tet =
+            |a: Vec3, b: Vec3, c: Vec3| a.as_dvec3().dot(b.as_dvec3().cross(c.as_dvec3())) / 6.0;
+        for f in t.faces() {
+            let mut corners = t.face_halfedges(f).map(|h| t.to_vertex(h));
+            let Some(first) = corners.next() else {
+                continue;
+            };
+            let p0 = t.position(first);
+            let mut volume = 0.0;
+            let mut previous = corners.next().map(|v| t.position(v));
+            for v in corners {
+                let p = t.position(v);
+                if let Some(q) = previous {
+                    volume += tet(p0, q, p);
+                }
+                previous = Some(p);
+            }
+            volumes[component[first.index()] as usize] += volume;
+        }
+        let mut holes = Vec::new();
+        let mut seen = vec![false; t.halfedge_count()];
+        for start in t.halfedges() {
+            if !t.is_boundary(start) || seen[start.index()] {
+                continue;
+            }
+            let mut hole = Vec::new();
+            let mut h = start;
+            // A consistent loop comes back to its start; the count bounds a broken one.
+            for _ in 0..t.halfedge_count() {
+                seen[h.index()] = true;
+                hole.push(h);
+                h = t.next(h);
+                if h == start {
+                    break;
+                }
+            }
+            let sum: DVec3 = hole
+                .iter()
+                .map(|&h| t.position(t.from_vertex(h)).as_dvec3())
+                .sum();
+            let apex = (sum / hole.len() as f64).as_vec3();
+            let c = component[t.from_vertex(start).index()] as usize;
+            let mut area = Vec3::ZERO;
+            let corners: Vec<Vec3> = hole.iter().map(|&h| t.position(t.from_vertex(h))).collect();
+            for (i, &a) in corners.iter().enumerate() {
+                let b = corners[(i + 1) % corners.len()];
+                volumes[c] += tet(apex, a, b);
+                area += (a - apex).cross(b - apex);
+            }
+            holes.push(hole_of(apex, area, &corners));
+        }
+        let bounds = t
+            .positions
+            .iter()
+            .fold(None, |b: Option<(Vec3, Vec3)>, &p| {
+                Some(b.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
+            });
+        Self {
+            volumes,
+            holes,
+            bounds,
+        }
+    }
+
+    /// Whether every component bounds a volume and its faces point out of it. A mesh without
+    /// faces does not.
+    pub fn faces_outward(&self) -> bool {
+        let Some((lo, hi)) = self.bounds else {
+            return false;
+        };
+        let size = (hi - lo).as_dvec3();
+        let flat = FLAT * size.x * size.y * size.z;
+        !self.volumes.is_empty() && self.volumes.iter().all(|&v| v > flat && flat > 0.0)
+    }
+
+    /// Whether no back face of the mesh can be seen from `eye`: every component faces outward,
+    /// `eye` lies outside the bounding box and on the inner side of every hole's slab (see the
+    /// module doc, and the exception it names).
+    pub fn back_faces_hidden_from(&self, eye: Vec3) -> bool {
+        let Some((lo, hi)) = self.bounds else {
+            return false;
+        };
+        let outside = eye.cmplt(lo).any() || eye.cmpgt(hi).any();
+        outside
+            && self.faces_outward()
+            && self
+                .holes
+                .iter()
+                .all(|hole| hole.is_some_and(|h| (eye - h.centre).dot(h.normal) < -h.reach))
+    }
+}
+
+/// The hole whose loop has these `corners`, centroid `centre` and area vector `area`, or `None`
+/// where the loop has no area or doubles back on itself seen along its normal.
+fn hole_of(centre: Vec3, area: Vec3, corners: &[Vec3]) -> Option<Hole> {
+    let normal = area.try_normalize()?;
+    if corners.len() > LONGEST_CHECKED_LOOP {
+        return None;
+    }
+    let (u, v) = normal.any_orthonormal_pair();
+    let seen: Vec<Vec2> = corners
+        .iter()
+        .map(|&p| Vec2::new((p - centre).dot(u), (p - centre).dot(v)))
+        .collect();
+    if !is_simple_polygon(&seen) {
+        return None;
+    }
+    let reach = corners
+        .iter()
+        .map(|&p| (p - centre).dot(normal).abs())
+        .fold(0.0, f32::max);
+    Some(Hole {
+        centre,
+        normal,
+        reach,
+    })
+}
+
+/// Whether no two sides of the closed polygon `p` meet other than neighbours at their shared
+/// corner (a quadratic check).
+fn is_simple_polygon(p: &[Vec2]) -> bool {
+    let n = p.len();
+    if n < 3 {
+        return false;
+    }
+    let side = |i: usize| (p[i], p[(i + 1) % n]);
+    let orient = |a: Vec2, b: Vec2, c: Vec2| (b - a).perp_dot(c - a);
+    let cross = |(a, b): (Vec2, Vec2), (c, d): (Vec2, Vec2)| {
+        let (d1, d2) = (orient(a, b, c), orient(a, b, d));
+        let (d3, d4) = (orient(c, d, a), orient(c, d, b));
+        // Touching or overlapping counts as meeting: a loop that grazes itself is refused.
+        d1 * d2 <= 0.0 && d3 * d4 <= 0.0
+    };
+    (0..n).all(|i| {
+        // Sides i and i+1 share a corner; so do the last and the first.
+        (i + 2..n).all(|j| (i == 0 && j == n - 1) || !cross(side(i), side(j)))
+    })
+}
+
+/// Each vertex's connected component, numbered from 0 in the order of their lowest vertex.
+fn component_of_vertices(t: &Connectivity) -> Vec<u32> {
+    let mut parent: Vec<u32> = (0..t.vertex_count() as u32).collect();
+    fn root(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            let up = parent[parent[x as usize] as usize];
+            parent[x as usize] = up;
+            x = up;
+        }
+        x
+    }
+    for e in t.edges() {
+        let h = t.edge_halfedge(e);
+        let (a, b) = (
+            root(&mut parent, t.from_vertex(h).get()),
+            root(&mut parent, t.to_vertex(h).get()),
+        );
+        if a != b {
+            parent[a.max(b) as usize] = a.min(b);
+        }
+    }
+    let mut number = vec![u32::MAX; parent.len()];
+    let mut next = 0;
+    (0..parent.len() as u32)
+        .map(|v| {
+            let r = root(&mut parent, v) as usize;
+            if number[r] == u32::MAX {
+                number[r] = next;
+                next += 1;
+            }
+            number[r]
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::soup::PolygonSoup;
+    use crate::mesh::tables::extract;
+    use crate::mesh::{MeshInfo, build_mesh, shapes};
+    use bevy::prelude::World;
+
+    fn closure(soup: &PolygonSoup) -> Closure {
+        let mut world = World::new();
+        let mesh = build_mesh(&mut world, soup, MeshInfo::default())
+            .expect("a valid soup")
+            .mesh;
+        Closure::of(&extract(&world, mesh).tables)
+    }
+
+    /// `soup` with every face turned the other way.
+    fn inside_out(soup: &PolygonSoup) -> PolygonSoup {
+        let faces: Vec<Vec<u32>> = (0..soup.face_starts.len() - 1)
+            .map(|f| {
+                let (a, b) = (
+                    soup.face_starts[f] as usize,
+                    soup.face_starts[f + 1] as usize,
+                );
+                soup.indices[a..b].iter().rev().copied().collect()
+            })
+            .collect();
+        PolygonSoup::from_faces(soup.positions.clone(), &faces)
+    }
+
+    #[test]
+    fn a_closed_cube_bounds_its_volume_and_faces_outward() {
+        let c = closure(&shapes::cube());
+        assert_eq!(c.volumes.len(), 1);
+        assert!((c.volumes[0] - 8.0).abs() < 1e-9, "{:?}", c.volumes);
+        assert!(c.holes.is_empty());
+        assert!(c.faces_outward());
+        assert!(c.back_faces_hidden_from(Vec3::new(0.0, 0.0, 5.0)));
+        // Inside the box: the back faces are all there is to see.
+        assert!(!c.back_faces_hidden_from(Vec3::ZERO));
+    }
+
+    #[test]
+    fn an_inside_out_cube_bounds_a_negative_volume() {
+        let c = closure(&inside_out(&shapes::cube()));
+        assert!((c.volumes[0] + 8.0).abs() < 1e-9, "{:?}", c.volumes);
+        assert!(!c.faces_outward());
+        assert!(!c.back_faces_hidden_from(Vec3::new(0.0, 0.0, 5.0)));
+    }
+
+    #[test]
+    fn a_cube_open_at_the_top_hides_its_inside_only_from_below_the_rim() {
+        let cube = shapes::cube();
+        // Without its +z face (the second).
+        let faces: Vec<Vec<u32>> = (0..6)
+            .filter(|&f| f != 1)
+            .map(|f| {
+                let (a, b) = (
+                    cube.face_starts[f] as usize,
+                    cube.face_starts[f + 1] as usize,
+                );
+                cube.indices[a..b].to_vec()
+            })
+            .collect();
+        let c = closure(&PolygonSoup::from_faces(cube.positions.clone(), &faces));
+        // The cone's apex is the top's centre, so the cone is the missing face itself.
+        assert!((c.volumes[0] - 8.0).abs() < 1e-6, "{:?}", c.volumes);
+        let hole = c.holes[0].expect("a flat square loop");
+        assert_eq!(
+            (hole.centre, hole.normal, hole.reach),
+            (Vec3::Z, Vec3::Z, 0.0)
+        );
+        // From above the rim, sight lines pass through the hole onto the inner walls.
+        assert!(!c.back_faces_hidden_from(Vec3::new(0.0, 0.0, 5.0)));
+        assert!(!c.back_faces_hidden_from(Vec3::new(3.0, 0.0, 2.0)));
+        // Level with the rim, only grazing; still not counted as hidden.
+        assert!(!c.back_faces_hidden_from(Vec3::new(5.0, 0.0, 1.0)));
+        // Below it, they cannot.
+        assert!(c.back_faces_hidden_from(Vec3::new(0.0, 0.0, -5.0)));
+        assert!(c.back_faces_hidden_from(Vec3::new(4.0, 3.0, 0.5)));
+    }
+
+    #[test]
+    fn a_loop_that_doubles_back_on_itself_lets_no_eye_pass() {
+        let square = [Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y];
+        assert!(is_simple_polygon(&square));
+        let bow_tie = [Vec2::ZERO, Vec2::X, Vec2::Y, Vec2::ONE];
+        assert!(!is_simple_polygon(&bow_tie));
+        let corners = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0)];
+        assert_eq!(hole_of(Vec3::splat(0.5), Vec3::Z, &corners), None);
+        // A loop with no area has no normal.
+        assert_eq!(hole_of(Vec3::ZERO, Vec3::ZERO, &corners[..3]), None);
+    }
+
+    #[test]
+    fn a_flat_sheet_faces_neither_way() {
+        let c = closure(&shapes::grid(4, 4));
+        assert_eq!(c.volumes.len(), 1);
+        assert!(c.volumes[0].abs() < 1e-9, "{:?}", c.volumes);
+        assert!(!c.faces_outward());
+        let (lo, hi) = c.bounds.expect("vertices");
+        let above = (lo + hi) / 2.0 + Vec3::new(0.0, 0.0, 10.0);
+        assert!(!c.back_faces_hidden_from(above));
+    }
+
+    #[test]
+    fn every_component_must_face_outward() {
+        let (cube, turned) = (shapes::cube(), inside_out(&shapes::cube()));
+        let shifted: Vec<Vec3> = turned
+            .positions
+            .iter()
+            .map(|p| *p + Vec3::new(5.0, 0.0, 0.0))
+            .collect();
+        let mut both = cube.clone();
+        let offset = both.positions.len() as u32;
+        both.positions.extend(shifted);
+        for f in 0..turned.face_starts.len() - 1 {
+            let (a, b) = (
+                turned.face_starts[f] as usize,
+                turned.face_starts[f + 1] as usize,
+            );
+            let face: Vec<u32> = turned.indices[a..b].iter().map(|i| i + offset).collect();
+            both.push_face(&face);
+        }
+        let c = closure(&both);
+        assert_eq!(c.volumes.len(), 2);
+        assert!((c.volumes[0] - 8.0).abs() < 1e-9 && (c.volumes[1] + 8.0).abs() < 1e-9);
+        assert!(!c.faces_outward());
+        let mut outward = cube.clone();
+        for f in 0..cube.face_starts.len() - 1 {
+            let (a, b) = (
+                cube.face_starts[f] as usize,
+                cube.face_starts[f + 1] as usize,
+            );
+            let face: Vec<u32> = cube.indices[a..b].iter().map(|i| i + offset).collect();
+            outward.push_face(&face);
+        }
+        outward
+            .positions
+            .extend(cube.positions.iter().map(|p| *p + Vec3::X * 5.0));
+        assert!(closure(&outward).faces_outward());
+    }
+}
