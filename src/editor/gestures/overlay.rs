@@ -104,6 +104,20 @@ pub fn halfedge_arrow(m: &MeshRef<'_>, h: HalfedgeId) -> (Vec3, Vec3, Vec3) {
     (pa.lerp(pb, 0.12), pa.lerp(pb, 0.88), inside)
 }
 
+/// An arrow's barb, as long as this fraction of its shaft.
+pub const TIP_FRACTION: f32 = 0.2;
+
+/// The free end of an arrow's one barb: back from its head `b` at 45°, [`TIP_FRACTION`] of the
+/// shaft long, leaning towards `inside` (its face's side). `None` where `inside` lies on the
+/// shaft's line or the shaft has no length.
+pub fn barb(a: Vec3, b: Vec3, inside: Vec3) -> Option<Vec3> {
+    let along = (b - a).try_normalize()?;
+    let towards = inside - b;
+    let across = (towards - along * towards.dot(along)).try_normalize()?;
+    let tip = a.distance(b) * TIP_FRACTION;
+    Some(b + (across - along) * (tip * std::f32::consts::FRAC_1_SQRT_2))
+}
+
 fn mean_edge_near(m: &MeshRef<'_>, v: VertexId) -> f32 {
     let p = m.position(v);
     let (sum, n) = m
@@ -334,7 +348,7 @@ pub fn draw_overlay(
             }
             Shape::HighlightArrow(a, b, inside, c) => {
                 thick.line(a, b, c);
-                if let Some(tip) = super::overlay_lines::barb(a, b, inside) {
+                if let Some(tip) = barb(a, b, inside) {
                     thick.line(b, tip, c);
                 }
             }

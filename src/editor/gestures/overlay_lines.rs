@@ -30,7 +30,7 @@ use bevy::render::render_resource::{
 };
 use bevy::shader::ShaderRef;
 
-use super::overlay::{Overlay, Shape};
+use super::overlay::{Overlay, Shape, barb};
 
 /// Width of the thin lines on screen, in pixels.
 pub const LINE_WIDTH_PX: f32 = 1.5;
@@ -39,8 +39,6 @@ pub const LINE_WIDTH_PX: f32 = 1.5;
 pub const DEPTH_PULL: f32 = 0.003;
 /// Corners of a vertex dot's hexagon.
 pub const DOT_CORNERS: usize = 6;
-/// An arrow's tips, as long as this fraction of its shaft.
-pub const TIP_FRACTION: f32 = 0.2;
 
 /// The segment's other end (each vertex carries its own end as its position).
 pub const ATTRIBUTE_OTHER_END: MeshVertexAttribute = MeshVertexAttribute::new(
@@ -126,17 +124,6 @@ fn arrow(a: Vec3, b: Vec3, inside: Vec3, color: LinearRgba, out: &mut Vec<Segmen
     if let Some(tip) = barb(a, b, inside) {
         out.push(fixed(b, tip, color));
     }
-}
-
-/// The free end of an arrow's one barb: back from its head `b` at 45°, [`TIP_FRACTION`] of the
-/// shaft long, leaning towards `inside` (its face's side). `None` where `inside` lies on the
-/// shaft's line or the shaft has no length.
-pub fn barb(a: Vec3, b: Vec3, inside: Vec3) -> Option<Vec3> {
-    let along = (b - a).try_normalize()?;
-    let towards = inside - b;
-    let across = (towards - along * towards.dot(along)).try_normalize()?;
-    let tip = a.distance(b) * TIP_FRACTION;
-    Some(b + (across - along) * (tip * std::f32::consts::FRAC_1_SQRT_2))
 }
 
 /// The corners of a dot's hexagon about its centre, in the camera's plane (right, up), for a
