@@ -23,6 +23,7 @@
 
 use bevy::math::{DVec3, Vec2, Vec3};
 
+use super::stats::component_of_vertices;
 use super::tables::Connectivity;
 
 /// The volume a mesh bounds once its holes are closed, and its holes.
@@ -200,41 +201,6 @@ fn is_simple_polygon(p: &[Vec2]) -> bool {
         // Sides i and i+1 share a corner; so do the last and the first.
         (i + 2..n).all(|j| (i == 0 && j == n - 1) || !cross(side(i), side(j)))
     })
-}
-
-/// Each vertex's connected component, numbered from 0 in the order of their lowest vertex.
-fn component_of_vertices(t: &Connectivity) -> Vec<u32> {
-    let mut parent: Vec<u32> = (0..t.vertex_count() as u32).collect();
-    fn root(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            let up = parent[parent[x as usize] as usize];
-            parent[x as usize] = up;
-            x = up;
-        }
-        x
-    }
-    for e in t.edges() {
-        let h = t.edge_halfedge(e);
-        let (a, b) = (
-            root(&mut parent, t.from_vertex(h).get()),
-            root(&mut parent, t.to_vertex(h).get()),
-        );
-        if a != b {
-            parent[a.max(b) as usize] = a.min(b);
-        }
-    }
-    let mut number = vec![u32::MAX; parent.len()];
-    let mut next = 0;
-    (0..parent.len() as u32)
-        .map(|v| {
-            let r = root(&mut parent, v) as usize;
-            if number[r] == u32::MAX {
-                number[r] = next;
-                next += 1;
-            }
-            number[r]
-        })
-        .collect()
 }
 
 #[cfg(test)]

@@ -163,8 +163,16 @@ fn count_boundary_loops(t: &Connectivity) -> usize {
 }
 
 fn count_components(t: &Connectivity) -> usize {
+    component_of_vertices(t)
+        .iter()
+        .max()
+        .map_or(0, |&c| c as usize + 1)
+}
+
+/// Each vertex's connected component, numbered from 0 in the order of their lowest vertex.
+pub(crate) fn component_of_vertices(t: &Connectivity) -> Vec<u32> {
     let mut parent: Vec<u32> = (0..t.vertex_count() as u32).collect();
-    fn find(parent: &mut [u32], mut x: u32) -> u32 {
+    fn root(parent: &mut [u32], mut x: u32) -> u32 {
         while parent[x as usize] != x {
             let up = parent[parent[x as usize] as usize];
             parent[x as usize] = up;
@@ -172,15 +180,26 @@ fn count_components(t: &Connectivity) -> usize {
         }
         x
     }
-    let mut components = t.vertex_count();
     for e in t.edges() {
         let h = t.edge_halfedge(e);
-        let (a, b) = (t.from_vertex(h).get(), t.to_vertex(h).get());
-        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-        if ra != rb {
-            parent[ra.max(rb) as usize] = ra.min(rb);
-            components -= 1;
+        let (a, b) = (
+            root(&mut parent, t.from_vertex(h).get()),
+            root(&mut parent, t.to_vertex(h).get()),
+        );
+        if a != b {
+            parent[a.max(b) as usize] = a.min(b);
         }
     }
-    components
+    let mut number = vec![u32::MAX; parent.len()];
+    let mut next = 0;
+    (0..parent.len() as u32)
+        .map(|v| {
+            let r = root(&mut parent, v) as usize;
+            if number[r] == u32::MAX {
+                number[r] = next;
+                next += 1;
+            }
+            number[r]
+        })
+        .collect()
 }
