@@ -221,16 +221,23 @@ mod tests {
 
     /// `soup` with every face turned the other way.
     fn inside_out(soup: &PolygonSoup) -> PolygonSoup {
-        let faces: Vec<Vec<u32>> = (0..soup.face_starts.len() - 1)
-            .map(|f| {
-                let (a, b) = (
-                    soup.face_starts[f] as usize,
-                    soup.face_starts[f + 1] as usize,
-                );
-                soup.indices[a..b].iter().rev().copied().collect()
-            })
+        let faces: Vec<Vec<u32>> = soup
+            .faces()
+            .map(|f| f.iter().rev().copied().collect())
             .collect();
         PolygonSoup::from_faces(soup.positions.clone(), &faces)
+    }
+
+    /// `a`, and `b` moved 5 along x beside it: two components.
+    fn side_by_side(a: &PolygonSoup, b: &PolygonSoup) -> PolygonSoup {
+        let mut both = a.clone();
+        let offset = a.positions.len() as u32;
+        both.positions
+            .extend(b.positions.iter().map(|p| *p + Vec3::X * 5.0));
+        for face in b.faces() {
+            both.push_face(&face.iter().map(|i| i + offset).collect::<Vec<u32>>());
+        }
+        both
     }
 
     #[test]
@@ -257,15 +264,10 @@ mod tests {
     fn a_cube_open_at_the_top_hides_its_inside_only_from_below_the_rim() {
         let cube = shapes::cube();
         // Without its +z face (the second).
-        let faces: Vec<Vec<u32>> = (0..6)
-            .filter(|&f| f != 1)
-            .map(|f| {
-                let (a, b) = (
-                    cube.face_starts[f] as usize,
-                    cube.face_starts[f + 1] as usize,
-                );
-                cube.indices[a..b].to_vec()
-            })
+        let faces: Vec<&[u32]> = cube
+            .faces()
+            .enumerate()
+            .filter_map(|(f, face)| (f != 1).then_some(face))
             .collect();
         let c = closure(&PolygonSoup::from_faces(cube.positions.clone(), &faces));
         // The cone's apex is the top's centre, so the cone is the missing face itself.
@@ -310,39 +312,11 @@ mod tests {
 
     #[test]
     fn every_component_must_face_outward() {
-        let (cube, turned) = (shapes::cube(), inside_out(&shapes::cube()));
-        let shifted: Vec<Vec3> = turned
-            .positions
-            .iter()
-            .map(|p| *p + Vec3::new(5.0, 0.0, 0.0))
-            .collect();
-        let mut both = cube.clone();
-        let offset = both.positions.len() as u32;
-        both.positions.extend(shifted);
-        for f in 0..turned.face_starts.len() - 1 {
-            let (a, b) = (
-                turned.face_starts[f] as usize,
-                turned.face_starts[f + 1] as usize,
-            );
-            let face: Vec<u32> = turned.indices[a..b].iter().map(|i| i + offset).collect();
-            both.push_face(&face);
-        }
-        let c = closure(&both);
+        let cube = shapes::cube();
+        let c = closure(&side_by_side(&cube, &inside_out(&cube)));
         assert_eq!(c.volumes.len(), 2);
         assert!((c.volumes[0] - 8.0).abs() < 1e-9 && (c.volumes[1] + 8.0).abs() < 1e-9);
         assert!(!c.faces_outward());
-        let mut outward = cube.clone();
-        for f in 0..cube.face_starts.len() - 1 {
-            let (a, b) = (
-                cube.face_starts[f] as usize,
-                cube.face_starts[f + 1] as usize,
-            );
-            let face: Vec<u32> = cube.indices[a..b].iter().map(|i| i + offset).collect();
-            outward.push_face(&face);
-        }
-        outward
-            .positions
-            .extend(cube.positions.iter().map(|p| *p + Vec3::X * 5.0));
-        assert!(closure(&outward).faces_outward());
+        assert!(closure(&side_by_side(&cube, &cube)).faces_outward());
     }
 }

@@ -1,12 +1,14 @@
 //! The overlay's thin lines — halfedge arrows, vertex dots, axis lines — drawn as one mesh in
 //! one draw (`overlay_lines.wgsl`), rebuilt only when the lines change.
 //!
-//! Bevy's gizmos draw every segment as an instance of a six-vertex quad. A software rasterizer
-//! (Mesa's lavapipe, the editor's renderer where there is no GPU) sets each instance up on its
-//! own, so the cost goes with the number of segments, not the pixels they cover: the default
+//! Bevy's gizmos draw every segment as an instance of a six-vertex quad, rebuilt every frame.
+//! Under a software rasterizer (Mesa's lavapipe, the editor's renderer where there is no GPU)
+//! the overlay's cost goes with the triangles set up, not the pixels they cover: the default
 //! torus's 1 152 arrows (five segments each, a shaft and four tips) and 288 dots (six each)
-//! took 4.2–5.8 ms of a 29–35 ms frame, where the torus's whole surface takes 2 ms. Here every
-//! segment is two triangles of one vertex buffer, widened to [`LINE_WIDTH_PX`] on screen by the
+//! took 4.2–5.8 ms of a 29–35 ms frame, where the torus's whole surface takes 2 ms. The same
+//! segments in one mesh cost about as much, so what saves the time is fewer triangles: an arrow
+//! is two segments here (its shaft and one barb) and a dot a filled hexagon of four triangles.
+//! Every segment is a quad of one vertex buffer, widened to [`LINE_WIDTH_PX`] on screen by the
 //! vertex shader (the construction of Bevy's line gizmos, after Rye Terrell's "Instanced Line
 //! Rendering", 2019), drawn in the opaque pass.
 //!

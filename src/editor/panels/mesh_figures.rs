@@ -22,7 +22,7 @@ use crate::mesh::closure::Closure;
 use crate::mesh::tables::{GradualRead, MeshTables, extract};
 use crate::mesh::{MeshId, MeshInfo, MeshStats, stats_of_tables, validate};
 
-use super::plots::{Histogram, histograms, histograms_of_tables};
+use super::plots::{Histogram, histograms_of_tables};
 use crate::editor::pipeline::jobs::{JobSettings, READ_SLICE};
 use crate::editor::view::colouring::VertexValues;
 use crate::editor::view::culling::Closures;
@@ -88,7 +88,7 @@ pub fn count(
             validation: Some(validate(world, mesh).map_err(|e| e.to_string())),
             counting: false,
         });
-        *shown_histograms = histograms(world, mesh, world.get::<VertexValues>(mesh.0));
+        *shown_histograms = histograms_of_tables(&read.tables, world.get::<VertexValues>(mesh.0));
         return;
     }
     let shown = world.get::<VertexValues>(mesh.0).cloned();

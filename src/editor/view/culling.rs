@@ -5,9 +5,9 @@
 //! renderer where there is no GPU) the surface's cost is the triangles it sets up, half of them
 //! facing away: culling them took the bunny's opaque pass from 24–26 to 14–15 ms. So where no
 //! back face can be seen, the chunks of a mesh take the material that culls them
-//! ([`SceneMaterials::surface_culled`]): when the mesh's [`Closure`] (its holes closed by cones)
-//! says every component faces outward, the eye is outside them and no hole faces the eye (see
-//! [`crate::mesh::closure`]). The closure is counted with the panel's figures, off the frame
+//! ([`SceneMaterials::surface_culled`]): when the mesh's [`Closure`] says every component
+//! faces outward, the eye is outside the mesh's box, and the eye lies on the inner side of every
+//! hole's slab (see [`crate::mesh::closure`]). The closure is counted with the panel's figures, off the frame
 //! for a large mesh, and holds for the render generation it was counted at: after any edit the
 //! mesh is drawn two-sided again until it is counted anew.
 //!
