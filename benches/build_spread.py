@@ -25,11 +25,9 @@ import subprocess
 import sys
 import tempfile
 
-import pappus
-from meshlab_common import PAPPUS, ROOT
+from meshlab_common import PAPPUS, write_scans
 
 RUNS = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 10
-BUNNY = os.path.join(ROOT, "../shared/models/stanford-bunny.obj")
 TOUCH = r"""
 import sys, time
 import numpy as np
@@ -101,15 +99,7 @@ def correlation(xs, ys):
 
 def main():
     folder = tempfile.mkdtemp(prefix="pappus-spread-")
-    scans = [("bunny, Loop ×2", os.path.join(folder, "bunny-loop2.ply")),
-             ("icosphere 8", os.path.join(folder, "icosphere-8.ply")),
-             ("icosphere 9", os.path.join(folder, "icosphere-9.ply"))]
-    bunny = pappus.load(BUNNY)
-    bunny.loop(2)
-    bunny.save(scans[0][1])
-    del bunny
-    pappus.load("shape:icosphere:8").save(scans[1][1])
-    pappus.load("shape:icosphere:9").save(scans[2][1])
+    scans = write_scans(folder, icosphere_levels=(8, 9))
     runs = {name: [] for name, _ in scans}
     warm = {name: [] for name, _ in scans}
     peers = {name: [] for name, _ in scans}

@@ -28,7 +28,7 @@ import tempfile
 import time
 
 import pappus
-from meshlab_common import PAPPUS, ROOT
+from meshlab_common import PAPPUS, ROOT, write_scans
 
 RUNS = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 3
 BUNNY = os.path.join(ROOT, "../shared/models/stanford-bunny.obj")
@@ -123,13 +123,7 @@ def meshlab_qem(path):
 
 def main():
     folder = tempfile.mkdtemp(prefix="pappus-scan-")
-    scans = [("bunny, Loop ×2", os.path.join(folder, "bunny-loop2.ply")),
-             ("icosphere 8", os.path.join(folder, "icosphere-8.ply"))]
-    bunny = pappus.load(BUNNY)
-    bunny.loop(2)
-    bunny.save(scans[0][1])
-    del bunny
-    pappus.load("shape:icosphere:8").save(scans[1][1])
+    scans = write_scans(folder)
     bunny_ply = os.path.join(folder, "bunny.ply")
     pappus.load(BUNNY).save(bunny_ply)
     out = os.path.join(folder, "out.ply")

@@ -59,3 +59,21 @@ def hausdorff_text(original, result):
     """Both figures of `hausdorff_pct`, as the side-by-side scripts print them."""
     sparse, dense = hausdorff_pct(original, result)
     return f"Hausdorff {sparse:.3f} % (dense {dense:.3f} %)"
+
+
+def write_scans(folder, icosphere_levels=(8,)):
+    """The large meshes the scan benchmarks read: the Stanford bunny subdivided twice by Loop
+    and an icosphere of each level in `icosphere_levels`, written by Pappus as binary PLY into
+    `folder`. Returns [(name, path)], the bunny's first."""
+    import pappus
+
+    scans = [("bunny, Loop ×2", os.path.join(folder, "bunny-loop2.ply"))]
+    bunny = pappus.load(os.path.join(ROOT, "../shared/models/stanford-bunny.obj"))
+    bunny.loop(2)
+    bunny.save(scans[0][1])
+    del bunny
+    for level in icosphere_levels:
+        path = os.path.join(folder, f"icosphere-{level}.ply")
+        pappus.load(f"shape:icosphere:{level}").save(path)
+        scans.append((f"icosphere {level}", path))
+    return scans
