@@ -71,6 +71,11 @@ impl PreparedMesh {
         &self.report
     }
 
+    /// Its tables, as they will be spawned (rows in the same order).
+    pub fn tables(&self) -> &Connectivity {
+        &self.connectivity
+    }
+
     /// How many vertices and faces the mesh will have.
     pub fn counts(&self) -> (usize, usize) {
         (

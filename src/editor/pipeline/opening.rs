@@ -8,6 +8,10 @@
 //! the tables on the editor's frame — the one part that needs the world — and the mesh replaces
 //! the active one as one undo step, as a small file's does. The 1.1 M-face scan (the bunny
 //! Loop-subdivided twice, binary PLY) reads in 1.1 s this way and spawns in 1.0 s on the frame.
+//!
+//! On a software renderer the mesh is also closed over its holes from the same tables, before
+//! they are spawned ([`ClosureAtOpen`]): its back faces are then culled from its first frame,
+//! where the panel's count would read a large mesh's tables back for seconds first.
 
 use bevy::ecs::message::MessageCursor;
 use bevy::prelude::{Local, Resource, World};
@@ -16,6 +20,7 @@ use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::Instant;
 
+use crate::mesh::closure::Closure;
 use crate::mesh::soup::PolygonSoup;
 use crate::mesh::{MeshInfo, PreparedMesh, despawn_mesh, prepare_mesh, spawn_prepared};
 
@@ -24,6 +29,7 @@ use crate::editor::session::finish::report;
 use crate::editor::session::history;
 use crate::editor::session::requests::{Declined, Request};
 use crate::editor::session::selection::{ActiveMesh, MeshDirty, Selection};
+use crate::editor::view::culling::{ClosureAtOpen, SoftwareRenderer};
 
 /// A file being read in the background; `None` when none is.
 #[derive(Resource, Default)]
@@ -42,27 +48,31 @@ pub struct OpeningFile {
     thread: Option<JoinHandle<Result<Read, String>>>,
 }
 
-/// What the thread hands back: the file's soup, its name and place, and its tables.
+/// What the thread hands back: the file's soup, its name and place, its tables, and the mesh
+/// closed over its holes when asked.
 struct Read {
     soup: PolygonSoup,
     info: MeshInfo,
     prepared: PreparedMesh,
+    closure: Option<Closure>,
 }
 
-/// Reads `source` and prepares its mesh (away from the world); the reason in words if it
-/// cannot.
-fn read_and_prepare(source: &Path, progress: &Progress) -> Result<Read, String> {
+/// Reads `source` and prepares its mesh (away from the world), closing it over its holes when
+/// `close` says so; the reason in words if it cannot.
+fn read_and_prepare(source: &Path, progress: &Progress, close: bool) -> Result<Read, String> {
     let (soup, info) = crate::source::read_source(source).map_err(|e| e.to_string())?;
     if progress.is_cancelled() {
         return Err("cancelled".into());
     }
     progress.set(0.5);
     let prepared = prepare_mesh(&soup).map_err(|e| format!("{}: {e}", source.display()))?;
+    let closure = close.then(|| Closure::of(prepared.tables()));
     progress.set(0.9);
     Ok(Read {
         soup,
         info,
         prepared,
+        closure,
     })
 }
 
@@ -78,15 +88,19 @@ pub(super) fn open(world: &mut World, source: &Path) -> Result<String, Declined>
         .get_resource::<JobSettings>()
         .map_or(u64::MAX, |s| s.min_open_bytes);
     let large = std::fs::metadata(source).is_ok_and(|m| m.is_file() && m.len() >= min_bytes);
+    // Only a software renderer culls back faces (see `crate::editor::view::culling`).
+    let close = world
+        .get_resource::<SoftwareRenderer>()
+        .is_some_and(|s| s.0);
     if large {
-        return start(world, source);
+        return start(world, source, close);
     }
-    let read = read_and_prepare(source, &Progress::default()).map_err(Declined::File)?;
+    let read = read_and_prepare(source, &Progress::default(), close).map_err(Declined::File)?;
     Ok(install(world, source, read))
 }
 
-/// Starts reading `source` on a thread of its own.
-fn start(world: &mut World, source: &Path) -> Result<String, Declined> {
+/// Starts reading `source` on a thread of its own (closing it over its holes if `close`).
+fn start(world: &mut World, source: &Path, close: bool) -> Result<String, Declined> {
     if let Some(opening) = &world.resource::<Opening>().0 {
         return Err(Declined::Busy(opening.label.clone()));
     }
@@ -97,7 +111,7 @@ fn start(world: &mut World, source: &Path) -> Result<String, Declined> {
         let (path, progress) = (path.clone(), progress.clone());
         std::thread::Builder::new()
             .name("open".into())
-            .spawn(move || read_and_prepare(&path, &progress))
+            .spawn(move || read_and_prepare(&path, &progress, close))
             .map_err(|e| Declined::File(format!("cannot start reading: {e}")))?
     };
     let name = path.file_name().map_or_else(
@@ -189,6 +203,7 @@ fn install(world: &mut World, source: &Path, read: Read) -> String {
         soup,
         info,
         prepared,
+        closure,
     } = read;
     let (vertices, faces) = prepared.counts();
     let pending = history::begin_replace(world);
@@ -199,6 +214,11 @@ fn install(world: &mut World, source: &Path, read: Read) -> String {
     world.resource_mut::<ActiveMesh>().0 = Some(built.mesh);
     world.resource_mut::<Selection>().select_only(None);
     world.entity_mut(built.mesh.0).insert(MeshDirty);
+    if let Some(closure) = closure {
+        world
+            .entity_mut(built.mesh.0)
+            .insert(ClosureAtOpen(closure));
+    }
     if let Some(pending) = pending {
         history::commit(world, pending, format!("open {}", source.display()));
     }

@@ -9,7 +9,10 @@
 //! faces outward, the eye is outside the mesh's box, and the eye lies on the inner side of every
 //! hole's slab (see [`crate::mesh::closure`]). The closure is counted with the panel's figures, off the frame
 //! for a large mesh, and holds for the render generation it was counted at: after any edit the
-//! mesh is drawn two-sided again until it is counted anew.
+//! mesh is drawn two-sided again until it is counted anew. An opened mesh brings its closure
+//! with it ([`ClosureAtOpen`], counted from the tables it is spawned from), so it is culled from
+//! the frame that first draws it: the panel's count of the 1.3 M-face icosphere comes 12 s
+//! later on lavapipe (its tables read back a slice a frame).
 //!
 //! Only on a CPU adapter. On a GPU back faces cost little, and drawing them keeps the one case
 //! the closure cannot see in the back colour: a surface that passes through itself, where a
@@ -26,6 +29,8 @@ use crate::mesh::closure::Closure;
 use super::render_sync::{RenderChunks, RenderStats};
 use super::scene::{OrbitCamera, SceneMaterials};
 use super::surface::SurfaceMaterial;
+use crate::editor::session::selection::MeshDirty;
+use crate::editor::session::state::Modified;
 
 /// Each mesh's closure, with the render generation ([`RenderStats::rebuilds`]) it was counted at.
 #[derive(Resource, Default, Debug)]
@@ -37,6 +42,13 @@ impl Closures {
         self.0.insert(mesh, (generation, closure));
     }
 }
+
+/// The closure of a mesh as it was opened, counted from the tables it was spawned from (a
+/// component of the mesh entity until the frame that first draws it). [`choose_culling`] takes it
+/// once the render copy is drawn and records it at that render's generation, unless the mesh
+/// was edited before ([`Modified`]): then it is dropped and the panel's count stands.
+#[derive(Component, Debug)]
+pub struct ClosureAtOpen(pub Closure);
 
 /// Whether the frames are drawn by a software rasterizer (a CPU adapter): the only renderer
 /// that culls back faces (see the module doc). Absent, none is.
@@ -65,6 +77,7 @@ pub fn choose_culling(world: &mut World) {
         .next()
         .map(|t| t.translation);
     let generation = world.resource::<RenderStats>().rebuilds;
+    adopt_closures_at_open(world, generation);
     let mut meshes = world.query::<(Entity, &RenderChunks)>();
     let mut chosen: Vec<(Entity, Handle<SurfaceMaterial>)> = Vec::new();
     let closures = world.resource::<Closures>();
@@ -112,6 +125,26 @@ pub fn choose_culling(world: &mut World) {
     }
 }
 
+/// Records the closure each opened mesh brought ([`ClosureAtOpen`]) at render `generation`,
+/// once its render copy is drawn (it is no longer [`MeshDirty`]); a mesh edited since its open
+/// drops its closure instead.
+fn adopt_closures_at_open(world: &mut World, generation: usize) {
+    let drawn: Vec<(Entity, bool)> = world
+        .query_filtered::<(Entity, Has<Modified>), (With<ClosureAtOpen>, With<RenderChunks>, Without<MeshDirty>)>()
+        .iter(world)
+        .collect();
+    for (mesh, edited) in drawn {
+        let Some(ClosureAtOpen(closure)) = world.entity_mut(mesh).take::<ClosureAtOpen>() else {
+            continue;
+        };
+        if !edited {
+            world
+                .resource_mut::<Closures>()
+                .record(MeshId(mesh), generation, closure);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -122,11 +155,19 @@ mod tests {
     /// A world with the cube `[-1, 1]³` drawn by one chunk (two-sided), its closure counted at
     /// render generation 3, and the camera at `eye`.
     fn cube_seen_from(eye: Vec3, software: bool) -> (World, Entity, SceneMaterials) {
+        let (mut world, mesh, chunk, materials) = cube_unclosed(eye, software);
+        let closure = Closure::of(&extract(&world, mesh).tables);
+        world.resource_mut::<Closures>().record(mesh, 3, closure);
+        (world, chunk, materials)
+    }
+
+    /// The world of [`cube_seen_from`] with no closure recorded: the cube, its chunk, the
+    /// materials.
+    fn cube_unclosed(eye: Vec3, software: bool) -> (World, MeshId, Entity, SceneMaterials) {
         let mut world = World::new();
         let mesh = build_mesh(&mut world, &shapes::cube(), MeshInfo::default())
             .expect("a cube")
             .mesh;
-        let closure = Closure::of(&extract(&world, mesh).tables);
         let mut assets = Assets::<SurfaceMaterial>::default();
         let surface = SurfaceMaterial {
             color: LinearRgba::WHITE,
@@ -152,10 +193,8 @@ mod tests {
             rebuilds: 3,
             ..default()
         });
-        let mut closures = Closures::default();
-        closures.record(mesh, 3, closure);
-        world.insert_resource(closures);
-        (world, chunk, materials)
+        world.insert_resource(Closures::default());
+        (world, mesh, chunk, materials)
     }
 
     fn drawn_with(world: &World, chunk: Entity) -> Handle<SurfaceMaterial> {
@@ -188,5 +227,37 @@ mod tests {
         let (mut world, chunk, materials) = cube_seen_from(Vec3::new(0.0, 0.0, 0.5), true);
         choose_culling(&mut world);
         assert_eq!(drawn_with(&world, chunk), materials.surface);
+    }
+
+    #[test]
+    fn an_opened_mesh_is_culled_once_drawn_with_the_closure_it_brought_unless_edited() {
+        let eye = Vec3::new(0.0, 0.0, 5.0);
+        let (mut world, mesh, chunk, materials) = cube_unclosed(eye, true);
+        let closure = Closure::of(&extract(&world, mesh).tables);
+        // Not drawn yet: the closure waits for the render copy.
+        world
+            .entity_mut(mesh.0)
+            .insert((ClosureAtOpen(closure.clone()), MeshDirty));
+        choose_culling(&mut world);
+        assert_eq!(drawn_with(&world, chunk), materials.surface);
+        assert!(world.get::<ClosureAtOpen>(mesh.0).is_some());
+        // Drawn: recorded at this render's generation, and culled at once.
+        world.entity_mut(mesh.0).remove::<MeshDirty>();
+        choose_culling(&mut world);
+        assert_eq!(drawn_with(&world, chunk), materials.surface_culled);
+        assert!(world.get::<ClosureAtOpen>(mesh.0).is_none());
+        assert_eq!(
+            world.resource::<Closures>().0.get(&mesh),
+            Some(&(3, closure.clone()))
+        );
+        // Edited before its first draw: the closure is of the mesh before the edit, and dropped.
+        let (mut world, mesh, chunk, materials) = cube_unclosed(eye, true);
+        world
+            .entity_mut(mesh.0)
+            .insert((ClosureAtOpen(closure), Modified));
+        choose_culling(&mut world);
+        assert_eq!(drawn_with(&world, chunk), materials.surface);
+        assert!(world.get::<ClosureAtOpen>(mesh.0).is_none());
+        assert!(world.resource::<Closures>().0.is_empty());
     }
 }
