@@ -180,6 +180,7 @@ mod tests {
                 ..surface.clone()
             }),
             surface: assets.add(surface),
+            wireframe: Handle::default(),
         };
         let chunk = world.spawn(MeshMaterial3d(materials.surface.clone())).id();
         world.entity_mut(mesh.0).insert(RenderChunks {

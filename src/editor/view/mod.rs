@@ -1,10 +1,12 @@
 //! The view room: how the meshes look. The render copies that follow the entities
 //! ([`render_sync`], from what [`render_data`] builds), colouring by a quantity ([`colouring`]), the wireframe kept readable
 //! ([`readability`]), the scene and its camera state ([`scene`]), the surface shader
-//! ([`surface`]) and its back faces left undrawn where none can be seen ([`culling`]). It reads only the session and pipeline rooms.
+//! ([`surface`]) and its back faces left undrawn where none can be seen ([`culling`]), and the
+//! lines of a constant width on screen that draw the wireframe and the overlay ([`lines`]). It reads only the session and pipeline rooms.
 
 pub mod colouring;
 pub mod culling;
+pub mod lines;
 pub mod readability;
 pub mod render_data;
 pub mod render_sync;
@@ -43,7 +45,7 @@ pub struct ViewWindowPlugin;
 
 impl Plugin for ViewWindowPlugin {
     fn build(&self, app: &mut App) {
-        app.add_plugins(surface::SurfacePlugin)
+        app.add_plugins((surface::SurfacePlugin, lines::LinesPlugin))
             .init_resource::<scene::PanelInsets>()
             .add_systems(
                 Startup,

@@ -14,9 +14,7 @@ use bevy::prelude::*;
 
 use crate::mesh::ids::MeshId;
 
-use bevy::gizmos::retained::Gizmo;
-
-use super::render_sync::{RenderChunks, ViewSettings, WireLines, WireframeOf, wire_gizmo};
+use super::render_sync::{RenderChunks, ViewSettings, WireLines, WireframeOf};
 use super::scene::OrbitCamera;
 use crate::editor::session::selection::ActiveMesh;
 
@@ -48,16 +46,15 @@ pub fn show_readable_wireframes(
     active: Res<ActiveMesh>,
     cameras: Query<(&OrbitCamera, &Camera, &Projection)>,
     meshes: Query<&RenderChunks>,
-    wires: Query<(Entity, &WireframeOf, &WireLines, Has<Gizmo>)>,
+    mut wires: Query<(&WireframeOf, &mut Visibility), With<WireLines>>,
     mut density: ResMut<WireframeDensity>,
-    mut commands: Commands,
 ) {
     let scale = cameras
         .iter()
         .next()
         .and_then(|(orbit, camera, projection)| pixels_per_unit(orbit, camera, projection));
     let mut judged = WireframeDensity::default();
-    for (wire, of, lines, shown) in &wires {
+    for (of, mut visibility) in &mut wires {
         let edge_px = meshes
             .get(of.0.0)
             .ok()
@@ -65,11 +62,11 @@ pub fn show_readable_wireframes(
             .map(|(chunks, scale)| chunks.mean_edge_length * scale);
         let dense = edge_px.is_some_and(|px| px < MIN_EDGE_PX) && !settings.dense_wireframe;
         let wanted = settings.wireframe && !dense;
-        if wanted && !shown {
-            commands.entity(wire).insert(wire_gizmo(lines.0.clone()));
-        } else if !wanted && shown {
-            commands.entity(wire).remove::<Gizmo>();
-        }
+        visibility.set_if_neq(if wanted {
+            Visibility::Inherited
+        } else {
+            Visibility::Hidden
+        });
         if active.0 == Some(MeshId(of.0.0)) {
             judged = WireframeDensity {
                 edge_px,

@@ -19,6 +19,7 @@
 
 use bevy::asset::RenderAssetUsages;
 use bevy::color::Color;
+use bevy::ecs::change_detection::DetectChangesMut;
 use bevy::ecs::entity::EntityHashMap;
 use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology};
 use bevy::prelude::{
@@ -33,6 +34,7 @@ use crate::mesh::ids::{FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 
 use super::colouring::VertexValues;
+use super::lines::{Segment, ThinLines, line_mesh};
 use super::render_data::{
     RenderData, edge_line_ends, render_data, render_data_by_face, smooth_normal,
 };
@@ -42,7 +44,7 @@ use crate::editor::session::selection::{DirtyFaces, MeshDirty, PositionsDirty};
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct RenderOf(pub MeshId);
 
-/// The wireframe entity of a mesh (a retained gizmo of its edges).
+/// The wireframe entity of a mesh's chunk (a mesh of its edges' lines, [`super::lines`]).
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct WireframeOf(pub MeshId);
 
@@ -357,19 +359,17 @@ fn chunk_lines(
     wireframe: bool,
     settings: ViewSettings,
 ) -> Option<Vec<(VertexId, VertexId, Color)>> {
-    (settings.wireframe && world.contains_resource::<Assets<bevy::gizmos::GizmoAsset>>()).then(
-        || {
-            if wireframe {
-                edge_line_ends(world, faces)
-            } else {
-                Vec::new()
-            }
-        },
-    )
+    (settings.wireframe && world.contains_resource::<super::scene::SceneMaterials>()).then(|| {
+        if wireframe {
+            edge_line_ends(world, faces)
+        } else {
+            Vec::new()
+        }
+    })
 }
 
-/// Gives `chunk` its surface (a new [`Mesh`] asset) and `wire` its lines (a new retained
-/// gizmo), when there are any to draw. Returns the chunk's triangle count.
+/// Gives `chunk` its surface (a new [`Mesh`] asset) and `wire` its lines (another), when there
+/// are any to draw. Returns the chunk's triangle count.
 fn upload_chunk(
     world: &mut World,
     chunk: Entity,
@@ -396,9 +396,10 @@ fn upload_chunk(
     }
     render.insert_indices(Indices::U32(data.indices));
     let handle = world.resource_mut::<Assets<Mesh>>().add(render);
-    let material = world
+    let materials = world
         .get_resource::<super::scene::SceneMaterials>()
-        .map(|m| m.surface.clone());
+        .cloned();
+    let material = materials.as_ref().map(|m| m.surface.clone());
     let mut e = world.entity_mut(chunk);
     e.insert((
         Mesh3d(handle),
@@ -410,28 +411,41 @@ fn upload_chunk(
     if let Some(material) = material {
         e.insert(bevy::pbr::MeshMaterial3d(material));
     }
-    if let Some(ends) = lines {
-        let asset = line_asset(world, &ends);
-        let handle = world
-            .resource_mut::<Assets<bevy::gizmos::GizmoAsset>>()
-            .add(asset);
-        world.entity_mut(wire).insert((
-            wire_gizmo(handle.clone()),
-            WireLines(handle),
-            WireEnds(ends),
-        ));
+    match (lines, materials) {
+        // A mesh without vertices is not drawn: a chunk without edges gets none.
+        (Some(ends), Some(materials)) if !ends.is_empty() => {
+            let lines = wire_mesh(world, &ends);
+            let handle = world.resource_mut::<Assets<Mesh>>().add(lines);
+            world.entity_mut(wire).insert((
+                Mesh3d(handle.clone()),
+                bevy::pbr::MeshMaterial3d(materials.wireframe),
+                WireLines(handle),
+                WireEnds(ends),
+                Transform::default(),
+                Visibility::default(),
+                bevy::picking::Pickable::IGNORE,
+            ));
+        }
+        _ => {
+            world
+                .entity_mut(wire)
+                .remove::<(Mesh3d, WireLines, WireEnds)>();
+        }
     }
     triangles
 }
 
-/// The wireframe lines between these ends, at the vertices' positions now.
-fn line_asset(world: &World, ends: &[(VertexId, VertexId, Color)]) -> bevy::gizmos::GizmoAsset {
+/// The wireframe's lines between these ends, at the vertices' positions now.
+fn wire_mesh(world: &World, ends: &[(VertexId, VertexId, Color)]) -> Mesh {
     let m = MeshRef::new(world);
-    let mut asset = bevy::gizmos::GizmoAsset::default();
-    for &(a, b, color) in ends {
-        asset.line(m.position(a), m.position(b), color);
-    }
-    asset
+    let segments = ends.iter().map(|&(a, b, color)| Segment {
+        ends: [m.position(a), m.position(b)],
+        color: color.into(),
+    });
+    line_mesh(&ThinLines {
+        segments: segments.collect(),
+        dots: Vec::new(),
+    })
 }
 
 /// The mesh vertex behind each render vertex of a chunk ([`RenderData::vertices`]): what a
@@ -489,7 +503,7 @@ fn refresh_positions(world: &mut World, mesh: MeshId, settings: ViewSettings) ->
         }) {
             return None;
         }
-        let lines = ends.map(|ends| line_asset(world_ref, &ends.0));
+        let lines = ends.map(|ends| wire_mesh(world_ref, &ends.0));
         Some((positions, normals, lines))
     });
     let refreshed: Vec<_> = refreshed.into_iter().collect::<Option<_>>()?;
@@ -507,52 +521,30 @@ fn refresh_positions(world: &mut World, mesh: MeshId, settings: ViewSettings) ->
             }
         }
         let wire_handle = world.get::<WireLines>(wire).map(|l| l.0.clone());
-        if let (Some(handle), Some(lines)) = (wire_handle, lines) {
-            let mut assets = world.resource_mut::<Assets<bevy::gizmos::GizmoAsset>>();
-            if let Some(mut asset) = assets.get_mut(&handle) {
-                *asset = lines;
-            }
+        if let (Some(handle), Some(lines)) = (wire_handle, lines)
+            && let Err(e) = world.resource_mut::<Assets<Mesh>>().insert(&handle, lines)
+        {
+            bevy::log::warn!("wireframe not moved: {e}");
         }
     }
     Some(triangles)
 }
 
-/// The lines of a chunk's wireframe, kept while the wireframe is hidden. Bevy draws a retained
-/// [`Gizmo`](bevy::gizmos::retained::Gizmo) whatever its `Visibility`, so hiding a wireframe
-/// removes its `Gizmo` and showing it puts one back from these lines.
+/// The mesh of a chunk's wireframe lines.
 #[derive(Component, Debug, Clone)]
-pub struct WireLines(pub Handle<bevy::gizmos::GizmoAsset>);
-
-/// The retained gizmo that draws a chunk's wireframe lines.
-pub fn wire_gizmo(lines: Handle<bevy::gizmos::GizmoAsset>) -> bevy::gizmos::retained::Gizmo {
-    bevy::gizmos::retained::Gizmo {
-        handle: lines,
-        line_config: bevy::gizmos::config::GizmoLineConfig {
-            width: 1.0,
-            ..Default::default()
-        },
-        depth_bias: -0.0005,
-    }
-}
+pub struct WireLines(pub Handle<Mesh>);
 
 /// Hides or shows every wireframe (the wireframe toggle). Wireframes not built yet are built by
 /// the caller's redraw.
 pub fn set_wireframes_visible(world: &mut World, visible: bool) {
-    let wires: Vec<(Entity, Option<Handle<bevy::gizmos::GizmoAsset>>)> = world
-        .query_filtered::<(Entity, Option<&WireLines>), With<WireframeOf>>()
-        .iter(world)
-        .map(|(e, lines)| (e, lines.map(|l| l.0.clone())))
-        .collect();
-    for (e, lines) in wires {
-        let mut e = world.entity_mut(e);
-        match lines {
-            Some(lines) if visible => {
-                e.insert(wire_gizmo(lines));
-            }
-            _ => {
-                e.remove::<bevy::gizmos::retained::Gizmo>();
-            }
-        }
+    let shown = if visible {
+        Visibility::Inherited
+    } else {
+        Visibility::Hidden
+    };
+    let mut wires = world.query_filtered::<&mut Visibility, With<WireLines>>();
+    for mut visibility in wires.iter_mut(world) {
+        visibility.set_if_neq(shown);
     }
 }
 

@@ -7,6 +7,7 @@ use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::math::{EulerRot, Quat, Vec3};
 use bevy::prelude::*;
 
+use super::lines::{DEPTH_PULL, LinesMaterial};
 use super::surface::SurfaceMaterial;
 
 /// The orbit camera's state: it looks at `focus` from `radius` away, turned by `yaw`/`pitch`.
@@ -55,12 +56,21 @@ pub struct SceneMaterials {
     /// The same surface with back faces left undrawn, for a mesh none of whose back faces can
     /// be seen (see [`super::culling`]).
     pub surface_culled: Handle<SurfaceMaterial>,
+    /// The wireframe's lines.
+    pub wireframe: Handle<LinesMaterial>,
 }
+
+/// Width of the wireframe's lines on screen, in pixels.
+pub const WIREFRAME_WIDTH_PX: f32 = 1.0;
 
 /// Spawns the camera and makes the materials. There are no lights: the surface material
 /// carries its own, fixed to the camera (see [`super::surface`]). No tonemapping or dithering
 /// either: colours (and colour maps) show as given, and a full-window pass is saved.
-pub fn setup_scene(mut commands: Commands, mut materials: ResMut<Assets<SurfaceMaterial>>) {
+pub fn setup_scene(
+    mut commands: Commands,
+    mut materials: ResMut<Assets<SurfaceMaterial>>,
+    mut lines: ResMut<Assets<LinesMaterial>>,
+) {
     let orbit = OrbitCamera::default();
     commands.spawn((
         Camera3d::default(),
@@ -91,6 +101,10 @@ pub fn setup_scene(mut commands: Commands, mut materials: ResMut<Assets<SurfaceM
             ..surface.clone()
         }),
         surface: materials.add(surface),
+        wireframe: lines.add(LinesMaterial {
+            width: WIREFRAME_WIDTH_PX,
+            depth_pull: DEPTH_PULL,
+        }),
     });
 }
 
