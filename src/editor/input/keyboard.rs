@@ -29,7 +29,8 @@ use crate::editor::session::requests::{Declined, Relation, Request};
 use crate::editor::session::selection::{
     ActiveMesh, MeshDirty, SelectMode, Selection, selected_edge, selected_faces,
 };
-use crate::editor::view::render_sync::{ViewSettings, set_wireframes_visible};
+use crate::editor::view::render_sync::ViewSettings;
+use crate::editor::view::wireframe::set_wireframes_visible;
 
 use super::shortcuts::{Action, registered, shortcut_for};
 

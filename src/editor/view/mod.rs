@@ -2,7 +2,8 @@
 //! ([`render_sync`], from what [`render_data`] builds), colouring by a quantity ([`colouring`]), the wireframe kept readable
 //! ([`readability`]), the scene and its camera state ([`scene`]), the surface shader
 //! ([`surface`]) and its back faces left undrawn where none can be seen ([`culling`]), and the
-//! lines of a constant width on screen that draw the wireframe and the overlay ([`lines`]). It reads only the session and pipeline rooms.
+//! lines of a constant width on screen that draw the wireframe ([`wireframe`]) and the overlay
+//! ([`lines`]). It reads only the session and pipeline rooms.
 
 pub mod colouring;
 pub mod culling;
@@ -12,6 +13,7 @@ pub mod render_data;
 pub mod render_sync;
 pub mod scene;
 pub mod surface;
+pub mod wireframe;
 
 use bevy::prelude::*;
 

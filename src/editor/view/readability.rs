@@ -14,8 +14,9 @@ use bevy::prelude::*;
 
 use crate::mesh::ids::MeshId;
 
-use super::render_sync::{RenderChunks, ViewSettings, WireLines, WireframeOf};
+use super::render_sync::{RenderChunks, ViewSettings, WireframeOf};
 use super::scene::OrbitCamera;
+use super::wireframe::WireLines;
 use crate::editor::session::selection::ActiveMesh;
 
 /// Edges closer than this on screen (mean edge length, in physical pixels) hide the wireframe.

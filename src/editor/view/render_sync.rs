@@ -4,8 +4,8 @@
 //! [`Mesh`] (built by [`super::render_data`]: every polygon fan-triangulated, every vertex once; flat shading: no normals, the
 //! shader derives each face's; smooth: area-weighted vertex normals over *all* the vertex's faces,
 //! so chunk borders show no seam), a
-//! [`TriangleFaces`] table mapping each GPU triangle back to its face for picking, and a retained
-//! wireframe of the *real* edges (a quad shows 4 edges, not 5; boundary edges red).
+//! [`TriangleFaces`] table mapping each GPU triangle back to its face for picking, and a
+//! wireframe of the *real* edges ([`super::wireframe`]).
 //!
 //! In the `Sync` set, a mesh marked [`MeshDirty`] (opened, globally edited) is redrawn whole; a
 //! mesh carrying [`DirtyFaces`](crate::editor::session::selection::DirtyFaces) (a local edit) has only the
@@ -19,12 +19,9 @@
 
 use bevy::asset::RenderAssetUsages;
 use bevy::color::Color;
-use bevy::ecs::change_detection::DetectChangesMut;
 use bevy::ecs::entity::EntityHashMap;
 use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology};
-use bevy::prelude::{
-    Assets, Component, Entity, Handle, Or, Resource, Transform, Visibility, With, World,
-};
+use bevy::prelude::{Assets, Component, Entity, Or, Resource, Transform, Visibility, With, World};
 use bevy::tasks::{ComputeTaskPool, ParallelSlice, TaskPool};
 use std::time::Instant;
 
@@ -34,10 +31,10 @@ use crate::mesh::ids::{FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 
 use super::colouring::VertexValues;
-use super::lines::{Segment, ThinLines, line_mesh};
 use super::render_data::{
     RenderData, edge_line_ends, render_data, render_data_by_face, smooth_normal,
 };
+use super::wireframe::{WireEnds, WireLines, draw_wire, wire_mesh};
 use crate::editor::session::selection::{DirtyFaces, MeshDirty, PositionsDirty};
 
 /// The render entity of a mesh: carries its [`Mesh3d`] and [`TriangleFaces`].
@@ -411,51 +408,15 @@ fn upload_chunk(
     if let Some(material) = material {
         e.insert(bevy::pbr::MeshMaterial3d(material));
     }
-    match (lines, materials) {
-        // A mesh without vertices is not drawn: a chunk without edges gets none.
-        (Some(ends), Some(materials)) if !ends.is_empty() => {
-            let lines = wire_mesh(world, &ends);
-            let handle = world.resource_mut::<Assets<Mesh>>().add(lines);
-            world.entity_mut(wire).insert((
-                Mesh3d(handle.clone()),
-                bevy::pbr::MeshMaterial3d(materials.wireframe),
-                WireLines(handle),
-                WireEnds(ends),
-                Transform::default(),
-                Visibility::default(),
-                bevy::picking::Pickable::IGNORE,
-            ));
-        }
-        _ => {
-            world
-                .entity_mut(wire)
-                .remove::<(Mesh3d, WireLines, WireEnds)>();
-        }
-    }
+    let material = materials.map(|m| m.wireframe);
+    draw_wire(world, wire, lines.unwrap_or_default(), material);
     triangles
-}
-
-/// The wireframe's lines between these ends, at the vertices' positions now.
-fn wire_mesh(world: &World, ends: &[(VertexId, VertexId, Color)]) -> Mesh {
-    let m = MeshRef::new(world);
-    let segments = ends.iter().map(|&(a, b, color)| Segment {
-        ends: [m.position(a), m.position(b)],
-        color: color.into(),
-    });
-    line_mesh(&ThinLines {
-        segments: segments.collect(),
-        dots: Vec::new(),
-    })
 }
 
 /// The mesh vertex behind each render vertex of a chunk ([`RenderData::vertices`]): what a
 /// refresh of positions reads.
 #[derive(Component, Debug, Clone, Default)]
 pub struct ChunkVertices(pub Vec<VertexId>);
-
-/// The end vertices of a chunk's wireframe lines, with their colours.
-#[derive(Component, Debug, Clone, Default)]
-pub struct WireEnds(pub Vec<(VertexId, VertexId, Color)>);
 
 /// Refreshes the positions of every chunk of `mesh` whose vertices moved and whose faces did
 /// not: each chunk's render positions (and smooth normals) are read again on the compute
@@ -528,24 +489,6 @@ fn refresh_positions(world: &mut World, mesh: MeshId, settings: ViewSettings) ->
         }
     }
     Some(triangles)
-}
-
-/// The mesh of a chunk's wireframe lines.
-#[derive(Component, Debug, Clone)]
-pub struct WireLines(pub Handle<Mesh>);
-
-/// Hides or shows every wireframe (the wireframe toggle). Wireframes not built yet are built by
-/// the caller's redraw.
-pub fn set_wireframes_visible(world: &mut World, visible: bool) {
-    let shown = if visible {
-        Visibility::Inherited
-    } else {
-        Visibility::Hidden
-    };
-    let mut wires = world.query_filtered::<&mut Visibility, With<WireLines>>();
-    for mut visibility in wires.iter_mut(world) {
-        visibility.set_if_neq(shown);
-    }
 }
 
 fn remove_orphans(world: &mut World) {
