@@ -128,6 +128,21 @@ impl Closure {
         }
     }
 
+    /// This closure after an edit that left its holes as they were: its one component's volume
+    /// changed by `volume_change` (what the signed volume under the faces changed by) and the
+    /// vertices' box now `bounds`. `None` for a closure of several components, among which a
+    /// change summed over the mesh cannot be shared out.
+    pub fn changed(&self, volume_change: f64, bounds: Option<(Vec3, Vec3)>) -> Option<Self> {
+        let [volume] = self.volumes[..] else {
+            return None;
+        };
+        Some(Self {
+            volumes: vec![volume + volume_change],
+            holes: self.holes.clone(),
+            bounds,
+        })
+    }
+
     /// Whether every component bounds a volume and its faces point out of it. A mesh without
     /// faces does not.
     pub fn faces_outward(&self) -> bool {
@@ -250,6 +265,26 @@ mod tests {
         assert!(c.back_faces_hidden_from(Vec3::new(0.0, 0.0, 5.0)));
         // Inside the box: the back faces are all there is to see.
         assert!(!c.back_faces_hidden_from(Vec3::ZERO));
+    }
+
+    #[test]
+    fn a_changed_closure_keeps_its_holes_and_takes_the_new_volume_and_box() {
+        let c = closure(&shapes::cube());
+        let grown = (Vec3::splat(-1.0), Vec3::splat(2.0));
+        let changed = c.changed(-10.0, Some(grown)).expect("one component");
+        assert_eq!(changed.volumes.len(), 1);
+        assert!(
+            (changed.volumes[0] + 2.0).abs() < 1e-9,
+            "{:?}",
+            changed.volumes
+        );
+        assert_eq!((changed.holes, changed.bounds), (c.holes, Some(grown)));
+        // Two components: a change summed over both cannot be shared out.
+        let two = Closure {
+            volumes: vec![8.0, 8.0],
+            ..Closure::default()
+        };
+        assert_eq!(two.changed(1.0, None), None);
     }
 
     #[test]

@@ -25,7 +25,7 @@ use crate::mesh::{MeshId, MeshInfo, MeshStats, stats_of_tables, validate};
 use super::plots::{Histogram, histograms_of_tables};
 use crate::editor::pipeline::jobs::{JobSettings, READ_SLICE};
 use crate::editor::view::colouring::VertexValues;
-use crate::editor::view::culling::Closures;
+use crate::editor::view::culling::record_closure;
 use crate::editor::view::render_sync::RenderChunks;
 
 /// The active mesh as the panel shows it.
@@ -168,13 +168,6 @@ pub fn collect(
     }
     world.resource_mut::<Counting>().0 = next.map(|apart| (counted, mesh, apart));
     false
-}
-
-/// Hands `mesh`'s closure, counted at render `generation`, to the renderer.
-fn record_closure(world: &mut World, mesh: MeshId, generation: usize, closure: Closure) {
-    if let Some(mut closures) = world.get_resource_mut::<Closures>() {
-        closures.record(mesh, generation, closure);
-    }
 }
 
 /// Checks the validity of `mesh` on the frame, for the panel's button.

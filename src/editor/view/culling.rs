@@ -7,12 +7,21 @@
 //! back face can be seen, the chunks of a mesh take the material that culls them
 //! ([`SceneMaterials::surface_culled`]): when the mesh's [`Closure`] says every component
 //! faces outward, the eye is outside the mesh's box, and the eye lies on the inner side of every
-//! hole's slab (see [`crate::mesh::closure`]). The closure is counted with the panel's figures, off the frame
-//! for a large mesh, and holds for the render generation it was counted at: after any edit the
-//! mesh is drawn two-sided again until it is counted anew. An opened mesh brings its closure
-//! with it ([`ClosureAtOpen`], counted from the tables it is spawned from), so it is culled from
-//! the frame that first draws it: the panel's count of the 1.3 M-face icosphere comes 12 s
-//! later on lavapipe (its tables read back a slice a frame).
+//! hole's slab (see [`crate::mesh::closure`]).
+//!
+//! The closure is counted with the panel's figures, off the frame for a large mesh, at a render
+//! generation. An opened mesh brings its closure with it ([`ClosureAtOpen`], counted from the
+//! tables it is spawned from), so it is culled from the frame that first draws it: the panel's
+//! count of the 1.3 M-face icosphere comes 12 s later on lavapipe (its tables read back a
+//! slice a frame). Between counts the closure is followed through the edits
+//! ([`closure_followed`]): each chunk keeps the signed volume under its triangles and the box
+//! of its corners ([`ChunkShape`]), so a one-component mesh's volume now is the counted one
+//! changed by what the chunks' sum changed by, at no cost per edit beyond the chunks it redraws.
+//! That holds while its holes are as counted, which the chunks'
+//! [`ChunkChanges`](super::render_sync::ChunkChanges) tell: no face redrawn beside the
+//! boundary, and for a mesh with holes no face added or removed and no positions refreshed
+//! wholesale. Otherwise, and for a mesh of several components, it is drawn
+//! two-sided until it is counted anew.
 //!
 //! Only on a CPU adapter. On a GPU back faces cost little, and drawing them keeps the one case
 //! the closure cannot see in the back colour: a surface that passes through itself, where a
@@ -26,21 +35,98 @@ use bevy::render::renderer::RenderAdapterInfo;
 use crate::mesh::MeshId;
 use crate::mesh::closure::Closure;
 
+use super::render_data::ChunkShape;
 use super::render_sync::{RenderChunks, RenderStats};
 use super::scene::{OrbitCamera, SceneMaterials};
 use super::surface::SurfaceMaterial;
 use crate::editor::session::selection::MeshDirty;
 use crate::editor::session::state::Modified;
 
-/// Each mesh's closure, with the render generation ([`RenderStats::rebuilds`]) it was counted at.
+/// Each mesh's closure, as last counted.
 #[derive(Resource, Default, Debug)]
-pub struct Closures(pub HashMap<MeshId, (usize, Closure)>);
+pub struct Closures(pub HashMap<MeshId, Counted>);
 
-impl Closures {
-    /// Records `mesh`'s closure as counted at render `generation`.
-    pub fn record(&mut self, mesh: MeshId, generation: usize, closure: Closure) {
-        self.0.insert(mesh, (generation, closure));
+/// A mesh's closure and when it was counted.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Counted {
+    /// The render generation ([`RenderStats::rebuilds`]) it was counted at.
+    pub generation: usize,
+    /// The closure.
+    pub closure: Closure,
+    /// The sum of the chunks' signed volumes ([`ChunkShape`]) when it was counted, if every
+    /// chunk then drew that mesh: what a later sum is compared with.
+    pub drawn_volume: Option<f64>,
+}
+
+/// Records `mesh`'s closure as counted at render `generation`, with the volume its chunks drew
+/// then if they still draw that mesh.
+pub fn record_closure(world: &mut World, mesh: MeshId, generation: usize, closure: Closure) {
+    let drawn_volume = (world.resource::<RenderStats>().rebuilds == generation)
+        .then(|| drawn_shape(world, mesh).map(|(volume, _)| volume))
+        .flatten();
+    if let Some(mut closures) = world.get_resource_mut::<Closures>() {
+        closures.0.insert(
+            mesh,
+            Counted {
+                generation,
+                closure,
+                drawn_volume,
+            },
+        );
     }
+}
+
+/// The summed signed volume of `mesh`'s chunks and the box of their corners; `None` while a
+/// chunk has no shape.
+fn drawn_shape(world: &World, mesh: MeshId) -> Option<(f64, Option<(Vec3, Vec3)>)> {
+    let chunks = world.get::<RenderChunks>(mesh.0)?;
+    chunks
+        .chunks
+        .iter()
+        .try_fold((0.0, None), |(volume, bounds), &c| {
+            let shape = world.get::<ChunkShape>(c)?;
+            let bounds = match (bounds, shape.bounds) {
+                (Some((lo, hi)), Some((l, h))) => Some((lo.min(l), hi.max(h))),
+                (b, None) | (None, b) => b,
+            };
+            Some((volume + shape.volume, bounds))
+        })
+}
+
+/// Whether none of `mesh`'s back faces can be seen from `eye` at render `generation`, by its
+/// closure as `counted`: at this generation, or before and followed through the edits since
+/// ([`closure_followed`]).
+fn back_faces_hidden(
+    world: &World,
+    mesh: MeshId,
+    counted: &Counted,
+    generation: usize,
+    eye: Vec3,
+) -> bool {
+    if counted.generation == generation {
+        return counted.closure.back_faces_hidden_from(eye);
+    }
+    closure_followed(world, mesh, counted).is_some_and(|c| c.back_faces_hidden_from(eye))
+}
+
+/// `mesh`'s closure as `counted` before, followed through the edits since where they left its
+/// holes as they were: no chunk drawn anew, no face redrawn beside the boundary, and for a mesh
+/// with holes no face added or removed and no positions refreshed wholesale. Its one
+/// component's volume changes by what its chunks' volumes changed by, and its box is theirs.
+/// `None` where the edits may have changed its holes, or it has several components.
+fn closure_followed(world: &World, mesh: MeshId, counted: &Counted) -> Option<Closure> {
+    let changes = world.get::<RenderChunks>(mesh.0)?.changes;
+    let since = |at: usize| at > counted.generation;
+    let with_holes = !counted.closure.holes.is_empty();
+    let holes_kept = !since(changes.boundary)
+        && !(with_holes && (since(changes.faces) || since(changes.positions)));
+    if since(changes.whole) || !holes_kept {
+        return None;
+    }
+    let (volume, bounds) = drawn_shape(world, mesh)?;
+    counted
+        .closure
+        .changed(volume - counted.drawn_volume?, bounds)
 }
 
 /// The closure of a mesh as it was opened, counted from the tables it was spawned from (a
@@ -84,12 +170,9 @@ pub fn choose_culling(world: &mut World) {
     for (mesh, chunks) in meshes.iter(world) {
         let hidden = software
             && eye.is_some_and(|eye| {
-                closures
-                    .0
-                    .get(&MeshId(mesh))
-                    .is_some_and(|(counted, closure)| {
-                        *counted == generation && closure.back_faces_hidden_from(eye)
-                    })
+                closures.0.get(&MeshId(mesh)).is_some_and(|counted| {
+                    back_faces_hidden(world, MeshId(mesh), counted, generation, eye)
+                })
             });
         let material = if hidden {
             &materials.surface_culled
@@ -138,9 +221,7 @@ fn adopt_closures_at_open(world: &mut World, generation: usize) {
             continue;
         };
         if !edited {
-            world
-                .resource_mut::<Closures>()
-                .record(MeshId(mesh), generation, closure);
+            record_closure(world, MeshId(mesh), generation, closure);
         }
     }
 }
@@ -148,6 +229,8 @@ fn adopt_closures_at_open(world: &mut World, generation: usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::editor::view::render_sync::ChunkChanges;
+    use crate::mesh::closure::Hole;
     use crate::mesh::shapes;
     use crate::mesh::tables::extract;
     use crate::mesh::{MeshInfo, build_mesh};
@@ -157,7 +240,7 @@ mod tests {
     fn cube_seen_from(eye: Vec3, software: bool) -> (World, Entity, SceneMaterials) {
         let (mut world, mesh, chunk, materials) = cube_unclosed(eye, software);
         let closure = Closure::of(&extract(&world, mesh).tables);
-        world.resource_mut::<Closures>().record(mesh, 3, closure);
+        record_closure(&mut world, mesh, 3, closure);
         (world, chunk, materials)
     }
 
@@ -247,10 +330,8 @@ mod tests {
         choose_culling(&mut world);
         assert_eq!(drawn_with(&world, chunk), materials.surface_culled);
         assert!(world.get::<ClosureAtOpen>(mesh.0).is_none());
-        assert_eq!(
-            world.resource::<Closures>().0.get(&mesh),
-            Some(&(3, closure.clone()))
-        );
+        let counted = &world.resource::<Closures>().0[&mesh];
+        assert_eq!((counted.generation, &counted.closure), (3, &closure));
         // Edited before its first draw: the closure is of the mesh before the edit, and dropped.
         let (mut world, mesh, chunk, materials) = cube_unclosed(eye, true);
         world
@@ -260,5 +341,104 @@ mod tests {
         assert_eq!(drawn_with(&world, chunk), materials.surface);
         assert!(world.get::<ClosureAtOpen>(mesh.0).is_none());
         assert!(world.resource::<Closures>().0.is_empty());
+    }
+
+    /// The cube of [`cube_unclosed`] seen from `(0, 0, 5)`, its chunk drawing it with its volume
+    /// (8) and box, its closure counted at render generation 3 (with a hole under it, facing
+    /// away from the eye, if `with_hole`); then an edit drawn at generation 4 that leaves the
+    /// chunk's volume `volume` and stamps `changes`. Whether its back faces are culled after
+    /// the edit.
+    fn culled_after_edit(volume: f64, changes: ChunkChanges, with_hole: bool) -> bool {
+        let (mut world, mesh, chunk, materials) = cube_unclosed(Vec3::new(0.0, 0.0, 5.0), true);
+        let bounds = Some((Vec3::splat(-1.0), Vec3::splat(1.0)));
+        world.entity_mut(chunk).insert(ChunkShape {
+            volume: 8.0,
+            bounds,
+        });
+        let mut closure = Closure::of(&extract(&world, mesh).tables);
+        if with_hole {
+            closure.holes.push(Some(Hole {
+                centre: Vec3::new(0.0, 0.0, -1.0),
+                normal: Vec3::NEG_Z,
+                reach: 0.0,
+            }));
+        }
+        record_closure(&mut world, mesh, 3, closure);
+        assert_eq!(
+            world.resource::<Closures>().0[&mesh].drawn_volume,
+            Some(8.0)
+        );
+        choose_culling(&mut world);
+        assert_eq!(drawn_with(&world, chunk), materials.surface_culled);
+        world
+            .entity_mut(chunk)
+            .insert(ChunkShape { volume, bounds });
+        world.get_mut::<RenderChunks>(mesh.0).unwrap().changes = changes;
+        world.resource_mut::<RenderStats>().rebuilds = 4;
+        choose_culling(&mut world);
+        drawn_with(&world, chunk) == materials.surface_culled
+    }
+
+    #[test]
+    fn a_closed_mesh_stays_culled_through_edits_that_keep_it_closed_and_outward() {
+        // A flip or a move: no stamp, the volume a little changed.
+        assert!(culled_after_edit(8.5, ChunkChanges::default(), false));
+        // Faces added or positions refreshed wholesale: a closed mesh has no hole to change.
+        let (faces, positions) = (4, 4);
+        let grown = ChunkChanges {
+            faces,
+            positions,
+            ..default()
+        };
+        assert!(culled_after_edit(8.5, grown, false));
+        // Turned inside out, or flattened: both sides drawn.
+        assert!(!culled_after_edit(-8.0, ChunkChanges::default(), false));
+        assert!(!culled_after_edit(0.0, ChunkChanges::default(), false));
+    }
+
+    #[test]
+    fn edits_that_may_change_a_hole_or_redraw_the_whole_wait_for_the_next_count() {
+        for (changes, with_hole) in [
+            (
+                ChunkChanges {
+                    boundary: 4,
+                    ..default()
+                },
+                false,
+            ),
+            (
+                ChunkChanges {
+                    whole: 4,
+                    ..default()
+                },
+                false,
+            ),
+            (
+                ChunkChanges {
+                    faces: 4,
+                    ..default()
+                },
+                true,
+            ),
+            (
+                ChunkChanges {
+                    positions: 4,
+                    ..default()
+                },
+                true,
+            ),
+        ] {
+            assert!(!culled_after_edit(8.0, changes, with_hole), "{changes:?}");
+        }
+        // A mesh with a hole keeps its closure through an edit away from it; stamps from
+        // before the count are no change since.
+        assert!(culled_after_edit(8.2, ChunkChanges::default(), true));
+        let before = ChunkChanges {
+            whole: 3,
+            boundary: 2,
+            faces: 3,
+            positions: 1,
+        };
+        assert!(culled_after_edit(8.0, before, true));
     }
 }

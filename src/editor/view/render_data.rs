@@ -6,7 +6,7 @@
 use bevy::color::Color;
 use bevy::ecs::entity::EntityHashMap;
 use bevy::math::{Vec2, Vec3};
-use bevy::prelude::{Entity, World};
+use bevy::prelude::{Component, Entity, World};
 
 use crate::mesh::attributes::CornerUv;
 use crate::mesh::ids::{FaceId, HalfedgeId, VertexId};
@@ -16,6 +16,37 @@ use crate::mesh::topology::MeshRef;
 pub const EDGE_COLOR: Color = Color::srgb(0.08, 0.08, 0.1);
 /// Colour of boundary edges in the wireframe.
 pub const BOUNDARY_COLOR: Color = Color::srgb(0.9, 0.15, 0.1);
+
+/// The signed volume under a chunk's triangles and the box of its corners (a component of the
+/// chunk): what [`super::culling`] sums to follow a mesh's closure through local edits.
+#[derive(Component, Clone, Copy, Debug, Default, PartialEq)]
+pub struct ChunkShape {
+    /// The sum over its triangles `a b c` of the signed volume of the tetrahedron on the origin,
+    /// `a · (b × c) / 6`.
+    pub volume: f64,
+    /// The smallest box holding its corners, `None` for a chunk without any.
+    pub bounds: Option<(Vec3, Vec3)>,
+}
+
+impl ChunkShape {
+    /// The shape of the triangles whose corners are `triangles` (three indices into `positions`
+    /// a triangle).
+    pub fn of(positions: &[[f32; 3]], triangles: impl IntoIterator<Item = usize>) -> Self {
+        let corner = |i: usize| Vec3::from_array(positions[i]).as_dvec3();
+        let mut corners = triangles.into_iter();
+        let mut volume = 0.0;
+        while let (Some(a), Some(b), Some(c)) = (corners.next(), corners.next(), corners.next()) {
+            volume += corner(a).dot(corner(b).cross(corner(c))) / 6.0;
+        }
+        let bounds = positions
+            .iter()
+            .map(|&p| Vec3::from_array(p))
+            .fold(None, |b: Option<(Vec3, Vec3)>, p| {
+                Some(b.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
+            });
+        Self { volume, bounds }
+    }
+}
 
 /// Triangles, normals and the triangle → face table for a list of faces.
 #[derive(Debug, Clone, Default)]
@@ -197,6 +228,27 @@ pub(super) fn edge_line_ends(world: &World, faces: &[FaceId]) -> Vec<(VertexId, 
 mod tests {
     use super::*;
     use crate::mesh::{Edge, Face, MeshInfo, build_mesh, members::of_kind, shapes};
+
+    #[test]
+    fn a_chunks_shape_is_its_triangles_signed_volume_and_its_corners_box() {
+        // The unit tetrahedron's three faces away from the origin, wound outward, and one
+        // more corner off every triangle: it widens the box, not the volume.
+        let positions = [
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -2.0],
+        ];
+        let shape = ChunkShape::of(&positions, [0, 1, 2]);
+        assert!((shape.volume - 1.0 / 6.0).abs() < 1e-12, "{}", shape.volume);
+        assert_eq!(
+            shape.bounds,
+            Some((Vec3::new(0.0, 0.0, -2.0), Vec3::new(1.0, 1.0, 1.0)))
+        );
+        // Turned around, the same triangle bounds the volume with the other sign.
+        assert!((ChunkShape::of(&positions, [0, 2, 1]).volume + 1.0 / 6.0).abs() < 1e-12);
+        assert_eq!(ChunkShape::of(&[], []), ChunkShape::default());
+    }
 
     #[test]
     fn every_edge_is_drawn_once_whichever_chunks_hold_its_faces() {

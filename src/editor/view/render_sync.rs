@@ -32,7 +32,7 @@ use crate::mesh::topology::MeshRef;
 
 use super::colouring::VertexValues;
 use super::render_data::{
-    RenderData, edge_line_ends, render_data, render_data_by_face, smooth_normal,
+    ChunkShape, RenderData, edge_line_ends, render_data, render_data_by_face, smooth_normal,
 };
 use super::wireframe::{WireEnds, WireLines, draw_wire, wire_mesh};
 use crate::editor::session::selection::{DirtyFaces, MeshDirty, PositionsDirty};
@@ -110,6 +110,29 @@ pub struct RenderChunks {
     pub wireframe: bool,
     /// Mean edge length when the mesh was last drawn whole (how dense its wireframe is).
     pub mean_edge_length: f32,
+    /// When the chunks last changed in the ways that bear on the mesh's closure.
+    pub changes: ChunkChanges,
+}
+
+/// The render generations ([`RenderStats::rebuilds`], as counted once the redraw is recorded)
+/// at which a mesh's chunks last changed in each way that can change its closure (see
+/// [`super::culling`]): a closure counted at a later generation still holds after the other
+/// changes, its volume followed by the chunks' [`ChunkShape`]s.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ChunkChanges {
+    /// Every chunk drawn anew.
+    pub whole: usize,
+    /// A face with a side on the boundary redrawn: a hole made, moved or closed around it.
+    pub boundary: usize,
+    /// Faces added or removed (a hole's loop can change with no face left beside it).
+    pub faces: usize,
+    /// Positions refreshed in place: any vertex may have moved, the holes' too.
+    pub positions: usize,
+}
+
+/// The render generation the redraw under way will be recorded at.
+fn this_generation(world: &World) -> usize {
+    world.resource::<RenderStats>().rebuilds + 1
 }
 
 /// The faces a chunk draws.
@@ -210,6 +233,10 @@ fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize
         } else {
             (length / sides as f64) as f32
         },
+        changes: ChunkChanges {
+            whole: this_generation(world),
+            ..Default::default()
+        },
         ..Default::default()
     };
     let mut triangles = 0;
@@ -254,6 +281,7 @@ fn rebuild_some(
             (Some(c), true) => touched.push(c),
             (Some(c), false) => {
                 chunks.face_chunk.remove(&f.0);
+                chunks.changes.faces = this_generation(world);
                 touched.push(c);
             }
             (None, true) => {
@@ -274,10 +302,14 @@ fn rebuild_some(
                     list.0.push(f);
                 }
                 chunks.face_chunk.insert(f.0, c as u32);
+                chunks.changes.faces = this_generation(world);
                 touched.push(c as u32);
             }
             (None, false) => {}
         }
+    }
+    if on_boundary(world, faces) {
+        chunks.changes.boundary = this_generation(world);
     }
     touched.sort_unstable();
     touched.dedup();
@@ -298,6 +330,14 @@ fn rebuild_some(
     }
     world.entity_mut(mesh.0).insert(chunks);
     triangles
+}
+
+/// Whether any of `faces` still in the mesh has a side on the boundary.
+fn on_boundary(world: &World, faces: &[FaceId]) -> bool {
+    let m = MeshRef::new(world);
+    faces
+        .iter()
+        .any(|&f| m.try_face(f).is_some() && m.face_halfedges(f).any(|h| m.is_boundary(m.twin(h))))
 }
 
 /// Builds and uploads one chunk's surface and wireframe. Returns its triangle count.
@@ -376,6 +416,7 @@ fn upload_chunk(
 ) -> usize {
     let ChunkSurface { data, colours } = surface;
     let triangles = data.triangle_faces.len();
+    let shape = ChunkShape::of(&data.positions, data.indices.iter().map(|&i| i as usize));
     let mut render = Mesh::new(
         PrimitiveTopology::TriangleList,
         // Picking casts rays against the main-world copy: keep it.
@@ -402,6 +443,7 @@ fn upload_chunk(
         Mesh3d(handle),
         TriangleFaces(data.triangle_faces),
         ChunkVertices(data.vertices),
+        shape,
         Transform::default(),
         Visibility::default(),
     ));
@@ -472,21 +514,33 @@ fn refresh_positions(world: &mut World, mesh: MeshId, settings: ViewSettings) ->
     for ((chunk, wire), (positions, normals, lines)) in pairs.into_iter().zip(refreshed) {
         let handle = world.get::<Mesh3d>(chunk).map(|m| m.0.clone());
         triangles += world.get::<TriangleFaces>(chunk).map_or(0, |t| t.0.len());
+        let mut shape = None;
         if let Some(handle) = handle {
             let mut meshes = world.resource_mut::<Assets<Mesh>>();
             if let Some(mut render) = meshes.get_mut(&handle) {
+                shape = render
+                    .indices()
+                    .map(|corners| ChunkShape::of(&positions, corners.iter()));
                 render.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
                 if !normals.is_empty() {
                     render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
                 }
             }
         }
+        match shape {
+            Some(shape) => world.entity_mut(chunk).insert(shape),
+            None => world.entity_mut(chunk).remove::<ChunkShape>(),
+        };
         let wire_handle = world.get::<WireLines>(wire).map(|l| l.0.clone());
         if let (Some(handle), Some(lines)) = (wire_handle, lines)
             && let Err(e) = world.resource_mut::<Assets<Mesh>>().insert(&handle, lines)
         {
             bevy::log::warn!("wireframe not moved: {e}");
         }
+    }
+    let generation = this_generation(world);
+    if let Some(mut chunks) = world.get_mut::<RenderChunks>(mesh.0) {
+        chunks.changes.positions = generation;
     }
     Some(triangles)
 }
