@@ -68,8 +68,8 @@ fn arrow(a: Vec3, b: Vec3, inside: Vec3, color: LinearRgba, out: &mut Vec<Segmen
 #[derive(Component)]
 pub struct OverlayLines;
 
-/// Spawns the lines' entity (hidden until there are lines; the material is registered by
-/// [`crate::editor::view::lines::LinesPlugin`]).
+/// Spawns the lines' entity (without a mesh until there are lines; the material is registered
+/// by [`crate::editor::view::lines::LinesPlugin`]).
 pub struct OverlayLinesPlugin;
 
 impl Plugin for OverlayLinesPlugin {
@@ -78,14 +78,9 @@ impl Plugin for OverlayLinesPlugin {
     }
 }
 
-fn spawn_overlay_lines(
-    mut commands: Commands,
-    mut meshes: ResMut<Assets<Mesh>>,
-    mut materials: ResMut<Assets<LinesMaterial>>,
-) {
+fn spawn_overlay_lines(mut commands: Commands, mut materials: ResMut<Assets<LinesMaterial>>) {
     commands.spawn((
         OverlayLines,
-        Mesh3d(meshes.add(line_mesh(&ThinLines::default()))),
         MeshMaterial3d(materials.add(LinesMaterial {
             width: LINE_WIDTH_PX,
             depth_pull: DEPTH_PULL,
@@ -99,13 +94,18 @@ fn spawn_overlay_lines(
 }
 
 /// Puts this frame's thin shapes in the lines' mesh when they differ from the ones drawn.
+///
+/// A mesh without vertices is not drawn, and Bevy's mesh allocator logs an error for one (it
+/// has no room to copy it to): the entity gets its mesh with its first lines, and keeps the
+/// last one, hidden, while there are none.
 pub fn update_overlay_lines(
     overlay: Res<Overlay>,
-    mut lines: Query<(&Mesh3d, &mut Visibility), With<OverlayLines>>,
+    mut lines: Query<(Entity, Option<&Mesh3d>, &mut Visibility), With<OverlayLines>>,
     mut meshes: ResMut<Assets<Mesh>>,
+    mut commands: Commands,
     mut drawn: Local<Vec<Shape>>,
 ) {
-    let Ok((mesh, mut visibility)) = lines.single_mut() else {
+    let Ok((entity, mesh, mut visibility)) = lines.single_mut() else {
         return;
     };
     let thin = overlay.shapes.iter().filter(|s| is_thin(s));
@@ -118,11 +118,19 @@ pub fn update_overlay_lines(
     } else {
         Visibility::Inherited
     };
-    // A mesh with no vertex is never drawn: the hidden entity keeps the last one.
-    if !drawn.is_empty()
-        && let Err(e) = meshes.insert(&mesh.0, line_mesh(&thin_lines(&drawn)))
-    {
-        bevy::log::warn!("overlay lines not redrawn: {e}");
+    if drawn.is_empty() {
+        return;
+    }
+    let lines = line_mesh(&thin_lines(&drawn));
+    match mesh {
+        Some(mesh) => {
+            if let Err(e) = meshes.insert(&mesh.0, lines) {
+                bevy::log::warn!("overlay lines not redrawn: {e}");
+            }
+        }
+        None => {
+            commands.entity(entity).insert(Mesh3d(meshes.add(lines)));
+        }
     }
 }
 
