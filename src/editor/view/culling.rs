@@ -17,11 +17,13 @@
 //! ([`closure_followed`]): each chunk keeps the signed volume under its triangles and the box
 //! of its corners ([`ChunkShape`]), so a one-component mesh's volume now is the counted one
 //! changed by what the chunks' sum changed by, at no cost per edit beyond the chunks it redraws.
-//! That holds while its holes are as counted, which the chunks'
+//! That holds while its holes and its one component are as counted, which the chunks'
 //! [`ChunkChanges`](super::render_sync::ChunkChanges) tell: no face redrawn beside the
-//! boundary, and for a mesh with holes no face added or removed and no positions refreshed
-//! wholesale. Otherwise, and for a mesh of several components, it is drawn
-//! two-sided until it is counted anew.
+//! boundary, no faces added apart from the rest (a part restored by an undo would be a second
+//! component, which one volume cannot speak for), and for a mesh with holes no face added or
+//! removed and no positions refreshed wholesale. Otherwise, and for a mesh counted with several
+//! components, it is drawn two-sided until it is counted anew; so is it after a whole redraw (a
+//! change of shading or colouring too).
 //!
 //! Only on a CPU adapter. On a GPU back faces cost little, and drawing them keeps the one case
 //! the closure cannot see in the back colour: a surface that passes through itself, where a
@@ -110,8 +112,9 @@ fn back_faces_hidden(
 }
 
 /// `mesh`'s closure as `counted` before, followed through the edits since where they left its
-/// holes as they were: no chunk drawn anew, no face redrawn beside the boundary, and for a mesh
-/// with holes no face added or removed and no positions refreshed wholesale. Its one
+/// holes and its one component as they were: no chunk drawn anew, no face redrawn beside the
+/// boundary, no faces added apart from the rest, and for a mesh with holes no face added or
+/// removed and no positions refreshed wholesale. Its one
 /// component's volume changes by what its chunks' volumes changed by, and its box is theirs.
 /// `None` where the edits may have changed its holes, or it has several components.
 fn closure_followed(world: &World, mesh: MeshId, counted: &Counted) -> Option<Closure> {
@@ -120,7 +123,7 @@ fn closure_followed(world: &World, mesh: MeshId, counted: &Counted) -> Option<Cl
     let with_holes = !counted.closure.holes.is_empty();
     let holes_kept = !since(changes.boundary)
         && !(with_holes && (since(changes.faces) || since(changes.positions)));
-    if since(changes.whole) || !holes_kept {
+    if since(changes.whole) || since(changes.parts) || !holes_kept {
         return None;
     }
     let (volume, bounds) = drawn_shape(world, mesh)?;
@@ -304,7 +307,7 @@ mod tests {
         let (mut world, chunk, materials) = cube_seen_from(Vec3::new(0.0, 0.0, 5.0), true);
         choose_culling(&mut world);
         assert_eq!(drawn_with(&world, chunk), materials.surface_culled);
-        // An edit redraws the mesh: the closure is of the mesh before it.
+        // An edit redraws the mesh, whose chunk has no shape to follow the closure by.
         world.resource_mut::<RenderStats>().rebuilds += 1;
         choose_culling(&mut world);
         assert_eq!(drawn_with(&world, chunk), materials.surface);
@@ -438,6 +441,7 @@ mod tests {
             boundary: 2,
             faces: 3,
             positions: 1,
+            parts: 2,
         };
         assert!(culled_after_edit(8.0, before, true));
     }

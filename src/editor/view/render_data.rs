@@ -1,7 +1,10 @@
 //! What a list of faces becomes on the GPU, built on the CPU: [`render_data`] (positions,
 //! normals for smooth shading, fan-triangulated indices, the face of each triangle for picking,
 //! texture coordinates split at UV seams) and [`edge_lines`] (the real edges, each once, boundary
-//! edges red). [`super::render_sync`] uploads them chunk by chunk.
+//! edges red). [`super::render_sync`] uploads them chunk by chunk, each with its
+//! [`ChunkShape`] (the signed volume under its triangles and its box), and asks here whether a
+//! redraw's faces lie beside the boundary ([`on_boundary`]) or were added apart from the rest
+//! ([`added_apart`]): what [`super::culling`] needs to follow a mesh's closure through edits.
 
 use bevy::color::Color;
 use bevy::ecs::entity::EntityHashMap;
@@ -224,6 +227,39 @@ pub(super) fn edge_line_ends(world: &World, faces: &[FaceId]) -> Vec<(VertexId, 
     out
 }
 
+/// Whether any of `faces` still in the mesh has a side on the boundary.
+pub(super) fn on_boundary(world: &World, faces: &[FaceId]) -> bool {
+    let m = MeshRef::new(world);
+    faces
+        .iter()
+        .any(|&f| m.try_face(f).is_some() && m.face_halfedges(f).any(|h| m.is_boundary(m.twin(h))))
+}
+
+/// Whether some of the `added` faces (all in the mesh) make a part of their own: faces joined
+/// by their edges to one another and to no other face (a component restored by an undo, or
+/// made on its own).
+pub(super) fn added_apart(world: &World, added: &[FaceId]) -> bool {
+    let m = MeshRef::new(world);
+    let new: bevy::ecs::entity::EntityHashSet = added.iter().map(|f| f.0).collect();
+    let mut seen = bevy::ecs::entity::EntityHashSet::default();
+    added.iter().any(|&start| {
+        if !seen.insert(start.0) {
+            return false;
+        }
+        let (mut stack, mut joined) = (vec![start], false);
+        while let Some(f) = stack.pop() {
+            for g in m.face_halfedges(f).filter_map(|h| m.face(m.twin(h))) {
+                if !new.contains(&g.0) {
+                    joined = true;
+                } else if seen.insert(g.0) {
+                    stack.push(g);
+                }
+            }
+        }
+        !joined
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -288,5 +324,19 @@ mod tests {
                     .is_ok()
             );
         }
+    }
+
+    #[test]
+    fn faces_added_apart_are_those_joined_to_no_face_drawn_before() {
+        let mut world = World::new();
+        let mesh = build_mesh(&mut world, &shapes::cube(), MeshInfo::default())
+            .expect("a cube")
+            .mesh;
+        let faces = of_kind::<Face, _>(&world, mesh, FaceId);
+        // The whole cube added at once (an erase of it undone): a part of its own.
+        assert!(added_apart(&world, &faces));
+        // Some of its faces: joined to the others.
+        assert!(!added_apart(&world, &faces[..5]));
+        assert!(!added_apart(&world, &[]));
     }
 }

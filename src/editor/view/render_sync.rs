@@ -32,7 +32,8 @@ use crate::mesh::topology::MeshRef;
 
 use super::colouring::VertexValues;
 use super::render_data::{
-    ChunkShape, RenderData, edge_line_ends, render_data, render_data_by_face, smooth_normal,
+    ChunkShape, RenderData, added_apart, edge_line_ends, on_boundary, render_data,
+    render_data_by_face, smooth_normal,
 };
 use super::wireframe::{WireEnds, WireLines, draw_wire, wire_mesh};
 use crate::editor::session::selection::{DirtyFaces, MeshDirty, PositionsDirty};
@@ -122,10 +123,14 @@ pub struct RenderChunks {
 pub struct ChunkChanges {
     /// Every chunk drawn anew.
     pub whole: usize,
-    /// A face with a side on the boundary redrawn: a hole made, moved or closed around it.
+    /// A face with a side on the boundary redrawn: a hole made or moved (one closed leaves no
+    /// such face, but adds faces).
     pub boundary: usize,
     /// Faces added or removed (a hole's loop can change with no face left beside it).
     pub faces: usize,
+    /// Faces added apart from the rest, joined by no edge to a face drawn before: a component
+    /// restored (an undone erase) or made on its own.
+    pub parts: usize,
     /// Positions refreshed in place: any vertex may have moved, the holes' too.
     pub positions: usize,
 }
@@ -275,6 +280,7 @@ fn rebuild_some(
         return rebuild_all(world, mesh, settings);
     }
     let mut touched: Vec<u32> = Vec::new();
+    let mut added = Vec::new();
     for &f in faces {
         let alive = world.get::<crate::mesh::Face>(f.0).is_some();
         match (chunks.face_chunk.get(&f.0).copied(), alive) {
@@ -303,6 +309,7 @@ fn rebuild_some(
                 }
                 chunks.face_chunk.insert(f.0, c as u32);
                 chunks.changes.faces = this_generation(world);
+                added.push(f);
                 touched.push(c as u32);
             }
             (None, false) => {}
@@ -310,6 +317,9 @@ fn rebuild_some(
     }
     if on_boundary(world, faces) {
         chunks.changes.boundary = this_generation(world);
+    }
+    if added_apart(world, &added) {
+        chunks.changes.parts = this_generation(world);
     }
     touched.sort_unstable();
     touched.dedup();
@@ -330,14 +340,6 @@ fn rebuild_some(
     }
     world.entity_mut(mesh.0).insert(chunks);
     triangles
-}
-
-/// Whether any of `faces` still in the mesh has a side on the boundary.
-fn on_boundary(world: &World, faces: &[FaceId]) -> bool {
-    let m = MeshRef::new(world);
-    faces
-        .iter()
-        .any(|&f| m.try_face(f).is_some() && m.face_halfedges(f).any(|h| m.is_boundary(m.twin(h))))
 }
 
 /// Builds and uploads one chunk's surface and wireframe. Returns its triangle count.
