@@ -115,16 +115,10 @@ impl Closure {
             }
             holes.push(hole_of(apex, area, &corners));
         }
-        let bounds = t
-            .positions
-            .iter()
-            .fold(None, |b: Option<(Vec3, Vec3)>, &p| {
-                Some(b.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
-            });
         Self {
             volumes,
             holes,
-            bounds,
+            bounds: bounding_box(t.positions.iter().copied()),
         }
     }
 
@@ -169,6 +163,13 @@ impl Closure {
                 .iter()
                 .all(|hole| hole.is_some_and(|h| (eye - h.centre).dot(h.normal) < -h.reach))
     }
+}
+
+/// The smallest box holding `points`, as its lowest and highest corners; `None` for no point.
+pub fn bounding_box(points: impl IntoIterator<Item = Vec3>) -> Option<(Vec3, Vec3)> {
+    points.into_iter().fold(None, |b, p| {
+        Some(b.map_or((p, p), |(lo, hi): (Vec3, Vec3)| (lo.min(p), hi.max(p))))
+    })
 }
 
 /// The hole whose loop has these `corners`, centroid `centre` and area vector `area`, or `None`

@@ -9,9 +9,11 @@
 //! the active one as one undo step, as a small file's does. The 1.1 M-face scan (the bunny
 //! Loop-subdivided twice, binary PLY) reads in 1.1 s this way and spawns in 1.0 s on the frame.
 //!
-//! On a software renderer the mesh is also closed over its holes from the same tables, before
-//! they are spawned ([`ClosureAtOpen`]): its back faces are then culled from its first frame,
-//! where the panel's count would read a large mesh's tables back for seconds first.
+//! On a software renderer a mesh the panel counts apart from the frame (at least
+//! [`JobSettings::min_faces_figures_apart`] faces) is also closed over its holes from the same
+//! tables, before they are spawned ([`ClosureAtOpen`]): its back faces are then culled from its
+//! first frame, where the panel's count would read its tables back for seconds first. A smaller
+//! mesh's closure is counted with its figures on the next frame.
 
 use bevy::ecs::message::MessageCursor;
 use bevy::prelude::{Local, Resource, World};
@@ -58,15 +60,21 @@ struct Read {
 }
 
 /// Reads `source` and prepares its mesh (away from the world), closing it over its holes when
-/// `close` says so; the reason in words if it cannot.
-fn read_and_prepare(source: &Path, progress: &Progress, close: bool) -> Result<Read, String> {
+/// it has at least `close_from` faces; the reason in words if it cannot.
+fn read_and_prepare(
+    source: &Path,
+    progress: &Progress,
+    close_from: Option<usize>,
+) -> Result<Read, String> {
     let (soup, info) = crate::source::read_source(source).map_err(|e| e.to_string())?;
     if progress.is_cancelled() {
         return Err("cancelled".into());
     }
     progress.set(0.5);
     let prepared = prepare_mesh(&soup).map_err(|e| format!("{}: {e}", source.display()))?;
-    let closure = close.then(|| Closure::of(prepared.tables()));
+    let closure = close_from
+        .is_some_and(|least| prepared.counts().1 >= least)
+        .then(|| Closure::of(prepared.tables()));
     progress.set(0.9);
     Ok(Read {
         soup,
@@ -84,23 +92,27 @@ fn read_and_prepare(source: &Path, progress: &Progress, close: bool) -> Result<R
 /// [`Declined::File`] for a file that cannot be read or has no usable face; the active mesh is
 /// then untouched.
 pub(super) fn open(world: &mut World, source: &Path) -> Result<String, Declined> {
-    let min_bytes = world
-        .get_resource::<JobSettings>()
-        .map_or(u64::MAX, |s| s.min_open_bytes);
-    let large = std::fs::metadata(source).is_ok_and(|m| m.is_file() && m.len() >= min_bytes);
+    let settings = world.get_resource::<JobSettings>();
+    let min_bytes = settings.map_or(u64::MAX, |s| s.min_open_bytes);
     // Only a software renderer culls back faces (see `crate::editor::view::culling`).
-    let close = world
+    let software = world
         .get_resource::<SoftwareRenderer>()
         .is_some_and(|s| s.0);
+    let close_from = settings
+        .filter(|_| software)
+        .map(|s| s.min_faces_figures_apart);
+    let large = std::fs::metadata(source).is_ok_and(|m| m.is_file() && m.len() >= min_bytes);
     if large {
-        return start(world, source, close);
+        return start(world, source, close_from);
     }
-    let read = read_and_prepare(source, &Progress::default(), close).map_err(Declined::File)?;
+    let read =
+        read_and_prepare(source, &Progress::default(), close_from).map_err(Declined::File)?;
     Ok(install(world, source, read))
 }
 
-/// Starts reading `source` on a thread of its own (closing it over its holes if `close`).
-fn start(world: &mut World, source: &Path, close: bool) -> Result<String, Declined> {
+/// Starts reading `source` on a thread of its own (closing it over its holes from `close_from`
+/// faces).
+fn start(world: &mut World, source: &Path, close_from: Option<usize>) -> Result<String, Declined> {
     if let Some(opening) = &world.resource::<Opening>().0 {
         return Err(Declined::Busy(opening.label.clone()));
     }
@@ -111,7 +123,7 @@ fn start(world: &mut World, source: &Path, close: bool) -> Result<String, Declin
         let (path, progress) = (path.clone(), progress.clone());
         std::thread::Builder::new()
             .name("open".into())
-            .spawn(move || read_and_prepare(&path, &progress, close))
+            .spawn(move || read_and_prepare(&path, &progress, close_from))
             .map_err(|e| Declined::File(format!("cannot start reading: {e}")))?
     };
     let name = path.file_name().map_or_else(

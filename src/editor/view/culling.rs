@@ -10,8 +10,8 @@
 //! hole's slab (see [`crate::mesh::closure`]).
 //!
 //! The closure is counted with the panel's figures, off the frame for a large mesh, at a render
-//! generation. An opened mesh brings its closure with it ([`ClosureAtOpen`], counted from the
-//! tables it is spawned from), so it is culled from the frame that first draws it: the panel's
+//! generation. A large opened mesh brings its closure with it ([`ClosureAtOpen`], counted from
+//! the tables it is spawned from), so it is culled from the frame that first draws it: the panel's
 //! count of the 1.3 M-face icosphere comes 12 s later on lavapipe (its tables read back a
 //! slice a frame). Between counts the closure is followed through the edits
 //! ([`closure_followed`]): each chunk keeps the signed volume under its triangles and the box
@@ -35,7 +35,7 @@ use bevy::prelude::*;
 use bevy::render::renderer::RenderAdapterInfo;
 
 use crate::mesh::MeshId;
-use crate::mesh::closure::Closure;
+use crate::mesh::closure::{Closure, bounding_box};
 
 use super::render_data::ChunkShape;
 use super::render_sync::{RenderChunks, RenderStats};
@@ -82,17 +82,17 @@ pub fn record_closure(world: &mut World, mesh: MeshId, generation: usize, closur
 /// chunk has no shape.
 fn drawn_shape(world: &World, mesh: MeshId) -> Option<(f64, Option<(Vec3, Vec3)>)> {
     let chunks = world.get::<RenderChunks>(mesh.0)?;
-    chunks
+    let shapes: Vec<&ChunkShape> = chunks
         .chunks
         .iter()
-        .try_fold((0.0, None), |(volume, bounds), &c| {
-            let shape = world.get::<ChunkShape>(c)?;
-            let bounds = match (bounds, shape.bounds) {
-                (Some((lo, hi)), Some((l, h))) => Some((lo.min(l), hi.max(h))),
-                (b, None) | (None, b) => b,
-            };
-            Some((volume + shape.volume, bounds))
-        })
+        .map(|&c| world.get::<ChunkShape>(c))
+        .collect::<Option<_>>()?;
+    let volume = shapes.iter().map(|s| s.volume).sum();
+    let corners = shapes
+        .iter()
+        .filter_map(|s| s.bounds)
+        .flat_map(|(lo, hi)| [lo, hi]);
+    Some((volume, bounding_box(corners)))
 }
 
 /// Whether none of `mesh`'s back faces can be seen from `eye` at render `generation`, by its
@@ -401,35 +401,18 @@ mod tests {
 
     #[test]
     fn edits_that_may_change_a_hole_or_redraw_the_whole_wait_for_the_next_count() {
+        // Changes stamped at generation 4, after the count at 3.
+        let stamped = |stamp: fn(&mut ChunkChanges)| {
+            let mut changes = ChunkChanges::default();
+            stamp(&mut changes);
+            changes
+        };
         for (changes, with_hole) in [
-            (
-                ChunkChanges {
-                    boundary: 4,
-                    ..default()
-                },
-                false,
-            ),
-            (
-                ChunkChanges {
-                    whole: 4,
-                    ..default()
-                },
-                false,
-            ),
-            (
-                ChunkChanges {
-                    faces: 4,
-                    ..default()
-                },
-                true,
-            ),
-            (
-                ChunkChanges {
-                    positions: 4,
-                    ..default()
-                },
-                true,
-            ),
+            (stamped(|c| c.boundary = 4), false),
+            (stamped(|c| c.whole = 4), false),
+            (stamped(|c| (c.faces, c.parts) = (4, 4)), false),
+            (stamped(|c| c.faces = 4), true),
+            (stamped(|c| c.positions = 4), true),
         ] {
             assert!(!culled_after_edit(8.0, changes, with_hole), "{changes:?}");
         }

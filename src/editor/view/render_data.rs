@@ -12,6 +12,7 @@ use bevy::math::{Vec2, Vec3};
 use bevy::prelude::{Component, Entity, World};
 
 use crate::mesh::attributes::CornerUv;
+use crate::mesh::closure::bounding_box;
 use crate::mesh::ids::{FaceId, HalfedgeId, VertexId};
 use crate::mesh::topology::MeshRef;
 
@@ -41,12 +42,7 @@ impl ChunkShape {
         while let (Some(a), Some(b), Some(c)) = (corners.next(), corners.next(), corners.next()) {
             volume += corner(a).dot(corner(b).cross(corner(c))) / 6.0;
         }
-        let bounds = positions
-            .iter()
-            .map(|&p| Vec3::from_array(p))
-            .fold(None, |b: Option<(Vec3, Vec3)>, p| {
-                Some(b.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
-            });
+        let bounds = bounding_box(positions.iter().map(|&p| Vec3::from_array(p)));
         Self { volume, bounds }
     }
 }

@@ -361,11 +361,23 @@ fn draw_chunk(
 }
 
 /// One chunk's surface, read from the world without changing it (so that several chunks are
-/// read at once): its triangles, and its vertex colours when its mesh is coloured by a
-/// quantity.
+/// read at once): its triangles, its vertex colours when its mesh is coloured by a quantity,
+/// and its shape (taken here, on the compute threads, rather than as it is uploaded).
 struct ChunkSurface {
     data: RenderData,
     colours: Option<Vec<[f32; 4]>>,
+    shape: ChunkShape,
+}
+
+impl ChunkSurface {
+    fn new(data: RenderData, colours: Option<Vec<[f32; 4]>>) -> Self {
+        let shape = ChunkShape::of(&data.positions, data.indices.iter().map(|&i| i as usize));
+        Self {
+            data,
+            colours,
+            shape,
+        }
+    }
 }
 
 fn chunk_surface(
@@ -378,16 +390,17 @@ fn chunk_surface(
     if let Some(values) = values.filter(|v| v.on_faces) {
         // Each face in one colour: corners of their own, coloured by their face.
         let data = render_data_by_face(world, faces, settings.smooth);
-        let colours = data.vertex_faces.iter().map(|f| values.colour(f.0));
-        return ChunkSurface {
-            colours: Some(colours.collect()),
-            data,
-        };
+        let colours = data
+            .vertex_faces
+            .iter()
+            .map(|f| values.colour(f.0))
+            .collect();
+        return ChunkSurface::new(data, Some(colours));
     }
     let uvs = settings.checker && mesh.is_some_and(|m| MeshAttributes::of(world, m).uv);
     let data = render_data(world, faces, settings.smooth, uvs);
     let colours = values.map(|values| data.vertices.iter().map(|&v| values.colour(v.0)).collect());
-    ChunkSurface { data, colours }
+    ChunkSurface::new(data, colours)
 }
 
 /// One chunk's wireframe lines when wireframes are drawn (`None` otherwise): its edges when
@@ -416,9 +429,12 @@ fn upload_chunk(
     surface: ChunkSurface,
     lines: Option<Vec<(VertexId, VertexId, Color)>>,
 ) -> usize {
-    let ChunkSurface { data, colours } = surface;
+    let ChunkSurface {
+        data,
+        colours,
+        shape,
+    } = surface;
     let triangles = data.triangle_faces.len();
-    let shape = ChunkShape::of(&data.positions, data.indices.iter().map(|&i| i as usize));
     let mut render = Mesh::new(
         PrimitiveTopology::TriangleList,
         // Picking casts rays against the main-world copy: keep it.
@@ -509,20 +525,21 @@ fn refresh_positions(world: &mut World, mesh: MeshId, settings: ViewSettings) ->
             return None;
         }
         let lines = ends.map(|ends| wire_mesh(world_ref, &ends.0));
-        Some((positions, normals, lines))
+        let shape = world_ref
+            .get::<Mesh3d>(chunk)
+            .and_then(|m| world_ref.resource::<Assets<Mesh>>().get(&m.0))
+            .and_then(|render| render.indices())
+            .map(|corners| ChunkShape::of(&positions, corners.iter()));
+        Some((positions, normals, lines, shape))
     });
     let refreshed: Vec<_> = refreshed.into_iter().collect::<Option<_>>()?;
     let mut triangles = 0;
-    for ((chunk, wire), (positions, normals, lines)) in pairs.into_iter().zip(refreshed) {
+    for ((chunk, wire), (positions, normals, lines, shape)) in pairs.into_iter().zip(refreshed) {
         let handle = world.get::<Mesh3d>(chunk).map(|m| m.0.clone());
         triangles += world.get::<TriangleFaces>(chunk).map_or(0, |t| t.0.len());
-        let mut shape = None;
         if let Some(handle) = handle {
             let mut meshes = world.resource_mut::<Assets<Mesh>>();
             if let Some(mut render) = meshes.get_mut(&handle) {
-                shape = render
-                    .indices()
-                    .map(|corners| ChunkShape::of(&positions, corners.iter()));
                 render.insert_attribute(Mesh::ATTRIBUTE_POSITION, positions);
                 if !normals.is_empty() {
                     render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals);
