@@ -622,6 +622,79 @@ fn local_edits_redraw_only_the_chunks_they_touch() {
     }
 }
 
+#[test]
+fn a_chunk_left_without_faces_draws_no_mesh() {
+    use pappus::editor::session::requests::SelectionEdit;
+    use pappus::editor::view::render_sync::{ChunkFaces, RenderChunks};
+    let mut app = app();
+    // 17 000 faces: a full chunk and one of 616.
+    open(&mut app, "shape:torus:170:100");
+    let chunks = |app: &App| {
+        let chunks = app.world().get::<RenderChunks>(mesh(app).0).unwrap();
+        chunks.chunks.clone()
+    };
+    let drawn = chunks(&app);
+    assert_eq!(drawn.len(), 2);
+    let faces = &app.world().get::<ChunkFaces>(drawn[1]).unwrap().0;
+    let faces: Vec<ElementId> = faces.iter().map(|&f| ElementId::Face(f)).collect();
+    press(&mut app, KeyCode::Digit3);
+    app.world_mut()
+        .write_message(Request::Selection(SelectionEdit::Replace(faces)));
+    app.update();
+    press(&mut app, KeyCode::KeyX);
+    let outcome = last_outcome(&app);
+    assert!(outcome.result.is_ok(), "{outcome:?}");
+    // The same chunks: the emptied one has nothing to draw and no mesh asset.
+    assert_eq!(chunks(&app), drawn);
+    let world = app.world();
+    assert!(world.get::<TriangleFaces>(drawn[1]).unwrap().0.is_empty());
+    assert!(world.get::<Mesh3d>(drawn[1]).is_none());
+    assert!(world.get::<Mesh3d>(drawn[0]).is_some());
+    assert_every_face_drawn_once(&mut app);
+}
+
+#[test]
+fn a_change_of_looks_redraws_the_mesh_and_keeps_what_changed_its_chunks() {
+    use pappus::editor::view::render_sync::RenderChunks;
+    let mut app = app();
+    open(&mut app, "shape:icosphere");
+    let changes = |app: &App| {
+        app.world()
+            .get::<RenderChunks>(mesh(app).0)
+            .unwrap()
+            .changes
+    };
+    let opened = changes(&app);
+    assert_eq!(opened.whole, 1);
+    let smooth = |app: &mut App| {
+        let chunk = app.world().get::<RenderChunks>(mesh(app).0).unwrap().chunks[0];
+        let handle = app.world().get::<Mesh3d>(chunk).unwrap().0.clone();
+        let meshes = app.world().resource::<Assets<Mesh>>();
+        meshes
+            .get(&handle)
+            .unwrap()
+            .attribute(Mesh::ATTRIBUTE_NORMAL)
+            .is_some()
+    };
+    assert!(!smooth(&mut app));
+    // Smooth shading: drawn anew with normals, the chunks' record of changes as it was.
+    press(&mut app, KeyCode::KeyZ);
+    assert_eq!(app.world().resource::<RenderStats>().rebuilds, 2);
+    assert!(smooth(&mut app));
+    assert_eq!(changes(&app), opened);
+    // An edit redrawn whole is a change of the whole.
+    app.world_mut()
+        .write_message(Request::Edit(Edit::registered("loop").unwrap()));
+    app.update();
+    assert!(
+        last_outcome(&app).result.is_ok(),
+        "{:?}",
+        last_outcome(&app)
+    );
+    let rebuilds = app.world().resource::<RenderStats>().rebuilds;
+    assert_eq!(changes(&app).whole, rebuilds);
+}
+
 /// A move of most of the mesh (an ARAP frame) keeps the chunks and their triangles and
 /// refreshes their positions; a topological edit in the same frame is drawn too.
 #[test]

@@ -27,7 +27,7 @@ use crate::editor::session::panel_state::UiState;
 use crate::editor::session::requests::SelectionEdit;
 use crate::editor::session::requests::{Declined, Relation, Request};
 use crate::editor::session::selection::{
-    ActiveMesh, MeshDirty, SelectMode, Selection, selected_edge, selected_faces,
+    ActiveMesh, LooksDirty, SelectMode, Selection, selected_edge, selected_faces,
 };
 use crate::editor::view::render_sync::ViewSettings;
 use crate::editor::view::wireframe::set_wireframes_visible;
@@ -420,13 +420,9 @@ fn toggle_view(world: &mut World, action: Action) {
         }
         _ => return,
     }
-    mark_all_dirty(world);
-}
-
-fn mark_all_dirty(world: &mut World) {
-    let meshes = crate::mesh::members::meshes(world);
-    for m in meshes {
-        world.entity_mut(m.0).insert(MeshDirty);
+    // Every mesh drawn anew, its geometry as it was.
+    for m in crate::mesh::members::meshes(world) {
+        world.entity_mut(m.0).insert(LooksDirty);
     }
 }
 

@@ -174,6 +174,15 @@ pub struct PositionsDirty;
 #[component(storage = "SparseSet")]
 pub struct MeshDirty;
 
+/// Marks a mesh whose render copy must be drawn anew though its geometry is as drawn: the
+/// shading, the checkerboard, the wireframe shown or the colouring changed (cleared by render
+/// sync). It is redrawn whole, but its chunks keep the record of what changed them, so the
+/// closure counted before still holds (see the editor's culling). With an edit pending too
+/// ([`MeshDirty`], [`DirtyFaces`], [`PositionsDirty`]) it is one more edit's redraw.
+#[derive(Component, Default, Debug, Clone, Copy)]
+#[component(storage = "SparseSet")]
+pub struct LooksDirty;
+
 /// Faces whose drawing must be redone (set by local edits; the render sync rebuilds only the
 /// chunks holding them). Dead faces are dropped from their chunks.
 #[derive(Component, Debug, Clone, Default)]

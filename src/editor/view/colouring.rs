@@ -20,7 +20,7 @@ use crate::mesh::{MeshMembers, MeshRef};
 use crate::ops::geometry::Quantity;
 use crate::ops::geometry::quantity::{Given, Needs};
 
-use crate::editor::session::selection::{DirtyFaces, MeshDirty, Selection};
+use crate::editor::session::selection::{DirtyFaces, LooksDirty, MeshDirty, Selection};
 use crate::editor::session::state::PreviousShape;
 
 /// The quantity the meshes are coloured by, if any (set by the panel).
@@ -167,7 +167,7 @@ pub fn update_vertex_values(
         let local = world.get::<DirtyFaces>(entity).is_some();
         let Some(quantity) = wanted else {
             if world.entity_mut(entity).take::<VertexValues>().is_some() {
-                world.entity_mut(entity).insert(MeshDirty);
+                world.entity_mut(entity).insert(LooksDirty);
             }
             continue;
         };
@@ -183,7 +183,7 @@ pub fn update_vertex_values(
         let mut e = world.entity_mut(entity);
         e.insert(values);
         if switched || missing {
-            e.insert(MeshDirty);
+            e.insert(LooksDirty);
         }
     }
 }

@@ -22,8 +22,9 @@
 //! boundary, no faces added apart from the rest (a part restored by an undo would be a second
 //! component, which one volume cannot speak for), and for a mesh with holes no face added or
 //! removed and no positions refreshed wholesale. Otherwise, and for a mesh counted with several
-//! components, it is drawn two-sided until it is counted anew; so is it after a whole redraw (a
-//! change of shading or colouring too).
+//! components, it is drawn two-sided until it is counted anew; so is it after an edit that
+//! redraws it whole (a change of shading or colouring, which redraws the same surface, does not
+//! count as one).
 //!
 //! Only on a CPU adapter. On a GPU back faces cost little, and drawing them keeps the one case
 //! the closure cannot see in the back colour: a surface that passes through itself, where a

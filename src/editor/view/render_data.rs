@@ -6,15 +6,19 @@
 //! redraw's faces lie beside the boundary ([`on_boundary`]) or were added apart from the rest
 //! ([`added_apart`]): what [`super::culling`] needs to follow a mesh's closure through edits.
 
+use bevy::asset::RenderAssetUsages;
 use bevy::color::Color;
 use bevy::ecs::entity::EntityHashMap;
 use bevy::math::{Vec2, Vec3};
+use bevy::mesh::{Indices, Mesh, PrimitiveTopology};
 use bevy::prelude::{Component, Entity, World};
 
-use crate::mesh::attributes::CornerUv;
+use crate::mesh::attributes::{CornerUv, MeshAttributes};
 use crate::mesh::closure::bounding_box;
-use crate::mesh::ids::{FaceId, HalfedgeId, VertexId};
+use crate::mesh::ids::{FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
+
+use super::colouring::VertexValues;
 
 /// Colour of interior edges in the wireframe.
 pub const EDGE_COLOR: Color = Color::srgb(0.08, 0.08, 0.1);
@@ -70,6 +74,81 @@ pub struct RenderData {
     pub side_length: f64,
     /// The number of the faces' sides.
     pub sides: usize,
+}
+
+impl RenderData {
+    /// The render mesh of these triangles: their positions and corners, the normals (smooth
+    /// shading) and UVs (the checkerboard) when there are any, and `colours` (a quantity's) when
+    /// given.
+    pub fn into_mesh(self, colours: Option<Vec<[f32; 4]>>) -> Mesh {
+        let mut render = Mesh::new(
+            PrimitiveTopology::TriangleList,
+            // Picking casts rays against the main-world copy: keep it.
+            RenderAssetUsages::MAIN_WORLD | RenderAssetUsages::RENDER_WORLD,
+        );
+        render.insert_attribute(Mesh::ATTRIBUTE_POSITION, self.positions);
+        if !self.normals.is_empty() {
+            render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, self.normals);
+        }
+        if !self.uvs.is_empty() {
+            render.insert_attribute(Mesh::ATTRIBUTE_UV_0, self.uvs);
+        }
+        if let Some(colours) = colours {
+            render.insert_attribute(Mesh::ATTRIBUTE_COLOR, colours);
+        }
+        render.insert_indices(Indices::U32(self.indices));
+        render
+    }
+}
+
+/// One chunk's surface, read from the world without changing it (so that several chunks are
+/// read at once): its triangles, its vertex colours when its mesh is coloured by a quantity,
+/// and its shape (taken here, on the compute threads, rather than as it is uploaded).
+pub struct ChunkSurface {
+    /// Its triangles.
+    pub data: RenderData,
+    /// A colour for each render vertex, when the mesh is coloured by a quantity.
+    pub colours: Option<Vec<[f32; 4]>>,
+    /// The volume under its triangles and their box.
+    pub shape: ChunkShape,
+}
+
+impl ChunkSurface {
+    fn new(data: RenderData, colours: Option<Vec<[f32; 4]>>) -> Self {
+        let shape = ChunkShape::of(&data.positions, data.indices.iter().map(|&i| i as usize));
+        Self {
+            data,
+            colours,
+            shape,
+        }
+    }
+
+    /// What `faces` of `mesh` draw: shaded `smooth` or flat, with texture coordinates where
+    /// the `checker` is on and the mesh has UVs, coloured by the quantity the mesh carries
+    /// ([`VertexValues`]; a quantity on faces gives each face corners of its own).
+    pub fn read(
+        world: &World,
+        mesh: Option<MeshId>,
+        faces: &[FaceId],
+        smooth: bool,
+        checker: bool,
+    ) -> Self {
+        let values = mesh.and_then(|m| world.get::<VertexValues>(m.0));
+        if let Some(values) = values.filter(|v| v.on_faces) {
+            let data = render_data_by_face(world, faces, smooth);
+            let colours = data
+                .vertex_faces
+                .iter()
+                .map(|f| values.colour(f.0))
+                .collect();
+            return Self::new(data, Some(colours));
+        }
+        let uvs = checker && mesh.is_some_and(|m| MeshAttributes::of(world, m).uv);
+        let data = render_data(world, faces, smooth, uvs);
+        let colours =
+            values.map(|values| data.vertices.iter().map(|&v| values.colour(v.0)).collect());
+        Self::new(data, colours)
+    }
 }
 
 /// Builds the render data of `faces`: each face fanned from its first corner, every mesh

@@ -7,7 +7,9 @@
 //! [`TriangleFaces`] table mapping each GPU triangle back to its face for picking, and a
 //! wireframe of the *real* edges ([`super::wireframe`]).
 //!
-//! In the `Sync` set, a mesh marked [`MeshDirty`] (opened, globally edited) is redrawn whole; a
+//! In the `Sync` set, a mesh marked [`MeshDirty`] (opened, globally edited) is redrawn whole, and
+//! so is one marked [`LooksDirty`] (its shading or colouring changed), whose chunks keep the
+//! record of what changed them ([`ChunkChanges`]: the geometry is as drawn); a
 //! mesh carrying [`DirtyFaces`](crate::editor::session::selection::DirtyFaces) (a local edit) has only the
 //! chunks holding those faces redrawn, new faces joining the last chunk; a mesh marked
 //! [`PositionsDirty`] (most of its vertices moved, as in an ARAP drag) keeps its chunks and
@@ -17,26 +19,27 @@
 //! vertex and UV, so a seam splits them) and the shader draws a checkerboard. A 1M-face mesh thus re-renders an edit in milliseconds,
 //! and meshes that did not change cost nothing per frame.
 
-use bevy::asset::RenderAssetUsages;
 use bevy::color::Color;
 use bevy::ecs::entity::EntityHashMap;
-use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology};
-use bevy::prelude::{Assets, Component, Entity, Or, Resource, Transform, Visibility, With, World};
+use bevy::mesh::{Mesh, Mesh3d};
+use bevy::pbr::MeshMaterial3d;
+use bevy::prelude::{
+    Assets, Component, Entity, Has, Or, Resource, Transform, Visibility, With, World,
+};
 use bevy::tasks::{ComputeTaskPool, ParallelSlice, TaskPool};
 use std::time::Instant;
 
 use crate::mesh::MeshInfo;
-use crate::mesh::attributes::MeshAttributes;
 use crate::mesh::ids::{FaceId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 
 use super::colouring::VertexValues;
 use super::render_data::{
-    ChunkShape, RenderData, added_apart, edge_line_ends, on_boundary, render_data,
-    render_data_by_face, smooth_normal,
+    ChunkShape, ChunkSurface, added_apart, edge_line_ends, on_boundary, smooth_normal,
 };
+use super::surface::SurfaceMaterial;
 use super::wireframe::{WireEnds, WireLines, draw_wire, wire_mesh};
-use crate::editor::session::selection::{DirtyFaces, MeshDirty, PositionsDirty};
+use crate::editor::session::selection::{DirtyFaces, LooksDirty, MeshDirty, PositionsDirty};
 
 /// The render entity of a mesh: carries its [`Mesh3d`] and [`TriangleFaces`].
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq)]
@@ -121,7 +124,7 @@ pub struct RenderChunks {
 /// changes, its volume followed by the chunks' [`ChunkShape`]s.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ChunkChanges {
-    /// Every chunk drawn anew.
+    /// Every chunk drawn anew after an edit (not for a change of looks alone, [`LooksDirty`]).
     pub whole: usize,
     /// A face with a side on the boundary redrawn: a hole made or moved (one closed leaves no
     /// such face, but adds faces).
@@ -153,16 +156,18 @@ pub fn sync_render_meshes(world: &mut World) {
         .get_resource::<ViewSettings>()
         .copied()
         .unwrap_or_default();
-    let dirty: Vec<Entity> = world
-        .query_filtered::<Entity, (With<MeshInfo>, With<MeshDirty>)>()
+    // Redrawn whole: edited meshes, and those whose looks alone changed (the same geometry).
+    let dirty: Vec<(Entity, bool)> = world
+        .query_filtered::<(Entity, Has<MeshDirty>, Has<DirtyFaces>, Has<PositionsDirty>), (With<MeshInfo>, Or<(With<MeshDirty>, With<LooksDirty>)>)>()
         .iter(world)
+        .map(|(e, whole, faces, moved)| (e, !(whole || faces || moved)))
         .collect();
-    for entity in dirty {
+    for (entity, same_geometry) in dirty {
         let start = Instant::now();
-        let triangles = rebuild_all(world, MeshId(entity), settings);
+        let triangles = rebuild_all(world, MeshId(entity), settings, same_geometry);
         world
             .entity_mut(entity)
-            .remove::<(MeshDirty, DirtyFaces, PositionsDirty)>();
+            .remove::<(MeshDirty, LooksDirty, DirtyFaces, PositionsDirty)>();
         record(world, MeshId(entity), triangles, start);
     }
     let partial: Vec<Entity> = world
@@ -188,7 +193,7 @@ pub fn sync_render_meshes(world: &mut World) {
         world.entity_mut(entity).remove::<PositionsDirty>();
         let triangles = match refresh_positions(world, MeshId(entity), settings) {
             Some(triangles) => triangles,
-            None => rebuild_all(world, MeshId(entity), settings),
+            None => rebuild_all(world, MeshId(entity), settings, false),
         };
         record(world, MeshId(entity), triangles, start);
     }
@@ -205,13 +210,27 @@ fn record(world: &mut World, mesh: MeshId, triangles: usize, start: Instant) {
     );
 }
 
-/// Drops every chunk of `mesh` and draws it anew. Returns the triangles drawn.
+/// Drops every chunk of `mesh` and draws it anew. Returns the triangles drawn. With
+/// `same_geometry` (its looks alone changed) the new chunks keep the old ones'
+/// [`ChunkChanges`]: they draw the same surface.
 ///
 /// What each chunk draws is read from the world on the compute threads, the chunks shared
 /// among them; the uploads follow on this thread. The wireframe's lines are read in a second
 /// such pass, once the chunks' sides have said whether the mesh is sparse enough to draw them.
-fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize {
+fn rebuild_all(
+    world: &mut World,
+    mesh: MeshId,
+    settings: ViewSettings,
+    same_geometry: bool,
+) -> usize {
+    let mut changes = ChunkChanges {
+        whole: this_generation(world),
+        ..Default::default()
+    };
     if let Some(old) = world.entity_mut(mesh.0).take::<RenderChunks>() {
+        if same_geometry {
+            changes = old.changes;
+        }
         for e in old.chunks.into_iter().chain(old.wires) {
             world.despawn(e);
         }
@@ -219,7 +238,7 @@ fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize
     let faces = crate::mesh::members::of_kind::<crate::mesh::Face, _>(world, mesh, FaceId);
     let pool = ComputeTaskPool::get_or_init(TaskPool::default);
     let surfaces = faces.par_chunk_map(pool, CHUNK_FACES, |_, group| {
-        chunk_surface(world, Some(mesh), group, settings)
+        ChunkSurface::read(world, Some(mesh), group, settings.smooth, settings.checker)
     });
     // Σ face degrees = 2 × interior edges + boundary edges: half of it bounds the edge count
     // from below without walking the edges.
@@ -238,10 +257,7 @@ fn rebuild_all(world: &mut World, mesh: MeshId, settings: ViewSettings) -> usize
         } else {
             (length / sides as f64) as f32
         },
-        changes: ChunkChanges {
-            whole: this_generation(world),
-            ..Default::default()
-        },
+        changes,
         ..Default::default()
     };
     let mut triangles = 0;
@@ -271,13 +287,13 @@ fn rebuild_some(
     settings: ViewSettings,
 ) -> usize {
     let Some(mut chunks) = world.entity_mut(mesh.0).take::<RenderChunks>() else {
-        return rebuild_all(world, mesh, settings);
+        return rebuild_all(world, mesh, settings, false);
     };
     // An edit that reaches a quarter of the mesh (a big level-of-detail jump) is cheaper drawn
     // whole, which also packs the chunks again.
     if faces.len() > chunks.face_chunk.len() / 4 {
         world.entity_mut(mesh.0).insert(chunks);
-        return rebuild_all(world, mesh, settings);
+        return rebuild_all(world, mesh, settings, false);
     }
     let mut touched: Vec<u32> = Vec::new();
     let mut added = Vec::new();
@@ -355,52 +371,9 @@ fn draw_chunk(
         .map(|c| c.0.clone())
         .unwrap_or_default();
     let mesh = world.get::<RenderOf>(chunk).map(|r| r.0);
-    let surface = chunk_surface(world, mesh, &faces, settings);
+    let surface = ChunkSurface::read(world, mesh, &faces, settings.smooth, settings.checker);
     let lines = chunk_lines(world, &faces, wireframe, settings);
     upload_chunk(world, chunk, wire, surface, lines)
-}
-
-/// One chunk's surface, read from the world without changing it (so that several chunks are
-/// read at once): its triangles, its vertex colours when its mesh is coloured by a quantity,
-/// and its shape (taken here, on the compute threads, rather than as it is uploaded).
-struct ChunkSurface {
-    data: RenderData,
-    colours: Option<Vec<[f32; 4]>>,
-    shape: ChunkShape,
-}
-
-impl ChunkSurface {
-    fn new(data: RenderData, colours: Option<Vec<[f32; 4]>>) -> Self {
-        let shape = ChunkShape::of(&data.positions, data.indices.iter().map(|&i| i as usize));
-        Self {
-            data,
-            colours,
-            shape,
-        }
-    }
-}
-
-fn chunk_surface(
-    world: &World,
-    mesh: Option<MeshId>,
-    faces: &[FaceId],
-    settings: ViewSettings,
-) -> ChunkSurface {
-    let values = mesh.and_then(|m| world.get::<VertexValues>(m.0));
-    if let Some(values) = values.filter(|v| v.on_faces) {
-        // Each face in one colour: corners of their own, coloured by their face.
-        let data = render_data_by_face(world, faces, settings.smooth);
-        let colours = data
-            .vertex_faces
-            .iter()
-            .map(|f| values.colour(f.0))
-            .collect();
-        return ChunkSurface::new(data, Some(colours));
-    }
-    let uvs = settings.checker && mesh.is_some_and(|m| MeshAttributes::of(world, m).uv);
-    let data = render_data(world, faces, settings.smooth, uvs);
-    let colours = values.map(|values| data.vertices.iter().map(|&v| values.colour(v.0)).collect());
-    ChunkSurface::new(data, colours)
 }
 
 /// One chunk's wireframe lines when wireframes are drawn (`None` otherwise): its edges when
@@ -421,7 +394,8 @@ fn chunk_lines(
 }
 
 /// Gives `chunk` its surface (a new [`Mesh`] asset) and `wire` its lines (another), when there
-/// are any to draw. Returns the chunk's triangle count.
+/// are any to draw: a chunk left without faces has no [`Mesh3d`] (Bevy's mesh allocator logs
+/// a use-after-free for a mesh without vertices). Returns the chunk's triangle count.
 fn upload_chunk(
     world: &mut World,
     chunk: Entity,
@@ -430,46 +404,46 @@ fn upload_chunk(
     lines: Option<Vec<(VertexId, VertexId, Color)>>,
 ) -> usize {
     let ChunkSurface {
-        data,
+        mut data,
         colours,
         shape,
     } = surface;
     let triangles = data.triangle_faces.len();
-    let mut render = Mesh::new(
-        PrimitiveTopology::TriangleList,
-        // Picking casts rays against the main-world copy: keep it.
-        RenderAssetUsages::MAIN_WORLD | RenderAssetUsages::RENDER_WORLD,
-    );
-    render.insert_attribute(Mesh::ATTRIBUTE_POSITION, data.positions);
-    if !data.normals.is_empty() {
-        render.insert_attribute(Mesh::ATTRIBUTE_NORMAL, data.normals);
-    }
-    if !data.uvs.is_empty() {
-        render.insert_attribute(Mesh::ATTRIBUTE_UV_0, data.uvs);
-    }
-    if let Some(colours) = colours {
-        render.insert_attribute(Mesh::ATTRIBUTE_COLOR, colours);
-    }
-    render.insert_indices(Indices::U32(data.indices));
-    let handle = world.resource_mut::<Assets<Mesh>>().add(render);
+    let faces = TriangleFaces(std::mem::take(&mut data.triangle_faces));
+    let vertices = ChunkVertices(std::mem::take(&mut data.vertices));
+    let handle = (triangles > 0).then(|| {
+        world
+            .resource_mut::<Assets<Mesh>>()
+            .add(data.into_mesh(colours))
+    });
     let materials = world
         .get_resource::<super::scene::SceneMaterials>()
         .cloned();
-    let material = materials.as_ref().map(|m| m.surface.clone());
     let mut e = world.entity_mut(chunk);
     e.insert((
-        Mesh3d(handle),
-        TriangleFaces(data.triangle_faces),
-        ChunkVertices(data.vertices),
+        faces,
+        vertices,
         shape,
         Transform::default(),
         Visibility::default(),
     ));
-    if let Some(material) = material {
-        e.insert(bevy::pbr::MeshMaterial3d(material));
+    match (handle, &materials) {
+        (Some(handle), Some(materials)) => {
+            e.insert((Mesh3d(handle), MeshMaterial3d(materials.surface.clone())));
+        }
+        (Some(handle), None) => {
+            e.insert(Mesh3d(handle));
+        }
+        (None, _) => {
+            e.remove::<(Mesh3d, MeshMaterial3d<SurfaceMaterial>)>();
+        }
     }
-    let material = materials.map(|m| m.wireframe);
-    draw_wire(world, wire, lines.unwrap_or_default(), material);
+    draw_wire(
+        world,
+        wire,
+        lines.unwrap_or_default(),
+        materials.map(|m| m.wireframe),
+    );
     triangles
 }
 
@@ -525,11 +499,18 @@ fn refresh_positions(world: &mut World, mesh: MeshId, settings: ViewSettings) ->
             return None;
         }
         let lines = ends.map(|ends| wire_mesh(world_ref, &ends.0));
-        let shape = world_ref
-            .get::<Mesh3d>(chunk)
-            .and_then(|m| world_ref.resource::<Assets<Mesh>>().get(&m.0))
-            .and_then(|render| render.indices())
-            .map(|corners| ChunkShape::of(&positions, corners.iter()));
+        let shape = match world_ref.get::<Mesh3d>(chunk) {
+            // A chunk without faces has no mesh and draws no volume.
+            None => Some(ChunkShape::default()),
+            Some(m) => world_ref
+                .resource::<Assets<Mesh>>()
+                .get(&m.0)
+                .and_then(|render| {
+                    render
+                        .indices()
+                        .map(|c| ChunkShape::of(&positions, c.iter()))
+                }),
+        };
         Some((positions, normals, lines, shape))
     });
     let refreshed: Vec<_> = refreshed.into_iter().collect::<Option<_>>()?;
