@@ -8,7 +8,8 @@
 //! editor opens (1280×800, `DefaultPlugins`), in three steps that add what the editor cannot do
 //! without:
 //!
-//! - `clear`: one 3D camera that clears the window (no MSAA, no tonemapping), nothing to draw;
+//! - `clear`: one 3D camera that clears the window (no MSAA, no tonemapping, light clustering
+//!   on the CPU as the editor has it), nothing to draw;
 //! - `cameras`: the editor's two cameras: a 3D camera whose output is skipped and a 2D camera
 //!   that writes the window, as `editor::scene` and `editor::ui` set them up;
 //! - `panels`: the same, plus egui side and bottom panels with a few lines of text, as the
@@ -88,7 +89,15 @@ fn run(step: &'static str) {
     app.run();
 }
 
-fn setup(mut commands: Commands, step: Res<Step>) {
+fn setup(
+    mut commands: Commands,
+    step: Res<Step>,
+    clusters: Option<ResMut<bevy::light::cluster::GlobalClusterSettings>>,
+) {
+    // As the editor: no light, so no clustering pass.
+    if let Some(mut clusters) = clusters {
+        clusters.gpu_clustering = None;
+    }
     let two_cameras = step.0 != "clear";
     commands.spawn((
         Camera3d::default(),
