@@ -699,7 +699,7 @@ fn a_change_of_looks_redraws_the_mesh_and_keeps_what_changed_its_chunks() {
 /// refreshes their positions; a topological edit in the same frame is drawn too.
 #[test]
 fn a_move_of_most_of_the_mesh_refreshes_positions_in_the_chunks_it_has() {
-    use pappus::editor::view::render_sync::ChunkVertices;
+    use pappus::editor::view::render_data::ChunkVertices;
     let mut app = app();
     open(&mut app, "shape:icosphere:6");
     let chunk_entities = |app: &mut App| -> Vec<Entity> {

@@ -23,6 +23,8 @@
 
 use bevy::math::{DVec3, Vec2, Vec3};
 
+use super::build::prepare_mesh;
+use super::soup::PolygonSoup;
 use super::stats::component_of_vertices;
 use super::tables::Connectivity;
 
@@ -120,6 +122,26 @@ impl Closure {
             holes,
             bounds: bounding_box(t.positions.iter().copied()),
         }
+    }
+
+    /// The closure of the mesh drawn by `triangles` (corners indexing `positions`, each mesh
+    /// vertex once): a polygon mesh's fans, as the renderer draws it, close as the polygons do.
+    /// `None` when the triangles are not a clean oriented manifold as they stand (the builder
+    /// would have to repair them: turn a face, split a vertex), since the closure of a repaired
+    /// mesh says nothing of the drawn one.
+    pub fn of_triangles(positions: Vec<Vec3>, triangles: Vec<u32>) -> Option<Self> {
+        let faces = triangles.len() / 3;
+        let soup = PolygonSoup {
+            positions,
+            indices: triangles,
+            face_starts: (0..=faces).map(|f| 3 * f as u32).collect(),
+            ..PolygonSoup::default()
+        };
+        let prepared = prepare_mesh(&soup).ok()?;
+        prepared
+            .report()
+            .is_clean()
+            .then(|| Self::of(prepared.tables()))
     }
 
     /// This closure after an edit that left its holes as they were: its one component's volume
@@ -222,7 +244,6 @@ fn is_simple_polygon(p: &[Vec2]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::soup::PolygonSoup;
     use crate::mesh::tables::extract;
     use crate::mesh::{MeshInfo, build_mesh, shapes};
     use bevy::prelude::World;
@@ -266,6 +287,40 @@ mod tests {
         assert!(c.back_faces_hidden_from(Vec3::new(0.0, 0.0, 5.0)));
         // Inside the box: the back faces are all there is to see.
         assert!(!c.back_faces_hidden_from(Vec3::ZERO));
+    }
+
+    #[test]
+    fn the_drawn_triangles_close_as_the_polygons_do() {
+        let cube = shapes::cube();
+        // Open at the top, beside a whole cube turned inside out: two components and a hole.
+        let faces: Vec<&[u32]> = cube
+            .faces()
+            .enumerate()
+            .filter_map(|(f, face)| (f != 1).then_some(face))
+            .collect();
+        let open = PolygonSoup::from_faces(cube.positions.clone(), &faces);
+        let soup = side_by_side(&open, &inside_out(&cube));
+        let mut fans: Vec<[u32; 3]> = soup
+            .faces()
+            .flat_map(|f| (1..f.len() - 1).map(move |i| [f[0], f[i], f[i + 1]]))
+            .collect();
+        let drawn =
+            Closure::of_triangles(soup.positions.clone(), fans.concat()).expect("clean fans");
+        let polygons = closure(&soup);
+        assert_eq!((drawn.holes.len(), drawn.bounds), (1, polygons.bounds));
+        assert_eq!(drawn.holes, polygons.holes);
+        let sorted = |c: &Closure| {
+            let mut v = c.volumes.clone();
+            v.sort_by(f64::total_cmp);
+            v
+        };
+        for (d, p) in sorted(&drawn).into_iter().zip(sorted(&polygons)) {
+            assert!((d - p).abs() < 1e-12, "{drawn:?} against {polygons:?}");
+        }
+        assert!((sorted(&drawn)[0] + 8.0).abs() < 1e-12, "{drawn:?}");
+        // A triangle turned against its neighbours is a repair, not the drawn mesh.
+        fans[0].swap(1, 2);
+        assert_eq!(Closure::of_triangles(soup.positions, fans.concat()), None);
     }
 
     #[test]

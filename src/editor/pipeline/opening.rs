@@ -31,7 +31,8 @@ use crate::editor::session::finish::report;
 use crate::editor::session::history;
 use crate::editor::session::requests::{Declined, Request};
 use crate::editor::session::selection::{ActiveMesh, MeshDirty, Selection};
-use crate::editor::view::culling::{ClosureAtOpen, SoftwareRenderer};
+use crate::editor::view::culling::ClosureAtOpen;
+use crate::editor::view::scene::SoftwareRenderer;
 
 /// A file being read in the background; `None` when none is.
 #[derive(Resource, Default)]

@@ -29,6 +29,7 @@ impl Plugin for ViewPlugin {
             .init_resource::<render_sync::RenderStats>()
             .init_resource::<readability::WireframeDensity>()
             .init_resource::<culling::Closures>()
+            .init_resource::<culling::DrawnCounts>()
             .add_systems(
                 Update,
                 (
@@ -51,7 +52,7 @@ impl Plugin for ViewWindowPlugin {
             .init_resource::<scene::PanelInsets>()
             .add_systems(
                 Startup,
-                (scene::setup_scene, culling::detect_software_renderer),
+                (scene::setup_scene, scene::detect_software_renderer),
             )
             .add_systems(
                 Update,

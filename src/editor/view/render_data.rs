@@ -10,11 +10,11 @@ use bevy::asset::RenderAssetUsages;
 use bevy::color::Color;
 use bevy::ecs::entity::EntityHashMap;
 use bevy::math::{Vec2, Vec3};
-use bevy::mesh::{Indices, Mesh, PrimitiveTopology};
-use bevy::prelude::{Component, Entity, World};
+use bevy::mesh::{Indices, Mesh, Mesh3d, PrimitiveTopology, VertexAttributeValues};
+use bevy::prelude::{Assets, Component, Entity, World};
 
 use crate::mesh::attributes::{CornerUv, MeshAttributes};
-use crate::mesh::closure::bounding_box;
+use crate::mesh::closure::{Closure, bounding_box};
 use crate::mesh::ids::{FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::topology::MeshRef;
 
@@ -48,6 +48,81 @@ impl ChunkShape {
         }
         let bounds = bounding_box(positions.iter().map(|&p| Vec3::from_array(p)));
         Self { volume, bounds }
+    }
+}
+
+/// The mesh vertex behind each render vertex of a chunk ([`RenderData::vertices`]): what a
+/// refresh of positions reads.
+#[derive(Component, Debug, Clone, Default)]
+pub struct ChunkVertices(pub Vec<VertexId>);
+
+/// The triangles a mesh's chunks draw, read back from their mesh assets: what its closure is
+/// counted from apart from the frame (see [`super::culling`]).
+pub struct DrawnTriangles(Vec<DrawnChunk>);
+
+/// One chunk's triangles as drawn: the positions of its render vertices, its corners, and the
+/// mesh vertex behind each render vertex.
+struct DrawnChunk {
+    positions: Vec<[f32; 3]>,
+    corners: Vec<u32>,
+    vertices: Vec<Entity>,
+}
+
+impl DrawnTriangles {
+    /// Copies what `chunks` draw; `None` while a chunk is not drawn as its vertex list says
+    /// (its mesh asset missing or of another size).
+    pub fn read(world: &World, chunks: &[Entity]) -> Option<Self> {
+        let meshes = world.get_resource::<Assets<Mesh>>()?;
+        let mut drawn = Vec::new();
+        for &chunk in chunks {
+            let vertices = &world.get::<ChunkVertices>(chunk)?.0;
+            let Some(handle) = world.get::<Mesh3d>(chunk) else {
+                // A chunk left without faces draws nothing.
+                if vertices.is_empty() {
+                    continue;
+                }
+                return None;
+            };
+            let render = meshes.get(&handle.0)?;
+            let (Some(VertexAttributeValues::Float32x3(positions)), Some(Indices::U32(corners))) =
+                (render.attribute(Mesh::ATTRIBUTE_POSITION), render.indices())
+            else {
+                return None;
+            };
+            if positions.len() != vertices.len() {
+                return None;
+            }
+            drawn.push(DrawnChunk {
+                positions: positions.clone(),
+                corners: corners.clone(),
+                vertices: vertices.iter().map(|v| v.0).collect(),
+            });
+        }
+        Some(Self(drawn))
+    }
+
+    /// Their closure ([`Closure::of_triangles`]), each mesh vertex once however many chunks
+    /// (or UV seams) repeat it.
+    pub fn close(self) -> Option<Closure> {
+        let mut row: EntityHashMap<u32> = EntityHashMap::default();
+        let mut positions = Vec::new();
+        let mut triangles = Vec::new();
+        for chunk in self.0 {
+            let rows: Vec<u32> = chunk
+                .vertices
+                .iter()
+                .zip(&chunk.positions)
+                .map(|(&v, &p)| {
+                    *row.entry(v).or_insert_with(|| {
+                        positions.push(Vec3::from_array(p));
+                        positions.len() as u32 - 1
+                    })
+                })
+                .collect();
+            let corners = chunk.corners.iter().map(|&c| rows.get(c as usize).copied());
+            triangles.extend(corners.collect::<Option<Vec<u32>>>()?);
+        }
+        Closure::of_triangles(positions, triangles)
     }
 }
 

@@ -35,7 +35,8 @@ use crate::mesh::topology::MeshRef;
 
 use super::colouring::VertexValues;
 use super::render_data::{
-    ChunkShape, ChunkSurface, added_apart, edge_line_ends, on_boundary, smooth_normal,
+    ChunkShape, ChunkSurface, ChunkVertices, added_apart, edge_line_ends, on_boundary,
+    smooth_normal,
 };
 use super::surface::SurfaceMaterial;
 use super::wireframe::{WireEnds, WireLines, draw_wire, wire_mesh};
@@ -446,11 +447,6 @@ fn upload_chunk(
     );
     triangles
 }
-
-/// The mesh vertex behind each render vertex of a chunk ([`RenderData::vertices`]): what a
-/// refresh of positions reads.
-#[derive(Component, Debug, Clone, Default)]
-pub struct ChunkVertices(pub Vec<VertexId>);
 
 /// Refreshes the positions of every chunk of `mesh` whose vertices moved and whose faces did
 /// not: each chunk's render positions (and smooth normals) are read again on the compute

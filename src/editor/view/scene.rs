@@ -6,6 +6,7 @@ use bevy::camera::CameraOutputMode;
 use bevy::core_pipeline::tonemapping::{DebandDither, Tonemapping};
 use bevy::math::{EulerRot, Quat, Vec3};
 use bevy::prelude::*;
+use bevy::render::renderer::RenderAdapterInfo;
 
 use super::lines::{DEPTH_PULL, LinesMaterial};
 use super::surface::SurfaceMaterial;
@@ -182,4 +183,15 @@ pub fn fit_camera_viewport(
             camera.viewport = Some(viewport.clone());
         }
     }
+}
+
+/// Whether the frames are drawn by a software rasterizer (a CPU adapter): the only renderer
+/// that culls back faces (see [`super::culling`]). Absent, none is.
+#[derive(Resource, Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SoftwareRenderer(pub bool);
+
+/// Reads the adapter's kind into [`SoftwareRenderer`] (at startup).
+pub fn detect_software_renderer(mut commands: Commands, adapter: Option<Res<RenderAdapterInfo>>) {
+    let software = adapter.is_some_and(|info| info.device_type == wgpu_types::DeviceType::Cpu);
+    commands.insert_resource(SoftwareRenderer(software));
 }
