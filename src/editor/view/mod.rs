@@ -29,7 +29,7 @@ impl Plugin for ViewPlugin {
             .init_resource::<render_sync::RenderStats>()
             .init_resource::<readability::WireframeDensity>()
             .init_resource::<culling::Closures>()
-            .init_resource::<culling::DrawnCounts>()
+            .init_resource::<culling::drawn::DrawnCounts>()
             .add_systems(
                 Update,
                 (
@@ -63,7 +63,8 @@ impl Plugin for ViewWindowPlugin {
                     readability::show_readable_wireframes
                         .after(EditorSystems::Sync)
                         .before(EditorSystems::Ui),
-                    culling::choose_culling
+                    (culling::drawn::count_drawn, culling::choose_culling)
+                        .chain()
                         .after(EditorSystems::Sync)
                         .before(EditorSystems::Ui),
                     scene::fit_camera_viewport.in_set(EditorSystems::Ui),

@@ -137,6 +137,8 @@ pub struct ChunkChanges {
     pub parts: usize,
     /// Positions refreshed in place: any vertex may have moved, the holes' too.
     pub positions: usize,
+    /// Any chunk redrawn for an edit, however small.
+    pub drawn: usize,
 }
 
 /// The render generation the redraw under way will be recorded at.
@@ -224,8 +226,10 @@ fn rebuild_all(
     settings: ViewSettings,
     same_geometry: bool,
 ) -> usize {
+    let (whole, drawn) = (this_generation(world), this_generation(world));
     let mut changes = ChunkChanges {
-        whole: this_generation(world),
+        whole,
+        drawn,
         ..Default::default()
     };
     if let Some(old) = world.entity_mut(mesh.0).take::<RenderChunks>() {
@@ -332,6 +336,7 @@ fn rebuild_some(
             (None, false) => {}
         }
     }
+    chunks.changes.drawn = this_generation(world);
     if on_boundary(world, faces) {
         chunks.changes.boundary = this_generation(world);
     }
@@ -536,7 +541,7 @@ fn refresh_positions(world: &mut World, mesh: MeshId, settings: ViewSettings) ->
     }
     let generation = this_generation(world);
     if let Some(mut chunks) = world.get_mut::<RenderChunks>(mesh.0) {
-        chunks.changes.positions = generation;
+        (chunks.changes.positions, chunks.changes.drawn) = (generation, generation);
     }
     Some(triangles)
 }

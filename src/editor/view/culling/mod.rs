@@ -22,25 +22,26 @@
 //! boundary, no faces added apart from the rest (a part restored by an undo would be a second
 //! component, which one volume cannot speak for), and for a mesh with holes no face added or
 //! removed and no positions refreshed wholesale. Otherwise, and for a mesh counted with several
-//! components, it is drawn two-sided until it is counted anew; so is it after an edit that
-//! redraws it whole (a change of shading or colouring, which redraws the same surface, does not
-//! count as one). Then it is counted anew from the triangles its chunks draw ([`DrawnCounts`]),
-//! on a thread of its own, once a frame has passed with nothing redrawn: the panel's count,
-//! which reads the mesh a slice a frame, comes 12 s after an edit of the 1.3 M-face icosphere.
+//! components once it is redrawn, it is drawn two-sided until it is counted anew; so is it after
+//! an edit that redraws it whole (a change of shading or colouring, which redraws the same
+//! surface, does not count as one). Then it is counted anew from the triangles its chunks draw,
+//! on a thread of its own ([`drawn`]): the panel's count, which reads the mesh a slice a frame,
+//! comes 7–12 s after an edit of the 1.3 M-face icosphere.
 //!
 //! Only on a CPU adapter. On a GPU back faces cost little, and drawing them keeps the one case
 //! the closure cannot see in the back colour: a surface that passes through itself, where a
 //! back face can be nearest the eye (a fold dragged by hand).
 
+pub mod drawn;
+
 use bevy::pbr::MeshMaterial3d;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
-use std::thread::JoinHandle;
 
 use crate::mesh::MeshId;
 use crate::mesh::closure::{Closure, bounding_box};
 
-use super::render_data::{ChunkShape, DrawnTriangles};
+use super::render_data::ChunkShape;
 use super::render_sync::{RenderChunks, RenderStats};
 use super::scene::{OrbitCamera, SceneMaterials, SoftwareRenderer};
 use super::surface::SurfaceMaterial;
@@ -130,9 +131,10 @@ fn back_faces_hidden(
 /// `mesh`'s closure as `counted` before, followed through the edits since where they left its
 /// holes and its one component as they were: no chunk drawn anew, no face redrawn beside the
 /// boundary, no faces added apart from the rest, and for a mesh with holes no face added or
-/// removed and no positions refreshed wholesale. Its one
-/// component's volume changes by what its chunks' volumes changed by, and its box is theirs.
-/// `None` where the edits may have changed its holes, or it has several components.
+/// removed and no positions refreshed wholesale. Its one component's volume changes by what its
+/// chunks' volumes changed by, and its box is theirs. A mesh not redrawn since keeps its
+/// closure whatever its parts. `None` where the edits may have changed its holes, or it has
+/// several components and was redrawn.
 fn closure_followed(world: &World, mesh: MeshId, counted: &Counted) -> Option<Closure> {
     let changes = world.get::<RenderChunks>(mesh.0)?.changes;
     let since = |at: usize| at > counted.generation;
@@ -143,112 +145,16 @@ fn closure_followed(world: &World, mesh: MeshId, counted: &Counted) -> Option<Cl
         return None;
     }
     let (volume, bounds) = drawn_shape(world, mesh)?;
-    let change = volume - counted.drawn_volume?;
-    if change == 0.0 {
-        // Drawn as counted (another mesh was redrawn since): as counted, components and all.
+    if !since(changes.drawn) {
+        // Not redrawn since (another mesh was, or its looks changed): as counted, every part.
         return Some(Closure {
             bounds,
             ..counted.closure.clone()
         });
     }
-    counted.closure.changed(change, bounds)
-}
-
-/// Closures being counted from the triangles the chunks draw, each on a thread of its own: for
-/// the meshes whose closure the edits since its count could not follow (see the module doc).
-#[derive(Resource, Default)]
-pub struct DrawnCounts {
-    /// The render generation the last frame ended at: a mesh is counted once a frame has
-    /// passed without a redraw, so that a drag is not counted at every step.
-    last_generation: usize,
-    counting: HashMap<MeshId, DrawnCount>,
-}
-
-/// A count under way: the render generation and the chunks' summed volume it is of.
-struct DrawnCount {
-    generation: usize,
-    drawn_volume: f64,
-    thread: JoinHandle<Option<Closure>>,
-}
-
-impl DrawnCounts {
-    /// Whether every count started has finished (for tests).
-    pub fn finished(&self) -> bool {
-        self.counting.values().all(|c| c.thread.is_finished())
-    }
-}
-
-/// Records the counts of drawn triangles that have finished (unless a later count of the same
-/// mesh was recorded meanwhile), and starts one for each mesh whose closure the edits could
-/// not follow, once a frame has passed at `generation` with nothing redrawn.
-fn count_drawn(world: &mut World, generation: usize) {
-    let Some(mut counts) = world.remove_resource::<DrawnCounts>() else {
-        return;
-    };
-    let done: Vec<MeshId> = counts
-        .counting
-        .iter()
-        .filter(|(_, c)| c.thread.is_finished())
-        .map(|(&m, _)| m)
-        .collect();
-    for mesh in done {
-        let count = counts.counting.remove(&mesh).expect("listed");
-        if let Ok(Some(closure)) = count.thread.join() {
-            let counted = Counted {
-                generation: count.generation,
-                closure,
-                drawn_volume: Some(count.drawn_volume),
-            };
-            keep_count(world, mesh, counted);
-            debug!("mesh {}: closure counted from the drawn triangles", mesh.0);
-        }
-    }
-    let still = counts.last_generation == generation;
-    counts.last_generation = generation;
-    if still {
-        let stale: Vec<MeshId> = world
-            .query_filtered::<Entity, (
-                With<RenderChunks>,
-                Without<ClosureAtOpen>,
-                Without<MeshDirty>,
-            )>()
-            .iter(world)
-            .map(MeshId)
-            .filter(|&m| !counts.counting.contains_key(&m))
-            .filter(|&m| match world.resource::<Closures>().0.get(&m) {
-                Some(counted) => {
-                    counted.generation != generation
-                        && closure_followed(world, m, counted).is_none()
-                }
-                None => true,
-            })
-            .collect();
-        for mesh in stale {
-            let chunks = world
-                .get::<RenderChunks>(mesh.0)
-                .map(|c| c.chunks.as_slice());
-            let drawn = chunks.and_then(|chunks| DrawnTriangles::read(world, chunks));
-            let (Some((drawn_volume, _)), Some(chunks)) = (drawn_shape(world, mesh), drawn) else {
-                continue;
-            };
-            let thread = std::thread::Builder::new()
-                .name("closure".into())
-                .spawn(move || chunks.close());
-            if let Ok(thread) = thread {
-                let count = DrawnCount {
-                    generation,
-                    drawn_volume,
-                    thread,
-                };
-                counts.counting.insert(mesh, count);
-                debug!("mesh {}: closure counted apart", mesh.0);
-            }
-        }
-    }
-    counts
-        .counting
-        .retain(|m, _| world.get::<RenderChunks>(m.0).is_some());
-    world.insert_resource(counts);
+    counted
+        .closure
+        .changed(volume - counted.drawn_volume?, bounds)
 }
 
 /// The closure of a mesh as it was opened, counted from the tables it was spawned from (a
@@ -275,9 +181,6 @@ pub fn choose_culling(world: &mut World) {
         .map(|t| t.translation);
     let generation = world.resource::<RenderStats>().rebuilds;
     adopt_closures_at_open(world, generation);
-    if software {
-        count_drawn(world, generation);
-    }
     let mut meshes = world.query::<(Entity, &RenderChunks)>();
     let mut chosen: Vec<(Entity, Handle<SurfaceMaterial>)> = Vec::new();
     let closures = world.resource::<Closures>();
@@ -399,7 +302,9 @@ mod tests {
 
     /// The world of [`cube_unclosed`] with its chunk drawing the cube's triangles (its mesh
     /// asset, vertex list and shape), as the render sync leaves it.
-    fn cube_drawn(eye: Vec3) -> (World, MeshId, Entity, SceneMaterials) {
+    pub(in crate::editor::view::culling) fn cube_drawn(
+        eye: Vec3,
+    ) -> (World, MeshId, Entity, SceneMaterials) {
         let (mut world, mesh, chunk, materials) = cube_unclosed(eye, true);
         let faces = crate::mesh::members::of_kind::<crate::mesh::Face, _>(&world, mesh, FaceId);
         let data = render_data(&world, &faces, false, false);
@@ -408,14 +313,17 @@ mod tests {
         let mut meshes = Assets::<Mesh>::default();
         let handle = meshes.add(data.into_mesh(None));
         world.insert_resource(meshes);
-        world.insert_resource(DrawnCounts::default());
+        world.insert_resource(drawn::DrawnCounts::default());
         world
             .entity_mut(chunk)
             .insert((Mesh3d(handle), vertices, shape));
         (world, mesh, chunk, materials)
     }
 
-    fn drawn_with(world: &World, chunk: Entity) -> Handle<SurfaceMaterial> {
+    pub(in crate::editor::view::culling) fn drawn_with(
+        world: &World,
+        chunk: Entity,
+    ) -> Handle<SurfaceMaterial> {
         world
             .get::<MeshMaterial3d<SurfaceMaterial>>(chunk)
             .expect("a material")
@@ -477,33 +385,6 @@ mod tests {
         assert!(world.resource::<Closures>().0.is_empty());
     }
 
-    #[test]
-    fn a_closure_the_edits_could_not_follow_is_counted_anew_from_the_drawn_triangles() {
-        let (mut world, mesh, chunk, materials) = cube_drawn(Vec3::new(0.0, 0.0, 5.0));
-        // Counted at render generation 2, then redrawn whole at 3, where the world stands.
-        let closure = Closure::of(&extract(&world, mesh).tables);
-        record_closure(&mut world, mesh, 2, closure);
-        world.get_mut::<RenderChunks>(mesh.0).unwrap().changes.whole = 3;
-        // The frame of the redraw: both sides drawn, nothing counted yet.
-        choose_culling(&mut world);
-        assert_eq!(drawn_with(&world, chunk), materials.surface);
-        assert!(world.resource::<DrawnCounts>().counting.is_empty());
-        // A frame on with nothing redrawn: counted apart, and culled once the count is in.
-        choose_culling(&mut world);
-        assert_eq!(world.resource::<DrawnCounts>().counting.len(), 1);
-        while !world.resource::<DrawnCounts>().finished() {
-            std::thread::yield_now();
-        }
-        choose_culling(&mut world);
-        assert_eq!(drawn_with(&world, chunk), materials.surface_culled);
-        let counted = &world.resource::<Closures>().0[&mesh];
-        assert_eq!((counted.generation, counted.closure.holes.len()), (3, 0));
-        let volumes = (counted.closure.volumes[0], counted.drawn_volume.unwrap());
-        assert!((volumes.0 - 8.0).abs() < 1e-9 && (volumes.1 - 8.0).abs() < 1e-9);
-        choose_culling(&mut world); // Nothing more to count.
-        assert!(world.resource::<DrawnCounts>().counting.is_empty());
-    }
-
     /// The cube's closure as counted. With a hole under it, facing away from the eye:
     fn closed(_: &mut Closure) {}
     fn holed(c: &mut Closure) {
@@ -521,7 +402,8 @@ mod tests {
 
     /// The cube of [`cube_unclosed`] seen from `(0, 0, 5)`, its chunk drawing it with its volume
     /// (8) and box, its closure counted at render generation 3 (as `counted` makes it); then an
-    /// edit drawn at generation 4 that leaves the chunk's volume `volume` and stamps `changes`.
+    /// edit drawn at generation 4 that leaves the chunk's volume `volume` and stamps `changes`
+    /// (and `drawn`, unless `changes` has it).
     /// Whether its back faces are culled after the edit.
     fn culled_after_edit(volume: f64, changes: ChunkChanges, counted: fn(&mut Closure)) -> bool {
         let (mut world, mesh, chunk, materials) = cube_unclosed(Vec3::new(0.0, 0.0, 5.0), true);
@@ -542,7 +424,8 @@ mod tests {
         world
             .entity_mut(chunk)
             .insert(ChunkShape { volume, bounds });
-        world.get_mut::<RenderChunks>(mesh.0).unwrap().changes = changes;
+        let drawn = if changes.drawn == 0 { 4 } else { changes.drawn };
+        world.get_mut::<RenderChunks>(mesh.0).unwrap().changes = ChunkChanges { drawn, ..changes };
         world.resource_mut::<RenderStats>().rebuilds = 4;
         choose_culling(&mut world);
         drawn_with(&world, chunk) == materials.surface_culled
@@ -563,9 +446,13 @@ mod tests {
         // Turned inside out, or flattened: both sides drawn.
         assert!(!culled_after_edit(-8.0, ChunkChanges::default(), closed));
         assert!(!culled_after_edit(0.0, ChunkChanges::default(), closed));
-        // Several parts: culled while drawn as counted (another mesh redrawn), not once moved.
-        assert!(culled_after_edit(8.0, ChunkChanges::default(), two_parts));
-        assert!(!culled_after_edit(8.5, ChunkChanges::default(), two_parts));
+        // Several parts: culled while not redrawn since (another mesh was), not once redrawn.
+        let untouched = ChunkChanges {
+            drawn: 3,
+            ..default()
+        };
+        assert!(culled_after_edit(8.0, untouched, two_parts));
+        assert!(!culled_after_edit(8.0, ChunkChanges::default(), two_parts));
     }
 
     #[test]
@@ -594,6 +481,7 @@ mod tests {
             faces: 3,
             positions: 1,
             parts: 2,
+            drawn: 3,
         };
         assert!(culled_after_edit(8.0, before, holed));
     }
