@@ -265,6 +265,17 @@ mod tests {
         PolygonSoup::from_faces(soup.positions.clone(), &faces)
     }
 
+    /// The cube `[-1, 1]³` without its +z face (the second).
+    fn open_at_the_top() -> PolygonSoup {
+        let cube = shapes::cube();
+        let faces: Vec<&[u32]> = cube
+            .faces()
+            .enumerate()
+            .filter_map(|(f, face)| (f != 1).then_some(face))
+            .collect();
+        PolygonSoup::from_faces(cube.positions.clone(), &faces)
+    }
+
     /// `a`, and `b` moved 5 along x beside it: two components.
     fn side_by_side(a: &PolygonSoup, b: &PolygonSoup) -> PolygonSoup {
         let mut both = a.clone();
@@ -291,15 +302,8 @@ mod tests {
 
     #[test]
     fn the_drawn_triangles_close_as_the_polygons_do() {
-        let cube = shapes::cube();
         // Open at the top, beside a whole cube turned inside out: two components and a hole.
-        let faces: Vec<&[u32]> = cube
-            .faces()
-            .enumerate()
-            .filter_map(|(f, face)| (f != 1).then_some(face))
-            .collect();
-        let open = PolygonSoup::from_faces(cube.positions.clone(), &faces);
-        let soup = side_by_side(&open, &inside_out(&cube));
+        let soup = side_by_side(&open_at_the_top(), &inside_out(&shapes::cube()));
         let mut fans: Vec<[u32; 3]> = soup
             .faces()
             .flat_map(|f| (1..f.len() - 1).map(move |i| [f[0], f[i], f[i + 1]]))
@@ -353,14 +357,7 @@ mod tests {
 
     #[test]
     fn a_cube_open_at_the_top_hides_its_inside_only_from_below_the_rim() {
-        let cube = shapes::cube();
-        // Without its +z face (the second).
-        let faces: Vec<&[u32]> = cube
-            .faces()
-            .enumerate()
-            .filter_map(|(f, face)| (f != 1).then_some(face))
-            .collect();
-        let c = closure(&PolygonSoup::from_faces(cube.positions.clone(), &faces));
+        let c = closure(&open_at_the_top());
         // The cone's apex is the top's centre, so the cone is the missing face itself.
         assert!((c.volumes[0] - 8.0).abs() < 1e-6, "{:?}", c.volumes);
         let hole = c.holes[0].expect("a flat square loop");
