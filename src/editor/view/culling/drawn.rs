@@ -33,7 +33,7 @@ pub struct DrawnCounts {
     /// passed without a redraw.
     last_generation: usize,
     /// Each mesh's last count started, by the generation it was of: none starts again before
-    /// the mesh's chunks are redrawn ([`ChunkChanges::drawn`](super::super::render_sync::ChunkChanges::drawn)).
+    /// the mesh's chunks are redrawn ([`ChunkChanges::drawn`](crate::editor::view::render_sync::ChunkChanges::drawn)).
     started: HashMap<MeshId, usize>,
     counting: HashMap<MeshId, DrawnCount>,
 }
@@ -46,8 +46,9 @@ struct DrawnCount {
 }
 
 impl DrawnCounts {
-    /// Whether every count started has finished (for tests).
-    pub fn finished(&self) -> bool {
+    /// Whether every count started has finished.
+    #[cfg(test)]
+    fn finished(&self) -> bool {
         self.counting.values().all(|c| c.thread.is_finished())
     }
 }
