@@ -682,6 +682,24 @@ fn a_change_of_looks_redraws_the_mesh_and_keeps_what_changed_its_chunks() {
     assert_eq!(app.world().resource::<RenderStats>().rebuilds, 2);
     assert!(smooth(&mut app));
     assert_eq!(changes(&app), opened);
+    // A local edit in the same frame as a change of looks: one redraw, of the whole.
+    let e = some_interior_edge(&app);
+    app.world_mut()
+        .write_message(Request::Edit(Edit::local("flip", e)));
+    app.world_mut()
+        .write_message(key_event(KeyCode::KeyZ, ButtonState::Pressed));
+    app.update();
+    assert!(
+        last_outcome(&app).result.is_ok(),
+        "{:?}",
+        last_outcome(&app)
+    );
+    assert!(!smooth(&mut app));
+    assert_eq!(app.world().resource::<RenderStats>().rebuilds, 3);
+    assert_eq!((changes(&app).whole, changes(&app).drawn), (3, 3));
+    app.world_mut()
+        .write_message(key_event(KeyCode::KeyZ, ButtonState::Released));
+    app.update();
     // An edit redrawn whole is a change of the whole.
     app.world_mut()
         .write_message(Request::Edit(Edit::registered("loop").unwrap()));
