@@ -226,10 +226,10 @@ fn rebuild_all(
     settings: ViewSettings,
     same_geometry: bool,
 ) -> usize {
-    let (whole, drawn) = (this_generation(world), this_generation(world));
+    let now = this_generation(world);
     let mut changes = ChunkChanges {
-        whole,
-        drawn,
+        whole: now,
+        drawn: now,
         ..Default::default()
     };
     if let Some(old) = world.entity_mut(mesh.0).take::<RenderChunks>() {
@@ -300,6 +300,7 @@ fn rebuild_some(
         world.entity_mut(mesh.0).insert(chunks);
         return rebuild_all(world, mesh, settings, false);
     }
+    let now = this_generation(world);
     let mut touched: Vec<u32> = Vec::new();
     let mut added = Vec::new();
     for &f in faces {
@@ -308,7 +309,7 @@ fn rebuild_some(
             (Some(c), true) => touched.push(c),
             (Some(c), false) => {
                 chunks.face_chunk.remove(&f.0);
-                chunks.changes.faces = this_generation(world);
+                chunks.changes.faces = now;
                 touched.push(c);
             }
             (None, true) => {
@@ -329,19 +330,19 @@ fn rebuild_some(
                     list.0.push(f);
                 }
                 chunks.face_chunk.insert(f.0, c as u32);
-                chunks.changes.faces = this_generation(world);
+                chunks.changes.faces = now;
                 added.push(f);
                 touched.push(c as u32);
             }
             (None, false) => {}
         }
     }
-    chunks.changes.drawn = this_generation(world);
+    chunks.changes.drawn = now;
     if on_boundary(world, faces) {
-        chunks.changes.boundary = this_generation(world);
+        chunks.changes.boundary = now;
     }
     if added_apart(world, &added) {
-        chunks.changes.parts = this_generation(world);
+        chunks.changes.parts = now;
     }
     touched.sort_unstable();
     touched.dedup();

@@ -32,8 +32,8 @@ pub struct DrawnCounts {
     /// The render generation the last frame ended at: a mesh is counted once a frame has
     /// passed without a redraw.
     last_generation: usize,
-    /// Each mesh's last count started, by the generation it was of: none starts again before
-    /// the mesh's chunks are redrawn ([`ChunkChanges::drawn`](crate::editor::view::render_sync::ChunkChanges::drawn)).
+    /// The generation each mesh's last count was tried at (started or not): none is tried
+    /// again before the mesh's chunks are redrawn ([`ChunkChanges::drawn`](crate::editor::view::render_sync::ChunkChanges::drawn)).
     started: HashMap<MeshId, usize>,
     counting: HashMap<MeshId, DrawnCount>,
 }
@@ -91,9 +91,10 @@ pub fn count_drawn(world: &mut World) {
         .is_some_and(|b| b.get_pressed().next().is_some());
     if counts.last_generation == generation && !held {
         for mesh in stale(world, &counts, generation) {
+            // Tried once this redraw, whether or not it could start.
+            counts.started.insert(mesh, generation);
             if let Some(count) = start_count(world, mesh, generation) {
                 counts.counting.insert(mesh, count);
-                counts.started.insert(mesh, generation);
                 debug!("mesh {}: closure counted apart", mesh.0);
             }
         }

@@ -66,7 +66,7 @@ pub struct Counted {
 
 /// Records `mesh`'s closure as counted at render `generation`, with the volume its chunks drew
 /// then if they still draw that mesh; a count already recorded from later (from the drawn
-/// triangles, [`DrawnCounts`]), or from then with the volume drawn, stays.
+/// triangles, [`drawn::DrawnCounts`]), or from then with the volume drawn, stays.
 pub fn record_closure(world: &mut World, mesh: MeshId, generation: usize, closure: Closure) {
     let drawn_volume = (world.resource::<RenderStats>().rebuilds == generation)
         .then(|| drawn_shape(world, mesh).map(|(volume, _)| volume))
