@@ -16,9 +16,12 @@
 # VERBOSE=1. Then the idle CPU: the editor opened on the torus and left alone for 10 s once its
 # script is done, as a percentage of one core (from /proc/PID/stat).
 #
-# Beside them, the floor: Bevy alone in the same window, with the editor's two cameras and egui
-# panels but no mesh and no editor systems (`benches/window_floor.rs`, built here with `cargo
-# bench --no-run`; FLOOR=0 skips it). No change in Pappus takes a frame below that line.
+# Beside them, two floors. The editor's own: the same window with its mesh deleted (the torus
+# opened, then Ctrl+Delete), every panel and system of the editor running with nothing to draw;
+# issue 72's goals are ratios to it, and the table prints them. And Bevy's: Bevy alone in the
+# same window, with the editor's two cameras and egui panels but no mesh and no editor systems
+# (`benches/window_floor.rs`, built here with `cargo bench --no-run`; FLOOR=0 skips it). No
+# change in Pappus takes a frame below that line.
 #
 # Median of REPEAT runs (default 3) for each figure. Needs xvfb-run and mesa-vulkan-drivers
 # (`.ci/run` installs them).
@@ -42,10 +45,11 @@ TICK=$(getconf CLK_TCK)
 
 median() { sort -g | awk '{a[NR]=$1} END {if (NR) print a[int((NR+1)/2)]; else print "-"}'; }
 
-# One run: prints "FRAME_MS CPU_MS" for BINARY on SOURCE.
+# One run: prints "FRAME_MS CPU_MS" for BINARY on SOURCE, after the script steps PRELUDE (if
+# any) and WAIT frames.
 frame_run() {
   local out
-  out=$(PAPPUS_FRAME_STATS=1 PAPPUS_SCRIPT="wait:$WAIT;measure:$FRAMES;exit" \
+  out=$(PAPPUS_FRAME_STATS=1 PAPPUS_SCRIPT="${3:-}wait:$WAIT;measure:$FRAMES;exit" \
     timeout 900 xvfb-run -a -s "-screen 0 1280x800x24" "$1" "$2" 2>&1 || true)
   if [ "${VERBOSE:-0}" = 1 ]; then
     grep -a "frame-stats:" <<<"$out" | sed 's/.*frame-stats: /    /' >&2 || true
@@ -96,12 +100,16 @@ floor_run() {
 declare -A FRAME CPU IDLE
 FLOOR_BIN=$(floor_binary)
 FLOORS=""
-SOURCES=("assets/torus.obj" "$MODELS/stanford-bunny.obj" "shape:icosphere:8")
-NAMES=("torus (288 quads)" "bunny (69k triangles)" "icosphere:8 (1.3M triangles)")
+SOURCES=("assets/torus.obj" "$MODELS/stanford-bunny.obj" "shape:icosphere:8" "assets/torus.obj")
+NAMES=("torus (288 quads)" "bunny (69k triangles)" "icosphere:8 (1.3M triangles)"
+  "the editor's floor: its mesh deleted")
+# The editor's floor (the last source) deletes its mesh five frames in.
+PRELUDES=("" "" "" "wait:5;key:Ctrl+Delete;")
+OWN_FLOOR=3
 for r in $(seq 1 "$REPEAT"); do
   for i in "${!SOURCES[@]}"; do
     for b in "${!BINARIES[@]}"; do
-      read -r ms cpu < <(frame_run "${BINARIES[$b]}" "${SOURCES[$i]}")
+      read -r ms cpu < <(frame_run "${BINARIES[$b]}" "${SOURCES[$i]}" "${PRELUDES[$i]}")
       FRAME[$b,$i]+="$ms "
       CPU[$b,$i]+="$cpu "
       echo "run $r: ${BINARIES[$b]} ${NAMES[$i]}: $ms ms a frame, $cpu ms CPU" >&2
@@ -126,11 +134,24 @@ for i in "${!SOURCES[@]}"; do
     echo "| ${NAMES[$i]} | ${BINARIES[$b]} | $f | $c |"
   done
 done
+BEVY_FLOOR=nan
 if [ -n "$FLOOR_BIN" ]; then
-  f=$(tr ' ' '\n' <<<"$FLOORS" | grep -v '^$' | median)
-  echo "| floor: Bevy, the editor's cameras and panels, no mesh | window_floor | $f | — |"
+  BEVY_FLOOR=$(tr ' ' '\n' <<<"$FLOORS" | grep -v '^$' | median)
+  echo "| floor: Bevy, the editor's cameras and panels, no mesh | window_floor | $BEVY_FLOOR | — |"
 fi
 for b in "${!BINARIES[@]}"; do
   d=$(tr ' ' '\n' <<<"${IDLE[$b]}" | grep -v '^$' | median)
   echo "| idle 10 s, torus | ${BINARIES[$b]} | — | $d % of a core |"
+done
+# The ratios of issue 72: each binary's torus and bunny against its own floor (the medians above),
+# and against Bevy's.
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN {if (a + 0 > 0 && b + 0 > 0) printf "%.2f", a / b; else print "-"}'; }
+echo
+echo "| binary | torus / its floor | bunny / its floor | torus / Bevy's floor | bunny / Bevy's floor |"
+echo "|---|---|---|---|---|"
+for b in "${!BINARIES[@]}"; do
+  t=$(tr ' ' '\n' <<<"${FRAME[$b,0]}" | grep -v '^$' | median)
+  n=$(tr ' ' '\n' <<<"${FRAME[$b,1]}" | grep -v '^$' | median)
+  o=$(tr ' ' '\n' <<<"${FRAME[$b,$OWN_FLOOR]}" | grep -v '^$' | median)
+  echo "| ${BINARIES[$b]} | $(ratio "$t" "$o") | $(ratio "$n" "$o") | $(ratio "$t" "$BEVY_FLOOR") | $(ratio "$n" "$BEVY_FLOOR") |"
 done
