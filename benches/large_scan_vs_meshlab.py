@@ -15,8 +15,12 @@ fresh process (peak memory is its maximum resident set, by `/usr/bin/time`), eac
   `meshing_decimation_quadric_edge_collapse` (boundary preserved), and per collapse, against
   the same on the bunny.
 
-Usage: python3 benches/large_scan_vs_meshlab.py [--runs N]   (needs pymeshlab, the `pappus`
-package and the release binary: cargo build --release)
+With `--sizes`, two more: the ogre Loop-subdivided twice (2.0 M triangles) and an icosphere of
+level 9 (5.2 M), for the cost per face across sizes; `--no-qem` leaves out the QEM columns (on
+the 5.2 M icosphere MeshLab's QEM alone takes minutes).
+
+Usage: python3 benches/large_scan_vs_meshlab.py [--runs N] [--sizes] [--no-qem]   (needs
+pymeshlab, the `pappus` package and the release binary: cargo build --release)
 """
 import json
 import os
@@ -31,6 +35,8 @@ import pappus
 from meshlab_common import PAPPUS, ROOT, write_scans
 
 RUNS = int(sys.argv[sys.argv.index("--runs") + 1]) if "--runs" in sys.argv else 3
+SIZES = "--sizes" in sys.argv
+QEM = "--no-qem" not in sys.argv
 BUNNY = os.path.join(ROOT, "../shared/models/stanford-bunny.obj")
 MESHLAB = r"""
 import json, sys, time
@@ -123,7 +129,7 @@ def meshlab_qem(path):
 
 def main():
     folder = tempfile.mkdtemp(prefix="pappus-scan-")
-    scans = write_scans(folder)
+    scans = write_scans(folder, icosphere_levels=(8, 9) if SIZES else (8,), ogre=SIZES)
     bunny_ply = os.path.join(folder, "bunny.ply")
     pappus.load(BUNNY).save(bunny_ply)
     out = os.path.join(folder, "out.ply")
@@ -132,30 +138,35 @@ def main():
                                        lambda: json.loads(meshlab("load", BUNNY)[2]))
     print(f"bunny OBJ load: Pappus {obj_p['load_ms']:.0f} ms (read {obj_p['read_ms']:.0f}), "
           f"MeshLab {obj_m['load_ms']:.0f} ms ({obj_p['load_ms'] / obj_m['load_ms']:.2f}×)")
-    base_p, base_m = median_of(lambda: pappus_qem(bunny_ply, out)), median_of(lambda: meshlab_qem(bunny_ply))
-    per_p, per_m = base_p["ms"] / base_p["collapses"], base_m["ms"] / base_m["collapses"]
-    print(f"bunny ({base_p['faces'] * 10:.0f} faces) QEM to 10 %: Pappus {base_p['ms']:.0f} ms, "
-          f"MeshLab {base_m['ms']:.0f} ms ({base_p['ms'] / base_m['ms']:.2f}×); per collapse "
-          f"{per_p * 1000:.2f} µs, MeshLab {per_m * 1000:.2f} µs")
+    if QEM:
+        base_p = median_of(lambda: pappus_qem(bunny_ply, out))
+        base_m = median_of(lambda: meshlab_qem(bunny_ply))
+        per_p, per_m = base_p["ms"] / base_p["collapses"], base_m["ms"] / base_m["collapses"]
+        print(f"bunny ({base_p['faces'] * 10:.0f} faces) QEM to 10 %: Pappus {base_p['ms']:.0f} ms, "
+              f"MeshLab {base_m['ms']:.0f} ms ({base_p['ms'] / base_m['ms']:.2f}×); per collapse "
+              f"{per_p * 1000:.2f} µs, MeshLab {per_m * 1000:.2f} µs")
     print("| scan | faces | open + save peak MB: Pappus / MeshLab (its import alone) | ratio | bytes per face: Pappus, MeshLab over its import "
           "| load ms: Pappus (parse) / MeshLab | ratio | QEM to 10 % ms: Pappus / MeshLab | ratio "
           "| per collapse / the bunny's: Pappus, MeshLab |")
     print("|---|---:|---|---:|---|---|---:|---|---:|---|")
     for name, path in scans:
-        load = median_of(lambda: pappus_load(path))
-        ps = median_of(lambda: pappus_open_save(path, out))
-        ml = median_of(lambda: meshlab_open_save(path, out))
-        pq = median_of(lambda: pappus_qem(path, out))
-        mq = median_of(lambda: meshlab_qem(path))
-        faces = load["faces"]
+        load_p, load_m = medians_alternating(lambda: pappus_load(path),
+                                             lambda: json.loads(meshlab("load", path)[2]))
+        ps, ml = medians_alternating(lambda: pappus_open_save(path, out),
+                                     lambda: meshlab_open_save(path, out))
+        faces = load_p["faces"]
+        qem = "— / — | — | —"
+        if QEM:
+            pq = median_of(lambda: pappus_qem(path, out))
+            mq = median_of(lambda: meshlab_qem(path))
+            qem = (f"{pq['ms']:.0f} / {mq['ms']:.0f} | {pq['ms'] / mq['ms']:.2f} "
+                   f"| {pq['ms'] / pq['collapses'] / per_p:.2f}, "
+                   f"{mq['ms'] / mq['collapses'] / per_m:.2f}")
         print(f"| {name} | {faces:,} | {ps['mb']:.0f} / {ml['mb']:.0f} ({ml['floor_mb']:.0f}) "
               f"| {ps['mb'] / ml['mb']:.1f} | {ps['mb'] * 2**20 / faces:.0f} B, "
               f"{(ml['mb'] - ml['floor_mb']) * 2**20 / faces:.0f} B over its import "
-              f"| {load['load_ms']:.0f} ({load['read_ms']:.0f}) / {mq['load_ms']:.0f} "
-              f"| {load['load_ms'] / mq['load_ms']:.2f} | {pq['ms']:.0f} / {mq['ms']:.0f} "
-              f"| {pq['ms'] / mq['ms']:.2f} | {pq['ms'] / pq['collapses'] / per_p:.2f}, "
-              f"{mq['ms'] / mq['collapses'] / per_m:.2f} |", flush=True)
-
+              f"| {load_p['load_ms']:.0f} ({load_p['read_ms']:.0f}) / {load_m['load_ms']:.0f} "
+              f"| {load_p['load_ms'] / load_m['load_ms']:.2f} | {qem} |", flush=True)
 
 if __name__ == "__main__":
     main()

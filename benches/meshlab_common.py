@@ -61,17 +61,23 @@ def hausdorff_text(original, result):
     return f"Hausdorff {sparse:.3f} % (dense {dense:.3f} %)"
 
 
-def write_scans(folder, icosphere_levels=(8,)):
-    """The large meshes the scan benchmarks read: the Stanford bunny subdivided twice by Loop
-    and an icosphere of each level in `icosphere_levels`, written by Pappus as binary PLY into
-    `folder`. Returns [(name, path)], the bunny's first."""
+def write_scans(folder, icosphere_levels=(8,), ogre=False):
+    """The large meshes the scan benchmarks read: the Stanford bunny subdivided twice by Loop,
+    with `ogre` the ogre subdivided the same way (2.0 M triangles), and an icosphere of each
+    level in `icosphere_levels`, written by Pappus as binary PLY into `folder`. Returns
+    [(name, path)], the bunny's first."""
     import pappus
 
-    scans = [("bunny, Loop ×2", os.path.join(folder, "bunny-loop2.ply"))]
-    bunny = pappus.load(os.path.join(ROOT, "../shared/models/stanford-bunny.obj"))
-    bunny.loop(2)
-    bunny.save(scans[0][1])
-    del bunny
+    scans = []
+    for name, model, wanted in (("bunny", "stanford-bunny", True), ("ogre", "ogre", ogre)):
+        if not wanted:
+            continue
+        path = os.path.join(folder, f"{name}-loop2.ply")
+        mesh = pappus.load(os.path.join(ROOT, f"../shared/models/{model}.obj"))
+        mesh.loop(2)
+        mesh.save(path)
+        del mesh
+        scans.append((f"{name}, Loop ×2", path))
     for level in icosphere_levels:
         path = os.path.join(folder, f"icosphere-{level}.ply")
         pappus.load(f"shape:icosphere:{level}").save(path)

@@ -5,9 +5,12 @@
 //! What must hold: memory warmed on another thread is what the next large allocation gets,
 //! without page faults; freed memory is reused rather than faulted in again; warming on the
 //! calling thread lasts as long as its caller asks; and a block allocated but not yet written
-//! is faulted in by walking the heap.
+//! is faulted in by walking the heap, which goes no further than a little past the heap's last
+//! block, however far it is allowed.
 
-use pappus::process_memory::{fault_in_heap_while, keep_freed_memory, warm, warm_while, warming};
+use pappus::process_memory::{
+    FAULT_AHEAD_BYTES, fault_in_heap_while, keep_freed_memory, warm, warm_while, warming,
+};
 use std::cell::Cell;
 use std::hint::black_box;
 
@@ -26,6 +29,22 @@ fn minor_faults() -> u64 {
         .unwrap()
         .parse()
         .unwrap()
+}
+
+/// The process's resident memory in bytes (`/proc/self/statm`'s second field, in pages).
+fn resident_bytes() -> usize {
+    let statm = std::fs::read_to_string("/proc/self/statm").expect("/proc/self/statm");
+    let pages: usize = statm.split_whitespace().nth(1).unwrap().parse().unwrap();
+    pages * PAGE
+}
+
+/// A `busy` that holds for its first `asks` questions.
+fn busy_for(asks: usize) -> impl Fn() -> bool {
+    let asked = Cell::new(0);
+    move || {
+        asked.set(asked.get() + 1);
+        asked.get() <= asks
+    }
 }
 
 /// Page faults taken while writing to each page of a new block of `BLOCK` bytes.
@@ -81,12 +100,7 @@ fn main() {
     assert_eq!(warm(0).map(|_| ()), None, "nothing to warm");
 
     // On the calling thread: for as long as `busy` says, asked every 256 KiB.
-    let asked = Cell::new(0);
-    let busy_for_four = || {
-        asked.set(asked.get() + 1);
-        asked.get() <= 4
-    };
-    assert_eq!(warm_while(BLOCK, busy_for_four), 4 * (256 << 10));
+    assert_eq!(warm_while(BLOCK, busy_for(4)), 4 * (256 << 10));
     assert_eq!(warm_while(BLOCK, || true), BLOCK, "the whole block");
     assert_eq!(warm_while(0, || true), 0, "nothing to warm");
 
@@ -95,7 +109,10 @@ fn main() {
     let fresh = 4 * BLOCK;
     let mut untouched: Vec<u8> = Vec::with_capacity(fresh);
     assert_eq!(fault_in_heap_while(fresh, || false), 0, "not busy: nothing");
-    let walked = fault_in_heap_while(fresh, || true);
+    // Asked every MiB walked: busy for the block, the way past the heap's top, and a while of
+    // waiting there for an allocation that does not come.
+    let mib = 1 << 20;
+    let walked = fault_in_heap_while(fresh, busy_for((fresh + FAULT_AHEAD_BYTES) / mib + 64));
     if walked == 0 {
         println!("process_memory: this kernel cannot populate pages (before Linux 5.14)");
     } else {
@@ -115,6 +132,15 @@ fn main() {
             4 * pages
         );
     }
+    // However far it may go, the walk stops a little past the heap's last block: every page
+    // below it is resident by now, so what it adds is what it faulted in past the top.
+    let before = resident_bytes();
+    fault_in_heap_while(1 << 30, busy_for((1 << 30) / mib + 64));
+    let added = resident_bytes().saturating_sub(before);
+    assert!(
+        added <= FAULT_AHEAD_BYTES + mib,
+        "{added} bytes faulted in past the heap's top"
+    );
     println!(
         "process_memory: {pages} pages; faults after warming {after_warming}, settling \
          {settling}, six fills after that {again}"
