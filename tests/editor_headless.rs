@@ -1415,6 +1415,45 @@ fn a_large_meshs_figures_are_counted_apart_and_its_validity_when_asked() {
     assert_eq!(view(&app).validation, Some(Ok(())));
 }
 
+/// A change of looks redraws the mesh and leaves the panel's figures standing (on the bunny a
+/// count is 150 ms of a frame); showing a quantity counts them again with its histogram, and so
+/// does an edit.
+#[test]
+fn a_change_of_looks_leaves_the_panels_figures_standing() {
+    use pappus::editor::panels::{state::InspectorView, ui::snapshot};
+    use pappus::editor::view::colouring::ColorBy;
+    use pappus::ops::geometry::Quantity;
+    let mut app = app();
+    app.init_resource::<InspectorView>()
+        .add_systems(Update, snapshot.in_set(pappus::editor::EditorSystems::Ui));
+    open(&mut app, "shape:icosphere");
+    let view = |app: &App| app.world().resource::<InspectorView>().clone();
+    update_until(&mut app, |app| {
+        view(app).mesh.is_some_and(|m| m.stats.is_some())
+    });
+    let counted = view(&app).stats_generation;
+    let histograms = view(&app).histograms.len();
+    let rebuilds = app.world().resource::<RenderStats>().rebuilds;
+    press(&mut app, KeyCode::KeyZ);
+    press(&mut app, KeyCode::KeyZ);
+    for _ in 0..3 {
+        app.update();
+    }
+    let stats = app.world().resource::<RenderStats>();
+    assert_eq!(stats.rebuilds, rebuilds + 2, "redrawn each time");
+    assert_eq!(view(&app).stats_generation, counted, "not counted again");
+    // A quantity shown: its histogram joins the others.
+    app.world_mut().resource_mut::<ColorBy>().0 = Some(Quantity::VALENCE);
+    update_until(&mut app, |app| view(app).histograms.len() == histograms + 1);
+    let coloured = view(&app).stats_generation;
+    assert_ne!(coloured, counted);
+    // An edit: counted again.
+    let e = some_interior_edge(&app);
+    app.world_mut()
+        .write_message(Request::Edit(Edit::local("flip", e)));
+    update_until(&mut app, |app| view(app).stats_generation != coloured);
+}
+
 #[test]
 fn unsaved_changes_are_not_lost_to_an_open() {
     let mut app = app();

@@ -13,7 +13,8 @@
 //! panel's button), since every mesh an operation leaves is valid by construction and the full
 //! check stays a frame-long wait.
 
-use bevy::prelude::{Resource, World};
+use bevy::ecs::change_detection::Tick;
+use bevy::prelude::{DetectChanges, Resource, World};
 use bevy::window::RequestRedraw;
 use std::path::PathBuf;
 use std::thread::JoinHandle;
@@ -26,7 +27,7 @@ use super::plots::{Histogram, histograms_of_tables};
 use crate::editor::pipeline::jobs::{JobSettings, READ_SLICE};
 use crate::editor::view::colouring::VertexValues;
 use crate::editor::view::culling::record_closure;
-use crate::editor::view::render_sync::RenderChunks;
+use crate::editor::view::render_sync::{RenderChunks, RenderStats};
 
 /// The active mesh as the panel shows it.
 #[derive(Debug, Clone)]
@@ -48,10 +49,37 @@ pub struct MeshView {
 /// its holes (for [`crate::editor::view::culling`]).
 type Figures = (MeshStats, Vec<Histogram>, Closure);
 
-/// Figures being counted apart from the frame: the mesh generation they are for, the mesh, and
-/// where they stand.
+/// What a mesh's figures are counted at: the mesh, the redraws of edits so far
+/// ([`RenderStats::edits_drawn`]) and when the quantity shown on it last changed (its histogram
+/// is among the figures). A redraw for the looks alone (shading, wireframe, checkerboard)
+/// changes none of them, so the figures shown stand: on the bunny a count is 150 ms of a frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FiguresKey {
+    mesh: Option<MeshId>,
+    edits: usize,
+    shown: Option<Tick>,
+}
+
+impl FiguresKey {
+    /// The key of `mesh`'s figures as the world stands.
+    pub fn of(world: &World, mesh: MeshId) -> Self {
+        Self {
+            mesh: Some(mesh),
+            edits: world.resource::<RenderStats>().edits_drawn,
+            shown: world
+                .get_entity(mesh.0)
+                .ok()
+                .and_then(|e| e.get_ref::<VertexValues>())
+                .map(|values| values.last_changed()),
+        }
+    }
+}
+
+/// Figures being counted apart from the frame: what they are counted at, the render generation
+/// the count began at (the closure holds for it, see [`record_closure`]), the mesh, and where
+/// they stand.
 #[derive(Resource, Default)]
-pub struct Counting(Option<(usize, MeshId, Apart)>);
+pub struct Counting(Option<(FiguresKey, usize, MeshId, Apart)>);
 
 /// The two steps of counting a large mesh's figures.
 enum Apart {
@@ -61,15 +89,16 @@ enum Apart {
     Counting(JoinHandle<Figures>),
 }
 
-/// Counts the figures of `mesh` (at mesh `generation`) into `view`: at once for a small mesh,
-/// by starting to read a large one's tables (see the module doc; [`collect`] goes on).
+/// Counts the figures of `mesh` (at `key`) into `view`: at once for a small mesh, by starting
+/// to read a large one's tables (see the module doc; [`collect`] goes on).
 pub fn count(
     world: &mut World,
     view: &mut Option<MeshView>,
     shown_histograms: &mut Vec<Histogram>,
     mesh: MeshId,
-    generation: usize,
+    key: FiguresKey,
 ) {
+    let generation = world.resource::<RenderStats>().rebuilds;
     let info = world.get::<MeshInfo>(mesh.0).cloned().unwrap_or_default();
     // The faces drawn: known without a walk over the mesh.
     let faces = world
@@ -101,6 +130,7 @@ pub fn count(
         counting: true,
     });
     world.resource_mut::<Counting>().0 = Some((
+        key,
         generation,
         mesh,
         Apart::Reading(Box::new((GradualRead::new(mesh), shown))),
@@ -123,18 +153,18 @@ fn count_apart(tables: MeshTables, shown: Option<VertexValues>) -> Option<JoinHa
 
 /// Goes on counting a large mesh's figures: reads the next slice of its tables, starts the
 /// counting thread once they are read, and takes the figures it has finished into `view`, if
-/// they are for `generation` (figures of an older mesh are dropped). Asks for the next frame
-/// while there is more to do. Returns whether the view changed.
+/// they are for `key` (figures of an older mesh are dropped). Asks for the next frame while
+/// there is more to do. Returns whether the view changed.
 pub fn collect(
     world: &mut World,
     view: &mut Option<MeshView>,
     shown_histograms: &mut Vec<Histogram>,
-    generation: usize,
+    key: FiguresKey,
 ) -> bool {
-    let Some((counted, mesh, apart)) = world.resource_mut::<Counting>().0.take() else {
+    let Some((counted, generation, mesh, apart)) = world.resource_mut::<Counting>().0.take() else {
         return false;
     };
-    if counted != generation {
+    if counted != key {
         return false;
     }
     let next = match apart {
@@ -154,7 +184,7 @@ pub fn collect(
             let Ok((stats, histograms, closure)) = thread.join() else {
                 return false;
             };
-            record_closure(world, mesh, counted, closure);
+            record_closure(world, mesh, generation, closure);
             if let Some(mesh) = view.as_mut() {
                 mesh.stats = Some(stats);
                 mesh.counting = false;
@@ -166,7 +196,7 @@ pub fn collect(
     if next.is_some() {
         world.write_message(RequestRedraw);
     }
-    world.resource_mut::<Counting>().0 = next.map(|apart| (counted, mesh, apart));
+    world.resource_mut::<Counting>().0 = next.map(|apart| (counted, generation, mesh, apart));
     false
 }
 

@@ -6,7 +6,7 @@
 use bevy::math::Vec3;
 use bevy::prelude::*;
 
-use super::mesh_figures::MeshView;
+use super::mesh_figures::{FiguresKey, MeshView};
 use super::plots::Histogram;
 use bevy_egui::egui;
 
@@ -34,11 +34,11 @@ pub struct InspectorView {
     pub selected_set: String,
     /// The transform under way, as the status line says it.
     pub gesture: Option<String>,
-    /// Rebuild count at the last statistics refresh.
-    pub stats_generation: usize,
-    /// The rebuild count last seen.
-    pub seen_generation: usize,
-    /// When the rebuild count last changed.
+    /// What the figures shown were counted at.
+    pub stats_generation: FiguresKey,
+    /// What the figures would be counted at, as last seen.
+    pub seen_generation: FiguresKey,
+    /// When that last changed.
     pub changed_at: Option<std::time::Instant>,
     /// Whether the last change came after the mesh had stood still (it is counted at once).
     pub after_quiet: bool,

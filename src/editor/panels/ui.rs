@@ -4,7 +4,8 @@
 //! The UI only reads and asks. An exclusive system ([`snapshot`]) copies what the panels show
 //! into [`InspectorView`] in the `Ui` set; the egui system ([`panels`]) draws that copy and
 //! answers clicks by writing [`Request`]s, exactly as the keyboard does. Statistics and
-//! validation (O(mesh)) are recomputed only when a mesh was rebuilt, not every frame.
+//! validation (O(mesh)) are recomputed only when a mesh was opened or edited or the quantity
+//! shown on it changed ([`FiguresKey`]), not every frame nor for a change of looks.
 
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, EguiPrimaryContextPass, egui};
@@ -13,6 +14,7 @@ use crate::mesh::ids::ElementId;
 use crate::mesh::topology::MeshRef;
 use crate::mesh::{InMesh, MeshInfo};
 
+use super::mesh_figures::FiguresKey;
 use super::sections::SECTIONS;
 use super::sections::folding::PanelSections;
 use super::state::PanelContext;
@@ -25,7 +27,7 @@ use crate::editor::session::schedule::EditorSystems;
 use crate::editor::session::schedule::KeyboardCaptured;
 use crate::editor::session::selection::{ActiveMesh, SelectMode, Selection, navigate};
 use crate::editor::view::colouring::{ColorBy, VertexValues};
-use crate::editor::view::render_sync::{RenderStats, ViewSettings};
+use crate::editor::view::render_sync::ViewSettings;
 use crate::ops::simplification_history::SimplificationHistory;
 
 /// The panels' plugin.
@@ -93,12 +95,14 @@ pub const STATS_QUIET: std::time::Duration = std::time::Duration::from_millis(30
 
 /// Copies what the panels show out of the world.
 pub fn snapshot(world: &mut World) {
-    let generation = world.resource::<RenderStats>().rebuilds;
     let active = world.resource::<ActiveMesh>().0;
     let mut view = std::mem::take(&mut *world.resource_mut::<InspectorView>());
     match active.filter(|m| world.get::<MeshInfo>(m.0).is_some()) {
         None => view.mesh = None,
-        Some(mesh) => refresh_figures(world, &mut view, mesh, generation),
+        Some(mesh) => {
+            let key = FiguresKey::of(world, mesh);
+            refresh_figures(world, &mut view, mesh, key);
+        }
     }
     view.colour = active
         .and_then(|m| world.get::<VertexValues>(m.0))
@@ -150,7 +154,7 @@ fn refresh_figures(
     world: &mut World,
     view: &mut InspectorView,
     mesh: crate::mesh::MeshId,
-    generation: usize,
+    key: FiguresKey,
 ) {
     let dragging = world
         .get_resource::<ButtonInput<MouseButton>>()
@@ -166,30 +170,24 @@ fn refresh_figures(
     let quiet = |at: Option<std::time::Instant>| at.is_none_or(|t| now - t >= STATS_QUIET);
     // Never in the frame of the change itself: that frame hands the changed mesh to the
     // renderer, which draws it while the next frame counts.
-    let just_changed = view.seen_generation != generation;
+    let just_changed = view.seen_generation != key;
     if just_changed {
-        view.seen_generation = generation;
+        view.seen_generation = key;
         view.after_quiet = quiet(view.changed_at);
         view.changed_at = Some(now);
     }
-    let changed = view.stats_generation != generation;
+    let changed = view.stats_generation != key;
     let due = !just_changed && (view.after_quiet || quiet(view.changed_at));
     if changed && !due {
         world.write_message(bevy::window::RequestRedraw);
     }
     let stale = changed && !dragging && due;
     if view.mesh.is_none() || stale {
-        super::mesh_figures::count(
-            world,
-            &mut view.mesh,
-            &mut view.histograms,
-            mesh,
-            generation,
-        );
-        view.stats_generation = generation;
+        super::mesh_figures::count(world, &mut view.mesh, &mut view.histograms, mesh, key);
+        view.stats_generation = key;
         view.after_quiet = false;
     }
-    super::mesh_figures::collect(world, &mut view.mesh, &mut view.histograms, generation);
+    super::mesh_figures::collect(world, &mut view.mesh, &mut view.histograms, key);
     if std::mem::take(&mut world.resource_mut::<UiState>().check_validity) {
         super::mesh_figures::check_validity(world, &mut view.mesh, mesh);
     }

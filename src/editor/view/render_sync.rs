@@ -88,6 +88,10 @@ impl Default for ViewSettings {
 pub struct RenderStats {
     /// Render meshes rebuilt so far.
     pub rebuilds: usize,
+    /// Those of [`Self::rebuilds`] that drew a mesh opened or changed by an edit: every one
+    /// but a redraw for its looks alone ([`LooksDirty`]: shading, wireframe, checkerboard,
+    /// colouring). The panel's figures of the mesh are counted again after these.
+    pub edits_drawn: usize,
     /// Milliseconds the last rebuild took.
     pub last_rebuild_ms: f64,
     /// Triangles in the last rebuilt mesh.
@@ -171,7 +175,7 @@ pub fn sync_render_meshes(world: &mut World) {
         world
             .entity_mut(entity)
             .remove::<(MeshDirty, LooksDirty, DirtyFaces, PositionsDirty)>();
-        record(world, MeshId(entity), triangles, start);
+        record(world, MeshId(entity), triangles, start, !same_geometry);
     }
     let partial: Vec<Entity> = world
         .query_filtered::<Entity, (With<MeshInfo>, With<DirtyFaces>)>()
@@ -184,7 +188,7 @@ pub fn sync_render_meshes(world: &mut World) {
             .take::<DirtyFaces>()
             .unwrap_or_default();
         let triangles = rebuild_some(world, MeshId(entity), &faces.0, settings);
-        record(world, MeshId(entity), triangles, start);
+        record(world, MeshId(entity), triangles, start, true);
     }
     // After the partial redraws: a chunk whose faces changed has its vertex list anew.
     let moved: Vec<Entity> = world
@@ -198,13 +202,16 @@ pub fn sync_render_meshes(world: &mut World) {
             Some(triangles) => triangles,
             None => rebuild_all(world, MeshId(entity), settings, false),
         };
-        record(world, MeshId(entity), triangles, start);
+        record(world, MeshId(entity), triangles, start, true);
     }
 }
 
-fn record(world: &mut World, mesh: MeshId, triangles: usize, start: Instant) {
+/// Counts a redraw of `mesh` in [`RenderStats`]: one of an edit's where `edited`, else one for
+/// its looks alone.
+fn record(world: &mut World, mesh: MeshId, triangles: usize, start: Instant, edited: bool) {
     let mut stats = world.resource_mut::<RenderStats>();
     stats.rebuilds += 1;
+    stats.edits_drawn += usize::from(edited);
     stats.last_triangles = triangles;
     stats.last_rebuild_ms = start.elapsed().as_secs_f64() * 1000.0;
     bevy::log::info!(
