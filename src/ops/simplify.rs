@@ -3,8 +3,8 @@
 //! Every face contributes the quadric `K = p pᵀ` of its plane `p = (n, −n·x)`, weighted by its
 //! area but never by less than [`SimplifyParams::min_area_share`] of the mean face area: with
 //! the area alone, a crease or a bump drawn with small or sliver triangles weighs little and is
-//! among the first things flattened (on the teapot and the beast, the farthest points of the
-//! result from the input were such places);
+//! among the first things flattened (the share measured on the shared models:
+//! `docs/performance.md`);
 //! a vertex's quadric is the sum over its faces, plus, on the boundary, quadrics of planes
 //! through each boundary edge perpendicular to its face (weighted by [`SimplifyParams::
 //! boundary_weight`]) so that borders keep their shape and holes do not close. Sharp edges
