@@ -44,6 +44,8 @@ MODELS=../shared/models
 TICK=$(getconf CLK_TCK)
 
 median() { sort -g | awk '{a[NR]=$1} END {if (NR) print a[int((NR+1)/2)]; else print "-"}'; }
+# The median of a space-separated list of figures.
+median_of() { tr ' ' '\n' <<<"$1" | grep -v '^$' | median; }
 
 # One run: prints "FRAME_MS CPU_MS" for BINARY on SOURCE, after the script steps PRELUDE (if
 # any) and WAIT frames.
@@ -129,18 +131,18 @@ echo "| mesh (1280x800, lavapipe) | binary | frame ms (median of $REPEAT) | CPU 
 echo "|---|---|---|---|"
 for i in "${!SOURCES[@]}"; do
   for b in "${!BINARIES[@]}"; do
-    f=$(tr ' ' '\n' <<<"${FRAME[$b,$i]}" | grep -v '^$' | median)
-    c=$(tr ' ' '\n' <<<"${CPU[$b,$i]}" | grep -v '^$' | median)
+    f=$(median_of "${FRAME[$b,$i]}")
+    c=$(median_of "${CPU[$b,$i]}")
     echo "| ${NAMES[$i]} | ${BINARIES[$b]} | $f | $c |"
   done
 done
 BEVY_FLOOR=nan
 if [ -n "$FLOOR_BIN" ]; then
-  BEVY_FLOOR=$(tr ' ' '\n' <<<"$FLOORS" | grep -v '^$' | median)
+  BEVY_FLOOR=$(median_of "$FLOORS")
   echo "| floor: Bevy, the editor's cameras and panels, no mesh | window_floor | $BEVY_FLOOR | — |"
 fi
 for b in "${!BINARIES[@]}"; do
-  d=$(tr ' ' '\n' <<<"${IDLE[$b]}" | grep -v '^$' | median)
+  d=$(median_of "${IDLE[$b]}")
   echo "| idle 10 s, torus | ${BINARIES[$b]} | — | $d % of a core |"
 done
 # The ratios of issue 72: each binary's torus and bunny against its own floor (the medians above),
@@ -150,8 +152,8 @@ echo
 echo "| binary | torus / its floor | bunny / its floor | torus / Bevy's floor | bunny / Bevy's floor |"
 echo "|---|---|---|---|---|"
 for b in "${!BINARIES[@]}"; do
-  t=$(tr ' ' '\n' <<<"${FRAME[$b,0]}" | grep -v '^$' | median)
-  n=$(tr ' ' '\n' <<<"${FRAME[$b,1]}" | grep -v '^$' | median)
-  o=$(tr ' ' '\n' <<<"${FRAME[$b,$OWN_FLOOR]}" | grep -v '^$' | median)
+  t=$(median_of "${FRAME[$b,0]}")
+  n=$(median_of "${FRAME[$b,1]}")
+  o=$(median_of "${FRAME[$b,$OWN_FLOOR]}")
   echo "| ${BINARIES[$b]} | $(ratio "$t" "$o") | $(ratio "$n" "$o") | $(ratio "$t" "$BEVY_FLOOR") | $(ratio "$n" "$BEVY_FLOOR") |"
 done
