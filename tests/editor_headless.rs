@@ -1431,7 +1431,7 @@ fn a_change_of_looks_leaves_the_panels_figures_standing() {
     update_until(&mut app, |app| {
         view(app).mesh.is_some_and(|m| m.stats.is_some())
     });
-    let counted = view(&app).stats_generation;
+    let counted = view(&app).figures_key;
     let histograms = view(&app).histograms.len();
     let rebuilds = app.world().resource::<RenderStats>().rebuilds;
     press(&mut app, KeyCode::KeyZ);
@@ -1441,17 +1441,17 @@ fn a_change_of_looks_leaves_the_panels_figures_standing() {
     }
     let stats = app.world().resource::<RenderStats>();
     assert_eq!(stats.rebuilds, rebuilds + 2, "redrawn each time");
-    assert_eq!(view(&app).stats_generation, counted, "not counted again");
+    assert_eq!(view(&app).figures_key, counted, "not counted again");
     // A quantity shown: its histogram joins the others.
     app.world_mut().resource_mut::<ColorBy>().0 = Some(Quantity::VALENCE);
     update_until(&mut app, |app| view(app).histograms.len() == histograms + 1);
-    let coloured = view(&app).stats_generation;
+    let coloured = view(&app).figures_key;
     assert_ne!(coloured, counted);
     // An edit: counted again.
     let e = some_interior_edge(&app);
     app.world_mut()
         .write_message(Request::Edit(Edit::local("flip", e)));
-    update_until(&mut app, |app| view(app).stats_generation != coloured);
+    update_until(&mut app, |app| view(app).figures_key != coloured);
 }
 
 #[test]

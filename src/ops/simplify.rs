@@ -394,26 +394,25 @@ fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, 
 fn vertex_quadrics(t: &Connectivity, params: &SimplifyParams) -> Vec<Quadric> {
     let mut quadric = vec![Quadric::default(); t.vertex_count()];
     let position = |v: VertexRow| t.position(v).as_dvec3();
-    // Twice each face's area vector, as the plane's normal comes from it.
-    let cross_of = |corners: [VertexRow; 3]| {
-        let p = corners.map(position);
-        (p[1] - p[0]).cross(p[2] - p[0])
-    };
     let corners_of = |f: FaceRow| t.triangle_halfedges(f).map(|h| t.to_vertex(h));
-    let total_area: f64 = t
+    // Twice each face's area vector, by face row: the plane's normal and weight.
+    let cross: Vec<DVec3> = t
         .faces()
-        .map(|f| cross_of(corners_of(f)).length() / 2.0)
-        .sum();
+        .map(|f| {
+            let p = corners_of(f).map(position);
+            (p[1] - p[0]).cross(p[2] - p[0])
+        })
+        .collect();
+    let total_area: f64 = cross.iter().map(|c| c.length() / 2.0).sum();
     let least_weight = params.min_area_share * total_area / t.face_count().max(1) as f64;
     for f in t.faces() {
         let corners = corners_of(f);
-        let p = corners.map(position);
-        let cross = cross_of(corners);
+        let cross = cross[f.index()];
         let Some(n) = cross.try_normalize() else {
             continue;
         };
         let weight = (cross.length() / 2.0).max(least_weight);
-        let q = Quadric::plane(n, -n.dot(p[0]), weight);
+        let q = Quadric::plane(n, -n.dot(position(corners[0])), weight);
         for v in corners {
             quadric[v.index()] = quadric[v.index()] + q;
         }
@@ -501,14 +500,13 @@ mod tests {
     use crate::mesh::soup::PolygonSoup;
     use crate::mesh::{MeshInfo, build_mesh};
 
-    /// The quadric `setup` gives the corner at the origin of two unit right triangles folded at
-    /// 90° along the x axis: `(0,0,0) (1,0,0) (0,1,0)` in the plane z = 0 and `(1,0,0)
-    /// (0,0,0) (0,0,1)` in the plane y = 0.
-    fn fold_corner_quadric(params: &SimplifyParams) -> Quadric {
-        let soup = PolygonSoup::from_faces(
-            vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z],
-            &[[0, 1, 2], [1, 0, 3]],
-        );
+    /// The quadric `setup` gives input vertex 0 of the triangles `faces` over `positions`.
+    fn first_vertex_quadric(
+        positions: Vec<Vec3>,
+        faces: &[[u32; 3]],
+        params: &SimplifyParams,
+    ) -> Quadric {
+        let soup = PolygonSoup::from_faces(positions, faces);
         let mut world = World::new();
         let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
         let origin = built.input_vertices[0].unwrap();
@@ -518,20 +516,19 @@ mod tests {
         s.table.quadric[origin.slot()]
     }
 
+    /// The quadric `setup` gives the corner at the origin of two unit right triangles folded at
+    /// 90° along the x axis: `(0,0,0) (1,0,0) (0,1,0)` in the plane z = 0 and `(1,0,0)
+    /// (0,0,0) (0,0,1)` in the plane y = 0.
+    fn fold_corner_quadric(params: &SimplifyParams) -> Quadric {
+        let positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z];
+        first_vertex_quadric(positions, &[[0, 1, 2], [1, 0, 3]], params)
+    }
+
     /// The quadric `setup` gives the origin, corner of a triangle of area 1/2 and one of area
     /// 1/20 beside it in the plane z = 0.
     fn small_beside_large_quadric(params: &SimplifyParams) -> Quadric {
-        let soup = PolygonSoup::from_faces(
-            vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(0.0, -0.1, 0.0)],
-            &[[0, 1, 2], [1, 0, 3]],
-        );
-        let mut world = World::new();
-        let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
-        let origin = built.input_vertices[0].unwrap();
-        let Ok(s) = setup(&world, built.mesh, params) else {
-            panic!("set up");
-        };
-        s.table.quadric[origin.slot()]
+        let positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(0.0, -0.1, 0.0)];
+        first_vertex_quadric(positions, &[[0, 1, 2], [1, 0, 3]], params)
     }
 
     #[test]

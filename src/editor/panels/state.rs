@@ -35,9 +35,9 @@ pub struct InspectorView {
     /// The transform under way, as the status line says it.
     pub gesture: Option<String>,
     /// What the figures shown were counted at.
-    pub stats_generation: FiguresKey,
+    pub figures_key: FiguresKey,
     /// What the figures would be counted at, as last seen.
-    pub seen_generation: FiguresKey,
+    pub seen_key: FiguresKey,
     /// When that last changed.
     pub changed_at: Option<std::time::Instant>,
     /// Whether the last change came after the mesh had stood still (it is counted at once).

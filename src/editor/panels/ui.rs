@@ -170,13 +170,13 @@ fn refresh_figures(
     let quiet = |at: Option<std::time::Instant>| at.is_none_or(|t| now - t >= STATS_QUIET);
     // Never in the frame of the change itself: that frame hands the changed mesh to the
     // renderer, which draws it while the next frame counts.
-    let just_changed = view.seen_generation != key;
+    let just_changed = view.seen_key != key;
     if just_changed {
-        view.seen_generation = key;
+        view.seen_key = key;
         view.after_quiet = quiet(view.changed_at);
         view.changed_at = Some(now);
     }
-    let changed = view.stats_generation != key;
+    let changed = view.figures_key != key;
     let due = !just_changed && (view.after_quiet || quiet(view.changed_at));
     if changed && !due {
         world.write_message(bevy::window::RequestRedraw);
@@ -184,7 +184,7 @@ fn refresh_figures(
     let stale = changed && !dragging && due;
     if view.mesh.is_none() || stale {
         super::mesh_figures::count(world, &mut view.mesh, &mut view.histograms, mesh, key);
-        view.stats_generation = key;
+        view.figures_key = key;
         view.after_quiet = false;
     }
     super::mesh_figures::collect(world, &mut view.mesh, &mut view.histograms, key);
