@@ -11,12 +11,11 @@ saved as the PLY both tools then read, so that both work on the same triangles. 
   `qem_vs_meshlab.py` runs them.
 
 Times are Pappus's step (`--json`) and the pymeshlab call alone; the ratio is Pappus's over
-MeshLab's. Distances are the symmetric Hausdorff distance to the input with a million samples
-each way (the dense figure of `meshlab_common.hausdorff_pct`), in % of the bounding-box
-diagonal.
+MeshLab's. Distances are the symmetric Hausdorff distance to the input, bounded to within
+0.0005 % of the bounding-box diagonal (`surface_distance.py`), in % of that diagonal.
 
 Usage: python3 benches/remesh_qem_table.py [MODEL ...] (default: every OBJ in ../shared/models)
-Needs: pip install pymeshlab numpy; cargo build --release.
+Needs: pip install pymeshlab numpy libigl; cargo build --release.
 """
 import glob
 import os
@@ -28,18 +27,7 @@ import numpy as np
 import pymeshlab
 
 from meshlab_common import ROOT, run_pappus
-
-
-def dense_hausdorff(original, result):
-    """Symmetric Hausdorff distance, a million samples each way, % of the original's diagonal."""
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(original)
-    ms.load_new_mesh(result)
-    diag = ms.mesh(0).bounding_box().diagonal()
-    both = [ms.get_hausdorff_distance(sampledmesh=a, targetmesh=b, samplevert=True,
-                                      sampleface=True, samplenum=1_000_000)["max"]
-            for a, b in ((0, 1), (1, 0))]
-    return 100 * max(both) / diag
+from surface_distance import hausdorff_pct as bounded_hausdorff, text as bounded_text
 
 
 def mean_edge_length(ms):
@@ -96,9 +84,10 @@ def row(model, tmp):
 def remesh_or_qem_cells(source, ours, ours_ms, theirs, meshlab_ms):
     """Times with the ratio, and both distances, as table cells."""
     if ours_ms is None:
-        return [f"refused / {meshlab_ms:.0f}", "—", "—", f"{dense_hausdorff(source, theirs):.3f}"]
+        return [f"refused / {meshlab_ms:.0f}", "—", "—",
+                bounded_text(bounded_hausdorff(source, theirs))]
     return [f"{ours_ms:.0f} / {meshlab_ms:.0f}", f"{ours_ms / meshlab_ms:.2f}",
-            f"{dense_hausdorff(source, ours):.3f}", f"{dense_hausdorff(source, theirs):.3f}"]
+            bounded_text(bounded_hausdorff(source, ours)), bounded_text(bounded_hausdorff(source, theirs))]
 
 
 def main():
