@@ -314,14 +314,26 @@ fn pair_corners_keeping_manifold_edges(
             *at += 1;
         }
     }
-    // Each bucket now ends where the next began. Group id of every corner, and each group's
-    // corners in file order.
-    let mut corner_group = vec![0u32; corners];
-    let mut group_start = Vec::with_capacity(corners / 2 + 1);
+    // Each bucket now ends where the next began: each vertex's edges sorted by their other end.
+    let mut crowded = false;
     let mut begin = 0;
     for &end in &bucket_end[..vertex_count] {
         let bucket = &mut entries[begin..end as usize];
         bucket.sort_unstable();
+        crowded |= bucket.windows(3).any(|w| w[0].0 == w[2].0);
+        begin = end as usize;
+    }
+    if !crowded {
+        // No edge has three corners (most files): every face fits, and an edge's two corners
+        // pair, without a group table or a face lookup.
+        return pair_sorted_buckets(&entries, &bucket_end[..vertex_count], corners);
+    }
+    // Group id of every corner, and each group's corners in file order.
+    let mut corner_group = vec![0u32; corners];
+    let mut group_start = Vec::with_capacity(corners / 2 + 1);
+    let mut begin = 0;
+    for &end in &bucket_end[..vertex_count] {
+        let bucket = &entries[begin..end as usize];
         for (i, &(hi, c)) in bucket.iter().enumerate() {
             if i == 0 || bucket[i - 1].0 != hi {
                 group_start.push((begin + i) as u32);
@@ -346,18 +358,11 @@ fn pair_corners_keeping_manifold_edges(
         }
     }
 
+    // Some face was detached (an edge had three corners): an edge pairs the corners of the
+    // faces kept on it.
     let mut twin = vec![NONE; corners];
-    // Most meshes detach nothing: then an edge's two corners pair without a face lookup each.
-    let any_detached = faces.detached.contains(&true);
     for g in 0..group_start.len() - 1 {
         let group = &entries[group_start[g] as usize..group_start[g + 1] as usize];
-        if !any_detached {
-            if let &[(_, a), (_, b)] = group {
-                twin[a as usize] = b;
-                twin[b as usize] = a;
-            }
-            continue;
-        }
         let mut kept = group
             .iter()
             .map(|&(_, c)| c)
@@ -366,6 +371,31 @@ fn pair_corners_keeping_manifold_edges(
             twin[a as usize] = b;
             twin[b as usize] = a;
         }
+    }
+    twin
+}
+
+/// Each corner's partner on its edge, from each vertex's bucket of (other end, corner) entries
+/// sorted, where no edge has more than two corners: the two corners of an edge pair, the lone
+/// corner of a boundary edge has none.
+fn pair_sorted_buckets(entries: &[(u32, u32)], bucket_end: &[u32], corners: usize) -> Vec<u32> {
+    let mut twin = vec![NONE; corners];
+    let mut begin = 0;
+    for &end in bucket_end {
+        let bucket = &entries[begin..end as usize];
+        let mut i = 0;
+        while i < bucket.len() {
+            match bucket.get(i + 1) {
+                Some(&(hi, b)) if hi == bucket[i].0 => {
+                    let a = bucket[i].1;
+                    twin[a as usize] = b;
+                    twin[b as usize] = a;
+                    i += 2;
+                }
+                _ => i += 1,
+            }
+        }
+        begin = end as usize;
     }
     twin
 }
