@@ -21,6 +21,7 @@ use crate::mesh::tables::{
     Connectivity, EdgeRow, FaceRow, HalfedgeRow, MeshTables, NONE, VertexRow, extract,
 };
 use crate::mesh::topology::MeshRef;
+use crate::ops::geometry::closest::Reference;
 use crate::ops::local::flip_edge;
 
 /// Flips the interior non-feature edges of `mesh` where that brings the valences of their
@@ -193,19 +194,40 @@ pub(super) fn thin_triangle_edges(world: &World, mesh: MeshId) -> Vec<EdgeId> {
     edges
 }
 
+/// What a flip after the last smoothing must keep: the surface within `tolerance` of the
+/// `input` ([`flip_thin`]).
+pub(super) struct Fidelity<'a> {
+    /// The input surface.
+    pub input: &'a Reference,
+    /// How far from it a new edge's middle may lie (the finish's detail tolerance).
+    pub tolerance: f32,
+}
+
+impl Fidelity<'_> {
+    /// Whether the new diagonal `c d` of the pair a b c, b a d keeps the surface on the input:
+    /// its middle within the tolerance, or no farther than the old diagonal's.
+    fn keeps(&self, [a, b, c, d]: [Vec3; 4]) -> bool {
+        let off = |p: Vec3| self.input.closest(p).distance(p);
+        let new = off((c + d) / 2.0);
+        new <= self.tolerance || new <= off((a + b) / 2.0)
+    }
+}
+
 /// After the last smoothing, flips those of `edges` that are sides of thin triangles (an angle
-/// under [`THIN_ANGLE_DEG`]) where that raises the smaller of the pair's smallest angles and
-/// leaves both triangles in shape; features, the boundary and the edges at a `pinned` vertex
-/// (a tip put back by [`super::finish::restore_tips`], where a flip could bridge the side of
-/// the spike and undo the tip) are not flipped. Smoothing moves
-/// vertices after each iteration's valence flips and leaves a few triangles thin; a flip moves
-/// no vertex, so the surface stays on the input where it was. Returns the flipped edges (a
-/// flip keeps the edge's id).
+/// under [`THIN_ANGLE_DEG`]) where that raises the smaller of the pair's smallest angles,
+/// leaves both triangles in shape and keeps the surface on the input ([`Fidelity`]: a flip
+/// across a fold or groove would bridge it, and the finish has just put that detail back);
+/// features, the boundary and the edges at a `pinned` vertex (a tip put back by
+/// [`super::finish::restore_tips`], where a flip could bridge the side of the spike and undo
+/// the tip) are not flipped. Smoothing moves vertices after each iteration's valence flips and
+/// leaves a few triangles thin; a flip moves no vertex. Returns the flipped edges (a flip
+/// keeps the edge's id).
 pub(super) fn flip_thin(
     world: &mut World,
     edges: &[EdgeId],
     features: &EntityHashSet,
     pinned: &EntityHashSet,
+    fidelity: &Fidelity<'_>,
 ) -> Vec<EdgeId> {
     let mut flipped = Vec::new();
     for &e in edges {
@@ -218,12 +240,14 @@ pub(super) fn flip_thin(
             continue;
         }
         let h = m.edge_halfedge(e);
-        let [a, b, c, d] = quad_corners(&m, h);
+        let corners = quad_corners(&m, h);
+        let [a, b, c, d] = corners;
         let before = min_corner_angle_deg(&[a, b, c]).min(min_corner_angle_deg(&[b, a, d]));
         let after = min_corner_angle_deg(&[a, d, c]).min(min_corner_angle_deg(&[d, b, c]));
         if before < THIN_ANGLE_DEG
             && after > before
             && flip_keeps_shape(&m, h)
+            && fidelity.keeps(corners)
             && flip_edge(world, e).is_ok()
         {
             flipped.push(e);
@@ -299,12 +323,22 @@ mod tests {
     /// The kite a b c d, thin along its long diagonal a b: triangles a b c and b a d, with
     /// angles of 5.7° at a and b.
     fn thin_kite() -> (World, MeshId, [VertexId; 4]) {
-        let points = vec![
+        raised_kite(0.0)
+    }
+
+    /// The corners a b c d of [`thin_kite`], `c` and `d` raised by `rise` (a groove along a b).
+    fn kite_corners(rise: f32) -> [Vec3; 4] {
+        [
             Vec3::new(-1.0, 0.0, 0.0),
             Vec3::new(1.0, 0.0, 0.0),
-            Vec3::new(0.0, 0.1, 0.0),
-            Vec3::new(0.0, -0.1, 0.0),
-        ];
+            Vec3::new(0.0, 0.1, rise),
+            Vec3::new(0.0, -0.1, rise),
+        ]
+    }
+
+    /// [`thin_kite`] with `c` and `d` raised by `rise`.
+    fn raised_kite(rise: f32) -> (World, MeshId, [VertexId; 4]) {
+        let points = kite_corners(rise).to_vec();
         let soup = PolygonSoup::from_faces(points, &[[0, 1, 2], [1, 0, 3]]);
         let mut world = World::new();
         let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
@@ -319,13 +353,14 @@ mod tests {
         let diagonal = m.edge(m.find_halfedge(a, b).unwrap());
         let edges = thin_triangle_edges(&world, mesh);
         assert_eq!(edges.len(), 5);
+        let input = kite_surface(0.0);
+        let fidelity = Fidelity {
+            input: &input,
+            tolerance: 0.01,
+        };
+        let none = EntityHashSet::default();
         assert_eq!(
-            flip_thin(
-                &mut world,
-                &edges,
-                &EntityHashSet::default(),
-                &EntityHashSet::default()
-            ),
+            flip_thin(&mut world, &edges, &none, &none, &fidelity),
             vec![diagonal]
         );
         let m = MeshRef::new(&world);
@@ -340,9 +375,36 @@ mod tests {
         let features: EntityHashSet = [diagonal.0].into_iter().collect();
         let edges = thin_triangle_edges(&world, mesh);
         assert_eq!(
-            flip_thin(&mut world, &edges, &features, &EntityHashSet::default()),
+            flip_thin(&mut world, &edges, &features, &none, &fidelity),
             vec![]
         );
+    }
+
+    /// The triangles of [`raised_kite`] as an input surface.
+    fn kite_surface(rise: f32) -> Reference {
+        let [a, b, c, d] = kite_corners(rise);
+        Reference::from_triangles(vec![[a, b, c], [b, a, d]])
+    }
+
+    #[test]
+    fn a_thin_flip_that_would_bridge_a_groove_is_refused() {
+        // A groove along a b, 0.05 deep: the new diagonal c d would bridge it, its middle
+        // 0.045 from the input where a b's lies on it.
+        let (mut world, mesh, _) = raised_kite(0.05);
+        let edges = thin_triangle_edges(&world, mesh);
+        let none = EntityHashSet::default();
+        let input = kite_surface(0.05);
+        let strict = Fidelity {
+            input: &input,
+            tolerance: 0.01,
+        };
+        assert_eq!(flip_thin(&mut world, &edges, &none, &none, &strict), vec![]);
+        // Within a looser tolerance the same flip is made.
+        let loose = Fidelity {
+            input: &input,
+            tolerance: 0.1,
+        };
+        assert_eq!(flip_thin(&mut world, &edges, &none, &none, &loose).len(), 1);
     }
 
     #[test]

@@ -258,7 +258,15 @@ impl RemeshRun {
             world, mesh, &self.tips, reference, features, length, tolerance,
         );
         let grooves = fill_grooves(world, mesh, reference, features, tolerance);
-        let flipped = clean_up_thin(world, mesh, features, &pinned, reference, self.low / 16.0);
+        let flipped = clean_up_thin(
+            world,
+            mesh,
+            features,
+            &pinned,
+            reference,
+            self.low / 16.0,
+            tolerance,
+        );
         let splits = pinned.len() + grooves.len();
         self.summary.splits += splits;
         self.summary.flips += flipped.len();
