@@ -5,9 +5,10 @@
 //! - Where the remesh strays from the input by more than [`DETAIL_TOLERANCE`] · L, the input's
 //!   vertices left that far off (the tips of spikes and folds) become vertices again
 //!   ([`restore_tips`]), and the edges that far off at their middle or a quarter or eighth of
-//!   the way along (bridging a groove) are split onto the input ([`fill_grooves`]). Each split ([`split_onto`]) happens only where
-//!   the new triangles lie no farther from the input than the gap it closes, turn by at most
-//!   60° and keep every angle over 1°; features and the boundary are not split.
+//!   the way along (bridging a groove) are split onto the input ([`fill_grooves`]). Each
+//!   split ([`split_onto`]) happens only where the new triangles lie no farther from the input
+//!   than the gap it closes, turn by at most 60° and keep every angle over 1°; features and
+//!   the boundary are not split.
 //! - Then, for a bounded number of rounds ([`clean_up_thin`]), the sides of triangles with an
 //!   angle under 30° are flipped where that makes the pair less thin and bridges no groove
 //!   (the new edge's middle within the tolerance of the input), and the corners of the
@@ -37,9 +38,9 @@ use crate::ops::parallel::in_parallel;
 pub(super) const DETAIL_TOLERANCE: f32 = 0.2;
 
 /// Where along an edge [`fill_grooves`] measures the remesh's distance from the input: the
-/// middle, the quarters and the eighths between (the farthest wins, the middle on a tie). A
-/// groove crossed off its middle is as far at a quarter as a centred one at the middle: on the
-/// bunny, the middles alone left a point 0.25 L off beside an edge whose middle was 0.19 L off.
+/// middle, the quarters and the eighths between (the farthest wins, the middle on a tie). An
+/// edge may cross a groove off its middle: on the bunny, one whose middle lay 0.19 L from the
+/// input had a point 0.25 L off a quarter of the way along.
 const GROOVE_SAMPLES: [f32; 5] = [0.5, 0.25, 0.75, 0.375, 0.625];
 
 /// The most rounds of moving the corners of thin triangles after the last iteration (see the
