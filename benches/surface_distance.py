@@ -20,7 +20,8 @@ the differences the remeshing and QEM goals turn on. Here the distance is bounde
 
 The result, in % of the first mesh's bounding-box diagonal, is the larger of the two directions.
 
-Usage: python3 benches/surface_distance.py A B   (needs pip install numpy pymeshlab libigl)
+Usage: python3 benches/surface_distance.py A B   (needs pip install numpy pymeshlab libigl; its checks:
+python3 -m pytest benches/test_surface_distance.py)
 """
 import sys
 
