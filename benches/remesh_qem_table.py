@@ -87,7 +87,8 @@ def remesh_or_qem_cells(source, ours, ours_ms, theirs, meshlab_ms):
         return [f"refused / {meshlab_ms:.0f}", "—", "—",
                 bounded_text(bounded_hausdorff(source, theirs))]
     return [f"{ours_ms:.0f} / {meshlab_ms:.0f}", f"{ours_ms / meshlab_ms:.2f}",
-            bounded_text(bounded_hausdorff(source, ours)), bounded_text(bounded_hausdorff(source, theirs))]
+            bounded_text(bounded_hausdorff(source, ours)),
+            bounded_text(bounded_hausdorff(source, theirs))]
 
 
 def main():

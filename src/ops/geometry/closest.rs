@@ -128,6 +128,11 @@ impl Reference {
         self.closest_on(p).0
     }
 
+    /// How far `p` lies from the surface: its distance to [`Reference::closest`].
+    pub fn distance(&self, p: Vec3) -> f32 {
+        self.closest(p).distance(p)
+    }
+
     /// Whether some triangle lies within `r` of `p`: the cells the ball around `p` touches,
     /// stopping at the first triangle found within reach (far cheaper than
     /// [`Reference::closest`] where most points are near, as the remesh's are).
@@ -254,7 +259,7 @@ mod tests {
                 .iter()
                 .map(|t| closest_on_triangle(p, t).distance(p))
                 .fold(f32::MAX, f32::min);
-            assert_eq!(reference.closest(p).distance(p), nearest, "at {p}");
+            assert_eq!(reference.distance(p), nearest, "at {p}");
             for r in [0.05, 0.3, 1.0, 3.0] {
                 assert_eq!(reference.is_near(p, r), nearest <= r, "at {p}, within {r}");
             }

@@ -217,7 +217,6 @@ fn split_onto(
         ([b, to, d], 1),
         ([to, a, d], 1),
     ];
-    let off = |x: Vec3| input.closest(x).distance(x);
     let fits = after.iter().all(|&([p, q, r], side)| {
         let n = (q - p).cross(r - p);
         n.normalize_or_zero().dot(before[side].normalize_or_zero()) >= limit
@@ -229,7 +228,7 @@ fn split_onto(
                 (r + p) / 2.0,
             ]
             .into_iter()
-            .all(|x| off(x) <= bound)
+            .all(|x| input.distance(x) <= bound)
     });
     if !fits {
         return None;

@@ -207,9 +207,8 @@ impl Fidelity<'_> {
     /// Whether the new diagonal `c d` of the pair a b c, b a d keeps the surface on the input:
     /// its middle within the tolerance, or no farther than the old diagonal's.
     fn keeps(&self, [a, b, c, d]: [Vec3; 4]) -> bool {
-        let off = |p: Vec3| self.input.closest(p).distance(p);
-        let new = off((c + d) / 2.0);
-        new <= self.tolerance || new <= off((a + b) / 2.0)
+        let new = self.input.distance((c + d) / 2.0);
+        new <= self.tolerance || new <= self.input.distance((a + b) / 2.0)
     }
 }
 
