@@ -9,7 +9,8 @@
 //! block, however far it is allowed.
 
 use pappus::process_memory::{
-    FAULT_AHEAD_BYTES, fault_in_heap_while, keep_freed_memory, warm, warm_while, warming,
+    FAULT_AHEAD_BYTES, fault_in_heap_while, faulting_in_ahead, keep_freed_memory, warm, warm_while,
+    warming,
 };
 use std::cell::Cell;
 use std::hint::black_box;
@@ -141,6 +142,22 @@ fn main() {
         added <= FAULT_AHEAD_BYTES + mib,
         "{added} bytes faulted in past the heap's top"
     );
+
+    // Work beside a thread faulting in ahead of it: what it returns comes back unchanged, and a
+    // panic in it stops that thread and is passed on, rather than leaving the thread waiting
+    // for an allocation that never comes.
+    let filled = faulting_in_ahead(BLOCK, || {
+        vec![1u8; BLOCK].iter().map(|&b| b as usize).sum::<usize>()
+    });
+    assert_eq!(filled, BLOCK);
+    let quiet = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let panicked = std::panic::catch_unwind(|| {
+        faulting_in_ahead(BLOCK, || -> usize { panic!("the work failed") })
+    });
+    std::panic::set_hook(quiet);
+    assert!(panicked.is_err(), "the work's panic is passed on");
+
     println!(
         "process_memory: {pages} pages; faults after warming {after_warming}, settling \
          {settling}, six fills after that {again}"

@@ -19,6 +19,7 @@ use super::repair::{RepairReport, RepairedFaces, repair};
 use super::soup::PolygonSoup;
 use super::tables::read::for_each_element;
 use super::tables::{Connectivity, NONE, spawn_tables};
+use crate::process_memory;
 
 /// Why a soup could not become a mesh at all (local defects are repaired, not errors).
 #[derive(Debug, Error, Clone, PartialEq, Eq)]
@@ -94,6 +95,21 @@ pub fn prepare_mesh(soup: &PolygonSoup) -> Result<PreparedMesh, BuildError> {
     if soup.indices.len() >= 1 << 31 {
         return Err(BuildError::TooLarge(soup.indices.len()));
     }
+    let bytes = soup.indices.len().saturating_mul(PREPARED_BYTES_PER_CORNER);
+    process_memory::faulting_in_ahead(bytes, || repair_and_lay_out(soup))
+}
+
+/// About how many bytes of fresh memory preparing a mesh writes per face corner, at most: the
+/// repair's working arrays (the corners, their input corners and faces, each edge's entries
+/// sorted, the twins, the fans' union-find: 28 bytes a corner), then the tables (six columns
+/// a halfedge: 24), with the vertices' and faces' share (about 16 a corner on a triangle mesh).
+/// How far around the heap's top [`prepare_mesh`] faults pages in ahead; the walk never runs
+/// more than [`process_memory::FAULT_AHEAD_BYTES`] past what is allocated, so an estimate over
+/// leaves nothing resident.
+const PREPARED_BYTES_PER_CORNER: usize = 68;
+
+/// [`prepare_mesh`]'s work, on the calling thread.
+fn repair_and_lay_out(soup: &PolygonSoup) -> Result<PreparedMesh, BuildError> {
     let (faces, report) = repair(soup);
     if faces.face_count() == 0 {
         return Err(BuildError::NoFaces {

@@ -26,7 +26,6 @@
 use bevy::ecs::bundle::NoBundleEffect;
 use bevy::ecs::entity::EntityGeneration;
 use bevy::prelude::{Bundle, Entity, World};
-use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::connectivity::Connectivity;
 use super::rows::{NONE, RowCounts};
@@ -381,19 +380,11 @@ fn correct_links(world: &mut World, rows: &SpawnedRows) {
 /// Runs `spawn` while a second thread faults the heap's pages in ahead of it, for tables large
 /// enough (as the general writer does: most of a fresh spawn is the kernel handing out pages).
 fn faulting_in_ahead<T>(counts: RowCounts, spawn: impl FnOnce() -> T) -> T {
-    if counts.total() < super::write::FAULT_AHEAD_ROWS || !process_memory::keeps_freed_memory() {
+    if counts.total() < super::write::FAULT_AHEAD_ROWS {
         return spawn();
     }
-    let spawned = AtomicBool::new(false);
     let bytes = counts.total().saturating_mul(process_memory::BYTES_PER_ROW);
-    std::thread::scope(|scope| {
-        scope.spawn(|| {
-            process_memory::fault_in_heap_while(bytes, || !spawned.load(Ordering::Relaxed))
-        });
-        let out = spawn();
-        spawned.store(true, Ordering::Relaxed);
-        out
-    })
+    process_memory::faulting_in_ahead(bytes, spawn)
 }
 
 #[cfg(test)]
