@@ -103,9 +103,9 @@ pub fn prepare_mesh(soup: &PolygonSoup) -> Result<PreparedMesh, BuildError> {
 /// repair's working arrays (the corners, their input corners and faces, each edge's entries
 /// sorted, the twins, the fans' union-find: 28 bytes a corner), then the tables (six columns
 /// a halfedge: 24), with the vertices' and faces' share (about 16 a corner on a triangle mesh).
-/// How far around the heap's top [`prepare_mesh`] faults pages in ahead; the walk never runs
-/// more than [`process_memory::FAULT_AHEAD_BYTES`] past what is allocated, so an estimate over
-/// leaves nothing resident.
+/// It sets how far around the heap's top [`prepare_mesh`] faults pages in ahead; that walk
+/// never runs more than [`process_memory::FAULT_AHEAD_BYTES`] past what is allocated, so an
+/// estimate too large leaves nothing more resident.
 const PREPARED_BYTES_PER_CORNER: usize = 68;
 
 /// [`prepare_mesh`]'s work, on the calling thread.
