@@ -213,13 +213,6 @@ pub fn faulting_in_ahead<T>(limit: usize, work: impl FnOnce() -> T) -> T {
     if !keeps_freed_memory() || limit < FAULT_IN_MIN_BYTES {
         return work();
     }
-    /// Tells the faulting thread to stop when dropped: when `work` returns or unwinds.
-    struct Done<'a>(&'a AtomicBool);
-    impl Drop for Done<'_> {
-        fn drop(&mut self) {
-            self.0.store(true, Ordering::Relaxed);
-        }
-    }
     let done = AtomicBool::new(false);
     std::thread::scope(|scope| {
         // Where no thread can be started, the work runs alone, as where no memory is kept.
@@ -228,9 +221,21 @@ pub fn faulting_in_ahead<T>(limit: usize, work: impl FnOnce() -> T) -> T {
             .spawn_scoped(scope, || {
                 fault_in_heap_while(limit, || !done.load(Ordering::Relaxed))
             });
-        let _done = Done(&done);
+        let _done = SetOnDrop(&done);
         work()
     })
+}
+
+/// Sets its flag when dropped: when the work it stands beside returns or unwinds. What tells a
+/// thread faulting pages in ahead of that work ([`fault_in_heap_while`]'s `busy`) to stop, so
+/// that a panic in the work is passed on instead of leaving the thread waiting for allocations
+/// that never come.
+pub(crate) struct SetOnDrop<'a>(pub(crate) &'a AtomicBool);
+
+impl Drop for SetOnDrop<'_> {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
 }
 
 #[cfg(all(target_os = "linux", target_env = "gnu"))]

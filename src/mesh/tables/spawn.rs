@@ -29,11 +29,10 @@ use bevy::prelude::{Bundle, Entity, World};
 
 use super::connectivity::Connectivity;
 use super::rows::{NONE, RowCounts};
-use super::write::{for_each_row, sort_free_ids, write_tables};
+use super::write::{faulting_in_ahead_of_rows, for_each_row, sort_free_ids, write_tables};
 use crate::mesh::elements::{Edge, Face, Halfedge, InMesh, MeshInfo, Position, Vertex};
 use crate::mesh::ids::{EdgeId, FaceId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::members::MeshMembers;
-use crate::process_memory;
 
 /// The entities of one kind's rows, in row order: foreseen (consecutive fresh ids from
 /// `first`, as Bevy hands them out where no freed id waits) or, where the allocator gave
@@ -170,7 +169,7 @@ pub fn spawn_tables(
         return (mesh, SpawnedRows::listed(rows));
     }
     let counts = c.row_counts();
-    let rows = faulting_in_ahead(counts, || spawn_rows(world, &mut c, mesh));
+    let rows = faulting_in_ahead_of_rows(counts, || spawn_rows(world, &mut c, mesh));
     if !rows.all_foreseen() {
         correct_links(world, &rows);
     }
@@ -375,16 +374,6 @@ fn correct_links(world: &mut World, rows: &SpawnedRows) {
     for_each_row::<&mut Face, _>(world, &members.faces, |_, mut x| {
         x.halfedge = h(x.halfedge);
     });
-}
-
-/// Runs `spawn` while a second thread faults the heap's pages in ahead of it, for tables large
-/// enough (as the general writer does: most of a fresh spawn is the kernel handing out pages).
-fn faulting_in_ahead<T>(counts: RowCounts, spawn: impl FnOnce() -> T) -> T {
-    if counts.total() < super::write::FAULT_AHEAD_ROWS {
-        return spawn();
-    }
-    let bytes = counts.total().saturating_mul(process_memory::BYTES_PER_ROW);
-    process_memory::faulting_in_ahead(bytes, spawn)
 }
 
 #[cfg(test)]

@@ -85,12 +85,9 @@ pub(crate) fn write_tables(
         None => SpawnWith::of(c),
         Some(_) => SpawnWith::NONE,
     };
-    let rows = if counts.total() >= FAULT_AHEAD_ROWS && process_memory::keeps_freed_memory() {
-        // Nothing to compute beside the reserve: the second thread only faults pages in ahead.
-        reserve_rows_while(world, counts, mesh, old, with, &mut |_| {}, || ()).1
-    } else {
+    let rows = faulting_in_ahead_of_rows(counts, || {
         reserve_rows(world, counts, mesh, old, with, &mut |_| {})
-    };
+    });
     write_links(world, c, mesh, &rows);
     rows
 }
@@ -99,7 +96,19 @@ pub(crate) fn write_tables(
 /// rows are made ([`reserve_rows_while`]), where the program keeps freed memory (elsewhere that
 /// thread would do nothing): about 10 MB of them, where that saves milliseconds and starting
 /// the thread costs microseconds.
-pub(super) const FAULT_AHEAD_ROWS: usize = 100_000;
+const FAULT_AHEAD_ROWS: usize = 100_000;
+
+/// Runs `make_rows` while a second thread faults the heap's pages in ahead of it
+/// ([`process_memory::faulting_in_ahead`], as far around the top of the heap as the rows take),
+/// for at least [`FAULT_AHEAD_ROWS`] rows: most of making a large mesh's rows exist in a fresh
+/// process is the kernel handing out pages. Fewer rows are made on this thread alone.
+pub(super) fn faulting_in_ahead_of_rows<T>(counts: RowCounts, make_rows: impl FnOnce() -> T) -> T {
+    if counts.total() < FAULT_AHEAD_ROWS {
+        return make_rows();
+    }
+    let bytes = counts.total().saturating_mul(process_memory::BYTES_PER_ROW);
+    process_memory::faulting_in_ahead(bytes, make_rows)
+}
 
 /// The attribute components a new mesh's rows are spawned with, so that writing the attribute
 /// columns afterwards ([`write_attributes`]) finds them in place instead of moving every row
@@ -245,8 +254,11 @@ pub(crate) fn reserve_rows_while<T: Send>(
             process_memory::fault_in_heap_while(rows_bytes, || !reserved.load(Ordering::Relaxed));
             computed
         });
-        let rows = reserve_rows(world, counts, mesh, old, with, progress);
-        reserved.store(true, Ordering::Relaxed);
+        let rows = {
+            // Set when the rows exist, or when making them panics (the worker then stops).
+            let _reserved = process_memory::SetOnDrop(&reserved);
+            reserve_rows(world, counts, mesh, old, with, progress)
+        };
         let computed = worker
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
