@@ -4,10 +4,11 @@
 //!
 //! [`Reference`] holds a surface's triangles in a uniform grid and answers the exact closest
 //! point of all its triangles ([`Reference::closest`]: rings of cells are searched outwards
-//! until nothing unscanned can be nearer) and whether some triangle lies within a distance
+//! until nothing unscanned can be nearer, skipping the cells of a ring that lie wholly farther
+//! than the nearest point found so far) and whether some triangle lies within a distance
 //! ([`Reference::is_near`]).
 
-use bevy::math::Vec3;
+use bevy::math::{IVec3, Vec3};
 
 use crate::mesh::members::MeshMembers;
 use crate::mesh::tables::Connectivity;
@@ -123,6 +124,11 @@ impl Reference {
         &self.cell_triangles[self.cell_start[i] as usize..self.cell_start[i + 1] as usize]
     }
 
+    /// The surface's triangles, in the order they were given (each one's row).
+    pub fn triangles(&self) -> &[[Vec3; 3]] {
+        &self.triangles
+    }
+
     /// The closest point of the surface to `p` (searching rings of cells outwards).
     pub fn closest(&self, p: Vec3) -> Vec3 {
         self.closest_on(p).0
@@ -174,6 +180,13 @@ impl Reference {
                 for y in -ring..=ring {
                     for z in -ring..=ring {
                         if x.abs().max(y.abs()).max(z.abs()) != ring {
+                            continue;
+                        }
+                        // A cell wholly farther than the nearest point found holds no
+                        // nearer one (which leaves the point found the same).
+                        let corner = self.origin + (c + IVec3::new(x, y, z)).as_vec3() * self.cell;
+                        let outside = (corner - p).max(p - corner - self.cell).max(Vec3::ZERO);
+                        if outside.length_squared() > best.0 {
                             continue;
                         }
                         for &i in self.cell([c.x + x, c.y + y, c.z + z]) {

@@ -14,6 +14,7 @@
 //!   (the new edge's middle within the tolerance of the input), and the corners of the
 //!   triangles still thin move to where their triangles are best shaped. A restored tip is
 //!   pinned: nothing flips at it or moves it.
+//! - Last, the vertices are fitted to the input ([`super::fit`]).
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;

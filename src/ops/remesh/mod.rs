@@ -39,6 +39,13 @@
 //! ([`clean_up_thin`](finish::clean_up_thin)). What stays thin has a corner that may not move:
 //! a feature corner, or a feature line or boundary that bends there.
 //!
+//! Last, the vertices are fitted to the input ([`fit`]): each vertex that the projection left
+//! on the input moves along its normal by the mean of the gaps around it, both ways (the
+//! input's points from the remesh, the remesh's from the input), each weighted by its length,
+//! so that the triangles straddle the input instead of lying on one side of it (one step of
+//! Hoppe et al.'s least-squares fit, "Mesh Optimization", SIGGRAPH 1993). The boundary,
+//! feature corners and the tips put back stay; no move makes a triangle thin.
+//!
 //! Each pass starts from the mesh read into flat tables ([`extract`]): the edge lengths, the
 //! valences and the feature degrees come from array passes. The collapses and the flips are
 //! made on the tables and written back once a pass (the same edits, element for element, as
@@ -60,6 +67,7 @@
 mod collapse;
 mod features;
 mod finish;
+mod fit;
 pub(crate) mod flip;
 mod operation;
 mod pass;

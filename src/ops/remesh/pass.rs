@@ -23,8 +23,8 @@ pub enum Pass {
     Relax,
     /// Project the relaxed vertices back onto the input surface.
     Project,
-    /// After the last iteration: put back the tips and grooves the remesh cut off, then clean
-    /// up the thin triangles.
+    /// After the last iteration: put back the tips and grooves the remesh cut off, clean up
+    /// the thin triangles, then fit the vertices to the input.
     Finish,
 }
 
@@ -62,7 +62,8 @@ impl Pass {
 /// - [`Pass::Flip`]: the flipped edges.
 /// - [`Pass::Relax`], [`Pass::Project`]: the vertices that moved.
 /// - [`Pass::Finish`]: the vertices it added (tips and grooves put back) and the edges it
-///   flipped, each once (the corners of thin triangles it moved are not listed).
+///   flipped, each once (the corners of thin triangles it moved and the vertices the fit to
+///   the input moved are not listed).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Touched {
     /// Vertices made or changed.

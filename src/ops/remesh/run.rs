@@ -6,9 +6,9 @@
 //! A run makes, for each iteration, the passes [`Pass::ITERATION`] (split, collapse, flip,
 //! relax, project; see the [`remesh`](super) module doc for what each does), then after the
 //! last iteration one [`Pass::Finish`] (tips and grooves put back, thin triangles cleaned
-//! up). Each pass edits the world (splits on the entities; collapses and flips made on tables,
-//! as the local operations make them, and written back; moves), and the mesh is valid between
-//! any two. The first pass drops the mesh's attributes, which remeshing does not carry.
+//! up, the vertices fitted to the input). Each pass edits the world (splits on the entities;
+//! collapses and flips made on tables, as the local operations make them, and written back;
+//! moves), and the mesh is valid between any two. The first pass drops the mesh's attributes, which remeshing does not carry.
 //! [`remesh_with_progress`](super::remesh_with_progress) is this
 //! loop run to the end, so a run stepped by hand ends in the very same mesh, to the bit.
 //!
@@ -33,6 +33,7 @@ use crate::ops::geometry::closest::Reference;
 use super::collapse::collapse_short;
 use super::features::feature_rows;
 use super::finish::{DETAIL_TOLERANCE, clean_up_thin, fill_grooves, restore_tips};
+use super::fit::fit_to_input;
 use super::flip::flip_to_valence;
 use super::pass::{Pass, PassReport, Touched};
 use super::relax::{Smoother, project};
@@ -247,7 +248,8 @@ impl RemeshRun {
         })
     }
 
-    /// The finishing pass: tips and grooves put back, then the thin triangles cleaned up.
+    /// The finishing pass: tips and grooves put back, the thin triangles cleaned up, then the
+    /// vertices fitted to the input.
     /// Fills `touched` with the vertices added and the edges flipped; returns the splits plus
     /// the flips.
     fn finish(&mut self, world: &mut World, touched: &mut Touched) -> usize {
@@ -267,6 +269,7 @@ impl RemeshRun {
             self.low / 16.0,
             tolerance,
         );
+        fit_to_input(world, mesh, reference, &self.tips, features, &pinned);
         let splits = pinned.len() + grooves.len();
         self.summary.splits += splits;
         self.summary.flips += flipped.len();
