@@ -10,8 +10,8 @@
 //! 3. flip an edge when that brings the valences of its four vertices closer to 6 (4 on the
 //!    boundary), or leaves them as close and the edge was not locally Delaunay (the angles
 //!    facing it summed to over 180°: flipping raises the pair's smallest angle) ([`flip`]);
-//! 4. move every free vertex 1/5 of the way to its one-ring centroid, within its tangent plane
-//!    (all new positions computed first, then committed), repeated
+//! 4. move every free vertex 1/5 of the way to the centre of mass of its triangles, within its
+//!    tangent plane (all new positions computed first, then committed), repeated
 //!    [`RemeshParams::smoothing_steps`] times (10, as in Scotty3D) ([`relax`]);
 //! 5. project the free vertices back onto the input surface (closest point on the input
 //!    triangles, found through a uniform grid: [`crate::ops::geometry::closest`]), once an
@@ -122,8 +122,8 @@ pub struct RemeshParams {
     /// Edges with a dihedral angle above this (degrees) are features, unless all three sides
     /// of a triangle are (a dent, scanner noise). Default 45°.
     pub feature_angle_deg: f32,
-    /// Smoothing steps (each 1/5 of the way to the one-ring centroid, then reprojected) per
-    /// iteration. Default 10, as Scotty3D's remesher.
+    /// Smoothing steps (each 1/5 of the way to the centre of mass of the vertex's triangles,
+    /// then reprojected) per iteration. Default 10, as Scotty3D's remesher.
     pub smoothing_steps: u32,
 }
 

@@ -18,8 +18,8 @@ pub enum Pass {
     Collapse,
     /// Flip edges towards valence 6 (4 on the boundary).
     Flip,
-    /// Tangential relaxation: the smoothing steps, each 1/5 of the way to the one-ring
-    /// centroid within the tangent plane.
+    /// Tangential relaxation: the smoothing steps, each 1/5 of the way to the centre of mass
+    /// of the vertex's triangles within the tangent plane.
     Relax,
     /// Project the relaxed vertices back onto the input surface.
     Project,

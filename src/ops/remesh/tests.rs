@@ -140,42 +140,44 @@ pub(super) fn built(case: &Case) -> (World, MeshId) {
 /// fingerprint. Pinned again when the collapse pass moved onto flat tables: its collapses are
 /// the same, element for element, but the survivors lie in another storage order, so the
 /// later passes meet the edges in another order. Pinned again when the finish began fitting
-/// the vertices to the input (`fit.rs`): the same counts, the positions moved.
+/// the vertices to the input (`fit.rs`): the same counts, the positions moved; and when the
+/// relaxation's target became the centre of mass of the fan (`relax.rs`): other splits,
+/// collapses and flips follow.
 const PINNED: [(&str, [usize; 3], Fingerprint); 4] = [
     (
         "cube",
-        [467, 136, 373],
+        [462, 134, 361],
         Fingerprint {
-            vertices: 339,
-            faces: 674,
-            hash: 0x901083bdfaf23baf,
+            vertices: 336,
+            faces: 668,
+            hash: 0xf8ea6f3225a12cfa,
         },
     ),
     (
         "wavy grid",
-        [347, 180, 101],
+        [336, 176, 83],
         Fingerprint {
-            vertices: 288,
-            faces: 494,
-            hash: 0x73d496c80fcfd5dc,
+            vertices: 281,
+            faces: 480,
+            hash: 0x8780f487f54c377a,
         },
     ),
     (
         "fandisk",
-        [1791, 2275, 1739],
+        [1698, 2055, 1553],
         Fingerprint {
-            vertices: 5991,
-            faces: 11978,
-            hash: 0xfa6f21f42b75126d,
+            vertices: 6118,
+            faces: 12232,
+            hash: 0xa052170cc7667018,
         },
     ),
     (
         "bunny",
-        [7160, 12725, 7255],
+        [6609, 11493, 6404],
         Fingerprint {
-            vertices: 29269,
-            faces: 58271,
-            hash: 0x95246e7ebb80ca12,
+            vertices: 29950,
+            faces: 59633,
+            hash: 0x7fba50e5589bf4aa,
         },
     ),
 ];
