@@ -57,7 +57,8 @@ struct Residual {
 }
 
 /// Moves the vertices of `mesh` along their normals to fit `input` (see the module doc);
-/// `samples` are the input's points to fit besides its triangles' centres (its vertices).
+/// `samples` are the input's points to fit besides its triangles' centres (the run passes the
+/// input's vertices off its boundary).
 /// Vertices on the boundary, the corners of `features` (where other than two feature edges
 /// meet) and the `pinned` tips stay. Leaves the connectivity as it was, and no triangle thin
 /// that was not.
@@ -125,8 +126,8 @@ struct Fit<'a> {
 
 impl Fit<'_> {
     /// Each vertex's move: along its normal, by the mean of the residuals shared out to it,
-    /// each weighted by its share and its length. Held vertices and those no residual reaches
-    /// do not move.
+    /// each weighted by its share and its length. Held vertices, those no residual reaches and
+    /// those whose move is not a finite vector do not move.
     fn moves(&self, held: &[bool], input: &Reference, input_points: &[Vec3]) -> Vec<Vec3> {
         let mut pull = vec![(Vec3::ZERO, 0.0f32); self.positions.len()];
         for r in self.inward(input_points).iter().chain(&self.outward(input)) {
@@ -151,10 +152,12 @@ impl Fit<'_> {
             .zip(held)
             .map(|((&(sum, weight), normal), &held)| {
                 let n = normal.normalize_or_zero();
-                if held || weight <= 0.0 {
+                let step = n * n.dot(sum / weight);
+                // No residual, or none that a number can say (a degenerate triangle): no move.
+                if held || weight <= 0.0 || !step.is_finite() {
                     Vec3::ZERO
                 } else {
-                    n * n.dot(sum / weight)
+                    step
                 }
             })
             .collect()
