@@ -25,7 +25,7 @@ use crate::mesh::tables::extract;
 use crate::mesh::{FaceId, MeshId, VertexId};
 use crate::ops::declaration::FaceChildren;
 
-use super::closest::Reference;
+use super::closest::{Reference, barycentric};
 use super::surface::Surface;
 
 /// A mesh's surface as it was, for reading values at points on it (see the module doc). Its
@@ -137,21 +137,6 @@ impl SurfaceBefore {
         }
         if total > 0.0 { sum / total } else { f32::NAN }
     }
-}
-
-/// The barycentric weights of `q`, a point of triangle `[a, b, c]`. Equal weights for a
-/// degenerate triangle; a weight slightly outside [0, 1] from rounding is clamped.
-fn barycentric(q: Vec3, [a, b, c]: [Vec3; 3]) -> [f32; 3] {
-    let (ab, ac, aq) = (b - a, c - a, q - a);
-    let (d00, d01, d11) = (ab.dot(ab), ab.dot(ac), ac.dot(ac));
-    let (d20, d21) = (aq.dot(ab), aq.dot(ac));
-    let denominator = d00 * d11 - d01 * d01;
-    if denominator.abs() <= f32::EPSILON * d00 * d11 {
-        return [1.0; 3];
-    }
-    let v = ((d11 * d20 - d01 * d21) / denominator).clamp(0.0, 1.0);
-    let w = ((d00 * d21 - d01 * d20) / denominator).clamp(0.0, 1.0);
-    [(1.0 - v - w).max(0.0), v, w]
 }
 
 #[cfg(test)]

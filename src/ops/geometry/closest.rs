@@ -246,11 +246,40 @@ fn closest_on_triangle(p: Vec3, t: &[Vec3; 3]) -> Vec3 {
     a + ab * (vb * denom) + ac * (vc * denom)
 }
 
+/// The barycentric weights of `q`, a point of triangle `[a, b, c]`. Equal weights for a
+/// degenerate triangle; a weight slightly outside [0, 1] from rounding is clamped.
+pub(crate) fn barycentric(q: Vec3, [a, b, c]: [Vec3; 3]) -> [f32; 3] {
+    let (ab, ac, aq) = (b - a, c - a, q - a);
+    let (d00, d01, d11) = (ab.dot(ab), ab.dot(ac), ac.dot(ac));
+    let (d20, d21) = (aq.dot(ab), aq.dot(ac));
+    let denominator = d00 * d11 - d01 * d01;
+    if denominator.abs() <= f32::EPSILON * d00 * d11 {
+        return [1.0; 3];
+    }
+    let v = ((d11 * d20 - d01 * d21) / denominator).clamp(0.0, 1.0);
+    let w = ((d00 * d21 - d01 * d20) / denominator).clamp(0.0, 1.0);
+    [(1.0 - v - w).max(0.0), v, w]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::mesh::{MeshInfo, build_mesh};
     use bevy::prelude::World;
+
+    #[test]
+    fn barycentric_weights_rebuild_the_point() {
+        let tri = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        assert_eq!(
+            barycentric(Vec3::new(0.25, 0.5, 0.0), tri),
+            [0.25, 0.25, 0.5]
+        );
+        // Off the triangle: clamped onto it.
+        assert_eq!(barycentric(Vec3::new(2.0, 0.0, 0.0), tri), [0.0, 1.0, 0.0]);
+        // A degenerate triangle: equal weights.
+        let flat = [Vec3::ZERO, Vec3::X, Vec3::X * 2.0];
+        assert_eq!(barycentric(Vec3::X, flat), [1.0; 3]);
+    }
 
     #[test]
     fn the_reference_grid_finds_the_closest_point_of_all_triangles_and_which_are_near() {

@@ -16,18 +16,18 @@
 //! weighted mean of its residuals: one Jacobi step of the normal equations, from the projected
 //! remesh. The triangles come to straddle the input instead of lying on one side of it.
 //!
-//! One step, not Hoppe's alternation to convergence: more rounds, the closest points found
-//! anew each, moved the bunny little closer (0.121 → 0.122 % of its diagonal after three) and
-//! the fandisk back and forth (0.143, 0.175, 0.134 %), at the cost of the first each
-//! (`docs/remesh.md`).
+//! One step, not Hoppe's alternation to convergence: three rounds, the closest points found
+//! anew each, moved the bunny no closer (0.121 → 0.122 % of its diagonal) and the fandisk a
+//! little (0.143 → 0.135 %) at three times the cost, and with the feature corners moving too the
+//! fandisk went back and forth from round to round (0.143, 0.175, 0.133, 0.164 %)
+//! (`docs/performance.md`, "The remesh fitted to the input").
 //!
 //! Boundary vertices stay, so the boundary keeps its place on the input's, and so do feature
 //! corners (where other than two feature edges meet), which the remesh keeps where the input
 //! has them, and the tips the finish put back on the input's vertices; a vertex on a feature
-//! line moves as any other, across the line. No move may make a
-//! triangle thin: where the moves would take a triangle's smallest angle under
-//! [`THIN_ANGLE_DEG`] and below what it was, its corner that would move the most stays, until
-//! no triangle would be.
+//! line moves as any other, across the line. No move may make a triangle thin: where the moves
+//! would take a triangle's smallest angle under [`THIN_ANGLE_DEG`] and below what it was, its
+//! corner that would move the most stays, until no triangle would be.
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
@@ -36,7 +36,7 @@ use bevy::prelude::World;
 use crate::mesh::ids::MeshId;
 use crate::mesh::stats::THIN_ANGLE_DEG;
 use crate::mesh::tables::{MeshTables, NONE, extract};
-use crate::ops::geometry::closest::Reference;
+use crate::ops::geometry::closest::{Reference, barycentric};
 use crate::ops::parallel::in_parallel;
 
 /// The most times the moves are checked for thin triangles (each check keeps at least one
@@ -177,9 +177,12 @@ impl Fit<'_> {
             let p = input_points[i];
             let (q, row) = surface.closest_on(p);
             let tri = self.triangles[row];
+            // The weights as shares: summing to 1 (equal ones on a degenerate triangle).
+            let weights = barycentric(q, self.corners(&tri));
+            let total: f32 = weights.iter().sum();
             *slot = Residual {
                 corners: tri,
-                shares: barycentric(q, self.corners(&tri)),
+                shares: weights.map(|w| w / total),
                 offset: p - q,
             };
         });
@@ -216,19 +219,17 @@ impl Fit<'_> {
 /// is the largest of the three.)
 fn keep_triangles_from_thinning(positions: &[Vec3], triangles: &[[u32; 3]], moves: &mut [Vec3]) {
     let thin = (THIN_ANGLE_DEG as f32).to_radians().cos();
-    let corners = |tri: &[u32; 3], moves: &[Vec3]| {
-        tri.map(|v| positions[v as usize] + moves.get(v as usize).copied().unwrap_or_default())
-    };
     let before: Vec<f32> = triangles
         .iter()
-        .map(|tri| smallest_angle_cosine(corners(tri, &[])))
+        .map(|tri| smallest_angle_cosine(tri.map(|v| positions[v as usize])))
         .collect();
     for _ in 0..THIN_CHECKS {
         let thinned: Vec<u32> = triangles
             .iter()
             .zip(&before)
             .filter_map(|(tri, &was)| {
-                let now = smallest_angle_cosine(corners(tri, moves));
+                let now =
+                    smallest_angle_cosine(tri.map(|v| positions[v as usize] + moves[v as usize]));
                 (now > thin && now > was + THINNER).then(|| {
                     *tri.iter()
                         .max_by(|&&a, &&b| {
@@ -260,23 +261,6 @@ fn smallest_angle_cosine([a, b, c]: [Vec3; 3]) -> f32 {
     // The corner at a lies between the sides a → b and a → c, and so on round.
     let [ab, bc, ca] = sides;
     (-ca).dot(ab).max((-ab).dot(bc)).max((-bc).dot(ca))
-}
-
-/// The barycentric weights of `q` (a point of the triangle, or near it) in `[a, b, c]`,
-/// clamped to the triangle and summing to 1; the first corner's alone for a degenerate one.
-fn barycentric(q: Vec3, [a, b, c]: [Vec3; 3]) -> [f32; 3] {
-    let (e0, e1, d) = (b - a, c - a, q - a);
-    let (d00, d01, d11) = (e0.dot(e0), e0.dot(e1), e1.dot(e1));
-    let (d20, d21) = (d.dot(e0), d.dot(e1));
-    let det = d00 * d11 - d01 * d01;
-    if det.abs() <= f32::EPSILON * d00 * d11 || !det.is_finite() {
-        return [1.0, 0.0, 0.0];
-    }
-    let v = ((d11 * d20 - d01 * d21) / det).max(0.0);
-    let w = ((d00 * d21 - d01 * d20) / det).max(0.0);
-    let u = (1.0 - v - w).max(0.0);
-    let sum = u + v + w;
-    [u / sum, v / sum, w / sum]
 }
 
 #[cfg(test)]
@@ -417,19 +401,5 @@ mod tests {
         let [a, b, c] = half;
         assert!((smallest_angle_cosine([a, c, b]) - h).abs() < 1e-6);
         assert_eq!(smallest_angle_cosine([a, a, b]), 1.0);
-    }
-
-    #[test]
-    fn barycentric_weights_rebuild_the_point() {
-        let tri = [Vec3::ZERO, Vec3::X, Vec3::Y];
-        assert_eq!(
-            barycentric(Vec3::new(0.25, 0.5, 0.0), tri),
-            [0.25, 0.25, 0.5]
-        );
-        // Off the triangle: clamped onto it.
-        assert_eq!(barycentric(Vec3::new(2.0, 0.0, 0.0), tri), [0.0, 1.0, 0.0]);
-        // A degenerate triangle: its first corner.
-        let flat = [Vec3::ZERO, Vec3::X, Vec3::X * 2.0];
-        assert_eq!(barycentric(Vec3::X, flat), [1.0, 0.0, 0.0]);
     }
 }

@@ -9,11 +9,12 @@
 //! the fan standing for the vertex's Voronoi cell (Du, Faber & Gunzburger, "Centroidal Voronoi
 //! Tessellations", SIAM Review 1999): it spreads the vertices by the surface they stand for
 //! rather than by their neighbours. On the bunny 84.0 % of the interior vertices have valence 6
-//! against 83.4 % with the neighbours' mean (`docs/performance.md`). [`relax_thin_corners`] then moves, one by one, the corners of the
-//! triangles still thin to the candidate point that most raises the smallest angle around them:
-//! a free corner within its tangent plane and back onto the input, a corner on a straight
-//! feature line or boundary along that line, so the line keeps its shape; feature corners and
-//! pinned vertices stay.
+//! against 83.4 % with the neighbours' mean (`docs/performance.md`).
+//!
+//! [`relax_thin_corners`] then moves, one by one, the corners of the triangles still thin to
+//! the candidate point that most raises the smallest angle around them: a free corner within
+//! its tangent plane and back onto the input, a corner on a straight feature line or boundary
+//! along that line, so the line keeps its shape; feature corners and pinned vertices stay.
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;

@@ -8,9 +8,9 @@
 //! last iteration one [`Pass::Finish`] (tips and grooves put back, thin triangles cleaned
 //! up, the vertices fitted to the input). Each pass edits the world (splits on the entities;
 //! collapses and flips made on tables, as the local operations make them, and written back;
-//! moves), and the mesh is valid between any two. The first pass drops the mesh's attributes, which remeshing does not carry.
-//! [`remesh_with_progress`](super::remesh_with_progress) is this
-//! loop run to the end, so a run stepped by hand ends in the very same mesh, to the bit.
+//! moves), and the mesh is valid between any two. The first pass drops the mesh's attributes,
+//! which remeshing does not carry. [`remesh_with_progress`](super::remesh_with_progress) is
+//! this loop run to the end, so a run stepped by hand ends in the very same mesh, to the bit.
 //!
 //! The relaxation and the projection are two passes, where the loop once projected inside the
 //! last smoothing step: the steps are Jacobi (every new position from the old ones), so
