@@ -4,7 +4,8 @@
 //! collapse, and on a mesh edited first (its storage order no longer its entity order); moved
 //! back along its history and forward again it has the same mesh at every step and the same
 //! end; the next collapse it shows is the one it makes; a run whose mesh was edited while it
-//! waited refuses to go on.
+//! waited refuses to go on. Each with the distance check too
+//! ([`SimplifyParams::distance_weight`]), which queues edges again as it measures them.
 
 mod common;
 
@@ -25,10 +26,48 @@ fn shape(world: &World, mesh: MeshId) -> Vec<Vec<common::Key>> {
     canonical(&to_soup(world, mesh))
 }
 
+/// A torus whose vertices are moved off it by a fixed pseudo-random amount along the radius,
+/// up to a tenth of the tube's: bumps that the distance check weighs.
+fn bumpy_torus() -> PolygonSoup {
+    let mut soup = triangulate_fans(&torus(24, 12));
+    let mut state = 11u32;
+    for p in &mut soup.positions {
+        state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+        let bump = (state >> 8) as f32 / (1u32 << 24) as f32 * 0.1;
+        let around = Vec3::new(p.x, p.y, 0.0).normalize_or_zero();
+        *p += (*p - around).normalize_or_zero() * bump;
+    }
+    soup
+}
+
+/// `params` with the distance check on ([`SimplifyParams::distance_weight`]).
+fn with_distance(params: SimplifyParams) -> SimplifyParams {
+    SimplifyParams {
+        distance_weight: 8.0,
+        ..params
+    }
+}
+
 /// The meshes every test runs on: regular ones, where many edges cost the same and the
-/// order of ties decides, and one with boundaries and holes.
+/// order of ties decides, one with boundaries and holes, and some with the distance check,
+/// which queues edges again as it measures them.
 fn inputs() -> Vec<(&'static str, PolygonSoup, SimplifyParams)> {
     vec![
+        (
+            "icosphere, distance",
+            icosphere(3),
+            with_distance(SimplifyParams::ratio(0.1)),
+        ),
+        (
+            "bumpy torus, distance",
+            bumpy_torus(),
+            with_distance(SimplifyParams::ratio(0.15)),
+        ),
+        (
+            "holes, distance",
+            triangulate_fans(&grid_with_holes(3)),
+            with_distance(SimplifyParams::ratio(0.25)),
+        ),
         ("icosphere", icosphere(3), SimplifyParams::ratio(0.1)),
         (
             "torus",
@@ -125,6 +164,8 @@ fn both_runs_refuse_alike_down_to_the_last_legal_collapse() {
     ];
     for (name, soup) in meshes {
         assert_stepped_matches_unstepped(name, &soup, &to_the_end, |_, _| {});
+        let to_the_end = with_distance(to_the_end);
+        assert_stepped_matches_unstepped(name, &soup, &to_the_end, |_, _| {});
     }
 }
 
@@ -144,6 +185,8 @@ fn both_runs_agree_on_a_mesh_edited_first() {
         }
     };
     assert_stepped_matches_unstepped("edited", &icosphere(3), &SimplifyParams::ratio(0.2), edit);
+    let params = with_distance(SimplifyParams::ratio(0.2));
+    assert_stepped_matches_unstepped("edited, distance", &bumpy_torus(), &params, edit);
 }
 
 #[test]

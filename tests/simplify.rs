@@ -116,3 +116,42 @@ fn shared_models_simplify_to_the_target() {
         );
     }
 }
+
+#[test]
+fn the_distance_check_keeps_a_scan_closer_to_its_input() {
+    let Some(path) = common::model("spot.obj") else {
+        return;
+    };
+    let soup = pappus::io::read(&path).unwrap();
+    // The input's vertices and face centroids, where its farthest points from a
+    // simplification mostly lie.
+    let mut samples = soup.positions.clone();
+    samples.extend(soup.faces().map(|f| {
+        f.iter()
+            .map(|&v| soup.positions[v as usize])
+            .sum::<bevy::math::Vec3>()
+            / f.len() as f32
+    }));
+    let farthest = |params: SimplifyParams| {
+        let (mut world, built) = build(&soup);
+        let s = simplify(&mut world, built.mesh, &params).unwrap();
+        assert!(s.reached_target);
+        validate(&world, built.mesh).unwrap();
+        let out = pappus::mesh::to_soup(&world, built.mesh);
+        let triangles = out
+            .faces()
+            .map(|f| [0, 1, 2].map(|i| out.positions[f[i] as usize]))
+            .collect();
+        let surface = pappus::ops::geometry::closest::Reference::from_triangles(triangles);
+        samples
+            .iter()
+            .map(|&p| surface.distance(p))
+            .fold(0.0f32, f32::max)
+    };
+    let plain = farthest(SimplifyParams::ratio(0.25));
+    let checked = farthest(SimplifyParams {
+        distance_weight: 8.0,
+        ..SimplifyParams::ratio(0.25)
+    });
+    assert!(checked < 0.9 * plain, "{checked} against {plain}");
+}

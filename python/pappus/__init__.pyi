@@ -421,9 +421,16 @@ class Mesh:
         """Runs one ``pappus process`` step written as on the command line (``"flip:3,17"``)."""
     # Whole-mesh operations: the GIL is released, ``progress`` is called now and then.
     def simplify(
-        self, ratio: Optional[float] = None, faces: Optional[int] = None, *, progress: Progress = None
+        self,
+        ratio: Optional[float] = None,
+        faces: Optional[int] = None,
+        distance: float = 0.0,
+        *,
+        progress: Progress = None,
     ) -> "Outcome":
-        """QEM to ``ratio`` (0, 1] of the faces or to ``faces`` faces (neither: 0.5)."""
+        """QEM to ``ratio`` (0, 1] of the faces or to ``faces`` faces (neither: 0.5);
+        ``distance`` > 0 weighs how far each collapse takes the input away (8: closer, about
+        three times the time)."""
     def remesh(
         self, iterations: int = 5, length: Optional[float] = None, *, progress: Progress = None
     ) -> "Outcome":

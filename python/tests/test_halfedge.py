@@ -495,6 +495,7 @@ def test_a_whole_mesh_operation_keeps_no_record_and_ends_the_handles_it_rewrote(
 def test_run_reads_parameters_by_their_declared_names():
     for step, name, elements, parameters in [
         ("simplify:0.25", "simplify", (), {"ratio": 0.25}),
+        ("simplify:0.25:8", "simplify", (), {"ratio": 0.25, "distance": 8}),
         ("smooth:cotan:3", "smooth", (), {"method": "cotan", "iterations": 3}),
         ("remesh:2:auto", "remesh", (), {"iterations": 2, "length": None}),
         ("catmull-clark:1", "catmull_clark", (), {}),

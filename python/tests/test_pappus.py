@@ -212,6 +212,11 @@ def test_whole_mesh_operations():
     assert mesh.refine().endswith("1280 faces")
     assert mesh.simplify(faces=500).startswith("1280 -> 500 faces")
     assert mesh.info()["faces"] == 500
+    # The distance check: the same face count, by other collapses.
+    plain, checked = pappus.load("shape:icosphere:3"), pappus.load("shape:icosphere:3")
+    plain.simplify(ratio=0.25)
+    assert checked.simplify(ratio=0.25, distance=8) == "1280 -> 320 faces in 480 collapses"
+    assert not np.array_equal(checked.vertices, plain.vertices)
     assert "splits" in mesh.remesh(iterations=2)
     assert "splits" in mesh.remesh(1, length=0.2)
     before = mesh.info()["faces"]

@@ -1,6 +1,7 @@
 //! QEM simplification as the user invokes it (Garland & Heckbert; the algorithm is
-//! [`crate::ops::simplify`]): `simplify[:RATIO]` (Shift+S) keeps a fraction of the faces,
-//! `simplify-faces[:FACES]` a number of them. Each records every collapse in the mesh's
+//! [`crate::ops::simplify`]): `simplify[:RATIO][:DISTANCE]` (Shift+S) keeps a fraction of the
+//! faces, `simplify-faces[:FACES][:DISTANCE]` a number of them, DISTANCE the weight of the
+//! input's farthest point in a collapse's cost (0, the default: the quadrics alone). Each records every collapse in the mesh's
 //! simplification history ([`ProgressiveMesh`], Hoppe 1996), which `refine[:FACES]` — the
 //! level-of-detail slider — and `vertex-split` (U) then move along.
 //!
@@ -28,9 +29,13 @@ pub use stepping::{CANDIDATES, QemSteps};
 /// level of detail and vertex splits move along, and drops attributes.
 pub const SIMPLIFY: Declaration = Declaration::new("simplify")
     .titled("Simplify")
-    .described("QEM edge collapses (Garland & Heckbert) until RATIO of the faces are left")
+    .described(
+        "QEM edge collapses (Garland & Heckbert) until RATIO of the faces are left; DISTANCE > 0 \
+         also weighs how far a collapse takes the input away (8: closer, in about three times \
+         the time)",
+    )
     .on_key("Shift+S")
-    .with_parameters(&[Parameter::real("RATIO", 0.5, 1e-6, 1.0)])
+    .with_parameters(&[Parameter::real("RATIO", 0.5, 1e-6, 1.0), DISTANCE])
     .as_job()
     .stepping()
     .keeping_history()
@@ -39,14 +44,21 @@ pub const SIMPLIFY: Declaration = Declaration::new("simplify")
 /// Simplifying to a number of faces: as [`SIMPLIFY`].
 pub const SIMPLIFY_FACES: Declaration = Declaration::new("simplify-faces")
     .titled("Simplify to faces")
-    .described("QEM edge collapses (Garland & Heckbert) until FACES faces are left")
-    .with_parameters(&[Parameter::whole("FACES", 1000, 0, u32::MAX)])
+    .described(
+        "QEM edge collapses (Garland & Heckbert) until FACES faces are left; DISTANCE as for \
+         simplify",
+    )
+    .with_parameters(&[Parameter::whole("FACES", 1000, 0, u32::MAX), DISTANCE])
     .as_job()
     .stepping()
     .keeping_history()
     .dropping(DROPPED_BY_SIMPLIFICATION);
 
-/// `simplify[:RATIO]`.
+/// The weight of the input's farthest point in a collapse's cost
+/// ([`SimplifyParams::distance_weight`]): 0, the default, leaves the quadric error alone.
+const DISTANCE: Parameter = Parameter::real("DISTANCE", 0.0, 0.0, 1000.0);
+
+/// `simplify[:RATIO[:DISTANCE]]`.
 pub struct Simplify;
 
 /// `refine[:FACES]`: along the history to FACES faces, or to the full mesh.
@@ -64,7 +76,7 @@ impl Refine {
     }
 }
 
-/// `simplify-faces[:FACES]`.
+/// `simplify-faces[:FACES[:DISTANCE]]`.
 pub struct SimplifyFaces;
 
 /// The simplification an invocation of [`Simplify`] or [`SimplifyFaces`] asks for (`None` for
@@ -81,16 +93,24 @@ pub fn simplification(invocation: &Invocation) -> Option<SimplifyParams> {
 }
 
 impl Simplify {
-    /// The simplification its values name: to RATIO of the faces, the default limits.
+    /// The simplification its values name: to RATIO of the faces at the DISTANCE weight, the
+    /// default limits.
     fn params(values: Values<'_>) -> SimplifyParams {
-        SimplifyParams::ratio(values.number(0))
+        SimplifyParams {
+            distance_weight: values.number(1),
+            ..SimplifyParams::ratio(values.number(0))
+        }
     }
 }
 
 impl SimplifyFaces {
-    /// The simplification its values name: to FACES faces, the default limits.
+    /// The simplification its values name: to FACES faces at the DISTANCE weight, the default
+    /// limits.
     fn params(values: Values<'_>) -> SimplifyParams {
-        SimplifyParams::faces(values.whole(0) as usize)
+        SimplifyParams {
+            distance_weight: values.number(1),
+            ..SimplifyParams::faces(values.whole(0) as usize)
+        }
     }
 }
 

@@ -213,7 +213,7 @@ fn cell_row([dx, dy, _]: [i32; 3], [x, y, z]: [i32; 3]) -> usize {
 }
 
 /// The closest point of triangle `t` to `p` (Ericson, Real-Time Collision Detection, 5.1.5).
-fn closest_on_triangle(p: Vec3, t: &[Vec3; 3]) -> Vec3 {
+pub(crate) fn closest_on_triangle(p: Vec3, t: &[Vec3; 3]) -> Vec3 {
     let [a, b, c] = *t;
     let (ab, ac, ap) = (b - a, c - a, p - a);
     let (d1, d2) = (ab.dot(ap), ac.dot(ap));

@@ -193,6 +193,28 @@ impl CollapsePlan {
             .map(|s| (s.links.edge, s.links.vertex, s.tip))
     }
 
+    /// On a triangle mesh, every face around the collapsing edge once, each with its corners
+    /// once the collapse is applied (the merged vertex first, at the planned position, then
+    /// the others counter-clockwise), or `None` for the edge's own triangles, which go: the
+    /// faces whose shape the collapse changes, as the plan read them.
+    pub fn reshaped_faces(&self) -> impl Iterator<Item = (FaceId, Option<[Vec3; 3]>)> + '_ {
+        let [around_a, around_b] = &self.around;
+        [(around_a, self.b, true), (around_b, self.a, false)]
+            .into_iter()
+            .flat_map(move |(ring, other, first)| {
+                ring.iter().enumerate().filter_map(move |(i, s)| {
+                    let face = s.links.face?;
+                    let o = &ring[(i + 1) % ring.len()];
+                    if s.links.vertex == other || o.links.vertex == other {
+                        // The edge's own triangles, in both rings: listed once.
+                        first.then_some((face, None))
+                    } else {
+                        Some((face, Some([self.position, s.tip, o.tip])))
+                    }
+                })
+            })
+    }
+
     /// The vertex that survives (the edge's halfedge's start unless planned from another).
     pub fn kept(&self) -> VertexId {
         self.a

@@ -276,6 +276,36 @@ impl FlatTriangles {
         }
     }
 
+    /// The plan's two ends: the vertex that stays and the one that goes.
+    pub fn ends(p: &Plan) -> [u32; 2] {
+        [p.a, p.b]
+    }
+
+    /// Every face around the edge of `p` (the last plan made) once, each with its corners once
+    /// the plan is applied (the merged vertex first, at the planned position, then the others
+    /// counter-clockwise), or `None` for the edge's own triangles, which go: what
+    /// [`crate::ops::local::CollapsePlan::reshaped_faces`] lists for the same collapse.
+    pub fn reshaped_faces(&self, p: &Plan) -> impl Iterator<Item = (u32, Option<[Vec3; 3]>)> + '_ {
+        let [ring_a, ring_b] = &self.rings;
+        let position = p.position;
+        [(ring_a, p.b, true), (ring_b, p.a, false)]
+            .into_iter()
+            .flat_map(move |(ring, other, first)| {
+                ring.iter().enumerate().filter_map(move |(i, s)| {
+                    if !s.has_face() {
+                        return None;
+                    }
+                    let o = &ring[(i + 1) % ring.len()];
+                    if s.links.to == other || o.links.to == other {
+                        // The edge's own triangles, in both rings: listed once.
+                        first.then_some((s.links.face, None))
+                    } else {
+                        Some((s.links.face, Some([position, s.tip, o.tip])))
+                    }
+                })
+            })
+    }
+
     /// Whether the edge of `h` may collapse into its start at `position`, no face turning by
     /// more than the angle whose cosine is `limit`; the plan if so. The checks are
     /// [`crate::ops::local::plan_collapse`]'s for a triangle mesh (see the module doc).

@@ -27,8 +27,10 @@ use crate::ops::local::{
     CollapseOptions, CollapsePlan, CollapseResult, apply_collapse_deferred, plan_collapse_in,
 };
 
+use super::fidelity::DistanceCheck;
 use super::{
-    Key, Setup, SimplifyParams, SimplifySummary, VertexTable, keyed_ends, ring_matches, setup,
+    FaceRows, Key, Setup, SimplifyParams, SimplifySummary, VertexTable, keyed_ends, ring_matches,
+    setup,
 };
 
 /// An edge in the queue: where it would collapse to and at what cost.
@@ -78,6 +80,8 @@ pub struct QemRun {
     /// Set between [`QemRun::detach`] and [`QemRun::reattach`].
     detached: bool,
     ring: Vec<(EdgeId, VertexId, Vec3)>,
+    /// With a distance weight: the check ([`super::fidelity`]) and the rows it names faces by.
+    check: Option<(DistanceCheck, FaceRows)>,
 }
 
 impl QemRun {
@@ -94,6 +98,7 @@ impl QemRun {
             table,
             heap,
             faces_before,
+            check,
         } = setup(world, mesh, params)?;
         Ok(Self {
             mesh,
@@ -107,6 +112,7 @@ impl QemRun {
             next: None,
             detached: false,
             ring: Vec::new(),
+            check,
         })
     }
 
@@ -222,7 +228,21 @@ impl QemRun {
                 max_normal_change_deg: Some(self.max_normal_change_deg),
             };
             match plan_collapse_in(m, queued.edge, options) {
-                Ok(plan) => return Some((key, plan)),
+                Ok(plan) => {
+                    let Some((check, rows)) = &mut self.check else {
+                        return Some((key, plan));
+                    };
+                    check.read_faces(
+                        plan.reshaped_faces()
+                            .map(|(face, corners)| (rows.of(face), corners)),
+                    );
+                    let ends = [plan.kept().slot(), plan.removed().slot()];
+                    match check.review(key, ends, super::heap_key) {
+                        // Farther from the input than its key says: queued again.
+                        Some(key) => self.heap.set(key),
+                        None => return Some((key, plan)),
+                    }
+                }
                 Err(why) => refused(Refused { queued, why }),
             }
         }
@@ -252,9 +272,15 @@ impl QemRun {
             ring_matches(&MeshRef::new(world), a, &self.ring),
             "the plan's ring of {a} differs from the mesh after the collapse"
         );
+        if let Some((check, _)) = &mut self.check {
+            check.collapsed(a.slot(), self.ring.iter().map(|(_, tip, _)| tip.slot()));
+        }
         for &(e, tip, at) in &self.ring {
-            self.heap
-                .set(keyed_ends(&mut self.table, e, [merged, (tip, at)]));
+            let key = keyed_ends(&mut self.table, e, [merged, (tip, at)]);
+            if let Some((check, _)) = &mut self.check {
+                check.queued(key);
+            }
+            self.heap.set(key);
         }
         result
     }

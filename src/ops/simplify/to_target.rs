@@ -3,6 +3,7 @@
 //! the survivors written back and the removed elements despawned at the end. It uses the
 //! quadrics, placements and keys of [`super`], which do not call it.
 
+use super::fidelity::DistanceCheck;
 use super::*;
 
 /// Simplifies `mesh` (triangles only) until it has at most the target's faces or no
@@ -82,7 +83,7 @@ fn simplify_inner(
         });
         (heap_key(c.cost, slot), c.position)
     };
-    let (mut flat, (mut quadric, mut heap, mut target)) = std::thread::scope(|scope| {
+    let (mut flat, (mut quadric, mut heap, mut target, mut check)) = std::thread::scope(|scope| {
         let flat = scope.spawn(|| flat::FlatTriangles::new(&t, &slot_of_row, slots));
         let quadric = vertex_quadrics(&t, params);
         let mut target = vec![Vec3::ZERO; slots];
@@ -100,12 +101,14 @@ fn simplify_inner(
                 target[slot as usize] = at;
                 key
             })
-            .collect();
+            .collect::<Vec<Key>>();
+        let sizes = [slots, t.vertex_count()];
+        let check = DistanceCheck::for_run(&t, params.distance_weight, sizes, &entries);
         let heap = IndexedHeap::from_entries(slots, entries);
         let flat = flat
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-        (flat, (quadric, heap, target))
+        (flat, (quadric, heap, target, check))
     });
     let faces_before = t.face_count();
     // The run needs only its own tables from here on.
@@ -121,6 +124,14 @@ fn simplify_inner(
         let Some(plan) = flat.plan(flat.edge_halfedge(e), target[e as usize], limit) else {
             continue;
         };
+        if let Some(check) = &mut check {
+            check.read_faces(flat.reshaped_faces(&plan));
+            let ends = flat::FlatTriangles::ends(&plan).map(|v| v as usize);
+            if let Some(key) = check.review(entry, ends, heap_key) {
+                heap.set(key);
+                continue;
+            }
+        }
         ring.clear();
         let done = flat.apply(plan, |e, tip, at| ring.push((e, tip, at)));
         for e in done.removed_edges.into_iter().flatten() {
@@ -130,9 +141,15 @@ fn simplify_inner(
         collapses += 1;
         let (a, b) = (done.kept as usize, done.removed as usize);
         quadric[a] = quadric[a] + quadric[b];
+        if let Some(check) = &mut check {
+            check.collapsed(a, ring.iter().map(|&(_, tip, _)| tip as usize));
+        }
         for &(e, tip, at) in &ring {
             let (key, position) = keyed(&quadric, e, [(done.kept, done.position), (tip, at)]);
             target[e as usize] = position;
+            if let Some(check) = &mut check {
+                check.queued(key);
+            }
             heap.set(key);
         }
         record(done.record());
