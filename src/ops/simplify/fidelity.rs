@@ -16,10 +16,11 @@
 //!
 //! Measuring every edge each time its neighbourhood changes would cost more than the
 //! simplification; the check is lazy instead. An edge is queued at its quadric error, and
-//! measured when it is popped: if its cost with the distance differs from its key, it is queued
-//! again at that cost, remembered as measured, and collapses when it comes back without its
-//! neighbourhood having changed in between (a collapse stamps the merged vertex and its
-//! neighbours; an edge measured before either of its ends was stamped is measured again).
+//! measured when it is popped: if its cost with the distance is above the key it was popped at,
+//! it is queued again at that cost, remembered as measured, and collapses when it comes back
+//! without its neighbourhood having changed in between (a collapse stamps the merged vertex and
+//! its neighbours; an edge measured before either of its ends was stamped is measured again,
+//! and collapses at once if it now costs no more than its key).
 //!
 //! The samples are the input's vertices and face centroids: with the vertices alone the bunny's
 //! distance at a quarter of the faces did not move (0.092 %), since the farthest points lie
@@ -39,18 +40,74 @@ use crate::ops::indexed_heap::slot_of;
 /// A heap entry as the run keys its edges: the cost's bits above the edge's slot.
 type Key = u64;
 
-/// A face of the simplified mesh as it will stand after a collapse: its row and its corners.
+/// A face of the simplified mesh as it will stand after a collapse, ready for many point
+/// queries: its row, its corners, its plane and the planes through its sides perpendicular to
+/// it. A point whose foot falls inside is measured by one dot product, and a triangle that
+/// cannot be the nearest is passed over on a bound: the triangle lies in its plane and on the
+/// inner side of each side's plane, so no point of it is nearer than `h² + e²` (`h` the
+/// height over the plane, `e` the farthest a side's plane is crossed, the two at right angles).
 #[derive(Clone, Copy, Debug)]
 struct FanTriangle {
     face: u32,
     corners: [Vec3; 3],
+    /// The unit normal and its offset (`normal · x = offset` on the plane); `None` for a
+    /// triangle too thin to have one, always measured in full.
+    plane: Option<(Vec3, f32)>,
+    /// Each side's outward unit normal in the plane and its offset.
+    sides: [(Vec3, f32); 3],
+}
+
+impl FanTriangle {
+    fn new(face: u32, corners: [Vec3; 3]) -> Self {
+        let [a, b, c] = corners;
+        let normal = (b - a).cross(c - a).try_normalize();
+        let side = |p: Vec3, q: Vec3, n: Vec3| {
+            let out = (q - p).cross(n).normalize_or_zero();
+            (out, out.dot(p))
+        };
+        let (plane, sides) = match normal {
+            Some(n) => (
+                Some((n, n.dot(a))),
+                [side(a, b, n), side(b, c, n), side(c, a, n)],
+            ),
+            None => (None, [(Vec3::ZERO, 0.0); 3]),
+        };
+        Self {
+            face,
+            corners,
+            plane,
+            sides,
+        }
+    }
+
+    /// The squared distance from `p`, or a lower bound of it that is greater than `bound`
+    /// (so a value equal to `bound` or under it is exact).
+    #[inline]
+    fn squared_distance_below(&self, p: Vec3, bound: f32) -> f32 {
+        let Some((n, offset)) = self.plane else {
+            return (closest_on_triangle(p, &self.corners) - p).length_squared();
+        };
+        let h = n.dot(p) - offset;
+        let outside = self
+            .sides
+            .iter()
+            .map(|&(m, o)| m.dot(p) - o)
+            .fold(0.0f32, f32::max);
+        let low = h * h + outside * outside;
+        if outside <= 0.0 || low > bound {
+            low
+        } else {
+            (closest_on_triangle(p, &self.corners) - p).length_squared()
+        }
+    }
 }
 
 /// The input's points, in bins by face row (see the module doc).
 struct InputSamples {
     bins: Vec<Vec<Vec3>>,
-    /// Scratch for [`InputSamples::rebin`].
-    moving: Vec<Vec3>,
+    /// Scratch for [`InputSamples::rebin`]: the points moving, each with its face's place in
+    /// the fan.
+    moving: Vec<(Vec3, usize)>,
 }
 
 impl InputSamples {
@@ -88,12 +145,12 @@ impl InputSamples {
         for &f in before {
             let own = fan.iter().find(|t| t.face == f);
             for &p in &self.bins[f as usize] {
-                let mut nearest = own.map_or(f32::MAX, |t| squared_distance(p, t));
+                let mut nearest = own.map_or(f32::MAX, |t| t.squared_distance_below(p, f32::MAX));
                 if nearest <= worst {
                     continue;
                 }
                 for t in fan {
-                    nearest = nearest.min(squared_distance(p, t));
+                    nearest = nearest.min(t.squared_distance_below(p, nearest));
                     if nearest <= worst {
                         break;
                     }
@@ -113,13 +170,16 @@ impl InputSamples {
         let mut moving = std::mem::take(&mut self.moving);
         moving.clear();
         for &f in before {
-            moving.append(&mut self.bins[f as usize]);
+            let own = fan.iter().position(|t| t.face == f).unwrap_or(0);
+            moving.extend(self.bins[f as usize].drain(..).map(|p| (p, own)));
         }
-        for &p in &moving {
-            let mut best = (f32::INFINITY, NONE);
+        for &(p, own) in &moving {
+            // Its own face's new shape first (where it mostly stays), then the others on a bound.
+            let t = &fan[own];
+            let mut best = (t.squared_distance_below(p, f32::MAX), t.face);
             for t in fan {
-                let d = squared_distance(p, t);
-                if best.1 == NONE || d < best.0 || (d == best.0 && t.face < best.1) {
+                let d = t.squared_distance_below(p, best.0);
+                if d < best.0 || (d == best.0 && t.face < best.1) {
                     best = (d, t.face);
                 }
             }
@@ -127,12 +187,6 @@ impl InputSamples {
         }
         self.moving = moving;
     }
-}
-
-/// The squared distance from `p` to triangle `t`.
-#[inline]
-fn squared_distance(p: Vec3, t: &FanTriangle) -> f32 {
-    (closest_on_triangle(p, &t.corners) - p).length_squared()
 }
 
 /// The lazy distance check of a run (see the module doc): the samples, each edge's key by its
@@ -205,14 +259,14 @@ impl DistanceCheck {
             }
             self.before.push(face);
             if let Some(corners) = corners {
-                self.fan.push(FanTriangle { face, corners });
+                self.fan.push(FanTriangle::new(face, corners));
             }
         }
     }
 
     /// Reviews the popped `entry` of an edge whose collapse, merging the vertices `ends`, is
     /// allowed, its faces read ([`DistanceCheck::read_faces`]): the key to queue it at again
-    /// instead of collapsing it now, or `None` to collapse it. `heap_key(cost, slot)` is the
+    /// when its cost is above the key it was popped at, or `None` to collapse it. `heap_key(cost, slot)` is the
     /// run's own key of a cost.
     pub fn review(
         &mut self,
@@ -231,7 +285,8 @@ impl DistanceCheck {
         let farthest = self.samples.farthest(&self.before, &self.fan, floor);
         let key = heap_key(quadric.max(self.scale * f64::from(farthest)), slot as u32);
         self.measured_at[slot] = self.clock;
-        (key != entry).then_some(key)
+        // A cost at or under the key it was popped at is still the cheapest: collapse now.
+        (key > entry).then_some(key)
     }
 
     /// After the reviewed collapse: its faces' points rebinned, the merged vertex `kept` and
@@ -288,11 +343,11 @@ mod tests {
         let samples = InputSamples::new(&t);
         // Both faces lifted by 0.5: every point lies 0.5 below them.
         let lifted: Vec<FanTriangle> = (0..2)
-            .map(|f| FanTriangle {
-                face: f,
-                corners: t
+            .map(|f| {
+                let corners = t
                     .triangle_halfedges(crate::mesh::tables::FaceRow::new(f))
-                    .map(|h| t.position(t.to_vertex(h)) + Vec3::Z * 0.5),
+                    .map(|h| t.position(t.to_vertex(h)) + Vec3::Z * 0.5);
+                FanTriangle::new(f, corners)
             })
             .collect();
         assert_eq!(samples.farthest(&[0, 1], &lifted, 0.0), 0.25);
@@ -312,14 +367,11 @@ mod tests {
         let mut samples = InputSamples::new(&t);
         // Face 1 moved far away: every point goes to face 0, which stayed.
         let fan = [
-            FanTriangle {
-                face: 0,
-                corners: [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0)],
-            },
-            FanTriangle {
-                face: 1,
-                corners: [Vec3::Z * 10.0, Vec3::Z * 11.0, Vec3::new(0.0, 1.0, 10.0)],
-            },
+            FanTriangle::new(0, [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0)]),
+            FanTriangle::new(
+                1,
+                [Vec3::Z * 10.0, Vec3::Z * 11.0, Vec3::new(0.0, 1.0, 10.0)],
+            ),
         ];
         samples.rebin(&[0, 1], &fan);
         assert_eq!(samples.bins[0].len(), 6);
@@ -327,5 +379,27 @@ mod tests {
         // With no face left to go to, the points stay.
         samples.rebin(&[0], &[]);
         assert_eq!(samples.bins[0].len(), 6);
+    }
+
+    #[test]
+    fn a_point_is_measured_exactly_or_passed_over_on_a_bound_that_holds() {
+        let t = FanTriangle::new(7, [Vec3::ZERO, Vec3::X * 2.0, Vec3::Y * 2.0]);
+        // Over the inside: its height.
+        assert_eq!(
+            t.squared_distance_below(Vec3::new(0.5, 0.5, 3.0), f32::MAX),
+            9.0
+        );
+        // Beyond the corner (2, 0, 0): 1 across and 2 up, exactly, under a loose bound.
+        let p = Vec3::new(3.0, 0.0, 2.0);
+        assert_eq!(t.squared_distance_below(p, f32::MAX), 5.0);
+        // Under a tight bound, a value above the bound and no more than the distance.
+        let low = t.squared_distance_below(p, 1.0);
+        assert!(low > 1.0 && low <= 5.0, "{low}");
+        // A triangle too thin for a plane is measured in full.
+        let thin = FanTriangle::new(8, [Vec3::ZERO, Vec3::X, Vec3::X * 2.0]);
+        assert_eq!(
+            thin.squared_distance_below(Vec3::new(1.0, 0.0, 2.0), 0.0),
+            4.0
+        );
     }
 }
