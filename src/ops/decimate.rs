@@ -1,9 +1,10 @@
 //! QEM simplification as the user invokes it (Garland & Heckbert; the algorithm is
 //! [`crate::ops::simplify`]): `simplify[:RATIO][:DISTANCE]` (Shift+S) keeps a fraction of the
 //! faces, `simplify-faces[:FACES][:DISTANCE]` a number of them, DISTANCE the weight of the
-//! input's farthest point in a collapse's cost (0, the default: the quadrics alone). Each records every collapse in the mesh's
-//! simplification history ([`ProgressiveMesh`], Hoppe 1996), which `refine[:FACES]` — the
-//! level-of-detail slider — and `vertex-split` (U) then move along.
+//! input's farthest point in a collapse's cost (0, the default: the quadrics alone). Each
+//! records every collapse in the mesh's simplification history ([`ProgressiveMesh`], Hoppe
+//! 1996), which `refine[:FACES]` — the level-of-detail slider — and `vertex-split` (U) then
+//! move along.
 //!
 //! A module of its own because it joins the two below it: the history records what the
 //! simplification does, so `progressive` imports `simplify`, and this imports both. The vertex

@@ -96,7 +96,7 @@ pub struct SimplifyParams {
     /// as Garland & Heckbert do.
     pub min_area_share: f64,
     /// What the farthest point of the input from the faces a collapse reshapes adds to its
-    /// cost: its squared distance times this times the mean face area at the start (see
+    /// cost: its squared distance times this times twice the mean face area at the start (see
     /// [`fidelity`]). Default 0, which leaves the quadric error alone, as Garland & Heckbert
     /// do; 8 takes the bunny's Hausdorff distance at a quarter of its faces from 0.092 to
     /// 0.074 % of its diagonal, in about three times the time (`docs/performance.md`).

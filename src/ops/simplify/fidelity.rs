@@ -9,10 +9,11 @@
 //! (at the start every face's centroid and every vertex, in the bin of a face that has it); a
 //! collapse reshapes the faces around the two ends, so the points of those faces are measured
 //! against the faces that will stand there afterwards, and move into the bin of the nearest.
-//! Their farthest distance `d` makes the collapse cost at least `w · Ā · d²` (`Ā` the mean face
-//! area at the start, `w` [`super::SimplifyParams::distance_weight`]), a quantity of the same
-//! kind as the quadric's area-weighted squares: the collapses that would take any of the input
-//! farthest away wait until the others are done.
+//! Their farthest distance `d` makes the collapse cost at least `w · 2Ā · d²` (`2Ā` the mean of
+//! the faces' doubled areas `|(b − a) × (c − a)|` at the start, `w`
+//! [`super::SimplifyParams::distance_weight`]), a quantity of the same kind as the quadric's
+//! area-weighted squares: the collapses that would take any of the input farthest away wait
+//! until the others are done.
 //!
 //! Measuring every edge each time its neighbourhood changes would cost more than the
 //! simplification; the check is lazy instead. An edge is queued at its quadric error, and
@@ -193,7 +194,7 @@ impl InputSamples {
 /// quadric alone, and when each edge was measured and each vertex's faces last changed.
 pub(crate) struct DistanceCheck {
     samples: InputSamples,
-    /// `w · Ā`: what a squared distance costs.
+    /// `w · 2Ā` (the weight times the mean doubled face area): what a squared distance costs.
     scale: f64,
     /// Each edge's key by its quadric error alone, by heap slot.
     quadric_key: Vec<Key>,
@@ -266,8 +267,8 @@ impl DistanceCheck {
 
     /// Reviews the popped `entry` of an edge whose collapse, merging the vertices `ends`, is
     /// allowed, its faces read ([`DistanceCheck::read_faces`]): the key to queue it at again
-    /// when its cost is above the key it was popped at, or `None` to collapse it. `heap_key(cost, slot)` is the
-    /// run's own key of a cost.
+    /// when its cost is above the key it was popped at, or `None` to collapse it.
+    /// `heap_key(cost, slot)` is the run's own key of a cost.
     pub fn review(
         &mut self,
         entry: Key,

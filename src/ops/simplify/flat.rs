@@ -128,6 +128,13 @@ pub(crate) struct Plan {
     merged_boundary: bool,
 }
 
+impl Plan {
+    /// Its two ends: the vertex that stays and the one that goes.
+    pub fn ends(&self) -> [u32; 2] {
+        [self.a, self.b]
+    }
+}
+
 /// What one collapse did, by row.
 pub(crate) struct Collapsed {
     /// The vertex that stayed and the one that went.
@@ -274,11 +281,6 @@ impl FlatTriangles {
                 break;
             }
         }
-    }
-
-    /// The plan's two ends: the vertex that stays and the one that goes.
-    pub fn ends(p: &Plan) -> [u32; 2] {
-        [p.a, p.b]
     }
 
     /// Every face around the edge of `p` (the last plan made) once, each with its corners once

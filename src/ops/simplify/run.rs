@@ -38,7 +38,8 @@ use super::{
 pub struct QueuedEdge {
     /// The edge.
     pub edge: EdgeId,
-    /// The quadric error of its collapse (as queued: an `f32`).
+    /// The cost of its collapse as queued (an `f32`): its quadric error, or with the distance
+    /// check ([`super::SimplifyParams::distance_weight`]) what the check measured, if more.
     pub cost: f32,
     /// Where its ends would merge.
     pub position: Vec3,
@@ -152,7 +153,8 @@ impl QemRun {
     }
 
     /// The `n` cheapest edges in the queue, cheapest first, as they are queued (the first may
-    /// still be refused when its turn comes; [`QemRun::peek`] says which will not be).
+    /// still be refused when its turn comes, or with the distance check queued again at a
+    /// higher cost; [`QemRun::peek`] says which will not be).
     pub fn candidates(&self, n: usize) -> Vec<QueuedEdge> {
         let rest = self
             .heap
@@ -166,7 +168,9 @@ impl QemRun {
 
     /// The collapse the next [`QemRun::collapse_next`] makes, or `None` when the run is over
     /// (the target reached, or no edge left whose collapse is allowed). Edges refused on the
-    /// way leave the queue as they would in an unstepped run, each handed to `refused`.
+    /// way leave the queue as they would in an unstepped run, each handed to `refused`; with the
+    /// distance check, an edge measured farther than its key goes back in the queue at that
+    /// cost, as in the unstepped run, and is not a refusal.
     ///
     /// # Panics
     /// While detached.

@@ -126,7 +126,7 @@ fn simplify_inner(
         };
         if let Some(check) = &mut check {
             check.read_faces(flat.reshaped_faces(&plan));
-            let ends = flat::FlatTriangles::ends(&plan).map(|v| v as usize);
+            let ends = plan.ends().map(|v| v as usize);
             if let Some(key) = check.review(entry, ends, heap_key) {
                 heap.set(key);
                 continue;
