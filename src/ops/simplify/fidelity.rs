@@ -21,7 +21,8 @@
 //! it is queued again at that cost, remembered as measured, and collapses when it comes back
 //! without its neighbourhood having changed in between (a collapse stamps the merged vertex and
 //! its neighbours; an edge measured before either of its ends was stamped is measured again,
-//! and collapses at once if it now costs no more than its key).
+//! and collapses at once if it now costs no more than its key). A distance under a millionth of
+//! the input's diagonal counts as none ([`NOISE_FRACTION`]).
 //!
 //! The samples are the input's vertices and face centroids: with the vertices alone the bunny's
 //! distance at a quarter of the faces did not move (0.092 %), since the farthest points lie
@@ -41,6 +42,13 @@ use crate::ops::indexed_heap::slot_of;
 
 /// A heap entry as the run keys its edges: the cost's bits above the edge's slot.
 type Key = u64;
+
+/// The distance, as a fraction of the input's bounding box diagonal, under which a point counts
+/// as on the surface. Positions carry about seven digits, so below it a distance is the
+/// rounding of the corners: on a flat region every collapse would measure such a distance above
+/// its quadric's (nearly zero) and go back in the queue for it, a third of the check's time on
+/// the fandisk, with no distance measured any different.
+const NOISE_FRACTION: f32 = 1e-6;
 
 /// A face of the simplified mesh as it will stand after a collapse, ready for many point
 /// queries: its row, its corners, its plane and the planes through its sides perpendicular to
@@ -219,6 +227,9 @@ pub(crate) struct DistanceCheck {
     samples: InputSamples,
     /// `w · 2Ā` (the weight times the mean doubled face area): what a squared distance costs.
     scale: f64,
+    /// The squared distance under which a point counts as on the surface (see
+    /// [`NOISE_FRACTION`]).
+    noise: f32,
     /// Each edge's key by its quadric error alone, by heap slot.
     quadric_key: Vec<Key>,
     /// The clock when each edge was last measured (0: not since it was last queued).
@@ -249,9 +260,15 @@ impl DistanceCheck {
             .faces()
             .map(|f| f64::from(t.triangle_area_vector(f).length()))
             .sum();
+        let (low, high) = t
+            .vertices()
+            .map(|v| t.position(v))
+            .fold((Vec3::MAX, Vec3::MIN), |(l, h), p| (l.min(p), h.max(p)));
+        let noise = (high - low).length() * NOISE_FRACTION;
         let mut check = Self {
             samples: InputSamples::new(t),
             scale: weight * area / t.face_count().max(1) as f64,
+            noise: noise * noise,
             quadric_key: vec![0; edges],
             measured_at: vec![0; edges],
             changed_at: vec![0; vertices],
@@ -305,10 +322,16 @@ impl DistanceCheck {
             return None;
         }
         let quadric = f64::from(f32::from_bits((self.quadric_key[slot] >> 32) as u32));
-        // Points nearer than this cannot raise the cost above the quadric's.
-        let floor = (quadric / self.scale) as f32;
+        // Points nearer than this cannot raise the cost above the quadric's, nor those within
+        // the rounding of the surface.
+        let floor = ((quadric / self.scale) as f32).max(self.noise);
         let farthest = self.samples.farthest(&self.before, &self.fan, floor);
-        let key = heap_key(quadric.max(self.scale * f64::from(farthest)), slot as u32);
+        let cost = if farthest > self.noise {
+            quadric.max(self.scale * f64::from(farthest))
+        } else {
+            quadric
+        };
+        let key = heap_key(cost, slot as u32);
         self.measured_at[slot] = self.clock;
         // A cost at or under the key it was popped at is still the cheapest: collapse now.
         (key > entry).then_some(key)
@@ -404,6 +427,32 @@ mod tests {
         // With no face left to go to, the points stay.
         samples.rebin(&[0], &[]);
         assert_eq!(samples.bins[0].len(), 6);
+    }
+
+    #[test]
+    fn a_distance_within_the_rounding_of_the_surface_costs_nothing() {
+        let t = square();
+        let heap_key = super::super::heap_key;
+        // Edge 0 queued at no cost: the square is flat, its quadrics zero.
+        let entry = heap_key(0.0, 0);
+        // Face 0 lifted by `height`, face 1 as it is.
+        let lifted_by = |height: f32| {
+            [(0, height), (1, 0.0)].map(|(f, height)| {
+                let corners = t
+                    .triangle_halfedges(crate::mesh::tables::FaceRow::new(f))
+                    .map(|h| t.position(t.to_vertex(h)) + Vec3::Z * height);
+                (f, Some(corners))
+            })
+        };
+        let mut check = DistanceCheck::for_run(&t, 8.0, [5, 4], &[entry]).unwrap();
+        // Lifted by far less than a millionth of the diagonal: no distance, the quadric's cost.
+        check.read_faces(lifted_by(1e-9));
+        assert_eq!(check.review(entry, [0, 1], heap_key), None);
+        // A thousandth of the diagonal is a distance: queued again at its cost.
+        let mut check = DistanceCheck::for_run(&t, 8.0, [5, 4], &[entry]).unwrap();
+        check.read_faces(lifted_by(1.5e-3));
+        let requeued = check.review(entry, [0, 1], heap_key).expect("queued again");
+        assert!(requeued > entry);
     }
 
     #[test]
