@@ -100,6 +100,9 @@ def correlation(xs, ys):
 def main():
     folder = tempfile.mkdtemp(prefix="pappus-spread-")
     scans = write_scans(folder, icosphere_levels=(8, 9))
+    # The scans just written are dirty pages the kernel writes back in the background, on the
+    # cores the first runs are timed on: written back now, before any run.
+    os.sync()
     runs = {name: [] for name, _ in scans}
     warm = {name: [] for name, _ in scans}
     peers = {name: [] for name, _ in scans}
@@ -117,6 +120,10 @@ def main():
     for name, _ in scans:
         print(row(name, runs[name], peers[name]))
         print(row(f"{name}, warm", warm[name], []))
+    print("\nEach run's build ms, in order (as it comes; warm):")
+    for name, _ in scans:
+        print(f"- {name}: {' '.join(f'{r[0]:.0f}' for r in runs[name])}; "
+              f"{' '.join(f'{r[0]:.0f}' for r in warm[name])}")
     cold, again = touch(4096), touch(4096)
     print(f"\nA fresh 4 KB page: {cold:.2f} us touched first, {again:.2f} us by the next process "
           f"at once (4 GB each).")
