@@ -39,9 +39,10 @@
 use bevy::math::{DVec3, Vec3};
 use bevy::prelude::{Entity, World};
 
+use crate::mesh::MeshMembers;
 use crate::mesh::despawn::Despawner;
 use crate::mesh::ids::{EdgeId, ElementId, FaceId, MeshId, VertexId, slots_for};
-use crate::mesh::tables::{Connectivity, FaceRow, MeshTables, VertexRow, extract};
+use crate::mesh::tables::{Connectivity, EntityRows, FaceRow, MeshTables, VertexRow, extract};
 use crate::mesh::topology::MeshRef;
 
 use super::Refusal;
@@ -357,35 +358,26 @@ struct Setup {
 /// The rows of a mesh's faces as [`extract`] listed them at a run's start, by entity: the
 /// names the distance check ([`fidelity`]) knows them by.
 struct FaceRows {
-    /// By entity index: the row ([`crate::mesh::tables::NONE`]: none).
-    row: Vec<u32>,
-    /// By row: the face.
+    /// Every element's row by entity.
+    rows: EntityRows,
+    /// By row: the face, to tell a face the run started with from a later one at its index.
     face: Vec<FaceId>,
 }
 
 impl FaceRows {
-    fn new(faces: &[FaceId]) -> Self {
-        let mut row = vec![crate::mesh::tables::NONE; slots_for(faces.iter().map(|f| f.0))];
-        for (i, f) in faces.iter().enumerate() {
-            row[f.0.index_u32() as usize] = i as u32;
-        }
+    fn new(members: &MeshMembers) -> Self {
         Self {
-            row,
-            face: faces.to_vec(),
+            rows: EntityRows::new(members),
+            face: members.faces.clone(),
         }
     }
 
     /// The row of `f` ([`crate::mesh::tables::NONE`] for a face the run did not start with).
     fn of(&self, f: FaceId) -> u32 {
-        let row = self
-            .row
-            .get(f.0.index_u32() as usize)
-            .copied()
-            .unwrap_or(crate::mesh::tables::NONE);
-        match self.face.get(row as usize) {
-            Some(&face) if face == f => row,
-            _ => crate::mesh::tables::NONE,
-        }
+        self.rows
+            .row(f.0)
+            .filter(|&row| self.face.get(row as usize) == Some(&f))
+            .unwrap_or(crate::mesh::tables::NONE)
     }
 }
 
@@ -432,7 +424,7 @@ fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, 
         .collect();
     let sizes = [table.target.len(), table.quadric.len()];
     let check = DistanceCheck::for_run(&t, params.distance_weight, sizes, &entries)
-        .map(|check| (check, FaceRows::new(&members.faces)));
+        .map(|check| (check, FaceRows::new(&members)));
     Ok(Setup {
         heap: IndexedHeap::from_entries(table.target.len(), entries),
         table,

@@ -36,6 +36,7 @@
 use bevy::math::Vec3;
 use smallvec::SmallVec;
 
+use crate::mesh::closure::bounding_box;
 use crate::mesh::tables::{Connectivity, NONE};
 use crate::ops::geometry::closest::closest_on_triangle;
 use crate::ops::indexed_heap::slot_of;
@@ -260,11 +261,8 @@ impl DistanceCheck {
             .faces()
             .map(|f| f64::from(t.triangle_area_vector(f).length()))
             .sum();
-        let (low, high) = t
-            .vertices()
-            .map(|v| t.position(v))
-            .fold((Vec3::MAX, Vec3::MIN), |(l, h), p| (l.min(p), h.max(p)));
-        let noise = (high - low).length() * NOISE_FRACTION;
+        let noise = bounding_box(t.vertices().map(|v| t.position(v)))
+            .map_or(0.0, |(low, high)| (high - low).length() * NOISE_FRACTION);
         let mut check = Self {
             samples: InputSamples::new(t),
             scale: weight * area / t.face_count().max(1) as f64,
