@@ -3,7 +3,8 @@
 //! by the smoothing are cleaned up.
 //!
 //! - Where the remesh strays from the input by more than [`DETAIL_TOLERANCE`] · L, the input's
-//!   vertices left that far off (the tips of spikes and folds) become vertices again
+//!   vertices left that far off (the tips of spikes and folds), and the centres of its
+//!   triangles coarser than the remesh ([`detail_points`]), become vertices again
 //!   ([`restore_tips`]), and the edges that far off at their middle or a quarter or eighth of
 //!   the way along (bridging a groove) are split onto the input ([`fill_grooves`]). Each
 //!   split ([`split_onto`]) happens only where the new triangles lie no farther from the input
@@ -22,7 +23,7 @@ use bevy::prelude::World;
 
 use crate::mesh::ids::{EdgeId, HalfedgeId, MeshId, VertexId};
 use crate::mesh::stats::min_corner_angle_deg;
-use crate::mesh::tables::{MeshTables, extract};
+use crate::mesh::tables::{Connectivity, MeshTables, extract};
 use crate::mesh::topology::MeshRef;
 use crate::ops::local::split_edge;
 
@@ -48,6 +49,33 @@ const GROOVE_SAMPLES: [f32; 5] = [0.5, 0.25, 0.75, 0.375, 0.625];
 /// module doc); each round moves fewer corners than the one before, and more rounds left no
 /// fewer thin triangles (`docs/remesh.md`).
 const THIN_ROUNDS: usize = 3;
+
+/// An input triangle whose longest side is more than this many target lengths is coarser
+/// than the remesh: its corners alone do not say where the input lies, and its centre is put
+/// back like a vertex ([`detail_points`]). On the bunny remeshed at 0.995 of its mean edge
+/// length, one such triangle (sides 1.3, 2.1 and 2.9 L, folded 58° against its neighbours)
+/// had all three corners on the remesh and its middle 0.199 % of the diagonal off it. At 1.5
+/// the same, at 3 that triangle is missed; every centre, whatever its triangle's size, took
+/// spot, the ogre and homer farther (`docs/performance.md`).
+pub(super) const COARSE_TRIANGLE: f32 = 2.0;
+
+/// The input's points [`restore_tips`] may put back, for a remesh to `length`: its vertices
+/// off the boundary (the first `.1` of them), then the centres of its triangles whose
+/// longest side exceeds [`COARSE_TRIANGLE`] · `length`.
+pub(super) fn detail_points(t: &Connectivity, length: f32) -> (Vec<Vec3>, usize) {
+    let mut points: Vec<Vec3> = t
+        .vertices()
+        .filter(|&v| !t.is_boundary_vertex(v))
+        .map(|v| t.position(v))
+        .collect();
+    let vertices = points.len();
+    points.extend(t.faces().filter_map(|f| {
+        let [a, b, c] = t.triangle_corners(f);
+        let longest = a.distance(b).max(b.distance(c)).max(c.distance(a));
+        (longest > COARSE_TRIANGLE * length).then(|| (a + b + c) / 3.0)
+    }));
+    (points, vertices)
+}
 
 /// Puts back the input's vertices that the remesh left farther than `tolerance` from its
 /// surface: the tips of spikes and folds narrower than `length`, which triangles of that size
@@ -306,6 +334,35 @@ mod tests {
         assert_eq!(m.position(tip), apex);
         assert_eq!(m.vertex_neighbors(tip).count(), 4);
         assert_eq!(crate::mesh::validate(&world, mesh), Ok(()));
+    }
+
+    #[test]
+    fn the_centres_of_triangles_coarser_than_the_remesh_are_detail_too() {
+        // The pyramid's four sides: 2 along the base, 1.5 up to the apex.
+        let pyramid = PolygonSoup::from_faces(
+            vec![
+                Vec3::new(-1.0, -1.0, 0.0),
+                Vec3::new(1.0, -1.0, 0.0),
+                Vec3::new(1.0, 1.0, 0.0),
+                Vec3::new(-1.0, 1.0, 0.0),
+                Vec3::new(0.0, 0.0, 0.5),
+            ],
+            &[[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]],
+        );
+        let mut world = World::new();
+        let built = build_mesh(&mut world, &pyramid, MeshInfo::default()).unwrap();
+        let t = extract(&world, built.mesh).tables;
+        // The apex is the one vertex off the boundary; at L = 1 no side passes 2 L: no centre.
+        let (points, vertices) = detail_points(&t, 1.0);
+        assert_eq!((points.len(), vertices), (1, 1));
+        assert_eq!(points[0], Vec3::new(0.0, 0.0, 0.5));
+        // At L = 0.9 every side of the base is past 2 L: the four centres follow the apex.
+        let (points, vertices) = detail_points(&t, 0.9);
+        assert_eq!((points.len(), vertices), (5, 1));
+        let centre =
+            (Vec3::new(-1.0, -1.0, 0.0) + Vec3::new(1.0, -1.0, 0.0) + Vec3::new(0.0, 0.0, 0.5))
+                / 3.0;
+        assert!(points[1..].contains(&centre), "{points:?}");
     }
 
     #[test]

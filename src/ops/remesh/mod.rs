@@ -24,8 +24,9 @@
 //! After the last iteration ([`finish`]), the detail that triangles of length L cannot follow
 //! is put back where the remesh strays from the input by more than
 //! [`DETAIL_TOLERANCE`](finish::DETAIL_TOLERANCE) · L: the input's vertices left that far off
-//! its surface (the tips of spikes and folds narrower than L) become vertices again
-//! ([`restore_tips`](finish::restore_tips)), and the edges whose middle is that far off
+//! its surface (the tips of spikes and folds narrower than L), and the centres of its
+//! triangles longer than 2 L ([`detail_points`](finish::detail_points)), become vertices
+//! again ([`restore_tips`](finish::restore_tips)), and the edges whose middle is that far off
 //! (bridging a groove or the foot of a spike) are split onto the input
 //! ([`fill_grooves`](finish::fill_grooves)); each split only where its triangles lie no farther
 //! from the input than the gap it closes.

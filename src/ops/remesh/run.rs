@@ -32,7 +32,7 @@ use crate::ops::geometry::closest::Reference;
 
 use super::collapse::collapse_short;
 use super::features::feature_rows;
-use super::finish::{DETAIL_TOLERANCE, clean_up_thin, fill_grooves, restore_tips};
+use super::finish::{DETAIL_TOLERANCE, clean_up_thin, detail_points, fill_grooves, restore_tips};
 use super::fit::fit_to_input;
 use super::flip::flip_to_valence;
 use super::pass::{Pass, PassReport, Touched};
@@ -55,8 +55,11 @@ pub struct RemeshRun {
     low: f32,
     /// The input surface, for the projections and the finish.
     reference: Reference,
-    /// The input's interior vertices, for [`restore_tips`].
+    /// The input's points [`restore_tips`] may put back ([`detail_points`]): its interior
+    /// vertices (the first `vertex_tips`, which the fit measures too), then the centres of
+    /// its coarse triangles.
     tips: Vec<Vec3>,
+    vertex_tips: usize,
     features: EntityHashSet,
     summary: RemeshSummary,
     done: usize,
@@ -119,11 +122,7 @@ impl RemeshRun {
         check_budget(&t, length, params.iterations)?;
         let reference =
             Reference::from_triangles(t.faces().map(|f| t.triangle_corners(f)).collect());
-        let tips: Vec<Vec3> = t
-            .vertices()
-            .filter(|&v| !t.is_boundary_vertex(v))
-            .map(|v| t.position(v))
-            .collect();
+        let (tips, vertex_tips) = detail_points(&t, length);
         let cos_limit = params.feature_angle_deg.to_radians().cos();
         let features: EntityHashSet = feature_rows(&t, cos_limit)
             .iter()
@@ -140,6 +139,7 @@ impl RemeshRun {
             low: 4.0 / 5.0 * length,
             reference,
             tips,
+            vertex_tips,
             features,
             summary: RemeshSummary {
                 target_length: length,
@@ -269,7 +269,8 @@ impl RemeshRun {
             self.low / 16.0,
             tolerance,
         );
-        fit_to_input(world, mesh, reference, &self.tips, features, &pinned);
+        let vertices = &self.tips[..self.vertex_tips];
+        fit_to_input(world, mesh, reference, vertices, features, &pinned);
         let splits = pinned.len() + grooves.len();
         self.summary.splits += splits;
         self.summary.flips += flipped.len();
