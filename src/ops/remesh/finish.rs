@@ -306,11 +306,9 @@ mod tests {
         (members.vertices.len(), found)
     }
 
-    #[test]
-    fn a_spike_the_remesh_cut_off_is_put_back_where_it_was() {
-        // A pyramid 0.5 high over the square: its apex is 0.5 off the flat remesh.
-        let apex = Vec3::new(0.0, 0.0, 0.5);
-        let pyramid = PolygonSoup::from_faces(
+    /// The four sides of a pyramid over the square [-1, 1]² at z = 0, with its apex at `apex`.
+    fn pyramid(apex: Vec3) -> PolygonSoup {
+        PolygonSoup::from_faces(
             vec![
                 Vec3::new(-1.0, -1.0, 0.0),
                 Vec3::new(1.0, -1.0, 0.0),
@@ -319,7 +317,14 @@ mod tests {
                 apex,
             ],
             &[[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]],
-        );
+        )
+    }
+
+    #[test]
+    fn a_spike_the_remesh_cut_off_is_put_back_where_it_was() {
+        // A pyramid 0.5 high over the square: its apex is 0.5 off the flat remesh.
+        let apex = Vec3::new(0.0, 0.0, 0.5);
+        let pyramid = pyramid(apex);
         let (mut world, mesh, input) = square_over(pyramid);
         let none = EntityHashSet::default();
         // Within the tolerance, nothing happens.
@@ -339,16 +344,7 @@ mod tests {
     #[test]
     fn the_centres_of_triangles_coarser_than_the_remesh_are_detail_too() {
         // The pyramid's four sides: 2 along the base, 1.5 up to the apex.
-        let pyramid = PolygonSoup::from_faces(
-            vec![
-                Vec3::new(-1.0, -1.0, 0.0),
-                Vec3::new(1.0, -1.0, 0.0),
-                Vec3::new(1.0, 1.0, 0.0),
-                Vec3::new(-1.0, 1.0, 0.0),
-                Vec3::new(0.0, 0.0, 0.5),
-            ],
-            &[[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]],
-        );
+        let pyramid = pyramid(Vec3::new(0.0, 0.0, 0.5));
         let mut world = World::new();
         let built = build_mesh(&mut world, &pyramid, MeshInfo::default()).unwrap();
         let t = extract(&world, built.mesh).tables;
