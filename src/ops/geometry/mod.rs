@@ -14,6 +14,7 @@ pub mod normals;
 pub mod quantity;
 pub mod stored;
 pub mod surface;
+pub mod surface_fit;
 
 pub use cotan::cotan_edges;
 pub use curvature::{Curvature, curvature, mixed_areas, scalar_curvature};

@@ -40,7 +40,8 @@
 //! ([`clean_up_thin`](finish::clean_up_thin)). What stays thin has a corner that may not move:
 //! a feature corner, or a feature line or boundary that bends there.
 //!
-//! Last, the vertices are fitted to the input ([`fit`]): each vertex that the projection left
+//! Last, the vertices are fitted to the input
+//! ([`surface_fit`](crate::ops::geometry::surface_fit)): each vertex that the projection left
 //! on the input moves along its normal by the mean of the gaps around it, both ways (the
 //! input's points from the remesh, the remesh's from the input), each weighted by its length,
 //! so that the triangles straddle the input instead of lying on one side of it (one step of
@@ -68,7 +69,6 @@
 mod collapse;
 mod features;
 mod finish;
-mod fit;
 pub(crate) mod flip;
 mod operation;
 mod pass;

@@ -33,12 +33,12 @@ use crate::ops::geometry::closest::Reference;
 use super::collapse::collapse_short;
 use super::features::feature_rows;
 use super::finish::{DETAIL_TOLERANCE, clean_up_thin, detail_points, fill_grooves, restore_tips};
-use super::fit::fit_to_input;
 use super::flip::flip_to_valence;
 use super::pass::{Pass, PassReport, Touched};
 use super::relax::{Smoother, project};
 use super::split::split_long;
 use super::{RemeshParams, RemeshSummary};
+use crate::ops::geometry::surface_fit::fit_to_input;
 
 /// A remesh under way, one pass a call to [`RemeshRun::next_pass`].
 ///

@@ -1,42 +1,41 @@
-//! The last move of the finish: the remesh's vertices fitted to the input by least squares.
+//! One step of a least-squares fit of a triangle mesh to the surface it stands for.
 //!
-//! Every vertex the remesh projects lies on the input, so each triangle between them lies on
-//! one side of it: under a convex stretch, over a concave one, across a crease softer than the
-//! feature angle. Where the input bends sharply within a triangle (a scan's folds, a crease
-//! rounded off), that one-sided gap is the remesh's distance from the input. Hoppe et al.
-//! ("Mesh Optimization", SIGGRAPH 1993) fit a mesh to points of a surface by minimising the
-//! squared distances from the points to the mesh, alternating closest points with a linear
-//! least-squares solve for the vertices. Here the points are both surfaces' samples: the
-//! input's vertices and triangle centres (how far the input lies from the remesh) and the
-//! remesh's edge middles and triangle centres (how far the remesh lies from the input). Each
-//! residual is shared out to the corners of the remesh triangle it falls on by its barycentric
-//! weights, and weighted by its own length, so that the far spots, which make the Hausdorff
-//! distance, count the most (a step of iteratively reweighted least squares, towards the
-//! largest distance rather than the mean). Each vertex then moves along its normal by the
-//! weighted mean of its residuals: one Jacobi step of the normal equations, from the projected
-//! remesh. The triangles come to straddle the input instead of lying on one side of it.
+//! Hoppe et al. ("Mesh Optimization", SIGGRAPH 1993) fit a mesh to points of a surface by
+//! minimising the squared distances from the points to the mesh, alternating closest points
+//! with a linear least-squares solve for the vertices. Here the points are both surfaces'
+//! samples: the input's points the caller names, such as its triangle centres (how far the
+//! input lies from the mesh), and the mesh's edge middles and triangle centres (how far the
+//! mesh lies from the input). Each residual is shared out to the corners of the mesh triangle
+//! it falls on by its barycentric weights, and weighted by its own length, so that the far
+//! spots, which make the Hausdorff distance, count the most (a step of iteratively reweighted
+//! least squares, towards the largest distance rather than the mean). Each vertex then moves
+//! along its normal by the weighted mean of its residuals: one Jacobi step of the normal
+//! equations. A mesh whose triangles lie on one side of the input (a remesh, whose vertices
+//! are projected onto it) or whose vertices stand where the quadrics put them (a
+//! simplification) comes to straddle the input instead.
 //!
-//! One step, not Hoppe's alternation to convergence: three rounds, the closest points found
-//! anew each, moved the bunny no closer (0.121 → 0.122 % of its diagonal) and the fandisk a
-//! little (0.143 → 0.135 %) at three times the cost, and with the feature corners moving too the
-//! fandisk went back and forth from round to round (0.143, 0.175, 0.133, 0.164 %)
-//! (`docs/performance.md`, "The remesh fitted to the input").
+//! No move may make a triangle thin: where the moves would take a triangle's smallest angle
+//! under [`THIN_ANGLE_DEG`] and below what it was, its corner that would move the most stays,
+//! until no triangle would be. Boundary vertices stay, so a boundary keeps its place on the
+//! input's, and so do feature corners (where other than two feature edges meet) and the
+//! vertices the caller pins; a vertex on a feature line moves as any other, across the line.
 //!
-//! Boundary vertices stay, so the boundary keeps its place on the input's, and so do feature
-//! corners (where other than two feature edges meet), which the remesh keeps where the input
-//! has them, and the tips the finish put back on the input's vertices; a vertex on a feature
-//! line moves as any other, across the line. No move may make a triangle thin: where the moves
-//! would take a triangle's smallest angle under [`THIN_ANGLE_DEG`] and below what it was, its
-//! corner that would move the most stays, until no triangle would be.
+//! The remesh ends with it (its finish, `ops/remesh/run.rs`, the input's vertices sampled
+//! besides its triangle centres). One step, not Hoppe's alternation to convergence: three
+//! rounds, the closest points found anew each, moved the bunny no closer (0.121 → 0.122 % of
+//! its diagonal) and the fandisk a little (0.143 → 0.135 %) at three times the cost, and with
+//! the feature corners moving too the fandisk went back and forth from round to round (0.143,
+//! 0.175, 0.133, 0.164 %) (`docs/performance.md`, "The remesh fitted to the input").
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::World;
 
+use super::closest::{Reference, barycentric};
 use crate::mesh::ids::MeshId;
+use crate::mesh::members::MeshMembers;
 use crate::mesh::stats::THIN_ANGLE_DEG;
-use crate::mesh::tables::{MeshTables, NONE, extract};
-use crate::ops::geometry::closest::{Reference, barycentric};
+use crate::mesh::tables::{Connectivity, MeshTables, NONE, extract};
 use crate::ops::parallel::in_parallel;
 
 /// The most times the moves are checked for thin triangles (each check keeps at least one
@@ -62,7 +61,7 @@ struct Residual {
 /// Vertices on the boundary, the corners of `features` (where other than two feature edges
 /// meet) and the `pinned` tips stay. Leaves the connectivity as it was, and no triangle thin
 /// that was not.
-pub(super) fn fit_to_input(
+pub(crate) fn fit_to_input(
     world: &mut World,
     mesh: MeshId,
     input: &Reference,
@@ -71,21 +70,12 @@ pub(super) fn fit_to_input(
     pinned: &EntityHashSet,
 ) {
     let MeshTables { tables: t, members } = extract(world, mesh);
-    let triangles: Vec<[u32; 3]> = t
-        .face_halfedge
-        .iter()
-        .map(|&h| [h, t.next[h as usize], t.prev[h as usize]].map(|x| t.to_vertex[x as usize]))
-        .collect();
-    let edges: Vec<[u32; 2]> = t
-        .edge_halfedge
-        .iter()
-        .map(|&h| [h, t.twin[h as usize]].map(|x| t.to_vertex[x as usize]))
-        .collect();
     let mut feature_degree = vec![0u32; t.vertex_count()];
-    for (&[a, b], e) in edges.iter().zip(&members.edges) {
+    for (&h, e) in t.edge_halfedge.iter().zip(&members.edges) {
         if features.contains(&e.0) {
-            feature_degree[a as usize] += 1;
-            feature_degree[b as usize] += 1;
+            for end in [h, t.twin[h as usize]] {
+                feature_degree[t.to_vertex[end as usize] as usize] += 1;
+            }
         }
     }
     let held: Vec<bool> = (0..t.vertex_count())
@@ -100,13 +90,37 @@ pub(super) fn fit_to_input(
         .copied()
         .chain(input.triangles().iter().map(|&[a, b, c]| (a + b + c) / 3.0))
         .collect();
-    let fit = Fit {
+    move_to_fit(world, &t, &members, input, &input_points, &held);
+}
+
+/// Moves the vertices of the triangle mesh read into `t` (its entities `members`) along their
+/// normals to fit `input`, measuring `input_points` (the input's points, such as its triangle
+/// centres) to the mesh; the `held` rows stay. Leaves the connectivity as it was, and no
+/// triangle thin that was not.
+pub(crate) fn move_to_fit(
+    world: &mut World,
+    t: &Connectivity,
+    members: &MeshMembers,
+    input: &Reference,
+    input_points: &[Vec3],
+    held: &[bool],
+) {
+    let triangles: Vec<[u32; 3]> = t
+        .face_halfedge
+        .iter()
+        .map(|&h| [h, t.next[h as usize], t.prev[h as usize]].map(|x| t.to_vertex[x as usize]))
+        .collect();
+    let edges: Vec<[u32; 2]> = t
+        .edge_halfedge
+        .iter()
+        .map(|&h| [h, t.twin[h as usize]].map(|x| t.to_vertex[x as usize]))
+        .collect();
+    let fit = FitMesh {
         positions: &t.positions,
         triangles: &triangles,
         edges: &edges,
     };
-    let mut moves = fit.moves(&held, input, &input_points);
-    keep_triangles_from_thinning(&t.positions, &triangles, &mut moves);
+    let moves = fit.fitted_moves(held, input, input_points);
     let mut q = world.query::<&mut crate::mesh::Position>();
     for (v, m) in members.vertices.iter().zip(&moves) {
         if *m != Vec3::ZERO
@@ -117,14 +131,34 @@ pub(super) fn fit_to_input(
     }
 }
 
-/// The remesh as the fit reads it: its positions, its triangles' and edges' vertices.
-struct Fit<'a> {
-    positions: &'a [Vec3],
-    triangles: &'a [[u32; 3]],
-    edges: &'a [[u32; 2]],
+/// A triangle mesh as the fit reads it: its positions, and its triangles' and edges'
+/// vertices, by row.
+pub(crate) struct FitMesh<'a> {
+    /// Each vertex's position.
+    pub positions: &'a [Vec3],
+    /// Each triangle's corners, counter-clockwise.
+    pub triangles: &'a [[u32; 3]],
+    /// Each edge's two ends.
+    pub edges: &'a [[u32; 2]],
 }
 
-impl Fit<'_> {
+impl FitMesh<'_> {
+    /// The fit's move of each vertex (see the module doc), none for the `held`: along its
+    /// normal, so that the mesh comes closer to `input` and to `input_points` (the input's
+    /// points measured to the mesh, its triangle centres among them), none taking a
+    /// triangle's smallest angle under [`THIN_ANGLE_DEG`] and below what it was. Leaves the
+    /// mesh itself alone.
+    pub fn fitted_moves(
+        &self,
+        held: &[bool],
+        input: &Reference,
+        input_points: &[Vec3],
+    ) -> Vec<Vec3> {
+        let mut moves = self.moves(held, input, input_points);
+        keep_triangles_from_thinning(self.positions, self.triangles, &mut moves);
+        moves
+    }
+
     /// Each vertex's move: along its normal, by the mean of the residuals shared out to it,
     /// each weighted by its share and its length. Held vertices, those no residual reaches and
     /// those whose move is not a finite vector do not move.
@@ -168,7 +202,7 @@ impl Fit<'_> {
         tri.map(|v| self.positions[v as usize])
     }
 
-    /// The input's points, each from its closest point on the remesh.
+    /// The input's points, each from its closest point on the mesh.
     fn inward(&self, input_points: &[Vec3]) -> Vec<Residual> {
         let surface =
             Reference::from_triangles(self.triangles.iter().map(|t| self.corners(t)).collect());
@@ -189,9 +223,9 @@ impl Fit<'_> {
         residuals
     }
 
-    /// The remesh's edge middles and triangle centres, each to its closest point on the input.
-    /// (Its vertices lie on the input already: the projection, the finish's splits and its
-    /// moves of thin corners put them there.)
+    /// The mesh's edge middles and triangle centres, each to its closest point on the input.
+    /// (Its vertices are not sampled: the remesh's lie on the input already, and a
+    /// simplification's vertex is measured through the edges and triangles around it.)
     fn outward(&self, input: &Reference) -> Vec<Residual> {
         let edge_samples = self.edges.len();
         let mut residuals = vec![Residual::default(); edge_samples + self.triangles.len()];
