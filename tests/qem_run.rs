@@ -5,7 +5,9 @@
 //! back along its history and forward again it has the same mesh at every step and the same
 //! end; the next collapse it shows is the one it makes; a run whose mesh was edited while it
 //! waited refuses to go on. Each with the distance check too
-//! ([`SimplifyParams::distance_weight`]), which queues edges again as it measures them.
+//! ([`SimplifyParams::distance_weight`]), which queues edges again as it measures them, and
+//! with the fit to the input at the end ([`SimplifyParams::fit_to_input`]), which the
+//! stepped run makes when it is finished.
 
 mod common;
 
@@ -48,11 +50,29 @@ fn with_distance(params: SimplifyParams) -> SimplifyParams {
     }
 }
 
+/// `params` with the fit to the input at the end ([`SimplifyParams::fit_to_input`]).
+fn with_fit(params: SimplifyParams) -> SimplifyParams {
+    SimplifyParams {
+        fit_to_input: true,
+        ..params
+    }
+}
+
 /// The meshes every test runs on: regular ones, where many edges cost the same and the
 /// order of ties decides, one with boundaries and holes, and some with the distance check,
-/// which queues edges again as it measures them.
+/// which queues edges again as it measures them, or the fit at the end.
 fn inputs() -> Vec<(&'static str, PolygonSoup, SimplifyParams)> {
     vec![
+        (
+            "bumpy torus, fit",
+            bumpy_torus(),
+            with_fit(SimplifyParams::ratio(0.15)),
+        ),
+        (
+            "holes, distance, fit",
+            triangulate_fans(&grid_with_holes(3)),
+            with_fit(with_distance(SimplifyParams::ratio(0.25))),
+        ),
         (
             "icosphere, distance",
             icosphere(3),
@@ -108,6 +128,14 @@ fn step(world: &mut World, run: &mut QemRun, pm: &mut ProgressiveMesh, n: usize)
     made
 }
 
+/// The stepped run's end as the editor's step mode makes it: the fit to the input, if the run
+/// was asked for one, and the history settled on the fitted mesh.
+fn finish(world: &mut World, run: &QemRun, pm: &mut ProgressiveMesh) {
+    if run.fit_to_input(world, &pm.never_kept()) {
+        pm.settle_coarsest(world);
+    }
+}
+
 /// Simplifies `soup` (after `edit`) unstepped and stepped, and holds the two to the same mesh,
 /// element for element, and the same records, bit for bit.
 fn assert_stepped_matches_unstepped(
@@ -130,6 +158,7 @@ fn assert_stepped_matches_unstepped(
             break;
         }
     }
+    finish(&mut world, &run, &mut pm);
     assert_eq!(run.summary(), summary, "{name}");
     assert!(
         elements(&world, mesh) == elements(&whole, built.mesh),
@@ -229,9 +258,33 @@ fn scrubbing_back_and_forth_gives_the_same_mesh_at_every_step_and_the_same_end()
             );
             pappus::mesh::validate(&world, mesh).unwrap();
         }
+        finish(&mut world, &run, &mut pm);
         assert_eq!(run.summary(), end.1, "{name}");
         assert_eq!(shape(&world, mesh), shape(&whole, reference.mesh), "{name}");
     }
+}
+
+#[test]
+fn a_fitted_history_goes_back_to_the_full_mesh_and_forth_to_the_fitted_one() {
+    let soup = bumpy_torus();
+    let (mut world, built) = build(&soup);
+    let mesh = built.mesh;
+    let full = shape(&world, mesh);
+    let params = SimplifyParams::ratio(0.15);
+    let (mut unfitted, plain) = build(&soup);
+    ProgressiveMesh::simplify(&mut unfitted, plain.mesh, &params).unwrap();
+    let (mut pm, _) = ProgressiveMesh::simplify(&mut world, mesh, &with_fit(params)).unwrap();
+    let fitted = shape(&world, mesh);
+    assert_ne!(
+        fitted,
+        shape(&unfitted, plain.mesh),
+        "the fit moved nothing"
+    );
+    pm.go_to_faces(&mut world, usize::MAX).unwrap();
+    assert_eq!(shape(&world, mesh), full);
+    pm.go_to_faces(&mut world, 0).unwrap();
+    assert_eq!(shape(&world, mesh), fitted);
+    pappus::mesh::validate(&world, mesh).unwrap();
 }
 
 #[test]

@@ -425,12 +425,14 @@ class Mesh:
         ratio: Optional[float] = None,
         faces: Optional[int] = None,
         distance: float = 0.0,
+        fit: bool = False,
         *,
         progress: Progress = None,
     ) -> "Outcome":
         """QEM to ``ratio`` (0, 1] of the faces or to ``faces`` faces (neither: 0.5);
         ``distance`` > 0 weighs how far each collapse takes the input away (8: closer, about
-        three times the time)."""
+        three times the time); ``fit=True`` fits the result's vertices to the input at the
+        end."""
     def remesh(
         self, iterations: int = 5, length: Optional[float] = None, *, progress: Progress = None
     ) -> "Outcome":

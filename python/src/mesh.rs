@@ -936,19 +936,26 @@ impl Mesh {
     /// QEM simplification (Garland–Heckbert) to `ratio` (0–1] of the faces or to `faces` faces
     /// (give at most one; neither: half the faces), recording the history `refine` splits back;
     /// `distance` > 0 weighs how far each collapse takes the input away (8: closer, in about
-    /// three times the time). Returns the summary. The GIL is released; `progress(fraction)` is
-    /// called now and then (return False to stop early: the mesh stays valid, partly
-    /// simplified).
-    #[pyo3(signature = (ratio=None, faces=None, distance=0.0, *, progress=None))]
+    /// three times the time); `fit=True` fits the result's vertices to the input at the end.
+    /// Returns the summary. The GIL is released; `progress(fraction)` is called now and then
+    /// (return False to stop early: the mesh stays valid, partly simplified).
+    #[pyo3(signature = (ratio=None, faces=None, distance=0.0, fit=false, *, progress=None))]
     fn simplify(
         slf: &Bound<'_, Self>,
         ratio: Option<f64>,
         faces: Option<usize>,
         distance: f64,
+        fit: bool,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Py<PyAny>> {
         let py = slf.py();
         let distance = ("distance", distance.into_pyobject(py)?.into_any());
+        let fit = (
+            "fit",
+            if fit { "fit" } else { "no-fit" }
+                .into_pyobject(py)?
+                .into_any(),
+        );
         match (ratio, faces) {
             (Some(_), Some(_)) => Err(PyValueError::new_err(
                 "give a ratio or a face count, not both",
@@ -956,12 +963,17 @@ impl Mesh {
             (None, Some(n)) => Mesh::run_whole(
                 slf,
                 "simplify-faces",
-                &[("faces", n.into_pyobject(py)?.into_any()), distance],
+                &[("faces", n.into_pyobject(py)?.into_any()), distance, fit],
                 progress,
             ),
             (r, None) => {
                 let ratio = r.unwrap_or(0.5).into_pyobject(py)?.into_any();
-                Mesh::run_whole(slf, "simplify", &[("ratio", ratio), distance], progress)
+                Mesh::run_whole(
+                    slf,
+                    "simplify",
+                    &[("ratio", ratio), distance, fit],
+                    progress,
+                )
             }
         }
     }

@@ -217,6 +217,11 @@ def test_whole_mesh_operations():
     plain.simplify(ratio=0.25)
     assert checked.simplify(ratio=0.25, distance=8) == "1280 -> 320 faces in 480 collapses"
     assert not np.array_equal(checked.vertices, plain.vertices)
+    # The fit at the end: the same collapses, the vertices moved, the sphere's outward.
+    fitted = pappus.load("shape:icosphere:3")
+    assert fitted.simplify(ratio=0.25, fit=True) == "1280 -> 320 faces in 480 collapses"
+    assert fitted.vertices.shape == plain.vertices.shape
+    assert not np.array_equal(fitted.vertices, plain.vertices)
     assert "splits" in mesh.remesh(iterations=2)
     assert "splits" in mesh.remesh(1, length=0.2)
     before = mesh.info()["faces"]

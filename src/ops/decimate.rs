@@ -1,7 +1,9 @@
 //! QEM simplification as the user invokes it (Garland & Heckbert; the algorithm is
-//! [`crate::ops::simplify`]): `simplify[:RATIO][:DISTANCE]` (Shift+S) keeps a fraction of the
-//! faces, `simplify-faces[:FACES][:DISTANCE]` a number of them, DISTANCE the weight of the
-//! input's farthest point in a collapse's cost (0, the default: the quadrics alone). Each
+//! [`crate::ops::simplify`]): `simplify[:RATIO][:DISTANCE][:FIT]` (Shift+S) keeps a fraction
+//! of the faces, `simplify-faces[:FACES][:DISTANCE][:FIT]` a number of them, DISTANCE the
+//! weight of the input's farthest point in a collapse's cost (0, the default: the quadrics
+//! alone), FIT `fit` to fit the result's vertices to the input at the end (`no-fit`, the
+//! default: where the quadrics put them). Each
 //! records every collapse in the mesh's simplification history ([`ProgressiveMesh`], Hoppe
 //! 1996), which `refine[:FACES]` — the level-of-detail slider — and `vertex-split` (U) then
 //! move along.
@@ -33,10 +35,10 @@ pub const SIMPLIFY: Declaration = Declaration::new("simplify")
     .described(
         "QEM edge collapses (Garland & Heckbert) until RATIO of the faces are left; DISTANCE > 0 \
          also weighs how far a collapse takes the input away (8: closer, in about three times \
-         the time)",
+         the time); FIT fit moves the result's vertices to fit the input at the end",
     )
     .on_key("Shift+S")
-    .with_parameters(&[Parameter::real("RATIO", 0.5, 1e-6, 1.0), DISTANCE])
+    .with_parameters(&[Parameter::real("RATIO", 0.5, 1e-6, 1.0), DISTANCE, FIT])
     .as_job()
     .stepping()
     .keeping_history()
@@ -46,10 +48,10 @@ pub const SIMPLIFY: Declaration = Declaration::new("simplify")
 pub const SIMPLIFY_FACES: Declaration = Declaration::new("simplify-faces")
     .titled("Simplify to faces")
     .described(
-        "QEM edge collapses (Garland & Heckbert) until FACES faces are left; DISTANCE as for \
+        "QEM edge collapses (Garland & Heckbert) until FACES faces are left; DISTANCE and FIT as for \
          simplify",
     )
-    .with_parameters(&[Parameter::whole("FACES", 1000, 0, u32::MAX), DISTANCE])
+    .with_parameters(&[Parameter::whole("FACES", 1000, 0, u32::MAX), DISTANCE, FIT])
     .as_job()
     .stepping()
     .keeping_history()
@@ -59,7 +61,11 @@ pub const SIMPLIFY_FACES: Declaration = Declaration::new("simplify-faces")
 /// ([`SimplifyParams::distance_weight`]): 0, the default, leaves the quadric error alone.
 const DISTANCE: Parameter = Parameter::real("DISTANCE", 0.0, 0.0, 1000.0);
 
-/// `simplify[:RATIO[:DISTANCE]]`.
+/// Whether the result is fitted to the input at the end ([`SimplifyParams::fit_to_input`]):
+/// `no-fit`, the default, or `fit`.
+const FIT: Parameter = Parameter::choice("FIT", &["no-fit", "fit"], 0);
+
+/// `simplify[:RATIO[:DISTANCE[:FIT]]]`.
 pub struct Simplify;
 
 /// `refine[:FACES]`: along the history to FACES faces, or to the full mesh.
@@ -77,7 +83,7 @@ impl Refine {
     }
 }
 
-/// `simplify-faces[:FACES[:DISTANCE]]`.
+/// `simplify-faces[:FACES[:DISTANCE[:FIT]]]`.
 pub struct SimplifyFaces;
 
 /// The simplification an invocation of [`Simplify`] or [`SimplifyFaces`] asks for (`None` for
@@ -94,22 +100,24 @@ pub fn simplification(invocation: &Invocation) -> Option<SimplifyParams> {
 }
 
 impl Simplify {
-    /// The simplification its values name: to RATIO of the faces at the DISTANCE weight, the
-    /// default limits.
+    /// The simplification its values name: to RATIO of the faces at the DISTANCE weight,
+    /// fitted if FIT says so, the default limits.
     fn params(values: Values<'_>) -> SimplifyParams {
         SimplifyParams {
             distance_weight: values.number(1),
+            fit_to_input: values.choice(2) == 1,
             ..SimplifyParams::ratio(values.number(0))
         }
     }
 }
 
 impl SimplifyFaces {
-    /// The simplification its values name: to FACES faces at the DISTANCE weight, the default
-    /// limits.
+    /// The simplification its values name: to FACES faces at the DISTANCE weight, fitted if
+    /// FIT says so, the default limits.
     fn params(values: Values<'_>) -> SimplifyParams {
         SimplifyParams {
             distance_weight: values.number(1),
+            fit_to_input: values.choice(2) == 1,
             ..SimplifyParams::faces(values.whole(0) as usize)
         }
     }

@@ -11,7 +11,7 @@
 //! Moving down again replays the recorded collapse of the same pair of vertices to the same
 //! position, so coarsen and refine can be interleaved freely.
 
-use bevy::ecs::entity::EntityHashMap;
+use bevy::ecs::entity::{EntityHashMap, EntityHashSet};
 use bevy::prelude::World;
 
 use crate::mesh::change::remapped;
@@ -138,13 +138,16 @@ impl ProgressiveMesh {
         let (summary, slots) = simplify_recorded(world, mesh, params, progress, |r| {
             records.push(r);
         })?;
-        let pm = ProgressiveMesh {
+        let mut pm = ProgressiveMesh {
             mesh,
             applied: records.len(),
             records,
             full_faces: summary.faces_before,
             slots,
         };
+        if params.fit_to_input {
+            pm.settle_coarsest(world);
+        }
         Ok((pm, summary))
     }
 
@@ -189,6 +192,46 @@ impl ProgressiveMesh {
         self.slots[record.removed as usize] = None;
         self.records.push(record);
         self.applied += 1;
+    }
+
+    /// Makes the mesh as it stands the history's coarsest level: each vertex's place there is
+    /// the merged position of the last collapse that kept it, which this sets to where the
+    /// vertex is now in `world`, so that a move made after the collapses (the simplification's
+    /// fit to its input) is found again when the history comes back to that level. Vertices no
+    /// collapse kept have no such place ([`Self::never_kept`]) and are left out.
+    ///
+    /// # Panics
+    /// When the history is not at its coarsest level.
+    pub fn settle_coarsest(&mut self, world: &World) {
+        assert_eq!(
+            self.applied,
+            self.records.len(),
+            "the history is settled at its coarsest level"
+        );
+        let m = MeshRef::new(world);
+        let mut settled = vec![false; self.slots.len()];
+        for r in self.records.iter_mut().rev() {
+            let slot = r.kept as usize;
+            if !std::mem::replace(&mut settled[slot], true)
+                && let Some(p) = self.slots[slot].and_then(|v| m.try_position(v))
+            {
+                r.merged_position = p;
+            }
+        }
+    }
+
+    /// The vertices at this level that no applied collapse kept: each is where the full mesh
+    /// has it, and the history has no place of its own for it.
+    pub fn never_kept(&self) -> EntityHashSet {
+        let mut kept = vec![false; self.slots.len()];
+        for r in &self.records[..self.applied] {
+            kept[r.kept as usize] = true;
+        }
+        self.slots
+            .iter()
+            .zip(&kept)
+            .filter_map(|(v, &k)| v.filter(|_| !k).map(|v| v.0))
+            .collect()
     }
 
     /// The vertex holding each slot now (`None`: collapsed away at this level).

@@ -15,7 +15,9 @@
 //! when it is near singular, the best of the two ends and the midpoint). With
 //! [`SimplifyParams::distance_weight`] above 0, a collapse also costs at least what the input's
 //! farthest point from the faces it reshapes weighs ([`fidelity`]): the Hausdorff distance to
-//! the input comes out smaller, in about three times the time.
+//! the input comes out smaller, in about three times the time. With
+//! [`SimplifyParams::fit_to_input`], the result's vertices are fitted to the input by one
+//! least-squares step at the end ([`fit`]).
 //!
 //! Edges wait in an indexed heap ([`super::indexed_heap`]), one entry per edge: when a collapse
 //! changes the cost of the edges around the merged vertex, their entries are re-keyed in place,
@@ -48,8 +50,10 @@ use crate::mesh::topology::MeshRef;
 use super::Refusal;
 use super::indexed_heap::{IndexedHeap, slot_of};
 use fidelity::DistanceCheck;
+use fit::InputSurface;
 
 mod fidelity;
+mod fit;
 pub(crate) mod flat;
 mod run;
 mod to_target;
@@ -102,6 +106,9 @@ pub struct SimplifyParams {
     /// do; 8 takes the bunny's Hausdorff distance at a quarter of its faces from 0.092 to
     /// 0.074 % of its diagonal, in about three times the time (`docs/performance.md`).
     pub distance_weight: f64,
+    /// Whether the result's vertices are fitted to the input at the end, by one least-squares
+    /// step along their normals ([`fit`]). Default `false`.
+    pub fit_to_input: bool,
 }
 
 impl Default for SimplifyParams {
@@ -131,6 +138,7 @@ impl SimplifyParams {
             feature_weight: 1.0,
             min_area_share: 0.25,
             distance_weight: 0.0,
+            fit_to_input: false,
         }
     }
 }
@@ -353,6 +361,8 @@ struct Setup {
     faces_before: usize,
     /// With a distance weight: the check, and each face's row by entity index.
     check: Option<(DistanceCheck, FaceRows)>,
+    /// With [`SimplifyParams::fit_to_input`]: the input, to fit the result to at the end.
+    input: Option<InputSurface>,
 }
 
 /// The rows of a mesh's faces as [`extract`] listed them at a run's start, by entity: the
@@ -430,6 +440,7 @@ fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, 
         table,
         faces_before: t.face_count(),
         check,
+        input: params.fit_to_input.then(|| InputSurface::of_tables(&t)),
     })
 }
 

@@ -302,9 +302,13 @@ impl Steps for QemSteps {
     }
 
     /// Leaves the run's history on the mesh, for the level-of-detail slider, as the unstepped
-    /// simplification does.
+    /// simplification does; at the run's end, fits the mesh to the input first when asked
+    /// ([`SimplifyParams::fit_to_input`]), as the unstepped one does.
     fn finish(mut self: Box<Self>, world: &mut World, mesh: MeshId) -> Ended {
         let s = self.run.summary();
+        if self.finished() && self.run.fit_to_input(world, &self.history.never_kept()) {
+            self.history.settle_coarsest(world);
+        }
         self.run.detach();
         let summary = format!(
             "{} -> {} faces in {} collapses (stepped; kept at step {})",

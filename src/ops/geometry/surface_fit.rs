@@ -4,19 +4,21 @@
 //! minimising the squared distances from the points to the mesh, alternating closest points
 //! with a linear least-squares solve for the vertices. Here the points are both surfaces'
 //! samples: the input's points the caller names, such as its triangle centres (how far the
-//! input lies from the mesh), and the mesh's edge middles and triangle centres (how far the
-//! mesh lies from the input). Each residual is shared out to the corners of the mesh triangle
-//! it falls on by its barycentric weights, and weighted by its own length, so that the far
-//! spots, which make the Hausdorff distance, count the most (a step of iteratively reweighted
-//! least squares, towards the largest distance rather than the mean). Each vertex then moves
-//! along its normal by the weighted mean of its residuals: one Jacobi step of the normal
-//! equations. A mesh whose triangles lie on one side of the input (a remesh, whose vertices
-//! are projected onto it) or whose vertices stand where the quadrics put them (a
-//! simplification) comes to straddle the input instead.
+//! input lies from the mesh), and the mesh's edge middles with its triangle centres or its
+//! vertices (how far the mesh lies from the input). Each
+//! residual is shared out to the corners of the mesh triangle it falls on by its barycentric
+//! weights, and weighted by its own length, so that the far spots, which make the Hausdorff
+//! distance, count the most (a step of iteratively reweighted least squares, towards the
+//! largest distance rather than the mean). Each vertex then moves along its normal by the
+//! weighted mean of its residuals: one Jacobi step of the normal equations. A mesh whose
+//! triangles lie on one side of the input (a remesh, whose vertices are projected onto it) or
+//! whose vertices stand where the quadrics put them (a simplification) comes to straddle the
+//! input instead.
 //!
-//! No move may make a triangle thin: where the moves would take a triangle's smallest angle
-//! under [`THIN_ANGLE_DEG`] and below what it was, its corner that would move the most stays,
-//! until no triangle would be. Boundary vertices stay, so a boundary keeps its place on the
+//! No move may turn a triangle over, nor, where the caller asks ([`FitOptions::keep_fat`]),
+//! make it thin: where the moves would take a triangle's normal against what it was, or its
+//! smallest angle under [`THIN_ANGLE_DEG`] and below what it was, its corner that would move
+//! the most stays, until no triangle would be. Boundary vertices stay, so a boundary keeps its place on the
 //! input's, and so do feature corners (where other than two feature edges meet) and the
 //! vertices the caller pins; a vertex on a feature line moves as any other, across the line.
 //!
@@ -90,13 +92,14 @@ pub(crate) fn fit_to_input(
         .copied()
         .chain(input.triangles().iter().map(|&[a, b, c]| (a + b + c) / 3.0))
         .collect();
-    move_to_fit(world, &t, &members, input, &input_points, &held);
+    move_to_fit(world, &t, &members, input, &input_points, &held, REMESH_FIT);
 }
 
 /// Moves the vertices of the triangle mesh read into `t` (its entities `members`) along their
 /// normals to fit `input`, measuring `input_points` (the input's points, such as its triangle
-/// centres) to the mesh; the `held` rows stay. Leaves the connectivity as it was, and no
-/// triangle thin that was not.
+/// centres) to the mesh, as `options` say; the `held` rows stay. Leaves the connectivity as it
+/// was, no triangle turned over, and with [`FitOptions::keep_fat`] no triangle thin that was
+/// not.
 pub(crate) fn move_to_fit(
     world: &mut World,
     t: &Connectivity,
@@ -104,27 +107,54 @@ pub(crate) fn move_to_fit(
     input: &Reference,
     input_points: &[Vec3],
     held: &[bool],
+    options: FitOptions,
 ) {
-    let triangles: Vec<[u32; 3]> = t
-        .face_halfedge
+    // Each kind's rows as the fit takes them: as listed, or by entity.
+    let order = |count: usize, entity: &dyn Fn(usize) -> u64| {
+        let mut rows: Vec<u32> = (0..count as u32).collect();
+        if options.entity_order {
+            rows.sort_unstable_by_key(|&row| entity(row as usize));
+        }
+        rows
+    };
+    let vertex_rows = order(t.vertex_count(), &|v| members.vertices[v].0.to_bits());
+    let face_rows = order(t.face_halfedge.len(), &|f| members.faces[f].0.to_bits());
+    let edge_rows = order(t.edge_halfedge.len(), &|e| members.edges[e].0.to_bits());
+    let mut rank = vec![0u32; vertex_rows.len()];
+    for (k, &v) in vertex_rows.iter().enumerate() {
+        rank[v as usize] = k as u32;
+    }
+    let vertex = |h: u32| rank[t.to_vertex[h as usize] as usize];
+    let triangles: Vec<[u32; 3]> = face_rows
         .iter()
-        .map(|&h| [h, t.next[h as usize], t.prev[h as usize]].map(|x| t.to_vertex[x as usize]))
+        .map(|&f| {
+            let h = t.face_halfedge[f as usize];
+            [h, t.next[h as usize], t.prev[h as usize]].map(vertex)
+        })
         .collect();
-    let edges: Vec<[u32; 2]> = t
-        .edge_halfedge
+    let edges: Vec<[u32; 2]> = edge_rows
         .iter()
-        .map(|&h| [h, t.twin[h as usize]].map(|x| t.to_vertex[x as usize]))
+        .map(|&e| {
+            let h = t.edge_halfedge[e as usize];
+            [h, t.twin[h as usize]].map(vertex)
+        })
         .collect();
+    let positions: Vec<Vec3> = vertex_rows
+        .iter()
+        .map(|&v| t.positions[v as usize])
+        .collect();
+    let held: Vec<bool> = vertex_rows.iter().map(|&v| held[v as usize]).collect();
     let fit = FitMesh {
-        positions: &t.positions,
+        positions: &positions,
         triangles: &triangles,
         edges: &edges,
+        options,
     };
-    let moves = fit.fitted_moves(held, input, input_points);
+    let moves = fit.fitted_moves(&held, input, input_points);
     let mut q = world.query::<&mut crate::mesh::Position>();
-    for (v, m) in members.vertices.iter().zip(&moves) {
+    for (&v, m) in vertex_rows.iter().zip(&moves) {
         if *m != Vec3::ZERO
-            && let Ok(mut position) = q.get_mut(world, v.0)
+            && let Ok(mut position) = q.get_mut(world, members.vertices[v as usize].0)
         {
             position.0 += *m;
         }
@@ -140,14 +170,45 @@ pub(crate) struct FitMesh<'a> {
     pub triangles: &'a [[u32; 3]],
     /// Each edge's two ends.
     pub edges: &'a [[u32; 2]],
+    /// What it measures and what it keeps.
+    pub options: FitOptions,
 }
+
+/// What a fit measures of the mesh besides its edge middles, and what its moves must keep.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct FitOptions {
+    /// Whether the mesh's triangle centres are measured to the input.
+    pub centres_sampled: bool,
+    /// Whether the mesh's vertices are measured to the input: not where they lie on it
+    /// already (a remesh's, which the projection put there), but where they may stand off it
+    /// (a simplification's, where the quadrics put them).
+    pub vertices_sampled: bool,
+    /// Whether no move may make a triangle thin (a remesh's, whose angles it worked for; a
+    /// simplification's are as the quadrics left them, many thin already). No move turns a
+    /// triangle over either way.
+    pub keep_fat: bool,
+    /// Whether the mesh's elements are taken in the order of their entities rather than as
+    /// the tables list them (their storage order): the moves are sums, whose last bits
+    /// depend on the order, and two runs that make the same mesh by other means (the stepped
+    /// simplification and the one-go one) store it in different orders.
+    pub entity_order: bool,
+}
+
+/// The remesh's fit: its edge middles and triangle centres measured (its vertices lie on the
+/// input), and its triangles kept fat.
+pub(crate) const REMESH_FIT: FitOptions = FitOptions {
+    centres_sampled: true,
+    vertices_sampled: false,
+    keep_fat: true,
+    entity_order: false,
+};
 
 impl FitMesh<'_> {
     /// The fit's move of each vertex (see the module doc), none for the `held`: along its
     /// normal, so that the mesh comes closer to `input` and to `input_points` (the input's
-    /// points measured to the mesh, its triangle centres among them), none taking a
-    /// triangle's smallest angle under [`THIN_ANGLE_DEG`] and below what it was. Leaves the
-    /// mesh itself alone.
+    /// points measured to the mesh, its triangle centres among them), none turning a triangle
+    /// over nor, with [`FitOptions::keep_fat`], taking its smallest angle under
+    /// [`THIN_ANGLE_DEG`] and below what it was. Leaves the mesh itself alone.
     pub fn fitted_moves(
         &self,
         held: &[bool],
@@ -155,7 +216,13 @@ impl FitMesh<'_> {
         input_points: &[Vec3],
     ) -> Vec<Vec3> {
         let mut moves = self.moves(held, input, input_points);
-        keep_triangles_from_thinning(self.positions, self.triangles, &mut moves);
+        cancel_harmful_moves(
+            self.positions,
+            self.triangles,
+            self.options.keep_fat,
+            &mut moves,
+        );
+
         moves
     }
 
@@ -164,7 +231,10 @@ impl FitMesh<'_> {
     /// those whose move is not a finite vector do not move.
     fn moves(&self, held: &[bool], input: &Reference, input_points: &[Vec3]) -> Vec<Vec3> {
         let mut pull = vec![(Vec3::ZERO, 0.0f32); self.positions.len()];
-        for r in self.inward(input_points).iter().chain(&self.outward(input)) {
+        let inward = self.inward(input_points);
+        let outward = self.outward(input);
+
+        for r in inward.iter().chain(&outward) {
             let weight = r.offset.length();
             for k in 0..3 {
                 let w = weight * r.shares[k];
@@ -223,16 +293,22 @@ impl FitMesh<'_> {
         residuals
     }
 
-    /// The mesh's edge middles and triangle centres, each to its closest point on the input.
-    /// (Its vertices are not sampled: the remesh's lie on the input already, and a
-    /// simplification's vertex is measured through the edges and triangles around it.)
+    /// The mesh's edge middles, and its triangle centres and vertices as
+    /// [`FitOptions`] say, each to its closest point on the input.
     fn outward(&self, input: &Reference) -> Vec<Residual> {
-        let edge_samples = self.edges.len();
-        let mut residuals = vec![Residual::default(); edge_samples + self.triangles.len()];
+        let edges = self.edges.len();
+        let count = |sampled: bool, n: usize| if sampled { n } else { 0 };
+        let centres = count(self.options.centres_sampled, self.triangles.len());
+        let vertices = count(self.options.vertices_sampled, self.positions.len());
+        let mut residuals = vec![Residual::default(); edges + centres + vertices];
         in_parallel(&mut residuals, |i, slot| {
-            let (corners, shares) = match self.edges.get(i) {
-                Some(&[a, b]) => ([a, b, b], [0.5, 0.5, 0.0]),
-                None => (self.triangles[i - edge_samples], [1.0 / 3.0; 3]),
+            let (corners, shares) = if i < edges {
+                let [a, b] = self.edges[i];
+                ([a, b, b], [0.5, 0.5, 0.0])
+            } else if i < edges + centres {
+                (self.triangles[i - edges], [1.0 / 3.0; 3])
+            } else {
+                ([(i - edges - centres) as u32; 3], [1.0, 0.0, 0.0])
             };
             let p = (0..3)
                 .map(|k| self.positions[corners[k] as usize] * shares[k])
@@ -247,24 +323,31 @@ impl FitMesh<'_> {
     }
 }
 
-/// Cancels moves until none takes a triangle's smallest angle under [`THIN_ANGLE_DEG`] and
-/// below what it was: in each such triangle, the move of the corner that would go farthest.
-/// Past [`THIN_CHECKS`] checks, cancels every move. (Compared as cosines: the smallest angle's
-/// is the largest of the three.)
-fn keep_triangles_from_thinning(positions: &[Vec3], triangles: &[[u32; 3]], moves: &mut [Vec3]) {
+/// Cancels moves until none turns a triangle over (its normal against what it was) or, if
+/// `keep_fat`, takes a triangle's smallest angle under [`THIN_ANGLE_DEG`] and below what it
+/// was: in each such triangle, the move of the corner that would go farthest. Past
+/// [`THIN_CHECKS`] checks, cancels every move. (Compared as cosines: the smallest angle's is
+/// the largest of the three.)
+fn cancel_harmful_moves(
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    keep_fat: bool,
+    moves: &mut [Vec3],
+) {
     let thin = (THIN_ANGLE_DEG as f32).to_radians().cos();
-    let before: Vec<f32> = triangles
+    let shape = |[a, b, c]: [Vec3; 3]| (smallest_angle_cosine([a, b, c]), (b - a).cross(c - a));
+    let before: Vec<(f32, Vec3)> = triangles
         .iter()
-        .map(|tri| smallest_angle_cosine(tri.map(|v| positions[v as usize])))
+        .map(|tri| shape(tri.map(|v| positions[v as usize])))
         .collect();
     for _ in 0..THIN_CHECKS {
-        let thinned: Vec<u32> = triangles
+        let harmed: Vec<u32> = triangles
             .iter()
             .zip(&before)
-            .filter_map(|(tri, &was)| {
-                let now =
-                    smallest_angle_cosine(tri.map(|v| positions[v as usize] + moves[v as usize]));
-                (now > thin && now > was + THINNER).then(|| {
+            .filter_map(|(tri, &(was, normal))| {
+                let (now, turned) = shape(tri.map(|v| positions[v as usize] + moves[v as usize]));
+                let thinned = keep_fat && now > thin && now > was + THINNER;
+                (thinned || turned.dot(normal) < 0.0).then(|| {
                     *tri.iter()
                         .max_by(|&&a, &&b| {
                             moves[a as usize]
@@ -275,10 +358,10 @@ fn keep_triangles_from_thinning(positions: &[Vec3], triangles: &[[u32; 3]], move
                 })
             })
             .collect();
-        if thinned.is_empty() {
+        if harmed.is_empty() {
             return;
         }
-        for v in thinned {
+        for v in harmed {
             moves[v as usize] = Vec3::ZERO;
         }
     }
@@ -415,13 +498,29 @@ mod tests {
         let triangles = [[0, 1, 2]];
         // The apex lowered to 0.1 over the base: its base angles under 30°.
         let mut moves = vec![Vec3::ZERO, Vec3::ZERO, Vec3::new(0.0, -0.7, 0.0)];
-        keep_triangles_from_thinning(&positions, &triangles, &mut moves);
+        cancel_harmful_moves(&positions, &triangles, true, &mut moves);
         assert_eq!(moves, vec![Vec3::ZERO; 3]);
         // Lifted off the plane a little: still no angle under 30°, so it moves.
         let lift = Vec3::new(0.0, 0.0, 0.1);
         let mut moves = vec![Vec3::ZERO, Vec3::ZERO, lift];
-        keep_triangles_from_thinning(&positions, &triangles, &mut moves);
+        cancel_harmful_moves(&positions, &triangles, true, &mut moves);
         assert_eq!(moves, vec![Vec3::ZERO, Vec3::ZERO, lift]);
+    }
+
+    #[test]
+    fn a_move_that_would_turn_a_sliver_over_is_cancelled() {
+        // A sliver, thin already: its apex taken across the base to the mirror image keeps its
+        // angles, so only the turned normal tells.
+        let positions = [Vec3::ZERO, Vec3::X, Vec3::new(0.5, 0.05, 0.0)];
+        let triangles = [[0, 1, 2]];
+        let mut moves = vec![Vec3::ZERO, Vec3::ZERO, Vec3::new(0.0, -0.1, 0.0)];
+        cancel_harmful_moves(&positions, &triangles, true, &mut moves);
+        assert_eq!(moves, vec![Vec3::ZERO; 3]);
+        // Half-way up instead: fatter, and the same way round, so it moves.
+        let up = Vec3::new(0.0, 0.2, 0.0);
+        let mut moves = vec![Vec3::ZERO, Vec3::ZERO, up];
+        cancel_harmful_moves(&positions, &triangles, true, &mut moves);
+        assert_eq!(moves, vec![Vec3::ZERO, Vec3::ZERO, up]);
     }
 
     #[test]

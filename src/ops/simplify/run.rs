@@ -16,6 +16,7 @@
 //! level, every vertex and queued edge is the entity it was. [`QemRun::reattach`] checks that
 //! before the run goes on, and refuses where it does not hold (the mesh was edited in between).
 
+use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
 use bevy::prelude::{Entity, World};
 
@@ -28,6 +29,7 @@ use crate::ops::local::{
 };
 
 use super::fidelity::DistanceCheck;
+use super::fit::InputSurface;
 use super::{
     FaceRows, Key, Setup, SimplifyParams, SimplifySummary, VertexTable, keyed_ends, ring_matches,
     setup,
@@ -83,6 +85,8 @@ pub struct QemRun {
     ring: Vec<(EdgeId, VertexId, Vec3)>,
     /// With a distance weight: the check ([`super::fidelity`]) and the rows it names faces by.
     check: Option<(DistanceCheck, FaceRows)>,
+    /// With [`SimplifyParams::fit_to_input`]: the input, to fit the result to at the end.
+    input: Option<InputSurface>,
 }
 
 impl QemRun {
@@ -100,6 +104,7 @@ impl QemRun {
             heap,
             faces_before,
             check,
+            input,
         } = setup(world, mesh, params)?;
         Ok(Self {
             mesh,
@@ -114,7 +119,20 @@ impl QemRun {
             detached: false,
             ring: Vec::new(),
             check,
+            input,
         })
+    }
+
+    /// Fits the mesh to the input as it was at the start ([`super::fit`]), as
+    /// [`super::simplify`] does after its last collapse: meant for the run's end. `unmoved`
+    /// are the vertices no collapse kept, which stay. Returns whether it fitted: not unless
+    /// the run was started with [`SimplifyParams::fit_to_input`].
+    pub fn fit_to_input(&self, world: &mut World, unmoved: &EntityHashSet) -> bool {
+        let Some(input) = &self.input else {
+            return false;
+        };
+        input.fit(world, self.mesh, unmoved);
+        true
     }
 
     /// The mesh being simplified.

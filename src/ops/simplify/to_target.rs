@@ -3,7 +3,10 @@
 //! the survivors written back and the removed elements despawned at the end. It uses the
 //! quadrics, placements and keys of [`super`], which do not call it.
 
+use bevy::ecs::entity::EntityHashSet;
+
 use super::fidelity::DistanceCheck;
+use super::fit::InputSurface;
 use super::*;
 
 /// Simplifies `mesh` (triangles only) until it has at most the target's faces or no
@@ -111,8 +114,13 @@ fn simplify_inner(
         (flat, (quadric, heap, target, check))
     });
     let faces_before = t.face_count();
-    // The run needs only its own tables from here on.
-    drop(t);
+    // The run needs only its own tables from here on; with the fit, the input's surface is
+    // built from them meanwhile, on the core the loop leaves idle.
+    let input = params
+        .fit_to_input
+        .then(|| std::thread::spawn(move || InputSurface::of_tables(&t)));
+    // With the fit: which vertex rows a collapse kept (the others stay where they are).
+    let mut kept = vec![false; if input.is_some() { quadric.len() } else { 0 }];
     let limit = params.max_normal_change_deg.to_radians().cos();
     let target_faces = params.target.faces(faces_before);
     let to_remove = faces_before.saturating_sub(target_faces).max(1);
@@ -141,6 +149,9 @@ fn simplify_inner(
         collapses += 1;
         let (a, b) = (done.kept as usize, done.removed as usize);
         quadric[a] = quadric[a] + quadric[b];
+        if let Some(k) = kept.get_mut(a) {
+            *k = true;
+        }
         if let Some(check) = &mut check {
             check.collapsed(a, ring.iter().map(|&(_, tip, _)| tip as usize));
         }
@@ -161,6 +172,17 @@ fn simplify_inner(
         }
     }
     let slots = flat.write_back(world, &members, &slot_of_row);
+    if let Some(input) = input {
+        let input = input
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        let unmoved: EntityHashSet = slots
+            .iter()
+            .zip(&kept)
+            .filter_map(|(v, &k)| v.filter(|_| !k).map(|v| v.0))
+            .collect();
+        input.fit(world, mesh, &unmoved);
+    }
     let summary = SimplifySummary {
         faces_before,
         faces_after: faces,
