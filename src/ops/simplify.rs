@@ -391,6 +391,24 @@ impl FaceRows {
     }
 }
 
+/// `mesh` read into tables ([`extract`]) for a run.
+///
+/// # Refusals
+/// [`Refusal::Stale`] for a mesh that is gone; [`Refusal::NotTriangle`] naming the first face
+/// that is not a triangle.
+fn read_triangles(world: &World, mesh: MeshId) -> Result<MeshTables, Refusal> {
+    if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
+        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
+    }
+    let tables = extract(world, mesh);
+    match tables.tables.first_non_triangle() {
+        Some(f) => Err(Refusal::NotTriangle(ElementId::Face(
+            tables.members.faces[f.index()],
+        ))),
+        None => Ok(tables),
+    }
+}
+
 /// Reads the mesh once into tables ([`extract`]) and computes the quadrics and the first key
 /// of every edge from them: plain array passes, where walking the entities edge by edge spent
 /// most of the setup on lookups.
@@ -398,12 +416,7 @@ impl FaceRows {
 /// # Refusals
 /// [`Refusal::NotTriangle`] naming the first face that is not a triangle.
 fn setup(world: &World, mesh: MeshId, params: &SimplifyParams) -> Result<Setup, Refusal> {
-    let MeshTables { tables: t, members } = extract(world, mesh);
-    if let Some(f) = t.first_non_triangle() {
-        return Err(Refusal::NotTriangle(ElementId::Face(
-            members.faces[f.index()],
-        )));
-    }
+    let MeshTables { tables: t, members } = read_triangles(world, mesh)?;
     let (edge_base, edge_rows) = edge_slot_range(&members.edges);
     let mut table = VertexTable {
         quadric: vec![Quadric::default(); slots_for(members.vertices.iter().map(|v| v.0))],

@@ -63,15 +63,7 @@ fn simplify_inner(
     mut progress: impl FnMut(f32) -> bool,
     mut record: impl FnMut(SlotRecord),
 ) -> Result<(SimplifySummary, Vec<Option<VertexId>>), Refusal> {
-    if world.get::<crate::mesh::MeshInfo>(mesh.0).is_none() {
-        return Err(Refusal::Stale(ElementId::Mesh(mesh)));
-    }
-    let MeshTables { tables: t, members } = extract(world, mesh);
-    if let Some(f) = t.first_non_triangle() {
-        return Err(Refusal::NotTriangle(ElementId::Face(
-            members.faces[f.index()],
-        )));
-    }
+    let MeshTables { tables: t, members } = read_triangles(world, mesh)?;
     // Edges are numbered by heap slot in the flat tables, which are laid out meanwhile.
     let (base, slots) = edge_slot_range(&members.edges);
     let slot_of_row: Vec<u32> = members
@@ -114,13 +106,10 @@ fn simplify_inner(
         (flat, (quadric, heap, target, check))
     });
     let faces_before = t.face_count();
-    // The run needs only its own tables from here on; with the fit, the input's surface is
-    // built from them meanwhile, on the core the loop leaves idle.
-    let input = params
+    // The run needs only its own tables from here on (and the fit, the input's surface).
+    let mut fit = params
         .fit_to_input
-        .then(|| std::thread::spawn(move || InputSurface::of_tables(&t)));
-    // With the fit: which vertex rows a collapse kept (the others stay where they are).
-    let mut kept = vec![false; if input.is_some() { quadric.len() } else { 0 }];
+        .then(|| FitAtEnd::start(t, quadric.len()));
     let limit = params.max_normal_change_deg.to_radians().cos();
     let target_faces = params.target.faces(faces_before);
     let to_remove = faces_before.saturating_sub(target_faces).max(1);
@@ -149,8 +138,8 @@ fn simplify_inner(
         collapses += 1;
         let (a, b) = (done.kept as usize, done.removed as usize);
         quadric[a] = quadric[a] + quadric[b];
-        if let Some(k) = kept.get_mut(a) {
-            *k = true;
+        if let Some(fit) = &mut fit {
+            fit.kept[a] = true;
         }
         if let Some(check) = &mut check {
             check.collapsed(a, ring.iter().map(|&(_, tip, _)| tip as usize));
@@ -172,16 +161,8 @@ fn simplify_inner(
         }
     }
     let slots = flat.write_back(world, &members, &slot_of_row);
-    if let Some(input) = input {
-        let input = input
-            .join()
-            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-        let unmoved: EntityHashSet = slots
-            .iter()
-            .zip(&kept)
-            .filter_map(|(v, &k)| v.filter(|_| !k).map(|v| v.0))
-            .collect();
-        input.fit(world, mesh, &unmoved);
+    if let Some(fit) = fit {
+        fit.finish(world, mesh, &slots);
     }
     let summary = SimplifySummary {
         faces_before,
@@ -190,4 +171,36 @@ fn simplify_inner(
         reached_target: faces <= target_faces,
     };
     Ok((summary, slots))
+}
+
+/// The fit to the input at the end of a one-go run ([`SimplifyParams::fit_to_input`]): the
+/// input's surface, built on the core the loop leaves idle, and which vertex rows a collapse
+/// kept (the others stay where they are).
+struct FitAtEnd {
+    input: std::thread::JoinHandle<InputSurface>,
+    kept: Vec<bool>,
+}
+
+impl FitAtEnd {
+    /// Starts building the surface of the input in `t`, which has `vertices` vertex rows.
+    fn start(t: Connectivity, vertices: usize) -> Self {
+        Self {
+            input: std::thread::spawn(move || InputSurface::of_tables(&t)),
+            kept: vec![false; vertices],
+        }
+    }
+
+    /// Fits `mesh`, written back with `slots` (the vertex of each row now), to the input.
+    fn finish(self, world: &mut World, mesh: MeshId, slots: &[Option<VertexId>]) {
+        let input = self
+            .input
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        let unmoved: EntityHashSet = slots
+            .iter()
+            .zip(&self.kept)
+            .filter_map(|(v, &k)| v.filter(|_| !k).map(|v| v.0))
+            .collect();
+        input.fit(world, mesh, &unmoved);
+    }
 }
