@@ -302,7 +302,7 @@ fn a_transform_started_during_a_run_keeps_the_run_when_it_is_cancelled() {
     assert_eq!(history.undo_entries().len(), 1, "the run's entry stays");
     assert_eq!(
         history.undo_entries()[0].label,
-        "simplify (ratio 0.5, distance 0)"
+        "simplify (ratio 0.5, distance 0, no-fit)"
     );
 }
 
