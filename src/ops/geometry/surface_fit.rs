@@ -492,35 +492,42 @@ mod tests {
         assert_eq!(moved, 7);
     }
 
+    /// The move left to the apex of the triangle on the base (0, 0, 0)–(1, 0, 0) after the
+    /// guard, asked to move by `step`.
+    fn apex_move(apex: Vec3, step: Vec3, keep_fat: bool) -> Vec3 {
+        let mut moves = vec![Vec3::ZERO, Vec3::ZERO, step];
+        cancel_harmful_moves(
+            &[Vec3::ZERO, Vec3::X, apex],
+            &[[0, 1, 2]],
+            keep_fat,
+            &mut moves,
+        );
+        moves[2]
+    }
+
     #[test]
     fn a_move_that_would_thin_a_triangle_is_cancelled() {
-        let positions = [Vec3::ZERO, Vec3::X, Vec3::new(0.5, 0.8, 0.0)];
-        let triangles = [[0, 1, 2]];
+        let apex = Vec3::new(0.5, 0.8, 0.0);
         // The apex lowered to 0.1 over the base: its base angles under 30°.
-        let mut moves = vec![Vec3::ZERO, Vec3::ZERO, Vec3::new(0.0, -0.7, 0.0)];
-        cancel_harmful_moves(&positions, &triangles, true, &mut moves);
-        assert_eq!(moves, vec![Vec3::ZERO; 3]);
+        let down = Vec3::new(0.0, -0.7, 0.0);
+        assert_eq!(apex_move(apex, down, true), Vec3::ZERO);
+        assert_eq!(apex_move(apex, down, false), down);
         // Lifted off the plane a little: still no angle under 30°, so it moves.
         let lift = Vec3::new(0.0, 0.0, 0.1);
-        let mut moves = vec![Vec3::ZERO, Vec3::ZERO, lift];
-        cancel_harmful_moves(&positions, &triangles, true, &mut moves);
-        assert_eq!(moves, vec![Vec3::ZERO, Vec3::ZERO, lift]);
+        assert_eq!(apex_move(apex, lift, true), lift);
     }
 
     #[test]
     fn a_move_that_would_turn_a_sliver_over_is_cancelled() {
         // A sliver, thin already: its apex taken across the base to the mirror image keeps its
-        // angles, so only the turned normal tells.
-        let positions = [Vec3::ZERO, Vec3::X, Vec3::new(0.5, 0.05, 0.0)];
-        let triangles = [[0, 1, 2]];
-        let mut moves = vec![Vec3::ZERO, Vec3::ZERO, Vec3::new(0.0, -0.1, 0.0)];
-        cancel_harmful_moves(&positions, &triangles, true, &mut moves);
-        assert_eq!(moves, vec![Vec3::ZERO; 3]);
+        // angles, so only the turned normal tells, with or without the guard against thin ones.
+        let apex = Vec3::new(0.5, 0.05, 0.0);
+        let across = Vec3::new(0.0, -0.1, 0.0);
+        assert_eq!(apex_move(apex, across, true), Vec3::ZERO);
+        assert_eq!(apex_move(apex, across, false), Vec3::ZERO);
         // Half-way up instead: fatter, and the same way round, so it moves.
         let up = Vec3::new(0.0, 0.2, 0.0);
-        let mut moves = vec![Vec3::ZERO, Vec3::ZERO, up];
-        cancel_harmful_moves(&positions, &triangles, true, &mut moves);
-        assert_eq!(moves, vec![Vec3::ZERO, Vec3::ZERO, up]);
+        assert_eq!(apex_move(apex, up, true), up);
     }
 
     #[test]
