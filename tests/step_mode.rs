@@ -3,7 +3,8 @@
 //! unstepped edit's mesh element for element (every id, link and position bit; a saved file
 //! lists the same lines, ordered as Bevy stores them) and one undo entry of the same label; scrubbing
 //! back to step k and forward again gives the same mesh at k; the selection follows what an
-//! element became; Esc puts the mesh back; any other edit ends the run first.
+//! element became; Esc puts the mesh back; any other edit ends the run first. A run fitted to
+//! its input ends as the unstepped one does, the fit made as it finishes.
 
 mod common;
 
@@ -149,6 +150,48 @@ fn a_run_stepped_to_its_end_is_the_unstepped_edit_element_for_element_and_one_un
         let mesh = app.world().resource::<ActiveMesh>().0.unwrap();
         validate(app.world(), mesh).unwrap();
         println!("{shape}: {unstepped}");
+    }
+}
+
+#[test]
+fn a_fitted_run_stepped_to_its_end_and_finished_is_the_unstepped_fitted_edit() {
+    // The fit to the input comes after the last collapse: the run makes it as it finishes.
+    let invocation = "simplify:0.5:0:fit";
+    for shape in SHAPES {
+        let mut whole = opened(shape);
+        send(
+            &mut whole,
+            Request::Edit(pappus::edit::Edit::invoked(invocation).unwrap()),
+        );
+        let mut app = opened(shape);
+        let edit = pappus::edit::Edit::invoked(invocation).unwrap();
+        send(&mut app, Request::StartStepped(edit));
+        press(&mut app, None, KeyCode::End);
+        assert!(last_ok(&app).contains("the end"), "{}", last_ok(&app));
+        let unfitted = elements(&app);
+        press(&mut app, None, KeyCode::Enter);
+        assert!(app.world().resource::<Stepping>().run.is_none());
+        // The sphere's vertices move; the flat grid has nothing to fit.
+        let curved = shape == SHAPES[0];
+        assert_eq!(
+            elements(&app) != unfitted,
+            curved,
+            "{shape}: what the finish fitted"
+        );
+        assert!(
+            elements(&app) == elements(&whole),
+            "{shape}: the meshes differ"
+        );
+        // The history's coarsest level is the fitted mesh: back to the full one and forth.
+        let refine =
+            |faces| pappus::edit::Edit::Operation(pappus::ops::decimate::Refine::to(faces));
+        send(&mut app, refine(None));
+        send(&mut app, refine(Some(0)));
+        assert_eq!(
+            sorted_lines(&app),
+            sorted_lines(&whole),
+            "{shape}: after refining"
+        );
     }
 }
 
