@@ -48,8 +48,8 @@ pub const SIMPLIFY: Declaration = Declaration::new("simplify")
 pub const SIMPLIFY_FACES: Declaration = Declaration::new("simplify-faces")
     .titled("Simplify to faces")
     .described(
-        "QEM edge collapses (Garland & Heckbert) until FACES faces are left; DISTANCE and FIT as for \
-         simplify",
+        "QEM edge collapses (Garland & Heckbert) until FACES faces are left; DISTANCE and FIT \
+         as for simplify",
     )
     .with_parameters(&[Parameter::whole("FACES", 1000, 0, u32::MAX), DISTANCE, FIT])
     .as_job()

@@ -1,26 +1,25 @@
 //! One step of a least-squares fit of a triangle mesh to the surface it stands for.
 //!
 //! Hoppe et al. ("Mesh Optimization", SIGGRAPH 1993) fit a mesh to points of a surface by
-//! minimising the squared distances from the points to the mesh, alternating closest points
-//! with a linear least-squares solve for the vertices. Here the points are both surfaces'
-//! samples: the input's points the caller names, such as its triangle centres (how far the
-//! input lies from the mesh), and the mesh's edge middles with its triangle centres or its
-//! vertices (how far the mesh lies from the input). Each
-//! residual is shared out to the corners of the mesh triangle it falls on by its barycentric
-//! weights, and weighted by its own length, so that the far spots, which make the Hausdorff
-//! distance, count the most (a step of iteratively reweighted least squares, towards the
-//! largest distance rather than the mean). Each vertex then moves along its normal by the
-//! weighted mean of its residuals: one Jacobi step of the normal equations. A mesh whose
-//! triangles lie on one side of the input (a remesh, whose vertices are projected onto it) or
-//! whose vertices stand where the quadrics put them (a simplification) comes to straddle the
-//! input instead.
+//! minimising the squared distances from the points to the mesh, alternating closest points with a
+//! linear least-squares solve for the vertices. Here the points are both surfaces' samples: the
+//! input's points the caller names, such as its triangle centres (how far the input lies from the
+//! mesh), and the mesh's edge middles with its triangle centres or its vertices (how far the mesh
+//! lies from the input). Each residual is shared out to the corners of the mesh triangle it falls
+//! on by its barycentric weights, and weighted by its own length, so that the far spots, which make
+//! the Hausdorff distance, count the most (a step of iteratively reweighted least squares, towards
+//! the largest distance rather than the mean). Each vertex then moves along its normal by the
+//! weighted mean of its residuals: one Jacobi step of the normal equations. A mesh whose triangles
+//! lie on one side of the input (a remesh, whose vertices are projected onto it) or whose vertices
+//! stand where the quadrics put them (a simplification) comes to straddle the input instead.
 //!
 //! No move may turn a triangle over, nor, where the caller asks ([`FitOptions::keep_fat`]),
 //! make it thin: where the moves would take a triangle's normal against what it was, or its
 //! smallest angle under [`THIN_ANGLE_DEG`] and below what it was, its corner that would move
-//! the most stays, until no triangle would be. Boundary vertices stay, so a boundary keeps its place on the
-//! input's, and so do feature corners (where other than two feature edges meet) and the
-//! vertices the caller pins; a vertex on a feature line moves as any other, across the line.
+//! the most stays, until no triangle would be. Boundary vertices stay, so a boundary keeps its
+//! place on the input's, and so do feature corners (where other than two feature edges meet)
+//! and the vertices the caller pins; a vertex on a feature line moves as any other, across the
+//! line.
 //!
 //! The remesh ends with it (its finish, `ops/remesh/run.rs`, the input's vertices sampled
 //! besides its triangle centres). One step, not Hoppe's alternation to convergence: three
@@ -48,8 +47,8 @@ const THIN_CHECKS: usize = 20;
 /// thinning it (about a thousandth of a degree at 30°: rounding, not a change of shape).
 const THINNER: f32 = 1e-5;
 
-/// A residual shared out to the corners of a remesh triangle: from the remesh's point to the
-/// input's, with each corner's share.
+/// A residual shared out to the corners of a triangle of the mesh: from the mesh's point to
+/// the input's, with each corner's share.
 #[derive(Clone, Copy, Default)]
 struct Residual {
     corners: [u32; 3],
@@ -61,8 +60,8 @@ struct Residual {
 /// `samples` are the input's points to fit besides its triangles' centres (the run passes the
 /// input's vertices off its boundary).
 /// Vertices on the boundary, the corners of `features` (where other than two feature edges
-/// meet) and the `pinned` tips stay. Leaves the connectivity as it was, and no triangle thin
-/// that was not.
+/// meet) and the `pinned` tips stay. Leaves the connectivity as it was, no triangle thin that
+/// was not, and none turned over.
 pub(crate) fn fit_to_input(
     world: &mut World,
     mesh: MeshId,
@@ -163,15 +162,15 @@ pub(crate) fn move_to_fit(
 
 /// A triangle mesh as the fit reads it: its positions, and its triangles' and edges'
 /// vertices, by row.
-pub(crate) struct FitMesh<'a> {
+struct FitMesh<'a> {
     /// Each vertex's position.
-    pub positions: &'a [Vec3],
+    positions: &'a [Vec3],
     /// Each triangle's corners, counter-clockwise.
-    pub triangles: &'a [[u32; 3]],
+    triangles: &'a [[u32; 3]],
     /// Each edge's two ends.
-    pub edges: &'a [[u32; 2]],
+    edges: &'a [[u32; 2]],
     /// What it measures and what it keeps.
-    pub options: FitOptions,
+    options: FitOptions,
 }
 
 /// What a fit measures of the mesh besides its edge middles, and what its moves must keep.
@@ -209,12 +208,7 @@ impl FitMesh<'_> {
     /// points measured to the mesh, its triangle centres among them), none turning a triangle
     /// over nor, with [`FitOptions::keep_fat`], taking its smallest angle under
     /// [`THIN_ANGLE_DEG`] and below what it was. Leaves the mesh itself alone.
-    pub fn fitted_moves(
-        &self,
-        held: &[bool],
-        input: &Reference,
-        input_points: &[Vec3],
-    ) -> Vec<Vec3> {
+    fn fitted_moves(&self, held: &[bool], input: &Reference, input_points: &[Vec3]) -> Vec<Vec3> {
         let mut moves = self.moves(held, input, input_points);
         cancel_harmful_moves(
             self.positions,
@@ -222,7 +216,6 @@ impl FitMesh<'_> {
             self.options.keep_fat,
             &mut moves,
         );
-
         moves
     }
 
@@ -231,10 +224,7 @@ impl FitMesh<'_> {
     /// those whose move is not a finite vector do not move.
     fn moves(&self, held: &[bool], input: &Reference, input_points: &[Vec3]) -> Vec<Vec3> {
         let mut pull = vec![(Vec3::ZERO, 0.0f32); self.positions.len()];
-        let inward = self.inward(input_points);
-        let outward = self.outward(input);
-
-        for r in inward.iter().chain(&outward) {
+        for r in self.inward(input_points).iter().chain(&self.outward(input)) {
             let weight = r.offset.length();
             for k in 0..3 {
                 let w = weight * r.shares[k];
