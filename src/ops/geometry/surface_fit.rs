@@ -30,7 +30,7 @@
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
-use bevy::prelude::World;
+use bevy::prelude::{Entity, World};
 
 use super::closest::{Reference, barycentric};
 use crate::mesh::ids::MeshId;
@@ -108,55 +108,98 @@ pub(crate) fn move_to_fit(
     held: &[bool],
     options: FitOptions,
 ) {
-    // Each kind's rows as the fit takes them: as listed, or by entity.
-    let order = |count: usize, entity: &dyn Fn(usize) -> u64| {
-        let mut rows: Vec<u32> = (0..count as u32).collect();
-        if options.entity_order {
-            rows.sort_unstable_by_key(|&row| entity(row as usize));
-        }
-        rows
-    };
-    let vertex_rows = order(t.vertex_count(), &|v| members.vertices[v].0.to_bits());
-    let face_rows = order(t.face_halfedge.len(), &|f| members.faces[f].0.to_bits());
-    let edge_rows = order(t.edge_halfedge.len(), &|e| members.edges[e].0.to_bits());
-    let mut rank = vec![0u32; vertex_rows.len()];
-    for (k, &v) in vertex_rows.iter().enumerate() {
-        rank[v as usize] = k as u32;
-    }
-    let vertex = |h: u32| rank[t.to_vertex[h as usize] as usize];
-    let triangles: Vec<[u32; 3]> = face_rows
-        .iter()
-        .map(|&f| {
-            let h = t.face_halfedge[f as usize];
-            [h, t.next[h as usize], t.prev[h as usize]].map(vertex)
-        })
-        .collect();
-    let edges: Vec<[u32; 2]> = edge_rows
-        .iter()
-        .map(|&e| {
-            let h = t.edge_halfedge[e as usize];
-            [h, t.twin[h as usize]].map(vertex)
-        })
-        .collect();
-    let positions: Vec<Vec3> = vertex_rows
-        .iter()
-        .map(|&v| t.positions[v as usize])
-        .collect();
-    let held: Vec<bool> = vertex_rows.iter().map(|&v| held[v as usize]).collect();
-    let fit = FitMesh {
-        positions: &positions,
-        triangles: &triangles,
-        edges: &edges,
-        options,
-    };
-    let moves = fit.fitted_moves(&held, input, input_points);
+    let elements = FitElements::of_tables(t, members, held);
+    apply_moves(world, &elements.fitted_moves(input, input_points, options));
+}
+
+/// Moves each vertex by its move, as [`FitElements::fitted_moves`] lists them; a vertex no
+/// longer in `world` is passed over.
+pub(crate) fn apply_moves(world: &mut World, moves: &[(Entity, Vec3)]) {
     let mut q = world.query::<&mut crate::mesh::Position>();
-    for (&v, m) in vertex_rows.iter().zip(&moves) {
-        if *m != Vec3::ZERO
-            && let Ok(mut position) = q.get_mut(world, members.vertices[v as usize].0)
-        {
-            position.0 += *m;
+    for &(v, m) in moves {
+        if let Ok(mut position) = q.get_mut(world, v) {
+            position.0 += m;
         }
+    }
+}
+
+/// A triangle mesh's elements as the fit takes them, each with its entity (which orders them
+/// where [`FitOptions::entity_order`] asks): its vertices, its triangles' corners (from the
+/// face's halfedge on, counter-clockwise) and its edges' ends (the tips of the edge's halfedge
+/// and of its twin), as indices into the vertices. Read from a mesh's tables
+/// ([`FitElements::of_tables`]), or from a simplification's rows before they are written back,
+/// so that the fit's searches run beside the writing.
+pub(crate) struct FitElements {
+    /// Each vertex: its entity, its position, and whether it stays where it is.
+    pub vertices: Vec<(Entity, Vec3, bool)>,
+    /// Each triangle: its face's entity and its corners.
+    pub triangles: Vec<(Entity, [u32; 3])>,
+    /// Each edge: its entity and its two ends.
+    pub edges: Vec<(Entity, [u32; 2])>,
+}
+
+impl FitElements {
+    /// The elements of the triangle mesh read into `t` (its entities `members`), in row order;
+    /// the `held` vertex rows stay.
+    pub fn of_tables(t: &Connectivity, members: &MeshMembers, held: &[bool]) -> Self {
+        let tip = |h: u32| t.to_vertex[h as usize];
+        Self {
+            vertices: (0..t.vertex_count())
+                .map(|v| (members.vertices[v].0, t.positions[v], held[v]))
+                .collect(),
+            triangles: (t.face_halfedge.iter().zip(&members.faces))
+                .map(|(&h, f)| (f.0, [h, t.next[h as usize], t.prev[h as usize]].map(tip)))
+                .collect(),
+            edges: (t.edge_halfedge.iter().zip(&members.edges))
+                .map(|(&h, e)| (e.0, [h, t.twin[h as usize]].map(tip)))
+                .collect(),
+        }
+    }
+
+    /// Each vertex's move to fit `input`, measuring `input_points` to the mesh, as `options`
+    /// say (see [`move_to_fit`]); the vertices that do not move are left out.
+    pub fn fitted_moves(
+        &self,
+        input: &Reference,
+        input_points: &[Vec3],
+        options: FitOptions,
+    ) -> Vec<(Entity, Vec3)> {
+        // Each kind's rows as the fit takes them: as listed, or by entity.
+        let order = |count: usize, entity: &dyn Fn(usize) -> Entity| {
+            let mut rows: Vec<u32> = (0..count as u32).collect();
+            if options.entity_order {
+                rows.sort_unstable_by_key(|&row| entity(row as usize).to_bits());
+            }
+            rows
+        };
+        let vertex_rows = order(self.vertices.len(), &|v| self.vertices[v].0);
+        let face_rows = order(self.triangles.len(), &|f| self.triangles[f].0);
+        let edge_rows = order(self.edges.len(), &|e| self.edges[e].0);
+        let mut rank = vec![0u32; vertex_rows.len()];
+        for (k, &v) in vertex_rows.iter().enumerate() {
+            rank[v as usize] = k as u32;
+        }
+        let ranked = |v: u32| rank[v as usize];
+        let triangles: Vec<[u32; 3]> = (face_rows.iter())
+            .map(|&f| self.triangles[f as usize].1.map(ranked))
+            .collect();
+        let edges: Vec<[u32; 2]> = (edge_rows.iter())
+            .map(|&e| self.edges[e as usize].1.map(ranked))
+            .collect();
+        let vertex = |v: u32| self.vertices[v as usize];
+        let positions: Vec<Vec3> = vertex_rows.iter().map(|&v| vertex(v).1).collect();
+        let held: Vec<bool> = vertex_rows.iter().map(|&v| vertex(v).2).collect();
+        let fit = FitMesh {
+            positions: &positions,
+            triangles: &triangles,
+            edges: &edges,
+            options,
+        };
+        let moves = fit.fitted_moves(&held, input, input_points);
+        (vertex_rows.iter().zip(moves))
+            .filter(|&(_, m)| m != Vec3::ZERO)
+            .map(|(&v, m)| (vertex(v).0, m))
+            .collect()
     }
 }
 

@@ -34,12 +34,12 @@
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
-use bevy::prelude::World;
+use bevy::prelude::{Entity, World};
 
 use crate::mesh::ids::MeshId;
 use crate::mesh::tables::{Connectivity, MeshTables, extract};
 use crate::ops::geometry::closest::Reference;
-use crate::ops::geometry::surface_fit::{FitOptions, move_to_fit};
+use crate::ops::geometry::surface_fit::{FitElements, FitOptions, apply_moves};
 
 /// What the simplification's fit measures of the result besides its edge middles: its
 /// vertices, not its triangle centres; it leaves thin triangles as the quadrics made them, and
@@ -80,15 +80,14 @@ impl InputSurface {
             .vertices()
             .map(|v| t.is_boundary_vertex(v) || unmoved.contains(&members.vertices[v.index()].0))
             .collect();
-        let (input, points) = (&self.reference, &self.points);
-        move_to_fit(
-            world,
-            &t,
-            &members,
-            input,
-            points,
-            &held,
-            SIMPLIFICATION_FIT,
-        );
+        let moves = self.moves(&FitElements::of_tables(&t, &members, &held));
+        apply_moves(world, &moves);
+    }
+
+    /// The moves that fit the simplified mesh's `elements` to this input, as [`Self::fit`]
+    /// makes them, the held vertices staying; the same moves whether the elements were read
+    /// from the mesh or from the simplification's rows, since the fit takes them by entity.
+    pub fn moves(&self, elements: &FitElements) -> Vec<(Entity, Vec3)> {
+        elements.fitted_moves(&self.reference, &self.points, SIMPLIFICATION_FIT)
     }
 }

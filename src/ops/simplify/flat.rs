@@ -33,6 +33,7 @@ use crate::mesh::ids::{EdgeId, VertexId};
 use crate::mesh::members::MeshMembers;
 use crate::mesh::tables::{Connectivity, NONE};
 use crate::mesh::topology::{MAX_LOOP, newell_area_vector};
+use crate::ops::geometry::surface_fit::FitElements;
 use crate::ops::local::{SpokeView, Wing, wing_check};
 
 /// One halfedge's links, as rows ([`NONE`]: no face).
@@ -537,6 +538,51 @@ impl FlatTriangles {
         }
     }
 
+    /// The surviving rows as the fit to the input reads them ([`FitElements`]), before they
+    /// are written back: `members` and `edge_number` as [`FlatTriangles::write_back`] takes
+    /// them, `face_halfedge` each face row's halfedge as read (a collapse never changes it),
+    /// and a vertex row stays where `held(row, whether it is on the boundary)` says.
+    pub fn fit_elements(
+        &self,
+        members: &MeshMembers,
+        edge_number: &[u32],
+        face_halfedge: &[u32],
+        held: impl Fn(usize, bool) -> bool,
+    ) -> FitElements {
+        let mut index = vec![NONE; members.vertices.len()];
+        let mut vertices = Vec::with_capacity(members.vertices.len() - self.gone.vertices.len());
+        let vertex_alive = alive(members.vertices.len(), &self.gone.vertices);
+        for (row, &v) in members.vertices.iter().enumerate() {
+            if vertex_alive[row] {
+                index[row] = vertices.len() as u32;
+                let boundary = self.he[self.vertex_halfedge[row] as usize].face == NONE;
+                vertices.push((v.0, self.position[row], held(row, boundary)));
+            }
+        }
+        let tip = |h: u32| index[self.he[h as usize].to as usize];
+        let face_alive = alive(members.faces.len(), &self.gone.faces);
+        let triangles = (members.faces.iter().zip(face_halfedge).zip(face_alive))
+            .filter(|&(_, alive)| alive)
+            .map(|((f, &h), _)| {
+                let l = self.he[h as usize];
+                (f.0, [h, l.next, l.prev].map(tip))
+            })
+            .collect();
+        let number_alive = alive(self.edge_halfedge.len(), &self.gone.edges);
+        let edges = (edge_number.iter().zip(&members.edges))
+            .filter(|&(&n, _)| number_alive[n as usize])
+            .map(|(&n, e)| {
+                let h = self.edge_halfedge[n as usize];
+                (e.0, [h, self.he[h as usize].twin].map(tip))
+            })
+            .collect();
+        FitElements {
+            vertices,
+            triangles,
+            edges,
+        }
+    }
+
     /// Writes the surviving rows into their entities (`members`, row for row: the entities
     /// [`crate::mesh::tables::extract`] read, the edges numbered by `edge_number` as in
     /// [`FlatTriangles::new`]), despawns the removed ones ([`super::despawn_dead`]) and
@@ -548,13 +594,6 @@ impl FlatTriangles {
         members: &MeshMembers,
         edge_number: &[u32],
     ) -> Vec<Option<VertexId>> {
-        let alive = |n: usize, gone: &[u32]| {
-            let mut alive = vec![true; n];
-            for &row in gone {
-                alive[row as usize] = false;
-            }
-            alive
-        };
         let vertex_alive = alive(members.vertices.len(), &self.gone.vertices);
         let halfedge_alive = alive(members.halfedges.len(), &self.gone.halfedges);
         let number_alive = alive(self.edge_halfedge.len(), &self.gone.edges);
@@ -613,6 +652,15 @@ impl FlatTriangles {
             .map(|(&v, &alive)| alive.then_some(v))
             .collect()
     }
+}
+
+/// Whether each of `n` rows is alive, `gone` listing the dead ones.
+fn alive(n: usize, gone: &[u32]) -> Vec<bool> {
+    let mut alive = vec![true; n];
+    for &row in gone {
+        alive[row as usize] = false;
+    }
+    alive
 }
 
 /// Folds the triangle on side `side` (0: left of the halfedge from a) into one edge: its

@@ -3,11 +3,10 @@
 //! the survivors written back and the removed elements despawned at the end. It uses the
 //! quadrics, placements and keys of [`super`], which do not call it.
 
-use bevy::ecs::entity::EntityHashSet;
-
 use super::fidelity::DistanceCheck;
 use super::fit::InputSurface;
 use super::*;
+use crate::ops::geometry::surface_fit::apply_moves;
 
 /// Simplifies `mesh` (triangles only) until it has at most the target's faces or no
 /// legal collapse remains.
@@ -160,10 +159,10 @@ fn simplify_inner(
             }
         }
     }
-    let slots = flat.write_back(world, &members, &slot_of_row);
-    if let Some(fit) = fit {
-        fit.finish(world, mesh, &slots);
-    }
+    let slots = match fit {
+        Some(fit) => fit.finish(world, flat, &members, &slot_of_row),
+        None => flat.write_back(world, &members, &slot_of_row),
+    };
     let summary = SimplifySummary {
         faces_before,
         faces_after: faces,
@@ -174,10 +173,12 @@ fn simplify_inner(
 }
 
 /// The fit to the input at the end of a one-go run ([`SimplifyParams::fit_to_input`]): the
-/// input's surface, built on the core the loop leaves idle, and which vertex rows a collapse
-/// kept (the others stay where they are).
+/// input's surface, built on the core the loop leaves idle, each face row's halfedge (which
+/// no collapse changes), and which vertex rows a collapse kept (the others stay where they
+/// are).
 struct FitAtEnd {
     input: std::thread::JoinHandle<InputSurface>,
+    face_halfedge: Vec<u32>,
     kept: Vec<bool>,
 }
 
@@ -185,22 +186,38 @@ impl FitAtEnd {
     /// Starts building the surface of the input in `t`, which has `vertices` vertex rows.
     fn start(t: Connectivity, vertices: usize) -> Self {
         Self {
+            face_halfedge: t.face_halfedge.clone(),
             input: std::thread::spawn(move || InputSurface::of_tables(&t)),
             kept: vec![false; vertices],
         }
     }
 
-    /// Fits `mesh`, written back with `slots` (the vertex of each row now), to the input.
-    fn finish(self, world: &mut World, mesh: MeshId, slots: &[Option<VertexId>]) {
+    /// Writes `flat` back into its entities (`members`, the edges numbered by `edge_number`)
+    /// and fits them to the input, the fit's searches running on the simplification's rows
+    /// beside the writing; returns the vertex behind each row now, as
+    /// [`flat::FlatTriangles::write_back`] does.
+    fn finish(
+        self,
+        world: &mut World,
+        flat: flat::FlatTriangles,
+        members: &MeshMembers,
+        edge_number: &[u32],
+    ) -> Vec<Option<VertexId>> {
         let input = self
             .input
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-        let unmoved: EntityHashSet = slots
-            .iter()
-            .zip(&self.kept)
-            .filter_map(|(v, &k)| v.filter(|_| !k).map(|v| v.0))
-            .collect();
-        input.fit(world, mesh, &unmoved);
+        let held = |row: usize, boundary: bool| boundary || !self.kept[row];
+        let elements = flat.fit_elements(members, edge_number, &self.face_halfedge, held);
+        let (moves, slots) = std::thread::scope(|scope| {
+            let moves = scope.spawn(|| input.moves(&elements));
+            let slots = flat.write_back(world, members, edge_number);
+            let moves = moves
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+            (moves, slots)
+        });
+        apply_moves(world, &moves);
+        slots
     }
 }
