@@ -735,3 +735,92 @@ impl Plan {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::tables::{MeshTables, VertexRow, extract};
+    use crate::mesh::{MeshInfo, build_mesh, shapes};
+
+    /// Each vertex, triangle and edge of a mesh with its corners named by their entities.
+    type ByEntity = (
+        Vec<(Entity, Vec3, bool)>,
+        Vec<[Entity; 4]>,
+        Vec<[Entity; 3]>,
+    );
+
+    /// Each vertex, triangle and edge of `elements` with its corners named by their entities,
+    /// in entity order: what the fit takes from them, whatever order they were read in.
+    fn by_entity(elements: &FitElements) -> ByEntity {
+        let entity = |v: u32| elements.vertices[v as usize].0;
+        let mut vertices = elements.vertices.clone();
+        vertices.sort_by_key(|v| v.0);
+        let mut triangles: Vec<[Entity; 4]> = (elements.triangles.iter())
+            .map(|&(f, [a, b, c])| [f, entity(a), entity(b), entity(c)])
+            .collect();
+        triangles.sort();
+        let mut edges: Vec<[Entity; 3]> = (elements.edges.iter())
+            .map(|&(e, [a, b])| [e, entity(a), entity(b)])
+            .collect();
+        edges.sort();
+        (vertices, triangles, edges)
+    }
+
+    #[test]
+    fn the_fits_elements_from_the_rows_are_those_of_the_mesh_written_back() {
+        let mut world = World::new();
+        let mesh = build_mesh(&mut world, &shapes::grid(8, 8), MeshInfo::default())
+            .unwrap()
+            .mesh;
+        let MeshTables { tables: t, members } = extract(&world, mesh);
+        let numbers: Vec<u32> = (0..t.edge_count() as u32).collect();
+        let mut flat = FlatTriangles::new(&t, &numbers, numbers.len());
+        let mut removed = std::collections::HashSet::new();
+        let mut collapses = 0;
+        for e in (0..numbers.len() as u32).step_by(5) {
+            if removed.contains(&e) {
+                continue;
+            }
+            let h = flat.edge_halfedge(e);
+            let (a, b) = (
+                flat.he[flat.he[h as usize].twin as usize].to,
+                flat.he[h as usize].to,
+            );
+            let middle = (flat.position[a as usize] + flat.position[b as usize]) / 2.0;
+            if let Some(plan) = flat.plan(h, middle, 0.0) {
+                removed.extend(
+                    flat.apply(plan, |_, _, _| {})
+                        .removed_edges
+                        .into_iter()
+                        .flatten(),
+                );
+                collapses += 1;
+            }
+        }
+        assert!(collapses >= 10, "{collapses} collapses");
+        // Every third vertex row held, besides the boundary.
+        let held = |row: usize, boundary: bool| boundary || row.is_multiple_of(3);
+        let from_rows = flat.fit_elements(&members, &numbers, &t.face_halfedge, held);
+        flat.write_back(&mut world, &members, &numbers);
+        let after = extract(&world, mesh);
+        let row_of: std::collections::HashMap<Entity, usize> = members
+            .vertices
+            .iter()
+            .enumerate()
+            .map(|(row, v)| (v.0, row))
+            .collect();
+        let held_after: Vec<bool> = (0..after.tables.vertex_count())
+            .map(|v| {
+                let row = row_of[&after.members.vertices[v].0];
+                held(
+                    row,
+                    after.tables.is_boundary_vertex(VertexRow::new(v as u32)),
+                )
+            })
+            .collect();
+        let from_mesh = FitElements::of_tables(&after.tables, &after.members, &held_after);
+        assert_eq!(from_rows.vertices.len(), after.tables.vertex_count());
+        assert!(from_rows.vertices.iter().any(|v| v.2) && from_rows.vertices.iter().any(|v| !v.2));
+        assert_eq!(by_entity(&from_rows), by_entity(&from_mesh));
+    }
+}
