@@ -27,8 +27,11 @@
 //! the remesh's guard against thin triangles is left off, since the quadrics leave many thin
 //! already, and with it half the moves were cancelled.
 //!
-//! The one-go run ([`super::simplify`]) and the stepped one ([`super::QemRun`]) end with the
-//! same call on the same mesh, so stepping to the end gives the same bits.
+//! The stepped run ([`super::QemRun`]) reads the mesh's elements ([`InputSurface::fit`]); the
+//! one-go run ([`super::simplify`]) reads the same elements from its own rows, so that the
+//! searches run while it writes the rows back into the entities ([`InputSurface::moves`]).
+//! The fit takes the elements by entity, whatever order they were read in, so stepping to the
+//! end gives the same bits.
 //!
 //! [`surface_fit`]: crate::ops::geometry::surface_fit
 
