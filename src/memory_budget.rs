@@ -6,7 +6,7 @@
 //! Without it the process would find out by running out: Rust aborts on a failed allocation,
 //! and an abort takes the editor's unsaved mesh with it. A refusal leaves the mesh as it was.
 //!
-//! The estimate is rows × [`BYTES_PER_ROW`](crate::process_memory::BYTES_PER_ROW), the memory
+//! The estimate is rows × [`BYTES_PER_ROW`], the memory
 //! a bulk operation touches per vertex, halfedge, edge or face it makes (entities, components,
 //! table rows and the operation's side tables, measured on Loop ×1 of the bunny). The budget is
 //! [`Budget::Share`] of the memory the process can still get — the kernel's `MemAvailable`,

@@ -87,7 +87,7 @@ impl Edit {
     ///
     /// # Panics
     /// When no registered operation called `name` names such an element: a caller's bug (the
-    /// editor and the step parser resolve elements through [`crate::ops::invocation_on`],
+    /// editor and the step parser resolve elements through [`crate::ops::registry::invocation_on`],
     /// which says so instead).
     pub fn local(name: &str, element: impl Into<ElementId>) -> Self {
         Self::local_on(name, [element], &[])

@@ -27,11 +27,11 @@
 //! the gesture runs (drawn as a circle about the pivot); the vertices a larger radius reaches
 //! join the gesture where they are ([`super::proportional`]).
 //!
-//! **Handle deformation** (with [`Anchors`](super::handle_deform::Anchors) marked, Shift+A): a move, rotation or scale of the
+//! **Handle deformation** (with [`Anchors`] marked, Shift+A): a move, rotation or scale of the
 //! selection (the handle) deforms the rest of the mesh, the anchors held
 //! ([`crate::ops::deform::LiveDeform`]): the system is factored when the gesture starts, each
 //! frame runs one as-rigid-as-possible iteration from the last frame's result (or the one
-//! thin-plate solve), and confirming runs [`FINAL_ITERATIONS`](super::handle_deform::FINAL_ITERATIONS) more ([`super::handle_deform`]). In step mode (F9) an
+//! thin-plate solve), and confirming runs [`FINAL_ITERATIONS`] more ([`super::handle_deform`]). In step mode (F9) an
 //! as-rigid-as-possible gesture moves the handle alone, and confirming it takes the move back
 //! and starts a stepped run of the same deformation ([`Edit::Deform`], [`STEPPED_ITERATIONS`](super::handle_deform::STEPPED_ITERATIONS)
 //! iterations), to be watched an iteration at a time ([`crate::editor::pipeline::stepping`]).

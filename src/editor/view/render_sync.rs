@@ -10,7 +10,7 @@
 //! In the `Sync` set, a mesh marked [`MeshDirty`] (opened, globally edited) is redrawn whole, and
 //! so is one marked [`LooksDirty`] (its shading or colouring changed), whose chunks keep the
 //! record of what changed them ([`ChunkChanges`]: the geometry is as drawn); a
-//! mesh carrying [`DirtyFaces`](crate::editor::session::selection::DirtyFaces) (a local edit) has only the
+//! mesh carrying [`DirtyFaces`] (a local edit) has only the
 //! chunks holding those faces redrawn, new faces joining the last chunk; a mesh marked
 //! [`PositionsDirty`] (most of its vertices moved, as in an ARAP drag) keeps its chunks and
 //! their triangles and has only their positions (smooth normals, wireframe lines) refreshed. A mesh coloured by a
@@ -155,7 +155,7 @@ fn this_generation(world: &World) -> usize {
 pub struct ChunkFaces(pub Vec<FaceId>);
 
 /// Rebuilds render copies (the `Sync` set): every chunk of a mesh marked [`MeshDirty`], and
-/// only the chunks holding [`DirtyFaces`](crate::editor::session::selection::DirtyFaces) otherwise. Render copies of meshes that are gone are
+/// only the chunks holding [`DirtyFaces`] otherwise. Render copies of meshes that are gone are
 /// removed.
 pub fn sync_render_meshes(world: &mut World) {
     remove_orphans(world);

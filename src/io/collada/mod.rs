@@ -4,7 +4,7 @@
 //! allocation per text node beyond what entities need, ~2× faster than a DOM with owned
 //! strings), then read in three steps: [`scene`] walks the visual scene and lists where each
 //! geometry is placed (transforms composed, Y-up); [`geometry`] reads each placed geometry's
-//! mesh once into a [`Part`](geometry::Part); the parts are appended here, each copy's
+//! mesh once into a [`Part`]; the parts are appended here, each copy's
 //! positions transformed (normals by the inverse transpose, and the winding reversed under a
 //! mirroring transform so faces keep facing out).
 //!

@@ -9,7 +9,7 @@
 //! Polygons are fan-triangulated, from the first corner whose diagonals are not edges already. `POSITION` (with the `min`/`max` glTF
 //! requires), `NORMAL`, `TEXCOORD_0` (`v` flipped back to glTF's downward axis) and `COLOR_0`
 //! (normalised bytes, padded to 4 for alignment) are written when the soup has them, and
-//! [`VERTEX_ATTRIBUTE`](super::VERTEX_ATTRIBUTE), the soup vertex each written vertex copies;
+//! [`VERTEX_ATTRIBUTE`], the soup vertex each written vertex copies;
 //! indices are 32-bit. A `.glb` holds the JSON and the binary chunk; a `.gltf` embeds the buffer as a
 //! base64 data URI, so either is one file.
 

@@ -209,7 +209,7 @@ pub const INSET: Declaration = Declaration::new("inset")
     .in_section(Section::Modelling);
 
 /// [`plan_inset`] and [`apply_inset`] as a registered operation: `inset:FACES[:AMOUNT[:DEPTH]]`,
-/// I (which then drags the amount); also the bevel of faces ([`Bevel`]).
+/// I (which then drags the amount); also the bevel of faces ([`Bevel`](super::Bevel)).
 pub struct Inset;
 
 impl MeshOperation for Inset {

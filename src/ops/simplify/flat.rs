@@ -5,8 +5,8 @@
 //! [`super::simplify`] reads the mesh into tables once ([`crate::mesh::tables::extract`]),
 //! makes every collapse here on `u32` rows, and writes the surviving rows back in one pass
 //! ([`FlatTriangles::write_back`]). A collapse here is the one the stepped run
-//! ([`super::QemRun`]) makes on entities (`plan_collapse` and its deferred apply in
-//! [`crate::ops::local::collapse`]), specialised to meshes of triangles (which a collapse keeps
+//! ([`super::QemRun`]) makes on entities ([`crate::ops::local::plan_collapse`] and its deferred apply,
+//! [`crate::ops::local::apply_collapse_deferred`]), specialised to meshes of triangles (which a collapse keeps
 //! triangles), and like it carries no attributes: the same checks accept the same edges
 //! (boundary pinch, the link condition of Dey, Edelsbrunner et al. 1999, a wing's valence, a
 //! boundary loop's length, the merged vertex's valence, a face normal's turn), and the same
