@@ -5,7 +5,7 @@
 //! On the halfedges, each one turns round: it runs from its old tip back to its old start, so
 //! its `vertex` becomes its old `from_vertex` and `next` and `prev` swap; twins, edges and faces
 //! stay. A vertex's outgoing halfedge becomes the twin of its old one, then its boundary one
-//! where it has a boundary (the invariant [`crate::mesh::validate`](fn@crate::mesh::validate) checks). A corner's UV, kept
+//! where it has a boundary (the invariant [`fn@crate::mesh::validate`] checks). A corner's UV, kept
 //! on the halfedge into the corner, moves to the halfedge that now runs into it (the old
 //! `prev`); vertex normals change sign; seams and face groups stay where they are.
 //!

@@ -1,10 +1,11 @@
 //! What step mode shows: the shapes the run in progress draws over the mesh, a label written
 //! on it, and a window that drives the run and lists what the operation says about its step.
 //!
-//! The window knows no algorithm. Each operation's run ([`Steps`](stepping::Steps)) says what it shows at the
-//! step it is at ([`StepShow`]: shapes, a label, lists, a table, a hint); [`gather_step_view`]
-//! asks it once a frame, turns its shapes into the frame's [`Overlay`] (logic side: headless
-//! tests see them) and copies the rest into [`StepView`]; [`step_window`] draws that.
+//! The window knows no algorithm. Each operation's run ([`Steps`](stepping::Steps)) says what it
+//! shows at the step it is at ([`StepShow`]: shapes, a label, lists, a table, a hint);
+//! [`gather_step_view`] asks it once a frame, turns its shapes into the frame's [`Overlay`] (logic
+//! side: headless tests see them) and copies the rest into [`StepView`]; [`step_window`] draws
+//! that.
 
 use bevy::prelude::*;
 use bevy_egui::{EguiContexts, egui};

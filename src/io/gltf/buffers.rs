@@ -4,8 +4,8 @@
 //! A buffer is the `.glb`'s binary chunk, a `data:` URI (base64), or a file beside the `.gltf`
 //! (its URI percent-decoded). The crate's accessor iterators trust the file: an accessor with
 //! `count` 0, a stride smaller than its element, a type the semantic does not allow, or a range
-//! past its view would panic or read garbage inside the crate. [`Buffers::check_accessor`] refuses each
-//! of those first, naming the accessor.
+//! past its view would panic or read garbage inside the crate. [`Buffers::check_accessor`]
+//! refuses each of those first, naming the accessor.
 
 use base64::Engine;
 use gltf::accessor::{DataType, Dimensions};

@@ -18,7 +18,7 @@
 //! coincide stay two — and keeps the split values per corner: UVs as they are; normals and colours,
 //! which Pappus keeps per vertex, as their mean where the corners differ (said in the notes).
 //!
-//! **Writing** ([`write`](mod@write)) is a scene of one node and one mesh of one triangle primitive:
+//! **Writing** ([`mod@write`]) is a scene of one node and one mesh of one triangle primitive:
 //! polygons fan-triangulated (said by the caller: a polygon's face is not kept as one), a vertex written once per distinct (position, UV) pair, normals and
 //! colours per vertex. `.glb` by default, `.gltf` with the buffer embedded as a data URI.
 

@@ -641,7 +641,7 @@ fn faces_by_group(soup: &PolygonSoup, groups: &crate::mesh::groups::FaceGroups) 
     out
 }
 
-/// [`write`](fn@write) with the faces in the soup's order.
+/// [`fn@write`] with the faces in the soup's order.
 fn write_in_order(soup: &PolygonSoup) -> Vec<u8> {
     let n = soup.positions.len();
     let normals = soup.vertex_normals.as_deref().filter(|v| v.len() == n);

@@ -11,7 +11,7 @@
 //!   ([`Connectivity::from_corners`]), with PMP-style navigation on typed rows.
 //! - [`read`]: entities → tables ([`extract`], giving [`MeshTables`]: the tables with the entity
 //!   behind every row).
-//! - [`write`](mod@write): tables → entities ([`spawn_connectivity`], [`replace_contents`] and the two
+//! - [`mod@write`]: tables → entities ([`spawn_connectivity`], [`replace_contents`] and the two
 //!   passes under them, `reserve_rows` and `write_links`).
 //! - [`spawn`]: tables → a new mesh in one pass, each link written as its row is spawned
 //!   ([`spawn_tables`]): what a load uses.

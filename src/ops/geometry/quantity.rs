@@ -1,7 +1,7 @@
 //! The quantities a mesh can be coloured by or exported with: one value per vertex, by table
 //! row.
 //!
-//! Curvatures come from [`super::curvature`](mod@super::curvature); valence counts a vertex's edges; the smallest
+//! Curvatures come from [`mod@super::curvature`]; valence counts a vertex's edges; the smallest
 //! angle is the smallest corner angle, in degrees, of the faces around the vertex (where thin
 //! triangles are); the edge length is the mean length of the vertex's edges.
 

@@ -1,5 +1,5 @@
 //! The triangles of a mesh as flat arrays in `f64`: what the discrete differential geometry of
-//! [`super::curvature`](mod@super::curvature), [`super::normals`] and the smoothing operators is computed on.
+//! [`mod@super::curvature`], [`super::normals`] and the smoothing operators is computed on.
 //!
 //! Polygons are fanned from their first corner (a quad gives two triangles); each triangle
 //! remembers the face it came from. Vertices are the mesh's table rows (see

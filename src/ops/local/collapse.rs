@@ -91,7 +91,7 @@ pub struct CollapseResult {
     pub kept: VertexId,
     /// The removed vertex (its id is now stale).
     pub removed: VertexId,
-    /// What [`super::vertex_split`](fn@super::vertex_split) needs to undo the collapse exactly.
+    /// What [`fn@super::vertex_split`] needs to undo the collapse exactly.
     pub record: CollapseRecord,
 }
 

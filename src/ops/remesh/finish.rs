@@ -15,7 +15,8 @@
 //!   (the new edge's middle within the tolerance of the input), and the corners of the
 //!   triangles still thin move to where their triangles are best shaped. A restored tip is
 //!   pinned: nothing flips at it or moves it.
-//! - Last, the vertices are fitted to the input ([`surface_fit`](crate::ops::geometry::surface_fit)).
+//! - Last, the vertices are fitted to the input
+//!   ([`surface_fit`](crate::ops::geometry::surface_fit)).
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;

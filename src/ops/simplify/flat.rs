@@ -2,20 +2,20 @@
 //! the remesher's collapse pass ([`crate::ops::remesh`]), which reads and writes them the same
 //! way.
 //!
-//! [`super::simplify`] reads the mesh into tables once ([`crate::mesh::tables::extract`]),
-//! makes every collapse here on `u32` rows, and writes the surviving rows back in one pass
-//! ([`FlatTriangles::write_back`]). A collapse here is the one the stepped run
-//! ([`super::QemRun`]) makes on entities ([`crate::ops::local::plan_collapse`] and its deferred apply,
-//! [`crate::ops::local::apply_collapse_deferred`]), specialised to meshes of triangles (which a collapse keeps
-//! triangles), and like it carries no attributes: the same checks accept the same edges
-//! (boundary pinch, the link condition of Dey, Edelsbrunner et al. 1999, a wing's valence, a
-//! boundary loop's length, the merged vertex's valence, a face normal's turn), and the same
-//! links are rewritten, down to the halfedge each vertex and edge names afterwards, since an
-//! edge's halfedge decides which end the next collapse of it keeps. So a simplification here
-//! makes the stepped run's collapses in the same order and leaves the same mesh, element for
-//! element; a test holds the two side by side. Only the storage order differs: the stepped run
-//! despawns as it goes, this one at the end ([`super::despawn_dead`]), so a saved file lists
-//! the same vertices and faces in another order, and freed ids come back in another order.
+//! [`super::simplify`] reads the mesh into tables once ([`crate::mesh::tables::extract`]), makes
+//! every collapse here on `u32` rows, and writes the surviving rows back in one pass
+//! ([`FlatTriangles::write_back`]). A collapse here is the one the stepped run ([`super::QemRun`])
+//! makes on entities ([`crate::ops::local::plan_collapse`] and its deferred apply,
+//! [`crate::ops::local::apply_collapse_deferred`]), specialised to meshes of triangles (which a
+//! collapse keeps triangles), and like it carries no attributes: the same checks accept the same
+//! edges (boundary pinch, the link condition of Dey, Edelsbrunner et al. 1999, a wing's valence, a
+//! boundary loop's length, the merged vertex's valence, a face normal's turn), and the same links
+//! are rewritten, down to the halfedge each vertex and edge names afterwards, since an edge's
+//! halfedge decides which end the next collapse of it keeps. So a simplification here makes the
+//! stepped run's collapses in the same order and leaves the same mesh, element for element; a test
+//! holds the two side by side. Only the storage order differs: the stepped run despawns as it goes,
+//! this one at the end ([`super::despawn_dead`]), so a saved file lists the same vertices and faces
+//! in another order, and freed ids come back in another order.
 //!
 //! Why tables: a collapse reads two vertex rings, three halfedge and position reads a spoke,
 //! and on entities each read is a lookup from entity to table row and a column each. Here a

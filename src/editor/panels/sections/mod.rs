@@ -4,7 +4,8 @@
 //!
 //! A section is a small value, [`PanelSection`]: a title, whether it is open the first time,
 //! and a draw function over a [`PanelContext`], the copy of the world the panel shows
-//! ([`InspectorView`](super::state::InspectorView)), the panel's own state, and the requests and actions its clicks make.
+//! ([`InspectorView`](super::state::InspectorView)), the panel's own state, and the requests
+//! and actions its clicks make.
 //! A section reads and asks, as the whole panel does: it never touches a mesh. Each lives in
 //! its own file; [`folding`] remembers which are open. A new section is a file and a line in
 //! [`SECTIONS`].
