@@ -157,6 +157,21 @@ impl Reference {
         })
     }
 
+    /// The rows of the triangles listed in the cells the ball of radius `r` around `p`
+    /// touches, each once, in order: every triangle within `r` of `p` among them (and some
+    /// farther, in the same cells).
+    pub fn rows_near(&self, p: Vec3, r: f32) -> Vec<usize> {
+        let cell_of = |q: Vec3| ((q - self.origin) / self.cell).floor().as_ivec3();
+        let (lo, hi) = (cell_of(p - Vec3::splat(r)), cell_of(p + Vec3::splat(r)));
+        let mut rows: Vec<usize> = (lo.z..=hi.z)
+            .flat_map(|z| (lo.y..=hi.y).flat_map(move |y| (lo.x..=hi.x).map(move |x| [x, y, z])))
+            .flat_map(|c| self.cell(c).iter().map(|&i| i as usize))
+            .collect();
+        rows.sort_unstable();
+        rows.dedup();
+        rows
+    }
+
     /// [`Reference::closest`], with the row of the triangle it lies on (the row of its face
     /// in the members the reference was made from).
     pub fn closest_on(&self, p: Vec3) -> (Vec3, usize) {
@@ -282,7 +297,7 @@ mod tests {
     }
 
     #[test]
-    fn the_reference_grid_finds_the_closest_point_of_all_triangles_and_which_are_near() {
+    fn the_reference_grid_finds_the_closest_point_of_all_triangles_and_those_near() {
         let soup = crate::mesh::shapes::icosphere(2);
         let mut world = World::new();
         let built = build_mesh(&mut world, &soup, MeshInfo::default()).unwrap();
@@ -304,6 +319,13 @@ mod tests {
             assert_eq!(reference.distance(p), nearest, "at {p}");
             for r in [0.05, 0.3, 1.0, 3.0] {
                 assert_eq!(reference.is_near(p, r), nearest <= r, "at {p}, within {r}");
+                let rows = reference.rows_near(p, r);
+                assert!(rows.windows(2).all(|w| w[0] < w[1]), "each once, in order");
+                for (row, t) in reference.triangles.iter().enumerate() {
+                    if closest_on_triangle(p, t).distance(p) <= r {
+                        assert!(rows.contains(&row), "at {p}, within {r}: {row}");
+                    }
+                }
             }
         }
     }

@@ -16,7 +16,8 @@
 //!   triangles still thin move to where their triangles are best shaped. A restored tip is
 //!   pinned: nothing flips at it or moves it.
 //! - Last, the vertices are fitted to the input
-//!   ([`surface_fit`](crate::ops::geometry::surface_fit)).
+//!   ([`surface_fit`](crate::ops::geometry::surface_fit)), and the corners nearest the input's
+//!   points still farthest off are pulled towards them ([`far_spots`](super::far_spots)).
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;

@@ -24,7 +24,8 @@ pub enum Pass {
     /// Project the relaxed vertices back onto the input surface.
     Project,
     /// After the last iteration: put back the tips and grooves the remesh cut off, clean up
-    /// the thin triangles, then fit the vertices to the input.
+    /// the thin triangles, then fit the vertices to the input and pull the corners nearest
+    /// the input's farthest spots towards them.
     Finish,
 }
 
@@ -62,8 +63,8 @@ impl Pass {
 /// - [`Pass::Flip`]: the flipped edges.
 /// - [`Pass::Relax`], [`Pass::Project`]: the vertices that moved.
 /// - [`Pass::Finish`]: the vertices it added (tips and grooves put back) and the edges it
-///   flipped, each once (the corners of thin triangles it moved and the vertices the fit to
-///   the input moved are not listed).
+///   flipped, each once (the corners of thin triangles it moved, the vertices the fit to
+///   the input moved and the corners pulled towards the far spots are not listed).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Touched {
     /// Vertices made or changed.

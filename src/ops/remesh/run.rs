@@ -6,7 +6,8 @@
 //! A run makes, for each iteration, the passes [`Pass::ITERATION`] (split, collapse, flip,
 //! relax, project; see the [`remesh`](super) module doc for what each does), then after the
 //! last iteration one [`Pass::Finish`] (tips and grooves put back, thin triangles cleaned
-//! up, the vertices fitted to the input). Each pass edits the world (splits on the entities;
+//! up, the vertices fitted to the input, the corners nearest the far spots pulled towards
+//! them). Each pass edits the world (splits on the entities;
 //! collapses and flips made on tables, as the local operations make them, and written back;
 //! moves), and the mesh is valid between any two. The first pass drops the mesh's attributes,
 //! which remeshing does not carry. [`remesh_with_progress`](super::remesh_with_progress) is
@@ -31,6 +32,7 @@ use crate::ops::Refusal;
 use crate::ops::geometry::closest::Reference;
 
 use super::collapse::collapse_short;
+use super::far_spots::pull_to_far_spots;
 use super::features::feature_rows;
 use super::finish::{DETAIL_TOLERANCE, clean_up_thin, detail_points, fill_grooves, restore_tips};
 use super::flip::flip_to_valence;
@@ -271,6 +273,9 @@ impl RemeshRun {
         );
         let vertices = &self.tips[..self.vertex_tips];
         fit_to_input(world, mesh, reference, vertices, features, &pinned);
+        pull_to_far_spots(
+            world, mesh, &self.tips, reference, features, &pinned, length,
+        );
         let splits = pinned.len() + grooves.len();
         self.summary.splits += splits;
         self.summary.flips += flipped.len();
