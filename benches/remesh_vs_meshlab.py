@@ -7,12 +7,15 @@ with the same iteration count and target length, and measures both results the s
 the share of triangles with a minimum angle below 30 degrees, the share of interior vertices
 of valence 6, the symmetric Hausdorff distance to the input (in % of the bounding-box diagonal:
 bounded to within 0.0005 % by `surface_distance.py`, with pymeshlab's sampled figures beside it,
-see `meshlab_common.hausdorff_pct`), and the time.
+see `meshlab_common.hausdorff_pct`), and the time: the median of RUNS (environment, default 3)
+runs of each, taken in turn, with the ratio of the medians (one run varies by a fifth on the
+2-core development machine).
 
 Usage: python3 benches/remesh_vs_meshlab.py [MESH] (default: ../shared/models/stanford-bunny.obj)
 Needs: pip install pymeshlab numpy libigl; cargo build --release.
 """
 import os
+import statistics
 import tempfile
 import time
 
@@ -20,6 +23,9 @@ import numpy as np
 import pymeshlab
 
 from meshlab_common import MESH, hausdorff_text, meshset, run_pappus
+
+
+RUNS = int(os.environ.get("RUNS", "3"))
 
 
 def load(path):
@@ -54,11 +60,14 @@ def mean_edge_length(path):
     return float(np.linalg.norm(v[edges[:, 0]] - v[edges[:, 1]], axis=1).mean())
 
 
-def line(name, path, ms_taken=None):
+def line(name, path, times=None):
+    """The quality of the mesh at `path`, with its distance to the input and the median and
+    range of `times` (ms) where given."""
     angle, six, faces = quality(path)
     text = f"{name:8} {faces:7d} faces  {angle:6.3f} % < 30 deg  {six:5.1f} % valence 6"
-    if ms_taken is not None:
-        text += f"  {hausdorff_text(MESH, path)}  {ms_taken:7.0f} ms"
+    if times is not None:
+        text += (f"  {hausdorff_text(MESH, path)}  {statistics.median(times):7.0f} ms"
+                 f" (runs {min(times):.0f}–{max(times):.0f})")
     print(text)
 
 
@@ -67,16 +76,22 @@ def main():
     print(f"{os.path.basename(MESH)}: 5 iterations, target length {length:.6f} (mean edge length)")
     with tempfile.TemporaryDirectory() as tmp:
         ours = os.path.join(tmp, "pappus.ply")
-        report = run_pappus(MESH, ours, f"remesh:5:{length}")
-        ms = meshset(MESH)
-        start = time.perf_counter()
-        ms.meshing_isotropic_explicit_remeshing(iterations=5, targetlen=pymeshlab.PureValue(length))
-        meshlab_ms = (time.perf_counter() - start) * 1000
         theirs = os.path.join(tmp, "meshlab.ply")
-        ms.save_current_mesh(theirs)
+        ours_ms, theirs_ms = [], []
+        for _ in range(RUNS):
+            report = run_pappus(MESH, ours, f"remesh:5:{length}")
+            ours_ms.append(report["steps"][0]["ms"])
+            ms = meshset(MESH)
+            start = time.perf_counter()
+            ms.meshing_isotropic_explicit_remeshing(iterations=5,
+                                                    targetlen=pymeshlab.PureValue(length))
+            theirs_ms.append((time.perf_counter() - start) * 1000)
+            ms.save_current_mesh(theirs)
         line("input", MESH)
-        line("Pappus", ours, report["steps"][0]["ms"])
-        line("MeshLab", theirs, meshlab_ms)
+        line("Pappus", ours, ours_ms)
+        line("MeshLab", theirs, theirs_ms)
+        ratio = statistics.median(ours_ms) / statistics.median(theirs_ms)
+        print(f"time: {ratio:.2f}× MeshLab's (medians of {RUNS} runs each, taken in turn)")
 
 
 if __name__ == "__main__":
