@@ -367,23 +367,17 @@ mod tests {
         assert_eq!(centre(&world, mesh), Vec3::ZERO);
     }
 
-    #[test]
-    fn the_early_exit_finds_the_farthest_gap_that_measuring_every_point_finds() {
-        // A bumpy input over the hexagon, and the fan's corner moved to several places.
-        let mut seed = 12345u32;
-        let mut random = || {
-            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-            (seed >> 8) as f32 / (1 << 24) as f32 - 0.5
-        };
-        let mut bumps = Vec::new();
-        let n = 12;
+    /// A grid of `n` × `n` squares over [−1.5, 1.5]², each cut into two triangles, its
+    /// corners at the heights `height(x, y)`.
+    fn grid(n: u32, height: &mut dyn FnMut(f32, f32) -> f32) -> PolygonSoup {
+        let mut corners = Vec::new();
         for i in 0..=n {
             for j in 0..=n {
                 let (x, y) = (
                     i as f32 / n as f32 * 3.0 - 1.5,
                     j as f32 / n as f32 * 3.0 - 1.5,
                 );
-                bumps.push(Vec3::new(x, y, 0.2 * random()));
+                corners.push(Vec3::new(x, y, height(x, y)));
             }
         }
         let row = |i: u32, j: u32| i * (n + 1) + j;
@@ -396,8 +390,82 @@ mod tests {
                 ]
             })
             .collect();
-        let input =
-            Reference::from_triangles(faces.iter().map(|f| f.map(|v| bumps[v as usize])).collect());
+        PolygonSoup::from_faces(corners, &faces)
+    }
+
+    /// The largest distance between `mesh` and `input` both ways, measured at their vertices,
+    /// edge middles and triangle centres.
+    fn largest_gap(world: &World, mesh: MeshId, input: &Reference) -> f32 {
+        let t = extract(world, mesh).tables;
+        let remesh = Reference::from_triangles(t.faces().map(|f| t.triangle_corners(f)).collect());
+        let samples = |triangles: &[[Vec3; 3]]| -> Vec<Vec3> {
+            (triangles.iter())
+                .flat_map(|&[a, b, c]| {
+                    [
+                        a,
+                        (a + b) / 2.0,
+                        (b + c) / 2.0,
+                        (c + a) / 2.0,
+                        (a + b + c) / 3.0,
+                    ]
+                })
+                .collect()
+        };
+        let outward = samples(remesh.triangles())
+            .into_iter()
+            .map(|p| input.distance(p));
+        let inward = samples(input.triangles())
+            .into_iter()
+            .map(|p| remesh.distance(p));
+        outward.chain(inward).fold(0.0, f32::max)
+    }
+
+    #[test]
+    fn over_a_bump_narrower_than_the_triangles_the_largest_gap_comes_down() {
+        // A flat grid of 6 × 6 squares (the "remesh", L = 0.5) over a grid of 24 × 24 with a
+        // bump on it narrower than L, 0.25 high at (0.3, −0.2), off the remesh's vertices.
+        let mut bump =
+            |x: f32, y: f32| 0.25 * (-((x - 0.3).powi(2) + (y + 0.2).powi(2)) / 0.08).exp();
+        let bumpy = grid(24, &mut bump);
+        let (mut world, mesh, input) = {
+            let mut world = World::new();
+            let remesh = build_mesh(&mut world, &grid(6, &mut |_, _| 0.0), MeshInfo::default());
+            let built = build_mesh(&mut world, &bumpy, MeshInfo::default()).unwrap();
+            let members = MeshMembers::collect(&world, built.mesh);
+            let reference = Reference::new(&MeshRef::new(&world), &members);
+            (world, remesh.unwrap().mesh, reference)
+        };
+        let before = largest_gap(&world, mesh, &input);
+        let t = extract(&world, mesh).tables;
+        let normals: Vec<Vec3> = t.faces().map(|f| t.triangle_area_vector(f)).collect();
+        let spots: Vec<Vec3> = bumpy.positions.clone();
+        let none = EntityHashSet::default();
+        let moved = pull_to_far_spots(&mut world, mesh, &spots, &input, &none, &none, 0.5);
+        assert!(!moved.is_empty());
+        let after = largest_gap(&world, mesh, &input);
+        // The bump 0.235 off the flat remesh; after, under 0.1.
+        assert!(after < before / 2.0, "{before} → {after}");
+        let t = extract(&world, mesh).tables;
+        for (f, was) in t.faces().zip(normals) {
+            assert!(t.triangle_area_vector(f).dot(was) > 0.0);
+        }
+        assert_eq!(validate(&world, mesh), Ok(()));
+    }
+
+    #[test]
+    fn the_early_exit_finds_the_farthest_gap_that_measuring_every_point_finds() {
+        // A bumpy input over the hexagon, and the fan's corner moved to several places.
+        let mut seed = 12345u32;
+        let mut random = || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (seed >> 8) as f32 / (1 << 24) as f32 - 0.5
+        };
+        let bumpy = grid(12, &mut |_, _| 0.2 * random());
+        let input = Reference::from_triangles(
+            (bumpy.faces())
+                .map(|f| [f[0], f[1], f[2]].map(|v| bumpy.positions[v as usize]))
+                .collect(),
+        );
         let fan: Vec<[Vec3; 3]> = (0..6)
             .map(|k| {
                 let corner = |k: usize| {
