@@ -13,14 +13,15 @@
 //! within the corner's longest side of it) to the remesh, and the corner itself, the middles of
 //! its sides and the centres of its triangles to the input. A move is kept only where it takes
 //! that largest gap down by [`GAIN`] of it at least, turns no triangle by more than 60° and
-//! makes none thin that was not, nor a thin one thinner. The boundary, the vertices on a feature
-//! and the tips put back stay; the connectivity is left as it is.
+//! makes none thin that was not, nor a thin one thinner. The boundary, the feature corners and
+//! the tips put back stay; a vertex on a feature line moves as any other, as in the fit. The
+//! connectivity is left as it is.
 //!
 //! On the bunny remeshed at its mean edge length, one input vertex on a crumpled stretch of the
 //! scan was left 0.197 L off after the fit (every other under 0.15 L); splitting a side onto it
-//! turned a triangle by just over 60°, and moving the nearest corner all the way onto it took
-//! its neighbours 0.27 L off. A third of the way there, the farthest gap around it is 0.15 L
-//! (`docs/performance.md`).
+//! turned a triangle by just over 60°, and moving the nearest corner (on a feature line of the
+//! scan's noise) all the way onto it took its neighbours 0.27 L off. Three tenths of the way
+//! there, the farthest gap around it is 0.15 L (`docs/performance.md`).
 
 use bevy::ecs::entity::EntityHashSet;
 use bevy::math::Vec3;
@@ -55,8 +56,9 @@ const MAX_TURN_DEG: f32 = 60.0;
 /// Moves the free corners of `mesh` towards the `spots` (the input's points that may be put
 /// back: its vertices off the boundary and the centres of its coarse triangles) that the remesh
 /// leaves farther than [`FAR_SPOT`] · `length` from it, where that brings the largest gap
-/// around them down (see the module doc). Vertices on the boundary or on a feature edge and
-/// the `pinned` ones stay. Returns the vertices moved, each once.
+/// around them down (see the module doc). Vertices on the boundary, feature corners (where
+/// other than two `features` edges meet) and the `pinned` ones stay. Returns the vertices
+/// moved, each once.
 pub(super) fn pull_to_far_spots(
     world: &mut World,
     mesh: MeshId,
