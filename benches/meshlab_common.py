@@ -2,6 +2,7 @@
 are, running one Pappus step, loading a mesh into pymeshlab, and the Hausdorff distance."""
 import json
 import os
+import statistics
 import subprocess
 import sys
 
@@ -20,6 +21,11 @@ def run_pappus(mesh, out, step):
     result = subprocess.run([PAPPUS, "process", mesh, "-o", out, "--json", step],
                             check=True, capture_output=True, text=True)
     return json.loads(result.stdout)
+
+
+def spread(times):
+    """The median of `times` in ms, with their range."""
+    return f"{statistics.median(times):.0f} ms (runs {min(times):.0f}–{max(times):.0f})"
 
 
 def meshset(path):

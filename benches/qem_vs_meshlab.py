@@ -20,15 +20,10 @@ import statistics
 import tempfile
 import time
 
-from meshlab_common import MESH, hausdorff_text, meshset, run_pappus
+from meshlab_common import MESH, hausdorff_text, meshset, run_pappus, spread
 
 
 RUNS = int(os.environ.get("RUNS", "5"))
-
-
-def spread(times):
-    """The median of `times` in ms, with their range."""
-    return f"{statistics.median(times):.0f} ms (runs {min(times):.0f}–{max(times):.0f})"
 
 
 def meshlab_run(ratio, out):

@@ -22,7 +22,7 @@ import time
 import numpy as np
 import pymeshlab
 
-from meshlab_common import MESH, hausdorff_text, meshset, run_pappus
+from meshlab_common import MESH, hausdorff_text, meshset, run_pappus, spread
 
 
 RUNS = int(os.environ.get("RUNS", "3"))
@@ -66,8 +66,7 @@ def line(name, path, times=None):
     angle, six, faces = quality(path)
     text = f"{name:8} {faces:7d} faces  {angle:6.3f} % < 30 deg  {six:5.1f} % valence 6"
     if times is not None:
-        text += (f"  {hausdorff_text(MESH, path)}  {statistics.median(times):7.0f} ms"
-                 f" (runs {min(times):.0f}–{max(times):.0f})")
+        text += f"  {hausdorff_text(MESH, path)}  {spread(times)}"
     print(text)
 
 

@@ -71,6 +71,24 @@ pub(crate) fn fit_to_input(
     pinned: &EntityHashSet,
 ) {
     let MeshTables { tables: t, members } = extract(world, mesh);
+    let held = held_vertices(&t, &members, features, pinned);
+    let input_points: Vec<Vec3> = samples
+        .iter()
+        .copied()
+        .chain(input.triangles().iter().map(|&[a, b, c]| (a + b + c) / 3.0))
+        .collect();
+    move_to_fit(world, &t, &members, input, &input_points, &held, REMESH_FIT);
+}
+
+/// Which vertex rows of the remesh in `t` (its entities `members`) stay where they are when
+/// it is fitted to its input: those on the boundary, the corners of `features` (where other
+/// than two feature edges meet) and the `pinned` tips. A vertex on a feature line may move.
+pub(crate) fn held_vertices(
+    t: &Connectivity,
+    members: &MeshMembers,
+    features: &EntityHashSet,
+    pinned: &EntityHashSet,
+) -> Vec<bool> {
     let mut feature_degree = vec![0u32; t.vertex_count()];
     for (&h, e) in t.edge_halfedge.iter().zip(&members.edges) {
         if features.contains(&e.0) {
@@ -79,19 +97,13 @@ pub(crate) fn fit_to_input(
             }
         }
     }
-    let held: Vec<bool> = (0..t.vertex_count())
+    (0..t.vertex_count())
         .map(|v| {
             t.face[t.vertex_halfedge[v] as usize] == NONE
                 || !matches!(feature_degree[v], 0 | 2)
                 || pinned.contains(&members.vertices[v].0)
         })
-        .collect();
-    let input_points: Vec<Vec3> = samples
-        .iter()
-        .copied()
-        .chain(input.triangles().iter().map(|&[a, b, c]| (a + b + c) / 3.0))
-        .collect();
-    move_to_fit(world, &t, &members, input, &input_points, &held, REMESH_FIT);
+        .collect()
 }
 
 /// Moves the vertices of the triangle mesh read into `t` (its entities `members`) along their

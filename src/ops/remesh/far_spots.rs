@@ -32,7 +32,9 @@ use crate::mesh::ids::{MeshId, VertexId};
 use crate::mesh::stats::{THIN_ANGLE_DEG, min_corner_angle_deg};
 use crate::mesh::tables::{Connectivity, MeshTables, NONE, extract};
 use crate::ops::geometry::closest::{Reference, closest_on_triangle};
-use crate::ops::parallel::in_parallel;
+use crate::ops::geometry::surface_fit::held_vertices;
+
+use super::finish::farther_than;
 
 /// How far from the remesh (times the target length) an input point must be left for this step
 /// to try to bring the remesh nearer to it.
@@ -69,40 +71,11 @@ pub(super) fn pull_to_far_spots(
     length: f32,
 ) -> Vec<VertexId> {
     let MeshTables { tables: t, members } = extract(world, mesh);
-    let far = FAR_SPOT * length;
-    let surface = Reference::from_triangles(t.faces().map(|f| t.triangle_corners(f)).collect());
-    // One search a spot, each on its own: shared out over the cores.
-    let mut found: Vec<Option<(f32, usize)>> = vec![None; spots.len()];
-    in_parallel(&mut found, |i, slot| {
-        let p = spots[i];
-        if !surface.is_near(p, far) {
-            let (q, row) = surface.closest_on(p);
-            *slot = Some((q.distance(p), row));
-        }
-    });
-    let mut far_spots: Vec<(f32, Vec3, usize)> = (found.iter().zip(spots))
-        .filter_map(|(slot, &p)| slot.map(|(gap, row)| (gap, p, row)))
-        .collect();
-    far_spots.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut far_spots = farther_than(&t, spots, FAR_SPOT * length);
     if let Some(&(farthest, ..)) = far_spots.first() {
         far_spots.retain(|spot| spot.0 >= BAND * farthest);
     }
-    let mut feature_degree = vec![0u32; t.vertex_count()];
-    for (e, edge) in members.edges.iter().enumerate() {
-        if features.contains(&edge.0) {
-            let h = t.edge_halfedge[e];
-            for end in [h, t.twin[h as usize]] {
-                feature_degree[t.to_vertex[end as usize] as usize] += 1;
-            }
-        }
-    }
-    let free: Vec<bool> = (t.vertices().zip(&members.vertices))
-        .map(|(v, vertex)| {
-            !t.is_boundary_vertex(v)
-                && matches!(feature_degree[v.get() as usize], 0 | 2)
-                && !pinned.contains(&vertex.0)
-        })
-        .collect();
+    let held = held_vertices(&t, &members, features, pinned);
     let mut patch = Patch {
         t: &t,
         positions: t.positions.clone(),
@@ -112,7 +85,7 @@ pub(super) fn pull_to_far_spots(
     for (_, p, row) in far_spots {
         let corners = t.triangle(row).map(|h| t.to_vertex[h as usize]);
         let best = (corners.into_iter())
-            .filter(|&c| free[c as usize])
+            .filter(|&c| !held[c as usize])
             .filter_map(|c| patch.best_move(c, p).map(|(gain, x)| (gain, c, x)))
             .max_by(|a, b| a.0.total_cmp(&b.0));
         if let Some((_, c, x)) = best {

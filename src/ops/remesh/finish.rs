@@ -95,19 +95,7 @@ pub(super) fn restore_tips(
     tolerance: f32,
 ) -> EntityHashSet {
     let MeshTables { tables: t, members } = extract(world, mesh);
-    let surface = Reference::from_triangles(t.faces().map(|f| t.triangle_corners(f)).collect());
-    // One search a tip, each on its own: shared out over the cores.
-    let mut found: Vec<Option<(f32, Vec3, usize)>> = vec![None; tips.len()];
-    in_parallel(&mut found, |i, slot| {
-        let p = tips[i];
-        if !surface.is_near(p, tolerance) {
-            let (q, row) = surface.closest_on(p);
-            let d = q.distance(p);
-            *slot = (d > tolerance).then_some((d, p, row));
-        }
-    });
-    let mut far: Vec<(f32, Vec3, usize)> = found.into_iter().flatten().collect();
-    far.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let far = farther_than(&t, tips, tolerance);
     let mut restored: Vec<Vec3> = Vec::new();
     let mut pinned = EntityHashSet::default();
     for (gap, tip, row) in far {
@@ -139,6 +127,30 @@ pub(super) fn restore_tips(
         }
     }
     pinned
+}
+
+/// The `points` that the triangle mesh in `t` leaves farther than `distance` from it, farthest
+/// first (in the points' order among equals), each with its distance and the row of the face
+/// nearest it.
+pub(super) fn farther_than(
+    t: &Connectivity,
+    points: &[Vec3],
+    distance: f32,
+) -> Vec<(f32, Vec3, usize)> {
+    let surface = Reference::from_triangles(t.faces().map(|f| t.triangle_corners(f)).collect());
+    // One search a point, each on its own: shared out over the cores.
+    let mut found: Vec<Option<(f32, Vec3, usize)>> = vec![None; points.len()];
+    in_parallel(&mut found, |i, slot| {
+        let p = points[i];
+        if !surface.is_near(p, distance) {
+            let (q, row) = surface.closest_on(p);
+            let d = q.distance(p);
+            *slot = (d > distance).then_some((d, p, row));
+        }
+    });
+    let mut far: Vec<(f32, Vec3, usize)> = found.into_iter().flatten().collect();
+    far.sort_by(|a, b| b.0.total_cmp(&a.0));
+    far
 }
 
 /// Splits the edges that the remesh left farther than `tolerance` from the input at one of
