@@ -380,7 +380,15 @@ fn cancel_harmful_moves(
     moves: &mut [Vec3],
 ) {
     let thin = (THIN_ANGLE_DEG as f32).to_radians().cos();
-    let shape = |[a, b, c]: [Vec3; 3]| (smallest_angle_cosine([a, b, c]), (b - a).cross(c - a));
+    // The smallest angle is read only to keep triangles fat (three square roots a triangle).
+    let shape = |[a, b, c]: [Vec3; 3]| {
+        let cosine = if keep_fat {
+            smallest_angle_cosine([a, b, c])
+        } else {
+            0.0
+        };
+        (cosine, (b - a).cross(c - a))
+    };
     let before: Vec<(f32, Vec3)> = triangles
         .iter()
         .map(|tri| shape(tri.map(|v| positions[v as usize])))
