@@ -9,7 +9,10 @@
 //! ([`Reference::is_near`]). A cell's triangles are measured four at a time without a branch
 //! first ([`lanes`]), and only those that could be nearer than the nearest found are tested
 //! exactly, in order: the same point and row as testing every one, in about two thirds of
-//! the time (`docs/performance.md`, "The grid's triangles measured four at a time").
+//! the time (`docs/performance.md`, "The grid's triangles measured four at a time"). A ring
+//! is walked over its cells in the grid only, so a search that finds nothing near (triangles
+//! so long their distances overflow, as a vertex at 1e30 makes) ends after as many steps as
+//! the grid has cells, where the blocks it walked whole once hung a simplification.
 
 mod lanes;
 
@@ -183,16 +186,26 @@ impl Reference {
     }
 
     /// [`Reference::closest`], with the row of the triangle it lies on (the row of its face
-    /// in the members the reference was made from).
+    /// in the members the reference was made from). A point with a coordinate that is not a
+    /// finite number has no nearest point: it is its own answer, with row 0 (as is any point
+    /// of a surface with no triangle that measures to a number).
     pub fn closest_on(&self, p: Vec3) -> (Vec3, usize) {
+        if !p.is_finite() {
+            return (p, 0);
+        }
         let local = (p - self.origin) / self.cell;
+        let mut best = (f32::MAX, p, 0);
+        if local.abs().max_element() > FAR_CELLS {
+            // Rings from so far out would cross millions of empty cells first.
+            self.nearest_in(p, &self.all_rows(), &mut best);
+            return (best.1, best.2);
+        }
         let c = local.floor().as_ivec3();
         // How far `p` is from the nearest wall of its own cell, in cells: after scanning the
         // block of cells within `ring` of it, everything unscanned is at least
         // `(ring + wall) * cell` away.
         let f = local - local.floor();
         let wall = f.min(Vec3::ONE - f).min_element();
-        let mut best = (f32::MAX, p, 0);
         // Far enough to take in the whole grid, from a point outside it too.
         let outside = (0..3)
             .map(|k| (-c[k]).max(c[k] - self.dims[k] + 1).max(0))
@@ -201,28 +214,49 @@ impl Reference {
         let max_ring = self.dims.iter().copied().max().unwrap_or(1) + outside;
         // Rings nearer than `outside` hold no cell of the grid: start where the grid begins.
         for ring in outside..=max_ring {
-            for x in -ring..=ring {
-                for y in -ring..=ring {
-                    for z in -ring..=ring {
-                        if x.abs().max(y.abs()).max(z.abs()) != ring {
-                            continue;
-                        }
-                        // A cell wholly farther than the nearest point found holds no
-                        // nearer one (which leaves the point found the same).
-                        let corner = self.origin + (c + IVec3::new(x, y, z)).as_vec3() * self.cell;
-                        let outside = (corner - p).max(p - corner - self.cell).max(Vec3::ZERO);
-                        if outside.length_squared() > best.0 {
-                            continue;
-                        }
-                        self.nearest_in(p, self.cell([c.x + x, c.y + y, c.z + z]), &mut best);
-                    }
+            self.for_each_in_ring(c, ring, |offset| {
+                // A cell wholly farther than the nearest point found holds no nearer one
+                // (which leaves the point found the same).
+                let corner = self.origin + (c + offset).as_vec3() * self.cell;
+                let outside = (corner - p).max(p - corner - self.cell).max(Vec3::ZERO);
+                if outside.length_squared() <= best.0 {
+                    self.nearest_in(p, self.cell((c + offset).to_array()), &mut best);
                 }
-            }
+            });
             if best.0 < f32::MAX && best.0.sqrt() <= (ring as f32 + wall) * self.cell {
                 break;
             }
         }
         (best.1, best.2)
+    }
+
+    /// Calls `visit` with the offset from cell `c` of each cell at Chebyshev distance `ring`
+    /// from it (the shell of the block within `ring`) that lies in the grid, in the order of
+    /// x, then y, then z, each ascending: a ring costs as many steps as it has cells in the
+    /// grid, so that a search that finds nothing near (its triangles' distances all not
+    /// numbers) still ends soon.
+    fn for_each_in_ring(&self, c: IVec3, ring: i32, mut visit: impl FnMut(IVec3)) {
+        let span = |k: usize| (-ring).max(-c[k])..=ring.min(self.dims[k] - 1 - c[k]);
+        let zs = span(2);
+        for x in span(0) {
+            for y in span(1) {
+                if x.abs() == ring || y.abs() == ring {
+                    zs.clone().for_each(|z| visit(IVec3::new(x, y, z)));
+                } else {
+                    // Inside the shell in x and y: only its two faces in z.
+                    for z in [-ring, ring] {
+                        if zs.contains(&z) {
+                            visit(IVec3::new(x, y, z));
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Every triangle's row, in order.
+    fn all_rows(&self) -> Vec<u32> {
+        (0..self.triangles.len() as u32).collect()
     }
 
     /// Tests `p` against the triangles `rows`, in order, keeping in `best` the squared
@@ -256,6 +290,10 @@ impl Reference {
 /// distance to a triangle may differ by (each is within a few): the tests below find a nearer
 /// triangle passed over with none, and none with 4.
 const ROUNDING_ULPS: f32 = 64.0;
+
+/// How far outside the grid, in cells, a point is searched for without the rings: past it,
+/// every triangle is tested in turn.
+const FAR_CELLS: f32 = 1e6;
 
 /// `x` squared.
 fn sq(x: f32) -> f32 {
@@ -371,6 +409,30 @@ mod tests {
                 "at {p}: row {row}"
             );
         }
+    }
+
+    #[test]
+    fn points_not_finite_or_far_out_and_triangles_that_measure_to_no_number() {
+        let small = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        // Slivers reaching 1e15 out along x: every distance to them overflows to no number in
+        // Ericson's test, so a search near their far end finds nothing until it reaches the
+        // small triangle, three hundred cells away along a grid two cells thick (its rings'
+        // blocks, scanned whole, came to about 1e10 cells).
+        let far = Vec3::new(1e15, 0.0, 0.0);
+        let slivers = (1..6).map(|k| [Vec3::new(0.0, 0.1 * k as f32, 0.5), far, far + Vec3::Z]);
+        let triangles: Vec<[Vec3; 3]> = std::iter::once(small).chain(slivers).collect();
+        let reference = Reference::from_triangles(triangles);
+        let p = Vec3::new(3e14, 0.2, 0.2);
+        assert_eq!(reference.closest_on(p), (closest_on_triangle(p, &small), 0));
+        // Not a number, or infinite: its own answer.
+        for p in [Vec3::NAN, Vec3::new(0.0, f32::INFINITY, 0.0)] {
+            let (q, row) = reference.closest_on(p);
+            assert!(q.is_nan() == p.is_nan() && row == 0, "{p}: {q}");
+        }
+        // Millions of cells out: every triangle tested in turn.
+        let grid = Reference::from_triangles(vec![small.map(|q| q + 1000.0 * Vec3::X), small]);
+        let p = Vec3::new(-1e7, 0.5, 3.0);
+        assert_eq!(grid.closest_on(p), (Vec3::new(0.0, 0.5, 0.0), 1));
     }
 
     #[test]

@@ -94,3 +94,29 @@ impl InputSurface {
         elements.fitted_moves(&self.reference, &self.points, SIMPLIFICATION_FIT)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::mesh::{MeshInfo, build_mesh, shapes, validate};
+    use crate::ops::simplify::{SimplifyParams, simplify};
+    use bevy::prelude::World;
+
+    #[test]
+    fn a_vertex_far_out_leaves_a_fitted_simplification_valid_and_ended() {
+        // One vertex of a grid 1e30 out along x: the triangles round it are so long that the
+        // searches' distances to them overflow, and one search walked some 1e10 cells.
+        let mut soup = shapes::grid(16, 16);
+        soup.positions[40].x = 1e30;
+        let mut world = World::new();
+        let mesh = build_mesh(&mut world, &soup, MeshInfo::default())
+            .unwrap()
+            .mesh;
+        let params = SimplifyParams {
+            fit_to_input: true,
+            ..SimplifyParams::ratio(0.5)
+        };
+        let summary = simplify(&mut world, mesh, &params).unwrap();
+        assert!(summary.faces_after < summary.faces_before, "{summary:?}");
+        assert_eq!(validate(&world, mesh), Ok(()));
+    }
+}
