@@ -196,7 +196,7 @@ impl Reference {
         let local = (p - self.origin) / self.cell;
         let mut best = (f32::MAX, p, 0);
         if local.abs().max_element() > FAR_CELLS {
-            // Rings from so far out would cross millions of empty cells first.
+            // Farther out, its cell's index and the rings' reach could overflow an `i32`.
             self.nearest_in(p, &self.all_rows(), &mut best);
             return (best.1, best.2);
         }
@@ -291,8 +291,8 @@ impl Reference {
 /// triangle passed over with none, and none with 4.
 const ROUNDING_ULPS: f32 = 64.0;
 
-/// How far outside the grid, in cells, a point is searched for without the rings: past it,
-/// every triangle is tested in turn.
+/// How far from the grid's origin, in cells, a point is searched for by rings: past it, where
+/// cell indices near `i32`'s range could overflow, every triangle is tested in turn.
 const FAR_CELLS: f32 = 1e6;
 
 /// `x` squared.
