@@ -360,6 +360,15 @@ mod tests {
     use crate::mesh::{MeshInfo, build_mesh};
     use bevy::prelude::World;
 
+    /// A fixed pseudo-random sequence of coordinates in [-half, half) from `seed`.
+    pub(super) fn coordinates(seed: u32, half: f32) -> impl FnMut() -> f32 {
+        let mut state = seed;
+        move || {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (state >> 8) as f32 / (1u32 << 24) as f32 * (2.0 * half) - half
+        }
+    }
+
     #[test]
     fn barycentric_weights_rebuild_the_point() {
         let tri = [Vec3::ZERO, Vec3::X, Vec3::Y];
@@ -387,11 +396,7 @@ mod tests {
             .map(|f| [0, 1, 2].map(|k| soup.positions[f[k] as usize] + offset))
             .collect();
         let reference = Reference::from_triangles(triangles.clone());
-        let mut state = 3u32;
-        let mut coordinate = || {
-            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-            (state >> 8) as f32 / (1u32 << 24) as f32 * 2.4 - 1.2
-        };
+        let mut coordinate = coordinates(3, 1.2);
         for _ in 0..500 {
             let p = offset + Vec3::new(coordinate(), coordinate(), coordinate());
             let mut brute = (f32::MAX, p, 0);
@@ -443,11 +448,7 @@ mod tests {
         let members = MeshMembers::collect(&world, built.mesh);
         let reference = Reference::new(&MeshRef::new(&world), &members);
         // Points inside, near and far outside the sphere (a fixed pseudo-random sequence).
-        let mut state = 7u32;
-        let mut coordinate = || {
-            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-            (state >> 8) as f32 / (1u32 << 24) as f32 * 8.0 - 4.0
-        };
+        let mut coordinate = coordinates(7, 4.0);
         for _ in 0..200 {
             let p = Vec3::new(coordinate(), coordinate(), coordinate());
             let nearest = reference

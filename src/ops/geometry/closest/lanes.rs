@@ -140,17 +140,14 @@ fn side_distance(sp: Lanes3, d: Lanes3, dot: Vec4, length_squared: Vec4) -> Vec4
 #[cfg(test)]
 mod tests {
     use super::super::closest_on_triangle;
+    use super::super::tests::coordinates;
     use super::*;
 
     #[test]
     fn each_lane_is_the_exact_distance_to_within_rounding() {
         // Triangles of all shapes, the thin included, and points all round them (a fixed
         // pseudo-random sequence).
-        let mut state = 11u32;
-        let mut coordinate = || {
-            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-            (state >> 8) as f32 / (1u32 << 24) as f32 * 2.0 - 1.0
-        };
+        let mut coordinate = coordinates(11, 1.0);
         let mut triangles: Vec<[Vec3; 3]> = (0..64)
             .map(|_| [(); 3].map(|_| Vec3::new(coordinate(), coordinate(), coordinate())))
             .collect();
